@@ -1,0 +1,301 @@
+"""Analytic plane curves with exact unit tangents, and sampling to a chord tolerance.
+
+Every curve maps a parameter ``s`` to points and unit tangents computed from its definition
+(never from differences of sampled points). ``s0`` and ``s1`` give the part of the curve in use
+and the direction of travel: ``evaluate`` returns the tangent along the travel from ``s0`` to
+``s1``. Curves that bound a body are travelled counter-clockwise around it, so the outward
+normal is the tangent turned clockwise (:func:`rotorcad.geometry.perp_cw`).
+
+Curve types: :class:`Line`, :class:`Arc`, :class:`Involute` (ordinary involute),
+:class:`PointPath` (trochoid / extended involute: the path of a point of one moving body seen
+from another, optionally offset, which is the envelope of a circle), :class:`Spline` (cubic
+spline through measured points), :class:`Mapped` (a curve under an affine map) and, in
+:mod:`rotorcad.envelope`, the generated (conjugate) curve.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import interpolate
+
+from rotorcad.geometry import Array, as_points, cross, normalize, perp_cw, rotate
+from rotorcad.kinematics import Body
+
+
+class Curve:
+    """Base of all curves: subclasses define ``s0``, ``s1`` and :meth:`frame`."""
+
+    s0: float
+    s1: float
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        """Points and unit tangents along increasing ``s``."""
+        raise NotImplementedError  # pragma: no cover - abstract
+
+    @property
+    def direction(self) -> float:
+        return 1.0 if self.s1 >= self.s0 else -1.0
+
+    def evaluate(self, s: Array | float) -> tuple[Array, Array]:
+        """Points and unit tangents along the direction of travel (``s0`` to ``s1``)."""
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        p, t = self.frame(s)
+        return p, t * self.direction
+
+    def point(self, s: float) -> Array:
+        return self.evaluate(s)[0][0]
+
+    @property
+    def start(self) -> Array:
+        return self.point(self.s0)
+
+    @property
+    def end(self) -> Array:
+        return self.point(self.s1)
+
+    def trimmed(self, s0: float, s1: float) -> Curve:
+        """The same geometry travelled from ``s0`` to ``s1``."""
+        return dataclasses.replace(self, s0=float(s0), s1=float(s1))
+
+    def reversed(self) -> Curve:
+        return self.trimmed(self.s1, self.s0)
+
+    def arc_center(self) -> Array | None:
+        """Centre of curvature if the curve is a circular arc, else None."""
+        return None
+
+
+@dataclass(frozen=True)
+class Line(Curve):
+    """Straight segment from ``a`` to ``b``; ``s`` is the length from ``a``."""
+
+    a: tuple[float, float]
+    b: tuple[float, float]
+    s0: float = 0.0
+    s1: float = field(default=float("nan"))
+
+    def __post_init__(self) -> None:
+        if np.isnan(self.s1):
+            object.__setattr__(self, "s1", float(np.hypot(*np.subtract(self.b, self.a))))
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        d = normalize(np.subtract(self.b, self.a, dtype=float))
+        p = np.asarray(self.a, dtype=float) + np.multiply.outer(s, d)
+        return p, np.broadcast_to(d, p.shape).copy()
+
+
+@dataclass(frozen=True)
+class Arc(Curve):
+    """Circular arc about ``center``; ``s`` is the polar angle about the centre."""
+
+    center: tuple[float, float]
+    radius: float
+    s0: float
+    s1: float
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        c, si = np.cos(s), np.sin(s)
+        p = np.asarray(self.center, dtype=float) + self.radius * np.stack([c, si], axis=-1)
+        return p, np.stack([-si, c], axis=-1)
+
+    def arc_center(self) -> Array | None:
+        return np.asarray(self.center, dtype=float)
+
+
+@dataclass(frozen=True)
+class Involute(Curve):
+    """Ordinary involute of the base circle ``base_radius`` about the origin.
+
+    p(u) = r_b R(theta0 + h u) (1, -h u), with roll angle u >= 0 and hand h = +1 (unwinding
+    counter-clockwise) or -1. Its polar angle is theta0 + h inv(alpha) with tan(alpha) = u
+    (ISO 21771 involute function); the tangent is (cos(theta0 + h u), sin(theta0 + h u)).
+    """
+
+    base_radius: float
+    theta0: float
+    hand: float
+    s0: float
+    s1: float
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        ang = self.theta0 + self.hand * s
+        c, si = np.cos(ang), np.sin(ang)
+        hu = self.hand * s
+        p = self.base_radius * np.stack([c + hu * si, si - hu * c], axis=-1)
+        t = np.stack([c, si], axis=-1) * np.sign(s + 1e-300)[..., None]
+        return p, t
+
+
+@dataclass(frozen=True)
+class PointPath(Curve):
+    """Path of a point carried by one body seen from another: a trochoid (extended involute).
+
+    ``carried`` is a point fixed in the ``carrier`` body (given in the fixed frame at t = 0), the path is
+    expressed in the ``observer`` body's frame, and ``s`` is the motion parameter t. For a rack
+    point and a rotor of pitch radius r_w this is the extended involute with
+    |p|^2 = a_x^2 + (a_y + r_w t)^2. ``offset`` moves every point by that distance along the
+    normal turned clockwise from the tangent of increasing t: the envelope of a circle of that
+    radius centred on the carried point (tool tip fillet, Litvin ch. 6).
+    """
+
+    carried: tuple[float, float]
+    carrier: Body
+    observer: Body
+    s0: float
+    s1: float
+    offset: float = 0.0
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        a = np.broadcast_to(np.asarray(self.carried, dtype=float), (len(s), 2))
+        x = self.carrier.to_fixed(a, s)
+        rel = self.carrier.velocity_at(x) - self.observer.velocity_at(x)
+        t = normalize(self.observer.vectors_to_body(rel, s))
+        p = self.observer.to_body(x, s)
+        if self.offset:
+            p = p + self.offset * perp_cw(t)
+        return p, t
+
+
+@dataclass(frozen=True)
+class Mapped(Curve):
+    """``curve`` under the affine map p -> A p + b (rotation, mirror, scaling).
+
+    A map with negative determinant reverses orientation; pass such curves through
+    :meth:`Curve.reversed` if they must keep bounding a body counter-clockwise.
+    """
+
+    curve: Curve
+    matrix: tuple[tuple[float, float], tuple[float, float]]
+    shift: tuple[float, float] = (0.0, 0.0)
+    s0: float = float("nan")
+    s1: float = float("nan")
+
+    def __post_init__(self) -> None:
+        if np.isnan(self.s0):
+            object.__setattr__(self, "s0", self.curve.s0)
+            object.__setattr__(self, "s1", self.curve.s1)
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        p, t = self.curve.frame(s)
+        m = np.asarray(self.matrix, dtype=float)
+        return p @ m.T + np.asarray(self.shift, dtype=float), normalize(t @ m.T)
+
+    def arc_center(self) -> Array | None:
+        c = self.curve.arc_center()
+        m = np.asarray(self.matrix, dtype=float)
+        if c is None or not np.allclose(m @ m.T, np.eye(2) * abs(np.linalg.det(m)), atol=1e-14):
+            return None
+        return m @ c + np.asarray(self.shift, dtype=float)
+
+
+def rotated(curve: Curve, angle: float, center: object = (0.0, 0.0)) -> Mapped:
+    """``curve`` turned by ``angle`` about ``center``."""
+    c, s = np.cos(angle), np.sin(angle)
+    m = ((c, -s), (s, c))
+    ctr = np.asarray(center, dtype=float)
+    shift = ctr - np.asarray(m) @ ctr
+    return Mapped(curve, m, (float(shift[0]), float(shift[1])))
+
+
+def mirrored(curve: Curve, angle: float = 0.0) -> Curve:
+    """``curve`` mirrored in the line through the origin at ``angle``, travelled backwards
+    so that a boundary stays counter-clockwise."""
+    c, s = np.cos(2 * angle), np.sin(2 * angle)
+    return Mapped(curve, ((c, s), (s, -c))).reversed()
+
+
+@dataclass(frozen=True)
+class Spline(Curve):
+    """Cubic spline through (or, with ``smoothing`` > 0, near) measured points.
+
+    Parameterised by cumulative chord length; tangents are the spline's exact derivative.
+    ``periodic`` closes the curve with continuous tangent and curvature. The smoothing value
+    is scipy's ``s`` (sum of squared residuals allowed, mm^2).
+    """
+
+    knots: tuple
+    s0: float
+    s1: float
+    periodic: bool = False
+
+    @staticmethod
+    def fit(points: Array, smoothing: float = 0.0, periodic: bool = False) -> Spline:
+        pts = as_points(points)
+        if periodic and np.allclose(pts[0], pts[-1]):
+            pts = pts[:-1]
+        if periodic:
+            pts = np.vstack([pts, pts[:1]])
+        keep = np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 0.0])
+        pts = pts[keep]
+        u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+        tck, _ = interpolate.splprep(pts.T, u=u, s=smoothing, k=3, per=int(periodic), quiet=2)
+        return Spline(knots=(tck[0], tuple(tck[1]), tck[2]), s0=0.0, s1=float(u[-1]), periodic=periodic)
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        tck = [self.knots[0], list(self.knots[1]), self.knots[2]]
+        p = np.stack(interpolate.splev(s, tck), axis=-1)
+        d = np.stack(interpolate.splev(s, tck, der=1), axis=-1)
+        return p, normalize(d)
+
+
+def turning_angle(t0: Array, t1: Array) -> Array:
+    """Signed angle from unit tangents ``t0`` to ``t1``."""
+    return np.arctan2(cross(t0, t1), np.einsum("ij,ij->i", t0, t1))
+
+
+def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> Array:
+    """Parameters at which straight chords deviate from ``curve`` by at most ``tolerance``.
+
+    The sagitta of a chord of length L whose end tangents turn by d(psi) is L*|d(psi)|/8 for a
+    circular arc; each interval is split uniformly in ``s`` until every estimate is within the
+    tolerance (a few vectorised passes).
+    """
+    s = np.linspace(curve.s0, curve.s1, max(minimum, 17))
+    for _ in range(passes):
+        p, t = curve.evaluate(s)
+        chord = np.hypot(*np.diff(p, axis=0).T)
+        sag = chord * np.abs(turning_angle(t[:-1], t[1:])) / 8.0
+        n = np.ceil(np.sqrt(sag / tolerance) * 1.05).astype(int)
+        n = np.maximum(n, 1)
+        if np.all(n == 1):
+            break
+        ds = np.diff(s)
+        pieces = np.repeat(s[:-1], n) + np.repeat(ds / n, n) * (
+            np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
+        )
+        s = np.concatenate([pieces, s[-1:]])
+    return s
+
+
+def chord_error(curve: Curve, s: Array, probes: int = 8) -> float:
+    """Largest distance from the curve to the chords between the samples at ``s`` (measured
+    at ``probes`` points inside every interval) - used to check :func:`sample_parameters`."""
+    p, _ = curve.evaluate(s)
+    frac = (np.arange(1, probes + 1) / (probes + 1))[None, :]
+    sm = s[:-1, None] + np.diff(s)[:, None] * frac
+    q, _ = curve.evaluate(sm.ravel())
+    q = q.reshape(len(s) - 1, probes, 2)
+    a = p[:-1, None, :]
+    d = (p[1:] - p[:-1])[:, None, :]
+    length = np.linalg.norm(d, axis=-1)
+    dist = np.abs(cross(d, q - a)) / np.where(length > 0, length, 1.0)
+    return float(dist.max()) if dist.size else 0.0
+
+
+__all__ = [
+    "Arc",
+    "Curve",
+    "Involute",
+    "Line",
+    "Mapped",
+    "PointPath",
+    "Spline",
+    "chord_error",
+    "mirrored",
+    "rotate",
+    "rotated",
+    "sample_parameters",
+]

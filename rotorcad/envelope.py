@@ -1,0 +1,243 @@
+"""The gearing (envelope) engine: conjugate points, meshline and contact parameter.
+
+A generating curve is carried by one body (a rack that translates or a rotor that turns) and
+generates the conjugate curve on another body. For every generating point p with outward unit
+normal n the engine finds the motion parameter t at which the meshing condition
+n . v_rel = 0 holds. With the relative motion a rotation about the pitch point C this is the law
+of gearing: the normal at the contact point passes through C (Litvin, *Gear Geometry and Applied
+Theory*, eq. 6.1.7; Rinder 1984, section 2.2). Then
+
+* the contact point X = M_G(t) p in the fixed frame: the meshline (Eingriffslinie),
+* the generated point M_B(t)^-1 X on the other body, with tangent parallel to the generating one,
+
+all in closed form and vectorised over the points.
+
+Generating rack (translation V): cross(n, p + V t - C) = 0 is linear in t; it has exactly one
+root unless n is parallel to V (normal parallel to the pitch line), where there is no contact.
+
+Generating rotor (centre O, rate w, angle theta = w t): with w_C = C - O = r_w (cos b, sin b)
+and n = (cos psi, sin psi) the condition reads sin(b - theta - psi) = cross(n, p) / r_w = q.
+|q| > 1: the normal never reaches the pitch circle, no contact. Otherwise two roots, i.e. the two
+points where the normal line cuts the pitch circle:
+
+* branch "A": the cut point lying further along the outward normal (cos(b - theta - psi) >= 0);
+  this is the physical one for convex and involute flanks (for an involute it is the cut on the
+  same side of the base-circle tangent point as p),
+* branch "B": the other cut point.
+
+Which one "lies on the body": given the generated body's radial ``limits`` (root and tip
+radius), a point whose branch-A conjugate falls outside them while the branch-B conjugate falls
+inside takes branch B. A circular arc centred exactly on the pitch circle (symmetric SRM flank)
+is the degenerate case: every normal passes through the centre K, so the whole arc touches at
+the one angle that brings K to C; the engine detects it from the curve's centre and uses that
+angle for every point instead of the (then ill-conditioned) root choice.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rotorcad.curves import Curve
+from rotorcad.geometry import Array, as_points, cross, perp_cw
+from rotorcad.kinematics import Body, Rotation, Translation, pitch_point
+
+
+@dataclass(frozen=True, eq=False)
+class Contact:
+    """Result of :func:`conjugate`: one row per generating point (NaN where there is no contact)."""
+
+    t: Array
+    meshline: Array
+    normal: Array
+    points: Array
+    tangents: Array
+    sliding: Array
+    pitch_point: Array
+
+    @property
+    def in_contact(self) -> Array:
+        return np.isfinite(self.t)
+
+    @property
+    def normals(self) -> Array:
+        """Outward normals of the generated body at the generated points."""
+        return perp_cw(self.tangents)
+
+    @property
+    def sliding_speed(self) -> Array:
+        """|v_rel| at the contact point per unit of the motion parameter (mm/rad)."""
+        return np.hypot(*self.sliding.T)
+
+
+def _wrap(angle: Array, reference: float) -> Array:
+    return reference + np.mod(angle - reference + np.pi, 2.0 * np.pi) - np.pi
+
+
+def contact_parameter(
+    points: Array,
+    normals: Array,
+    generating: Body,
+    pitch: Array,
+    branch: str = "A",
+    arc_center: Array | None = None,
+    reference: float = 0.0,
+) -> Array:
+    """Motion parameter t at which each generating point is in contact (NaN: never).
+
+    ``points`` and ``normals`` (outward, unit) are in the generating body's frame at t = 0.
+    ``branch`` is "A" or "B" (see the module docstring); ``reference`` is the generating rotor's
+    angle around which the root is taken (within +-pi).
+    """
+    p = as_points(points)
+    n = as_points(normals)
+    c = np.asarray(pitch, dtype=float)
+    if isinstance(generating, Translation):
+        v = np.asarray(generating.velocity, dtype=float)
+        den = cross(n, v)
+        ok = np.abs(den) > 1e-12 * np.linalg.norm(v)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(ok, -cross(n, p - c) / np.where(ok, den, 1.0), np.nan)
+        return t
+    o = np.asarray(generating.center, dtype=float)
+    w = c - o
+    r_w = float(np.hypot(*w))
+    beta = float(np.arctan2(w[1], w[0]))
+    if arc_center is not None:
+        k = np.asarray(arc_center, dtype=float) - o
+        if abs(np.hypot(*k) - r_w) <= 1e-9 * r_w:
+            theta = _wrap(np.array(beta - np.arctan2(k[1], k[0])), reference)
+            return np.full(len(p), theta / generating.rate)
+    q = cross(n, p - o) / r_w
+    psi = np.arctan2(n[:, 1], n[:, 0])
+    with np.errstate(invalid="ignore"):
+        phi = np.arcsin(q)
+    if branch == "B":
+        phi = np.pi - phi
+    elif branch != "A":
+        raise ValueError("branch must be 'A' or 'B'")
+    theta = _wrap(beta - psi - phi, reference)
+    return theta / generating.rate
+
+
+def conjugate(
+    points: Array,
+    tangents: Array,
+    generating: Body,
+    generated: Body,
+    branch: str = "A",
+    arc_center: Array | None = None,
+    limits: tuple[float, float] | None = None,
+    reference: float = 0.0,
+) -> Contact:
+    """Conjugate of a generating boundary given by ``points`` and boundary ``tangents``.
+
+    The generating boundary is travelled counter-clockwise about its body, so its outward normal
+    is the tangent turned clockwise. The generated tangents run the other way round (they bound
+    the other body, whose material lies on the opposite side). ``limits`` = (r_min, r_max) of the
+    generated body about its own centre selects, for a rotating generator, the root whose
+    conjugate lies on that body.
+    """
+    p = as_points(points)
+    tg = as_points(tangents)
+    n = perp_cw(tg)
+    c = pitch_point(generating, generated)
+    t = contact_parameter(p, n, generating, c, branch, arc_center, reference)
+    if limits is not None and isinstance(generating, Rotation) and isinstance(generated, Rotation):
+        other = contact_parameter(p, n, generating, c, "B" if branch == "A" else "A", None, reference)
+        r_a = _generated_radius(p, t, generating, generated)
+        r_b = _generated_radius(p, other, generating, generated)
+        lo, hi = limits
+        tol = 1e-9 * max(abs(hi), 1.0)
+        out_a = ~((r_a >= lo - tol) & (r_a <= hi + tol))
+        in_b = (r_b >= lo - tol) & (r_b <= hi + tol)
+        t = np.where(out_a & in_b, other, t)
+    x = generating.to_fixed(p, t)
+    nx = generating.vectors_to_fixed(n, t)
+    tx = generating.vectors_to_fixed(tg, t)
+    gen_pts = generated.to_body(x, t)
+    gen_tan = -generated.vectors_to_body(tx, t)
+    sliding = generating.velocity_at(x) - generated.velocity_at(x)
+    return Contact(t=t, meshline=x, normal=nx, points=gen_pts, tangents=gen_tan, sliding=sliding, pitch_point=c)
+
+
+def _generated_radius(p: Array, t: Array, generating: Body, generated: Rotation) -> Array:
+    x = generating.to_fixed(p, t)
+    return np.hypot(*(x - np.asarray(generated.center, dtype=float)).T)
+
+
+@dataclass(frozen=True)
+class Generated(Curve):
+    """The conjugate of ``parent`` (a curve on the ``generating`` body) on the ``generated`` body.
+
+    Evaluates exactly at any parameter of the parent, so it can be resampled to any chord
+    tolerance. Its travel runs opposite to the parent's (``s0`` = parent's ``s1``), so that a
+    counter-clockwise generating boundary yields a counter-clockwise generated one. The parent's
+    travel direction at construction fixes which side is outward.
+    """
+
+    parent: Curve
+    generating: Body
+    generated: Body
+    branch: str = "A"
+    reference: float = 0.0
+    s0: float = float("nan")
+    s1: float = float("nan")
+    parent_direction: float = field(default=0.0)
+
+    def __post_init__(self) -> None:
+        if np.isnan(self.s0):
+            object.__setattr__(self, "s0", self.parent.s1)
+            object.__setattr__(self, "s1", self.parent.s0)
+        if self.parent_direction == 0.0:
+            object.__setattr__(self, "parent_direction", self.parent.direction)
+
+    def contact(self, s: Array) -> Contact:
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        p, t_can = self.parent.frame(s)
+        return conjugate(
+            p,
+            t_can * self.parent_direction,
+            self.generating,
+            self.generated,
+            self.branch,
+            self.parent.arc_center(),
+            reference=self.reference,
+        )
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        c = self.contact(s)
+        # canonical tangent (along increasing s): the generated boundary tangent is
+        # -R t_parent_boundary and is travelled against the parent's direction.
+        return c.points, c.tangents * (-self.parent_direction)
+
+
+def generate(curve: Curve, generating: Body, generated: Body, **kwargs: object) -> Generated:
+    """Shorthand for :class:`Generated`."""
+    return Generated(curve, generating, generated, **kwargs)
+
+
+def rack_frame(points: Array, pitch_radius: float) -> Array:
+    """Fixed-frame rack points (pitch line x = r1w, motion +y) to the rack frame of CONTRACT.md:
+    x along the pitch line in the direction of motion, y = 0 on the pitch line, y > 0 away from
+    the male centre."""
+    p = as_points(points)
+    return np.stack([p[:, 1], p[:, 0] - pitch_radius], axis=-1)
+
+
+def from_rack_frame(points: Array, pitch_radius: float) -> Array:
+    """Inverse of :func:`rack_frame`."""
+    p = as_points(points)
+    return np.stack([p[:, 1] + pitch_radius, p[:, 0]], axis=-1)
+
+
+__all__ = [
+    "Contact",
+    "Generated",
+    "conjugate",
+    "contact_parameter",
+    "from_rack_frame",
+    "generate",
+    "rack_frame",
+]

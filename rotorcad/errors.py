@@ -1,0 +1,32 @@
+"""The one exception rotorcad raises for input it cannot accept.
+
+A :class:`DesignError` names the parameter, the allowed range and the value it got, so that
+the command line can print it as one sentence and exit with status 2 (CONTRACT.md, common rules).
+"""
+
+from __future__ import annotations
+
+
+class DesignError(ValueError):
+    """An input value or a combination of values that cannot describe a real part.
+
+    ``param`` is the library's name of the offending parameter (the CLI maps it to its option
+    name), ``allowed`` says what is allowed, ``value`` is what was given.
+    """
+
+    def __init__(self, param: str, allowed: str, value: object = None, detail: str = "") -> None:
+        self.param = param
+        self.allowed = allowed
+        self.value = value
+        self.detail = detail
+        super().__init__(self.sentence(param))
+
+    def sentence(self, label: str | None = None) -> str:
+        """The error as one sentence, naming the parameter as ``label``."""
+        label = label or self.param
+        text = f"{label} must be {self.allowed}"
+        if self.value is not None:
+            text += f" (got {self.value})"
+        if self.detail:
+            text += f": {self.detail}"
+        return text + "."
