@@ -138,7 +138,10 @@ class PointPath(Curve):
     point and a rotor of pitch radius r_w this is the extended involute with
     |p|^2 = a_x^2 + (a_y + r_w t)^2. ``offset`` moves every point by that distance along the
     normal turned clockwise from the tangent of increasing t: the envelope of a circle of that
-    radius centred on the carried point (tool tip fillet, Litvin ch. 6).
+    radius centred on the carried point (tool tip fillet, Litvin ch. 6). Where the offset exceeds
+    the path's radius of curvature the offset curve has cusps and runs backwards there; the
+    tangent returned is still the path's (the envelope tangent), so such parts are trimmed by
+    the caller (undercut).
     """
 
     carried: tuple[float, float]

@@ -281,10 +281,11 @@ class InvoluteGear:
                 continue
             s = np.linspace(curve.s0, curve.s1, 257)
             r = radius(curve.evaluate(s)[0]) - at_radius
+            exact = np.nonzero(np.abs(r) <= 1e-11 * max(at_radius, 1.0))[0]
+            if len(exact):
+                return float(polar_angle(curve.evaluate(s[exact[0]])[0])[0])
             k = np.nonzero(np.sign(r[:-1]) != np.sign(r[1:]))[0]
-            if len(k) or np.any(r == 0):
-                if np.any(r == 0):
-                    return float(polar_angle(curve.evaluate(s[r == 0][0])[0])[0])
+            if len(k):
                 i = k[0]
                 root = optimize.brentq(lambda v: radius(curve.evaluate(v)[0])[0] - at_radius, s[i], s[i + 1], xtol=1e-15)
                 return float(polar_angle(curve.evaluate(root)[0])[0])
@@ -365,8 +366,9 @@ class GearPair:
 
     @property
     def backlash(self) -> float:
-        """Circumferential backlash on the working pitch circle of the gear, j_wt = p_wt - s_w1 - s_w2
-        (arc lengths; s_w from the generated flanks)."""
+        """Circumferential backlash j_wt = p_wt - s_w1 - s_w2 on the working pitch circles (the two
+        circles roll on each other, so their arc lengths compare directly; s_w from the generated
+        flanks)."""
         aw = self.working_pressure_angle
         g, m = self.gear, self.mate
         rw1 = g.base_radius / np.cos(aw)
@@ -374,7 +376,7 @@ class GearPair:
         if rw1 > g.tip_radius or rw2 > m.tip_radius:
             return float("inf")
         s1 = g.tooth_thickness(rw1)
-        s2 = m.tooth_thickness(rw2) * rw1 / rw2
+        s2 = m.tooth_thickness(rw2)
         return float(2.0 * np.pi * rw1 / g.teeth - s1 - s2)
 
     def _contact_interval(self) -> tuple[float, float, float, float]:

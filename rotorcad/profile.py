@@ -131,10 +131,23 @@ class Profile:
         return Profile(self.segments + other.segments, self.closed and other.closed)
 
     def patterned(self, count: int, center: object = (0.0, 0.0)) -> Profile:
-        """``count`` copies turned by 2*pi/count about ``center`` (one tooth -> the whole gear)."""
+        """``count`` copies turned by 2*pi/count about ``center`` (one tooth -> the whole gear).
+
+        The sample arrays of all copies are rotated in one vectorised step.
+        """
+        ctr = np.asarray(center, dtype=float)
+        ang = 2.0 * np.pi * np.arange(count) / count
+        c, s = np.cos(ang), np.sin(ang)
+        mats = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], 1)  # (count, 2, 2)
         segs: list[Segment] = []
+        rotated_arrays = [
+            (np.einsum("kij,nj->kni", mats, seg.points - ctr) + ctr, np.einsum("kij,nj->kni", mats, seg.tangents))
+            for seg in self.segments
+        ]
         for k in range(count):
-            segs.extend(self.rotated(2.0 * np.pi * k / count, center).segments)
+            for seg, (pts, tans) in zip(self.segments, rotated_arrays, strict=True):
+                curve = seg.curve if k == 0 else rotated(seg.curve, float(ang[k]), ctr)
+                segs.append(Segment(seg.name, curve, seg.s, pts[k], tans[k]))
         return Profile(tuple(segs), True)
 
     def resampled(self, tolerance: float) -> Profile:

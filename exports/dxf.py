@@ -1,0 +1,51 @@
+"""DXF drawings of profiles with ezdxf: closed polylines on named layers, reference circles and
+centre marks on their own layers, true scale in millimetres ($INSUNITS = 4)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+
+LAYER_COLOURS = {"GEAR": 5, "MATE": 1, "PITCH": 3, "BASE": 8, "CENTER": 2, "LINE_OF_ACTION": 6}
+
+
+@dataclass
+class Drawing:
+    """What goes into a 2D profile drawing."""
+
+    outlines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, closed points)
+    circles: list[tuple[str, tuple[float, float], float]] = field(default_factory=list)  # (layer, centre, radius)
+    lines: list[tuple[str, tuple[float, float], tuple[float, float]]] = field(default_factory=list)
+    centers: list[tuple[float, float]] = field(default_factory=list)
+    mark_size: float = 2.0
+
+
+def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
+    """Write ``drawing``: outlines as closed LWPOLYLINEs (R2000+) or POLYLINEs (R12)."""
+    doc = ezdxf.new(version)
+    doc.header["$INSUNITS"] = 4  # millimetres
+    doc.header["$MEASUREMENT"] = 1  # metric
+    layers = {name for name, _ in drawing.outlines} | {c[0] for c in drawing.circles} | {ln[0] for ln in drawing.lines}
+    if drawing.centers:
+        layers.add("CENTER")
+    for name in sorted(layers):
+        doc.layers.add(name, color=LAYER_COLOURS.get(name, 7))
+    msp = doc.modelspace()
+    for layer, pts in drawing.outlines:
+        xy = [(float(x), float(y)) for x, y in np.asarray(pts, dtype=float)]
+        if version == "R12":
+            msp.add_polyline2d(xy, close=True, dxfattribs={"layer": layer})
+        else:
+            msp.add_lwpolyline(xy, close=True, dxfattribs={"layer": layer})
+    for layer, centre, r in drawing.circles:
+        msp.add_circle(centre, r, dxfattribs={"layer": layer})
+    for layer, a, b in drawing.lines:
+        msp.add_line(a, b, dxfattribs={"layer": layer})
+    h = drawing.mark_size
+    for cx, cy in drawing.centers:
+        msp.add_line((cx - h, cy), (cx + h, cy), dxfattribs={"layer": "CENTER"})
+        msp.add_line((cx, cy - h), (cx, cy + h), dxfattribs={"layer": "CENTER"})
+    doc.saveas(path)

@@ -1,0 +1,103 @@
+"""Helpers shared by the commands: JSON output, summary tables, output-file groups."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+from rich.console import Console
+from rich.table import Table
+
+from exports.atomic import check_writable, write_all
+from rotorcad.errors import DesignError
+
+
+class InputError(click.ClickException):
+    """Bad input: one sentence on stderr, exit status 2."""
+
+    exit_code = 2
+
+
+def reraise(exc: DesignError, names: dict[str, str]) -> InputError:
+    """A library :class:`DesignError` as a CLI error naming the option the user typed."""
+    return InputError(exc.sentence(names.get(exc.param, exc.param)))
+
+
+def plain(value: Any) -> Any:
+    """numpy scalars and arrays to JSON-ready Python values; non-finite numbers to None."""
+    if isinstance(value, dict):
+        return {k: plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        v = float(value)
+        return v if math.isfinite(v) else None
+    return value
+
+
+def emit_json(data: dict[str, Any]) -> None:
+    click.echo(json.dumps(plain(data), indent=2))
+
+
+def print_table(title: str, rows: dict[str, Any]) -> None:
+    table = Table(title=title, show_header=True, header_style="bold")
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    for key, value in plain(rows).items():
+        if isinstance(value, float):
+            text = f"{value:.6f}"
+        elif isinstance(value, (dict, list)):
+            continue
+        else:
+            text = str(value)
+        table.add_row(key, text)
+    Console(file=sys.stdout, highlight=False).print(table)
+
+
+class Outputs:
+    """Collects the files a command will write, checks their folders up front, writes them all
+    or none (see :mod:`exports.atomic`)."""
+
+    def __init__(self) -> None:
+        self._items: list[tuple[Path, Callable[[Path], None]]] = []
+
+    def add(self, path: Path | None, writer: Callable[[Path], None], option: str) -> None:
+        if path is None:
+            return
+        try:
+            check_writable(Path(path), option)
+        except DesignError as exc:
+            raise InputError(exc.sentence()) from None
+        self._items.append((Path(path), writer))
+
+    def write(self) -> list[Path]:
+        try:
+            return write_all(self._items)
+        except OSError as exc:
+            raise InputError(f"output file could not be written ({exc.strerror}): {exc.filename}.") from None
+
+
+def output_folder(path: Path | None) -> Path | None:
+    """Create ``--out DIR`` if needed; refuse a path that is a file or cannot be created."""
+    if path is None:
+        return None
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise InputError(f"--out must be a folder, but {path} is a file.")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--out must be a folder that can be created ({exc.strerror}): {path}.") from None
+    return path
