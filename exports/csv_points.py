@@ -33,7 +33,9 @@ def read_points(path: Path, label: str = "points file") -> np.ndarray:
                 continue
             if not header_seen:
                 if [c.strip().lower() for c in line.split(",")] != ["x", "y"]:
-                    raise DesignError(label, "a CSV whose first line is the header x,y", str(path), f"line {number} reads {line!r}")
+                    raise DesignError(
+                        label, "a CSV whose first line is the header x,y", str(path), f"line {number} reads {line!r}"
+                    )
                 header_seen = True
                 continue
             parts = line.split(",")

@@ -266,9 +266,7 @@ def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: 
         if np.all(n == 1):
             break
         ds = np.diff(s)
-        pieces = np.repeat(s[:-1], n) + np.repeat(ds / n, n) * (
-            np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
-        )
+        pieces = np.repeat(s[:-1], n) + np.repeat(ds / n, n) * (np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n))
         s = np.concatenate([pieces, s[-1:]])
     return s
 

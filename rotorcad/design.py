@@ -39,7 +39,9 @@ def load_toml(path: Path) -> dict[str, Any]:
         raise DesignError("design file", "valid TOML", str(path), str(exc)) from None
 
 
-def check_table(data: dict[str, Any], table: str, keys: dict[str, type | tuple[type, ...]], required: tuple[str, ...] = ()) -> dict[str, Any]:
+def check_table(
+    data: dict[str, Any], table: str, keys: dict[str, type | tuple[type, ...]], required: tuple[str, ...] = ()
+) -> dict[str, Any]:
     """Validate one table of a design: known keys, right types, required keys present."""
     section = data.get(table, {})
     if not isinstance(section, dict):

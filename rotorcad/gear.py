@@ -78,7 +78,9 @@ class InvoluteGear:
             raise DesignError("dedendum", "greater than 0 and at most 3 (factor of the module)", self.dedendum)
         rho_max = tool_tip_radius_limit(self.pressure_angle, self.dedendum)
         if not (0.0 <= self.tip_radius_factor <= rho_max + 1e-12):
-            raise DesignError("tip_radius_factor", f"between 0 and {rho_max:.4f} for this pressure angle and dedendum", self.tip_radius_factor)
+            raise DesignError(
+                "tip_radius_factor", f"between 0 and {rho_max:.4f} for this pressure angle and dedendum", self.tip_radius_factor
+            )
         if not (self.tolerance > 0.0):
             raise DesignError("tolerance", "a positive length in mm", self.tolerance)
         if self.root_radius <= 0.0:
@@ -171,7 +173,9 @@ class InvoluteGear:
         s_int = 0.0
         if undercut:
             k = int(np.argmax(along >= 0.0))
-            s_int = optimize.brentq(lambda s: (flank.contact(s).meshline[0] - t1) @ (c - t1), s_grid[k - 1], s_grid[k], xtol=1e-15)
+            s_int = optimize.brentq(
+                lambda s: (flank.contact(s).meshline[0] - t1) @ (c - t1), s_grid[k - 1], s_grid[k], xtol=1e-15
+            )
 
         def rad(curve: Curve, s: float) -> float:
             return float(radius(curve.evaluate(s)[0])[0])
@@ -258,7 +262,7 @@ class InvoluteGear:
         segs = list(lower.segments)
         if upper[0].name == "tip arc":  # merge the two halves of the tip arc into one segment
             tip = Arc((0.0, 0.0), self.nominal_tip_radius, -upper[0].curve.s1, upper[0].curve.s1)
-            segs = segs[:-1] + [Segment.sample("tip arc", tip, tol)] + upper[1:]
+            segs = [*segs[:-1], Segment.sample("tip arc", tip, tol), *upper[1:]]
         else:
             segs = segs + upper
         return Profile(tuple(segs), closed=False)
@@ -275,7 +279,9 @@ class InvoluteGear:
     def half_angle(self, at_radius: float) -> float:
         """Polar half-angle psi(R) of the tooth at radius R (0 on the tooth centre line)."""
         if not (self.root_radius - 1e-12 <= at_radius <= self.tip_radius + 1e-12):
-            raise DesignError("radius", f"between the root radius {self.root_radius:.6g} and the tip radius {self.tip_radius:.6g} mm", at_radius)
+            raise DesignError(
+                "radius", f"between the root radius {self.root_radius:.6g} and the tip radius {self.tip_radius:.6g} mm", at_radius
+            )
         for name, curve in self._half_tooth["pieces"]:
             if name not in ("involute", "fillet"):
                 continue
@@ -287,7 +293,7 @@ class InvoluteGear:
             k = np.nonzero(np.sign(r[:-1]) != np.sign(r[1:]))[0]
             if len(k):
                 i = k[0]
-                root = optimize.brentq(lambda v: radius(curve.evaluate(v)[0])[0] - at_radius, s[i], s[i + 1], xtol=1e-15)
+                root = optimize.brentq(lambda v, c=curve: radius(c.evaluate(v)[0])[0] - at_radius, s[i], s[i + 1], xtol=1e-15)
                 return float(polar_angle(curve.evaluate(root)[0])[0])
         # between the root circle and the fillet end: on the root arc
         return float(np.pi / self.teeth)
@@ -335,7 +341,9 @@ class GearPair:
                 raise DesignError("center_distance", f"greater than {lo:.6g} mm", self.center_distance)
             if self.backlash < -1e-9:
                 need = self._zero_backlash_distance
-                raise DesignError("center_distance", f"at least {need:.6g} mm for these teeth and shifts (zero backlash)", self.center_distance)
+                raise DesignError(
+                    "center_distance", f"at least {need:.6g} mm for these teeth and shifts (zero backlash)", self.center_distance
+                )
 
     @property
     def reference_center_distance(self) -> float:

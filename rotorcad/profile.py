@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 import shapely
 
-from rotorcad.curves import Curve, mirrored, rotated, sample_parameters
+from rotorcad.curves import Curve, Mapped, mirrored, rotated, sample_parameters
 from rotorcad.geometry import Array, perp_cw
 
 DEFAULT_TOLERANCE = 1e-4  # mm chord error: 0.1 micrometre
@@ -85,20 +85,22 @@ class Profile:
 
     @cached_property
     def _joined(self) -> tuple[Array, Array, Array]:
-        pts, tans, idx = [], [], []
-        for k, seg in enumerate(self.segments):
-            p, t = seg.points, seg.tangents
-            if pts and np.hypot(*(pts[-1][-1] - p[0])) < 1e-9:
-                p, t = p[1:], t[1:]
-            pts.append(p)
-            tans.append(t)
-            idx.append(np.full(len(p), k))
-        p = np.concatenate(pts)
-        t = np.concatenate(tans)
-        i = np.concatenate(idx)
+        """Concatenated samples; a segment's first point is dropped where it repeats the
+        previous segment's last point (and the closing point of a closed chain)."""
+        segs = self.segments
+        p = np.concatenate([s.points for s in segs])
+        t = np.concatenate([s.tangents for s in segs])
+        lengths = np.array([len(s.points) for s in segs])
+        idx = np.repeat(np.arange(len(segs)), lengths)
+        keep = np.ones(len(p), dtype=bool)
+        starts = np.cumsum(lengths) - lengths
+        if len(segs) > 1:
+            gap = np.hypot(*(p[starts[1:]] - p[starts[1:] - 1]).T)
+            keep[starts[1:][gap < 1e-9]] = False
+        p, t, idx = p[keep], t[keep], idx[keep]
         if self.closed and len(p) > 1 and np.hypot(*(p[0] - p[-1])) < 1e-9:
-            p, t, i = p[:-1], t[:-1], i[:-1]
-        return p, t, i
+            p, t, idx = p[:-1], t[:-1], idx[:-1]
+        return p, t, idx
 
     @property
     def points(self) -> Array:
@@ -137,17 +139,23 @@ class Profile:
         """
         ctr = np.asarray(center, dtype=float)
         ang = 2.0 * np.pi * np.arange(count) / count
-        c, s = np.cos(ang), np.sin(ang)
-        mats = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], 1)  # (count, 2, 2)
+        c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
         segs: list[Segment] = []
-        rotated_arrays = [
-            (np.einsum("kij,nj->kni", mats, seg.points - ctr) + ctr, np.einsum("kij,nj->kni", mats, seg.tangents))
-            for seg in self.segments
-        ]
+        arrays = []
+        for seg in self.segments:
+            x, y = (seg.points - ctr).T
+            tx, ty = seg.tangents.T
+            pts = np.stack([c * x - s * y, s * x + c * y], axis=-1) + ctr
+            tan = np.stack([c * tx - s * ty, s * tx + c * ty], axis=-1)
+            arrays.append((pts, tan))
         for k in range(count):
-            for seg, (pts, tans) in zip(self.segments, rotated_arrays, strict=True):
-                curve = seg.curve if k == 0 else rotated(seg.curve, float(ang[k]), ctr)
-                segs.append(Segment(seg.name, curve, seg.s, pts[k], tans[k]))
+            m = ((float(c[k, 0]), float(-s[k, 0])), (float(s[k, 0]), float(c[k, 0])))
+            shift = ctr - np.asarray(m) @ ctr
+            for seg, (pts, tan) in zip(self.segments, arrays, strict=True):
+                curve = (
+                    seg.curve if k == 0 else Mapped(seg.curve, m, (float(shift[0]), float(shift[1])), seg.curve.s0, seg.curve.s1)
+                )
+                segs.append(Segment(seg.name, curve, seg.s, pts[k], tan[k]))
         return Profile(tuple(segs), True)
 
     def resampled(self, tolerance: float) -> Profile:

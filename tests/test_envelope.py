@@ -174,7 +174,7 @@ def test_inverse_problem_rack_of_an_involute_is_straight():
     rb = r_w * np.cos(alpha)
     inv_curve = Involute(rb, 0.0, -1.0, 0.1, 0.6).reversed()
     rack = Generated(inv_curve, mesh.male, mesh.rack)
-    p, t = rack.evaluate(np.linspace(0.1, 0.6, 50))
+    p, _t = rack.evaluate(np.linspace(0.1, 0.6, 50))
     q = rack_frame(p, r_w)
     slope = np.polyfit(q[:, 1], q[:, 0], 1)
     resid = q[:, 0] - np.polyval(slope, q[:, 1])

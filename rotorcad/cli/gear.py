@@ -49,9 +49,19 @@ DEFAULTS = {"pressure_angle": 20.0, "helix_angle": 0.0, "shift": 0.0, "addendum"
 @click.option("--tolerance", type=float, default=1e-4, show_default=True, help="Chord tolerance of the outline [mm].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="Write a DXF of the gear (and mate in mesh) [mm].")
-@click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Write the gear outline as x,y points; the mate goes to NAME_mate.csv.")
-@click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="Write a PNG of the gear pair with pitch and base circles and the line of action.")
-@click.option("--out", type=click.Path(path_type=Path, file_okay=False), help="Folder for gear.dxf, gear.csv, mate.csv and gear.png.")
+@click.option(
+    "--csv",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Write the gear outline as x,y points; the mate goes to NAME_mate.csv.",
+)
+@click.option(
+    "--plot",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Write a PNG of the gear pair with pitch and base circles and the line of action.",
+)
+@click.option(
+    "--out", type=click.Path(path_type=Path, file_okay=False), help="Folder for gear.dxf, gear.csv, mate.csv and gear.png."
+)
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def gear(design: Path | None, **opts: Any) -> None:
     """One involute gear cut by the ISO 53 basic rack, optionally with its mate.
@@ -76,7 +86,9 @@ def gear(design: Path | None, **opts: Any) -> None:
         outputs.add(p, lambda path: write_points(path, g.outline().points, _comments(g, "gear")), "--csv")
         if pair is not None:
             mate_path = p.with_name("mate.csv") if out and p == out / "gear.csv" else p.with_name(p.stem + "_mate.csv")
-            outputs.add(mate_path, lambda path: write_points(path, pair.mate.outline().points, _comments(pair.mate, "mate")), "--csv")
+            outputs.add(
+                mate_path, lambda path: write_points(path, pair.mate.outline().points, _comments(pair.mate, "mate")), "--csv"
+            )
     for p in png_paths:
         outputs.add(p, lambda path: plot_gears(g, pair).savefig(path, format="png"), "--plot")
     written = outputs.write()
@@ -105,8 +117,19 @@ def _merge(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
             params["mate_teeth"] = md.get("teeth")
             params["mate_shift"] = md.get("shift")
             params["center_distance"] = md.get("center_distance")
-    for key in ("teeth", "module", "pressure_angle", "helix_angle", "shift", "addendum", "dedendum", "tip_radius",
-                "mate_teeth", "mate_shift", "center_distance"):
+    for key in (
+        "teeth",
+        "module",
+        "pressure_angle",
+        "helix_angle",
+        "shift",
+        "addendum",
+        "dedendum",
+        "tip_radius",
+        "mate_teeth",
+        "mate_shift",
+        "center_distance",
+    ):
         if opts.get(key) is not None:
             params[key] = opts[key]
     for key, value in DEFAULTS.items():

@@ -1,0 +1,30 @@
+"""The README's Python example runs as printed, and its first two lines are the two commands."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+README = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+
+
+def test_python_example_runs_and_generates_an_involute():
+    block = re.search(r"```python\n(.*?)```", README, re.S).group(1)
+    scope: dict = {}
+    exec(compile(block, "README.md", "exec"), scope)
+    # the rack flank through C = (30, 0) at angle alpha generates the involute of r_b = 30 cos(alpha)
+    pts = scope["points"]
+    rb = 30.0 * np.cos(np.arctan2(0.72794, 2.0))
+    a = np.arccos(rb / np.hypot(*pts.T))
+    th = np.arctan2(pts[:, 1], pts[:, 0]) + np.tan(a) - a
+    assert np.ptp(th) < 1e-12
+
+
+def test_first_two_commands():
+    sh = re.search(r"```sh\n(.*?)```", README, re.S).group(1).strip().splitlines()
+    assert len(sh) == 2
+    assert "rotorcad gear samples/gear_pair.toml" in sh[0]
+    ci = (Path(__file__).resolve().parents[1] / ".ci" / "run").read_text()
+    assert sh[1] in ci
