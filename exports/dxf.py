@@ -9,7 +9,18 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 
-LAYER_COLOURS = {"GEAR": 5, "MATE": 1, "PITCH": 3, "BASE": 8, "CENTER": 2, "LINE_OF_ACTION": 6}
+LAYER_COLOURS = {
+    "GEAR": 5,
+    "MATE": 1,
+    "MALE": 5,
+    "FEMALE": 1,
+    "RACK": 4,
+    "HOUSING": 8,
+    "PITCH": 3,
+    "BASE": 8,
+    "CENTER": 2,
+    "LINE_OF_ACTION": 6,
+}
 
 
 @dataclass
@@ -20,6 +31,7 @@ class Drawing:
     circles: list[tuple[str, tuple[float, float], float]] = field(default_factory=list)  # (layer, centre, radius)
     lines: list[tuple[str, tuple[float, float], tuple[float, float]]] = field(default_factory=list)
     centers: list[tuple[float, float]] = field(default_factory=list)
+    polylines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, open points)
     mark_size: float = 2.0
 
 
@@ -28,7 +40,11 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
     doc = ezdxf.new(version)
     doc.header["$INSUNITS"] = 4  # millimetres
     doc.header["$MEASUREMENT"] = 1  # metric
-    layers = {name for name, _ in drawing.outlines} | {c[0] for c in drawing.circles} | {ln[0] for ln in drawing.lines}
+    layers = (
+        {name for name, _ in drawing.outlines + drawing.polylines}
+        | {c[0] for c in drawing.circles}
+        | {ln[0] for ln in drawing.lines}
+    )
     if drawing.centers:
         layers.add("CENTER")
     for name in sorted(layers):
@@ -40,6 +56,12 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
             msp.add_polyline2d(xy, close=True, dxfattribs={"layer": layer})
         else:
             msp.add_lwpolyline(xy, close=True, dxfattribs={"layer": layer})
+    for layer, pts in drawing.polylines:
+        xy = [(float(x), float(y)) for x, y in np.asarray(pts, dtype=float)]
+        if version == "R12":
+            msp.add_polyline2d(xy, dxfattribs={"layer": layer})
+        else:
+            msp.add_lwpolyline(xy, dxfattribs={"layer": layer})
     for layer, centre, r in drawing.circles:
         msp.add_circle(centre, r, dxfattribs={"layer": layer})
     for layer, a, b in drawing.lines:

@@ -260,7 +260,7 @@ def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: 
     for _ in range(passes):
         p, t = curve.evaluate(s)
         chord = np.hypot(*np.diff(p, axis=0).T)
-        sag = chord * np.abs(turning_angle(t[:-1], t[1:])) / 8.0
+        sag = np.nan_to_num(chord * np.abs(turning_angle(t[:-1], t[1:])) / 8.0, nan=0.0)
         n = np.ceil(np.sqrt(sag / tolerance) * 1.05).astype(int)
         n = np.maximum(n, 1)
         if np.all(n == 1):

@@ -68,3 +68,66 @@ def load_gear_design(path: Path) -> dict[str, dict[str, Any]]:
     gear = check_table(data, "gear", GEAR_KEYS, required=("teeth", "module"))
     mate = check_table(data, "mate", MATE_KEYS) if "mate" in data else {}
     return {"gear": gear, "mate": mate}
+
+
+PAIR_KEYS: dict[str, type | tuple[type, ...]] = {
+    "male_teeth": int,
+    "female_teeth": int,
+    "center_distance": NUMBER,
+    "male_tip_radius": NUMBER,
+    "male_root_radius": NUMBER,
+    "female_tip_radius": NUMBER,
+    "female_root_radius": NUMBER,
+    "lead": NUMBER,
+    "length": NUMBER,
+    "hand": str,
+}
+HOUSING_KEYS: dict[str, type | tuple[type, ...]] = {"radial_clearance": NUMBER}
+OPERATING_KEYS: dict[str, type | tuple[type, ...]] = {
+    "speed_rpm": NUMBER,
+    "suction_pressure_bar": NUMBER,
+    "discharge_pressure_bar": NUMBER,
+}
+EXPORT_KEYS: dict[str, type | tuple[type, ...]] = {"tolerance": NUMBER, "formats": list}
+POINT_FAMILIES = ("rack-points", "male-points", "female-points")
+
+
+def load_rotor_design(path: Path) -> dict[str, Any]:
+    """A screw-rotor design (CONTRACT.md "Design files"): [pair], [profile] (family and its
+    parameters, or a points file), optional [housing], [operating], [export]."""
+    data = load_toml(path)
+    for table in data:
+        if table not in ("pair", "profile", "housing", "operating", "export"):
+            raise DesignError(
+                f"table [{table}]", "one of [pair], [profile], [housing], [operating], [export]", None, "unknown table"
+            )
+    pair = check_table(data, "pair", PAIR_KEYS, required=tuple(k for k in PAIR_KEYS if k not in ("lead", "length", "hand")))
+    profile = dict(data.get("profile", {}))
+    if "family" not in profile or not isinstance(profile["family"], str):
+        raise DesignError("[profile] family", "given as a name", None, "missing key")
+    family = profile.pop("family")
+    points = None
+    smoothing = 0.0
+    if family in POINT_FAMILIES:
+        if not isinstance(profile.get("points"), str):
+            raise DesignError("[profile] points", "a CSV file name for the family " + family, None, "missing key")
+        points = (Path(path).parent / profile.pop("points")).resolve()
+        smoothing = float(profile.pop("smoothing", 0.0))
+        if profile:
+            raise DesignError(
+                f"key '{next(iter(profile))}' in [profile]", "points or smoothing for a points family", None, "unknown key"
+            )
+    else:
+        for key, value in profile.items():
+            if isinstance(value, bool) or not isinstance(value, NUMBER):
+                raise DesignError(f"[profile] {key}", "a number", repr(value))
+    return {
+        "pair": pair,
+        "family": family,
+        "params": profile,
+        "points": points,
+        "smoothing": smoothing,
+        "housing": check_table(data, "housing", HOUSING_KEYS),
+        "operating": check_table(data, "operating", OPERATING_KEYS),
+        "export": check_table(data, "export", EXPORT_KEYS),
+    }

@@ -30,7 +30,9 @@ radius), a point whose branch-A conjugate falls outside them while the branch-B 
 inside takes branch B. A circular arc centred exactly on the pitch circle (symmetric SRM flank)
 is the degenerate case: every normal passes through the centre K, so the whole arc touches at
 the one angle that brings K to C; the engine detects it from the curve's centre and uses that
-angle for every point instead of the (then ill-conditioned) root choice.
+angle for every point instead of the (then ill-conditioned) root choice. Likewise a rack arc
+centred on the pitch line touches at the one shift that brings its centre to C, including its
+end points, whose normals lie along the pitch line.
 """
 
 from __future__ import annotations
@@ -95,6 +97,10 @@ def contact_parameter(
     c = np.asarray(pitch, dtype=float)
     if isinstance(generating, Translation):
         v = np.asarray(generating.velocity, dtype=float)
+        if arc_center is not None:
+            k = np.asarray(arc_center, dtype=float) - c
+            if abs(cross(k, v)) <= 1e-12 * np.dot(v, v):  # arc centred on the pitch line
+                return np.full(len(p), -np.dot(k, v) / np.dot(v, v))
         den = cross(n, v)
         ok = np.abs(den) > 1e-12 * np.linalg.norm(v)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -136,18 +142,18 @@ def conjugate(
     The generating boundary is travelled counter-clockwise about its body, so its outward normal
     is the tangent turned clockwise. The generated tangents run the other way round (they bound
     the other body, whose material lies on the opposite side). ``limits`` = (r_min, r_max) of the
-    generated body about its own centre selects, for a rotating generator, the root whose
-    conjugate lies on that body.
+    generated rotor about its centre, or (y_min, y_max) of a generated rack about its pitch line,
+    selects for a rotating generator the root whose conjugate lies on that body.
     """
     p = as_points(points)
     tg = as_points(tangents)
     n = perp_cw(tg)
     c = pitch_point(generating, generated)
     t = contact_parameter(p, n, generating, c, branch, arc_center, reference)
-    if limits is not None and isinstance(generating, Rotation) and isinstance(generated, Rotation):
+    if limits is not None and isinstance(generating, Rotation):
         other = contact_parameter(p, n, generating, c, "B" if branch == "A" else "A", None, reference)
-        r_a = _generated_radius(p, t, generating, generated)
-        r_b = _generated_radius(p, other, generating, generated)
+        r_a = _generated_extent(p, t, generating, generated, c)
+        r_b = _generated_extent(p, other, generating, generated, c)
         lo, hi = limits
         tol = 1e-9 * max(abs(hi), 1.0)
         out_a = ~((r_a >= lo - tol) & (r_a <= hi + tol))
@@ -162,9 +168,15 @@ def conjugate(
     return Contact(t=t, meshline=x, normal=nx, points=gen_pts, tangents=gen_tan, sliding=sliding, pitch_point=c)
 
 
-def _generated_radius(p: Array, t: Array, generating: Body, generated: Rotation) -> Array:
+def _generated_extent(p: Array, t: Array, generating: Body, generated: Body, pitch: Array) -> Array:
+    """Where a conjugate point lies on the generated body: its radius about a rotor's centre, or
+    for a rack its height above the pitch line (towards the side the rack's velocity turned
+    clockwise points to: +x for the standard rack moving +y)."""
     x = generating.to_fixed(p, t)
-    return np.hypot(*(x - np.asarray(generated.center, dtype=float)).T)
+    if isinstance(generated, Rotation):
+        return np.hypot(*(x - np.asarray(generated.center, dtype=float)).T)
+    v = np.asarray(generated.velocity, dtype=float)
+    return -cross(v / np.hypot(*v), x - pitch)
 
 
 @dataclass(frozen=True)
@@ -182,6 +194,7 @@ class Generated(Curve):
     generated: Body
     branch: str = "A"
     reference: float = 0.0
+    limits: tuple[float, float] | None = None
     s0: float = float("nan")
     s1: float = float("nan")
     parent_direction: float = field(default=0.0)
@@ -203,6 +216,7 @@ class Generated(Curve):
             self.generated,
             self.branch,
             self.parent.arc_center(),
+            limits=self.limits,
             reference=self.reference,
         )
 

@@ -39,7 +39,8 @@ class Segment:
         """Sample ``curve`` so that chords deviate from it by at most ``tolerance`` (mm)."""
         s = sample_parameters(curve, tolerance)
         p, t = curve.evaluate(s)
-        return Segment(name, curve, s, p, t)
+        ok = np.all(np.isfinite(p), axis=1) & np.all(np.isfinite(t), axis=1)  # no-contact points are dropped
+        return Segment(name, curve, s[ok], p[ok], t[ok])
 
     @staticmethod
     def at(name: str, curve: Curve, s: Array) -> Segment:

@@ -12,6 +12,7 @@ import click
 
 from rotorcad import __version__
 from rotorcad.cli.gear import gear
+from rotorcad.cli.rotor import rotor
 from rotorcad.errors import DesignError
 
 
@@ -25,6 +26,7 @@ def cli() -> None:
 
 
 cli.add_command(gear)
+cli.add_command(rotor)
 
 
 def main(argv: list[str] | None = None) -> int:

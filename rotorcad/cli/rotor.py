@@ -1,0 +1,217 @@
+"""``rotorcad rotor``: screw-rotor pair generation and meshing analysis (CONTRACT.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+
+from exports.csv_points import read_points, write_points
+from exports.dxf import Drawing, write_dxf
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.design import load_rotor_design
+from rotorcad.envelope import rack_frame
+from rotorcad.errors import DesignError
+from rotorcad.meshing import MeshingAnalysis
+from rotorcad.profile import Segment
+from rotorcad.rotor_families import build_family
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.rotor_plotting import plot_pair, plot_sliding
+from rotorcad.rotor_points import pair_from_rack_points, pair_from_rotor_points
+from rotorcad.screw_rotors import ScrewRotors
+
+PAIR_OPTIONS = (
+    "male_teeth",
+    "female_teeth",
+    "center_distance",
+    "male_tip_radius",
+    "male_root_radius",
+    "female_tip_radius",
+    "female_root_radius",
+    "lead",
+    "length",
+)
+
+CONTRACT_KEYS = (
+    "male_teeth",
+    "female_teeth",
+    "center_distance",
+    "meshline_closed",
+    "blow_hole_area",
+    "contact_line_length",
+    "male_flute_area",
+    "female_flute_area",
+    "displacement_per_rev",
+    "max_sliding_velocity",
+)
+
+
+@click.command()
+@click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
+@click.option(
+    "--male-points", type=click.Path(path_type=Path, dir_okay=False), help="Male profile points (CSV x,y in mm, own frame)."
+)
+@click.option(
+    "--female-points", type=click.Path(path_type=Path, dir_okay=False), help="Female profile points (CSV x,y in mm, own frame)."
+)
+@click.option(
+    "--rack-points", type=click.Path(path_type=Path, dir_okay=False), help="One rack period (CSV x,y in mm, rack frame)."
+)
+@click.option("--male-teeth", type=int, help="Male lobes z1 (2..12).")
+@click.option("--female-teeth", type=int, help="Female lobes z2 (2..12).")
+@click.option("--center-distance", type=float, help="Centre distance a [mm].")
+@click.option("--male-tip-radius", type=float, help="Male tip radius [mm].")
+@click.option("--male-root-radius", type=float, help="Male root radius [mm].")
+@click.option("--female-tip-radius", type=float, help="Female tip radius [mm].")
+@click.option("--female-root-radius", type=float, help="Female root radius [mm].")
+@click.option("--lead", type=float, help="Male lead h1 [mm]. Default 300 or the design's.")
+@click.option("--length", type=float, help="Rotor length L [mm]. Default 190 or the design's.")
+@click.option("--speed", type=float, help="Male speed [rpm] for sliding velocities. Default 3000 or the design's [operating].")
+@click.option(
+    "--smoothing", type=float, default=0.0, show_default=True, help="Spline smoothing of measured points [mm^2], 0 interpolates."
+)
+@click.option("--tolerance", type=float, default=1e-3, show_default=True, help="Chord tolerance of written outlines [mm].")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option(
+    "--plot",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="PNG of the pair in mesh; sliding and slip go to NAME_sliding.png.",
+)
+@click.option(
+    "--dxf",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="DXF of male, female (in mesh), rack, pitch circles and bores [mm].",
+)
+@click.option(
+    "--male-csv", type=click.Path(path_type=Path, dir_okay=False), help="Write the male outline (own frame, mesh position)."
+)
+@click.option(
+    "--female-csv", type=click.Path(path_type=Path, dir_okay=False), help="Write the female outline (own frame, mesh position)."
+)
+@click.option("--rack-csv", type=click.Path(path_type=Path, dir_okay=False), help="Write one rack period (rack frame).")
+@click.option("--quiet", is_flag=True, help="No progress output.")
+def rotor(design: Path | None, **opts: Any) -> None:
+    """A screw-rotor pair from a design file (profile family) or from measured points, with
+    Rinder's meshing analysis: meshline, cusps / jamming / slipping, tightness and blow-hole,
+    contact-line length, flute areas, displacement, sliding velocity and slip."""
+    rotors, speed, clearance = _build(design, opts)
+    if not (opts["tolerance"] and opts["tolerance"] > 0):
+        raise InputError(f"--tolerance must be a positive length in mm (got {opts['tolerance']}).")
+    try:
+        analysis = MeshingAnalysis(rotors, speed_rpm=speed)
+        result = analysis.summary()
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    result["rack_loss_percent"] = rotors.rack_loss
+    tol = opts["tolerance"]
+    out = Outputs()
+    if opts["plot"]:
+        plot = Path(opts["plot"])
+        out.add(plot, lambda p: plot_pair(analysis, clearance).savefig(p, format="png"), "--plot")
+        out.add(plot.with_name(plot.stem + "_sliding.png"), lambda p: plot_sliding(analysis).savefig(p, format="png"), "--plot")
+    male_pts = lambda: _exterior(analysis.sections[0])  # noqa: E731
+    female_pts = lambda: _exterior(analysis.sections[1])  # noqa: E731
+    out.add(opts["male_csv"], lambda p: write_points(p, male_pts(), ["male outline, own frame, male angle 0"]), "--male-csv")
+    out.add(
+        opts["female_csv"],
+        lambda p: write_points(p, female_pts(), ["female outline, own frame; shift by (a, 0) to mesh"]),
+        "--female-csv",
+    )
+    out.add(opts["rack_csv"], lambda p: write_points(p, _rack_points(rotors, tol), ["one rack period, rack frame"]), "--rack-csv")
+    out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(rotors, male_pts(), female_pts(), clearance, tol)), "--dxf")
+    result["files"] = [str(p) for p in out.write()]
+    if opts["as_json"]:
+        emit_json(result)
+    else:
+        print_table(f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair", result)
+        for d in result["defects"]:
+            click.echo(
+                f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, flank '{d['flank']}'"
+                + (" (point-generated)" if d["point_generated"] else "")
+            )
+        for p in result["files"]:
+            click.echo(f"wrote {p}")
+
+
+def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, float, float]:
+    sources = [k for k in ("male_points", "female_points", "rack_points") if opts.get(k)]
+    if len(sources) > 1:
+        raise InputError("give only one of --male-points, --female-points, --rack-points.")
+    values: dict[str, Any] = {"lead": 300.0, "length": 190.0}
+    family, params, points, smoothing, speed, clearance = None, {}, None, opts["smoothing"], 3000.0, 0.0
+    if design is not None:
+        try:
+            d = load_rotor_design(design)
+        except DesignError as exc:
+            raise InputError(exc.sentence()) from None
+        values.update(d["pair"])
+        family, params, points, smoothing = d["family"], d["params"], d["points"], d["smoothing"] or smoothing
+        speed = float(d["operating"].get("speed_rpm", speed))
+        clearance = float(d["housing"].get("radial_clearance", 0.0))
+    elif not sources:
+        raise InputError("give a design file or one of --male-points, --female-points, --rack-points.")
+    for key in PAIR_OPTIONS:
+        if opts.get(key) is not None:
+            values[key] = opts[key]
+    if sources:
+        family = sources[0].replace("_", "-")
+        points = opts[sources[0]]
+    if opts.get("speed") is not None:
+        speed = opts["speed"]
+    if not (np.isfinite(speed) and speed > 0):
+        raise InputError(f"--speed must be a positive speed in rpm (got {speed}).")
+    missing = [k for k in PAIR_OPTIONS if k not in values]
+    if missing:
+        raise InputError(f"--{missing[0].replace('_', '-')} is required (or a design file with [pair] {missing[0]}).")
+    label = (lambda k: f"[pair] {k}") if design is not None and not sources else (lambda k: f"--{k.replace('_', '-')}")
+    try:
+        pair = RotorPair(**values)
+    except DesignError as exc:
+        raise InputError(exc.sentence(label(exc.param))) from None
+    except TypeError as exc:
+        raise InputError(f"the pair is not described completely: {exc}.") from None
+    try:
+        if family in ("rack-points", "male-points", "female-points"):
+            pts = read_points(points, f"--{family}")
+            if family == "rack-points":
+                rotors = pair_from_rack_points(pair, pts, smoothing)
+            else:
+                rotors = pair_from_rotor_points(pair, pts, family.split("-")[0], smoothing)
+        else:
+            rotors = build_family(pair, family, params)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    return rotors, float(speed), clearance
+
+
+def _exterior(polygon) -> np.ndarray:
+    """Counter-clockwise exterior points without the repeated end point."""
+    pts = np.asarray(polygon.exterior.coords)[:-1]
+    area = 0.5 * np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1])
+    return pts if area > 0 else pts[::-1]
+
+
+def _rack_points(rotors: ScrewRotors, tol: float) -> np.ndarray:
+    pts = np.vstack([Segment.sample("rack", piece.curve, tol).points for piece in rotors.rack])
+    keep = np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 1e-9])
+    return rack_frame(pts[keep], rotors.pair.male_pitch_radius)
+
+
+def _drawing(rotors: ScrewRotors, male: np.ndarray, female: np.ndarray, clearance: float, tol: float) -> Drawing:
+    pair = rotors.pair
+    a = pair.center_distance
+    d = Drawing(mark_size=0.05 * pair.male_tip_radius)
+    d.outlines.append(("MALE", male))
+    d.outlines.append(("FEMALE", female + np.array([a, 0.0])))
+    d.circles += [
+        ("PITCH", (0.0, 0.0), pair.male_pitch_radius),
+        ("PITCH", (a, 0.0), pair.female_pitch_radius),
+        ("HOUSING", (0.0, 0.0), pair.male_tip_radius + clearance),
+        ("HOUSING", (a, 0.0), pair.female_tip_radius + clearance),
+    ]
+    d.centers += [(0.0, 0.0), (a, 0.0)]
+    rack = np.vstack([Segment.sample("rack", piece.curve, tol).points for piece in rotors.rack])
+    d.polylines = [("RACK", rack)]
+    return d

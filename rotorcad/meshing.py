@@ -1,0 +1,321 @@
+"""Meshing analysis of a screw-rotor pair after Rinder (*Sonderverzahnungen für
+Schraubenverdichterrotoren*): meshline, contact line, the kinematic rules of sec. 2.2.1, tightness
+and blow-hole (2.2.2), flute areas and displacement, sliding velocity and slip (eqs. 2-4).
+
+The meshline is the set of contact points in the fixed transverse frame: for a rack-generated
+pair the rack touches both rotors at the same point, so it is the rack's contact locus. Only
+contacts inside both bores (tip circles) count. Its tangent comes from an interpolating spline of
+each piece over the generating parameter (never from point differences).
+
+Blow-hole (projected definition, stated because the paper gives no formula): the curvilinear
+triangle in the transverse plane between the meshline's end E nearest the housing cusp K and K
+itself, bounded by the arc of the female tip circle from K to the radial projection of E on it, the
+arc of the male tip circle from K to the radial projection of E on it, and the two radial pieces
+to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear) blow-hole is not
+computed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import shapely
+from scipy import interpolate
+
+from rotorcad.envelope import Generated
+from rotorcad.geometry import cross
+from rotorcad.screw_rotors import ScrewRotors
+
+
+@dataclass(frozen=True, eq=False)
+class MeshlinePiece:
+    """Contact points of one rack piece, ordered along the piece."""
+
+    name: str
+    kind: str
+    s: np.ndarray
+    t: np.ndarray  # male rotation angle at contact (rad)
+    points: np.ndarray  # fixed frame
+    tangents: np.ndarray  # common tangent of the flanks at contact (unit)
+    male_name: str = ""
+    female_name: str = ""
+
+
+@dataclass(frozen=True)
+class Defect:
+    kind: str  # cusp, jamming, slipping
+    rotor: str  # male, female
+    x: float
+    y: float
+    angle_deg: float
+    flank: str
+    point_generated: bool = False
+    extent: float = 0.0  # meshline length over which it holds (0: a single point)
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "kind": self.kind,
+            "rotor": self.rotor,
+            "x": self.x,
+            "y": self.y,
+            "angle_deg": self.angle_deg,
+            "flank": self.flank,
+            "point_generated": self.point_generated,
+            "extent": self.extent,
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class MeshingAnalysis:
+    """Everything Rinder reads off a toothing, for one pair at a design speed (rpm)."""
+
+    rotors: ScrewRotors
+    speed_rpm: float = 3000.0
+    samples: int = 600
+    tolerance: float = 1e-3
+
+    # ---- meshline ------------------------------------------------------------------------
+    @cached_property
+    def pieces(self) -> list[MeshlinePiece]:
+        pair = self.rotors.pair
+        mesh = pair.mesh
+        o2 = np.array([pair.center_distance, 0.0])
+        out = []
+        for piece in self.rotors.rack:
+            gen = Generated(piece.curve, mesh.rack, mesh.female)
+            s = np.linspace(piece.curve.s0, piece.curve.s1, self.samples)
+            c = gen.contact(s)
+            x = c.meshline
+            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-7) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-7)
+            ok = c.in_contact & inside & np.all(np.isfinite(x), axis=1)
+            if ok.sum() < 2:
+                continue
+            _, tan = piece.curve.evaluate(s)
+            tan_fixed = mesh.rack.vectors_to_fixed(tan, c.t)
+            out.append(
+                MeshlinePiece(
+                    piece.male_name, piece.kind, s[ok], c.t[ok], x[ok], tan_fixed[ok], piece.male_name, piece.female_name
+                )
+            )
+        return out
+
+    @property
+    def meshline(self) -> np.ndarray:
+        return np.concatenate([p.points for p in self.pieces]) if self.pieces else np.zeros((0, 2))
+
+    @property
+    def contact_angles(self) -> np.ndarray:
+        return np.concatenate([p.t for p in self.pieces]) if self.pieces else np.zeros(0)
+
+    # ---- the rules of sec. 2.2.1 -----------------------------------------------------------
+    @cached_property
+    def defects(self) -> list[Defect]:
+        pair = self.rotors.pair
+        o1, o2 = np.zeros(2), np.array([pair.center_distance, 0.0])
+        c = np.array([pair.male_pitch_radius, 0.0])
+        tol = self.tolerance
+        found: list[Defect] = []
+        scale = pair.center_distance
+        for piece in self.pieces:
+            pts = piece.points
+            length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
+            if len(pts) < 4 or length < 1e-6 * scale:
+                continue  # the piece touches at a single point (a tip or root land): no meshline
+            order = np.argsort(piece.s)
+            spline = interpolate.make_interp_spline(piece.s[order], pts[order], k=3)
+            tau = spline.derivative()(piece.s)
+            tau /= np.linalg.norm(tau, axis=1, keepdims=True)
+            # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
+            # through O1, O2 and C at once), and C itself lies on every meshline
+            judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
+            for q, kind, rotor in ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male")):
+                f = np.einsum("ij,ij->i", q - pts, tau)  # zero: the meshline normal passes through q
+                if np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()):
+                    if kind == "jamming":
+                        continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
+                    mid = len(pts) // 2
+                    found.append(
+                        Defect(kind, rotor, *map(float, pts[mid]), float(np.degrees(piece.t[mid])), piece.name, True, length)
+                    )
+                    continue
+                for i in np.nonzero((np.sign(f[:-1]) * np.sign(f[1:]) < 0) & judged[:-1] & judged[1:])[0]:
+                    w = f[i] / (f[i] - f[i + 1])
+                    p = pts[i] + w * (pts[i + 1] - pts[i])
+                    if np.hypot(*(p - q)) < 1e-3 * scale or abs(p[1]) < 1e-3 * scale:
+                        continue  # through q itself (C lies on every meshline), or on O1O2 (slipping rule)
+                    ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
+                    found.append(Defect(kind, rotor, float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name))
+            y = pts[:, 1]
+            for i in np.nonzero(np.sign(y[:-1]) * np.sign(y[1:]) < 0)[0]:
+                w = y[i] / (y[i] - y[i + 1])
+                p = pts[i] + w * (pts[i + 1] - pts[i])
+                if abs(p[0] - c[0]) > 1e-6 * pair.center_distance:
+                    ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
+                    found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name))
+        return found
+
+    @property
+    def point_generated_flanks(self) -> list[dict[str, str]]:
+        """Flanks traced by a single corner of the mate (punkterzeugt)."""
+        out = []
+        for piece in self.rotors.rack:
+            if piece.kind == "male point":
+                out.append({"rotor": "female", "flank": piece.female_name, "generated_by": "male tip corner"})
+            elif piece.kind == "female point":
+                out.append({"rotor": "male", "flank": piece.male_name, "generated_by": "female tip corner"})
+        return out
+
+    # ---- tightness (2.2.2) -----------------------------------------------------------------
+    @cached_property
+    def cusp(self) -> np.ndarray:
+        """The housing cusp (intersection of the tip circles) that the meshline comes nearest:
+        the upper one or its mirror image below O1O2."""
+        k = self.rotors.pair.housing_cusp
+        pts = self.meshline
+        lower = k * np.array([1.0, -1.0])
+        return k if np.hypot(*(pts - k).T).min() <= np.hypot(*(pts - lower).T).min() else lower
+
+    @cached_property
+    def meshline_end(self) -> np.ndarray:
+        """Meshline point nearest the upper housing cusp K."""
+        pts = self.meshline
+        return pts[np.argmin(np.hypot(*(pts - self.cusp).T))]
+
+    @property
+    def meshline_closed(self) -> bool:
+        """The meshline runs into the housing cusp (Rinder 2.2.2), within 1 micrometre."""
+        return bool(np.hypot(*(self.meshline_end - self.cusp)) < 1e-3)
+
+    @cached_property
+    def blow_hole(self) -> shapely.Geometry:
+        """Projected blow-hole polygon (see the module docstring)."""
+        pair = self.rotors.pair
+        k, e = self.cusp, self.meshline_end
+        if np.hypot(*(e - k)) < 1e-3:
+            return shapely.Polygon()
+        o2 = np.array([pair.center_distance, 0.0])
+        r1, r2 = pair.male_tip_radius, pair.female_tip_radius
+        em = e / np.hypot(*e) * r1
+        ef = o2 + (e - o2) / np.hypot(*(e - o2)) * r2
+
+        def arc(center: np.ndarray, r: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+            t0 = np.arctan2(*(a - center)[::-1])
+            t1 = np.arctan2(*(b - center)[::-1])
+            t1 = t0 + (t1 - t0 + np.pi) % (2 * np.pi) - np.pi
+            th = np.linspace(t0, t1, 200)
+            return center + r * np.stack([np.cos(th), np.sin(th)], axis=1)
+
+        ring = np.vstack([[e], arc(o2, r2, ef, k), arc(np.zeros(2), r1, k, em), [e]])
+        return shapely.make_valid(shapely.Polygon(ring))
+
+    @property
+    def blow_hole_area(self) -> float:
+        return float(self.blow_hole.area)
+
+    # ---- contact line (eq. 1) ------------------------------------------------------------
+    @cached_property
+    def contact_line(self) -> np.ndarray:
+        """3D contact (sealing) line: meshline points with z = h1 * alpha / 2 pi (Rinder eq. 1),
+        shifted to start at z = 0 and cut at the rotor length."""
+        pair = self.rotors.pair
+        pts = self.meshline
+        z = pair.lead * self.contact_angles / (2 * np.pi)
+        line = np.column_stack([pts, z - z.min()])
+        return line[line[:, 2] <= pair.length + 1e-9]
+
+    @property
+    def contact_line_length(self) -> float:
+        line = self.contact_line
+        return float(np.linalg.norm(np.diff(line, axis=0), axis=1).sum())
+
+    # ---- areas and displacement ------------------------------------------------------------
+    @cached_property
+    def sections(self) -> tuple[shapely.Polygon, shapely.Polygon]:
+        return self.rotors.section("male"), self.rotors.section("female")
+
+    @property
+    def male_flute_area(self) -> float:
+        """A1 = (bore area - rotor section) / z1 (bore = male tip circle)."""
+        pair = self.rotors.pair
+        return float((np.pi * pair.male_tip_radius**2 - self.sections[0].area) / pair.male_teeth)
+
+    @property
+    def female_flute_area(self) -> float:
+        pair = self.rotors.pair
+        return float((np.pi * pair.female_tip_radius**2 - self.sections[1].area) / pair.female_teeth)
+
+    @property
+    def displacement_per_rev(self) -> float:
+        """V = z1 L (A1 + A2) per male revolution (mm^3)."""
+        pair = self.rotors.pair
+        return pair.male_teeth * pair.length * (self.male_flute_area + self.female_flute_area)
+
+    @property
+    def area_utilisation(self) -> float:
+        """Share of the two bores' area that is flute: (z1 A1 + z2 A2) / (pi r1t^2 + pi r2t^2)."""
+        pair = self.rotors.pair
+        flutes = pair.male_teeth * self.male_flute_area + pair.female_teeth * self.female_flute_area
+        return float(flutes / (np.pi * (pair.male_tip_radius**2 + pair.female_tip_radius**2)))
+
+    # ---- sliding velocity and slip (eqs. 2-4) ----------------------------------------------
+    @cached_property
+    def kinematics(self) -> dict[str, np.ndarray]:
+        """Tangential velocities v1t, v2t, sliding velocity v_g (m/s) and slips at every contact."""
+        pair = self.rotors.pair
+        w1 = self.speed_rpm * 2 * np.pi / 60.0
+        w2 = -w1 * pair.male_teeth / pair.female_teeth
+        pts = self.meshline
+        tau = np.concatenate([p.tangents for p in self.pieces])
+        o2 = np.array([pair.center_distance, 0.0])
+        v1 = w1 * np.stack([-pts[:, 1], pts[:, 0]], axis=1)
+        d2 = pts - o2
+        v2 = w2 * np.stack([-d2[:, 1], d2[:, 0]], axis=1)
+        v1t = np.einsum("ij,ij->i", v1, tau) * 1e-3
+        v2t = np.einsum("ij,ij->i", v2, tau) * 1e-3
+        vg = v1t - v2t
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z1 = vg / v1t
+            z2 = vg / v2t
+        return {
+            "v1t": v1t,
+            "v2t": v2t,
+            "sliding": vg,
+            "slip_male": z1,
+            "slip_female": z2,
+            "angle_deg": np.degrees(self.contact_angles),
+            "normal_check": cross(tau, v1 - v2),
+        }
+
+    def _max(self, key: str) -> dict[str, float]:
+        k = self.kinematics
+        v = np.abs(k[key])
+        v = np.where(np.isfinite(v), v, -1.0)
+        i = int(np.argmax(v))
+        p = self.meshline[i]
+        return {"value": float(v[i]), "x": float(p[0]), "y": float(p[1]), "angle_deg": float(k["angle_deg"][i])}
+
+    def summary(self) -> dict[str, object]:
+        pair = self.rotors.pair
+        return {
+            "male_teeth": pair.male_teeth,
+            "female_teeth": pair.female_teeth,
+            "center_distance": pair.center_distance,
+            "family": self.rotors.family,
+            "meshline_closed": self.meshline_closed,
+            "blow_hole_area": self.blow_hole_area,
+            "contact_line_length": self.contact_line_length,
+            "male_flute_area": self.male_flute_area,
+            "female_flute_area": self.female_flute_area,
+            "displacement_per_rev": self.displacement_per_rev,
+            "area_utilisation": self.area_utilisation,
+            "max_sliding_velocity": self._max("sliding")["value"],
+            "max_sliding_at": self._max("sliding"),
+            "max_slip_male": self._max("slip_male"),
+            "max_slip_female": self._max("slip_female"),
+            "speed_rpm": self.speed_rpm,
+            "defects": [d.as_dict() for d in self.defects],
+            "point_generated_flanks": self.point_generated_flanks,
+            "wrap_angle_deg": float(np.degrees(pair.wrap_angle)),
+        }

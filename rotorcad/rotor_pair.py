@@ -1,0 +1,119 @@
+"""The dimensions of a screw-rotor pair and their validation.
+
+Rotor 1 is the male (Hauptläufer), rotor 2 the female (Nebenläufer); O1 = (0, 0), O2 = (a, 0),
+ratio i = z2/z1, pitch radii r1w = a/(1+i), r2w = a i/(1+i), pitch point C = (r1w, 0); male lead
+h1, female lead h2 = h1 z2/z1, wrap angle 2 pi L / h1 (DESIGN.md conventions).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorcad.errors import DesignError
+from rotorcad.kinematics import Mesh, rotor_mesh
+
+
+@dataclass(frozen=True)
+class RotorPair:
+    """Tooth counts, centre distance, tip and root radii, lead, length and hand of a pair (mm)."""
+
+    male_teeth: int
+    female_teeth: int
+    center_distance: float
+    male_tip_radius: float
+    male_root_radius: float
+    female_tip_radius: float
+    female_root_radius: float
+    lead: float = 300.0
+    length: float = 190.0
+    hand: str = "right"
+
+    def __post_init__(self) -> None:
+        for name in ("male_teeth", "female_teeth"):
+            z = getattr(self, name)
+            if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or not 2 <= z <= 12:
+                raise DesignError(name, "a whole number from 2 to 12", z)
+        a = self.center_distance
+        if not (np.isfinite(a) and a > 0):
+            raise DesignError("center_distance", "a positive length in mm", a)
+        for name in ("male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius", "lead", "length"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v > 0):
+                raise DesignError(name, "a positive length in mm", v)
+        if self.hand not in ("right", "left"):
+            raise DesignError("hand", "'right' or 'left'", self.hand)
+        for rotor, pitch in (("male", self.male_pitch_radius), ("female", self.female_pitch_radius)):
+            tip, root = getattr(self, f"{rotor}_tip_radius"), getattr(self, f"{rotor}_root_radius")
+            if not root < pitch + 1e-9:
+                raise DesignError(f"{rotor}_root_radius", f"at most the {rotor} pitch radius {pitch:.6g} mm", root)
+            if not tip > pitch - 1e-9:
+                raise DesignError(f"{rotor}_tip_radius", f"at least the {rotor} pitch radius {pitch:.6g} mm", tip)
+            if not tip < a:
+                raise DesignError(f"{rotor}_tip_radius", f"less than the centre distance {a:.6g} mm", tip)
+        if not self.male_tip_radius + self.female_tip_radius > a:
+            raise DesignError(
+                "female_tip_radius",
+                f"greater than {a - self.male_tip_radius:.6g} mm so that the tip circles overlap",
+                self.female_tip_radius,
+            )
+        if self.male_tip_radius + self.female_root_radius > a + 1e-9:
+            raise DesignError(
+                "female_root_radius",
+                f"at most {a - self.male_tip_radius:.6g} mm (centre distance minus male tip radius)",
+                self.female_root_radius,
+            )
+        if self.female_tip_radius + self.male_root_radius > a + 1e-9:
+            raise DesignError(
+                "male_root_radius",
+                f"at most {a - self.female_tip_radius:.6g} mm (centre distance minus female tip radius)",
+                self.male_root_radius,
+            )
+
+    @property
+    def ratio(self) -> float:
+        return self.female_teeth / self.male_teeth
+
+    @property
+    def male_pitch_radius(self) -> float:
+        return self.center_distance / (1.0 + self.ratio)
+
+    @property
+    def female_pitch_radius(self) -> float:
+        return self.center_distance * self.ratio / (1.0 + self.ratio)
+
+    @property
+    def female_lead(self) -> float:
+        return self.lead * self.female_teeth / self.male_teeth
+
+    @property
+    def wrap_angle(self) -> float:
+        """Male wrap angle 2 pi L / h1 (rad)."""
+        return 2.0 * np.pi * self.length / self.lead
+
+    @property
+    def rack_period(self) -> float:
+        """p = 2 pi r1w / z1 (= 2 pi r2w / z2)."""
+        return 2.0 * np.pi * self.male_pitch_radius / self.male_teeth
+
+    @property
+    def male_addendum(self) -> float:
+        """h1 = r1t - r1w: how far the rack reaches into the female side."""
+        return self.male_tip_radius - self.male_pitch_radius
+
+    @property
+    def male_dedendum(self) -> float:
+        """d1 = r1w - r1f: how far the rack reaches into the male side."""
+        return self.male_pitch_radius - self.male_root_radius
+
+    @property
+    def mesh(self) -> Mesh:
+        return rotor_mesh(self.male_teeth, self.female_teeth, self.center_distance)
+
+    @property
+    def housing_cusp(self) -> np.ndarray:
+        """Upper intersection K of the two tip circles (the housing cusp, y > 0)."""
+        a, r1, r2 = self.center_distance, self.male_tip_radius, self.female_tip_radius
+        x = (a * a + r1 * r1 - r2 * r2) / (2.0 * a)
+        return np.array([x, np.sqrt(max(r1 * r1 - x * x, 0.0))])
