@@ -64,7 +64,8 @@ def test_design_file_json_and_files(tmp_path, capsys):
     assert len(doc.audit().errors) == 0 and doc.header["$INSUNITS"] == 4
     assert {"MALE", "FEMALE", "RACK", "PITCH", "HOUSING"} <= {e.dxf.layer for e in doc.modelspace()}
     # male and female outlines put in mesh by the shift (a, 0) touch without overlapping
-    male, female = shapely.Polygon(read_points(m)), shapely.Polygon([*read_points(f), 100.0, 0.0])
+    male = shapely.Polygon(read_points(m))
+    female = shapely.Polygon(read_points(f) + np.array([100.0, 0.0]))
     assert male.is_valid and female.is_valid and male.intersection(female).area < 1e-3
     # flute areas from the written outlines (shapely) agree with the JSON
     a1 = (np.pi * 54.0**2 - male.area) / 4

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from scipy.optimize import least_squares
 from shapely import affinity
 
 from exports.csv_points import read_points
@@ -121,9 +122,7 @@ def test_symmetric_circle_generates_circles_on_both_pitch_circles():
             continue
         p = Segment.sample(name, curve, 1e-4).points
         k = np.array(shapely.Polygon(p).minimum_rotated_rectangle.centroid.coords[0])  # rough centre
-        from scipy.optimize import least_squares
-
-        fit = least_squares(lambda c: np.hypot(*(p - c[:2]).T) - c[2], [*k, h1])
+        fit = least_squares(lambda c, p=p: np.hypot(*(p - c[:2]).T) - c[2], [k[0], k[1], h1])
         assert fit.x[2] == pytest.approx(h1, abs=1e-9)
         pitch = PAIR_46.male_pitch_radius if name == "lobe arc" else PAIR_46.female_pitch_radius
         assert np.hypot(*fit.x[:2]) == pytest.approx(pitch, abs=1e-9)
