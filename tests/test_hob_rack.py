@@ -1,0 +1,101 @@
+"""Rack derivation and the hobbability verdict (issue 4), against the racks the profiles were
+generated with."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from scipy.optimize import least_squares
+
+from hob.rack import gear_rack, rack_deviation, rotor_rack
+from hob.verdict import HobLimits, judge
+from rotorcad.envelope import rack_frame
+from rotorcad.gear import InvoluteGear
+from rotorcad.profile import Segment
+from rotorcad.rotor_families import build_family
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_line
+
+DEG = np.pi / 180
+PAIR_56 = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0)
+PAIR_46 = RotorPair(4, 6, 100.0, 54.0, 40.0, 60.0, 46.0)
+CLEAN = {"tip_rounding": 1.4, "root_rounding": 1.0, "lobe_width": 0.6}
+
+
+@pytest.mark.parametrize("z,x,rho,beta", [(20, 0.3, 0.38, 0.0), (35, -0.2, 0.25, 0.0), (30, 0.0, 0.38, 25.0)])
+def test_rack_of_an_involute_gear_is_its_basic_rack(z, x, rho, beta):
+    # The rack derived from the gear's flanks is the tool it was cut with: the flank lies on the
+    # straight tool flank at alpha_t, the root circle gives the tool tip line at (x - h_fP*) m, the
+    # fillet gives the tool tip arc of radius rho_a0* m (normal section: the arc's own size).
+    m, a = 2.0, 20 * DEG
+    g = InvoluteGear(z, m, a, beta * DEG, x, tip_radius_factor=rho)
+    rack = gear_rack(g)
+    names = np.array(rack.names)[rack.piece_index]
+    at = g.transverse_pressure_angle
+    first = rack.names.index("involute")
+    flank = rack.points[rack.piece_index == first]  # one flank
+    # a straight line at the transverse pressure angle from the normal to the pitch line
+    slope = np.polyfit(flank[:, 1], flank[:, 0], 1)[0]
+    assert abs(np.arctan(abs(slope)) - at) < 1e-9
+    assert np.abs(flank[:, 0] - np.polyval(np.polyfit(flank[:, 1], flank[:, 0], 1), flank[:, 1])).max() < 1e-9
+    np.testing.assert_allclose(rack.points[names == "root arc"][:, 1], (x - 1.25) * m, atol=1e-9)
+    fil = rack.points[rack.piece_index == rack.names.index("fillet")] * np.array([np.cos(beta * DEG), 1.0])  # normal section
+    fit = least_squares(lambda c: np.hypot(*(fil - c[:2]).T) - c[2], [fil[:, 0].mean(), fil[:, 1].max(), rho * m])
+    assert fit.x[2] == pytest.approx(rho * m, abs=1e-8)
+    v = judge(rack)
+    assert v.hobbable and v.normal_pressure_angle_min_deg == pytest.approx(20.0, abs=1e-6)
+
+
+@pytest.mark.parametrize(
+    "family,pair,params,bound", [("rack-involute", PAIR_56, CLEAN, 2e-5), ("srm-symmetric", PAIR_46, {}, 1e-2)]
+)
+def test_rack_of_each_rotor_is_the_generating_rack(family, pair, params, bound):
+    # Issue 4: the rack derived from each rotor of a rack-generated pair is that rack.
+    rotors = build_family(pair, family, params)
+    original = np.vstack([Segment.sample("r", p.curve, 1e-5).points for p in rotors.rack])
+    line = shapely.LineString(rack_frame(original, pair.male_pitch_radius))
+    for rotor in ("male", "female"):
+        rack = rotor_rack(rotors, rotor)
+        pts = rack.points * (np.array([1.0, -1.0]) if rotor == "female" else 1.0)
+        cutting = np.array([not rack.names[k].endswith("corner") for k in rack.piece_index])
+        assert shapely.distance(line, shapely.points(pts[cutting])).max() < 1e-5
+    assert rack_deviation(rotors) < bound
+
+
+def test_rack_involute_is_hobbable():
+    rotors = build_family(PAIR_56, "rack-involute", CLEAN)
+    for rotor in ("male", "female"):
+        v = judge(rotor_rack(rotors, rotor))
+        assert v.hobbable, v.reasons
+        assert v.normal_pressure_angle_min_deg > 10.0
+
+
+def test_re_entrant_flank_is_not_hobbable_with_the_reason():
+    # A rack flank leaning back past the normal of the pitch line (x falls while y rises) makes an
+    # overhang that a hob cannot cut.
+    pair = PAIR_56
+    p, h1, d1 = pair.rack_period, pair.male_addendum, pair.male_dedendum
+    pts = [(0.0, -d1), (20.0, -d1), (24.0, 0.0), (22.0, h1), (40.0, h1), (52.0, -d1), (p, -d1)]
+    rack = tuple(RackPiece(rack_line(pair, a, b), "flank", "flank") for a, b in zip(pts[:-1], pts[1:], strict=True))
+    v = judge(rotor_rack(ScrewRotors(pair, rack), "male"))
+    assert not v.hobbable
+    assert any("overhang" in r and "re-entrant" in r for r in v.reasons)
+
+
+def test_symmetric_profile_rack_is_a_semicircle_whose_flank_angle_falls_to_zero():
+    # Issue 4: the verdict must say what the zero flank angle at the pitch line means for a hob.
+    rotors = build_family(PAIR_46, "srm-symmetric", {})
+    rack = rotor_rack(rotors, "male")
+    arc = rack.points[np.array(rack.names)[rack.piece_index] == "lobe arc"]
+    centre = np.array([arc[:, 0].mean(), 0.0])
+    np.testing.assert_allclose(np.hypot(*(arc - centre).T), PAIR_46.male_addendum, atol=1e-8)
+    v = judge(rack)
+    assert not v.hobbable and v.normal_pressure_angle_min_deg < 0.5
+    assert any("perpendicular to the pitch line" in r and "no side relief" in r for r in v.reasons)
+
+
+def test_limits_are_adjustable():
+    rack = rotor_rack(build_family(PAIR_56, "rack-involute", CLEAN), "male")
+    v = judge(rack, HobLimits(min_flank_angle_deg=25.0))
+    assert not v.hobbable and any("flank angle" in r for r in v.reasons)
