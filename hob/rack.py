@@ -181,7 +181,8 @@ def rack_in_contract_frame(rack: DerivedRack, rotor: str) -> np.ndarray:
 def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
     """Largest distance of the cutting part of each rotor's rack from the other rotor's rack (mm),
     over the rack points whose contact lies inside both bores (real mesh contacts: a rotor cut off by
-    its tip circle generates no rack beyond it): zero up to the sampling for a conjugate pair. Pieces that come from sharp corners (their paths) bound clearances and differ between the
+    its tip circle generates no rack beyond it): zero up to the sampling for a conjugate pair.
+    Pieces that come from sharp corners (their paths) bound clearances and differ between the
     rotors by nature; they are left out."""
     pair = rotors.pair
     racks = []

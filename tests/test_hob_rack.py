@@ -3,6 +3,8 @@ generated with."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 import shapely
@@ -77,7 +79,7 @@ def test_re_entrant_flank_is_not_hobbable_with_the_reason():
     pair = PAIR_56
     p, h1, d1 = pair.rack_period, pair.male_addendum, pair.male_dedendum
     pts = [(0.0, -d1), (20.0, -d1), (24.0, 0.0), (22.0, h1), (40.0, h1), (52.0, -d1), (p, -d1)]
-    rack = tuple(RackPiece(rack_line(pair, a, b), "flank", "flank") for a, b in zip(pts[:-1], pts[1:], strict=True))
+    rack = tuple(RackPiece(rack_line(pair, a, b), "flank", "flank") for a, b in itertools.pairwise(pts))
     v = judge(rotor_rack(ScrewRotors(pair, rack), "male"))
     assert not v.hobbable
     assert any("overhang" in r and "re-entrant" in r for r in v.reasons)
