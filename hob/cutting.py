@@ -53,8 +53,9 @@ def _tool_tooth_polygon(gear: InvoluteGear, tolerance: float) -> np.ndarray:
     return pts
 
 
-def simulate_cutting(gear: InvoluteGear, scallop: float = 1e-3) -> CutResult:
-    """Cut ``gear`` with its basic-rack tool to the scallop height ``scallop`` (mm)."""
+def simulate_cutting(gear: InvoluteGear, scallop: float = 1e-3, positions: int | None = None) -> CutResult:
+    """Cut ``gear`` with its basic-rack tool to the scallop height ``scallop`` (mm); with
+    ``positions`` the number of tool positions is fixed instead (no refinement)."""
     pt = np.pi * gear.transverse_module
     r = gear.pitch_radius
     rho_max = np.sqrt(max(gear.nominal_tip_radius**2 - gear.base_radius**2, 1e-12))
@@ -66,7 +67,9 @@ def simulate_cutting(gear: InvoluteGear, scallop: float = 1e-3) -> CutResult:
     sector = _sector(gear, 1.0)
     blank = shapely.Point(0, 0).buffer(gear.nominal_tip_radius, quad_segs=2048).intersection(sector)
     exact = shapely.Polygon(gear.outline(min(scallop / 4.0, 1e-4)).points).intersection(sector)
-    for _ in range(8):  # the deviation goes with step^2: refine until it meets the scallop
+    if positions is not None:
+        step = 2.0 * reach / max(int(positions) - 1, 1)
+    for _ in range(1 if positions is not None else 8):  # deviation ~ step^2: refine to the scallop
         ts = np.arange(-reach, reach + step, step)
         polys = [rotate(tooth + np.array([0.0, pt * j + r * t]), -t) for t in ts for j in (-1, 0)]
         cut = shapely.unary_union(shapely.polygons(polys))
@@ -131,3 +134,21 @@ def _deviation(gear: InvoluteGear, simulated: shapely.Polygon, exact: shapely.Po
     r = np.hypot(*pts.T)
     on_flank = (r > gear.form_radius + 0.02 * gear.module) & (r < gear.tip_radius - 0.02 * gear.module)
     return float(d.max()), float(d[on_flank].max()) if on_flank.any() else 0.0
+
+
+def simulated_form_radius(gear: InvoluteGear, result: CutResult, tolerance: float) -> float:
+    """Radius where the simulated flank leaves the involute (the undercut point P' when undercut,
+    else the start of the usable involute): the lowest boundary point of the simulated tooth that
+    lies on the involute of r_b within ``tolerance`` (closed-form involute polar angle)."""
+    pts = np.asarray(result.tooth.exterior.coords)
+    r = np.hypot(*pts.T)
+    rb = gear.base_radius
+    ok = r > rb
+    a = np.arccos(np.clip(rb / r[ok], -1.0, 1.0))
+    ang = np.abs(np.arctan2(pts[ok, 1], pts[ok, 0]))
+    # the flank's polar angle + inv(alpha) is the constant of its involute: take it at the pitch circle
+    theta = ang + np.tan(a) - a
+    ref = gear.half_angle(gear.pitch_radius) + np.tan(gear.transverse_pressure_angle) - gear.transverse_pressure_angle
+    on = np.abs(theta - ref) * r[ok] <= tolerance
+    inner = r[ok] < gear.tip_radius - tolerance
+    return float(r[ok][on & inner].min()) if np.any(on & inner) else float("nan")

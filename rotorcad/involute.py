@@ -28,10 +28,12 @@ def inv_inverse(value: Array | float) -> Array | float:
     a = np.clip(np.minimum(c, np.arctan(v + c)), 1e-12, np.pi / 2 - 1e-9)
     for _ in range(30):
         t = np.tan(a)
-        step = (t - a - v) / (t * t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(v > 0.0, (t - a - v) / (t * t), 0.0)
         a = np.clip(a - step, 1e-300, np.pi / 2 - 1e-12)
         if np.all(np.abs(step) < 1e-16):
             break
+    a = np.where(v > 0.0, a, 0.0)
     return a if a.ndim else float(a)
 
 

@@ -33,19 +33,37 @@ MATE_OPTION = {"teeth": "--mate-teeth", "shift": "--mate-shift", "center_distanc
 DEFAULTS = {"pressure_angle": 20.0, "helix_angle": 0.0, "shift": 0.0, "addendum": 1.0, "dedendum": 1.25, "tip_radius": 0.38}
 
 
+GEAR_DECORATORS = [
+    click.option("--teeth", type=int, help="Number of teeth z (at least 3)."),
+    click.option("--module", type=float, help="Normal module m [mm], > 0."),
+    click.option(
+        "--pressure-angle", type=float, help="Normal pressure angle of the basic rack [deg], 0 < alpha < 45. Default 20."
+    ),
+    click.option("--helix-angle", type=float, help="Helix angle beta at the pitch cylinder [deg], |beta| < 60. Default 0."),
+    click.option("--shift", type=float, help="Profile shift coefficient x [modules]. Default 0."),
+    click.option("--addendum", type=float, help="Addendum factor h_aP* of the basic rack. Default 1.0."),
+    click.option("--dedendum", type=float, help="Dedendum factor h_fP* (tool addendum). Default 1.25."),
+    click.option("--tip-radius", type=float, help="Tool tip radius factor rho_a0* (root fillet of the rack). Default 0.38."),
+    click.option("--mate-teeth", type=int, help="Teeth of the mating gear z2 (at least 3)."),
+    click.option(
+        "--mate-shift", type=float, help="Profile shift x2 of the mate [modules]. Default: 0, or from --center-distance."
+    ),
+    click.option(
+        "--center-distance", type=float, help="Working centre distance a_w [mm]. Default: zero backlash for the shifts."
+    ),
+]
+
+
+def gear_options(fn):
+    """The options of ``rotorcad gear`` that describe the gear (and mate), for other commands."""
+    for deco in reversed(GEAR_DECORATORS):
+        fn = deco(fn)
+    return fn
+
+
 @click.command()
 @click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
-@click.option("--teeth", type=int, help="Number of teeth z (at least 3).")
-@click.option("--module", type=float, help="Normal module m [mm], > 0.")
-@click.option("--pressure-angle", type=float, help="Normal pressure angle of the basic rack [deg], 0 < alpha < 45. Default 20.")
-@click.option("--helix-angle", type=float, help="Helix angle beta at the pitch cylinder [deg], |beta| < 60. Default 0.")
-@click.option("--shift", type=float, help="Profile shift coefficient x [modules]. Default 0.")
-@click.option("--addendum", type=float, help="Addendum factor h_aP* of the basic rack. Default 1.0.")
-@click.option("--dedendum", type=float, help="Dedendum factor h_fP* (tool addendum). Default 1.25.")
-@click.option("--tip-radius", type=float, help="Tool tip radius factor rho_a0* (root fillet of the rack). Default 0.38.")
-@click.option("--mate-teeth", type=int, help="Teeth of the mating gear z2 (at least 3).")
-@click.option("--mate-shift", type=float, help="Profile shift x2 of the mate [modules]. Default: 0, or from --center-distance.")
-@click.option("--center-distance", type=float, help="Working centre distance a_w [mm]. Default: zero backlash for the shifts.")
+@gear_options
 @click.option("--tolerance", type=float, default=1e-4, show_default=True, help="Chord tolerance of the outline [mm].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="Write a DXF of the gear (and mate in mesh) [mm].")
@@ -71,8 +89,8 @@ def gear(design: Path | None, **opts: Any) -> None:
     optional [mate] table (teeth, shift, center_distance); options given on the command
     line override it.
     """
-    params = _merge(design, opts)
-    g, pair = _build(params, opts["tolerance"])
+    params = merge_gear_params(design, opts)
+    g, pair = build_gear(params, opts["tolerance"])
     result: dict[str, Any] = pair.summary() if pair is not None else g.summary()
 
     outputs = Outputs()
@@ -103,7 +121,7 @@ def gear(design: Path | None, **opts: Any) -> None:
             click.echo(f"wrote {p}")
 
 
-def _merge(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
+def merge_gear_params(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
     """Design-file values overridden by the options given; defaults last."""
     params: dict[str, Any] = {}
     if design is not None:
@@ -140,7 +158,7 @@ def _merge(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
     return params
 
 
-def _build(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearPair | None]:
+def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearPair | None]:
     common = {
         "module": p["module"],
         "pressure_angle": p["pressure_angle"] * DEG,

@@ -11,7 +11,10 @@ import sys
 import click
 
 from rotorcad import __version__
+from rotorcad.cli.cut_cmd import cut
 from rotorcad.cli.gear import gear
+from rotorcad.cli.hob_cmd import hob
+from rotorcad.cli.pump_cmd import pump
 from rotorcad.cli.rotor import rotor
 from rotorcad.errors import DesignError
 
@@ -27,6 +30,9 @@ def cli() -> None:
 
 cli.add_command(gear)
 cli.add_command(rotor)
+cli.add_command(hob)
+cli.add_command(cut)
+cli.add_command(pump)
 
 
 def main(argv: list[str] | None = None) -> int:

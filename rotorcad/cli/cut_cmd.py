@@ -1,0 +1,113 @@
+"""``rotorcad cut``: trapezoidal-hob (basic-rack) cutting simulation of a gear (CONTRACT.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+import shapely
+from matplotlib.figure import Figure
+
+from exports.csv_points import write_points
+from exports.dxf import Drawing, write_dxf
+from hob.cutting import simulate_cutting, simulated_form_radius
+from hob.undercut import effective_addendum, kollek_model
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
+
+
+@click.command()
+@click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
+@gear_options
+@click.option("--hob-addendum", type=float, help="Hob (tool) addendum factor h_a0* = the gear's dedendum. Default 1.25.")
+@click.option("--positions", type=int, help="Number of tool positions (default: from --tolerance).")
+@click.option("--tolerance", type=float, default=1e-3, show_default=True, help="Scallop height of the simulated profile [mm].")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option(
+    "--dxf", type=click.Path(path_type=Path, dir_okay=False), help="DXF: simulated gear, analytic gear, tool rack [mm]."
+)
+@click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Simulated gear outline as x,y points.")
+@click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the simulated tooth over the analytic one.")
+@click.option("--quiet", is_flag=True, help="No progress output.")
+def cut(design: Path | None, **opts: Any) -> None:
+    """Cut a gear with the ISO 53 basic-rack tool (a trapezoidal hob) by polygon booleans and compare
+    it with the analytic envelope; undercut radius from the simulation and from Kollek's model."""
+    if opts.get("hob_addendum") is not None:
+        opts["dedendum"] = opts["hob_addendum"]
+    tol = opts["tolerance"]
+    if not (tol and np.isfinite(tol) and 0 < tol <= 1.0):
+        raise InputError(f"--tolerance must be a scallop height between 0 and 1 mm (got {tol}).")
+    if opts["positions"] is not None and not 3 <= opts["positions"] <= 100000:
+        raise InputError(f"--positions must be a whole number from 3 to 100000 (got {opts['positions']}).")
+    g, pair = build_gear(merge_gear_params(design, opts), min(tol / 4, 1e-4))
+    res = simulate_cutting(g, tol, opts["positions"])
+    model = kollek_model(
+        g.teeth, g.module, g.pressure_angle, g.shift, effective_addendum(g.dedendum, g.tip_radius_factor, g.pressure_angle)
+    )
+    result: dict[str, Any] = {
+        "undercut": g.undercut,
+        "undercut_radius": simulated_form_radius(g, res, 1.5 * tol) if g.undercut else None,
+        "undercut_radius_exact": g.form_radius if g.undercut else None,
+        "undercut_radius_model": model.active_base_radius if model.undercut else None,
+        "max_deviation_from_envelope": res.max_deviation,
+        "flank_deviation_from_envelope": res.flank_deviation,
+        "tooth_thickness_pitch": 2 * g.pitch_radius * _half_angle(res.tooth, g.pitch_radius),
+        "tooth_thickness_pitch_exact": g.tooth_thickness(g.pitch_radius),
+        "positions": res.positions,
+    }
+    if pair is not None:
+        result["contact_ratio"] = pair.contact_ratio
+    whole = _whole_gear(res.tooth, g.teeth)
+    out = Outputs()
+    out.add(opts["csv"], lambda p: write_points(p, _ccw(whole), ["simulated gear, basic-rack cutting"]), "--csv")
+    out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(g, whole)), "--dxf")
+    out.add(opts["plot"], lambda p: _plot(g, res).savefig(p, format="png"), "--plot")
+    result["files"] = [str(p) for p in out.write()]
+    if opts["as_json"]:
+        emit_json(result)
+    else:
+        print_table(f"cutting simulation z={g.teeth}, m={g.module:g} mm, x={g.shift:g}", result)
+
+
+def _half_angle(tooth: shapely.Polygon, radius: float) -> float:
+    ring = shapely.Point(0, 0).buffer(radius, quad_segs=4096).exterior
+    arc = ring.intersection(tooth)
+    pts = shapely.get_coordinates(arc)
+    return float(np.abs(np.arctan2(pts[:, 1], pts[:, 0])).max())
+
+
+def _whole_gear(tooth: shapely.Polygon, z: int) -> shapely.Polygon:
+    parts = [shapely.affinity.rotate(tooth, 360.0 * k / z, origin=(0, 0)) for k in range(z)]
+    whole = shapely.unary_union(parts).buffer(0)
+    return max(getattr(whole, "geoms", [whole]), key=lambda g: g.area)
+
+
+def _ccw(poly: shapely.Polygon) -> np.ndarray:
+    return np.asarray(shapely.geometry.polygon.orient(poly, 1.0).exterior.coords)[:-1]
+
+
+def _drawing(g, whole: shapely.Polygon) -> Drawing:
+    d = Drawing(mark_size=g.module)
+    d.outlines.append(("GEAR_SIMULATED", _ccw(whole)))
+    d.outlines.append(("GEAR_ANALYTIC", g.outline(1e-3).points))
+    rack = np.vstack([c.evaluate(np.linspace(c.s0, c.s1, 200))[0] for c in g.tool.values()])
+    d.polylines.append(("RACK", rack))
+    d.circles += [("PITCH", (0.0, 0.0), g.pitch_radius), ("BASE", (0.0, 0.0), g.base_radius)]
+    d.centers.append((0.0, 0.0))
+    return d
+
+
+def _plot(g, res) -> Figure:
+    fig = Figure(figsize=(7, 7), dpi=120)
+    ax = fig.add_subplot()
+    ax.plot(*res.envelope.exterior.xy, "-", color="#08519c", lw=1.2, label="analytic envelope")
+    ax.plot(*res.tooth.exterior.xy, "--", color="#e6550d", lw=1.0, label=f"simulated ({res.positions} positions)")
+    th = np.linspace(-np.pi / g.teeth, np.pi / g.teeth, 200)
+    for r, style in ((g.base_radius, ":"), (g.pitch_radius, "--"), (g.form_radius, "-.")):
+        ax.plot(r * np.cos(th), r * np.sin(th), style, color="grey", lw=0.6)
+    ax.set_aspect("equal")
+    ax.set_title(f"z={g.teeth}, x={g.shift:g}: max deviation {res.max_deviation * 1e3:.2f} um", fontsize=9)
+    ax.legend(fontsize=7)
+    return fig

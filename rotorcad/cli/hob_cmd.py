@@ -1,0 +1,148 @@
+"""``rotorcad hob``: rack and hob tooth derived from a profile, and the hobbability verdict."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+import shapely
+
+from exports.csv_points import write_points
+from exports.dxf import Drawing, write_dxf
+from hob.rack import DerivedRack, gear_rack, rack_deviation, rack_in_contract_frame, rotor_rack
+from hob.verdict import HobLimits, judge
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
+from rotorcad.cli.rotor import PAIR_OPTIONS
+from rotorcad.cli.rotor import _build as build_rotors
+from rotorcad.envelope import rack_frame
+from rotorcad.errors import DesignError
+from rotorcad.gear import InvoluteGear
+
+
+@click.command()
+@click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
+@gear_options
+@click.option("--male-points", type=click.Path(path_type=Path, dir_okay=False), help="Male profile points (CSV).")
+@click.option("--female-points", type=click.Path(path_type=Path, dir_okay=False), help="Female profile points (CSV).")
+@click.option("--rack-points", type=click.Path(path_type=Path, dir_okay=False), help="Rack points (CSV).")
+@click.option("--male-teeth", type=int, help="Male lobes z1.")
+@click.option("--female-teeth", type=int, help="Female lobes z2.")
+@click.option("--male-tip-radius", type=float, help="Male tip radius [mm].")
+@click.option("--male-root-radius", type=float, help="Male root radius [mm].")
+@click.option("--female-tip-radius", type=float, help="Female tip radius [mm].")
+@click.option("--female-root-radius", type=float, help="Female root radius [mm].")
+@click.option("--lead", type=float, help="Male lead [mm].")
+@click.option("--length", type=float, help="Rotor length [mm].")
+@click.option("--min-flank-angle", type=float, default=5.0, show_default=True, help="Smallest hob flank angle [deg].")
+@click.option("--min-tip-radius-mm", type=float, default=0.1, show_default=True, help="Smallest hob tip radius [mm].")
+@click.option("--min-root-radius-mm", type=float, default=0.1, show_default=True, help="Smallest hob root radius [mm].")
+@click.option("--min-tip-thickness", type=float, default=0.3, show_default=True, help="Thinnest hob tooth near its tip [mm].")
+@click.option(
+    "--root-clearance", type=float, default=0.25, show_default=True, help="Hob root clearance over the rack [modules or x h1]."
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="DXF of the normal rack and the hob tooth [mm].")
+@click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Normal rack points (x,y).")
+@click.option("--quiet", is_flag=True, help="No progress output.")
+def hob(design: Path | None, **opts: Any) -> None:
+    """Derive the transverse and normal rack of a gear or of both rotors of a pair, judge whether
+    a hob can make it (with reasons and positions) and give the hob tooth."""
+    for key, flag in (
+        ("min_flank_angle", "--min-flank-angle"),
+        ("min_tip_radius_mm", "--min-tip-radius-mm"),
+        ("min_root_radius_mm", "--min-root-radius-mm"),
+        ("min_tip_thickness", "--min-tip-thickness"),
+        ("root_clearance", "--root-clearance"),
+    ):
+        if not (np.isfinite(opts[key]) and opts[key] >= 0):
+            raise InputError(f"{flag} must be a number of at least 0 (got {opts[key]}).")
+    limits = HobLimits(opts["min_flank_angle"], opts["min_tip_radius_mm"], opts["min_root_radius_mm"], opts["min_tip_thickness"])
+    racks: dict[str, DerivedRack] = {}
+    if _is_rotor_input(design, opts):
+        rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points")}
+        rotor_opts.update({"smoothing": 0.0, "speed": None})
+        rotors, _, _ = build_rotors(design, rotor_opts)
+        try:
+            racks = {"male": rotor_rack(rotors, "male"), "female": rotor_rack(rotors, "female")}
+            deviation = rack_deviation(rotors)
+        except DesignError as exc:
+            raise InputError(exc.sentence()) from None
+        scale = rotors.pair.male_addendum
+    else:
+        g, _ = build_gear(merge_gear_params(design, opts), 1e-4)
+        racks = {"gear": gear_rack(g)}
+        deviation = _basic_rack_deviation(g, racks["gear"])
+        scale = g.module
+    verdicts = {name: judge(rack, limits) for name, rack in racks.items()}
+    result: dict[str, Any] = {
+        "hobbable": all(v.hobbable for v in verdicts.values()),
+        "reasons": [f"{name}: {r}" if len(verdicts) > 1 else r for name, v in verdicts.items() for r in v.reasons],
+        "rack_deviation": deviation,
+        "normal_pressure_angle_min_deg": min(v.normal_pressure_angle_min_deg for v in verdicts.values()),
+        "racks": {
+            name: {
+                "hobbable": v.hobbable,
+                "normal_pressure_angle_min_deg": v.normal_pressure_angle_min_deg,
+                "hob_tip_radius": v.min_tip_radius,
+                "hob_root_radius": v.min_root_radius,
+                "hob_tip_thickness": v.tip_thickness,
+                "helix_angle_deg": float(np.degrees(racks[name].helix_angle)),
+                "no_rack_share": racks[name].lost_fraction,
+            }
+            for name, v in verdicts.items()
+        },
+    }
+    first = next(iter(racks))
+    normal = racks[first].normal()
+    clearance = opts["root_clearance"] * scale
+    out = Outputs()
+    out.add(opts["csv"], lambda p: write_points(p, normal, [f"normal rack derived from the {first}, rack frame"]), "--csv")
+    out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(racks, clearance)), "--dxf")
+    result["files"] = [str(p) for p in out.write()]
+    if opts["as_json"]:
+        emit_json(result)
+    else:
+        print_table("hobbability", {k: v for k, v in result.items() if k not in ("reasons", "racks")})
+        for r in result["reasons"]:
+            click.echo(f"  - {r}")
+
+
+def _is_rotor_input(design: Path | None, opts: dict[str, Any]) -> bool:
+    if any(opts.get(k) for k in ("male_points", "female_points", "rack_points")):
+        return True
+    if design is None:
+        return False
+    try:
+        with open(design, "rb") as f:
+            return "pair" in tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError):
+        return False
+
+
+def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
+    """Largest distance of the derived rack's cutting points from the basic-rack tool the gear
+    was cut with (both flanks of the tool teeth either side of the tooth space)."""
+    half = np.vstack([c.evaluate(np.linspace(c.s0, c.s1, 2000))[0] for c in g.tool.values()])
+    half = rack_frame(half, g.pitch_radius)
+    pt = np.pi * g.transverse_module
+    tooth = np.vstack([half, (half * [-1.0, 1.0] + [pt, 0.0])[::-1]])  # both sides of the tool tooth at x = p/2
+    lines = shapely.MultiLineString([tooth, tooth - [pt, 0.0]])
+    # the gear's tip circle and tip corners face the tool's root clearance, not its cutting edges
+    cutting = np.array([rack.names[k] in ("involute", "fillet", "root arc") for k in rack.piece_index])
+    return float(shapely.distance(lines, shapely.points(rack.points[cutting])).max())
+
+
+def _drawing(racks: dict[str, DerivedRack], clearance: float) -> Drawing:
+    d = Drawing()
+    for name, rack in racks.items():
+        pts = rack.normal() * (np.array([1.0, -1.0]) if name == "female" else 1.0)
+        pts = rack_in_contract_frame(rack, name) * np.array([np.cos(rack.helix_angle), 1.0]) if name != "gear" else pts
+        d.polylines.append((f"RACK_{name.upper()}", pts))
+        top = pts[:, 1].max() + clearance if name != "female" else pts[:, 1].min() - clearance
+        tooth = np.vstack([pts, [[pts[-1, 0], top], [pts[0, 0], top]]])
+        d.outlines.append((f"HOB_TOOTH_{name.upper()}", tooth))
+    return d

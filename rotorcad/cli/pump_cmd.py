@@ -1,0 +1,74 @@
+"""``rotorcad pump``: external gear pump of two equal gears (CONTRACT.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+from matplotlib.figure import Figure
+
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
+from rotorcad.pump import GearPump, kollek_coefficients
+
+MM3_PER_S_TO_L_PER_MIN = 60.0 / 1e6
+
+
+@click.command()
+@click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
+@gear_options
+@click.option("--face-width", type=float, help="Face width b [mm].")
+@click.option("--speed", type=float, help="Speed n [rpm].")
+@click.option("--harmonics", "count", type=int, default=8, show_default=True, help="Number of harmonics listed.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the delivery and its spectrum.")
+@click.option("--quiet", is_flag=True, help="No progress output.")
+def pump(design: Path | None, **opts: Any) -> None:
+    """Delivery of an external gear pump of two equal gears: mean flow, irregularity, harmonics,
+    pump frequency f = n z / 60 (Kollek & Osinski eqs. 2-9)."""
+    for key, flag in (("face_width", "--face-width"), ("speed", "--speed")):
+        v = opts.get(key)
+        if v is None or not (np.isfinite(v) and v > 0):
+            raise InputError(f"{flag} must be a positive number (got {v}).")
+    if not 1 <= opts["count"] <= 64:
+        raise InputError(f"--harmonics must be a whole number from 1 to 64 (got {opts['count']}).")
+    g, _ = build_gear(merge_gear_params(design, opts), 1e-4)
+    p = GearPump(g, opts["face_width"], opts["speed"])
+    eps = p.contact_ratio
+    result = {
+        "mean_flow": p.mean_flow * MM3_PER_S_TO_L_PER_MIN,
+        "flow_irregularity": p.irregularity,
+        "pump_frequency_hz": p.pump_frequency,
+        "contact_ratio": eps,
+        "harmonics": p.harmonics(opts["count"]).tolist(),
+        "kollek_series": {
+            "numerical": p.cosine_series(opts["count"]).tolist(),
+            "eqs_4_6": kollek_coefficients(eps, opts["count"]).tolist(),
+        },
+    }
+    out = Outputs()
+    out.add(opts["plot"], lambda path: _plot(p).savefig(path, format="png"), "--plot")
+    result["files"] = [str(x) for x in out.write()]
+    if opts["as_json"]:
+        emit_json(result)
+    else:
+        print_table(f"gear pump z={g.teeth}, b={opts['face_width']:g} mm, n={opts['speed']:g} rpm", result)
+
+
+def _plot(p: GearPump) -> Figure:
+    fig = Figure(figsize=(8, 7), dpi=120)
+    ax1, ax2 = fig.subplots(2, 1)
+    phi, q = p.delivery()
+    ax1.plot(np.degrees(phi), q * MM3_PER_S_TO_L_PER_MIN, "-", color="#08519c")
+    ax1.axhline(p.mean_flow * MM3_PER_S_TO_L_PER_MIN, ls="--", color="grey", lw=0.8)
+    ax1.set_xlabel("rotation angle within one tooth pitch [deg]")
+    ax1.set_ylabel("delivery [L/min]")
+    ax1.set_title(f"eps = {p.contact_ratio:.3f}, irregularity {p.irregularity:.3f}, f = {p.pump_frequency:.0f} Hz", fontsize=9)
+    h = p.harmonics(12)
+    ax2.bar(np.arange(1, len(h) + 1) * p.pump_frequency, h, width=0.6 * p.pump_frequency, color="#e6550d")
+    ax2.set_xlabel("frequency [Hz]")
+    ax2.set_ylabel("amplitude / mean flow")
+    fig.tight_layout()
+    return fig
