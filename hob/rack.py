@@ -24,7 +24,7 @@ from scipy import optimize
 from rotorcad.curves import Arc, Curve, Mapped
 from rotorcad.envelope import Generated
 from rotorcad.gear import InvoluteGear
-from rotorcad.geometry import cross
+from rotorcad.geometry import cross, distance_to_polyline
 from rotorcad.kinematics import Rotation, Translation, gear_mesh
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -199,9 +199,8 @@ def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
         cutting = np.array([not rack.names[k].endswith("corner") for k in rack.piece_index]) & in_both
         racks.append((pts, cutting))
     (a, ca), (b, cb) = racks
-    la, lb = shapely.LineString(a), shapely.LineString(b)
-    d1 = shapely.distance(lb, shapely.points(a[ca]))
-    d2 = shapely.distance(la, shapely.points(b[cb]))
+    d1 = distance_to_polyline(a[ca], b)
+    d2 = distance_to_polyline(b[cb], a)
     return float(max(d1.max(initial=0.0), d2.max(initial=0.0)))
 
 

@@ -71,8 +71,10 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
             f"{100 * rack.lost_fraction:.1f} % of the profile has no rack point: its normal misses the pitch circle, "
             "so no generating position exists there."
         )
-    line = shapely.LineString(pts)
-    if not line.is_simple:
+    snapped = np.round(pts, 9)  # floating noise (1e-15) on straight pieces must not read as a loop
+    keep = np.concatenate([[True], np.any(np.diff(snapped, axis=0) != 0.0, axis=1)])
+    line = shapely.LineString(snapped[keep])
+    if not line.is_simple and _crosses_itself(snapped[keep]):
         noded = shapely.node(line)
         hits = shapely.get_coordinates(shapely.intersection(line, shapely.MultiLineString(list(noded.geoms)).boundary))
         where = f" near x = {hits[0, 0]:.3f} mm, y = {hits[0, 1]:.3f} mm" if len(hits) else ""
@@ -143,3 +145,15 @@ def _tip_thickness(pts: np.ndarray, period: float) -> float:
     cut = poly.intersection(shapely.LineString([(pts[0, 0], level), (pts[0, 0] + period, level)]))
     widths = [g.length for g in getattr(cut, "geoms", [cut]) if g.length > 0]
     return float(min(widths)) if widths else 0.0
+
+
+def _crosses_itself(pts: np.ndarray) -> bool:
+    """True if two non-adjacent segments of the polyline cross or touch (shapely's STRtree over
+    the segments; neighbours that only share their common vertex do not count)."""
+    segs = shapely.linestrings(np.stack([pts[:-1], pts[1:]], axis=1))
+    tree = shapely.STRtree(segs)
+    a, b = tree.query(segs, predicate="intersects")
+    far = np.abs(a - b) > 1
+    if len(pts) > 2 and np.allclose(pts[0], pts[-1]):
+        far &= ~(((a == 0) & (b == len(segs) - 1)) | ((b == 0) & (a == len(segs) - 1)))
+    return bool(np.any(far))

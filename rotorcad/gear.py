@@ -29,7 +29,8 @@ from rotorcad.curves import Arc, Curve, Line, Mapped
 from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
 from rotorcad.geometry import Array, polar_angle, radius
-from rotorcad.involute import shift_sum, transverse_pressure_angle, working_pressure_angle
+from rotorcad.involute import inv as inv_fn
+from rotorcad.involute import inv_inverse, shift_sum, transverse_pressure_angle, working_pressure_angle
 from rotorcad.kinematics import gear_mesh
 from rotorcad.profile import DEFAULT_TOLERANCE, Profile, Segment
 
@@ -162,43 +163,44 @@ class InvoluteGear:
         # flank parameter s runs from the tool's fillet tangency (s = 0) up to the top;
         # the interference point (contact at the base tangency T1) is where the roll vanishes.
         s_end = flank.s0
-        s_grid = np.linspace(0.0, s_end, 2049)
+        s_grid = np.linspace(0.0, s_end, 257)
         p_grid = flank.contact(s_grid)
-        mesh_pts = p_grid.meshline
         c = p_grid.pitch_point
         normal = p_grid.normal[0]
         t1 = np.dot(-c, normal) * normal + c  # foot of the perpendicular from O on the line of action
-        along = (mesh_pts - t1) @ (c - t1) / np.hypot(*(c - t1))
-        undercut = bool(along[0] < 0.0)
-        s_int = 0.0
-        if undercut:
-            k = int(np.argmax(along >= 0.0))
-            s_int = optimize.brentq(
-                lambda s: (flank.contact(s).meshline[0] - t1) @ (c - t1), s_grid[k - 1], s_grid[k], xtol=1e-15
-            )
+        # a straight flank touches along the line of action, linearly in s: along = a0 + a1 s is the
+        # roll distance from T1, and the generated radius is R = sqrt(r_b^2 + along^2)
+        along = (p_grid.meshline - t1) @ (c - t1) / np.hypot(*(c - t1))
+        a0 = along[0]
+        a1 = (along[-1] - along[0]) / (s_grid[-1] - s_grid[0])
+        undercut = bool(a0 < 0.0)
+        s_int = -a0 / a1 if undercut else 0.0
+        s_a = (np.sqrt(ra * ra - rb * rb) - a0) / a1
+        # the flank is an involute: polar angle + inv(alpha_R) is constant along it
+        pts, _ = flank.evaluate(s_a)
+        theta_c = float(polar_angle(pts)[0]) + inv_fn(np.arccos(rb / ra))
 
-        def rad(curve: Curve, s: float) -> float:
-            return float(radius(curve.evaluate(s)[0])[0])
+        def flank_angle(r: Array) -> Array:
+            return theta_c - inv_fn(np.arccos(np.clip(rb / r, -1.0, 1.0)))
 
-        def ang(curve: Curve, s: float) -> float:
-            return float(polar_angle(curve.evaluate(s)[0])[0])
-
-        s_a = optimize.brentq(lambda s: rad(flank, s) - ra, s_int, s_end, xtol=1e-14)
-        tip_pointed = ang(flank, s_a) <= 0.0
+        tip_pointed = bool(flank_angle(ra) <= 0.0)
         tip_radius = ra
-        if tip_pointed:
-            s_a = optimize.brentq(lambda s: ang(flank, s), s_int, s_a, xtol=1e-14)
-            tip_radius = rad(flank, s_a)
+        if tip_pointed:  # the flank meets the tooth centre line below the tip circle
+            r_pt = rb / np.cos(inv_inverse(theta_c))
+            s_a = (np.sqrt(r_pt * r_pt - rb * rb) - a0) / a1
+            tip_radius = float(r_pt)
         fil_s0, fil_s1 = fillet.s0, fillet.s1  # from the fillet/flank joint down to the root
         s_low = 0.0
         if undercut:
-            s_low, fil_s0 = self._undercut_point(flank, fillet, s_int, s_a)
-        form_radius = rad(flank, s_low)
-        if not undercut:
-            form_radius = max(form_radius, rb)
+            r_p, fil_s0 = self._undercut_point(fillet, flank_angle, rb)
+            if np.isfinite(r_p):
+                s_low = (np.sqrt(max(r_p * r_p - rb * rb, 0.0)) - a0) / a1
+            else:  # crossing at the base circle, where the polar form is singular: intersect the curves
+                s_low, fil_s0 = self._undercut_point_by_intersection(flank, fillet, s_int, s_a)
+        form_radius = float(np.sqrt(rb * rb + (a0 + a1 * s_low) ** 2))
         pieces: list[tuple[str, Curve]] = []
         if not tip_pointed:
-            pieces.append(("tip arc", Arc((0.0, 0.0), ra, 0.0, ang(flank, s_a))))
+            pieces.append(("tip arc", Arc((0.0, 0.0), ra, 0.0, float(flank_angle(ra)))))
         pieces.append(("involute", flank.trimmed(s_a, s_low)))
         pieces.append(("fillet", fillet.trimmed(fil_s0, fil_s1)))
         if "tip line" in gen:
@@ -213,13 +215,39 @@ class InvoluteGear:
         }
 
     @staticmethod
-    def _undercut_point(flank: Generated, fillet: Generated, s_int: float, s_a: float) -> tuple[float, float]:
-        """Parameters (flank, fillet) of the point where the fillet cuts the involute."""
+    def _undercut_point(fillet: Generated, flank_angle: object, rb: float) -> tuple[float, float]:
+        """Radius and fillet parameter of the undercut point P', where the fillet (trochoid) cuts
+        the involute: the outermost sign change of the polar-angle gap between the fillet and the
+        involute at the same radius, bracketed on two vectorised grids and interpolated."""
+
+        def gap(s: Array) -> tuple[Array, Array]:
+            p, _ = fillet.evaluate(s)
+            r = radius(p)
+            return polar_angle(p) - flank_angle(r), r
+
+        lo, hi = fillet.s0, fillet.s1
+        for _ in range(3):
+            s = np.linspace(lo, hi, 513)
+            g, r = gap(s)
+            ok = (r > rb) & np.isfinite(g)
+            change = np.nonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) != np.sign(g[1:])))[0]
+            if len(change) == 0:
+                return float("nan"), fillet.s0
+            i = change[np.argmax(r[change])]
+            lo, hi = s[i], s[i + 1]
+        w = g[i] / (g[i] - g[i + 1])
+        s_star = lo + w * (hi - lo)
+        return float(radius(fillet.evaluate(s_star)[0])[0]), float(s_star)
+
+    @staticmethod
+    def _undercut_point_by_intersection(flank: Generated, fillet: Generated, s_int: float, s_a: float) -> tuple[float, float]:
+        """Parameters (flank, fillet) of P' by intersecting the two generated curves: shapely on
+        sampled polylines for the bracket, then a 2-D root of the exact curves."""
         sf = np.linspace(fillet.s0, fillet.s1, 1025)
         sl = np.linspace(s_int, s_a, 1025)
         pf, pl = fillet.evaluate(sf)[0], flank.evaluate(sl)[0]
         hit = shapely.LineString(pf).intersection(shapely.LineString(pl))
-        pts = np.array([g.coords[0] for g in getattr(hit, "geoms", [hit]) if not g.is_empty])
+        pts = shapely.get_coordinates(hit)
         if len(pts) == 0:  # the fillet never reaches the involute: join at the base circle
             return s_int, fillet.s0
         x = pts[np.argmax(np.hypot(*pts.T))]

@@ -76,3 +76,26 @@ def polar_angle(points: Array) -> Array:
 def radius(points: Array) -> Array:
     """Distance of each point from the origin."""
     return np.hypot(*as_points(points).T)
+
+
+def distance_to_polyline(points: Array, polyline: Array) -> Array:
+    """Distance of each point to a densely sampled open polyline: the nearest vertex by a KD-tree,
+    then the exact distance to its two adjacent segments (vectorised; exact when the nearest
+    segment touches the nearest vertex, which holds for polylines sampled finer than their
+    curvature)."""
+    from scipy.spatial import cKDTree
+
+    pts = as_points(points)
+    line = as_points(polyline)
+    k = cKDTree(line).query(pts)[1]
+    best = np.hypot(*(pts - line[k]).T)
+    for a_idx, b_idx in ((k - 1, k), (k, k + 1)):
+        ok = (a_idx >= 0) & (b_idx < len(line))
+        a, b = line[np.clip(a_idx, 0, len(line) - 1)], line[np.clip(b_idx, 0, len(line) - 1)]
+        d = b - a
+        length2 = np.einsum("ij,ij->i", d, d)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.clip(np.einsum("ij,ij->i", pts - a, d) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
+        dist = np.hypot(*(pts - a - u[:, None] * d).T)
+        best = np.where(ok, np.minimum(best, dist), best)
+    return best
