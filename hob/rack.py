@@ -18,7 +18,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import shapely
 from scipy import optimize
 
 from rotorcad.curves import Arc, Curve, Mapped
