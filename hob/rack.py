@@ -144,7 +144,7 @@ def rotor_rack(rotors: ScrewRotors, rotor: str, samples: int = 400) -> DerivedRa
 def _within(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[str, Curve] | None:
     """The longest part of a generated piece inside the rotor's tip circle (generated flanks can
     overshoot it; the rotor is cut off there)."""
-    s = np.linspace(curve.s0, curve.s1, 2001)
+    s = np.linspace(curve.s0, curve.s1, 257)  # the ends are refined by root finding below
     p, _ = curve.evaluate(s)
     inside = np.hypot(*(p - centre).T) <= tip + 1e-7
     if inside.all():
