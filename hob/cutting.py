@@ -53,14 +53,23 @@ def _tool_tooth_polygon(gear: InvoluteGear, tolerance: float) -> np.ndarray:
     return pts
 
 
-def simulate_cutting(gear: InvoluteGear, scallop: float = 1e-3, positions: int | None = None) -> CutResult:
+def simulate_cutting(
+    gear: InvoluteGear, scallop: float = 1e-3, positions: int | None = None, tool: object | None = None
+) -> CutResult:
     """Cut ``gear`` with its basic-rack tool to the scallop height ``scallop`` (mm); with
-    ``positions`` the number of tool positions is fixed instead (no refinement)."""
+    ``positions`` the number of tool positions is fixed instead (no refinement). ``tool`` (a
+    :class:`hob.tools.TrapezoidalHob` or :class:`hob.tools.RackTool`) replaces the basic-rack
+    tool; the deviation is then still measured against the basic-rack envelope of ``gear``, so it
+    shows what the tool changes (protuberance relief, chamfer)."""
     pt = np.pi * gear.transverse_module
     r = gear.pitch_radius
     rho_max = np.sqrt(max(gear.nominal_tip_radius**2 - gear.base_radius**2, 1e-12))
     step = min(np.sqrt(8.0 * scallop / rho_max), _fillet_step(gear, scallop))
-    tooth = _tool_tooth_polygon(gear, min(scallop / 4.0, 1e-3))
+    if tool is None:
+        tooth = _tool_tooth_polygon(gear, min(scallop / 4.0, 1e-3))
+    else:
+        stretch = np.array([1.0, 1.0 / np.cos(gear.helix_angle)])
+        tooth = tool.tooth(r, gear.shift, gear.nominal_tip_radius + 2.0 * gear.module) * stretch
     # rolling keeps each tool tooth near a fixed polar angle (j + 1/2) 2 pi / z of the blank: teeth
     # j = -1 and 0 cut the two flanks of tooth 0, over the time the tool needs to cross the blank
     reach = (np.sqrt(gear.nominal_tip_radius**2 - gear.root_radius**2) + pt) / r
@@ -77,7 +86,7 @@ def simulate_cutting(gear: InvoluteGear, scallop: float = 1e-3, positions: int |
         if isinstance(simulated, shapely.MultiPolygon):
             simulated = max(simulated.geoms, key=lambda g: g.area)
         dev, flank_dev = _deviation(gear, simulated, exact, scallop)
-        if dev <= scallop:
+        if dev <= scallop or tool is not None:
             break
         step *= 0.95 * np.sqrt(scallop / dev)
     return CutResult(simulated, exact, len(ts), float(step), dev, flank_dev)

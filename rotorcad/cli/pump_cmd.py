@@ -9,6 +9,7 @@ import click
 import numpy as np
 from matplotlib.figure import Figure
 
+from hob.nomogram import plot_nomogram
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.pump import GearPump, kollek_coefficients
@@ -24,6 +25,11 @@ MM3_PER_S_TO_L_PER_MIN = 60.0 / 1e6
 @click.option("--harmonics", "count", type=int, default=8, show_default=True, help="Number of harmonics listed.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the delivery and its spectrum.")
+@click.option(
+    "--nomogram",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="PNG of the contact ratio over shift x and addendum factor y for this z and pressure angle (Kollek Fig. 4).",
+)
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def pump(design: Path | None, **opts: Any) -> None:
     """Delivery of an external gear pump of two equal gears: mean flow, irregularity, harmonics,
@@ -50,6 +56,7 @@ def pump(design: Path | None, **opts: Any) -> None:
     }
     out = Outputs()
     out.add(opts["plot"], lambda path: _plot(p).savefig(path, format="png"), "--plot")
+    out.add(opts["nomogram"], lambda path: plot_nomogram(g.teeth, g.pressure_angle).savefig(path, format="png"), "--nomogram")
     result["files"] = [str(x) for x in out.write()]
     if opts["as_json"]:
         emit_json(result)
