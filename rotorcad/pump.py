@@ -9,7 +9,8 @@ point C. Each pair governs the delivery for one base pitch p_b from the start of
 eq. (2), q = Q_min + b w (s l - s^2) with l = eps p_b = g_a. Its mean is
 b w (r_a^2 - r_w^2 - p_b^2 (eps^2/4 - eps/2 + 1/3)), which for eps = 1 is the textbook
 b w (r_a^2 - r_w^2 - p_b^2/12). While two pairs touch, the volume between them (trapped volume)
-changes at b w (u_1^2 - u_2^2). The pump (meshing) frequency is f = n z / 60 (eq. 9).
+changes at b w (u_2^2 - u_1^2): it shrinks until the two contacts lie symmetrically about C and
+grows back. The pump (meshing) frequency is f = n z / 60 (eq. 9).
 """
 
 from __future__ import annotations
@@ -101,7 +102,7 @@ class GearPump:
         phi = np.linspace(0.0, duration, samples)
         u1 = -eps * pb / 2.0 + g.base_radius * phi  # the new contact
         u2 = u1 + pb  # the old one, a base pitch ahead
-        rate = self.face_width * (u1**2 - u2**2)  # dV/dphi
+        rate = self.face_width * (u2**2 - u1**2)  # dV/dphi = (q(u1) - q(u2)) / w: shrinks, then grows
         vol = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(phi))])
         return phi, vol
 

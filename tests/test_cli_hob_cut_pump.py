@@ -94,7 +94,8 @@ def test_cut_json(tmp_path, capsys):
     assert data["undercut_radius"] == pytest.approx(data["undercut_radius_exact"], abs=10 * 0.002)
     assert data["tooth_thickness_pitch"] == pytest.approx(np.pi, abs=0.002)  # m pi / 2, x = 0
     doc = ezdxf.readfile(tmp_path / "c.dxf")
-    assert {"GEAR_SIMULATED", "GEAR_ANALYTIC", "RACK"} <= {e.dxf.layer for e in doc.modelspace()}
+    assert {"GEAR_SIMULATED", "GEAR_ANALYTIC", "RACK", "HOB_TOOTH"} <= {e.dxf.layer for e in doc.modelspace()}
+    assert len(doc.audit().errors) == 0
 
 
 def test_pump_json(capsys):

@@ -84,3 +84,18 @@ def test_fourier_series_matches_eqs_4_to_6(x):
     np.testing.assert_allclose(p.cosine_series(8), kollek_coefficients(p.contact_ratio, 8), atol=5e-4)
     # the odd terms vanish as eps -> 1
     assert kollek_coefficients(1.0, 5)[1::2].max() == 0.0
+
+
+def test_trapped_volume_is_symmetric_about_the_pitch_point():
+    # Two contacts a base pitch apart move together along the line of action; the volume between
+    # them shrinks until they lie symmetrically about C (u1 + u2 = 0) and grows back: it returns to
+    # its start value with its minimum halfway (d/dphi V = b (u1^2 - u2^2), zero at u1 = -u2).
+    g = InvoluteGear(11, 4.0, A20, 0.0, 0.3)
+    p = GearPump(g, 20.0, 1500)
+    phi, vol = p.trapped_volume(2001)
+    assert len(phi) and abs(vol[-1] - vol[0]) < 1e-6 * np.abs(vol).max()
+    i = int(np.argmin(vol))
+    assert phi[i] == pytest.approx(phi[-1] / 2, abs=2 * (phi[1] - phi[0]))
+    # depth of the dip: b p_b r_b (phi/2)^2 from the closed-form integral of -2 b p_b r_b (phi - phi_mid)
+    half = phi[-1] / 2
+    assert -vol[i] == pytest.approx(20.0 * g.base_pitch * g.base_radius * half**2, rel=1e-5)

@@ -13,6 +13,7 @@ from matplotlib.figure import Figure
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.cutting import simulate_cutting, simulated_form_radius
+from hob.tools import TrapezoidalHob
 from hob.undercut import effective_addendum, kollek_model
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
@@ -94,6 +95,15 @@ def _drawing(g, whole: shapely.Polygon) -> Drawing:
     d.outlines.append(("GEAR_ANALYTIC", g.outline(1e-3).points))
     rack = np.vstack([c.evaluate(np.linspace(c.s0, c.s1, 200))[0] for c in g.tool.values()])
     d.polylines.append(("RACK", rack))
+    d.outlines.append(
+        (
+            "HOB_TOOTH",
+            TrapezoidalHob(g.module, g.pressure_angle, g.dedendum, g.tip_radius_factor).tooth(
+                g.pitch_radius, g.shift, g.nominal_tip_radius + 0.25 * g.module
+            )
+            * np.array([1.0, 1.0 / np.cos(g.helix_angle)]),
+        )
+    )
     d.circles += [("PITCH", (0.0, 0.0), g.pitch_radius), ("BASE", (0.0, 0.0), g.base_radius)]
     d.centers.append((0.0, 0.0))
     return d
