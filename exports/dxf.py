@@ -32,14 +32,16 @@ class Drawing:
     lines: list[tuple[str, tuple[float, float], tuple[float, float]]] = field(default_factory=list)
     centers: list[tuple[float, float]] = field(default_factory=list)
     polylines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, open points)
+    splines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, closed points): cubic through them
     mark_size: float = 2.0
 
 
 def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
     """Write ``drawing``: outlines as closed LWPOLYLINEs (R2000+) or POLYLINEs (R12)."""
     doc = ezdxf.new(version)
-    doc.header["$INSUNITS"] = 4  # millimetres
-    doc.header["$MEASUREMENT"] = 1  # metric
+    if version != "R12":  # R12 has no units variable
+        doc.header["$INSUNITS"] = 4  # millimetres
+        doc.header["$MEASUREMENT"] = 1  # metric
     layers = (
         {name for name, _ in drawing.outlines + drawing.polylines}
         | {c[0] for c in drawing.circles}
@@ -62,6 +64,11 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
             msp.add_polyline2d(xy, dxfattribs={"layer": layer})
         else:
             msp.add_lwpolyline(xy, dxfattribs={"layer": layer})
+    if version != "R12":  # SPLINE needs R2000+; a closed outline gets a seam where it starts (STACK-NOTES)
+        for layer, pts in drawing.splines:
+            closed = np.vstack([pts, pts[:1]])
+            spline = msp.add_spline_control_frame([(float(x), float(y), 0.0) for x, y in closed], degree=3, method="chord")
+            spline.dxf.layer = layer
     for layer, centre, r in drawing.circles:
         msp.add_circle(centre, r, dxfattribs={"layer": layer})
     for layer, a, b in drawing.lines:

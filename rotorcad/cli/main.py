@@ -12,6 +12,7 @@ import click
 
 from rotorcad import __version__
 from rotorcad.cli.cut_cmd import cut
+from rotorcad.cli.export_cmd import export, interfere
 from rotorcad.cli.gear import gear
 from rotorcad.cli.hob_cmd import hob
 from rotorcad.cli.pump_cmd import pump
@@ -33,6 +34,8 @@ cli.add_command(rotor)
 cli.add_command(hob)
 cli.add_command(cut)
 cli.add_command(pump)
+cli.add_command(export)
+cli.add_command(interfere)
 
 
 def main(argv: list[str] | None = None) -> int:

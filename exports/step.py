@@ -1,0 +1,186 @@
+"""STEP (ISO 10303-21) writers.
+
+``write_faceted_step`` writes, without OpenCASCADE, a closed faceted B-rep in AP214
+(AUTOMOTIVE_DESIGN): one FACETED_BREP whose CLOSED_SHELL has a FACE_SURFACE on a PLANE bounded by a
+POLY_LOOP per triangle - the form OpenCASCADE reads as one valid solid (STACK-NOTES: a plain FACE
+with POLY_LOOP reads as an empty shell). It suits coarse meshes: OpenCASCADE needs seconds per
+10 000 facets to read it.
+
+``write_bspline_step`` (needs the optional ``cadquery-ocp``) builds a true B-spline helical solid by
+OpenCASCADE: the periodic profile interpolated by ``GeomAPI_Interpolate``, swept along the axis with
+an auxiliary helix (``BRepOffsetAPI_MakePipeShell``), a handful of faces, read back in well under a
+second.
+"""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+
+HEADER = """ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION(('{description}'),'2;1');
+FILE_NAME('{name}','2026-01-01T00:00:00',('rotorcad'),('rotorcad'),'rotorcad','rotorcad','');
+FILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));
+ENDSEC;
+DATA;
+#1=APPLICATION_CONTEXT('automotive design');
+#2=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#1);
+#3=PRODUCT_CONTEXT('',#1,'mechanical');
+#4=PRODUCT('{body}','{body}','',(#3));
+#5=PRODUCT_DEFINITION_FORMATION('','',#4);
+#6=PRODUCT_DEFINITION_CONTEXT('part definition',#1,'design');
+#7=PRODUCT_DEFINITION('design','',#5,#6);
+#8=PRODUCT_DEFINITION_SHAPE('','',#7);
+#9=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));
+#10=(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.));
+#11=(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT());
+#12=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#9,'distance_accuracy_value','confusion accuracy');
+#13=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#12))GLOBAL_UNIT_ASSIGNED_CONTEXT((#9,#10,#11))REPRESENTATION_CONTEXT('Context3D','3D'));
+#14=CARTESIAN_POINT('',(0.,0.,0.));
+#15=DIRECTION('',(0.,0.,1.));
+#16=DIRECTION('',(1.,0.,0.));
+#17=AXIS2_PLACEMENT_3D('',#14,#15,#16);
+#18=FACETED_BREP_SHAPE_REPRESENTATION('',(#17,#{brep}),#13);
+#19=SHAPE_DEFINITION_REPRESENTATION(#8,#18);
+"""
+
+
+def _lines(fmt: str, columns: list[np.ndarray]) -> str:
+    """Format entity lines for whole arrays at once (numpy's savetxt over stacked columns)."""
+    buf = io.StringIO()
+    np.savetxt(buf, np.column_stack(columns), fmt=fmt)
+    return buf.getvalue()
+
+
+def write_faceted_step(path: Path, vertices: np.ndarray, faces: np.ndarray, body: str = "rotor") -> None:
+    """Write a closed triangle mesh as one faceted solid (AP214)."""
+    v = np.asarray(vertices, dtype=float)
+    f = np.asarray(faces, dtype=np.int64)
+    nv, nf = len(v), len(f)
+    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+    normal = np.cross(b - a, c - a)
+    normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+    ref = (b - a) / np.linalg.norm(b - a, axis=1, keepdims=True)
+    first = 20
+    pid = first + np.arange(nv)  # CARTESIAN_POINT ids of the vertices
+    base = first + nv
+    k = np.arange(nf)
+    loop, bound, ndir, rdir, axis, plane, face = (base + 7 * k + j for j in range(7))
+    shell = base + 7 * nf
+    brep = shell + 1
+    text = [HEADER.format(description="rotorcad faceted solid", name=Path(path).name, body=body, brep=brep)]
+    text.append(_lines("#%d=CARTESIAN_POINT('',(%.12g,%.12g,%.12g));", [pid, v[:, 0], v[:, 1], v[:, 2]]))
+    ids = pid[f]
+    entity = np.empty(nf * 7, dtype=object)
+    parts = [
+        _lines("#%d=POLY_LOOP('',(#%d,#%d,#%d));", [loop, ids[:, 0], ids[:, 1], ids[:, 2]]).splitlines(),
+        _lines("#%d=FACE_OUTER_BOUND('',#%d,.T.);", [bound, loop]).splitlines(),
+        _lines("#%d=DIRECTION('',(%.15g,%.15g,%.15g));", [ndir, normal[:, 0], normal[:, 1], normal[:, 2]]).splitlines(),
+        _lines("#%d=DIRECTION('',(%.15g,%.15g,%.15g));", [rdir, ref[:, 0], ref[:, 1], ref[:, 2]]).splitlines(),
+        _lines("#%d=AXIS2_PLACEMENT_3D('',#%d,#%d,#%d);", [axis, ids[:, 0], ndir, rdir]).splitlines(),
+        _lines("#%d=PLANE('',#%d);", [plane, axis]).splitlines(),
+        _lines("#%d=FACE_SURFACE('',(#%d),#%d,.T.);", [face, bound, plane]).splitlines(),
+    ]
+    for j, lines in enumerate(parts):
+        entity[j::7] = lines
+    text.append("\n".join(entity) + "\n")
+    face_list = ",".join(f"#{i}" for i in face)
+    text.append(f"#{shell}=CLOSED_SHELL('',({face_list}));\n#{brep}=FACETED_BREP('',#{shell});\nENDSEC;\nEND-ISO-10303-21;\n")
+    with open(path, "w", encoding="ascii") as fh:
+        fh.write("".join(text))
+
+
+def ocp_available() -> bool:
+    try:
+        import OCP  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _quiet_ocp() -> None:
+    """OpenCASCADE's default messenger prints banners on stdout: keep only failures (stdout of a
+    --json command must hold the JSON alone)."""
+    from OCP.Message import Message, Message_Gravity
+
+    for printer in Message.DefaultMessenger_s().Printers():
+        printer.SetTraceLevel(Message_Gravity.Message_Fail)
+
+
+def write_bspline_step(
+    path: Path, section: np.ndarray, lead: float, length: float, body: str = "rotor", offset: tuple[float, float] = (0.0, 0.0)
+) -> None:
+    """A true B-spline helical solid by OpenCASCADE (needs ``cadquery-ocp``)."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire, BRepBuilderAPI_Transform
+    from OCP.BRepFill import BRepFill_TypeOfContact
+    from OCP.BRepLib import BRepLib
+    from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
+    from OCP.collections import HArray1_gp_Pnt
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.Geom2d import Geom2d_Line
+    from OCP.GeomAPI import GeomAPI_Interpolate
+    from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
+    from OCP.IFSelect import IFSelect_RetDone
+    from OCP.Interface import Interface_Static
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
+    _quiet_ocp()
+    pts = np.asarray(section, dtype=float)
+    arr = HArray1_gp_Pnt(1, len(pts))
+    for i, (x, y) in enumerate(pts, start=1):  # OCP's array API takes one point at a time
+        arr.SetValue(i, gp_Pnt(float(x), float(y), 0.0))
+    interp = GeomAPI_Interpolate(arr, True, 1e-9)
+    interp.Perform()
+    profile = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(interp.Curve()).Edge()).Wire()
+    spine = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(0, 0, length)).Edge()).Wire()
+    # auxiliary helix on a cylinder: (u, v) -> (angle, height) with slope 2 pi / lead
+    radius = float(np.hypot(*pts.T).max())
+    cyl = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), radius)
+    turns = length / abs(lead)
+    line = Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(float(np.sign(lead) * 2 * np.pi), float(abs(lead))))
+    helix_len = float(np.hypot(2 * np.pi * turns, length))
+    helix = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(line, cyl, 0.0, helix_len).Edge()).Wire()
+    BRepLib.BuildCurves3d_s(helix)
+    pipe = BRepOffsetAPI_MakePipeShell(spine)
+    pipe.SetMode(helix, False, BRepFill_TypeOfContact.BRepFill_NoContact)
+    pipe.Add(profile)
+    pipe.Build()
+    pipe.MakeSolid()
+    shape = pipe.Shape()
+    if offset != (0.0, 0.0):
+        tr = gp_Trsf()
+        tr.SetTranslation(gp_Vec(offset[0], offset[1], 0.0))
+        shape = BRepBuilderAPI_Transform(shape, tr, True).Shape()
+    writer = STEPControl_Writer()
+    Interface_Static.SetCVal_s("write.step.schema", "AP214")
+    writer.Transfer(shape, STEPControl_AsIs)
+    if writer.Write(str(path)) != IFSelect_RetDone:
+        raise OSError(f"OpenCASCADE could not write {path}")
+
+
+def read_step(path: Path) -> dict[str, object]:
+    """Read a STEP file with OpenCASCADE: number of solids, validity (BRepCheck) and volume by
+    Gauss-Kronrod integration (the plain one was 0.9 % off on a B-spline rotor; STACK-NOTES)."""
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    from OCP.STEPControl import STEPControl_Reader
+    from OCP.TopAbs import TopAbs_SOLID
+    from OCP.TopExp import TopExp_Explorer
+
+    _quiet_ocp()
+    reader = STEPControl_Reader()
+    reader.ReadFile(str(path))
+    reader.TransferRoots()
+    shape = reader.OneShape()
+    props = GProp_GProps()
+    BRepGProp.VolumePropertiesGK_s(shape, props, 1e-9, False, True)
+    solids = 0
+    explorer = TopExp_Explorer(shape, TopAbs_SOLID)
+    while explorer.More():
+        solids += 1
+        explorer.Next()
+    return {"solids": solids, "valid": bool(BRepCheck_Analyzer(shape).IsValid()), "volume": float(props.Mass())}

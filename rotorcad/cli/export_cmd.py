@@ -1,0 +1,237 @@
+"""``rotorcad export`` and ``rotorcad interfere``: helical solids, files, interference (CONTRACT.md)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+from rich.console import Console
+from rich.progress import Progress
+from rich.table import Table
+
+from exports.csv_points import write_points
+from exports.dxf import Drawing, write_dxf
+from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
+from exports.step import ocp_available, write_bspline_step, write_faceted_step
+from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
+from rotorcad.cli.rotor import _build as build_rotors
+from rotorcad.design import load_rotor_design
+from rotorcad.errors import DesignError
+from rotorcad.interference import interference_2d, intersection_3d
+from rotorcad.solids import HelicalSolid, helical_solid
+
+FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "step", "step-faceted", "csv")
+FACETED_STEP_MAX = 20_000  # facets: OpenCASCADE reads a 20 000-facet faceted B-rep in 5-7 s (STACK-NOTES)
+
+
+def _rotor_options(design: Path) -> dict[str, Any]:
+    keys = (
+        "male_teeth",
+        "female_teeth",
+        "center_distance",
+        "male_tip_radius",
+        "male_root_radius",
+        "female_tip_radius",
+        "female_root_radius",
+        "lead",
+        "length",
+        "male_points",
+        "female_points",
+        "rack_points",
+        "speed",
+    )
+    opts: dict[str, Any] = dict.fromkeys(keys)
+    opts["smoothing"] = 0.0
+    return opts
+
+
+def _design_settings(design: Path) -> dict[str, Any]:
+    try:
+        return load_rotor_design(design)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+
+
+def _progress(quiet: bool) -> Progress | None:
+    if quiet or not sys.stderr.isatty():
+        return None
+    return Progress(console=Console(file=sys.stderr), transient=True)
+
+
+@click.command()
+@click.argument("design", type=click.Path(path_type=Path, dir_okay=False))
+@click.option(
+    "--format",
+    "formats",
+    help="Comma-separated formats: " + ", ".join(FORMATS) + ". Default: the design's [export] formats, else stl.",
+)
+@click.option(
+    "--out", type=click.Path(path_type=Path, file_okay=False), required=True, help="Output folder (created if missing)."
+)
+@click.option(
+    "--tolerance", type=float, help="Surface tolerance of the meshes [mm]. Default: the design's [export] tolerance, else 0.005."
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def export(design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool, quiet: bool) -> None:
+    """Helical male and female rotor solids of a design, written in each format (one file per body
+    and format; the female is placed in mesh at (a, 0) at male angle 0)."""
+    settings = _design_settings(design)
+    fmts = (
+        [f.strip().lower() for f in formats.split(",")]
+        if formats
+        else [str(f).lower() for f in settings["export"].get("formats", ["stl"])]
+    )
+    for f in fmts:
+        if f not in FORMATS:
+            raise InputError(f"--format must be a comma-separated list of {', '.join(FORMATS)} (got {f!r}).")
+    tol = tolerance if tolerance is not None else float(settings["export"].get("tolerance", 0.005))
+    if not (np.isfinite(tol) and 0 < tol <= 1.0):
+        raise InputError(f"--tolerance must be a surface tolerance between 0 and 1 mm (got {tol}).")
+    rotors, _, clearance = build_rotors(design, _rotor_options(design))
+    folder = output_folder(out)
+    pair = rotors.pair
+    stem = Path(design).stem
+    sections = {"male": rotors.section("male", tol / 2), "female": rotors.section("female", tol / 2)}
+    leads = {"male": pair.lead if pair.hand == "right" else -pair.lead}
+    leads["female"] = -np.sign(leads["male"]) * pair.female_lead
+    shift = {"male": (0.0, 0.0), "female": (pair.center_distance, 0.0)}
+    solids: dict[str, HelicalSolid] = {}
+    needs_mesh = [f for f in fmts if f in MESH_FORMATS or f == "step-faceted" or (f == "step" and not ocp_available())]
+    progress = _progress(quiet)
+    if progress:
+        progress.start()
+        task = progress.add_task("sweeping solids", total=2)
+    if needs_mesh:
+        for body in ("male", "female"):
+            solids[body] = helical_solid(sections[body], leads[body], pair.length, tol)
+            if progress:
+                progress.advance(task)
+    outputs = Outputs()
+    rows: list[dict[str, Any]] = []
+    for body in ("male", "female"):
+        placed = np.asarray(sections[body].exterior.coords)[:-1] + np.array(shift[body])
+        for fmt in fmts:
+            path = folder / f"{stem}_{body}{_extension(fmt)}"
+            row: dict[str, Any] = {
+                "path": str(path),
+                "format": fmt,
+                "body": body,
+                "triangles": 0,
+                "volume": float(sections[body].area * pair.length),
+            }
+            if fmt in MESH_FORMATS:
+                mesh = solids[body].mesh.copy()
+                mesh.apply_translation([*shift[body], 0.0])
+                row.update(triangles=len(mesh.faces), volume=solids[body].volume)
+                outputs.add(path, lambda p, m=mesh, f=fmt: write_mesh(p, m, f), "--out")
+            elif fmt in ("dxf", "dxf-r12"):
+                drawing = Drawing(mark_size=0.05 * pair.male_tip_radius)
+                drawing.outlines.append((body.upper(), placed))
+                drawing.circles.append(
+                    ("PITCH", shift[body], pair.male_pitch_radius if body == "male" else pair.female_pitch_radius)
+                )
+                drawing.centers.append(shift[body])
+                if fmt == "dxf":
+                    drawing.splines.append((f"{body.upper()}_SPLINE", placed))
+                outputs.add(path, lambda p, d=drawing, f=fmt: write_dxf(p, d, "R12" if f == "dxf-r12" else "R2000"), "--out")
+            elif fmt == "csv":
+                own = np.asarray(sections[body].exterior.coords)[:-1]
+                outputs.add(path, lambda p, pts=own: write_points(p, pts), "--out")
+            elif fmt == "step" and ocp_available():
+                outputs.add(
+                    path,
+                    lambda p, b=body: write_bspline_step(
+                        p, np.asarray(sections[b].exterior.coords)[:-1], leads[b], pair.length, b, shift[b]
+                    ),
+                    "--out",
+                )
+            else:  # faceted STEP: coarse enough for OpenCASCADE to read
+                solid = solids[body]
+                coarse_tol = tol
+                while len(solid.mesh.faces) > FACETED_STEP_MAX:  # facets go like 1/tol: coarsen until readable
+                    coarse_tol *= 1.5 * len(solid.mesh.faces) / FACETED_STEP_MAX
+                    solid = helical_solid(rotors.section(body, coarse_tol / 2), leads[body], pair.length, coarse_tol)
+                mesh = solid.mesh.copy()
+                mesh.apply_translation([*shift[body], 0.0])
+                row.update(triangles=len(mesh.faces), volume=solid.volume, tolerance=solid.tolerance)
+                outputs.add(path, lambda p, m=mesh, b=body: write_faceted_step(p, m.vertices, m.faces, b), "--out")
+            rows.append(row)
+    written = outputs.write()
+    if progress:
+        progress.stop()
+    for row in rows:
+        row["size"] = Path(row["path"]).stat().st_size if Path(row["path"]).exists() else 0
+    result = {"files": rows, "tolerance": tol, "clearance": clearance}
+    if as_json:
+        emit_json(result)
+    else:
+        table = Table(title=f"{stem}: {len(written)} files", header_style="bold")
+        for col in ("file", "format", "body", "triangles", "volume mm³", "size"):
+            table.add_column(col, justify="right" if col not in ("file", "format", "body") else "left")
+        for row in rows:
+            table.add_row(
+                Path(row["path"]).name,
+                row["format"],
+                row["body"],
+                str(row["triangles"]),
+                f"{row['volume']:.1f}",
+                f"{row['size'] / 1e6:.2f} MB",
+            )
+        Console(file=sys.stdout, highlight=False).print(table)
+
+
+def _extension(fmt: str) -> str:
+    return EXTENSIONS.get(
+        fmt, {"dxf": ".dxf", "dxf-r12": "_r12.dxf", "step": ".step", "step-faceted": "_faceted.step", "csv": ".csv"}.get(fmt, "")
+    )
+
+
+@click.command()
+@click.argument("design", type=click.Path(path_type=Path, dir_okay=False))
+@click.option("--steps", type=int, default=72, show_default=True, help="Male angles over one lobe pitch.")
+@click.option(
+    "--tolerance", type=float, default=0.005, show_default=True, help="Section tolerance [mm]; sets the touching threshold."
+)
+@click.option(
+    "--check-3d", is_flag=True, help="Also intersect the 3D solids at the angle of the maximum (slow at fine tolerance)."
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def interfere(design: Path, steps: int, tolerance: float, check_3d: bool, as_json: bool, quiet: bool) -> None:
+    """Interference of the rotor pair over one lobe pitch (integral of 2D section intersections
+    along the helix) and of the rotors with the housing bores."""
+    if not 1 <= steps <= 100_000:
+        raise InputError(f"--steps must be a whole number from 1 to 100000 (got {steps}).")
+    if not (np.isfinite(tolerance) and 0 < tolerance <= 1.0):
+        raise InputError(f"--tolerance must be between 0 and 1 mm (got {tolerance}).")
+    rotors, _, clearance = build_rotors(design, _rotor_options(design))
+    pair = rotors.pair
+    male, female = rotors.section("male", tolerance / 2), rotors.section("female", tolerance / 2)
+    result_2d = interference_2d(pair, male, female, steps, tolerance, clearance=clearance)
+    result: dict[str, Any] = {
+        "max_intersection_volume": result_2d.max_volume if result_2d.interferes else 0.0,
+        "max_intersection_volume_raw": result_2d.max_volume,
+        "angle_deg": float(np.degrees(result_2d.angle_of_max)),
+        "housing_intersection_volume": result_2d.housing_volume,
+        "steps": steps,
+        "touching_threshold": result_2d.threshold,
+        "interferes": result_2d.interferes or result_2d.housing_volume > result_2d.threshold,
+    }
+    if check_3d:
+        lead = pair.lead if pair.hand == "right" else -pair.lead
+        m = helical_solid(male, lead, pair.length, tolerance)
+        f = helical_solid(female, -np.sign(lead) * pair.female_lead, pair.length, tolerance)
+        result["check_3d"] = intersection_3d(pair, m, f, result_2d.angle_of_max, result_2d.threshold)
+    if as_json:
+        emit_json(result)
+    else:
+        from rotorcad.cli.common import print_table
+
+        print_table(f"interference of {Path(design).stem}", {k: v for k, v in result.items() if k != "check_3d"})
+
+
+__all__ = ["export", "interfere"]

@@ -1,0 +1,99 @@
+"""Helical solids of rotors and gears: a transverse section extruded with twist by manifold3d.
+
+The surface between two consecutive layers is ruled (straight lines between corresponding section
+vertices); a point at radius R of a section turned by d(theta) per layer sags from the true helicoid
+by about R d(theta)^2 / 8, the sagitta of a chord of the helix seen along the axis (measured here:
+300 deg wrap, R = 48 mm: 50 layers 63 um, 200 layers 4 um; STACK-NOTES). With a surface tolerance
+``tol`` the section is sampled to chords of tol/2 and the layers are chosen so that the sag stays
+below tol/2: n = ceil(wrap sqrt(R_max / (4 tol))). The bound that holds: every point of the
+triangulated surface lies within ``tol`` of the exact helical surface, hence
+|V - A L| <= P L tol (A, P area and perimeter of the sampled section, L the length).
+
+Right hand turns the section counter-clockwise going up (positive ``twist_degrees`` in manifold3d);
+a contour is passed counter-clockwise with the positive fill rule (STACK-NOTES: a clockwise contour
+gives an empty section without error).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import manifold3d as m3
+import numpy as np
+import shapely
+import trimesh
+
+from rotorcad.errors import DesignError
+
+
+@dataclass(frozen=True, eq=False)
+class HelicalSolid:
+    """A swept solid with what it was made from."""
+
+    manifold: m3.Manifold
+    section: shapely.Polygon  # at z = 0, in the body's own frame
+    length: float
+    lead: float  # signed: > 0 right hand
+    layers: int
+    tolerance: float
+
+    @property
+    def volume(self) -> float:
+        return float(self.manifold.volume())
+
+    @property
+    def nominal_volume(self) -> float:
+        """Section area times length: what the exact solid holds."""
+        return float(self.section.area * self.length)
+
+    @property
+    def volume_bound(self) -> float:
+        """|V - A L| <= P L tol (see the module docstring)."""
+        return float(self.section.exterior.length * self.length * self.tolerance)
+
+    @property
+    def genus(self) -> int:
+        return int(self.manifold.genus())
+
+    @cached_property
+    def mesh(self) -> trimesh.Trimesh:
+        """Float64 triangle mesh (``to_mesh64``: ``to_mesh`` is float32, ~7 um on 100 mm parts)."""
+        m = self.manifold.to_mesh64()
+        return trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts), process=False)
+
+    def section_at(self, z: float) -> shapely.Geometry:
+        """The solid's slice at height z as shapely geometry."""
+        polys = self.manifold.slice(z).to_polygons()
+        rings = [shapely.Polygon(p) for p in polys if len(p) >= 3]
+        return shapely.make_valid(shapely.union_all(rings)) if rings else shapely.Polygon()
+
+    def rotation_at(self, z: float) -> float:
+        """Angle (rad) by which the section at height z is turned from the one at z = 0."""
+        return 2.0 * np.pi * z / self.lead
+
+
+def layers_for(tolerance: float, wrap: float, r_max: float) -> int:
+    """Number of layers keeping the ruled-surface sag r_max dtheta^2 / 8 below tolerance / 2."""
+    return max(1, int(np.ceil(abs(wrap) * np.sqrt(r_max / (4.0 * tolerance)))))
+
+
+def helical_solid(section: shapely.Polygon, lead: float, length: float, tolerance: float, phase: float = 0.0) -> HelicalSolid:
+    """Sweep ``section`` (own frame, counter-clockwise) helically: ``lead`` > 0 right hand, < 0 left
+    hand; ``phase`` turns the section at z = 0 (rad)."""
+    if not (np.isfinite(tolerance) and tolerance > 0):
+        raise DesignError("tolerance", "a positive length in mm", tolerance)
+    if not (np.isfinite(length) and length > 0):
+        raise DesignError("length", "a positive length in mm", length)
+    if not (np.isfinite(lead) and lead != 0):
+        raise DesignError("lead", "a non-zero length in mm", lead)
+    poly = shapely.geometry.polygon.orient(section, 1.0)
+    if phase:
+        poly = shapely.affinity.rotate(poly, phase, origin=(0, 0), use_radians=True)
+    pts = np.asarray(poly.exterior.coords)[:-1]
+    cs = m3.CrossSection([pts], m3.FillRule.Positive)
+    wrap = 2.0 * np.pi * length / lead
+    r_max = float(np.hypot(*pts.T).max())
+    n = layers_for(tolerance, wrap, r_max)
+    solid = m3.Manifold.extrude(cs, length, n_divisions=n - 1, twist_degrees=float(np.degrees(wrap)))
+    return HelicalSolid(solid, poly, float(length), float(lead), n, float(tolerance))

@@ -1,0 +1,157 @@
+"""Every export read back by an independent reader: trimesh / meshio for meshes, ezdxf for DXF,
+OpenCASCADE (cadquery-ocp, the ``step`` extra of the test command) for STEP."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+
+from exports.csv_points import read_points, write_points
+from exports.dxf import Drawing, write_dxf
+from exports.meshes import MESH_FORMATS, read_mesh, write_mesh
+from exports.step import read_step, write_bspline_step, write_faceted_step
+from rotorcad.cli.main import main
+from rotorcad.rotor_families import build_family
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.solids import helical_solid
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+PAIR = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0, lead=300.0, length=40.0)
+CLEAN = {"tip_rounding": 1.4, "root_rounding": 1.0, "lobe_width": 0.6}
+
+
+@pytest.fixture(scope="module")
+def solid():
+    rotors = build_family(PAIR, "rack-involute", CLEAN)
+    return helical_solid(rotors.section("male", 0.1), PAIR.lead, PAIR.length, 0.2)
+
+
+@pytest.mark.parametrize("fmt", MESH_FORMATS)
+def test_mesh_formats_read_back_with_the_same_volume(tmp_path, solid, fmt):
+    path = tmp_path / f"m.{fmt}"
+    write_mesh(path, solid.mesh, fmt)
+    back = read_mesh(path, fmt)
+    assert back.is_watertight
+    rel = 1e-5 if fmt in ("stl", "ply", "glb", "3mf") else 1e-9  # float32 storage in those formats (binary STL too)
+    assert back.volume == pytest.approx(solid.volume, rel=rel)
+
+
+def test_dxf_profiles(tmp_path, solid):
+    pts = np.asarray(solid.section.exterior.coords)[:-1]
+    d = Drawing(mark_size=2.0)
+    d.outlines.append(("MALE", pts))
+    d.splines.append(("MALE_SPLINE", pts))
+    d.circles.append(("PITCH", (0.0, 0.0), PAIR.male_pitch_radius))
+    d.centers.append((0.0, 0.0))
+    write_dxf(tmp_path / "a.dxf", d)
+    doc = ezdxf.readfile(tmp_path / "a.dxf")
+    assert len(doc.audit().errors) == 0 and doc.header["$INSUNITS"] == 4
+    poly = doc.modelspace().query("LWPOLYLINE")[0]
+    assert poly.closed and poly.dxf.layer == "MALE"
+    assert shapely.Polygon(np.array(poly.get_points("xy"))).area == pytest.approx(solid.section.area, rel=1e-12)
+    spline = doc.modelspace().query("SPLINE")[0]
+    # the spline passes through the profile points (control frame through the fit points, 5e-8 mm)
+    from ezdxf.math import BSpline
+
+    curve = BSpline(spline.control_points, order=4, knots=spline.knots)
+    samples = np.array([(p.x, p.y) for p in curve.approximate(20 * len(pts))])
+    assert shapely.LineString(samples).hausdorff_distance(shapely.LinearRing(pts)) < 0.05
+    # R12: plain POLYLINE for old CAM, still audit-clean, endpoints meeting (closed flag)
+    write_dxf(tmp_path / "b.dxf", d, "R12")
+    old = ezdxf.readfile(tmp_path / "b.dxf")
+    assert len(old.audit().errors) == 0
+    pl = old.modelspace().query("POLYLINE")[0]
+    assert pl.is_closed and len(list(old.modelspace().query("SPLINE"))) == 0
+
+
+def test_faceted_step_is_one_valid_solid_of_the_same_volume(tmp_path):
+    rotors = build_family(PAIR, "rack-involute", CLEAN)
+    coarse = helical_solid(rotors.section("male", 0.5), PAIR.lead, 10.0, 1.0)
+    mesh = coarse.mesh
+    assert len(mesh.faces) < 6000
+    write_faceted_step(tmp_path / "f.step", mesh.vertices, mesh.faces, "male")
+    info = read_step(tmp_path / "f.step")
+    assert info["solids"] == 1 and info["valid"]
+    assert info["volume"] == pytest.approx(coarse.volume, rel=1e-9)
+
+
+def test_bspline_step_is_one_valid_solid_of_the_section_volume(tmp_path):
+    rotors = build_family(PAIR, "rack-involute", CLEAN)
+    section = rotors.section("male", 0.0025)
+    write_bspline_step(tmp_path / "b.step", np.asarray(section.exterior.coords)[:-1], PAIR.lead, PAIR.length, "male")
+    info = read_step(tmp_path / "b.step")
+    assert info["solids"] == 1 and info["valid"]
+    assert info["volume"] == pytest.approx(section.area * PAIR.length, rel=1e-4)
+
+
+def test_csv_points_round_trip(tmp_path, solid):
+    pts = np.asarray(solid.section.exterior.coords)[:-1]
+    write_points(tmp_path / "p.csv", pts)
+    np.testing.assert_allclose(read_points(tmp_path / "p.csv"), pts, atol=1e-9)
+
+
+def short_design(tmp_path: Path) -> Path:
+    text = (SAMPLES / "rack_involute_5_6.toml").read_text().replace("length = 190.0", "length = 30.0")
+    path = tmp_path / "short.toml"
+    path.write_text(text)
+    return path
+
+
+def test_export_command(tmp_path, capsys):
+    design = short_design(tmp_path)
+    rc = main(
+        ["export", str(design), "--format", "stl,obj,vtu,dxf,step", "--out", str(tmp_path / "o"), "--tolerance", "0.1", "--json"]
+    )
+    out = capsys.readouterr()
+    assert rc == 0, out.err
+    data = json.loads(out.out)
+    files = data["files"]
+    assert len(files) == 10 and {f["body"] for f in files} == {"male", "female"}
+    for f in files:
+        assert {"path", "format", "body", "triangles", "volume"} <= set(f) and Path(f["path"]).exists()
+    stl = next(f for f in files if f["format"] == "stl" and f["body"] == "female")
+    back = read_mesh(Path(stl["path"]), "stl")
+    assert back.volume == pytest.approx(stl["volume"], rel=1e-9)
+    step = next(f for f in files if f["format"] == "step" and f["body"] == "male")
+    info = read_step(Path(step["path"]))
+    assert info["valid"] and info["volume"] == pytest.approx(step["volume"], rel=1e-3)
+
+
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["--format", "iges"], "--format"),
+        (["--format", "stl", "--tolerance", "0"], "--tolerance"),
+        (["--format", "stl", "--tolerance", "-1"], "--tolerance"),
+    ],
+)
+def test_export_bad_input_leaves_nothing(tmp_path, capsys, args, needle):
+    design = short_design(tmp_path)
+    out_dir = tmp_path / "o"
+    rc = main(["export", str(design), "--out", str(out_dir), *args])
+    err = capsys.readouterr().err
+    assert rc == 2 and needle in err and len(err.strip().splitlines()) == 1
+    assert not out_dir.exists() or list(out_dir.iterdir()) == []
+
+
+def test_export_to_an_unwritable_place(tmp_path, capsys):
+    design = short_design(tmp_path)
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    rc = main(["export", str(design), "--out", str(blocker / "sub"), "--format", "stl"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "--out" in err and len(err.strip().splitlines()) == 1
+
+
+def test_interfere_command(tmp_path, capsys):
+    design = short_design(tmp_path)
+    rc = main(["interfere", str(design), "--steps", "12", "--tolerance", "0.02", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert rc == 0
+    assert {"max_intersection_volume", "angle_deg", "housing_intersection_volume", "steps"} <= set(data)
+    assert data["max_intersection_volume"] == 0.0 and data["steps"] == 12 and not data["interferes"]
