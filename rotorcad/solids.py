@@ -58,9 +58,20 @@ class HelicalSolid:
 
     @cached_property
     def mesh(self) -> trimesh.Trimesh:
-        """Float64 triangle mesh (``to_mesh64``: ``to_mesh`` is float32, ~7 um on 100 mm parts)."""
+        """Float64 triangle mesh (``to_mesh64``: ``to_mesh`` is float32, ~7 um on 100 mm parts),
+        with its face normals computed once here (component arithmetic, a few times faster than the
+        general cross product) so that writers need not."""
         m = self.manifold.to_mesh64()
-        return trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts), process=False)
+        v = np.asarray(m.vert_properties)[:, :3]
+        f = np.asarray(m.tri_verts)
+        a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+        u, w = b - a, c - a
+        n = np.empty_like(u)
+        n[:, 0] = u[:, 1] * w[:, 2] - u[:, 2] * w[:, 1]
+        n[:, 1] = u[:, 2] * w[:, 0] - u[:, 0] * w[:, 2]
+        n[:, 2] = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
+        n /= np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
+        return trimesh.Trimesh(v, f, face_normals=n, process=False)
 
     def section_at(self, z: float) -> shapely.Geometry:
         """The solid's slice at height z as shapely geometry."""

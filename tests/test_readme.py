@@ -25,6 +25,6 @@ def test_python_example_runs_and_generates_an_involute():
 def test_first_two_commands():
     sh = re.search(r"```sh\n(.*?)```", README, re.S).group(1).strip().splitlines()
     assert len(sh) == 2
-    assert "rotorcad gear samples/gear_pair.toml" in sh[0]
+    assert "rotorcad export samples/rack_involute_5_6.toml" in sh[0]
     ci = (Path(__file__).resolve().parents[1] / ".ci" / "run").read_text()
     assert sh[1] in ci
