@@ -31,12 +31,16 @@ def main() -> None:
     male.manifold.num_tri()  # force evaluation
     female.manifold.num_tri()
     t_solids = time.perf_counter() - t
-    print(f"sections {t_sec:.2f} s; both solids {t_solids:.2f} s (target < 1.5 s): {male.manifold.num_tri()} + "
-          f"{female.manifold.num_tri()} triangles, {male.layers} / {female.layers} layers")
+    print(
+        f"sections {t_sec:.2f} s; both solids {t_solids:.2f} s (target < 1.5 s): {male.manifold.num_tri()} + "
+        f"{female.manifold.num_tri()} triangles, {male.layers} / {female.layers} layers"
+    )
     t = time.perf_counter()
     result = interference_2d(pair, male_s, female_s, 72, tol)
-    print(f"interference sweep, 72 angles by the 2D-section integral: {time.perf_counter() - t:.2f} s (target < 5 s); "
-          f"max {result.max_volume:.4f} mm3, threshold {result.threshold:.2f} mm3")
+    print(
+        f"interference sweep, 72 angles by the 2D-section integral: {time.perf_counter() - t:.2f} s (target < 5 s); "
+        f"max {result.max_volume:.4f} mm3, threshold {result.threshold:.2f} mm3"
+    )
     t = time.perf_counter()
     check = intersection_3d(pair, male, female, result.angle_of_max, result.threshold)
     print(f"one 3D boolean at the same tolerance: {time.perf_counter() - t:.2f} s, {check['volume']:.4f} mm3")
@@ -49,7 +53,6 @@ def main() -> None:
     print(f"binary STL of {len(mesh.faces)} triangles: {dt:.2f} s (about {dt * scale:.2f} s per million; target < 0.5 s)")
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"peak resident memory: {peak:.0f} MB (target < 2048 MB)")
-
 
 
 if __name__ == "__main__":
