@@ -81,7 +81,7 @@ class HelicalSolid:
 
     def rotation_at(self, z: float) -> float:
         """Angle (rad) by which the section at height z is turned from the one at z = 0."""
-        return 2.0 * np.pi * z / self.lead
+        return 0.0 if np.isinf(self.lead) else 2.0 * np.pi * z / self.lead
 
 
 def layers_for(tolerance: float, wrap: float, r_max: float) -> int:
@@ -108,3 +108,45 @@ def helical_solid(section: shapely.Polygon, lead: float, length: float, toleranc
     n = layers_for(tolerance, wrap, r_max)
     solid = m3.Manifold.extrude(cs, length, n_divisions=n - 1, twist_degrees=float(np.degrees(wrap)))
     return HelicalSolid(solid, poly, float(length), float(lead), n, float(tolerance))
+
+
+def housing_solids(
+    center_distance: float, male_bore: float, female_bore: float, length: float, wall: float = 10.0, segments: int = 720
+) -> tuple[m3.Manifold, m3.Manifold]:
+    """The housing of a pair: (block minus bores, bores alone). The bores are the two intersecting
+    cylinders of radii ``male_bore`` and ``female_bore`` (tip radius + radial clearance) about O1 and
+    O2; where they cross stand the housing cusps. ``segments`` polygonise a full circle."""
+    for name, r in (("male bore", male_bore), ("female bore", female_bore)):
+        if not (np.isfinite(r) and r > 0):
+            raise DesignError(name, "a positive radius in mm", r)
+    if not male_bore + female_bore > center_distance:
+        raise DesignError("bores", f"overlapping (radii adding up to more than {center_distance:g} mm)", male_bore + female_bore)
+    male = m3.Manifold.cylinder(length, male_bore, male_bore, segments)
+    female = m3.Manifold.cylinder(length, female_bore, female_bore, segments).translate([center_distance, 0.0, 0.0])
+    bores = male + female
+    x0, x1 = -male_bore - wall, center_distance + female_bore + wall
+    half = max(male_bore, female_bore) + wall
+    block = m3.Manifold.cube([x1 - x0, 2 * half, length]).translate([x0, -half, 0.0])
+    return block - bores, bores
+
+
+def helical_gear_solid(
+    outline: np.ndarray, pitch_radius: float, helix_angle: float, face_width: float, tolerance: float
+) -> HelicalSolid:
+    """A helical (or spur) gear: the transverse outline swept with lead h = 2 pi r / tan(beta)
+    (right hand for beta > 0); a spur gear (beta = 0) is a straight extrusion."""
+    section = shapely.Polygon(outline)
+    if abs(helix_angle) < 1e-12:
+        cs = m3.CrossSection(
+            [np.asarray(shapely.geometry.polygon.orient(section, 1.0).exterior.coords)[:-1]], m3.FillRule.Positive
+        )
+        return HelicalSolid(
+            m3.Manifold.extrude(cs, face_width),
+            shapely.geometry.polygon.orient(section, 1.0),
+            face_width,
+            float("inf"),
+            1,
+            tolerance,
+        )
+    lead = 2.0 * np.pi * pitch_radius / np.tan(helix_angle)
+    return helical_solid(section, lead, face_width, tolerance)

@@ -10,6 +10,7 @@ import ezdxf
 import numpy as np
 import pytest
 import shapely
+import trimesh
 
 from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
@@ -111,7 +112,8 @@ def test_export_command(tmp_path, capsys):
     assert rc == 0, out.err
     data = json.loads(out.out)
     files = data["files"]
-    assert len(files) == 10 and {f["body"] for f in files} == {"male", "female"}
+    # the sample has a [housing]: the block minus the bores and the bores come as meshes and STEP too
+    assert len(files) == 10 + 2 * 4 and {f["body"] for f in files} == {"male", "female", "housing", "bores"}
     for f in files:
         assert {"path", "format", "body", "triangles", "volume"} <= set(f) and Path(f["path"]).exists()
     stl = next(f for f in files if f["format"] == "stl" and f["body"] == "female")
@@ -155,3 +157,38 @@ def test_interfere_command(tmp_path, capsys):
     assert rc == 0
     assert {"max_intersection_volume", "angle_deg", "housing_intersection_volume", "steps"} <= set(data)
     assert data["max_intersection_volume"] == 0.0 and data["steps"] == 12 and not data["interferes"]
+
+
+def test_dxf_meshes_read_back(tmp_path):
+    from exports.dxf import write_dxf_mesh
+
+    rotors = build_family(PAIR, "rack-involute", CLEAN)
+    coarse = helical_solid(rotors.section("male", 0.5), PAIR.lead, 10.0, 1.0)
+    mesh = coarse.mesh
+    for version, kind in (("R2000", "MESH"), ("R12", "POLYLINE")):
+        path = tmp_path / f"m_{version}.dxf"
+        write_dxf_mesh(path, mesh.vertices, mesh.faces, "MALE", version)
+        doc = ezdxf.readfile(path)
+        assert len(doc.audit().errors) == 0
+        entity = doc.modelspace().query(kind)[0]
+        from ezdxf.render import MeshBuilder
+
+        built = MeshBuilder.from_mesh(entity) if kind == "MESH" else MeshBuilder.from_polyface(entity)
+        verts = np.array([tuple(v) for v in built.vertices])
+        faces = [list(f) for f in built.faces]
+        back = trimesh.Trimesh(verts, np.array(faces), process=True)
+        back.merge_vertices()
+        assert back.volume == pytest.approx(coarse.volume, rel=1e-9)
+
+
+def test_export_at_an_angle_keeps_the_pair_in_mesh(tmp_path, capsys):
+    # The files of the male and the female written at a male angle touch without overlapping.
+    design = short_design(tmp_path)
+    rc = main(["export", str(design), "--format", "csv", "--out", str(tmp_path / "o"), "--angle", "17", "--no-housing", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert rc == 0
+    male = shapely.Polygon(read_points(Path(next(f["path"] for f in data["files"] if f["body"] == "male"))))
+    female = shapely.Polygon(read_points(Path(next(f["path"] for f in data["files"] if f["body"] == "female"))))
+    placed = shapely.affinity.translate(female, PAIR.center_distance, 0.0)
+    assert male.intersection(placed).area < 1e-3
+    assert male.distance(placed) < 1e-2  # in contact, not apart

@@ -98,3 +98,39 @@ def test_section_area_table_is_periodic(rotors):
         section_overlap_areas(PAIR, male, female, th), section_overlap_areas(PAIR, male, female, th + pitch), rtol=1e-3, atol=1e-6
     )
     assert isinstance(male, shapely.Polygon)
+
+
+def test_housing_block_and_bores():
+    # Bores: two cylinders of radii r1 + c and r2 + c about O1, O2; their union's volume follows from
+    # the lens of two intersecting circles (closed form); the block minus the bores holds the rest.
+    from rotorcad.solids import housing_solids
+
+    a, r1, r2, length = 116.0, 63.05, 71.05, 50.0
+    block, bores = housing_solids(a, r1, r2, length, wall=10.0, segments=4096)
+    d1 = (a * a + r1 * r1 - r2 * r2) / (2 * a)
+    d2 = a - d1
+    lens = (
+        r1 * r1 * np.arccos(d1 / r1)
+        - d1 * np.sqrt(r1 * r1 - d1 * d1)
+        + r2 * r2 * np.arccos(d2 / r2)
+        - d2 * np.sqrt(r2 * r2 - d2 * d2)
+    )
+    union_area = np.pi * (r1 * r1 + r2 * r2) - lens
+    assert bores.volume() == pytest.approx(union_area * length, rel=1e-5)
+    box = (a + r1 + r2 + 20.0) * 2 * (max(r1, r2) + 10.0) * length
+    assert block.volume() == pytest.approx(box - bores.volume(), rel=1e-9)
+    assert block.genus() == 1 and bores.genus() == 0  # the block has the bore as one through hole
+
+
+def test_helical_gear_solid():
+    # A helical gear of lead 2 pi r / tan(beta): volume = outline area x face width within the bound.
+    from rotorcad.gear import InvoluteGear
+    from rotorcad.solids import helical_gear_solid
+
+    g = InvoluteGear(20, 2.0, 20 * np.pi / 180, 15 * np.pi / 180)
+    outline = g.outline(1e-3).points
+    s = helical_gear_solid(outline, g.pitch_radius, g.helix_angle, 20.0, 0.005)
+    assert s.genus == 0 and abs(s.volume - shapely.Polygon(outline).area * 20.0) <= s.volume_bound
+    assert s.lead == pytest.approx(2 * np.pi * g.pitch_radius / np.tan(g.helix_angle))
+    spur = helical_gear_solid(outline, g.pitch_radius, 0.0, 20.0, 0.005)
+    assert spur.volume == pytest.approx(shapely.Polygon(outline).area * 20.0, rel=1e-9)

@@ -8,12 +8,14 @@ from typing import Any
 
 import click
 import numpy as np
+import shapely
+import trimesh
 from rich.console import Console
 from rich.progress import Progress
 from rich.table import Table
 
 from exports.csv_points import write_points
-from exports.dxf import Drawing, write_dxf
+from exports.dxf import Drawing, write_dxf, write_dxf_mesh
 from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_bspline_step, write_faceted_step
 from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
@@ -21,9 +23,10 @@ from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design import load_rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.interference import interference_2d, intersection_3d
-from rotorcad.solids import HelicalSolid, helical_solid
+from rotorcad.solids import HelicalSolid, helical_solid, housing_solids
 
-FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "step", "step-faceted", "csv")
+FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "dxf-mesh", "dxf-mesh-r12", "step", "step-faceted", "csv")
+DXF_MESH_MAX = 50_000  # triangles: a DXF mesh is for small meshes (STACK-NOTES)
 FACETED_STEP_MAX = 20_000  # facets: OpenCASCADE reads a 20 000-facet faceted B-rep in 5-7 s (STACK-NOTES)
 
 
@@ -74,11 +77,29 @@ def _progress(quiet: bool) -> Progress | None:
 @click.option(
     "--tolerance", type=float, help="Surface tolerance of the meshes [mm]. Default: the design's [export] tolerance, else 0.005."
 )
+@click.option(
+    "--angle", type=float, default=0.0, show_default=True, help="Male angle of the pair in mesh [deg] (female at -angle z1/z2)."
+)
+@click.option(
+    "--housing/--no-housing",
+    default=None,
+    help="Also write the housing (block minus bores) and the bores. Default: when the design has [housing].",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
-def export(design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool, quiet: bool) -> None:
+def export(
+    design: Path,
+    formats: str | None,
+    out: Path,
+    tolerance: float | None,
+    angle: float,
+    housing: bool | None,
+    as_json: bool,
+    quiet: bool,
+) -> None:
     """Helical male and female rotor solids of a design, written in each format (one file per body
-    and format; the female is placed in mesh at (a, 0) at male angle 0)."""
+    and format; the female is placed in mesh at (a, 0) at the male angle --angle). With a housing,
+    the block minus the two bores and the bores alone are written as meshes and STEP too."""
     settings = _design_settings(design)
     fmts = (
         [f.strip().lower() for f in formats.split(",")]
@@ -95,12 +116,23 @@ def export(design: Path, formats: str | None, out: Path, tolerance: float | None
     folder = output_folder(out)
     pair = rotors.pair
     stem = Path(design).stem
-    sections = {"male": rotors.section("male", tol / 2), "female": rotors.section("female", tol / 2)}
+    if not np.isfinite(angle):
+        raise InputError(f"--angle must be a number of degrees (got {angle}).")
+    phi = np.radians(angle)
+    turn = {"male": phi, "female": -phi * pair.male_teeth / pair.female_teeth}
+    sections = {
+        b: shapely.affinity.rotate(rotors.section(b, tol / 2), turn[b], origin=(0, 0), use_radians=True)
+        for b in ("male", "female")
+    }
     leads = {"male": pair.lead if pair.hand == "right" else -pair.lead}
     leads["female"] = -np.sign(leads["male"]) * pair.female_lead
     shift = {"male": (0.0, 0.0), "female": (pair.center_distance, 0.0)}
     solids: dict[str, HelicalSolid] = {}
-    needs_mesh = [f for f in fmts if f in MESH_FORMATS or f == "step-faceted" or (f == "step" and not ocp_available())]
+    needs_mesh = [
+        f
+        for f in fmts
+        if f in MESH_FORMATS or f.startswith("dxf-mesh") or f == "step-faceted" or (f == "step" and not ocp_available())
+    ]
     progress = _progress(quiet)
     if progress:
         progress.start()
@@ -138,6 +170,21 @@ def export(design: Path, formats: str | None, out: Path, tolerance: float | None
                 if fmt == "dxf":
                     drawing.splines.append((f"{body.upper()}_SPLINE", placed))
                 outputs.add(path, lambda p, d=drawing, f=fmt: write_dxf(p, d, "R12" if f == "dxf-r12" else "R2000"), "--out")
+            elif fmt in ("dxf-mesh", "dxf-mesh-r12"):
+                mesh = solids[body].mesh
+                if len(mesh.faces) > DXF_MESH_MAX:
+                    raise InputError(
+                        f"--tolerance must be coarser for a DXF mesh ({len(mesh.faces)} triangles; at most {DXF_MESH_MAX})."
+                    )
+                verts = mesh.vertices + np.array([*shift[body], 0.0])
+                row.update(triangles=len(mesh.faces), volume=solids[body].volume)
+                outputs.add(
+                    path,
+                    lambda p, v=verts, fc=mesh.faces, b=body, f=fmt: write_dxf_mesh(
+                        p, v, fc, b.upper(), "R12" if f.endswith("r12") else "R2000"
+                    ),
+                    "--out",
+                )
             elif fmt == "csv":
                 own = np.asarray(sections[body].exterior.coords)[:-1]
                 outputs.add(path, lambda p, pts=own: write_points(p, pts), "--out")
@@ -160,6 +207,35 @@ def export(design: Path, formats: str | None, out: Path, tolerance: float | None
                 row.update(triangles=len(mesh.faces), volume=solid.volume, tolerance=solid.tolerance)
                 outputs.add(path, lambda p, m=mesh, b=body: write_faceted_step(p, m.vertices, m.faces, b), "--out")
             rows.append(row)
+    with_housing = housing if housing is not None else bool(settings["housing"])
+    if with_housing:
+        block, bores = housing_solids(
+            pair.center_distance,
+            pair.male_tip_radius + clearance,
+            pair.female_tip_radius + clearance,
+            pair.length,
+            segments=max(360, int(2 * np.pi / np.sqrt(8 * tol / pair.female_tip_radius))),
+        )
+        for body, manifold in (("housing", block), ("bores", bores)):
+            m = manifold.to_mesh64()
+            mesh = trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts), process=False)
+            for fmt in fmts:
+                if fmt in MESH_FORMATS or fmt in ("step", "step-faceted"):
+                    ext = _extension(fmt) if fmt in MESH_FORMATS else ("_faceted.step" if fmt == "step-faceted" else ".step")
+                    path = folder / f"{stem}_{body}{ext}"
+                    rows.append(
+                        {
+                            "path": str(path),
+                            "format": fmt,
+                            "body": body,
+                            "triangles": len(mesh.faces),
+                            "volume": float(manifold.volume()),
+                        }
+                    )
+                    if fmt in MESH_FORMATS:
+                        outputs.add(path, lambda p, mm=mesh, f=fmt: write_mesh(p, mm, f), "--out")
+                    else:
+                        outputs.add(path, lambda p, mm=mesh, b=body: write_faceted_step(p, mm.vertices, mm.faces, b), "--out")
     written = outputs.write()
     if progress:
         progress.stop()
