@@ -52,22 +52,45 @@ class DerivedRack:
         return self.period * np.cos(self.helix_angle)
 
 
-def _with_corner_fans(pieces: list[tuple[str, Curve]]) -> list[tuple[str, Curve]]:
+def _with_corner_fans(
+    pieces: list[tuple[str, Curve]], centre: np.ndarray | None = None, pitch_angle: float = 0.0
+) -> list[tuple[str, Curve]]:
     """Insert zero-radius arcs at the convex corners between consecutive pieces of a
-    counter-clockwise chain (cyclic), so that corners generate their paths."""
+    counter-clockwise chain, so that corners generate their paths. With ``centre`` and
+    ``pitch_angle`` (one lobe of a patterned rotor) the corner where the previous lobe's last piece
+    meets this lobe's first piece is found too, by turning that last piece back by one pitch."""
+
+    def fan(name: str, end: tuple[np.ndarray, np.ndarray], start: tuple[np.ndarray, np.ndarray]) -> tuple[str, Curve] | None:
+        (p_end, t_end), (p_next, t_next) = end, start
+        if np.hypot(*(p_end - p_next)) > 1e-6:
+            return None
+        turn = float(np.arctan2(cross(t_end, t_next), np.dot(t_end, t_next)))
+        if turn <= 1e-6:  # only a left turn is a convex corner of a counter-clockwise boundary
+            return None
+        a0 = np.arctan2(t_end[1], t_end[0]) - np.pi / 2
+        return (f"{name} corner", Arc((float(p_end[0]), float(p_end[1])), 0.0, float(a0), float(a0 + turn)))
+
+    def ends(curve: Curve) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+        p0, t0 = curve.evaluate(curve.s0)
+        p1, t1 = curve.evaluate(curve.s1)
+        return (p0[0], t0[0]), (p1[0], t1[0])
+
     out: list[tuple[str, Curve]] = []
     n = len(pieces)
+    if centre is not None and pitch_angle and n:
+        (_, _), (p_last, t_last) = ends(pieces[-1][1])
+        c, s_ = np.cos(-pitch_angle), np.sin(-pitch_angle)
+        rot = np.array([[c, -s_], [s_, c]])
+        back = (rot @ (p_last - centre) + centre, rot @ t_last)
+        first = fan(pieces[-1][0], back, ends(pieces[0][1])[0])
+        if first is not None:
+            out.append(first)
     for i, (name, curve) in enumerate(pieces):
         out.append((name, curve))
-        nxt = pieces[(i + 1) % n][1]
-        p_end, t_end = curve.evaluate(curve.s1)
-        p_next, t_next = nxt.evaluate(nxt.s0)
-        if np.hypot(*(p_end[0] - p_next[0])) > 1e-6:
-            continue
-        turn = float(np.arctan2(cross(t_end[0], t_next[0]), np.dot(t_end[0], t_next[0])))
-        if turn > 1e-6:  # a left turn: convex corner of a counter-clockwise boundary
-            a0 = np.arctan2(t_end[0, 1], t_end[0, 0]) - np.pi / 2
-            out.append((f"{name} corner", Arc(tuple(p_end[0]), 0.0, float(a0), float(a0 + turn))))
+        if i + 1 < n:
+            corner = fan(name, ends(curve)[1], ends(pieces[i + 1][1])[0])
+            if corner is not None:
+                out.append(corner)
     return out
 
 
@@ -79,8 +102,10 @@ def derive_rack(
     helix_angle: float = 0.0,
     depth: tuple[float, float] | None = None,
     samples: int = 400,
+    pitch_angle: float = 0.0,
 ) -> DerivedRack:
-    """Rack of a counter-clockwise chain of profile pieces on a rotating ``body``.
+    """Rack of a counter-clockwise chain of profile pieces on a rotating ``body`` (one lobe of
+    ``pitch_angle``, so that the corner at the junction with the previous lobe is found too).
 
     ``depth`` = (y_min, y_max) of the rack about its pitch line picks, where the normal line cuts
     the pitch circle twice, the root that lies on the rack (see :mod:`rotorcad.envelope`).
@@ -93,7 +118,7 @@ def derive_rack(
     pts, tans, idx, names = [], [], [], []
     lost, total = 0, 0
     # each generated piece runs against its parent, so the rack chain runs the pieces backwards
-    for k, (name, curve) in enumerate(reversed(_with_corner_fans(pieces))):
+    for k, (name, curve) in enumerate(reversed(_with_corner_fans(pieces, centre, pitch_angle))):
         gen = Generated(curve, body, rack, limits=depth)
         s = np.linspace(gen.s0, gen.s1, samples)
         p, t = gen.evaluate(s)
@@ -116,7 +141,15 @@ def gear_rack(gear: InvoluteGear, samples: int = 400) -> DerivedRack:
     mesh = gear_mesh(gear.pitch_radius)
     tooth = gear.tooth_profile()
     pieces = [(seg.name, seg.curve) for seg in tooth.segments]
-    return derive_rack(pieces, mesh.male, gear.pitch_radius, np.pi * gear.transverse_module, gear.helix_angle, samples=samples)
+    return derive_rack(
+        pieces,
+        mesh.male,
+        gear.pitch_radius,
+        np.pi * gear.transverse_module,
+        gear.helix_angle,
+        samples=samples,
+        pitch_angle=2 * np.pi / gear.teeth,
+    )
 
 
 def rotor_rack(rotors: ScrewRotors, rotor: str, samples: int = 400) -> DerivedRack:
@@ -136,8 +169,16 @@ def rotor_rack(rotors: ScrewRotors, rotor: str, samples: int = 400) -> DerivedRa
     centre = np.asarray(body.center, dtype=float)
     pieces = [p for p in (_within(name, curve, centre, tip) for name, curve in pieces) if p is not None]
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)
+    teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
     return derive_rack(
-        pieces, body, r_w, pair.rack_period, beta, depth=depth if rotor == "male" else (-depth[1], -depth[0]), samples=samples
+        pieces,
+        body,
+        r_w,
+        pair.rack_period,
+        beta,
+        depth=depth if rotor == "male" else (-depth[1], -depth[0]),
+        samples=samples,
+        pitch_angle=2 * np.pi / teeth,
     )
 
 

@@ -67,6 +67,10 @@ class Curve:
         """Centre of curvature if the curve is a circular arc, else None."""
         return None
 
+    def is_corner(self) -> bool:
+        """True for a zero-radius arc: a sharp corner, one point with a fan of normals."""
+        return False
+
 
 @dataclass(frozen=True)
 class Line(Curve):
@@ -103,6 +107,9 @@ class Arc(Curve):
 
     def arc_center(self) -> Array | None:
         return np.asarray(self.center, dtype=float)
+
+    def is_corner(self) -> bool:
+        return self.radius == 0.0
 
 
 @dataclass(frozen=True)
@@ -185,6 +192,9 @@ class Mapped(Curve):
         p, t = self.curve.frame(s)
         m = np.asarray(self.matrix, dtype=float)
         return p @ m.T + np.asarray(self.shift, dtype=float), normalize(t @ m.T)
+
+    def is_corner(self) -> bool:
+        return self.curve.is_corner()
 
     def arc_center(self) -> Array | None:
         c = self.curve.arc_center()

@@ -85,6 +85,7 @@ def contact_parameter(
     branch: str = "A",
     arc_center: Array | None = None,
     reference: float = 0.0,
+    corner: bool = False,
 ) -> Array:
     """Motion parameter t at which each generating point is in contact (NaN: never).
 
@@ -110,7 +111,8 @@ def contact_parameter(
     w = c - o
     r_w = float(np.hypot(*w))
     beta = float(np.arctan2(w[1], w[0]))
-    if arc_center is not None:
+    if corner:
+        arc_center = None  # a corner is not a circular flank: see below
         k = np.asarray(arc_center, dtype=float) - o
         if abs(np.hypot(*k) - r_w) <= 1e-9 * r_w:
             theta = _wrap(np.array(beta - np.arctan2(k[1], k[0])), reference)
@@ -124,6 +126,15 @@ def contact_parameter(
     elif branch != "A":
         raise ValueError("branch must be 'A' or 'B'")
     theta = _wrap(beta - psi - phi, reference)
+    if corner:
+        # a corner on the pitch circle touches trivially, for every normal of its fan, at the
+        # instant it passes C; the path it cuts comes from the other root
+        d = p - o
+        trivial = beta - np.arctan2(d[:, 1], d[:, 0])
+        on_circle = np.abs(np.hypot(*d.T) - r_w) <= 1e-9 * r_w
+        same = np.abs(np.mod(theta - trivial + np.pi, 2 * np.pi) - np.pi) < 1e-9
+        other = _wrap(beta - psi - (np.pi - phi), reference)
+        theta = np.where(on_circle & same, other, theta)
     return theta / generating.rate
 
 
@@ -136,6 +147,7 @@ def conjugate(
     arc_center: Array | None = None,
     limits: tuple[float, float] | None = None,
     reference: float = 0.0,
+    corner: bool = False,
 ) -> Contact:
     """Conjugate of a generating boundary given by ``points`` and boundary ``tangents``.
 
@@ -149,9 +161,9 @@ def conjugate(
     tg = as_points(tangents)
     n = perp_cw(tg)
     c = pitch_point(generating, generated)
-    t = contact_parameter(p, n, generating, c, branch, arc_center, reference)
+    t = contact_parameter(p, n, generating, c, branch, arc_center, reference, corner)
     if limits is not None and isinstance(generating, Rotation):
-        other = contact_parameter(p, n, generating, c, "B" if branch == "A" else "A", None, reference)
+        other = contact_parameter(p, n, generating, c, "B" if branch == "A" else "A", None, reference, corner)
         r_a = _generated_extent(p, t, generating, generated, c)
         r_b = _generated_extent(p, other, generating, generated, c)
         lo, hi = limits
@@ -218,6 +230,7 @@ class Generated(Curve):
             self.parent.arc_center(),
             limits=self.limits,
             reference=self.reference,
+            corner=self.parent.is_corner(),
         )
 
     def frame(self, s: Array) -> tuple[Array, Array]:

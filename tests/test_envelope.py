@@ -207,3 +207,17 @@ def test_spline_flank_conjugate_matches_the_analytic_one():
     n = perp_cw(d)
     dist = (rp - np.array([30.0, 0.0])) @ n
     assert np.abs(dist).max() < 1e-5
+
+
+def test_corner_on_the_pitch_circle_generates_its_path():
+    # A sharp corner (zero-radius arc: one point, a fan of normals) lying on the generating rotor's
+    # pitch circle touches trivially at the instant it passes C, for every normal; the curve it cuts
+    # on the mate is its path, which the kinematics give independently (PointPath).
+    mesh = rotor_mesh(4, 6, 100.0)
+    r1w = mesh.pitch_radius_male
+    k = r1w * np.array([np.cos(0.4), np.sin(0.4)])
+    corner = Arc(tuple(k), 0.0, 0.4 + 0.3, 0.4 + 1.2)
+    c = Generated(corner, mesh.male, mesh.female).contact(np.linspace(corner.s0, corner.s1, 50))
+    assert np.ptp(c.t) > 0.1  # not all at the trivial instant
+    path = PointPath(tuple(k), mesh.male, mesh.female, 0.0, 1.0)
+    np.testing.assert_allclose(c.points, path.evaluate(c.t)[0], atol=1e-9)
