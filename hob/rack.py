@@ -77,18 +77,19 @@ def _with_corner_fans(
 
     out: list[tuple[str, Curve]] = []
     n = len(pieces)
+    piece_ends = [ends(curve) for _, curve in pieces]  # generated curves are costly: evaluate once
     if centre is not None and pitch_angle and n:
-        (_, _), (p_last, t_last) = ends(pieces[-1][1])
+        (_, _), (p_last, t_last) = piece_ends[-1]
         c, s_ = np.cos(-pitch_angle), np.sin(-pitch_angle)
         rot = np.array([[c, -s_], [s_, c]])
         back = (rot @ (p_last - centre) + centre, rot @ t_last)
-        first = fan(pieces[-1][0], back, ends(pieces[0][1])[0])
+        first = fan(pieces[-1][0], back, piece_ends[0][0])
         if first is not None:
             out.append(first)
     for i, (name, curve) in enumerate(pieces):
         out.append((name, curve))
         if i + 1 < n:
-            corner = fan(name, ends(curve)[1], ends(pieces[i + 1][1])[0])
+            corner = fan(name, piece_ends[i][1], piece_ends[i + 1][0])
             if corner is not None:
                 out.append(corner)
     return out
@@ -236,7 +237,7 @@ def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
         in_both = (np.hypot(*contact.T) <= pair.male_tip_radius) & (
             np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1]) <= pair.female_tip_radius
         )
-        cutting = np.array([not rack.names[k].endswith("corner") for k in rack.piece_index]) & in_both
+        cutting = np.array([not n.endswith("corner") for n in rack.names])[rack.piece_index] & in_both
         racks.append((pts, cutting))
     (a, ca), (b, cb) = racks
     d1 = distance_to_polyline(a[ca], b)

@@ -60,7 +60,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
         pts, tan, idx = pts[::-1], -tan[::-1], rack.piece_index[::-1]
     else:
         idx = rack.piece_index
-    cutting = np.array([not rack.names[k].endswith("corner") for k in idx])
+    cutting = np.array([not n.endswith("corner") for n in rack.names])[idx]
     reasons: list[str] = []
 
     def at(i: int) -> str:

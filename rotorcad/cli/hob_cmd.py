@@ -132,7 +132,7 @@ def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
     tooth = np.vstack([half, (half * [-1.0, 1.0] + [pt, 0.0])[::-1]])  # both sides of the tool tooth at x = p/2
     lines = shapely.MultiLineString([tooth, tooth - [pt, 0.0]])
     # the gear's tip circle and tip corners face the tool's root clearance, not its cutting edges
-    cutting = np.array([rack.names[k] in ("involute", "fillet", "root arc") for k in rack.piece_index])
+    cutting = np.array([n in ("involute", "fillet", "root arc") for n in rack.names])[rack.piece_index]
     return float(shapely.distance(lines, shapely.points(rack.points[cutting])).max())
 
 
