@@ -19,6 +19,7 @@ from exports.dxf import Drawing, write_dxf, write_dxf_mesh
 from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_bspline_step, write_faceted_step
 from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
+from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design import load_rotor_design
 from rotorcad.errors import DesignError
@@ -31,22 +32,8 @@ FACETED_STEP_MAX = 20_000  # facets: OpenCASCADE reads a 20 000-facet faceted B-
 
 
 def _rotor_options(design: Path) -> dict[str, Any]:
-    keys = (
-        "male_teeth",
-        "female_teeth",
-        "center_distance",
-        "male_tip_radius",
-        "male_root_radius",
-        "female_tip_radius",
-        "female_root_radius",
-        "lead",
-        "length",
-        "male_points",
-        "female_points",
-        "rack_points",
-        "speed",
-    )
-    opts: dict[str, Any] = dict.fromkeys(keys)
+    """No command-line overrides: the design file gives the pair."""
+    opts: dict[str, Any] = dict.fromkeys((*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "speed"))
     opts["smoothing"] = 0.0
     return opts
 

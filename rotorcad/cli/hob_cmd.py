@@ -16,7 +16,7 @@ from hob.rack import DerivedRack, gear_rack, rack_deviation, rack_in_contract_fr
 from hob.verdict import HobLimits, judge
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
-from rotorcad.cli.rotor import PAIR_OPTIONS
+from rotorcad.cli.rotor import PAIR_OPTIONS, rotor_input_options
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
@@ -26,17 +26,7 @@ from rotorcad.gear import InvoluteGear
 @click.command()
 @click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
 @gear_options
-@click.option("--male-points", type=click.Path(path_type=Path, dir_okay=False), help="Male profile points (CSV).")
-@click.option("--female-points", type=click.Path(path_type=Path, dir_okay=False), help="Female profile points (CSV).")
-@click.option("--rack-points", type=click.Path(path_type=Path, dir_okay=False), help="Rack points (CSV).")
-@click.option("--male-teeth", type=int, help="Male lobes z1.")
-@click.option("--female-teeth", type=int, help="Female lobes z2.")
-@click.option("--male-tip-radius", type=float, help="Male tip radius [mm].")
-@click.option("--male-root-radius", type=float, help="Male root radius [mm].")
-@click.option("--female-tip-radius", type=float, help="Female tip radius [mm].")
-@click.option("--female-root-radius", type=float, help="Female root radius [mm].")
-@click.option("--lead", type=float, help="Male lead [mm].")
-@click.option("--length", type=float, help="Rotor length [mm].")
+@rotor_input_options
 @click.option("--min-flank-angle", type=float, default=5.0, show_default=True, help="Smallest hob flank angle [deg].")
 @click.option("--min-tip-radius-mm", type=float, default=0.1, show_default=True, help="Smallest hob tip radius [mm].")
 @click.option("--min-root-radius-mm", type=float, default=0.1, show_default=True, help="Smallest hob root radius [mm].")

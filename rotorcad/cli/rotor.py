@@ -34,6 +34,34 @@ PAIR_OPTIONS = (
     "length",
 )
 
+
+def _points_option(name: str, text: str):
+    return click.option(name, type=click.Path(path_type=Path, dir_okay=False), help=text)
+
+
+ROTOR_INPUT_DECORATORS = [
+    _points_option("--male-points", "Male profile points (CSV x,y in mm, own frame)."),
+    _points_option("--female-points", "Female profile points (CSV x,y in mm, own frame)."),
+    _points_option("--rack-points", "One rack period (CSV x,y in mm, rack frame)."),
+    click.option("--male-teeth", type=int, help="Male lobes z1 (2..12)."),
+    click.option("--female-teeth", type=int, help="Female lobes z2 (2..12)."),
+    click.option("--male-tip-radius", type=float, help="Male tip radius [mm]."),
+    click.option("--male-root-radius", type=float, help="Male root radius [mm]."),
+    click.option("--female-tip-radius", type=float, help="Female tip radius [mm]."),
+    click.option("--female-root-radius", type=float, help="Female root radius [mm]."),
+    click.option("--lead", type=float, help="Male lead h1 [mm]. Default 300 or the design's."),
+    click.option("--length", type=float, help="Rotor length L [mm]. Default 190 or the design's."),
+]
+
+
+def rotor_input_options(fn):
+    """The options that give a rotor pair by points and dimensions (all but the centre distance,
+    which ``rotorcad gear`` names the same way), for ``rotor`` and ``hob``."""
+    for deco in reversed(ROTOR_INPUT_DECORATORS):
+        fn = deco(fn)
+    return fn
+
+
 CONTRACT_KEYS = (
     "male_teeth",
     "female_teeth",
@@ -50,24 +78,8 @@ CONTRACT_KEYS = (
 
 @click.command()
 @click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
-@click.option(
-    "--male-points", type=click.Path(path_type=Path, dir_okay=False), help="Male profile points (CSV x,y in mm, own frame)."
-)
-@click.option(
-    "--female-points", type=click.Path(path_type=Path, dir_okay=False), help="Female profile points (CSV x,y in mm, own frame)."
-)
-@click.option(
-    "--rack-points", type=click.Path(path_type=Path, dir_okay=False), help="One rack period (CSV x,y in mm, rack frame)."
-)
-@click.option("--male-teeth", type=int, help="Male lobes z1 (2..12).")
-@click.option("--female-teeth", type=int, help="Female lobes z2 (2..12).")
+@rotor_input_options
 @click.option("--center-distance", type=float, help="Centre distance a [mm].")
-@click.option("--male-tip-radius", type=float, help="Male tip radius [mm].")
-@click.option("--male-root-radius", type=float, help="Male root radius [mm].")
-@click.option("--female-tip-radius", type=float, help="Female tip radius [mm].")
-@click.option("--female-root-radius", type=float, help="Female root radius [mm].")
-@click.option("--lead", type=float, help="Male lead h1 [mm]. Default 300 or the design's.")
-@click.option("--length", type=float, help="Rotor length L [mm]. Default 190 or the design's.")
 @click.option("--speed", type=float, help="Male speed [rpm] for sliding velocities. Default 3000 or the design's [operating].")
 @click.option(
     "--smoothing", type=float, default=0.0, show_default=True, help="Spline smoothing of measured points [mm^2], 0 interpolates."
