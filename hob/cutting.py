@@ -136,8 +136,7 @@ def _deviation(gear: InvoluteGear, simulated: shapely.Polygon, exact: shapely.Po
     alone), away from the sector's straight cut edges."""
     inner = _sector(gear, 0.98)
     boundary = np.asarray(exact.exterior.coords)
-    keep = np.array([inner.contains(shapely.Point(p)) for p in boundary[:: max(1, len(boundary) // 2000)]])
-    pts = boundary[:: max(1, len(boundary) // 2000)][keep]
+    pts = boundary[shapely.contains_xy(inner, boundary[:, 0], boundary[:, 1])]
     ring = simulated.exterior
     d = shapely.distance(ring, shapely.points(pts))
     r = np.hypot(*pts.T)

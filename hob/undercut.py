@@ -86,7 +86,7 @@ def real_limit_shift(
     def shortened(x: float) -> float:
         g = InvoluteGear(z, m0, alpha0, 0.0, x, addendum=y_addendum, dedendum=tool_addendum, tip_radius_factor=tip_radius)
         pair = GearPair(g, g)
-        lo1, _, lo2, _ = pair._contact_interval()
+        lo1, _, lo2, _ = pair.contact_interval()
         return lo1 - lo2  # > 0: the mate's tip contact starts below the usable involute
 
     xg = limit_shift(z, alpha0, effective_addendum(tool_addendum, tip_radius, alpha0))

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import interpolate
 
-from rotorcad.geometry import Array, as_points, cross, normalize, perp_cw, rotate
+from rotorcad.geometry import Array, as_points, cross, normalize, perp_cw
 from rotorcad.kinematics import Body
 
 
@@ -306,7 +306,6 @@ __all__ = [
     "Spline",
     "chord_error",
     "mirrored",
-    "rotate",
     "rotated",
     "sample_parameters",
 ]

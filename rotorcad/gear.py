@@ -415,7 +415,7 @@ class GearPair:
         s2 = m.tooth_thickness(rw2)
         return float(2.0 * np.pi * rw1 / g.teeth - s1 - s2)
 
-    def _contact_interval(self) -> tuple[float, float, float, float]:
+    def contact_interval(self) -> tuple[float, float, float, float]:
         """Roll distances from T1 along the line of action: where contact starts and ends on
         the usable flanks (form to tip of each gear), and the standard tip-to-tip limits."""
         g, m = self.gear, self.mate
@@ -433,14 +433,14 @@ class GearPair:
         limited by the tip circles and by the usable involute of each gear (form circle), so
         that an undercut flank shortens it (Kollek & Osinski; ISO 21771 eq. 5.4 without
         undercut)."""
-        lo1, hi1, lo2, hi2 = self._contact_interval()
+        lo1, hi1, lo2, hi2 = self.contact_interval()
         g_alpha = max(0.0, min(hi1, hi2) - max(lo1, lo2))
         return float(g_alpha / self.gear.base_pitch)
 
     @property
     def tip_interference(self) -> bool:
         """True when a tip reaches below the mate's usable involute (tip meets fillet)."""
-        lo1, hi1, lo2, hi2 = self._contact_interval()
+        lo1, hi1, lo2, hi2 = self.contact_interval()
         return bool(lo2 < lo1 - 1e-9 or hi1 > hi2 + 1e-9)
 
     def summary(self) -> dict[str, object]:

@@ -28,6 +28,24 @@ KEYS = {
     "defects",
 }
 
+# the 5/6 sample pair's dimensions as command-line options
+DIMS_56 = [
+    "--male-teeth",
+    5,
+    "--female-teeth",
+    6,
+    "--center-distance",
+    116,
+    "--male-tip-radius",
+    63,
+    "--male-root-radius",
+    45,
+    "--female-tip-radius",
+    71,
+    "--female-root-radius",
+    53,
+]
+
 
 def run(capsys, *args):
     rc = main([str(a) for a in args])
@@ -77,23 +95,7 @@ def test_rebuild_from_written_points(tmp_path, capsys):
     m = tmp_path / "m.csv"
     rc, out, _ = run(capsys, "rotor", SAMPLES / "rack_involute_5_6.toml", "--json", "--male-csv", m)
     first = json.loads(out)
-    dims = [
-        "--male-teeth",
-        5,
-        "--female-teeth",
-        6,
-        "--center-distance",
-        116,
-        "--male-tip-radius",
-        63,
-        "--male-root-radius",
-        45,
-        "--female-tip-radius",
-        71,
-        "--female-root-radius",
-        53,
-    ]
-    rc, out, err = run(capsys, "rotor", "--male-points", m, *dims, "--json")
+    rc, out, err = run(capsys, "rotor", "--male-points", m, *DIMS_56, "--json")
     assert rc == 0, err
     second = json.loads(out)
     assert second["male_flute_area"] == pytest.approx(first["male_flute_area"], rel=1e-3)
@@ -117,20 +119,7 @@ def test_bad_input_exit_2_one_sentence(tmp_path, capsys, extra, needle):
         "rotor",
         "--male-points",
         pts,
-        "--male-teeth",
-        5,
-        "--female-teeth",
-        6,
-        "--center-distance",
-        116,
-        "--male-tip-radius",
-        63,
-        "--male-root-radius",
-        45,
-        "--female-tip-radius",
-        71,
-        "--female-root-radius",
-        53,
+        *DIMS_56,
         *extra,
         "--male-csv",
         target,

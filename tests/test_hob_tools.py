@@ -37,17 +37,20 @@ def test_protuberance_relieves_the_root_and_chamfer_leaves_material():
     assert ring.intersection(relieved.tooth).length == pytest.approx(ring.intersection(base.tooth).length, abs=5e-3)
 
 
-def test_rack_tool_from_points_matches_the_trapezoidal_hob():
+def test_rack_tool_from_points_cuts_the_same_gear_as_the_hob():
+    # A rack tool given by points (the hob's tooth read off as a rack-frame polyline) cuts the same
+    # gear as the hob itself, and both agree with the analytic envelope of the sharp basic rack.
     hob = TrapezoidalHob(2.0, tip_radius=0.0)
     g = InvoluteGear(25, 2.0, 20 * DEG, 0.0, 0.0, tip_radius_factor=0.0)
-    top = g.nominal_tip_radius + 4.0
-    polygon = hob.tooth(g.pitch_radius, 0.0, top)
+    polygon = hob.tooth(g.pitch_radius, 0.0, g.nominal_tip_radius + 4.0)
     n = (len(polygon) - 2) // 2  # [half, 2 top corners, mirrored half]
     chain = np.vstack([polygon[:n][::-1], polygon[n + 2 :][::-1]])  # flank top -> tip -> other flank top
-    rack = np.column_stack([chain[:, 1], chain[:, 0] - g.pitch_radius])  # rack frame (x, y) = (Y, X - r)
-    tool = RackTool(rack, np.pi * 2.0)
-    a = shapely.Polygon(tool.tooth(g.pitch_radius, 0.0, top))
-    assert a.symmetric_difference(shapely.Polygon(polygon)).area < 1e-9
+    tool = RackTool(np.column_stack([chain[:, 1], chain[:, 0] - g.pitch_radius]), np.pi * 2.0)
+    positions = simulate_cutting(g, 5e-3).positions
+    by_hob = simulate_cutting(g, 5e-3, positions, hob)
+    by_points = simulate_cutting(g, 5e-3, positions, tool)
+    assert by_points.tooth.symmetric_difference(by_hob.tooth).area < 1e-9
+    assert by_points.max_deviation <= 5e-3
 
 
 def test_hob_lead_angle_and_bad_values():

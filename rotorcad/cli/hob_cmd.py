@@ -12,7 +12,7 @@ import shapely
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
-from hob.rack import DerivedRack, gear_rack, rack_deviation, rack_in_contract_frame, rotor_rack
+from hob.rack import DerivedRack, gear_rack, rack_deviation, rotor_rack
 from hob.verdict import HobLimits, judge
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
@@ -129,8 +129,8 @@ def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
 def _drawing(racks: dict[str, DerivedRack], clearance: float) -> Drawing:
     d = Drawing()
     for name, rack in racks.items():
-        pts = rack.normal() * (np.array([1.0, -1.0]) if name == "female" else 1.0)
-        pts = rack_in_contract_frame(rack, name) * np.array([np.cos(rack.helix_angle), 1.0]) if name != "gear" else pts
+        # normal rack; the female's is flipped into the rack frame of CONTRACT.md (y > 0 to the female)
+        pts = rack.normal() * np.array([1.0, -1.0 if name == "female" else 1.0])
         d.polylines.append((f"RACK_{name.upper()}", pts))
         top = pts[:, 1].max() + clearance if name != "female" else pts[:, 1].min() - clearance
         tooth = np.vstack([pts, [[pts[-1, 0], top], [pts[0, 0], top]]])

@@ -36,7 +36,9 @@ def pump(design: Path | None, **opts: Any) -> None:
     pump frequency f = n z / 60 (Kollek & Osinski eqs. 2-9)."""
     for key, flag in (("face_width", "--face-width"), ("speed", "--speed")):
         v = opts.get(key)
-        if v is None or not (np.isfinite(v) and v > 0):
+        if v is None:
+            raise InputError(f"{flag} is required (a positive number).")
+        if not (np.isfinite(v) and v > 0):
             raise InputError(f"{flag} must be a positive number (got {v}).")
     if not 1 <= opts["count"] <= 64:
         raise InputError(f"--harmonics must be a whole number from 1 to 64 (got {opts['count']}).")
