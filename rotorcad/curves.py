@@ -259,26 +259,38 @@ def turning_angle(t0: Array, t1: Array) -> Array:
     return np.arctan2(cross(t0, t1), np.einsum("ij,ij->i", t0, t1))
 
 
-def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> Array:
-    """Parameters at which straight chords deviate from ``curve`` by at most ``tolerance``.
+def sample_curve(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> tuple[Array, Array, Array]:
+    """Parameters, points and unit tangents at which straight chords deviate from ``curve`` by at
+    most ``tolerance``; every parameter is evaluated once.
 
     The sagitta of a chord of length L whose end tangents turn by d(psi) is L*|d(psi)|/8 for a
     circular arc; each interval is split uniformly in ``s`` until every estimate is within the
-    tolerance (a few vectorised passes).
+    tolerance (a few vectorised passes, evaluating only the new parameters).
     """
     s = np.linspace(curve.s0, curve.s1, max(minimum, 17))
+    p, t = curve.evaluate(s)
     for _ in range(passes):
-        p, t = curve.evaluate(s)
         chord = np.hypot(*np.diff(p, axis=0).T)
         sag = np.nan_to_num(chord * np.abs(turning_angle(t[:-1], t[1:])) / 8.0, nan=0.0)
-        n = np.ceil(np.sqrt(sag / tolerance) * 1.05).astype(int)
-        n = np.maximum(n, 1)
+        n = np.maximum(np.ceil(np.sqrt(sag / tolerance) * 1.05).astype(int), 1)
         if np.all(n == 1):
             break
-        ds = np.diff(s)
-        pieces = np.repeat(s[:-1], n) + np.repeat(ds / n, n) * (np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n))
-        s = np.concatenate([pieces, s[-1:]])
-    return s
+        extra = n - 1  # new parameters inside each interval
+        i = np.repeat(np.arange(len(n)), extra)
+        k = np.arange(extra.sum()) - np.repeat(np.cumsum(extra) - extra, extra) + 1
+        s_new = s[i] + np.diff(s)[i] * k / n[i]
+        p_new, t_new = curve.evaluate(s_new)
+        order = np.argsort(np.concatenate([s, s_new]) * np.sign(curve.s1 - curve.s0), kind="stable")  # s may fall
+        s = np.concatenate([s, s_new])[order]
+        p = np.concatenate([p, p_new])[order]
+        t = np.concatenate([t, t_new])[order]
+    return s, p, t
+
+
+def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> Array:
+    """Parameters at which straight chords deviate from ``curve`` by at most ``tolerance`` (see
+    :func:`sample_curve`)."""
+    return sample_curve(curve, tolerance, minimum, passes)[0]
 
 
 def chord_error(curve: Curve, s: Array, probes: int = 8) -> float:
@@ -307,5 +319,6 @@ __all__ = [
     "chord_error",
     "mirrored",
     "rotated",
+    "sample_curve",
     "sample_parameters",
 ]

@@ -113,6 +113,7 @@ def contact_parameter(
     beta = float(np.arctan2(w[1], w[0]))
     if corner:
         arc_center = None  # a corner is not a circular flank: see below
+    if arc_center is not None:
         k = np.asarray(arc_center, dtype=float) - o
         if abs(np.hypot(*k) - r_w) <= 1e-9 * r_w:
             theta = _wrap(np.array(beta - np.arctan2(k[1], k[0])), reference)

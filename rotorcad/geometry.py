@@ -87,6 +87,9 @@ def distance_to_polyline(points: Array, polyline: Array) -> Array:
 
     pts = as_points(points)
     line = as_points(polyline)
+    # a repeated vertex (where two pieces meet) would hide one of its segments from the nearest-vertex test
+    keep = np.concatenate([[True], np.hypot(*np.diff(line, axis=0).T) > 1e-12])
+    line = line[keep]
     k = cKDTree(line).query(pts)[1]
     best = np.hypot(*(pts - line[k]).T)
     for a_idx, b_idx in ((k - 1, k), (k, k + 1)):

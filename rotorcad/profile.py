@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 import shapely
 
-from rotorcad.curves import Curve, Mapped, mirrored, rotated, sample_parameters
+from rotorcad.curves import Curve, Mapped, mirrored, rotated, sample_curve
 from rotorcad.geometry import Array, perp_cw
 
 DEFAULT_TOLERANCE = 1e-4  # mm chord error: 0.1 micrometre
@@ -37,8 +37,7 @@ class Segment:
     @staticmethod
     def sample(name: str, curve: Curve, tolerance: float = DEFAULT_TOLERANCE) -> Segment:
         """Sample ``curve`` so that chords deviate from it by at most ``tolerance`` (mm)."""
-        s = sample_parameters(curve, tolerance)
-        p, t = curve.evaluate(s)
+        s, p, t = sample_curve(curve, tolerance)
         ok = np.all(np.isfinite(p), axis=1) & np.all(np.isfinite(t), axis=1)  # no-contact points are dropped
         return Segment(name, curve, s[ok], p[ok], t[ok])
 

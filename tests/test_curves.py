@@ -5,7 +5,19 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorcad.curves import Arc, Involute, Line, PointPath, Spline, chord_error, mirrored, rotated, sample_parameters
+from rotorcad.curves import (
+    Arc,
+    Involute,
+    Line,
+    PointPath,
+    Spline,
+    chord_error,
+    mirrored,
+    rotated,
+    sample_curve,
+    sample_parameters,
+)
+from rotorcad.geometry import distance_to_polyline
 from rotorcad.kinematics import Rotation, Translation
 
 
@@ -78,6 +90,27 @@ def test_sampling_meets_the_chord_tolerance(tol):
     for curve in curves:
         s = sample_parameters(curve, tol)
         assert chord_error(curve, s, probes=16) <= tol * 1.001
+
+
+def test_sampling_keeps_the_direction_of_a_falling_parameter():
+    # A generated curve runs its parent backwards (s0 > s1): the refined samples must keep that
+    # order and be the curve's own points (re-evaluated here), within the chord tolerance.
+    arc = Arc((0.0, 0.0), 50.0, 1.0, 0.0)
+    s, p, t = sample_curve(arc, 1e-5, minimum=5)
+    assert s[0] == 1.0 and s[-1] == 0.0 and np.all(np.diff(s) < 0)
+    q, u = arc.evaluate(s)
+    np.testing.assert_allclose(p, q, atol=1e-12)
+    np.testing.assert_allclose(t, u, atol=1e-12)
+    assert chord_error(arc, s, probes=16) <= 1e-5 * 1.001
+    np.testing.assert_array_equal(sample_parameters(arc, 1e-5, minimum=5), s)
+
+
+def test_distance_to_a_polyline_through_a_repeated_vertex():
+    # Two pieces meeting at a shared vertex (listed twice): a point beside the second piece near
+    # the joint is at its perpendicular distance from it, not at its distance from the vertex.
+    line = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
+    d = distance_to_polyline(np.array([[1.1, 0.3]]), line)
+    assert d[0] == pytest.approx(0.1, abs=1e-12)
 
 
 def test_spline_through_circle_points_has_circle_tangents():
