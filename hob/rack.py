@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize
 
-from rotorcad.curves import Arc, Curve, Mapped
+from rotorcad.curves import Arc, Curve, Mapped, sample_curve
 from rotorcad.envelope import Generated
 from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import cross, distance_to_polyline
@@ -71,9 +71,8 @@ def _with_corner_fans(
         return (f"{name} corner", Arc((float(p_end[0]), float(p_end[1])), 0.0, float(a0), float(a0 + turn)))
 
     def ends(curve: Curve) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
-        p0, t0 = curve.evaluate(curve.s0)
-        p1, t1 = curve.evaluate(curve.s1)
-        return (p0[0], t0[0]), (p1[0], t1[0])
+        p, t = curve.evaluate(np.array([curve.s0, curve.s1]))
+        return (p[0], t[0]), (p[1], t[1])
 
     out: list[tuple[str, Curve]] = []
     n = len(pieces)
@@ -95,6 +94,36 @@ def _with_corner_fans(
     return out
 
 
+def _on_the_corner_path(
+    gen: Generated, s: np.ndarray, body: Rotation, pitch_radius: float, depth: tuple[float, float] | None, p: np.ndarray
+) -> np.ndarray:
+    """Which rack points of a corner's fan lie on the corner's real path.
+
+    The fan's normals reach every direction between the two pieces meeting at the corner, but the
+    path exists only inside the rack's depth, and a corner on the pitch circle cuts a cycloid that
+    ends in a cusp on the pitch line when the corner passes the pitch point: the fan's normals
+    beyond that instant belong to the next arch, which the land behind the corner sweeps away."""
+    centre = np.asarray(body.center, dtype=float)
+    pitch = centre + np.array([np.sign(body.rate) * pitch_radius, 0.0])
+    extent = p[:, 0] - pitch[0]  # height of the rack point above its pitch line (the limits' sense)
+    ok = np.ones(len(p), dtype=bool)
+    if depth is not None:
+        ok &= (extent >= depth[0] - 1e-6) & (extent <= depth[1] + 1e-6)
+    corner = np.asarray(gen.parent.evaluate(np.array([gen.parent.s0]))[0][0])
+    d = corner - centre
+    if abs(np.hypot(*d) - pitch_radius) > 1e-9 * pitch_radius:
+        return ok
+    w = pitch - centre
+    theta_f = np.arctan2(w[1], w[0]) - np.arctan2(d[1], d[0])  # the corner at the pitch point
+    t = gen.contact(s).t
+    half_turn = np.pi / abs(body.rate)
+    lag = np.mod(t - theta_f / body.rate + half_turn, 2 * half_turn) - half_turn
+    start = 0 if abs(lag[0]) <= abs(lag[-1]) else len(lag) - 1  # the end at the flank, nearer the cusp
+    same = np.sign(lag) == np.sign(lag[start])
+    run = np.cumprod(same if start == 0 else same[::-1]).astype(bool)
+    return ok & (run if start == 0 else run[::-1])
+
+
 def derive_rack(
     pieces: list[tuple[str, Curve]],
     body: Rotation,
@@ -104,6 +133,7 @@ def derive_rack(
     depth: tuple[float, float] | None = None,
     samples: int = 400,
     pitch_angle: float = 0.0,
+    tolerance: float = 1e-4,
 ) -> DerivedRack:
     """Rack of a counter-clockwise chain of profile pieces on a rotating ``body`` (one lobe of
     ``pitch_angle``, so that the corner at the junction with the previous lobe is found too).
@@ -121,11 +151,12 @@ def derive_rack(
     # each generated piece runs against its parent, so the rack chain runs the pieces backwards
     for k, (name, curve) in enumerate(reversed(_with_corner_fans(pieces, centre, pitch_angle))):
         gen = Generated(curve, body, rack, limits=depth)
-        s = np.linspace(gen.s0, gen.s1, samples)
-        p, t = gen.evaluate(s)
+        s, p, t = sample_curve(gen, tolerance, minimum=samples)  # refined where the rack turns fast (corner paths)
         ok = np.isfinite(p).all(axis=1)
         lost += int((~ok).sum())
         total += len(ok)
+        if curve.is_corner():
+            ok &= _on_the_corner_path(gen, s, body, pitch_radius, depth, p)
         pts.append(p[ok])
         tans.append(t[ok])
         idx.append(np.full(int(ok.sum()), k))
@@ -177,7 +208,7 @@ def rotor_rack(rotors: ScrewRotors, rotor: str, samples: int = 400) -> DerivedRa
         r_w,
         pair.rack_period,
         beta,
-        depth=depth if rotor == "male" else (-depth[1], -depth[0]),
+        depth=depth,
         samples=samples,
         pitch_angle=2 * np.pi / teeth,
     )
@@ -237,11 +268,17 @@ def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
         in_both = (np.hypot(*contact.T) <= pair.male_tip_radius) & (
             np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1]) <= pair.female_tip_radius
         )
-        cutting = np.array([not n.endswith("corner") for n in rack.names])[rack.piece_index] & in_both
+        cutting = in_both
         racks.append((pts, cutting))
     (a, ca), (b, cb) = racks
-    d1 = distance_to_polyline(a[ca], b)
-    d2 = distance_to_polyline(b[cb], a)
+
+    def periodic(pts: np.ndarray) -> np.ndarray:
+        # the two racks need not start at the same phase: compare with the neighbouring periods too
+        shift = np.array([pair.rack_period, 0.0])
+        return np.vstack([pts - shift, pts, pts + shift])
+
+    d1 = distance_to_polyline(a[ca], periodic(b))
+    d2 = distance_to_polyline(b[cb], periodic(a))
     return float(max(d1.max(initial=0.0), d2.max(initial=0.0)))
 
 
