@@ -43,6 +43,10 @@ from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_arc, rack_line
 
 DEG = np.pi / 180.0
+# A corner on the pitch circle (d1 = 0) cuts a cycloid whose cusp on the pitch line has its normal
+# along the pitch line: no contact exists there, and within about 1e-7 rad of it the normal is lost
+# in rounding. Its path stops this far (rad of the male) short of the cusp, 1e-11 mm from it.
+CUSP_MARGIN = 1e-6
 
 
 @dataclass(frozen=True)
@@ -74,7 +78,7 @@ def _fixed_to_rack(pair: RotorPair, p: np.ndarray, t: float) -> np.ndarray:
     return np.array([p[1] - r * t, p[0] - r])
 
 
-def _female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Curve, PointPath, float]:
+def _female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Curve, PointPath, float] | None:
     """Trim a rack flank where its generated female point reaches the female tip circle and add
     the path of that female tip corner down to the rack bottom.
 
@@ -83,7 +87,9 @@ def _female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Cur
     P_N's path until P_N is nearest O1, where the path touches the rack bottom y = -d1 tangentially
     (the female tip circle is generated there). ``at_end``: the flank runs down to the bottom at its
     end (sealing side) or rises from it at its start (driving side). Returns the trimmed flank, the
-    corner path (travelled with the chain) and the rack-frame x of its foot.
+    corner path (travelled with the chain) and the rack-frame x of its foot, or None where the
+    flank's conjugate stays within the female tip circle (a rack bottom on the pitch line, d1 = 0:
+    the rack corner is then the female's corner itself).
     """
     mesh = pair.mesh
     o2 = np.array([pair.center_distance, 0.0])
@@ -91,10 +97,10 @@ def _female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Cur
     s = np.linspace(flank.s0, flank.s1, 801)
     c = gen.contact(s)
     r = np.hypot(*(c.meshline - o2).T) - pair.female_tip_radius
-    sign = np.sign(r)
-    k = np.nonzero(sign[:-1] * sign[1:] < 0)[0]
+    beyond = r > 1e-9 * pair.female_tip_radius
+    k = np.nonzero(beyond[:-1] != beyond[1:])[0]
     if len(k) == 0:
-        raise DesignError("female_tip_radius", "reached by the rack flank's conjugate", pair.female_tip_radius)
+        return None
     i = k[-1] if at_end else k[0]
     s_n = optimize.brentq(
         lambda v: np.hypot(*(gen.contact(v).meshline[0] - o2)) - pair.female_tip_radius, s[i], s[i + 1], xtol=1e-14
@@ -107,6 +113,8 @@ def _female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Cur
     ang = np.arctan2(c_n.meshline[0, 1], c_n.meshline[0, 0] - pair.center_distance)
     ratio = pair.female_teeth / pair.male_teeth
     t_f = t_n + (np.mod(ang, 2 * np.pi) - np.pi) * ratio  # the nearest passage, before or after t_n
+    if abs(pair.male_dedendum) < 1e-9:
+        t_f += CUSP_MARGIN * np.sign(t_n - t_f)
     path = (
         PointPath(tuple(corner), mesh.female, mesh.rack, t_n, t_f)
         if at_end
@@ -115,6 +123,32 @@ def _female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Cur
     foot = path.point(t_f)
     trimmed = flank.trimmed(flank.s0, s_n) if at_end else flank.trimmed(s_n, flank.s1)
     return trimmed, path, float(foot[1])
+
+
+def _flank_to_female_tip(
+    pair: RotorPair, flank: Curve, at_end: bool, flank_names: tuple[str, str], side: str
+) -> tuple[tuple[RackPiece, ...], float]:
+    """A rack flank ending on the rack bottom at a sharp female tip corner, in chain order, with the
+    rack-frame x of the foot on the bottom line: the flank trimmed at the female tip circle plus the
+    corner's path (:func:`_female_tip_corner`), or, where the flank's conjugate stays inside the
+    tip circle, the flank and a rack corner at its foot (the female's corner, whose path the male
+    receives). ``at_end``: the flank comes down to the bottom (sealing side) or rises from it."""
+    names = (f"{side} root (female tip path)", f"{side} tip corner")
+    cut = _female_tip_corner(pair, flank, at_end)
+    if cut is not None:
+        trimmed, path, x_foot = cut
+        corner = RackPiece(path, *names, kind="female point")
+        flank_piece = RackPiece(trimmed, *flank_names)
+    else:
+        p, t = flank.evaluate(np.array([flank.s1 if at_end else flank.s0]))
+        foot = _fixed_to_rack(pair, p[0], 0.0)
+        psi = float(np.arctan2(t[0, 0], t[0, 1])) - np.pi / 2  # rack-frame tangent (t_y, t_x)
+        fan = (psi, 1.5 * np.pi) if at_end else (-np.pi / 2, psi)
+        fan = (fan[0] + 2 * np.pi * (fan[0] < fan[1] - 2 * np.pi), fan[1])
+        x_foot = float(foot[0])
+        corner = RackPiece(rack_arc(pair, (x_foot, float(foot[1])), 0.0, *fan), *names, kind="female point")
+        flank_piece = RackPiece(flank, *flank_names)
+    return ((flank_piece, corner) if at_end else (corner, flank_piece)), x_foot
 
 
 def srm_symmetric(pair: RotorPair) -> ScrewRotors:
@@ -133,10 +167,17 @@ def srm_symmetric(pair: RotorPair) -> ScrewRotors:
             pair.male_tip_radius,
         )
     xc = p / 2
+    # the female tip circle is its pitch circle and cuts the flute circle short of the rack's feet:
+    # both female tip corners are sharp, and their paths close the rack down to the pitch line
+    lobe = rack_arc(pair, (xc, 0.0), h1, np.pi, 0.0)
+    leading, x_start = _flank_to_female_tip(pair, lobe, False, ("lobe arc", "flute arc"), "trailing")
+    lobe = leading[1].curve
+    trailing, x_foot = _flank_to_female_tip(pair, lobe, True, ("lobe arc", "flute arc"), "leading")
     rack = (
-        RackPiece(rack_line(pair, (0.0, 0.0), (xc - h1, 0.0)), "root arc", "tip arc"),
-        RackPiece(rack_arc(pair, (xc, 0.0), h1, np.pi, 0.0), "lobe arc", "flute arc"),
-        RackPiece(rack_line(pair, (xc + h1, 0.0), (p, 0.0)), "root arc", "tip arc"),
+        RackPiece(rack_line(pair, (0.0, 0.0), (x_start, 0.0)), "root arc", "tip arc"),
+        leading[0],
+        *trailing,
+        RackPiece(rack_line(pair, (x_foot, 0.0), (p, 0.0)), "root arc", "tip arc"),
     )
     return ScrewRotors(pair, rack, "srm-symmetric")
 
@@ -221,14 +262,10 @@ def rack_involute(
             RackPiece(rack_line(pair, pts["br_bottom"], (p, -d1)), "root arc", "tip arc"),
         )
     else:  # sharp female tip: the sealing involute is used up to the female tip (Rinder sec. 3.2)
-        seal, corner, x_foot = _female_tip_corner(pair, seal, at_end=True)
+        pieces, x_foot = _flank_to_female_tip(pair, seal, True, ("sealing flank", "sealing flank"), "sealing")
         if not x_foot < p:
             raise DesignError("lobe_width", "small enough that the female tip corner's path fits the rack period", lobe_width)
-        rack += (
-            RackPiece(seal, "sealing flank", "sealing flank"),
-            RackPiece(corner, "sealing root (point-generated by the female tip)", "sealing tip corner", kind="female point"),
-            RackPiece(rack_line(pair, (x_foot, -d1), (p, -d1)), "root arc", "tip arc"),
-        )
+        rack += (*pieces, RackPiece(rack_line(pair, (x_foot, -d1), (p, -d1)), "root arc", "tip arc"))
     return ScrewRotors(pair, rack, "rack-involute")
 
 
@@ -263,11 +300,14 @@ def lysholm(pair: RotorPair, tip_land: float = 0.0) -> ScrewRotors:
     """
     p, h1, d1 = pair.rack_period, pair.male_addendum, pair.male_dedendum
     mesh = pair.mesh
-    if d1 > h1:
+    if abs(d1) > 1e-6:
+        # the circular driving flank is centred on the pitch line: below it the arc would lean back
+        # (a re-entrant rack, an undercut male), so the male is all addendum (Rinder Fig. 2)
         raise DesignError(
             "male_root_radius",
-            f"at least {pair.male_pitch_radius - h1:.6g} mm (male dedendum at most the addendum) for the Lysholm profile",
+            f"equal to the male pitch radius {pair.male_pitch_radius:.6g} mm for the Lysholm profile",
             pair.male_root_radius,
+            "its circular driving flank, centred on the pitch point, would lean back below the pitch line",
         )
     x_t = 0.0
     x_q = x_t + tip_land
@@ -278,10 +318,10 @@ def lysholm(pair: RotorPair, tip_land: float = 0.0) -> ScrewRotors:
     # clockwise at z1/z2 rad per male rad, from the cusp angle down to ... the foot on y = -d1
     ang_k = np.arctan2(k[1], k[0] - pair.center_distance)  # cusp angle about O2 (< pi)
     t_f = t_k - (np.pi - ang_k) * pair.female_teeth / pair.male_teeth
-    # with d1 = 0 the corner lies on the pitch circle and its path has a cusp at t_f: stop just short
-    female_path = PointPath(tuple(p_female), mesh.female, mesh.rack, t_k, t_f + (1e-9 if d1 < 1e-9 else 0.0))
+    female_path = PointPath(tuple(p_female), mesh.female, mesh.rack, t_k, t_f + (CUSP_MARGIN if d1 < 1e-9 else 0.0))
     x_foot = _fixed_to_rack(pair, mesh.female.to_fixed(p_female[None, :], t_f)[0], t_f)
-    x_start = x_t - np.sqrt(h1 * h1 - d1 * d1)
+    driving_arc = rack_arc(pair, (x_t, 0.0), h1, np.pi + np.arcsin(d1 / h1), np.pi / 2)
+    driving, x_start = _flank_to_female_tip(pair, driving_arc, False, ("driving flank", "driving flank"), "driving")
     end = x_start + p
     if not x_foot[0] < end - 1e-9:
         raise DesignError(
@@ -290,7 +330,7 @@ def lysholm(pair: RotorPair, tip_land: float = 0.0) -> ScrewRotors:
             pair.male_tip_radius,
             "the female tip corner's path ends beyond the next lobe; use fewer lobes or a smaller addendum",
         )
-    rack = (RackPiece(rack_arc(pair, (x_t, 0.0), h1, np.pi + np.arcsin(d1 / h1), np.pi / 2), "driving flank", "driving flank"),)
+    rack = driving
     if tip_land > 0:
         rack += (RackPiece(rack_line(pair, (x_t, h1), (x_q, h1)), "tip arc", "root arc"),)
     rack += (
@@ -315,12 +355,16 @@ def srm_asymmetric(
     the pitch point to a depth e below the pitch line such that the flank angle at the foot (from
     the normal of the pitch line) is ``driving_foot_angle_deg``: e = (d1 + h1 sin a) / (1 - sin a).
     (A centre between the pitch line and the rack bottom would make the arc pass the point whose
-    normal runs along the pitch line, which never touches.) The foot meets the rack bottom in the
-    female's driving tip corner, whose path the male receives. Sealing flank: point-generated by
-    the male tip corner while that corner sweeps the share ``seal_stop`` of its way from the pitch
-    line to the housing cusp, then a straight rack part, tangent there, down to the female tip
-    corner on the rack bottom (a short, nearly straight involute at the female tip). The meshline
-    therefore stops short of the housing cusp: a small blow-hole.
+    normal runs along the pitch line, which never touches.) Sealing flank: point-generated by the
+    male tip corner while that corner sweeps the share ``seal_stop`` of its way from the pitch line
+    to the housing cusp, then a straight rack part, tangent there, down towards the rack bottom (a
+    short, nearly straight involute at the female tip). The meshline therefore stops short of the
+    housing cusp: a small blow-hole.
+
+    Both female tip corners are sharp. Each flank is used up to where its conjugate reaches the
+    female tip circle, and the rack goes on with that corner's path down to the rack bottom
+    (:func:`_flank_to_female_tip`); the male receives the path. So the racks derived back from
+    the male and from the female agree (``hob.rack.rack_deviation``).
     """
     p, h1, d1 = pair.rack_period, pair.male_addendum, pair.male_dedendum
     sa = np.sin(driving_foot_angle_deg * DEG)
@@ -336,43 +380,26 @@ def srm_asymmetric(
     if not u[1] < -1e-6:
         raise DesignError("seal_stop", "small enough that the sealing flank still falls there", seal_stop)
     f = j + u * (-d1 - j[1]) / u[1]
-    start = x_t + radius * np.cos(np.pi - np.arcsin((e - d1) / radius))
-    end = start + p
-    if not f[0] < end - 1e-9:
-        raise DesignError("seal_stop", "such that the sealing flank fits the rack period", seal_stop)
-    a_s = np.arctan2(u[0], -u[1])  # flank angle from the normal to the pitch line
     psi0 = np.pi - np.arcsin((e - d1) / radius)  # the arc's foot on the rack bottom
-    foot = (x_t + radius * np.cos(psi0), -d1)
-    rack = (
-        RackPiece(
-            rack_arc(pair, foot, 0.0, 1.5 * np.pi, np.pi + psi0),
-            "driving root (female tip path)",
-            "driving tip corner",
-            kind="female point",
-        ),
-        RackPiece(rack_arc(pair, (x_t, -e), radius, psi0, np.pi / 2), "driving flank", "driving flank"),
+    # both female tip corners are sharp: each flank is used up to the female tip circle and the
+    # corner's path continues it down to the rack bottom (the male receives that path)
+    driving, x_start = _flank_to_female_tip(
+        pair, rack_arc(pair, (x_t, -e), radius, psi0, np.pi / 2), False, ("driving flank", "driving flank"), "driving"
     )
+    straight = rack_line(pair, (float(j[0]), float(j[1])), (float(f[0]), float(f[1])))
+    sealing, x_foot = _flank_to_female_tip(
+        pair, straight, True, ("sealing flank (straight part)", "sealing flank (straight part)"), "sealing"
+    )
+    end = x_start + p
+    if not x_foot < end - 1e-9:
+        raise DesignError("seal_stop", "such that the sealing flank fits the rack period", seal_stop)
+    rack = driving
     if tip_land > 0:
         rack += (RackPiece(rack_line(pair, (x_t, h1), (x_q, h1)), "tip arc", "root arc"),)
-    f_t = (float(f[0]), float(f[1]))
-    rack += (
-        RackPiece(
-            male_path.trimmed(t_q, t_j),
-            "sealing tip corner",
-            "sealing flank (point-generated by the male tip)",
-            kind="male point",
-        ),
-        RackPiece(
-            rack_line(pair, (float(j[0]), float(j[1])), f_t), "sealing flank (straight part)", "sealing flank (straight part)"
-        ),
-        RackPiece(
-            rack_arc(pair, f_t, 0.0, np.pi + a_s, 1.5 * np.pi),
-            "sealing root (female tip path)",
-            "sealing tip corner",
-            kind="female point",
-        ),
-        RackPiece(rack_line(pair, f_t, (end, -d1)), "root arc", "tip arc"),
+    male_tip = RackPiece(
+        male_path.trimmed(t_q, t_j), "sealing tip corner", "sealing flank (point-generated by the male tip)", kind="male point"
     )
+    rack += (male_tip, *sealing, RackPiece(rack_line(pair, (x_foot, -d1), (end, -d1)), "root arc", "tip arc"))
     return ScrewRotors(pair, rack, "srm-asymmetric")
 
 
