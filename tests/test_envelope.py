@@ -125,16 +125,19 @@ def test_circle_centred_on_the_pitch_circle_is_the_degenerate_case():
     # Symmetric SRM (Rinder, Fig. 3): a circle centred on the male pitch circle meshes with the
     # same circle centred on the female pitch circle, every point at the one angle that brings
     # the centre to C.
+    # At the arc's ends the normal is tangent to the pitch circle, where the general root is
+    # ill-conditioned (2e-8 rad off before the degenerate case was restored for rotors).
     mesh = rotor_mesh(4, 6, 100.0)
     r1w, rho = mesh.pitch_radius_male, 12.0
-    k = r1w * np.array([np.cos(0.3), np.sin(0.3)])
-    arc = Arc(tuple(k), rho, 0.3 - np.pi / 2, 0.3 + np.pi / 2)
-    c = conjugate(*arc.evaluate(np.linspace(arc.s0, arc.s1, 201)), mesh.male, mesh.female, arc_center=k)
-    assert np.all(c.in_contact)
-    np.testing.assert_allclose(c.t, -0.3, atol=1e-15)
-    k2 = mesh.female.to_body(np.array([[r1w, 0.0]]), -0.3)[0]
-    np.testing.assert_allclose(np.hypot(*(c.points - k2).T), rho, atol=1e-12)
-    np.testing.assert_allclose(np.hypot(*(k2 - [100.0, 0.0])), mesh.pitch_radius_female, atol=1e-12)
+    for angle in (0.3, 0.7, 2.0):
+        k = r1w * np.array([np.cos(angle), np.sin(angle)])
+        arc = Arc(tuple(k), rho, angle - np.pi / 2, angle + np.pi / 2)
+        c = conjugate(*arc.evaluate(np.linspace(arc.s0, arc.s1, 2001)), mesh.male, mesh.female, arc_center=k)
+        assert np.all(c.in_contact)
+        np.testing.assert_allclose(c.t, -angle, atol=1e-14)
+        k2 = mesh.female.to_body(np.array([[r1w, 0.0]]), -angle)[0]
+        np.testing.assert_allclose(np.hypot(*(c.points - k2).T), rho, atol=1e-12)
+        np.testing.assert_allclose(np.hypot(*(k2 - [100.0, 0.0])), mesh.pitch_radius_female, atol=1e-12)
 
 
 def test_no_contact_is_reported_not_invented():
