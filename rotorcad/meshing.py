@@ -17,6 +17,7 @@ computed.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -147,13 +148,40 @@ class MeshingAnalysis:
                         continue  # through q itself (C lies on every meshline), or on O1O2 (slipping rule)
                     ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
                     found.append(Defect(kind, rotor, float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name))
+            # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
+            # with its neighbour (_slipping_between_pieces)
             y = pts[:, 1]
-            for i in np.nonzero(np.sign(y[:-1]) * np.sign(y[1:]) < 0)[0]:
-                w = y[i] / (y[i] - y[i + 1])
-                p = pts[i] + w * (pts[i + 1] - pts[i])
-                if abs(p[0] - c[0]) > 1e-6 * pair.center_distance:
-                    ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
-                    found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name))
+            side = np.nonzero(np.abs(y) > 1e-9 * scale)[0]
+            for i, j in itertools.pairwise(side):
+                if y[i] * y[j] < 0:
+                    w = y[i] / (y[i] - y[j])
+                    p = pts[i] + w * (pts[j] - pts[i])
+                    if abs(p[0] - c[0]) > 1e-6 * scale:
+                        ang = piece.t[i] + w * (piece.t[j] - piece.t[i])
+                        found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name))
+        found.extend(self._slipping_between_pieces())
+        return found
+
+    def _slipping_between_pieces(self) -> list[Defect]:
+        """Rinder's slipping rule where the meshline crosses O1O2 between two pieces: where a tip
+        touches the mate's root on O1O2 (a tip corner's path or a flank handing over to the next
+        one), e.g. the female tip on the male root. The pieces are the meshline in order, and the
+        next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over."""
+        pair = self.rotors.pair
+        scale = pair.center_distance
+        c_x = pair.male_pitch_radius
+        ends = []  # per piece: sign of y leaving its start, reaching its end, its end point, its angle
+        for piece in self.pieces:
+            y = piece.points[:, 1]
+            side = np.nonzero(np.abs(y) > 1e-9 * scale)[0]
+            if len(side) == 0:
+                continue
+            ends.append((np.sign(y[side[0]]), np.sign(y[side[-1]]), piece.points[-1], float(piece.t[-1])))
+        found = []
+        for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
+            if abs(p[1]) <= 1e-6 * scale and out_sign * in_sign < 0 and abs(p[0] - c_x) > 1e-6 * scale:
+                land = "male tip on the female root" if p[0] > c_x else "female tip on the male root"
+                found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), land))
         return found
 
     @property

@@ -248,6 +248,21 @@ def test_symmetric_profile_has_the_large_blow_hole_and_asymmetric_a_smaller_one(
     assert any(f["rotor"] == "female" and "male tip" in f["generated_by"] for f in asym.point_generated_flanks)
 
 
+def test_slipping_where_the_meshline_crosses_o1o2_away_from_c():
+    # Rinder 2.2.1, Punkt 3: where the meshline cuts O1O2 outside C the flanks cannot drive each
+    # other. The symmetric profile's meshline is the circle of radius h1 about C, which cuts O1O2
+    # at the male tip (r1w + h1) inside a piece; the SRM-type pair hands over between pieces where
+    # its tips touch the mate's root: at the male tip radius and at the male root radius.
+    sym = MeshingAnalysis(build_family(PAIR_46, "srm-symmetric", {}))
+    slips = [(d.x, d.y) for d in sym.defects if d.kind == "slipping"]
+    np.testing.assert_allclose(slips, [(PAIR_46.male_pitch_radius + PAIR_46.male_addendum, 0.0)], atol=1e-4)
+    srm = MeshingAnalysis(build_family(PAIR_56, "srm-asymmetric", {}))
+    slips = sorted((d.x, d.y, d.flank) for d in srm.defects if d.kind == "slipping")
+    assert [s[2] for s in slips] == ["female tip on the male root", "male tip on the female root"]
+    expected = [(PAIR_56.male_root_radius, 0.0), (PAIR_56.male_tip_radius, 0.0)]
+    np.testing.assert_allclose([s[:2] for s in slips], expected, atol=1e-6)
+
+
 def test_reported_cusps_are_real_reversals_of_the_generated_flank():
     # Second method for Rinder's cusp rule (meshline normal through O1 / O2): where it reports a
     # cusp on a smooth generated flank, that flank reverses its direction of travel.
