@@ -10,12 +10,13 @@ import numpy as np
 from rotorcad.errors import DesignError
 
 
-def write_points(path: Path, points: np.ndarray, comments: list[str] | None = None) -> None:
-    """Write ``points`` (n, 2) to ``path`` with full double precision."""
+def write_points(path: Path, points: np.ndarray, comments: list[str] | None = None, header: str = "x,y") -> None:
+    """Write ``points`` (n, 2), or rows with the columns ``header`` names, to ``path`` with full
+    double precision."""
     with open(path, "w", encoding="utf-8", newline="\n") as f:
         for line in comments or []:
             f.write(f"# {line}\n")
-        f.write("x,y\n")
+        f.write(f"{header}\n")
         np.savetxt(f, np.asarray(points, dtype=float), delimiter=",", fmt="%.12g")
 
 

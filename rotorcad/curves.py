@@ -244,7 +244,8 @@ class Spline(Curve):
         keep = np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 0.0])
         pts = pts[keep]
         u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
-        tck, _ = interpolate.splprep(pts.T, u=u, s=smoothing, k=3, per=int(periodic), quiet=2)
+        k = 3 if periodic else min(3, len(pts) - 1)  # a run of two or three points: a line or a parabola
+        tck, _ = interpolate.splprep(pts.T, u=u, s=smoothing, k=k, per=int(periodic), quiet=2)
         return Spline(knots=(tck[0], tuple(tck[1]), tck[2]), s0=0.0, s1=float(u[-1]), periodic=periodic)
 
     def frame(self, s: Array) -> tuple[Array, Array]:

@@ -11,6 +11,7 @@ import sys
 import click
 
 from rotorcad import __version__
+from rotorcad.cli.clearance_cmd import clearance
 from rotorcad.cli.cut_cmd import cut
 from rotorcad.cli.export_cmd import export, interfere
 from rotorcad.cli.gear import gear
@@ -36,6 +37,7 @@ cli.add_command(cut)
 cli.add_command(pump)
 cli.add_command(export)
 cli.add_command(interfere)
+cli.add_command(clearance)
 
 
 def main(argv: list[str] | None = None) -> int:

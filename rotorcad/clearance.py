@@ -1,0 +1,324 @@
+"""Meshing clearance evaluation (MCE) of a screw-rotor pair from discrete profile points, after
+Wu & Chi, *A numerical method for the evaluation of the meshing clearance for twin screw rotors
+with discrete tooth profile points* (Mech. Mach. Theory 70, 2013).
+
+1. Each rotor's points are fitted with a cubic spline (sec. 2, eq. 1), so tangents are exact.
+2. Each lobe gives its transverse rack by inverse generation (eqs. 2-6: the rack point of a
+   profile point is where its normal passes the pitch point), and the normal rack is the
+   transverse rack with lengths along the pitch line times cos(beta) (eq. 7), beta the helix
+   angle at the pitch cylinder, the same for both rotors (h2 = h1 z2/z1).
+3. The racks are positioned against each other (sec. 4: "an initial contact point"): the female
+   rack slides along the pitch line until the two racks touch on the driving flank (or the
+   sealing flank, or they are left as the points were given).
+4. The normal clearance delta of each point of the datum rack (the female's) is its distance,
+   along its own normal, to the compared rack (the male's): r_n2 + delta n_n2 = r_n1(u) (eq. 10).
+   Positive is a gap, negative an interference. The male rack is evaluated between its samples
+   by cubic Hermite interpolation with its exact tangents.
+5. The clearance is distributed on the 3D contact line (sec. 3.2): every datum rack point whose
+   contact lies inside both bores is a contact point (x, y) at male angle phi, z = h1 phi / 2 pi
+   (Rinder eq. 1), cut at the rotor length as in :mod:`rotorcad.meshing`. The clearance band is
+   the strip between the contact line and the line offset from it by max(delta, 0) along the
+   helical surfaces' unit normal; its area and perimeter (the wetted perimeter) are those of the
+   triangulated strip.
+
+Means (both are in the paper, sec. 5.2): ``mean_clearance`` is delta averaged along the datum
+normal rack (the paper's average over its contact points, which are spread along the rack), and
+``equal_clearance`` is the band area over the contact line length.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy import optimize
+from scipy.spatial import cKDTree
+
+from rotorcad.curves import Curve, Mapped
+from rotorcad.errors import DesignError
+from rotorcad.geometry import Array, cross
+from rotorcad.inverse_rack import derive_rack
+from rotorcad.rotor_pair import RotorPair
+
+CONTACT_SIDES = ("driving", "sealing", "as-given")
+
+
+@dataclass(frozen=True, eq=False)
+class RackCurve:
+    """One rotor's rack: transverse points and unit tangents in the rack frame of CONTRACT.md
+    (x along the pitch line, y > 0 towards the female), travelled in +x, one period."""
+
+    points: Array
+    tangents: Array
+    period: float
+
+    def normal_section(self, helix_angle: float) -> tuple[Array, Array]:
+        """The normal rack (Wu & Chi eq. 7) and its unit tangents."""
+        c = np.cos(helix_angle)
+        t = self.tangents * np.array([c, 1.0])
+        return self.points * np.array([c, 1.0]), t / np.linalg.norm(t, axis=1, keepdims=True)
+
+
+def contact_of_rack_points(pair: RotorPair, points: Array, tangents: Array) -> tuple[Array, Array]:
+    """Contact point (fixed transverse frame) and male angle of rack points (rack frame, unit
+    tangents): where a point's normal meets the pitch line, that foot is at the pitch point C."""
+    r1 = pair.male_pitch_radius
+    with np.errstate(divide="ignore", invalid="ignore"):
+        offset = points[:, 1] * tangents[:, 1] / tangents[:, 0]  # foot of the normal, along the pitch line
+    return np.stack([r1 + points[:, 1], -offset], axis=1), -(points[:, 0] + offset) / r1
+
+
+def rotor_rack(
+    pair: RotorPair, pieces: list[tuple[str, Curve]], rotor: str, tolerance: float = 1e-4, contact_step: float = 0.0
+) -> RackCurve:
+    """Transverse rack of one lobe of the male or the female (pieces in its own frame, counter-
+    clockwise) by inverse generation (:func:`rotorcad.inverse_rack.derive_rack`, corner fans
+    included), sampled to ``tolerance`` (mm of chord on the rack) and, with ``contact_step``, so
+    that the contact point in the transverse plane (the meshline) advances at most that far (mm)
+    between samples: near roundings it runs fast along the rack. (Along the axis the contact line
+    follows the rotation, which the rack's own sampling resolves.)"""
+    mesh = pair.mesh
+    if rotor == "male":
+        body, r_w, teeth = mesh.male, pair.male_pitch_radius, pair.male_teeth
+    else:
+        shift = (pair.center_distance, 0.0)
+        pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve in pieces]
+        body, r_w, teeth = mesh.female, pair.female_pitch_radius, pair.female_teeth
+    depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
+    rack = derive_rack(
+        pieces,
+        body,
+        r_w,
+        pair.rack_period,
+        depth=depth,
+        samples=800,
+        pitch_angle=2 * np.pi / teeth,
+        tolerance=tolerance,
+        contact_step=contact_step,
+    )
+    flip = np.array([1.0, 1.0 if rotor == "male" else -1.0])  # derived racks have y away from their rotor
+    pts, tan = rack.points * flip, rack.tangents * flip
+    if pts[-1, 0] < pts[0, 0]:  # travel the chain in +x
+        pts, tan = pts[::-1], -tan[::-1]
+    return RackCurve(pts, tan, pair.rack_period)
+
+
+def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Array, Array]:
+    """Cubic Hermite point and derivative between samples with exact unit tangents (scaled by
+    the chord)."""
+    h = np.hypot(*(p1 - p0).T)[:, None]
+    m0, m1 = t0 * h, t1 * h
+    u = tau[:, None]
+    p = (2 * u**3 - 3 * u**2 + 1) * p0 + (u**3 - 2 * u**2 + u) * m0 + (-2 * u**3 + 3 * u**2) * p1 + (u**3 - u**2) * m1
+    d = (6 * u**2 - 6 * u) * p0 + (3 * u**2 - 4 * u + 1) * m0 + (-6 * u**2 + 6 * u) * p1 + (3 * u**2 - 2 * u) * m1
+    return p, d
+
+
+def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tangents: Array, window: int = 8) -> Array:
+    """Distance from each datum point along its unit normal to the compared polyline (Wu & Chi
+    eq. 10), NaN where the normal line does not cut it nearby. The crossing nearest the datum
+    point is taken among the ``window`` segments either side of the nearest compared point, then
+    refined on the Hermite cubic of that segment (Newton)."""
+    k = cKDTree(compared).query(datum)[1]
+    n_seg = len(compared) - 1
+    offsets = np.arange(-window, window)
+    seg = np.clip(k[:, None] + offsets[None, :], 0, n_seg - 1)  # segment i joins points i, i+1
+    a, b = compared[seg], compared[seg + 1]
+    g_a = cross(normals[:, None, :], a - datum[:, None, :])
+    g_b = cross(normals[:, None, :], b - datum[:, None, :])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tau = g_a / (g_a - g_b)
+    hit = (g_a * g_b <= 0) & np.isfinite(tau)
+    cut = a + np.nan_to_num(tau)[..., None] * (b - a)
+    delta = np.einsum("ijk,ik->ij", cut - datum[:, None, :], normals)
+    delta = np.where(hit, delta, np.inf)
+    j = np.argmin(np.abs(delta), axis=1)
+    rows = np.arange(len(datum))
+    found = np.isfinite(delta[rows, j])
+    s = seg[rows, j]
+    u = np.clip(np.nan_to_num(tau[rows, j]), 0.0, 1.0)
+    p0, p1, t0, t1 = compared[s], compared[s + 1], compared_tangents[s], compared_tangents[s + 1]
+    for _ in range(4):  # Newton on cross(n, H(u) - datum) = 0
+        p, d = _hermite(p0, t0, p1, t1, u)
+        f = cross(normals, p - datum)
+        df = cross(normals, d)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(np.abs(df) > 1e-300, f / df, 0.0)
+        u = np.clip(u - step, 0.0, 1.0)
+    p, _ = _hermite(p0, t0, p1, t1, u)
+    return np.where(found, np.einsum("ij,ij->i", p - datum, normals), np.nan)
+
+
+@dataclass(frozen=True, eq=False)
+class MeshingClearance:
+    """Meshing clearance of a pair given by one lobe of each rotor (counter-clockwise pieces in
+    the rotor's own frame, e.g. :func:`rotorcad.rotor_points.lobe_pieces`)."""
+
+    pair: RotorPair
+    male_pieces: list[tuple[str, Curve]]
+    female_pieces: list[tuple[str, Curve]]
+    contact: str = "driving"
+    tolerance: float = 1e-4
+    contact_step: float = 0.05  # mm between contact-line points
+
+    def __post_init__(self) -> None:
+        if self.contact not in CONTACT_SIDES:
+            raise DesignError("contact", "one of " + ", ".join(CONTACT_SIDES), self.contact)
+
+    @property
+    def helix_angle(self) -> float:
+        """beta at the pitch cylinder: tan(beta) = 2 pi r1w / h1 (the same for the female)."""
+        return float(np.arctan(2 * np.pi * self.pair.male_pitch_radius / self.pair.lead))
+
+    @cached_property
+    def male_rack(self) -> RackCurve:
+        return rotor_rack(self.pair, self.male_pieces, "male", self.tolerance)
+
+    @cached_property
+    def female_rack(self) -> RackCurve:
+        return rotor_rack(self.pair, self.female_pieces, "female", self.tolerance, contact_step=self.contact_step)
+
+    @cached_property
+    def _compared(self) -> tuple[Array, Array]:
+        """The male normal rack over three periods (the racks need not start at the same phase)."""
+        pts, tan = self.male_rack.normal_section(self.helix_angle)
+        shift = np.array([self.pair.rack_period * np.cos(self.helix_angle), 0.0])
+        return np.vstack([pts - shift, pts, pts + shift]), np.vstack([tan, tan, tan])
+
+    @cached_property
+    def _datum(self) -> tuple[Array, Array, Array]:
+        """Female normal rack points, unit tangents and unit normals towards the male side."""
+        pts, tan = self.female_rack.normal_section(self.helix_angle)
+        return pts, tan, np.stack([tan[:, 1], -tan[:, 0]], axis=1)
+
+    def _in_both_bores(self, gap: Array | float = 0.0) -> Array:
+        """Female rack points whose contact lies inside both tip circles: within the fit's
+        tolerance (1 um), and the male's by the local clearance ``gap`` more (a female root
+        deeper than the male tip still seals against it, across that clearance)."""
+        contact, _ = self._contacts(0.0)
+        pair = self.pair
+        slack = 1e-3 + np.maximum(np.nan_to_num(gap), 0.0)
+        return (np.hypot(*contact.T) <= pair.male_tip_radius + slack) & (
+            np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1]) <= pair.female_tip_radius + 1e-3
+        )
+
+    def _contacts(self, shift: float) -> tuple[Array, Array]:
+        """Contact point and male angle of each female (datum) rack point, the rack moved by
+        ``shift`` along the pitch line."""
+        contact, angle = contact_of_rack_points(self.pair, self.female_rack.points, self.female_rack.tangents)
+        return contact, angle - shift / self.pair.male_pitch_radius
+
+    def clearance_at(self, shift: float, mask: Array | None = None) -> Array:
+        """Normal clearance of the datum (female) rack points (those in ``mask``) with the female
+        rack moved by ``shift`` (mm, transverse) along the pitch line."""
+        pts, _, normals = self._datum
+        if mask is not None:
+            pts, normals = pts[mask], normals[mask]
+        moved = pts + np.array([shift * np.cos(self.helix_angle), 0.0])
+        compared, compared_tan = self._compared
+        return normal_clearance(moved, normals, compared, compared_tan)
+
+    @cached_property
+    def shift(self) -> float:
+        """Transverse shift of the female rack that makes the racks touch on the chosen flank:
+        the smallest clearance there is zero (found by stepping out from the given position until
+        it changes sign, then Brent's method)."""
+        if self.contact == "as-given":
+            return 0.0
+        _, tan, _ = self._datum
+        # the male lobe's trailing (rising) flank is the driving one; lands (within 6 degrees of the
+        # pitch line) belong to neither and cannot position the racks
+        side = tan[:, 1] > 0.1 if self.contact == "driving" else tan[:, 1] < -0.1
+        inside = self._in_both_bores() & side
+        if not inside.any():
+            raise DesignError(
+                "contact", f"a flank that meets the mate inside both bores on the {self.contact} side", self.contact
+            )
+        # moving the female rack in +x closes the driving (rising) flanks and opens the sealing ones
+        sign = 1.0 if self.contact == "driving" else -1.0
+
+        def gap(g: float) -> float:
+            d = self.clearance_at(sign * g, inside)
+            return float(np.nanmin(d)) if np.isfinite(d).any() else np.nan
+
+        g0 = gap(0.0)
+        step = max(abs(g0), 1e-3) if np.isfinite(g0) else 1e-3
+        direction = 1.0 if not np.isfinite(g0) or g0 >= 0 else -1.0
+        a, fa = 0.0, g0
+        while step < self.pair.rack_period / 4:
+            b = direction * step
+            fb = gap(b)
+            if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
+                return sign * float(optimize.brentq(gap, min(a, b), max(a, b), xtol=1e-12))
+            a, fa, step = b, fb, 2 * step
+        raise DesignError(
+            "female points",
+            f"a female lobe that can be brought into contact with the male on the {self.contact} flank",
+            None,
+            "the racks never touch there within a quarter of the rack period",
+        )
+
+    @cached_property
+    def clearance(self) -> Array:
+        """Normal clearance of every datum rack point at the positioned racks (mm)."""
+        return self.clearance_at(self.shift)
+
+    @cached_property
+    def _band(self) -> dict[str, float]:
+        pair = self.pair
+        contact, angle = self._contacts(self.shift)
+        z = pair.lead * angle / (2 * np.pi)
+        use = self._in_both_bores(self.clearance) & np.isfinite(self.clearance) & np.isfinite(z)
+        z = z - z[use].min()
+        use &= z <= pair.length + 1e-9
+        delta = self.clearance
+        line = np.column_stack([contact, z])
+        # unit normal of the helical flank: transverse from the rack (axes swapped), axial part
+        # from the helicoid (normal perpendicular to the screw motion (-y, x, h/2 pi))
+        tan = self.female_rack.tangents
+        n_t = np.stack([-tan[:, 0], tan[:, 1]], axis=1)  # rack normal (t_y, -t_x) in fixed axes
+        n_z = 2 * np.pi * (contact[:, 1] * n_t[:, 0] - contact[:, 0] * n_t[:, 1]) / pair.lead
+        normal = np.column_stack([n_t, n_z])
+        normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+        offset = line + np.maximum(np.nan_to_num(delta), 0.0)[:, None] * normal
+        seg = use[:-1] & use[1:]  # consecutive contact points (no bridging over gaps)
+        dl = np.linalg.norm(np.diff(line, axis=0), axis=1)
+        do = np.linalg.norm(np.diff(offset, axis=0), axis=1)
+        tri1 = 0.5 * np.linalg.norm(np.cross(line[1:] - line[:-1], offset[:-1] - line[:-1]), axis=1)
+        tri2 = 0.5 * np.linalg.norm(np.cross(offset[1:] - line[1:], offset[:-1] - line[1:]), axis=1)
+        width = np.linalg.norm(offset - line, axis=1)
+        starts = seg & ~np.concatenate([[False], seg[:-1]])  # first segment of each run
+        ends = seg & ~np.concatenate([seg[1:], [False]])  # last segment of each run
+        pts_n, _ = self.female_rack.normal_section(self.helix_angle)
+        dr = np.hypot(*np.diff(pts_n, axis=0).T)
+        mid = 0.5 * (np.nan_to_num(delta[:-1]) + np.nan_to_num(delta[1:]))
+        length = float(dl[seg].sum())
+        area = float((tri1 + tri2)[seg].sum())
+        return {
+            "max_normal_clearance": float(delta[use].max()),
+            "min_normal_clearance": float(delta[use].min()),
+            "mean_clearance": float((mid * dr)[seg].sum() / dr[seg].sum()),
+            "equal_clearance": area / length if length > 0 else float("nan"),
+            "band_area": area,
+            "contact_line_length": length,
+            "wetted_perimeter": float(dl[seg].sum() + do[seg].sum() + width[:-1][starts].sum() + width[1:][ends].sum()),
+        }
+
+    def summary(self) -> dict[str, float]:
+        """The keys of ``rotorcad clearance`` (CONTRACT.md), plus the minimum clearance (negative:
+        interference) and the shift applied to position the racks."""
+        return {**self._band, "female_rack_shift": self.shift, "helix_angle_deg": float(np.degrees(self.helix_angle))}
+
+    @property
+    def datum_rack(self) -> Array:
+        """The positioned female normal rack (the datum), for plots."""
+        pts, _, _ = self._datum
+        return pts + np.array([self.shift * np.cos(self.helix_angle), 0.0])
+
+    @property
+    def datum_normals(self) -> Array:
+        return self._datum[2]
+
+
+__all__ = ["CONTACT_SIDES", "MeshingClearance", "RackCurve", "contact_of_rack_points", "normal_clearance", "rotor_rack"]
