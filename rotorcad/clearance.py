@@ -28,7 +28,7 @@ normal rack (the paper's average over its contact points, which are spread along
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -150,6 +150,60 @@ def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tan
     return np.where(found, np.einsum("ij,ij->i", p - datum, normals), np.nan)
 
 
+@dataclass(frozen=True)
+class ThermalState:
+    """Rotors and housing at working temperature (the Chinese paper in Wu & Chi's seed, sec. 1.2:
+    a body grows by dL = L zeta (t_c - t0), eq. 1; the rotor's computation temperature is the
+    arithmetic mean of suction and discharge temperature, and the centre distance follows the
+    housing). Temperatures in degC, expansion coefficients in 1/K."""
+
+    suction_temperature: float
+    discharge_temperature: float
+    reference_temperature: float = 20.0
+    rotor_expansion: float = 11.5e-6  # steel
+    housing_expansion: float = 10.5e-6  # grey cast iron
+    housing_temperature: float | None = None  # default: the rotors' computation temperature
+
+    def __post_init__(self) -> None:
+        for name in ("suction_temperature", "discharge_temperature", "reference_temperature"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v > -273.15):
+                raise DesignError(name, "a temperature above absolute zero in degC", v)
+        for name in ("rotor_expansion", "housing_expansion"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and 0.0 <= v < 1e-3):
+                raise DesignError(name, "a linear expansion coefficient from 0 to 0.001 per K", v)
+
+    @property
+    def rotor_temperature(self) -> float:
+        return 0.5 * (self.suction_temperature + self.discharge_temperature)
+
+    @property
+    def rotor_scale(self) -> float:
+        return 1.0 + self.rotor_expansion * (self.rotor_temperature - self.reference_temperature)
+
+    @property
+    def housing_scale(self) -> float:
+        t = self.rotor_temperature if self.housing_temperature is None else self.housing_temperature
+        return 1.0 + self.housing_expansion * (t - self.reference_temperature)
+
+    def apply(self, pair: RotorPair, male: Array, female: Array) -> tuple[RotorPair, Array, Array]:
+        """The hot pair and the hot profile points (each rotor grown about its own axis, the
+        lead with it, the centre distance with the housing)."""
+        k = self.rotor_scale
+        hot = replace(
+            pair,
+            center_distance=pair.center_distance * self.housing_scale,
+            male_tip_radius=pair.male_tip_radius * k,
+            male_root_radius=pair.male_root_radius * k,
+            female_tip_radius=pair.female_tip_radius * k,
+            female_root_radius=pair.female_root_radius * k,
+            lead=pair.lead * k,
+            length=pair.length * k,
+        )
+        return hot, np.asarray(male) * k, np.asarray(female) * k
+
+
 @dataclass(frozen=True, eq=False)
 class MeshingClearance:
     """Meshing clearance of a pair given by one lobe of each rotor (counter-clockwise pieces in
@@ -227,9 +281,10 @@ class MeshingClearance:
         if self.contact == "as-given":
             return 0.0
         _, tan, _ = self._datum
-        # the male lobe's trailing (rising) flank is the driving one; lands (within 6 degrees of the
-        # pitch line) belong to neither and cannot position the racks
-        side = tan[:, 1] > 0.1 if self.contact == "driving" else tan[:, 1] < -0.1
+        # the male lobe's trailing (rising) flank is the driving one. Only where a flank rises at more
+        # than 30 degrees from the pitch line can sliding the rack bring it into contact: near the
+        # lands a radial interference (hot rotors) would not go away by turning
+        side = tan[:, 1] > 0.5 if self.contact == "driving" else tan[:, 1] < -0.5
         inside = self._in_both_bores() & side
         if not inside.any():
             raise DesignError(
@@ -321,4 +376,12 @@ class MeshingClearance:
         return self._datum[2]
 
 
-__all__ = ["CONTACT_SIDES", "MeshingClearance", "RackCurve", "contact_of_rack_points", "normal_clearance", "rotor_rack"]
+__all__ = [
+    "CONTACT_SIDES",
+    "MeshingClearance",
+    "RackCurve",
+    "ThermalState",
+    "contact_of_rack_points",
+    "normal_clearance",
+    "rotor_rack",
+]

@@ -4,6 +4,7 @@ contact line of Rinder's eq. 1 from the meshing analysis (a second, independent 
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -11,7 +12,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 from exports.csv_points import read_points, write_points
-from rotorcad.clearance import MeshingClearance
+from rotorcad.clearance import MeshingClearance, ThermalState
 from rotorcad.cli.main import main
 from rotorcad.envelope import rack_frame
 from rotorcad.geometry import perp_cw, rotate
@@ -151,3 +152,29 @@ def test_cli_clearance_keys_files_and_bad_input(tmp_path, capsys):
         assert main(args) == 2
         err = capsys.readouterr().err
         assert word in err and "Traceback" not in err and err.count("\n") == 1
+
+
+def test_hot_pair_in_a_housing_that_grows_more():
+    # Thermal clearance (the Chinese paper of the MCE seed, eq. 1: dL = L zeta (t - t0), rotors at
+    # the mean of suction and discharge temperature): steel rotors (11.5e-6/K) at 70 degC in an
+    # aluminium housing (23e-6/K) move apart by da = a (k_housing - k_rotor) relative to the grown
+    # rotors. With straight flanks (beta ~ 0) the driving contact needs the rack slid by
+    # s = (k delta + da sin 30) / cos 30, and the widest gap, on the sealing tip rounding where
+    # da sin(phi) + s cos(phi) peaks, is k delta + hypot(da, s).
+    pair, _, m, f = designed(lead=1e5, length=1e6)
+    pair = dataclasses.replace(pair, strict=False)
+    thermal = ThermalState(20.0, 120.0, rotor_expansion=11.5e-6, housing_expansion=23e-6)
+    hot, m_hot, f_hot = thermal.apply(pair, m, f)
+    k = thermal.rotor_scale
+    da = hot.center_distance - k * pair.center_distance
+    mc = clearance_of(hot, m_hot, f_hot, contact="driving")
+    s = (k * DELTA + da * np.sin(30 * DEG)) / np.cos(30 * DEG)
+    assert mc.shift == pytest.approx(s, abs=1e-4)
+    delta = mc.clearance[in_contact(mc)]
+    assert delta.min() == pytest.approx(0.0, abs=2e-5)
+    assert delta.max() == pytest.approx(k * DELTA + np.hypot(da, s), abs=1e-4)
+    # rotors and housing growing alike keep a conjugate pair conjugate: clearances scale with k
+    same = ThermalState(20.0, 120.0, rotor_expansion=11.5e-6, housing_expansion=11.5e-6)
+    hot, m_hot, f_hot = same.apply(pair, m, f)
+    mc = clearance_of(hot, m_hot, f_hot)
+    np.testing.assert_allclose(mc.clearance[in_contact(mc)], k * DELTA, atol=1e-4)  # not k delta + da sin(phi)

@@ -9,7 +9,7 @@ import click
 import numpy as np
 
 from exports.csv_points import read_points, write_points
-from rotorcad.clearance import CONTACT_SIDES, MeshingClearance
+from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.errors import DesignError
 from rotorcad.rotor_pair import RotorPair
@@ -51,6 +51,22 @@ def _required(name: str, kind: type, text: str):
 @click.option(
     "--smoothing", type=float, default=0.0, show_default=True, help="Spline smoothing of the points [mm^2], 0 interpolates."
 )
+@click.option(
+    "--suction-temperature", type=float, help="Suction temperature [degC]: evaluate the pair hot (with --discharge-temperature)."
+)
+@click.option("--discharge-temperature", type=float, help="Discharge temperature [degC]; the rotors take the mean of the two.")
+@click.option("--housing-temperature", type=float, help="Housing temperature [degC]. Default: the rotors' temperature.")
+@click.option("--reference-temperature", type=float, default=20.0, show_default=True, help="Temperature of the points [degC].")
+@click.option(
+    "--rotor-expansion", type=float, default=11.5e-6, show_default=True, help="Rotors' linear expansion coefficient [1/K], steel."
+)
+@click.option(
+    "--housing-expansion",
+    type=float,
+    default=10.5e-6,
+    show_default=True,
+    help="Housing's linear expansion coefficient [1/K] (grey cast iron): sets the hot centre distance.",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the clearance along the datum rack.")
 @click.option(
@@ -66,7 +82,12 @@ def clearance(**opts: Any) -> None:
     the clearance band on the 3D contact line (area, equal clearance, wetted perimeter)."""
     mc = _evaluate(opts)
     try:
-        result = {**mc.summary(), "male_teeth": mc.pair.male_teeth, "female_teeth": mc.pair.female_teeth}
+        result = {
+            **mc.summary(),
+            "male_teeth": mc.pair.male_teeth,
+            "female_teeth": mc.pair.female_teeth,
+            "center_distance": mc.pair.center_distance,  # hot, with temperatures
+        }
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     out = Outputs()
@@ -108,6 +129,11 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         "male_root_radius": "--male-points (its smallest radius)",
         "female_tip_radius": "--female-points (its largest radius)",
         "female_root_radius": "--female-points (its smallest radius)",
+        "suction_temperature": "--suction-temperature",
+        "discharge_temperature": "--discharge-temperature",
+        "reference_temperature": "--reference-temperature",
+        "rotor_expansion": "--rotor-expansion",
+        "housing_expansion": "--housing-expansion",
     }
     try:
         pair = RotorPair(
@@ -120,7 +146,11 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
             float(rf.min()),
             opts["lead"],
             opts["length"],
+            strict=False,
         )
+        thermal = _thermal(opts)
+        if thermal is not None:
+            pair, male, female = thermal.apply(pair, male, female)
         mc = MeshingClearance(
             pair,
             lobe_pieces(pair, male, "male", opts["smoothing"]),
@@ -132,6 +162,24 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         label = names.get(exc.param, f"--{exc.param.replace('_', '-')}" if " " not in exc.param else exc.param)
         raise InputError(exc.sentence(label)) from None
     return mc
+
+
+def _thermal(opts: dict[str, Any]) -> ThermalState | None:
+    given = [opts.get(k) is not None for k in ("suction_temperature", "discharge_temperature")]
+    if not any(given):
+        if opts.get("housing_temperature") is not None:
+            raise InputError("--housing-temperature needs --suction-temperature and --discharge-temperature.")
+        return None
+    if not all(given):
+        raise InputError("give both --suction-temperature and --discharge-temperature for the hot pair.")
+    return ThermalState(
+        opts["suction_temperature"],
+        opts["discharge_temperature"],
+        opts["reference_temperature"],
+        opts["rotor_expansion"],
+        opts["housing_expansion"],
+        opts["housing_temperature"],
+    )
 
 
 def _plot(mc: MeshingClearance):
