@@ -60,7 +60,7 @@ def with_corner_fans(
 
     def fan(name: str, end: tuple[np.ndarray, np.ndarray], start: tuple[np.ndarray, np.ndarray]) -> tuple[str, Curve] | None:
         (p_end, t_end), (p_next, t_next) = end, start
-        if np.hypot(*(p_end - p_next)) > 1e-6:
+        if np.hypot(*(p_end - p_next)) > 2e-3:  # measured pieces meet within the fit error
             return None
         turn = float(np.arctan2(cross(t_end, t_next), np.dot(t_end, t_next)))
         if turn <= 1e-6:  # only a left turn is a convex corner of a counter-clockwise boundary

@@ -89,7 +89,7 @@ class MeshingAnalysis:
             s = np.linspace(piece.curve.s0, piece.curve.s1, self.samples)
             c = gen.contact(s)
             x = c.meshline
-            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-7) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-7)
+            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
             ok = c.in_contact & inside & np.all(np.isfinite(x), axis=1)
             if ok.sum() < 2:
                 continue

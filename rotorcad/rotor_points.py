@@ -16,6 +16,8 @@ from rotorcad.curves import Curve, Mapped, Spline
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate
+from rotorcad.inverse_rack import with_corner_fans
+from rotorcad.kinematics import Rotation, Translation
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -153,24 +155,173 @@ def lobe_pieces(
     return [(f"lobe part {i + 1}", c) for i, c in enumerate(curves) if abs(c.s1 - c.s0) > 1e-9]
 
 
+def _mate_corner_runs(
+    rack_curve: Curve, mate: Generated, threshold: float = 0.02, tolerance: float = 1e-4
+) -> list[tuple[float, float, bool]]:
+    """Split a rack curve derived from one rotor into the parts that generate a flank on the mate
+    and the parts along which the mate's generated point stands still: those are the path of a
+    sharp corner of the mate (its tip corner sweeping this rotor's point-generated flank), which
+    the mate receives as that corner only. Returns (s0, s1, is_corner_path) along the travel.
+
+    Classification (positions only, no tangents): over a stencil of 1/200 of the curve the mate's
+    point moves less than ``threshold`` times the rack point; a part stalled so over at least 1/100
+    of the curve is a corner path. Its ends are where the mate's point leaves that corner by more
+    than ``tolerance`` (mm), found by bisection."""
+    span = rack_curve.s1 - rack_curve.s0
+    s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
+    pr, _ = rack_curve.evaluate(s)
+    pm, _ = mate.evaluate(s)
+    k = 4  # stencil of 4 samples either side (1/200 of the curve)
+    dr = np.hypot(*(pr[2 * k :] - pr[: -2 * k]).T)
+    dm = np.hypot(*(pm[2 * k :] - pm[: -2 * k]).T)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(dr > 0, dm / dr, np.inf)
+    stalled = np.zeros(len(s), dtype=bool)
+    stalled[k:-k] = np.nan_to_num(ratio, nan=np.inf) < threshold
+    edges = np.flatnonzero(np.diff(stalled.astype(int))) + 1
+    bounds = [0, *edges.tolist(), len(s)]
+    runs = [(bounds[i], bounds[i + 1]) for i in range(len(bounds) - 1) if stalled[bounds[i]] and bounds[i + 1] - bounds[i] >= 8]
+    if not runs:
+        return [(rack_curve.s0, rack_curve.s1, False)]
+
+    def leave(corner: np.ndarray, inside: float, outside: float) -> float:
+        for _ in range(30):
+            mid = 0.5 * (inside + outside)
+            q = mate.evaluate(np.array([mid]))[0][0]
+            if np.all(np.isfinite(q)) and np.hypot(*(q - corner)) <= tolerance:
+                inside = mid
+            else:
+                outside = mid
+        return float(0.5 * (inside + outside))
+
+    out, last = [], rack_curve.s0
+    for i, j in runs:
+        # the corner is where most of the run's mate points lie; the path extends exactly as far
+        # as the mate's point stays within the tolerance of it (a slowly moving flank next to it
+        # may pass the stall test without being the corner)
+        corner = np.nanmedian(pm[i:j], axis=0)
+        near = np.nan_to_num(np.hypot(*(pm - corner).T), nan=np.inf) <= tolerance
+        centre = i + int(np.argmin(np.nan_to_num(np.hypot(*(pm[i:j] - corner).T), nan=np.inf)))
+        lo = centre
+        while lo > 0 and near[lo - 1]:
+            lo -= 1
+        hi = centre
+        while hi < len(s) - 1 and near[hi + 1]:
+            hi += 1
+        a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
+        b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
+        if (b - a) * span <= 0:
+            continue
+        if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
+            out.append((last, a, False))
+        out.append((a, b, True))
+        last = b
+    if last != rack_curve.s1:
+        out.append((last, rack_curve.s1, False))
+    parts = []
+    for a, b, c in out:
+        if abs(b - a) <= 1e-12 * abs(span):
+            continue
+        tiny = False
+        if not c:  # a flank part beside a corner path that gives the mate under 10 um of flank
+            ends, _ = mate.evaluate(np.array([a, b]))  # is noise near the path's end: part of it
+            tiny = bool(np.all(np.isfinite(ends)) and np.hypot(*(ends[1] - ends[0])) < 10 * tolerance)
+        if parts and ((c and (parts[-1][2] or parts[-1][3])) or (parts[-1][2] and tiny)):
+            parts[-1] = [parts[-1][0], b, True, False]
+        else:
+            parts.append([a, b, c, tiny])
+    return [(a, b, c) for a, b, c, _ in parts]
+
+
+def _close_corner_path_at_the_seam(
+    rack: list[RackPiece], carrier: Translation, mate: Rotation, mate_teeth: int, kind: str, tolerance: float = 1e-3
+) -> list[RackPiece]:
+    """The lobe is cut at a root, which may lie inside a mate corner's path (the mate's tip sweeps
+    this rotor's root): then that path starts the rack period and a short stretch of it ends the
+    period (or the other way round). That stretch is split off where the mate's generated point
+    comes within ``tolerance`` of the corner (one mate lobe on, by bisection) and marked as the
+    path it is."""
+    centre = np.asarray(mate.center, dtype=float)
+    pitch = 2 * np.pi / mate_teeth
+
+    def mate_point(piece: RackPiece, v: float) -> np.ndarray:
+        return Generated(piece.curve, carrier, mate).evaluate(np.array([v]))[0][0]
+
+    def split(piece: RackPiece, corner: np.ndarray, from_end: bool) -> list[RackPiece]:
+        copies = [rotate((corner - centre)[None, :], a)[0] + centre for a in (pitch, -pitch)]
+        near = lambda v: min(np.hypot(*(mate_point(piece, v) - c)) for c in copies) <= tolerance  # noqa: E731
+        c0, c1 = piece.curve.s0, piece.curve.s1
+        end = c1 if from_end else c0
+        if not near(end):
+            return [piece]
+        probe = np.linspace(end, c0 if from_end else c1, 201)
+        far = next((v for v in probe[1:] if not near(v)), None)
+        if far is None:
+            return [RackPiece(piece.curve, piece.male_name, piece.female_name, kind=kind)]
+        inside, outside = end, far
+        for _ in range(40):
+            mid = 0.5 * (inside + outside)
+            inside, outside = (mid, outside) if near(mid) else (inside, mid)
+        cut = 0.5 * (inside + outside)
+        flank = piece.curve.trimmed(c0, cut) if from_end else piece.curve.trimmed(cut, c1)
+        path = piece.curve.trimmed(cut, c1) if from_end else piece.curve.trimmed(c0, cut)
+        parts = [
+            RackPiece(flank, piece.male_name, piece.female_name),
+            RackPiece(path, piece.male_name, piece.female_name, kind=kind),
+        ]
+        return parts if from_end else parts[::-1]
+
+    first, last = rack[0], rack[-1]
+    if first.kind == kind and last.kind == "curve":
+        return rack[:-1] + split(last, mate_point(first, first.curve.s0), from_end=True)
+    if last.kind == kind and first.kind == "curve":
+        return split(first, mate_point(last, last.curve.s1), from_end=False) + rack[1:]
+    return rack
+
+
 def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float = 0.0) -> ScrewRotors:
-    """Points of the male or the female rotor in its own frame (one lobe or the whole outline)."""
+    """Points of the male or the female rotor in its own frame (one lobe or the whole outline).
+
+    The lobe is fitted piecewise between its sharp corners (:func:`lobe_pieces`); each piece and
+    each corner's fan of normals gives its part of the rack by inverse generation (Wu & Chi sec. 2,
+    eqs. 4-8). A corner's fan is the path of that corner ("male point" / "female point"), and so is
+    every part of the rack along which the mate's generated point stands still (the mate's tip
+    corner, whose point-generated flank this rotor carries): the mate receives such parts as its
+    corner, exactly as in the profile families.
+    """
     mesh = pair.mesh
-    lobe = lobe_curve(pair, points, rotor, smoothing)
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
+    pieces = lobe_pieces(pair, points, rotor, smoothing)
     if rotor == "male":
-        rack_curve = Generated(lobe, mesh.male, mesh.rack, limits=depth).reversed()
+        body, mate_body, centre, teeth = mesh.male, mesh.female, np.zeros(2), pair.male_teeth
     else:
-        placed = Mapped(lobe, ((1.0, 0.0), (0.0, 1.0)), (pair.center_distance, 0.0))
-        rack_curve = Generated(placed, mesh.female, mesh.rack, limits=depth)
-    s = np.linspace(rack_curve.s0, rack_curve.s1, 400)
-    ok = np.isfinite(rack_curve.evaluate(s)[0]).all(axis=1)
-    lost = 100.0 * (1 - ok.mean())
-    if lost > 2.0:  # a few points at sharp corners may miss their pitch circle; more is not a rotor
+        shift = (pair.center_distance, 0.0)
+        pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve in pieces]
+        body, mate_body, centre, teeth = mesh.female, mesh.male, np.array(shift), pair.female_teeth
+    own, other = ("male point", "female point") if rotor == "male" else ("female point", "male point")
+    parts: list[list[RackPiece]] = []
+    lost, total = 0, 0
+    for _name, curve in with_corner_fans(pieces, centre, 2 * np.pi / teeth):
+        gen = Generated(curve, body, mesh.rack, limits=depth)
+        rack_curve = gen.reversed() if rotor == "male" else gen  # travelled in +y (the rack's +x)
+        ok = np.isfinite(rack_curve.evaluate(np.linspace(rack_curve.s0, rack_curve.s1, 400))[0]).all(axis=1)
+        lost, total = lost + int((~ok).sum()), total + len(ok)
+        if curve.is_corner():
+            parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
+            continue
+        mate = Generated(rack_curve, mesh.rack, mate_body)
+        runs = _mate_corner_runs(rack_curve, mate)
+        parts.append([RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else "curve") for a, b, c in runs])
+    # the male's counter-clockwise pieces follow the rack's travel, the female's run against it
+    rack = [p for group in (parts if rotor == "male" else reversed(parts)) for p in group]
+    mate_teeth = pair.female_teeth if rotor == "male" else pair.male_teeth
+    rack = _close_corner_path_at_the_seam(rack, mesh.rack, mate_body, mate_teeth, other)
+    lost_share = 100.0 * lost / max(total, 1)
+    if lost_share > 2.0:  # a few points at sharp corners may miss their pitch circle; more is not a rotor
         raise DesignError(
             f"{rotor} points",
             "a profile whose every normal meets its pitch circle (it has a rack)",
             None,
-            f"{lost:.1f} % of the lobe has no rack point",
+            f"{lost_share:.1f} % of the lobe has no rack point",
         )
-    return ScrewRotors(pair, (RackPiece(rack_curve, "flank", "flank"),), f"{rotor}-points", rack_loss=lost)
+    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share)
