@@ -17,7 +17,6 @@ from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate
 from rotorcad.inverse_rack import with_corner_fans
-from rotorcad.kinematics import Rotation, Translation
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -233,52 +232,6 @@ def _mate_corner_runs(
     return [(a, b, c) for a, b, c, _ in parts]
 
 
-def _close_corner_path_at_the_seam(
-    rack: list[RackPiece], carrier: Translation, mate: Rotation, mate_teeth: int, kind: str, tolerance: float = 1e-3
-) -> list[RackPiece]:
-    """The lobe is cut at a root, which may lie inside a mate corner's path (the mate's tip sweeps
-    this rotor's root): then that path starts the rack period and a short stretch of it ends the
-    period (or the other way round). That stretch is split off where the mate's generated point
-    comes within ``tolerance`` of the corner (one mate lobe on, by bisection) and marked as the
-    path it is."""
-    centre = np.asarray(mate.center, dtype=float)
-    pitch = 2 * np.pi / mate_teeth
-
-    def mate_point(piece: RackPiece, v: float) -> np.ndarray:
-        return Generated(piece.curve, carrier, mate).evaluate(np.array([v]))[0][0]
-
-    def split(piece: RackPiece, corner: np.ndarray, from_end: bool) -> list[RackPiece]:
-        copies = [rotate((corner - centre)[None, :], a)[0] + centre for a in (pitch, -pitch)]
-        near = lambda v: min(np.hypot(*(mate_point(piece, v) - c)) for c in copies) <= tolerance  # noqa: E731
-        c0, c1 = piece.curve.s0, piece.curve.s1
-        end = c1 if from_end else c0
-        if not near(end):
-            return [piece]
-        probe = np.linspace(end, c0 if from_end else c1, 201)
-        far = next((v for v in probe[1:] if not near(v)), None)
-        if far is None:
-            return [RackPiece(piece.curve, piece.male_name, piece.female_name, kind=kind)]
-        inside, outside = end, far
-        for _ in range(40):
-            mid = 0.5 * (inside + outside)
-            inside, outside = (mid, outside) if near(mid) else (inside, mid)
-        cut = 0.5 * (inside + outside)
-        flank = piece.curve.trimmed(c0, cut) if from_end else piece.curve.trimmed(cut, c1)
-        path = piece.curve.trimmed(cut, c1) if from_end else piece.curve.trimmed(c0, cut)
-        parts = [
-            RackPiece(flank, piece.male_name, piece.female_name),
-            RackPiece(path, piece.male_name, piece.female_name, kind=kind),
-        ]
-        return parts if from_end else parts[::-1]
-
-    first, last = rack[0], rack[-1]
-    if first.kind == kind and last.kind == "curve":
-        return rack[:-1] + split(last, mate_point(first, first.curve.s0), from_end=True)
-    if last.kind == kind and first.kind == "curve":
-        return split(first, mate_point(last, last.curve.s1), from_end=False) + rack[1:]
-    return rack
-
-
 def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float = 0.0) -> ScrewRotors:
     """Points of the male or the female rotor in its own frame (one lobe or the whole outline).
 
@@ -314,8 +267,6 @@ def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoo
         parts.append([RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else "curve") for a, b, c in runs])
     # the male's counter-clockwise pieces follow the rack's travel, the female's run against it
     rack = [p for group in (parts if rotor == "male" else reversed(parts)) for p in group]
-    mate_teeth = pair.female_teeth if rotor == "male" else pair.male_teeth
-    rack = _close_corner_path_at_the_seam(rack, mesh.rack, mate_body, mate_teeth, other)
     lost_share = 100.0 * lost / max(total, 1)
     if lost_share > 2.0:  # a few points at sharp corners may miss their pitch circle; more is not a rotor
         raise DesignError(
