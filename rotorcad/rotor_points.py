@@ -1,10 +1,11 @@
 """Rotor pairs from measured points: of the rack, of the male or of the female rotor.
 
-The points (CONTRACT.md "Points files") are fitted with a cubic spline (interpolating, or
-smoothing with ``smoothing`` > 0) so that tangents are exact. A rotor's lobe is turned into its
-rack by inverse generation (Wu & Chi sec. 2, eqs. 4-8, in the transverse section), and the pair
-is generated from that rack; the rotor given comes back as its own conjugate's conjugate (a
-round trip that the tests check).
+The points (CONTRACT.md "Points files") are fitted with cubic splines (interpolating, or
+smoothing with ``smoothing`` > 0), piecewise between sharp corners, so that tangents are exact. A
+rotor's lobe is turned into its rack by inverse generation (Wu & Chi sec. 2, eqs. 4-8, in the
+transverse section), and the pair is generated from that rack; the rotor given comes back as its
+own conjugate's conjugate (a round trip that the tests check). Corner paths, its own and the
+mate's (point-generated flanks, Rinder Fig. 1-4), are found and marked as in the families.
 """
 
 from __future__ import annotations
