@@ -19,7 +19,7 @@ from scipy import optimize
 from rotorcad.curves import Curve, Mapped
 from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import distance_to_polyline
-from rotorcad.inverse_rack import DerivedRack, derive_rack
+from rotorcad.inverse_rack import DerivedRack, contact_of_rack_points, derive_rack
 from rotorcad.kinematics import gear_mesh
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -119,9 +119,7 @@ def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
         rack = rotor_rack(rotors, rotor, samples)
         pts = rack_in_contract_frame(rack, rotor)
         tan = rack.tangents * (np.array([1.0, -1.0]) if rotor == "female" else 1.0)
-        # the contact point of each rack point: its normal meets the pitch line at C
-        with np.errstate(divide="ignore", invalid="ignore"):
-            contact = np.stack([pair.male_pitch_radius + pts[:, 1], -pts[:, 1] * tan[:, 1] / tan[:, 0]], axis=1)
+        contact, _ = contact_of_rack_points(pair.male_pitch_radius, pts, tan)
         in_both = (np.hypot(*contact.T) <= pair.male_tip_radius) & (
             np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1]) <= pair.female_tip_radius
         )

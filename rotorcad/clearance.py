@@ -38,7 +38,7 @@ from scipy.spatial import cKDTree
 from rotorcad.curves import Curve, Mapped
 from rotorcad.errors import DesignError
 from rotorcad.geometry import Array, cross
-from rotorcad.inverse_rack import derive_rack
+from rotorcad.inverse_rack import contact_of_rack_points, derive_rack
 from rotorcad.rotor_pair import RotorPair
 
 CONTACT_SIDES = ("driving", "sealing", "as-given")
@@ -58,15 +58,6 @@ class RackCurve:
         c = np.cos(helix_angle)
         t = self.tangents * np.array([c, 1.0])
         return self.points * np.array([c, 1.0]), t / np.linalg.norm(t, axis=1, keepdims=True)
-
-
-def contact_of_rack_points(pair: RotorPair, points: Array, tangents: Array) -> tuple[Array, Array]:
-    """Contact point (fixed transverse frame) and male angle of rack points (rack frame, unit
-    tangents): where a point's normal meets the pitch line, that foot is at the pitch point C."""
-    r1 = pair.male_pitch_radius
-    with np.errstate(divide="ignore", invalid="ignore"):
-        offset = points[:, 1] * tangents[:, 1] / tangents[:, 0]  # foot of the normal, along the pitch line
-    return np.stack([r1 + points[:, 1], -offset], axis=1), -(points[:, 0] + offset) / r1
 
 
 def rotor_rack(
@@ -260,7 +251,7 @@ class MeshingClearance:
     def _contacts(self, shift: float) -> tuple[Array, Array]:
         """Contact point and male angle of each female (datum) rack point, the rack moved by
         ``shift`` along the pitch line."""
-        contact, angle = contact_of_rack_points(self.pair, self.female_rack.points, self.female_rack.tangents)
+        contact, angle = contact_of_rack_points(self.pair.male_pitch_radius, self.female_rack.points, self.female_rack.tangents)
         return contact, angle - shift / self.pair.male_pitch_radius
 
     def clearance_at(self, shift: float, mask: Array | None = None) -> Array:
@@ -381,7 +372,6 @@ __all__ = [
     "MeshingClearance",
     "RackCurve",
     "ThermalState",
-    "contact_of_rack_points",
     "normal_clearance",
     "rotor_rack",
 ]

@@ -276,16 +276,23 @@ def sample_curve(curve: Curve, tolerance: float, minimum: int = 2, passes: int =
         n = np.maximum(np.ceil(np.sqrt(sag / tolerance) * 1.05).astype(int), 1)
         if np.all(n == 1):
             break
-        extra = n - 1  # new parameters inside each interval
-        i = np.repeat(np.arange(len(n)), extra)
-        k = np.arange(extra.sum()) - np.repeat(np.cumsum(extra) - extra, extra) + 1
-        s_new = s[i] + np.diff(s)[i] * k / n[i]
-        p_new, t_new = curve.evaluate(s_new)
-        order = np.argsort(np.concatenate([s, s_new]) * np.sign(curve.s1 - curve.s0), kind="stable")  # s may fall
-        s = np.concatenate([s, s_new])[order]
-        p = np.concatenate([p, p_new])[order]
-        t = np.concatenate([t, t_new])[order]
+        s, p, t = split_intervals(curve, s, p, t, n)
     return s, p, t
+
+
+def split_intervals(curve: Curve, s: Array, p: Array, t: Array, n: Array) -> tuple[Array, Array, Array]:
+    """Samples (parameters ``s``, points, tangents) with interval i split into ``n[i]`` equal
+    parts in ``s``; only the new parameters are evaluated, and the order of travel is kept (a
+    generated curve runs to smaller parameters)."""
+    extra = np.maximum(np.asarray(n, dtype=int) - 1, 0)  # new parameters inside each interval
+    if not extra.any():
+        return s, p, t
+    i = np.repeat(np.arange(len(extra)), extra)
+    k = np.arange(extra.sum()) - np.repeat(np.cumsum(extra) - extra, extra) + 1
+    s_new = s[i] + np.diff(s)[i] * k / (extra[i] + 1)
+    p_new, t_new = curve.evaluate(s_new)
+    order = np.argsort(np.concatenate([s, s_new]) * np.sign(curve.s1 - curve.s0), kind="stable")
+    return np.concatenate([s, s_new])[order], np.concatenate([p, p_new])[order], np.concatenate([t, t_new])[order]
 
 
 def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> Array:
@@ -322,4 +329,5 @@ __all__ = [
     "rotated",
     "sample_curve",
     "sample_parameters",
+    "split_intervals",
 ]

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.curves import Arc, Curve, sample_curve
+from rotorcad.curves import Arc, Curve, sample_curve, split_intervals
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross
 from rotorcad.kinematics import Rotation, Translation
@@ -48,6 +48,16 @@ class DerivedRack:
     @property
     def normal_period(self) -> float:
         return self.period * np.cos(self.helix_angle)
+
+
+def contact_of_rack_points(pitch_radius: float, points: np.ndarray, tangents: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Contact point (fixed transverse frame, pitch point at (r_w, 0)) and rotation angle of rack
+    points (rack frame of CONTRACT.md, unit tangents): where a point's normal meets the pitch
+    line, that foot is at the pitch point C (law of gearing)."""
+    r1 = pitch_radius
+    with np.errstate(divide="ignore", invalid="ignore"):
+        offset = points[:, 1] * tangents[:, 1] / tangents[:, 0]  # foot of the normal, along the pitch line
+    return np.stack([r1 + points[:, 1], -offset], axis=1), -(points[:, 0] + offset) / r1
 
 
 def with_corner_fans(
@@ -122,24 +132,14 @@ def _on_the_corner_path(
     return ok & (run if start == 0 else run[::-1])
 
 
-def _refine_by_contact(
-    gen: Generated, s: np.ndarray, p: np.ndarray, t: np.ndarray, step: float, axial_per_rad: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Insert samples where consecutive contact points (3D) are more than ``step`` apart."""
+def _refine_by_contact(gen: Generated, s: np.ndarray, p: np.ndarray, t: np.ndarray, step: float) -> tuple[np.ndarray, ...]:
+    """Split the intervals whose contact points (the meshline) are more than ``step`` apart."""
     for _ in range(6):
-        c = gen.contact(s)
-        line = np.column_stack([c.meshline, axial_per_rad * c.t])
-        gap = np.nan_to_num(np.linalg.norm(np.diff(line, axis=0), axis=1), nan=0.0)
+        gap = np.nan_to_num(np.hypot(*np.diff(gen.contact(s).meshline, axis=0).T), nan=0.0)
         n = np.minimum(np.ceil(gap / step).astype(int), 64)
         if np.all(n <= 1):
             break
-        extra = np.maximum(n - 1, 0)
-        i = np.repeat(np.arange(len(n)), extra)
-        k = np.arange(extra.sum()) - np.repeat(np.cumsum(extra) - extra, extra) + 1
-        s_new = s[i] + np.diff(s)[i] * k / n[i]
-        p_new, t_new = gen.evaluate(s_new)
-        order = np.argsort(np.concatenate([s, s_new]) * np.sign(gen.s1 - gen.s0), kind="stable")
-        s, p, t = (np.concatenate([a, b])[order] for a, b in ((s, s_new), (p, p_new), (t, t_new)))
+        s, p, t = split_intervals(gen, s, p, t, n)
     return s, p, t
 
 
@@ -154,7 +154,6 @@ def derive_rack(
     pitch_angle: float = 0.0,
     tolerance: float = 1e-4,
     contact_step: float = 0.0,
-    axial_per_rad: float = 0.0,
 ) -> DerivedRack:
     """Rack of a counter-clockwise chain of profile pieces on a rotating ``body`` (one lobe of
     ``pitch_angle``, so that the corner at the junction with the previous lobe is found too),
@@ -162,9 +161,8 @@ def derive_rack(
 
     ``depth`` = (y_min, y_max) of the rack about its pitch line picks, where the normal line cuts
     the pitch circle twice, the root that lies on the rack (see :mod:`rotorcad.envelope`).
-    ``contact_step`` > 0 refines the samples until the contact points, in 3D with z =
-    ``axial_per_rad`` times the motion parameter (h1 / 2 pi for a screw rotor, Rinder eq. 1), are
-    at most that far apart: near roundings the contact runs fast along the rack.
+    ``contact_step`` > 0 refines the samples until their contact points (the meshline) are at
+    most that far apart: near roundings the contact runs fast along the rack.
     """
     centre = np.asarray(body.center, dtype=float)
     # the rack rolls on the pitch circle at the pitch point C = centre + (r, 0) (or - (r, 0) for a
@@ -178,7 +176,7 @@ def derive_rack(
         gen = Generated(curve, body, rack, limits=depth)
         s, p, t = sample_curve(gen, tolerance, minimum=samples)  # refined where the rack turns fast (corner paths)
         if contact_step > 0:
-            s, p, t = _refine_by_contact(gen, s, p, t, contact_step, axial_per_rad)
+            s, p, t = _refine_by_contact(gen, s, p, t, contact_step)
         ok = np.isfinite(p).all(axis=1)
         lost += int((~ok).sum())
         total += len(ok)
@@ -195,4 +193,4 @@ def derive_rack(
     return DerivedRack(r, rt, tuple(names), np.concatenate(idx), period, lost / max(total, 1), pitch_radius, helix_angle)
 
 
-__all__ = ["DerivedRack", "derive_rack", "with_corner_fans"]
+__all__ = ["DerivedRack", "contact_of_rack_points", "derive_rack", "with_corner_fans"]

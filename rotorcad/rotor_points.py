@@ -65,14 +65,10 @@ def _lobe_spline(points: np.ndarray, teeth: int, smoothing: float, facing: float
     pitch = 2 * np.pi / teeth
     theta = _facing_root_angle(p, teeth, facing)
 
-    def crossing(th: float) -> float:
-        rel = np.mod(np.arctan2(p[:, 1], p[:, 0]) - th + np.pi, 2 * np.pi) - np.pi
-        i = np.nonzero((rel[:-1] < 0) & (rel[1:] >= 0))[0][0]
-        f = lambda v: np.mod(np.arctan2(*spline.evaluate(v)[0][0][::-1]) - th + np.pi, 2 * np.pi) - np.pi  # noqa: E731
-        return optimize.brentq(f, s[i], s[i + 1], xtol=1e-13)
-
-    s_a = crossing(theta)
-    s_b = crossing(theta + pitch)
+    s_a = _polar_crossing(spline, p, s, theta)
+    s_b = _polar_crossing(spline, p, s, theta + pitch)
+    if s_a is None or s_b is None:
+        raise DesignError("points", "an outline that every ray from its centre crosses once", None)
     if s_b <= s_a:
         s_b += spline.s1
     return spline, s_a, s_b
@@ -202,12 +198,9 @@ def _mate_corner_runs(
         corner = np.nanmedian(pm[i:j], axis=0)
         near = np.nan_to_num(np.hypot(*(pm - corner).T), nan=np.inf) <= tolerance
         centre = i + int(np.argmin(np.nan_to_num(np.hypot(*(pm[i:j] - corner).T), nan=np.inf)))
-        lo = centre
-        while lo > 0 and near[lo - 1]:
-            lo -= 1
-        hi = centre
-        while hi < len(s) - 1 and near[hi + 1]:
-            hi += 1
+        far = np.flatnonzero(~near)
+        lo = int(far[far < centre].max(initial=-1)) + 1  # the run of near samples around the centre
+        hi = int(far[far > centre].min(initial=len(s))) - 1
         a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
         b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
         if (b - a) * span <= 0:

@@ -15,19 +15,6 @@ from rotorcad.errors import DesignError
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import lobe_pieces
 
-CONTRACT_KEYS = (
-    "max_normal_clearance",
-    "mean_clearance",
-    "equal_clearance",
-    "band_area",
-    "contact_line_length",
-    "wetted_perimeter",
-)
-
-
-def _required(name: str, kind: type, text: str):
-    return click.option(name, type=kind, required=False, help=text)
-
 
 @click.command()
 @click.option(
@@ -36,9 +23,9 @@ def _required(name: str, kind: type, text: str):
 @click.option(
     "--female-points", type=click.Path(path_type=Path, dir_okay=False), help="Female profile points (CSV x,y in mm, own frame)."
 )
-@_required("--male-teeth", int, "Male lobes z1 (2..12).")
-@_required("--female-teeth", int, "Female lobes z2 (2..12).")
-@_required("--center-distance", float, "Centre distance a [mm] at which the pair runs.")
+@click.option("--male-teeth", type=int, help="Male lobes z1 (2..12). Required.")
+@click.option("--female-teeth", type=int, help="Female lobes z2 (2..12). Required.")
+@click.option("--center-distance", type=float, help="Centre distance a [mm] at which the pair runs. Required.")
 @click.option("--lead", type=float, default=300.0, show_default=True, help="Male lead h1 [mm].")
 @click.option("--length", type=float, default=190.0, show_default=True, help="Rotor length L [mm].")
 @click.option(
