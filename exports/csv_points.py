@@ -1,13 +1,56 @@
 """Points files (CONTRACT.md, "Points files"): CSV with the header ``x,y`` in mm, one point per
-line in order along the curve, comment lines starting with ``#``."""
+line in order along the curve, comment lines starting with ``#``.
+
+The reader takes files from users and measuring machines, so it refuses anything it cannot read
+as a profile with one sentence naming the file's option (``label``): a path that is not a regular
+file (checked with ``os.stat`` before opening, so a FIFO or a device never blocks it), a file over
+:data:`MAX_BYTES`, binary data, a missing header, a malformed or non-finite value (naming the
+line), fewer than 4 distinct points, more than :data:`MAX_POINTS`, and points that are all the
+same or all on one straight line. Accepted variants: UTF-8 (with or without a byte-order mark) or
+Latin-1 text; the separators ``,``, ``;``, tab or blanks, as the header line uses them; more
+columns than two (``x,y,z,...``), of which the first two are read.
+"""
 
 from __future__ import annotations
 
+import os
+import re
+import stat
 from pathlib import Path
 
 import numpy as np
 
 from rotorcad.errors import DesignError
+
+MAX_BYTES = 64 * 2**20
+"""Largest points (or DXF) file read, bytes (64 MiB)."""
+
+MAX_POINTS = 2_000_000
+"""Largest number of points in a profile."""
+
+COLLINEAR = 1e-9
+"""Points within this fraction of their extent of one straight line are not a profile."""
+
+_MAGIC = (
+    (b"\x89PNG\r\n\x1a\n", "a PNG image"),
+    (b"\xff\xd8\xff", "a JPEG image"),
+    (b"GIF8", "a GIF image"),
+    (b"%PDF-", "a PDF document"),
+    (b"PK\x03\x04", "a ZIP archive (or an .xlsx or .docx document)"),
+    (b"PK\x05\x06", "an empty ZIP archive"),
+    (b"\x1f\x8b", "gzip-compressed data"),
+    (b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1", "an OLE2 document (such as an .xls workbook)"),
+    (b"AutoCAD Binary DXF", "a binary DXF drawing"),
+)
+_CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")  # C0 controls other than tab, line feed, VT, FF, CR
+_DXF_TEXT = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(?:999[ \t]*\r?\n[^\r\n]*\r?\n\s*)*0[ \t]*\r?\n[ \t]*SECTION\b")
+_FILE_KINDS = (
+    (stat.S_ISDIR, "a directory"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
 
 
 def write_points(path: Path, points: np.ndarray, comments: list[str] | None = None, header: str = "x,y") -> None:
@@ -20,33 +63,235 @@ def write_points(path: Path, points: np.ndarray, comments: list[str] | None = No
         np.savetxt(f, np.asarray(points, dtype=float), delimiter=",", fmt="%.12g")
 
 
+def looks_like_dxf(head: bytes) -> bool:
+    """True when the first bytes of a file are those of a DXF drawing: the binary sentinel
+    ``AutoCAD Binary DXF``, or (after optional blanks and ``999`` comments) the group code ``0``
+    followed by ``SECTION``."""
+    return head.startswith(b"AutoCAD Binary DXF") or _DXF_TEXT.match(head) is not None
+
+
+def check_regular_file(path: Path, label: str, kind: str = "CSV points file") -> os.stat_result:
+    """Refuse, without opening it, a ``path`` that is missing, not a regular file (a directory,
+    FIFO, device or socket) or larger than :data:`MAX_BYTES`.
+
+    Parameters
+    ----------
+    path : Path
+        The file to be read.
+    label : str
+        The option or key that named the file; it leads the error sentence.
+    kind : str
+        What the file should be, a noun for the error sentence (``"CSV points file"``).
+
+    Returns
+    -------
+    os.stat_result
+        The file's status (``st_size`` in bytes).
+    """
+    try:
+        st = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        raise DesignError(label, f"an existing {kind}", str(path), "there is no such file") from None
+    except PermissionError:
+        raise DesignError(label, f"a readable {kind}", str(path), "permission denied") from None
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise DesignError(label, f"an existing {kind}", str(path), reason.rstrip(".")) from None
+    if not stat.S_ISREG(st.st_mode):
+        what = next((name for test, name in _FILE_KINDS if test(st.st_mode)), "not a regular file")
+        raise DesignError(label, f"a {kind}, not a directory, pipe or device", str(path), f"it is {what}")
+    if st.st_size > MAX_BYTES:
+        raise DesignError(
+            label,
+            f"a {kind} of at most {MAX_BYTES // 2**20} MiB",
+            str(path),
+            f"it has {st.st_size} bytes ({st.st_size / 2**20:.1f} MiB)",
+        )
+    return st
+
+
+def _read_bytes(path: Path, label: str, kind: str) -> bytes:
+    """The whole content of a regular file checked by :func:`check_regular_file`."""
+    check_regular_file(path, label, kind)
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
+    try:
+        fd = os.open(path, flags)  # non-blocking: a FIFO swapped in after the check cannot hang the read
+    except OSError as exc:
+        raise DesignError(label, f"a readable {kind}", str(path), exc.strerror or "it cannot be opened") from None
+    with os.fdopen(fd, "rb") as f:
+        if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+            raise DesignError(label, f"a {kind}, not a directory, pipe or device", str(path), "it changed while opened")
+        data = f.read(MAX_BYTES + 1)
+    if len(data) > MAX_BYTES:
+        raise DesignError(label, f"a {kind} of at most {MAX_BYTES // 2**20} MiB", str(path), "it grew while being read")
+    return data
+
+
+def _decode(data: bytes, label: str, path: Path) -> str:
+    """Text of a points file: UTF-8 (a byte-order mark is dropped), else Latin-1; binary data is
+    refused."""
+    allowed = "a CSV points file (text with the header x,y)"
+    for magic, name in _MAGIC:
+        if data.startswith(magic):
+            raise DesignError(label, allowed, str(path), f"it is {name}, not a CSV points file")
+    if b"\x00" in data:
+        raise DesignError(label, allowed, str(path), "it holds NUL bytes (binary data), not a CSV points file")
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+        if sum(b >= 0x80 for b in data[:4096]) > 0.3 * min(len(data), 4096):
+            raise DesignError(label, allowed, str(path), "it is binary data, not a CSV points file") from None
+    bad = _CONTROL.search(text)
+    if bad:
+        code = ord(bad.group())
+        raise DesignError(
+            label, allowed, str(path), f"it holds the control byte 0x{code:02x} (binary data), not a CSV points file"
+        )
+    return text
+
+
+def _quote(line: str, limit: int = 60) -> str:
+    return repr(line if len(line) <= limit else line[:limit] + "...")
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return "_" not in text
+
+
 def read_points(path: Path, label: str = "points file") -> np.ndarray:
-    """Read a points file; a malformed file is refused with one sentence naming it."""
+    """Read a points file; anything that is not a readable profile is refused.
+
+    Parameters
+    ----------
+    path : Path
+        CSV file: a header line ``x,y`` (case-insensitive, blanks allowed; further columns such
+        as ``x,y,z`` are allowed and ignored), then one point per line in mm, in order along
+        the curve. Lines starting with ``#`` and blank lines are skipped. The separator is the
+        one the header uses: ``,``, ``;``, tab, or blanks. UTF-8 or Latin-1.
+    label : str
+        The option or key that named the file; it leads the error sentence.
+
+    Returns
+    -------
+    numpy.ndarray
+        Points (n, 2) in mm, n >= 4, with consecutive repeated points dropped.
+
+    Raises
+    ------
+    DesignError
+        With one sentence naming ``label``: not a regular file, over 64 MiB, binary data, no
+        header ``x,y``, a line without the header's number of values or with a value that is
+        not a finite number (naming the line), fewer than 4 distinct points, more than
+        2 000 000 points, all points identical or on one straight line.
+    """
     path = Path(path)
-    if not path.is_file():
-        raise DesignError(label, "an existing CSV file", str(path))
-    rows: list[tuple[float, float]] = []
-    header_seen = False
-    with open(path, encoding="utf-8") as f:
-        for number, raw in enumerate(f, start=1):
-            line = raw.strip()
-            if not line or line.startswith("#"):
-                continue
-            if not header_seen:
-                if [c.strip().lower() for c in line.split(",")] != ["x", "y"]:
-                    raise DesignError(
-                        label, "a CSV whose first line is the header x,y", str(path), f"line {number} reads {line!r}"
-                    )
-                header_seen = True
-                continue
-            parts = line.split(",")
-            try:
-                if len(parts) != 2:
-                    raise ValueError
-                rows.append((float(parts[0]), float(parts[1])))
-            except ValueError:
-                raise DesignError(label, "two numbers x,y on every line", str(path), f"line {number} reads {line!r}") from None
-    pts = np.array(rows, dtype=float).reshape(-1, 2)
-    if len(pts) < 4 or not np.all(np.isfinite(pts)):
-        raise DesignError(label, "at least 4 finite points", str(path), f"{len(pts)} points read")
-    return pts
+    text = _decode(_read_bytes(path, label, "CSV points file"), label, path)
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    header_at = next((i for i, raw in enumerate(lines) if raw.strip() and not raw.strip().startswith("#")), None)
+    if header_at is None:
+        raise DesignError(label, "a CSV points file with the header x,y and at least 4 points", str(path), "it holds no data")
+    header = lines[header_at].strip()
+    sep = "," if "," in header else ";" if ";" in header else "\t" if "\t" in header else None
+    columns = [c.strip().strip("\"'").lower() for c in header.split(sep)]
+    if len(columns) < 2 or columns[:2] != ["x", "y"]:
+        if looks_like_dxf(text[:256].encode("latin-1", "replace")):
+            detail = "it is a DXF drawing, not a CSV points file"
+        else:
+            detail = f"line {header_at + 1} reads {_quote(header)}"
+            if all(_is_number(c) for c in header.split(sep)):
+                detail += " (the header line x,y is missing)"
+        raise DesignError(label, "a CSV points file whose first line is the header x,y", str(path), detail)
+    width = len(columns)
+    sep_name = {",": "','", ";": "';'", "\t": "tabs", None: "blanks"}[sep]
+    xs: list[float] = []
+    ys: list[float] = []
+    numbers: list[int] = []
+    for i in range(header_at + 1, len(lines)):
+        line = lines[i].strip()
+        if not line or line[0] == "#":
+            continue
+        parts = line.split(sep)
+        try:
+            if len(parts) != width or "_" in parts[0] or "_" in parts[1]:
+                raise ValueError
+            x, y = float(parts[0]), float(parts[1])
+        except ValueError:
+            allowed = f"two numbers x,y separated by {sep_name} on every line"
+            if width > 2:
+                allowed = f"{width} values separated by {sep_name} on every line as in its header, the first two numbers x,y"
+            detail = f"line {i + 1} reads {_quote(line)}"
+            if sep != "," and "," in line and all(_is_number(p.replace(",", ".")) for p in parts[:2]):
+                detail += " (write decimal points, not decimal commas)"
+            raise DesignError(label, allowed, str(path), detail) from None
+        xs.append(x)
+        ys.append(y)
+        numbers.append(i + 1)
+        if len(xs) > MAX_POINTS:
+            raise DesignError(
+                label, f"a profile of at most {MAX_POINTS} points", str(path), f"line {i + 1} holds a point beyond that"
+            )
+    pts = np.column_stack([np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)])
+    finite = np.isfinite(pts).all(axis=1)
+    if not finite.all():
+        number = numbers[int(np.argmin(finite))]
+        raise DesignError(
+            label, "finite numbers x,y on every line", str(path), f"line {number} reads {_quote(lines[number - 1].strip())}"
+        )
+    return check_profile(pts, label, str(path))
+
+
+def check_profile(points: np.ndarray, label: str, value: object = None) -> np.ndarray:
+    """Drop consecutive repeated points and refuse what cannot be a profile.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Points (n, 2) in mm along a curve.
+    label : str
+        The option or key the points came from; it leads the error sentence.
+    value : object
+        What to show as the value given (the file name).
+
+    Returns
+    -------
+    numpy.ndarray
+        The points (m, 2) without consecutive repeats.
+
+    Raises
+    ------
+    DesignError
+        Non-finite coordinates, more than :data:`MAX_POINTS` points, all points identical,
+        fewer than 4 distinct points, or all points on one straight line (within
+        :data:`COLLINEAR` of their extent).
+    """
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    if not np.isfinite(pts).all():
+        raise DesignError(label, "a profile of finite coordinates", value, "a coordinate is NaN or infinite")
+    if len(pts) > MAX_POINTS:
+        raise DesignError(label, f"a profile of at most {MAX_POINTS} points", value, f"{len(pts)} points")
+    keep = np.concatenate([[True], np.any(np.diff(pts, axis=0) != 0.0, axis=1)]) if len(pts) else np.zeros(0, bool)
+    distinct = pts[keep]
+    if len(pts) > 1 and len(distinct) == 1:
+        x, y = distinct[0]
+        raise DesignError(
+            label, "a profile (points along a curve)", value, f"all {len(pts)} points are the same point ({x:g}, {y:g})"
+        )
+    if len(distinct) < 4:
+        raise DesignError(label, "a profile of at least 4 distinct points", value, f"{len(distinct)} distinct points read")
+    centred = distinct - distinct.mean(axis=0)
+    extent = float(np.hypot(*np.ptp(distinct, axis=0)))
+    _, vectors = np.linalg.eigh(centred.T @ centred)
+    off_line = float(np.abs(centred @ vectors[:, 0]).max())  # distance from the principal line
+    if off_line <= COLLINEAR * extent:
+        raise DesignError(
+            label,
+            "a profile (points along a curve)",
+            value,
+            f"all {len(distinct)} points lie on one straight line (within {off_line:.3g} mm over {extent:.6g} mm)",
+        )
+    return distinct
