@@ -16,8 +16,8 @@ from scipy import optimize
 from rotorcad.curves import Curve, Mapped, Spline
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
-from rotorcad.geometry import rotate
 from rotorcad.inverse_rack import with_corner_fans
+from rotorcad.measured_outline import corners, scatter, whole_outline
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -34,16 +34,12 @@ def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float 
     return ScrewRotors(pair, (RackPiece(spline, "flank", "flank"),), "rack-points")
 
 
-def _whole_outline(points: np.ndarray, teeth: int) -> np.ndarray:
-    """The whole outline, counter-clockwise, from points of one lobe (patterned) or of all."""
-    pts = np.asarray(points, dtype=float)
-    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
-    if abs(ang[-1] - ang[0]) < 2 * np.pi * (1 - 0.5 / teeth):  # one lobe: pattern it
-        if ang[-1] < ang[0]:
-            pts, ang = pts[::-1], ang[::-1]
-        return np.vstack([rotate(pts[:-1], 2 * np.pi * k / teeth) for k in range(teeth)])
-    whole = pts if ang[-1] > ang[0] else pts[::-1]
-    return whole[:-1] if np.allclose(whole[0], whole[-1]) else whole
+def _smoothing(run: np.ndarray, sigma: float, smoothing: float | None) -> float:
+    """scipy's smoothing value for a run of points: the user's, or n sigma^2 from the estimated
+    scatter (:mod:`rotorcad.measured_outline`); a run too short for a smoothing cubic interpolates."""
+    if smoothing is not None:
+        return smoothing
+    return len(run) * sigma**2 if len(run) > 8 else 0.0
 
 
 def _facing_root_angle(whole: np.ndarray, teeth: int, facing: float) -> float:
@@ -54,11 +50,10 @@ def _facing_root_angle(whole: np.ndarray, teeth: int, facing: float) -> float:
     return float(theta0 + np.floor((facing - theta0) / pitch) * pitch)
 
 
-def _lobe_spline(points: np.ndarray, teeth: int, smoothing: float, facing: float) -> tuple[Spline, float, float]:
-    """Periodic spline of the whole outline (one lobe is patterned) and the parameters of the lobe
-    between two consecutive roots that contains the polar angle ``facing`` (towards the mate, so
-    that its contacts lie within half a turn of the mesh position)."""
-    whole = _whole_outline(points, teeth)
+def _lobe_spline(whole: np.ndarray, teeth: int, smoothing: float, facing: float) -> tuple[Spline, float, float]:
+    """Periodic spline of the whole outline and the parameters of the lobe between two
+    consecutive roots that contains the polar angle ``facing`` (towards the mate, so that its
+    contacts lie within half a turn of the mesh position)."""
     spline = Spline.fit(whole, smoothing=smoothing, periodic=True)
     s = np.linspace(0.0, spline.s1, 20 * len(whole) + 1)
     p, _ = spline.evaluate(s)
@@ -74,11 +69,14 @@ def _lobe_spline(points: np.ndarray, teeth: int, smoothing: float, facing: float
     return spline, s_a, s_b
 
 
-def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float = 0.0) -> Curve:
+def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None) -> Curve:
     """The spline of one lobe of the male or the female (own frame, counter-clockwise, from root to
-    root), the lobe facing the mate, from points of one lobe or of the whole outline."""
+    root), the lobe facing the mate, from points of one lobe or of the whole outline; ``smoothing``
+    None estimates it from the points' scatter."""
     teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
-    spline, s_a, s_b = _lobe_spline(points, teeth, smoothing, 0.0 if rotor == "male" else np.pi)
+    whole = whole_outline(points, teeth, f"{rotor} points")
+    s_fit = _smoothing(whole, scatter(whole), smoothing)
+    spline, s_a, s_b = _lobe_spline(whole, teeth, s_fit, 0.0 if rotor == "male" else np.pi)
     if s_b > spline.s1:  # the lobe wraps past the spline's seam: shift the seam
         p, _ = spline.evaluate(np.linspace(s_a, s_b, 4000) % spline.s1)
         spline = Spline.fit(p, smoothing=0.0)
@@ -104,30 +102,64 @@ def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: floa
     return float(optimize.brentq(f, a, b, xtol=1e-13))
 
 
+def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray) -> list[np.ndarray]:
+    """The outline cut at its corners: for each corner (on edge i, at a point) to the next, the
+    corner's point, the outline's points in between and the next corner's point; points within
+    1e-6 mm of a corner point are left out (the corner is that point)."""
+    n = len(whole)
+    ring = np.vstack([whole, whole])
+    out = []
+    for j, (i, c) in enumerate(zip(edges, points, strict=True)):
+        i_next = edges[(j + 1) % len(edges)] + (n if j + 1 == len(edges) else 0)
+        c_next = points[(j + 1) % len(edges)]
+        inner = ring[i + 1 : i_next + 1]
+        inner = inner[(np.hypot(*(inner - c).T) > 1e-6) & (np.hypot(*(inner - c_next).T) > 1e-6)]
+        out.append(np.vstack([c, inner, c_next]))
+    return out
+
+
 def lobe_pieces(
-    pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float = 0.0, corner_angle_deg: float = 30.0
+    pair: RotorPair,
+    points: np.ndarray,
+    rotor: str,
+    smoothing: float | None = None,
+    corner_angle_deg: float = 30.0,
+    label: str | None = None,
 ) -> list[tuple[str, Curve]]:
     """One lobe of the male or the female (own frame, counter-clockwise, from root to root, the
     lobe facing the mate) as spline pieces between the sharp corners of the points.
 
-    A measured outline may have sharp corners (a female tip without rounding): a spline through one
-    rings. A vertex where the polygon turns by more than ``corner_angle_deg`` is a corner; the
-    outline is fitted piecewise between corners (each piece a cubic spline with exact tangents),
-    and the corners stay corners (their fans of normals are added where racks are derived). An
-    outline without corners is one periodic spline (:func:`lobe_curve`).
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts and centre distance (mm).
+    points : (n, 2) float, mm
+        One lobe or the whole outline in the rotor's own frame, either direction, any start;
+        exact, measured (scatter of a few um) or polygonal (boolean cutting, with scallops).
+    rotor : "male" or "female"
+    smoothing : float or None
+        scipy's spline smoothing (mm^2) for every piece; None: n sigma^2 from the estimated
+        scatter sigma (:func:`rotorcad.measured_outline.scatter`), 0 for exact points.
+    corner_angle_deg : float
+        Turn (deg) above which a vertex is a sharp corner (:func:`rotorcad.measured_outline.corners`).
+    label : str
+        How the points are named in errors (default "<rotor> points").
+
+    A measured outline may have sharp corners (a female tip without rounding, a tip land cut by
+    the rack's flat): a spline through one rings. The outline is fitted piecewise between corners
+    (each piece a cubic spline with exact tangents), and the corners stay corners (their fans of
+    normals are added where racks are derived). An outline without corners is one periodic spline
+    (:func:`lobe_curve`).
     """
     teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
-    whole = _whole_outline(points, teeth)
-    d = np.diff(np.vstack([whole, whole[:1]]), axis=0)
-    heading = np.arctan2(d[:, 1], d[:, 0])
-    turn = np.mod(heading - np.roll(heading, 1) + np.pi, 2 * np.pi) - np.pi  # at each vertex
-    corners = np.nonzero(np.abs(turn) > np.radians(corner_angle_deg))[0]
-    if len(corners) == 0:
-        return [("flank", lobe_curve(pair, points, rotor, smoothing))]
-    n = len(whole)
-    ring = np.vstack([whole, whole])
-    runs = [ring[a : b + 1] for a, b in zip(corners, np.append(corners[1:], corners[0] + n), strict=True)]
-    splines = [Spline.fit(run, smoothing=smoothing) for run in runs]
+    label = label or f"{rotor} points"
+    whole = whole_outline(points, teeth, label)
+    sigma = scatter(whole) if smoothing is None else 0.0
+    edges, corner_points = corners(whole, sigma, corner_angle_deg)
+    if len(edges) == 0:
+        return [("flank", lobe_curve(pair, whole, rotor, smoothing))]
+    runs = _runs_between_corners(whole, edges, corner_points)
+    splines = [Spline.fit(run, smoothing=_smoothing(run, sigma, smoothing)) for run in runs]
     params = [np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))]) for run in runs]
     theta = _facing_root_angle(whole, teeth, 0.0 if rotor == "male" else np.pi)
 
@@ -136,7 +168,7 @@ def lobe_pieces(
             s = _polar_crossing(sp, run, u, th)
             if s is not None:
                 return k, s
-        raise DesignError(f"{rotor} points", "an outline that every ray from its centre crosses once", None)
+        raise DesignError(label, "an outline that every ray from its centre crosses once", None)
 
     (k_a, s_a), (k_b, s_b) = locate(theta), locate(theta + 2 * np.pi / teeth)
     if k_a == k_b and s_b > s_a:
@@ -226,7 +258,7 @@ def _mate_corner_runs(
     return [(a, b, c) for a, b, c, _ in parts]
 
 
-def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float = 0.0) -> ScrewRotors:
+def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None) -> ScrewRotors:
     """Points of the male or the female rotor in its own frame (one lobe or the whole outline).
 
     The lobe is fitted piecewise between its sharp corners (:func:`lobe_pieces`); each piece and

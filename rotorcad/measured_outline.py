@@ -1,0 +1,159 @@
+"""Rotor outlines as users bring them: measured (CMM), drawn, or cut by a boolean simulation.
+
+One job: turn the points of one lobe or of the whole outline, in any order and from any start,
+into one clean whole outline (counter-clockwise, no repeated or duplicated points), with the lobe
+count checked against the design, the scatter of the points estimated, and the sharp corners
+found at a scale above that scatter. The spline fit and the inverse generation that follow
+(:mod:`rotorcad.rotor_points`) rely on it.
+
+Scatter. A smooth curve sampled at nearly even spacing h has third differences
+p[i+2] - 3 p[i+1] + 3 p[i] - p[i-1] of order h^3 / rho^2; independent normal scatter of standard
+deviation sigma adds a term of standard deviation sigma sqrt(20). The median of the third
+differences' normal component (a robust estimate, untouched by the few corners) gives sigma; the
+smoothing spline that follows allows a mean squared residual of sigma^2 (scipy's s = n sigma^2,
+Dierckx, *Curve and Surface Fitting with Splines*, sec. 5.2).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.ndimage import maximum_filter1d
+
+from rotorcad.errors import DesignError
+from rotorcad.geometry import cross, rotate
+
+SCATTER_FLOOR = 1e-4  # mm: below this the points are taken as exact (interpolated)
+
+
+def _drop_repeats(points: np.ndarray) -> np.ndarray:
+    """Points without consecutive duplicates (within 1e-9 mm) and without a repeated end point."""
+    pts = np.asarray(points, dtype=float)
+    step = np.hypot(*np.diff(pts, axis=0).T)
+    pts = pts[np.concatenate([[True], step > 1e-9])]
+    while len(pts) > 1 and np.hypot(*(pts[0] - pts[-1])) <= 1e-9:
+        pts = pts[:-1]
+    return pts
+
+
+def lobe_count(whole: np.ndarray) -> int:
+    """Number of lobes of a closed outline about the origin: the cycles of its radius between the
+    lower and the upper third of its range (a hysteresis that noise cannot trip)."""
+    r = np.hypot(*whole.T)
+    lo, hi = r.min() + (r.max() - r.min()) / 3, r.max() - (r.max() - r.min()) / 3
+    state = np.where(r >= hi, 1, np.where(r <= lo, -1, 0))
+    state = state[state != 0]
+    if len(state) == 0:
+        return 0
+    changes = np.count_nonzero(np.diff(np.concatenate([state, state[:1]])) > 0)  # low -> high, around the ring
+    return int(changes)
+
+
+def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
+    """The whole outline, counter-clockwise about the rotor's centre (the origin), without repeated
+    or duplicated points, from the points of one lobe (patterned ``teeth`` times) or of the whole
+    outline, in either direction and from any start.
+
+    Raises
+    ------
+    DesignError
+        naming ``label`` when the points wind around the centre but have another number of lobes
+        than ``teeth``, or when points of one lobe span another angle than the lobe pitch.
+    """
+    pts = _drop_repeats(points)
+    if len(pts) < 4:
+        raise DesignError(label, "at least 4 distinct points", None, f"{len(pts)} found")
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    pitch = 2 * np.pi / teeth
+    closing = np.arctan2(cross(pts[-1], pts[0]), np.dot(pts[-1], pts[0]))  # the step from the last point back to the first
+    winding = (ang[-1] - ang[0] + closing) / (2 * np.pi)
+    if abs(abs(winding) - 1.0) < 0.25:  # a closed outline around the centre
+        whole = pts if winding > 0 else pts[::-1]
+        found = lobe_count(whole)
+        if found != teeth:
+            raise DesignError(label, f"an outline of {teeth} lobes as the tooth count says", None, f"it has {found} lobes")
+        return whole
+    span = ang[-1] - ang[0]
+    if span < 0:
+        pts, span = pts[::-1], -span
+    spacing = np.median(np.abs(np.diff(ang)))
+    if abs(span - pitch) > max(3 * spacing, 0.02 * pitch):
+        fits = 2 * np.pi / span if span > 0 else float("inf")
+        raise DesignError(
+            label,
+            f"one lobe spanning the lobe pitch 360/{teeth} = {np.degrees(pitch):.4g} deg, or the whole outline",
+            None,
+            f"the points span {np.degrees(span):.4g} deg, which fits {fits:.3g} lobes",
+        )
+    # one lobe: keep one pitch of it (the last point may repeat the first one lobe on) and pattern it
+    ang = ang - ang[0]
+    keep = ang < pitch - 1e-9 * pitch
+    lobe = pts[keep]
+    return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
+
+
+def scatter(whole: np.ndarray) -> float:
+    """Estimated standard deviation (mm) of the points' scatter normal to the outline, from the
+    median of the third differences (module docstring); 0 for exact points."""
+    p = np.asarray(whole, dtype=float)
+    if len(p) < 8:
+        return 0.0
+    d3 = np.roll(p, -2, axis=0) - 3 * np.roll(p, -1, axis=0) + 3 * p - np.roll(p, 1, axis=0)
+    chord = np.roll(p, -2, axis=0) - np.roll(p, 1, axis=0)
+    length = np.hypot(*chord.T)
+    ok = length > 0
+    normal = np.abs(cross(chord[ok], d3[ok])) / length[ok]
+    sigma = 1.4826 * np.median(normal) / np.sqrt(20.0)  # MAD of a zero-mean normal, sqrt(20): the difference's gain
+    return float(sigma) if sigma > SCATTER_FLOOR else 0.0
+
+
+def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
+    """The sharp corners of a closed outline (n, 2): the edges across which it turns by more than
+    ``angle_deg``, and each corner's point.
+
+    The turn across edge i (from point i to point i + 1) is the angle between the chord from point
+    i - k to point i and the chord from point i + 1 to point i + 1 + k, so a corner shows in full
+    whether it falls on a point or between two (a resampled or measured outline). k is chosen so
+    that the chords are five scatters long at least (at most 0.1 mm). Of the edges within k of each
+    other only the one of largest turn is kept, and the corner's point is where the lines of its two
+    chords cross (on the points for an exact corner vertex, between them otherwise).
+
+    Returns
+    -------
+    edges : (m,) int
+        Index i of the edge (i, i + 1) of each corner, ascending.
+    points : (m, 2) float, mm
+    """
+    p = np.asarray(whole, dtype=float)
+    n = len(p)
+    h = float(np.median(np.hypot(*np.diff(p, axis=0).T)))
+    k = 1 if sigma <= 0 else int(np.clip(np.ceil(5 * sigma / h), 1, max(1, int(0.1 / h))))
+    a0, a1 = np.roll(p, k, axis=0), p  # chord before the edge
+    b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
+    back, ahead = a1 - a0, b1 - b0
+    turn = np.abs(np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead)))
+    peak = maximum_filter1d(turn, size=2 * k + 1, mode="wrap")
+    idx = np.flatnonzero((turn > np.radians(angle_deg)) & (turn >= peak))
+    if len(idx) > 1:  # a plateau of equal turns: its first edge (also across the ring's seam)
+        gaps = np.diff(np.concatenate([idx, [idx[0] + n]]))
+        idx = idx[np.roll(gaps, 1) > k] if np.any(gaps > k) else idx[:1]
+    den = cross(back[idx], ahead[idx])
+    u = cross(b0[idx] - a0[idx], ahead[idx]) / np.where(np.abs(den) > 0, den, 1.0)
+    point = a0[idx] + u[:, None] * back[idx]
+    # a crossing far from the edge (nearly parallel chords): the edge's middle
+    mid = 0.5 * (a1[idx] + b0[idx])
+    far = np.hypot(*(point - mid).T) > 2 * k * h
+    point[far] = mid[far]
+    # a corner on a point of exact data is that point (the chords' lines of curved pieces cross
+    # a little off it): the end of the edge that turns by more than the threshold on its own
+    d = np.roll(p, -1, axis=0) - p
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    vertex_turn = np.abs(np.mod(heading - np.roll(heading, 1) + np.pi, 2 * np.pi) - np.pi)
+    if sigma <= 0:
+        at_start = vertex_turn[idx] > np.radians(angle_deg)
+        at_end = vertex_turn[(idx + 1) % n] > np.radians(angle_deg)
+        point[at_start] = p[idx[at_start]]
+        point[at_end & ~at_start] = p[(idx[at_end & ~at_start] + 1) % n]
+    return idx, point
+
+
+__all__ = ["SCATTER_FLOOR", "corners", "lobe_count", "scatter", "whole_outline"]

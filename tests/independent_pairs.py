@@ -1,0 +1,242 @@
+"""Screw-rotor pairs made without rotorcad: the reference inputs of the inverse-path tests.
+
+Nothing here imports rotorcad. A rack is drawn in closed form (straight flanks, flats at the tip
+and root lines, corners rounded by circular arcs) and each rotor is cut from it by brute force
+(``cut_rotor``): the blank disc minus the rack at thousands of rolling positions (shapely polygon
+booleans), which leaves scallops as a real cut does. Such a rotor has tip and root lands (the
+images of the rack's flats), involute flanks (Litvin, *Gear Geometry and Applied Theory*, sec.
+10: a straight rack flank of pressure angle alpha generates the involute of the circle
+r_w cos(alpha)), fillets from the roundings, and a sharp corner at each tip where the rack's flat
+cuts back what its flank and rounding would generate beyond the tip circle (a rack point at height
+y touches at the radius sqrt((r_w + y)^2 + (y tan(alpha))^2) > r_w + y). ``resample`` and
+``one_lobe`` turn the cut outline into what a CMM or a drawing gives.
+
+Frames as in rotorcad's CONTRACT.md: the male centre at the origin, the female at (a, 0); rack
+frame x along the pitch line (the rack moves +x as the male turns counter-clockwise), y = 0 on the
+pitch line, y > 0 towards the female. The male's material is below the rack curve, the female's
+above it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+
+@dataclass(frozen=True)
+class TrapezoidRack:
+    """One period of a trapezoidal rack in the rack frame (mm, rad).
+
+    ``flank_angle`` is each flank's angle to the normal of the pitch line (the pressure angle),
+    ``height`` how far the rack reaches above and below the pitch line, ``corner_radius`` the
+    rounding of the four corners, ``top_flat`` the width of the flat at y = +height (the male tip
+    land's image), measured between the unrounded corners. ``flank_offset`` moves the trailing
+    (x-decreasing) flank along its normal into the female side (+, the female thinner there) and
+    ``offset_step`` applies that offset as a step only between the flank's end points (a ground
+    correction), otherwise it is a smooth bump that fades out over the corner roundings.
+    """
+
+    period: float
+    height: float = 8.0
+    flank_angle: float = np.radians(30.0)
+    corner_radius: float = 1.5
+    top_flat: float | None = None
+    flank_offset: float = 0.0
+
+    @property
+    def run(self) -> float:
+        """Width of one straight flank across the full height (unrounded)."""
+        return 2 * self.height * np.tan(self.flank_angle)
+
+    @property
+    def flat(self) -> float:
+        return (self.period - 2 * self.run) / 2 if self.top_flat is None else self.top_flat
+
+    def pieces(self) -> list[tuple[str, object]]:
+        """The period as (kind, geometry) pieces from x = 0, travelled in +x: lines as
+        ('line', (a, b)), arcs as ('arc', (centre, radius, psi0, psi1)), psi about the centre."""
+        h, a, r = self.height, self.flank_angle, self.corner_radius
+        top, bottom = self.flat, self.period - 2 * self.run - self.flat
+        # unrounded corners: from the middle of the bottom flat, a rising flank, the top flat, a
+        # falling flank, to the middle of the next bottom flat
+        x1 = bottom / 2
+        dx = self.flank_offset / np.cos(a)  # a parallel flank moved by the offset along its normal
+        c = [(0.0, -h), (x1, -h), (x1 + self.run, h), (x1 + self.run + top + dx, h), (x1 + 2 * self.run + top + dx, -h)]
+        # each corner rounded: the arc tangent to both neighbours; its set-back along each line
+        turn = np.pi / 2 - a  # between a flat and a flank
+        back = r * np.tan(turn / 2)
+        up = np.array([np.sin(a), np.cos(a)])  # rising flank direction
+        down = np.array([np.sin(a), -np.cos(a)])
+        ex = np.array([1.0, 0.0])
+        out: list[tuple[str, object]] = []
+
+        def arc(corner, d_in, d_out, convex_up):
+            p_in = np.asarray(corner) - back * d_in
+            p_out = np.asarray(corner) + back * d_out
+            n_in = np.array([-d_in[1], d_in[0]]) * (1 if convex_up else -1)  # towards the centre
+            centre = p_in + r * n_in
+            psi0 = np.arctan2(*(p_in - centre)[::-1])
+            psi1 = np.arctan2(*(p_out - centre)[::-1])
+            return p_in, p_out, ("arc", (tuple(centre), r, psi0, psi1))
+
+        # corner 1 (bottom flat -> rising flank): concave seen from above, the arc turns left
+        p1i, p1o, a1 = arc(c[1], ex, up, True)
+        p2i, p2o, a2 = arc(c[2], up, ex, False)
+        p3i, p3o, a3 = arc(c[3], ex, down, False)
+        p4i, p4o, a4 = arc(c[4], down, ex, True)
+        out.append(("line", ((0.0, -h), tuple(p1i))))
+        out.append(a1)
+        out.append(("line", (tuple(p1o), tuple(p2i))))
+        out.append(a2)
+        out.append(("line", (tuple(p2o), tuple(p3i))))
+        out.append(a3)
+        out.append(("line", (tuple(p3o), tuple(p4i))))
+        out.append(a4)
+        out.append(("line", (tuple(p4o), (self.period, -h))))
+        return out
+
+    def polygon_chain(self, tolerance: float = 1e-5) -> np.ndarray:
+        """One period as a polyline (lines by their ends, arcs to the chord ``tolerance``), for
+        cutting; the end point (x = period) is left out."""
+        pts = []
+        for kind, g in self.pieces():
+            if kind == "line":
+                pts.append(np.asarray([g[0]]))
+            else:
+                centre, r, psi0, psi1 = g
+                n = max(int(np.ceil(abs(psi1 - psi0) / np.sqrt(8 * tolerance / r))), 1)
+                psi = psi0 + (psi1 - psi0) * np.arange(n) / n
+                pts.append(np.asarray(centre) + r * np.column_stack([np.cos(psi), np.sin(psi)]))
+        return np.vstack(pts)
+
+    def sample(self, step: float = 0.01) -> tuple[np.ndarray, np.ndarray]:
+        """Points of one period (x from 0 to the period) and unit normals towards the female
+        (+y side), exact for every piece, spaced about ``step`` mm."""
+        pts, nrm = [], []
+        for kind, g in self.pieces():
+            if kind == "line":
+                a, b = np.asarray(g[0]), np.asarray(g[1])
+                n = max(int(np.ceil(np.hypot(*(b - a)) / step)), 1)
+                u = np.arange(n) / n
+                p = a + u[:, None] * (b - a)
+                d = (b - a) / np.hypot(*(b - a))
+                pts.append(p)
+                nrm.append(np.broadcast_to([-d[1], d[0]], p.shape))
+            else:
+                centre, r, psi0, psi1 = g
+                n = max(int(np.ceil(abs(psi1 - psi0) * r / step)), 1)
+                psi = psi0 + (psi1 - psi0) * np.arange(n) / n
+                p = np.asarray(centre) + r * np.column_stack([np.cos(psi), np.sin(psi)])
+                radial = np.column_stack([np.cos(psi), np.sin(psi)])
+                # the +y normal: outward on an arc turning right (convex up), inward otherwise
+                nrm.append(radial if psi1 < psi0 else -radial)
+                pts.append(p)
+        return np.vstack(pts), np.vstack(nrm)
+
+
+@dataclass(frozen=True)
+class Pair:
+    """Tooth counts, centre distance and the rack of an independent pair."""
+
+    male_teeth: int
+    female_teeth: int
+    center_distance: float
+    rack: TrapezoidRack
+
+    @property
+    def male_pitch_radius(self) -> float:
+        return self.center_distance * self.male_teeth / (self.male_teeth + self.female_teeth)
+
+    @property
+    def female_pitch_radius(self) -> float:
+        return self.center_distance - self.male_pitch_radius
+
+    def radii(self) -> dict[str, float]:
+        h = self.rack.height
+        return {
+            "male_tip_radius": self.male_pitch_radius + h,
+            "male_root_radius": self.male_pitch_radius - h,
+            "female_tip_radius": self.female_pitch_radius + h,
+            "female_root_radius": self.female_pitch_radius - h,
+        }
+
+
+def trapezoid_4_6(**rack: float) -> Pair:
+    """The issue's pair: 4/6, a = 100 mm, 30 deg flanks, 8 mm above and below the pitch line,
+    corners rounded with 1.5 mm, tip radii 48 / 68, root radii 32 / 52."""
+    period = 2 * np.pi * 40.0 / 4
+    return Pair(4, 6, 100.0, TrapezoidRack(period, **rack))
+
+
+def _rot(p: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]])
+
+
+def cut_rotor(pair: Pair, rotor: str, positions: int = 3000) -> np.ndarray:
+    """The rotor cut by brute force: its tip disc minus the rack (the other rotor's side of the
+    rack curve) at ``positions`` rolling positions over one full turn (shapely union, then
+    difference). Returns the outer ring, counter-clockwise, without a repeated end point."""
+    r1, r2, a = pair.male_pitch_radius, pair.female_pitch_radius, pair.center_distance
+    rk = pair.rack
+    pts = rk.polygon_chain()
+    tip = (r1 if rotor == "male" else r2) + rk.height
+    reach = tip + rk.period  # the rack beyond this never reaches the blank
+    periods = int(np.ceil(reach / rk.period))
+    strip = np.vstack([pts + np.array([k * rk.period, 0.0]) for k in range(-periods, periods + 1)])
+    strip = strip[np.abs(strip[:, 0]) <= reach]
+    far = 2 * rk.height
+    if rotor == "male":
+        tool = np.vstack([strip, [[strip[-1, 0], far], [strip[0, 0], far]]])  # the female side
+        pitch = r1
+    else:
+        tool = np.vstack([strip, [[strip[-1, 0], -far], [strip[0, 0], -far]]])  # the male side
+        pitch = r2
+    # one full turn of the rotor; the rack is periodic, so only its shift modulo the period matters
+    shift = np.linspace(0.0, 2 * np.pi * pitch, positions, endpoint=False)  # rack travel s
+    polys = []
+    for s in shift:
+        fixed = np.column_stack([r1 + tool[:, 1], tool[:, 0] + np.mod(s, rk.period)])
+        if rotor == "male":  # the male turned counter-clockwise by s / r1
+            polys.append(_rot(fixed, np.full(len(fixed), -s / r1)))
+        else:  # the female turned clockwise by s / r2
+            polys.append(_rot(fixed - np.array([a, 0.0]), np.full(len(fixed), s / r2)))
+    tools = shapely.polygons(polys)
+    cut = shapely.Point(0, 0).buffer(tip, quad_segs=2048).difference(shapely.unary_union(tools))
+    if isinstance(cut, shapely.MultiPolygon):
+        cut = max(cut.geoms, key=lambda g: g.area)
+    ring = np.asarray(cut.exterior.coords)[:-1]
+    if shapely.LinearRing(ring).is_ccw is False:
+        ring = ring[::-1]
+    return ring
+
+
+def resample(ring: np.ndarray, spacing: float, noise: float = 0.0, seed: int = 0) -> np.ndarray:
+    """The closed ring resampled at about ``spacing`` mm along its length (linear interpolation
+    on the ring, whose chords are fine enough for this), with Gaussian noise of standard deviation
+    ``noise`` mm along the ring's normals (a CMM's scatter)."""
+    closed = np.vstack([ring, ring[:1]])
+    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
+    n = int(round(u[-1] / spacing))
+    v = np.arange(n) * u[-1] / n
+    pts = np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
+    if noise:
+        d = np.roll(pts, -1, axis=0) - np.roll(pts, 1, axis=0)
+        normal = np.column_stack([d[:, 1], -d[:, 0]]) / np.hypot(*d.T)[:, None]
+        pts = pts + np.random.default_rng(seed).normal(0.0, noise, n)[:, None] * normal
+    return pts
+
+
+def one_lobe(ring: np.ndarray, teeth: int, start_deg: float = 0.0) -> np.ndarray:
+    """The points of the ring whose polar angle lies within one lobe pitch from ``start_deg``, in
+    the ring's order (starting anywhere inside that window)."""
+    ang = np.mod(np.degrees(np.arctan2(ring[:, 1], ring[:, 0])) - start_deg, 360.0)
+    keep = ang < 360.0 / teeth
+    idx = np.flatnonzero(keep)
+    # the window's points are one run of the ring, perhaps wrapped past its start
+    gap = np.flatnonzero(np.diff(idx) > 1)
+    if len(gap):
+        idx = np.concatenate([idx[gap[0] + 1 :], idx[: gap[0] + 1]])
+    return ring[idx]
