@@ -38,7 +38,7 @@ from scipy.spatial import cKDTree
 from rotorcad.curves import Curve, Mapped
 from rotorcad.errors import DesignError
 from rotorcad.geometry import Array, cross
-from rotorcad.inverse_rack import contact_of_rack_points, derive_rack
+from rotorcad.inverse_rack import MEASURED_MIN_TURN, contact_of_rack_points, derive_rack
 from rotorcad.rotor_pair import RotorPair
 
 CONTACT_SIDES = ("driving", "sealing", "as-given")
@@ -87,6 +87,7 @@ def rotor_rack(
         pitch_angle=2 * np.pi / teeth,
         tolerance=tolerance,
         contact_step=contact_step,
+        min_turn=MEASURED_MIN_TURN,
     )
     flip = np.array([1.0, 1.0 if rotor == "male" else -1.0])  # derived racks have y away from their rotor
     pts, tan = rack.points * flip, rack.tangents * flip

@@ -277,6 +277,20 @@ def sample_curve(curve: Curve, tolerance: float, minimum: int = 2, passes: int =
         if np.all(n == 1):
             break
         s, p, t = split_intervals(curve, s, p, t, n)
+    # the end tangents of an interval around an inflection are parallel although the curve bulges
+    # between them: check the middle of every interval against its chord and split where needed
+    for _ in range(passes):
+        mid = 0.5 * (s[:-1] + s[1:])
+        q, _ = curve.evaluate(mid)
+        d = np.diff(p, axis=0)
+        length = np.hypot(*d.T)
+        off = np.abs(cross(d, q - p[:-1])) / np.where(length > 0, length, 1.0)
+        n = np.where(np.nan_to_num(off, nan=0.0) > tolerance, 2, 1) * np.maximum(
+            np.ceil(np.sqrt(np.nan_to_num(off, nan=0.0) / tolerance)).astype(int), 1
+        )
+        if np.all(n == 1):
+            break
+        s, p, t = split_intervals(curve, s, p, t, n)
     return s, p, t
 
 

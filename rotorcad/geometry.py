@@ -79,26 +79,20 @@ def radius(points: Array) -> Array:
 
 
 def distance_to_polyline(points: Array, polyline: Array) -> Array:
-    """Distance of each point to a densely sampled open polyline: the nearest vertex by a KD-tree,
-    then the exact distance to its two adjacent segments (vectorised; exact when the nearest
-    segment touches the nearest vertex, which holds for polylines sampled finer than their
-    curvature)."""
-    from scipy.spatial import cKDTree
+    """Exact distance of each point (n, 2) to an open polyline (m, 2), mm: the nearest of its
+    segments found by shapely's STRtree (a packed R-tree), so that long segments beside dense
+    clusters of vertices (a rack's flat beside a corner's path) are measured right."""
+    import shapely
 
     pts = as_points(points)
     line = as_points(polyline)
-    # a repeated vertex (where two pieces meet) would hide one of its segments from the nearest-vertex test
     keep = np.concatenate([[True], np.hypot(*np.diff(line, axis=0).T) > 1e-12])
     line = line[keep]
-    k = cKDTree(line).query(pts)[1]
-    best = np.hypot(*(pts - line[k]).T)
-    for a_idx, b_idx in ((k - 1, k), (k, k + 1)):
-        ok = (a_idx >= 0) & (b_idx < len(line))
-        a, b = line[np.clip(a_idx, 0, len(line) - 1)], line[np.clip(b_idx, 0, len(line) - 1)]
-        d = b - a
-        length2 = np.einsum("ij,ij->i", d, d)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            u = np.clip(np.einsum("ij,ij->i", pts - a, d) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
-        dist = np.hypot(*(pts - a - u[:, None] * d).T)
-        best = np.where(ok, np.minimum(best, dist), best)
-    return best
+    if len(line) < 2:
+        return np.hypot(*(pts - line[0]).T)
+    segments = shapely.linestrings(np.stack([line[:-1], line[1:]], axis=1))
+    tree = shapely.STRtree(segments)
+    (which, _seg), dist = tree.query_nearest(shapely.points(pts), return_distance=True, all_matches=False)
+    out = np.full(len(pts), np.inf)
+    np.minimum.at(out, which, dist)
+    return out

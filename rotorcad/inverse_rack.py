@@ -25,6 +25,8 @@ from rotorcad.envelope import Generated
 from rotorcad.geometry import cross
 from rotorcad.kinematics import Rotation, Translation
 
+MEASURED_MIN_TURN = np.radians(0.5)  # rad: the smallest corner between measured pieces
+
 
 @dataclass(frozen=True, eq=False)
 class DerivedRack:
@@ -61,19 +63,21 @@ def contact_of_rack_points(pitch_radius: float, points: np.ndarray, tangents: np
 
 
 def with_corner_fans(
-    pieces: list[tuple[str, Curve]], centre: np.ndarray | None = None, pitch_angle: float = 0.0
+    pieces: list[tuple[str, Curve]], centre: np.ndarray | None = None, pitch_angle: float = 0.0, min_turn: float = 1e-6
 ) -> list[tuple[str, Curve]]:
     """Insert zero-radius arcs at the convex corners between consecutive pieces of a
     counter-clockwise chain, so that corners generate their paths. With ``centre`` and
     ``pitch_angle`` (one lobe of a patterned rotor) the corner where the previous lobe's last piece
-    meets this lobe's first piece is found too, by turning that last piece back by one pitch."""
+    meets this lobe's first piece is found too, by turning that last piece back by one pitch.
+    ``min_turn`` (rad): smaller turns are not corners (measured pieces that meet at a land, where
+    the fits leave a kink of a fraction of a degree, pass :data:`MEASURED_MIN_TURN`)."""
 
     def fan(name: str, end: tuple[np.ndarray, np.ndarray], start: tuple[np.ndarray, np.ndarray]) -> tuple[str, Curve] | None:
         (p_end, t_end), (p_next, t_next) = end, start
         if np.hypot(*(p_end - p_next)) > 2e-3:  # measured pieces meet within the fit error
             return None
         turn = float(np.arctan2(cross(t_end, t_next), np.dot(t_end, t_next)))
-        if turn <= 1e-6:  # only a left turn is a convex corner of a counter-clockwise boundary
+        if turn <= min_turn:  # only a left turn is a convex corner of a counter-clockwise boundary
             return None
         a0 = np.arctan2(t_end[1], t_end[0]) - np.pi / 2
         return (f"{name} corner", Arc((float(p_end[0]), float(p_end[1])), 0.0, float(a0), float(a0 + turn)))
@@ -154,6 +158,7 @@ def derive_rack(
     pitch_angle: float = 0.0,
     tolerance: float = 1e-4,
     contact_step: float = 0.0,
+    min_turn: float = 1e-6,
 ) -> DerivedRack:
     """Rack of a counter-clockwise chain of profile pieces on a rotating ``body`` (one lobe of
     ``pitch_angle``, so that the corner at the junction with the previous lobe is found too),
@@ -161,8 +166,9 @@ def derive_rack(
 
     ``depth`` = (y_min, y_max) of the rack about its pitch line picks, where the normal line cuts
     the pitch circle twice, the root that lies on the rack (see :mod:`rotorcad.envelope`).
-    ``contact_step`` > 0 refines the samples until their contact points (the meshline) are at
-    most that far apart: near roundings the contact runs fast along the rack.
+    ``min_turn`` is passed to :func:`with_corner_fans`. ``contact_step`` > 0 refines the samples
+    until their contact points (the meshline) are at most that far apart: near roundings the
+    contact runs fast along the rack.
     """
     centre = np.asarray(body.center, dtype=float)
     # the rack rolls on the pitch circle at the pitch point C = centre + (r, 0) (or - (r, 0) for a
@@ -172,7 +178,7 @@ def derive_rack(
     pts, tans, idx, names = [], [], [], []
     lost, total = 0, 0
     # each generated piece runs against its parent, so the rack chain runs the pieces backwards
-    for k, (name, curve) in enumerate(reversed(with_corner_fans(pieces, centre, pitch_angle))):
+    for k, (name, curve) in enumerate(reversed(with_corner_fans(pieces, centre, pitch_angle, min_turn))):
         gen = Generated(curve, body, rack, limits=depth)
         s, p, t = sample_curve(gen, tolerance, minimum=samples)  # refined where the rack turns fast (corner paths)
         if contact_step > 0:
@@ -193,4 +199,4 @@ def derive_rack(
     return DerivedRack(r, rt, tuple(names), np.concatenate(idx), period, lost / max(total, 1), pitch_radius, helix_angle)
 
 
-__all__ = ["DerivedRack", "contact_of_rack_points", "derive_rack", "with_corner_fans"]
+__all__ = ["MEASURED_MIN_TURN", "DerivedRack", "contact_of_rack_points", "derive_rack", "with_corner_fans"]

@@ -17,7 +17,7 @@ Dierckx, *Curve and Surface Fitting with Splines*, sec. 5.2).
 from __future__ import annotations
 
 import numpy as np
-from scipy.ndimage import maximum_filter1d
+from scipy.ndimage import maximum_filter1d, minimum_filter1d
 
 from rotorcad.errors import DesignError
 from rotorcad.geometry import cross, rotate
@@ -156,4 +156,44 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     return idx, point
 
 
-__all__ = ["SCATTER_FLOOR", "corners", "lobe_count", "scatter", "whole_outline"]
+def lands(run: np.ndarray, sigma: float, min_angle_deg: float = 0.5, min_points: int = 6) -> list[tuple[int, int, float]]:
+    """The lands of a run of outline points: stretches that are arcs about the rotor's own centre
+    (the origin) within the scatter, the images of the rack's flats at the tip and root lines.
+
+    A point belongs to a land when the radii of the points within 0.05 mm either side of it differ
+    by at most 2 tol, tol = max(4 sigma, 0.3 um) (the scallops of a boolean cut, the chords of a
+    drawing); runs of such points, trimmed at both ends to the points within max(2 sigma, 0.01 um)
+    of the run's median radius (the window reaches past a land's ends), spanning ``min_angle_deg``
+    and ``min_points`` at least are lands.
+
+    Returns
+    -------
+    list of (first, last, radius)
+        Indices of the land's first and last point in ``run`` and its radius (mm, the median
+        of its points' radii).
+    """
+    p = np.asarray(run, dtype=float)
+    if len(p) < min_points:
+        return []
+    r = np.hypot(*p.T)
+    h = float(np.median(np.hypot(*np.diff(p, axis=0).T)))
+    w = int(np.clip(np.ceil(0.05 / max(h, 1e-9)), 1, 50))
+    tol = max(4 * sigma, 3e-4)
+    spread = maximum_filter1d(r, size=2 * w + 1, mode="nearest") - minimum_filter1d(r, size=2 * w + 1, mode="nearest")
+    flat = spread <= 2 * tol
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], flat.astype(int), [0]])))
+    out = []
+    theta = np.unwrap(np.arctan2(p[:, 1], p[:, 0]))
+    end_tol = max(2 * sigma, 1e-5)
+    for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
+        radius = float(np.median(r[a : b + 1]))
+        on = np.flatnonzero(np.abs(r[a : b + 1] - radius) <= end_tol)  # the window reaches past the ends:
+        if len(on) == 0:  # trim them to the points on the circle
+            continue
+        a, b = a + int(on[0]), a + int(on[-1])
+        if b - a + 1 >= min_points and abs(theta[b] - theta[a]) >= np.radians(min_angle_deg):
+            out.append((int(a), int(b), float(np.median(r[a : b + 1]))))
+    return out
+
+
+__all__ = ["SCATTER_FLOOR", "corners", "lands", "lobe_count", "scatter", "whole_outline"]

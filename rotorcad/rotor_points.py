@@ -13,11 +13,11 @@ from __future__ import annotations
 import numpy as np
 from scipy import optimize
 
-from rotorcad.curves import Curve, Mapped, Spline
+from rotorcad.curves import Arc, Curve, Mapped, Spline
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
-from rotorcad.inverse_rack import with_corner_fans
-from rotorcad.measured_outline import corners, scatter, whole_outline
+from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
+from rotorcad.measured_outline import corners, lands, scatter, whole_outline
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -156,31 +156,70 @@ def lobe_pieces(
     whole = whole_outline(points, teeth, label)
     sigma = scatter(whole) if smoothing is None else 0.0
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
-    if len(edges) == 0:
-        return [("flank", lobe_curve(pair, whole, rotor, smoothing))]
-    runs = _runs_between_corners(whole, edges, corner_points)
-    splines = [Spline.fit(run, smoothing=_smoothing(run, sigma, smoothing)) for run in runs]
-    params = [np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))]) for run in runs]
+    if len(edges):
+        runs = _runs_between_corners(whole, edges, corner_points)
+    else:  # no corners: cut the ring in the middle of a land, if it has one
+        found = lands(np.vstack([whole, whole[:1]]), sigma)
+        if not found:
+            return [("flank", lobe_curve(pair, whole, rotor, smoothing))]
+        a, b, _ = found[0]
+        start = (a + b) // 2
+        ring = np.roll(whole, -start, axis=0)
+        runs = [np.vstack([ring, ring[:1]])]
+    fitted = [piece for run in runs for piece in _fit_run(run, sigma, smoothing)]
     theta = _facing_root_angle(whole, teeth, 0.0 if rotor == "male" else np.pi)
 
     def locate(th: float) -> tuple[int, float]:
-        for k, (sp, run, u) in enumerate(zip(splines, runs, params, strict=True)):
-            s = _polar_crossing(sp, run, u, th)
+        for k, (curve, pts, u) in enumerate(fitted):
+            s = _polar_crossing(curve, pts, u, th)
             if s is not None:
                 return k, s
         raise DesignError(label, "an outline that every ray from its centre crosses once", None)
 
     (k_a, s_a), (k_b, s_b) = locate(theta), locate(theta + 2 * np.pi / teeth)
-    if k_a == k_b and s_b > s_a:
-        curves = [splines[k_a].trimmed(s_a, s_b)]
+    first, last = fitted[k_a][0], fitted[k_b][0]
+    if k_a == k_b and (s_b - s_a) * first.direction > 0:
+        curves = [first.trimmed(s_a, s_b)]
     else:
-        curves = [splines[k_a].trimmed(s_a, splines[k_a].s1)]
-        k = (k_a + 1) % len(splines)
+        curves = [first.trimmed(s_a, first.s1)]
+        k = (k_a + 1) % len(fitted)
         while k != k_b:
-            curves.append(splines[k])
-            k = (k + 1) % len(splines)
-        curves.append(splines[k_b].trimmed(0.0, s_b))
+            curves.append(fitted[k][0])
+            k = (k + 1) % len(fitted)
+        curves.append(last.trimmed(last.s0, s_b))
     return [(f"lobe part {i + 1}", c) for i, c in enumerate(curves) if abs(c.s1 - c.s0) > 1e-9]
+
+
+def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tuple[Curve, np.ndarray, np.ndarray]]:
+    """A run of outline points between corners as curves: every land (an arc about the rotor's
+    centre within the scatter, :func:`rotorcad.measured_outline.lands`) as that exact arc, whose
+    normals are radial, so that its rack image is the exact flat at the tip or root line; the rest
+    as cubic splines. Each curve comes with sample points and their parameters (for locating polar
+    crossings)."""
+    out: list[tuple[Curve, np.ndarray, np.ndarray]] = []
+
+    def spline(i0: int, i1: int, lead_in: int, lead_out: int) -> None:
+        """The spline of run[i0 : i1 + 1], fitted with ``lead_in`` / ``lead_out`` points of the
+        neighbouring lands (so that its ends see the land it runs into) and trimmed back."""
+        if i1 - i0 < 1 or np.hypot(*(run[i1] - run[i0])) <= 1e-9:
+            return
+        j0, j1 = max(i0 - lead_in, 0), min(i1 + lead_out, len(run) - 1)
+        part = run[j0 : j1 + 1]
+        u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(part, axis=0).T))])
+        curve = Spline.fit(part, smoothing=_smoothing(part, sigma, smoothing)).trimmed(u[i0 - j0], u[i1 - j0])
+        out.append((curve, run[i0 : i1 + 1], u[i0 - j0 : i1 - j0 + 1]))
+
+    pos, lead = 0, 0
+    for a, b, radius in lands(run, sigma):
+        spline(pos, a, lead, 3)
+        t0 = float(np.arctan2(run[a, 1], run[a, 0]))
+        t1 = t0 + float(np.unwrap(np.arctan2(run[a : b + 1, 1], run[a : b + 1, 0]))[-1] - t0)
+        arc = Arc((0.0, 0.0), radius, t0, t1)
+        u = np.linspace(t0, t1, b - a + 1)
+        out.append((arc, arc.evaluate(u)[0], u))
+        pos, lead = b, 3
+    spline(pos, len(run) - 1, lead, 0)
+    return out
 
 
 def _mate_corner_runs(
@@ -280,7 +319,7 @@ def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoo
     own, other = ("male point", "female point") if rotor == "male" else ("female point", "male point")
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
-    for _name, curve in with_corner_fans(pieces, centre, 2 * np.pi / teeth):
+    for _name, curve in with_corner_fans(pieces, centre, 2 * np.pi / teeth, MEASURED_MIN_TURN):
         gen = Generated(curve, body, mesh.rack, limits=depth)
         rack_curve = gen.reversed() if rotor == "male" else gen  # travelled in +y (the rack's +x)
         ok = np.isfinite(rack_curve.evaluate(np.linspace(rack_curve.s0, rack_curve.s1, 400))[0]).all(axis=1)
