@@ -52,6 +52,7 @@ class RackCurve:
     points: Array
     tangents: Array
     period: float
+    corner_path: Array | None = None  # (n,) bool: the point lies on the path of a sharp corner (a fan)
 
     def normal_section(self, helix_angle: float) -> tuple[Array, Array]:
         """The normal rack (Wu & Chi eq. 7) and its unit tangents."""
@@ -91,9 +92,10 @@ def rotor_rack(
     )
     flip = np.array([1.0, 1.0 if rotor == "male" else -1.0])  # derived racks have y away from their rotor
     pts, tan = rack.points * flip, rack.tangents * flip
+    corner = np.array([rack.names[k].endswith(" corner") for k in rack.piece_index], dtype=bool)
     if pts[-1, 0] < pts[0, 0]:  # travel the chain in +x
-        pts, tan = pts[::-1], -tan[::-1]
-    return RackCurve(pts, tan, pair.rack_period)
+        pts, tan, corner = pts[::-1], -tan[::-1], corner[::-1]
+    return RackCurve(pts, tan, pair.rack_period, corner)
 
 
 def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Array, Array]:
@@ -277,7 +279,10 @@ class MeshingClearance:
         # than 30 degrees from the pitch line can sliding the rack bring it into contact: near the
         # lands a radial interference (hot rotors) would not go away by turning
         side = tan[:, 1] > 0.5 if self.contact == "driving" else tan[:, 1] < -0.5
-        inside = self._in_both_bores() & side
+        # the path of a sharp corner hangs on where the corner was found between the points: the
+        # racks are brought into contact on the flank proper
+        proper = ~self.female_rack.corner_path if self.female_rack.corner_path is not None else True
+        inside = self._in_both_bores() & side & proper
         if not inside.any():
             raise DesignError(
                 "contact", f"a flank that meets the mate inside both bores on the {self.contact} side", self.contact

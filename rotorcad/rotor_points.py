@@ -118,6 +118,42 @@ def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarr
     return out
 
 
+def _refined_corners(
+    whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float, smoothing: float | None
+) -> np.ndarray:
+    """Corners of scattered points located where the smoothing splines of the two runs beside a
+    corner, extended past their ends, cross (Newton on both parameters): the chords' crossing is
+    off by a sample spacing when the corner falls between scattered points, which moves the
+    corner's path on the rack by as much. A crossing not found within two spacings keeps the
+    chords' one."""
+    n = len(whole)
+    ring = np.vstack([whole, whole, whole])
+    fits = []
+    for j, i in enumerate(edges):
+        i_next = edges[(j + 1) % len(edges)] + (n if j + 1 == len(edges) else 0)
+        inner = ring[i + 1 : i_next + 1]
+        fits.append(Spline.fit(inner, smoothing=_smoothing(inner, sigma, smoothing)) if len(inner) >= 4 else None)
+    h = float(np.median(np.hypot(*np.diff(whole, axis=0).T)))
+    out = np.array(points, dtype=float)
+    for j in range(len(edges)):
+        before, after = fits[j - 1], fits[j]  # the run ending at corner j, and the one starting there
+        if before is None or after is None:
+            continue
+        u, v = before.s1, after.s0
+        for _ in range(8):
+            (pa,), (ta,) = before.frame(np.array([u]))
+            (pb,), (tb,) = after.frame(np.array([v]))
+            jac = np.column_stack([ta, -tb])
+            if abs(np.linalg.det(jac)) < 1e-6:
+                break
+            du, dv = np.linalg.solve(jac, pb - pa)
+            u, v = u + du, v + dv
+        p = before.frame(np.array([u]))[0][0]
+        if np.hypot(*(p - after.frame(np.array([v]))[0][0])) < 1e-7 and np.hypot(*(p - out[j])) < 2 * h:
+            out[j] = p
+    return out
+
+
 def lobe_pieces(
     pair: RotorPair,
     points: np.ndarray,
@@ -157,6 +193,8 @@ def lobe_pieces(
     sigma = scatter(whole) if smoothing is None else 0.0
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
     if len(edges):
+        if sigma > 0:
+            corner_points = _refined_corners(whole, edges, corner_points, sigma, smoothing)
         runs = _runs_between_corners(whole, edges, corner_points)
     else:  # no corners: cut the ring in the middle of a land, if it has one
         found = lands(np.vstack([whole, whole[:1]]), sigma)
