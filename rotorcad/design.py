@@ -107,12 +107,15 @@ def load_rotor_design(path: Path) -> dict[str, Any]:
         raise DesignError("[profile] family", "given as a name", None, "missing key")
     family = profile.pop("family")
     points = None
-    smoothing = 0.0
+    smoothing = None  # estimated from the points' scatter
     if family in POINT_FAMILIES:
         if not isinstance(profile.get("points"), str):
             raise DesignError("[profile] points", "a CSV file name for the family " + family, None, "missing key")
         points = (Path(path).parent / profile.pop("points")).resolve()
-        smoothing = float(profile.pop("smoothing", 0.0))
+        smoothing = profile.pop("smoothing", None)
+        if smoothing is not None and (isinstance(smoothing, bool) or not isinstance(smoothing, NUMBER) or not smoothing >= 0):
+            raise DesignError("[profile] smoothing", "a number of at least 0 mm^2", repr(smoothing))
+        smoothing = None if smoothing is None else float(smoothing)
         if profile:
             raise DesignError(
                 f"key '{next(iter(profile))}' in [profile]", "points or smoothing for a points family", None, "unknown key"

@@ -335,7 +335,9 @@ def _mate_corner_runs(
     return [(a, b, c) for a, b, c, _ in parts]
 
 
-def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None) -> ScrewRotors:
+def pair_from_rotor_points(
+    pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None, label: str | None = None
+) -> ScrewRotors:
     """Points of the male or the female rotor in its own frame (one lobe or the whole outline).
 
     The lobe is fitted piecewise between its sharp corners (:func:`lobe_pieces`); each piece and
@@ -347,7 +349,7 @@ def pair_from_rotor_points(pair: RotorPair, points: np.ndarray, rotor: str, smoo
     """
     mesh = pair.mesh
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
-    pieces = lobe_pieces(pair, points, rotor, smoothing)
+    pieces = lobe_pieces(pair, points, rotor, smoothing, label=label)
     if rotor == "male":
         body, mate_body, centre, teeth = mesh.male, mesh.female, np.zeros(2), pair.male_teeth
     else:

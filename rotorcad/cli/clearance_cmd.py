@@ -8,7 +8,8 @@ from typing import Any
 import click
 import numpy as np
 
-from exports.csv_points import read_points, write_points
+from exports.csv_points import write_points
+from exports.dxf_profile import read_profile_points
 from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.errors import DesignError
@@ -36,8 +37,11 @@ from rotorcad.rotor_points import lobe_pieces
     help="Where the racks are brought into contact: the driving or the sealing flank, or as the points were given.",
 )
 @click.option(
-    "--smoothing", type=float, default=0.0, show_default=True, help="Spline smoothing of the points [mm^2], 0 interpolates."
+    "--smoothing",
+    type=float,
+    help="Spline smoothing of the points [mm^2], 0 interpolates. Default: n sigma^2 from the points' estimated scatter.",
 )
+@click.option("--layer", help="Layer of the profile in DXF points files (default: their only layer).")
 @click.option(
     "--suction-temperature", type=float, help="Suction temperature [degC]: evaluate the pair hot (with --discharge-temperature)."
 )
@@ -103,11 +107,11 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
     for key in ("male_points", "female_points", "male_teeth", "female_teeth", "center_distance"):
         if opts.get(key) is None:
             raise InputError(f"--{key.replace('_', '-')} is required.")
-    if not (np.isfinite(opts["smoothing"]) and opts["smoothing"] >= 0):
+    if opts["smoothing"] is not None and not (np.isfinite(opts["smoothing"]) and opts["smoothing"] >= 0):
         raise InputError(f"--smoothing must be at least 0 mm^2 (got {opts['smoothing']}).")
     try:
-        male = read_points(opts["male_points"], "--male-points")
-        female = read_points(opts["female_points"], "--female-points")
+        male = read_profile_points(opts["male_points"], "--male-points", opts["layer"])
+        female = read_profile_points(opts["female_points"], "--female-points", opts["layer"])
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     rm, rf = np.hypot(*male.T), np.hypot(*female.T)
@@ -140,8 +144,8 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
             pair, male, female = thermal.apply(pair, male, female)
         mc = MeshingClearance(
             pair,
-            lobe_pieces(pair, male, "male", opts["smoothing"]),
-            lobe_pieces(pair, female, "female", opts["smoothing"]),
+            lobe_pieces(pair, male, "male", opts["smoothing"], label="--male-points"),
+            lobe_pieces(pair, female, "female", opts["smoothing"], label="--female-points"),
             contact=opts["contact"],
         )
         mc.clearance  # noqa: B018 - evaluate here so that its errors are reported as bad input

@@ -34,7 +34,7 @@ FACETED_STEP_MAX = 20_000  # facets: OpenCASCADE reads a 20 000-facet faceted B-
 def _rotor_options(design: Path) -> dict[str, Any]:
     """No command-line overrides: the design file gives the pair."""
     opts: dict[str, Any] = dict.fromkeys((*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "speed"))
-    opts["smoothing"] = 0.0
+    opts["smoothing"] = None
     return opts
 
 

@@ -53,8 +53,8 @@ def hob(design: Path | None, **opts: Any) -> None:
     limits = HobLimits(opts["min_flank_angle"], opts["min_tip_radius_mm"], opts["min_root_radius_mm"], opts["min_tip_thickness"])
     racks: dict[str, DerivedRack] = {}
     if _is_rotor_input(design, opts):
-        rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points")}
-        rotor_opts.update({"smoothing": 0.0, "speed": None})
+        rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer")}
+        rotor_opts.update({"smoothing": None, "speed": None})
         rotors, _, _ = build_rotors(design, rotor_opts)
         try:
             racks = {"male": rotor_rack(rotors, "male"), "female": rotor_rack(rotors, "female")}

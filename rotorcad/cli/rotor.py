@@ -8,8 +8,9 @@ from typing import Any
 import click
 import numpy as np
 
-from exports.csv_points import read_points, write_points
+from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
+from exports.dxf_profile import read_profile_points
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.design import load_rotor_design
 from rotorcad.envelope import rack_frame
@@ -40,9 +41,10 @@ def _points_option(name: str, text: str):
 
 
 ROTOR_INPUT_DECORATORS = [
-    _points_option("--male-points", "Male profile points (CSV x,y in mm, own frame)."),
-    _points_option("--female-points", "Female profile points (CSV x,y in mm, own frame)."),
-    _points_option("--rack-points", "One rack period (CSV x,y in mm, rack frame)."),
+    _points_option("--male-points", "Male profile: CSV x,y [mm] or a DXF drawing, own frame, one lobe or the whole outline."),
+    _points_option("--female-points", "Female profile: CSV x,y [mm] or a DXF drawing, own frame, one lobe or the whole outline."),
+    _points_option("--rack-points", "One rack period: CSV x,y [mm] or a DXF drawing, rack frame."),
+    click.option("--layer", help="Layer of the profile in a DXF points file (default: its only layer)."),
     click.option("--male-teeth", type=int, help="Male lobes z1 (2..12)."),
     click.option("--female-teeth", type=int, help="Female lobes z2 (2..12)."),
     click.option("--male-tip-radius", type=float, help="Male tip radius [mm]."),
@@ -82,7 +84,9 @@ CONTRACT_KEYS = (
 @click.option("--center-distance", type=float, help="Centre distance a [mm].")
 @click.option("--speed", type=float, help="Male speed [rpm] for sliding velocities. Default 3000 or the design's [operating].")
 @click.option(
-    "--smoothing", type=float, default=0.0, show_default=True, help="Spline smoothing of measured points [mm^2], 0 interpolates."
+    "--smoothing",
+    type=float,
+    help="Spline smoothing of measured points [mm^2], 0 interpolates. Default: n sigma^2 from the points' estimated scatter.",
 )
 @click.option("--tolerance", type=float, default=1e-3, show_default=True, help="Chord tolerance of written outlines [mm].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
@@ -159,7 +163,8 @@ def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, floa
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
         values.update(d["pair"])
-        family, params, points, smoothing = d["family"], d["params"], d["points"], d["smoothing"] or smoothing
+        family, params, points = d["family"], d["params"], d["points"]
+        smoothing = d["smoothing"] if d["smoothing"] is not None else smoothing
         speed = float(d["operating"].get("speed_rpm", speed))
         clearance = float(d["housing"].get("radial_clearance", 0.0))
     elif not sources:
@@ -172,6 +177,8 @@ def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, floa
         points = opts[sources[0]]
     if opts.get("speed") is not None:
         speed = opts["speed"]
+    if smoothing is not None and not (np.isfinite(smoothing) and smoothing >= 0):
+        raise InputError(f"--smoothing must be a number of at least 0 mm^2 (got {smoothing}).")
     if not (np.isfinite(speed) and speed > 0):
         raise InputError(f"--speed must be a positive speed in rpm (got {speed}).")
     missing = [k for k in PAIR_OPTIONS if k not in values]
@@ -186,11 +193,11 @@ def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, floa
         raise InputError(f"the pair is not described completely: {exc}.") from None
     try:
         if family in ("rack-points", "male-points", "female-points"):
-            pts = read_points(points, f"--{family}")
+            pts = read_profile_points(points, f"--{family}", opts.get("layer"))
             if family == "rack-points":
-                rotors = pair_from_rack_points(pair, pts, smoothing)
+                rotors = pair_from_rack_points(pair, pts, smoothing or 0.0)
             else:
-                rotors = pair_from_rotor_points(pair, pts, family.split("-")[0], smoothing)
+                rotors = pair_from_rotor_points(pair, pts, family.split("-")[0], smoothing, label=f"--{family}")
         else:
             rotors = build_family(pair, family, params)
     except DesignError as exc:
