@@ -19,6 +19,7 @@ above it.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -175,6 +176,7 @@ def _rot(p: np.ndarray, angle: np.ndarray) -> np.ndarray:
     return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]])
 
 
+@functools.lru_cache(maxsize=8)
 def cut_rotor(pair: Pair, rotor: str, positions: int = 3000) -> np.ndarray:
     """The rotor cut by brute force: its tip disc minus the rack (the other rotor's side of the
     rack curve) at ``positions`` rolling positions over one full turn (shapely union, then
@@ -219,7 +221,7 @@ def resample(ring: np.ndarray, spacing: float, noise: float = 0.0, seed: int = 0
     ``noise`` mm along the ring's normals (a CMM's scatter)."""
     closed = np.vstack([ring, ring[:1]])
     u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
-    n = int(round(u[-1] / spacing))
+    n = round(float(u[-1]) / spacing)
     v = np.arange(n) * u[-1] / n
     pts = np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
     if noise:
@@ -240,3 +242,29 @@ def one_lobe(ring: np.ndarray, teeth: int, start_deg: float = 0.0) -> np.ndarray
     if len(gap):
         idx = np.concatenate([idx[gap[0] + 1 :], idx[: gap[0] + 1]])
     return ring[idx]
+
+
+def female_cut_by_male(pair: Pair, male: np.ndarray, positions: int = 6000) -> np.ndarray:
+    """The female cut by brute force with the given male outline as the tool (the envelope of the
+    male, as a rotor-rotor generating cut makes it): the female's tip disc minus the male at
+    ``positions`` mesh positions over one female turn. Returns the outer ring, counter-clockwise,
+    without a repeated end point."""
+    a, z1, z2 = pair.center_distance, pair.male_teeth, pair.female_teeth
+    tip = pair.female_pitch_radius + pair.rack.height
+    disc = shapely.Point(a, 0.0).buffer(tip + 0.5, quad_segs=256)
+    phi = np.linspace(0.0, 2 * np.pi * z2 / z1, positions, endpoint=False)  # male angle: one female turn
+    # the male is periodic by a lobe pitch: turning it by phi is the same as by phi mod pitch
+    pitch = 2 * np.pi / z1
+    tools = []
+    for p1 in phi:
+        turned = _rot(male, np.full(len(male), np.mod(p1, pitch)))
+        near = shapely.Polygon(turned).intersection(disc)  # only what reaches into the female's disc
+        ring = np.asarray(shapely.get_coordinates(near))
+        if len(ring) < 3:
+            continue
+        tools.append(shapely.transform(near, lambda q, p1=p1: _rot(q - np.array([a, 0.0]), np.full(len(q), p1 * z1 / z2))))
+    cut = shapely.Point(0.0, 0.0).buffer(tip, quad_segs=2048).difference(shapely.unary_union(tools))
+    if isinstance(cut, shapely.MultiPolygon):
+        cut = max(cut.geoms, key=lambda g: g.area)
+    ring = np.asarray(cut.exterior.coords)[:-1]
+    return ring if shapely.LinearRing(ring).is_ccw else ring[::-1]

@@ -1,0 +1,220 @@
+"""The inverse path (points -> spline -> rack -> clearance, conjugate, hob) on rotors that rotorcad
+did not make: a 4/6 pair cut by brute force from a trapezoid rack with flats and rounded corners
+(tests/independent_pairs.py, shapely booleans only), as a CMM or a drawing gives it.
+
+References, none produced by the code under test:
+* the generating rack itself (closed form: lines and arcs);
+* the closed form of a straight rack flank's image, the involute of r_w cos(alpha) (Litvin, *Gear
+  Geometry and Applied Theory*, sec. 10), which checks the generator;
+* a designed flank offset in the normal section, delta_n = delta_t / sqrt(cos^2 a / cos^2 b + sin^2 a)
+  for a transverse offset delta_t of a rack flank of transverse angle a at the helix angle b
+  (Wu & Chi, eq. 7: the normal rack is the transverse rack with lengths along the pitch line times
+  cos b);
+* the female cut by brute force with the male outline as the tool (rotor-rotor generation).
+
+Where the rack's flat cuts back a rotor's tip (a sharp tip corner), the mate's root rounding, cut
+by the full rack rounding, is deeper than the corner's path: the brute-force pair has a real gap
+there (up to 0.1 mm on this pair). The comparisons below therefore select the flanks where both
+rotors touch them and the flats (the lands' images) away from the roundings (``regions``).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+import shapely
+from independent_pairs import cut_rotor, female_cut_by_male, one_lobe, resample, trapezoid_4_6
+
+from exports.csv_points import write_points
+from rotorcad.clearance import MeshingClearance, rotor_rack
+from rotorcad.cli.main import main
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.rotor_points import lobe_pieces, pair_from_rotor_points
+
+PAIR = trapezoid_4_6()
+OFFSET = 0.05  # mm: the female's falling flank cut 50 um deeper (the rack flank moved along its normal)
+ALPHA = np.radians(30.0)
+LEAD = 300.0
+
+
+def rotor_pair(lead: float = LEAD) -> RotorPair:
+    return RotorPair(4, 6, 100.0, **PAIR.radii(), lead=lead, length=190.0, strict=False)
+
+
+def male() -> np.ndarray:
+    return cut_rotor(PAIR, "male")
+
+
+def female(offset: float = 0.0) -> np.ndarray:
+    return cut_rotor(trapezoid_4_6(flank_offset=offset) if offset else PAIR, "female")
+
+
+def noisy(ring: np.ndarray, seed: int) -> np.ndarray:
+    """CMM-like: about 200 points a flank (0.1 mm apart), 1 um Gaussian scatter along the normals."""
+    return resample(ring, 0.1, noise=1e-3, seed=seed)
+
+
+def clearance(m: np.ndarray, f: np.ndarray, contact: str = "driving", lead: float = LEAD) -> MeshingClearance:
+    pair = rotor_pair(lead)
+    return MeshingClearance(pair, lobe_pieces(pair, m, "male"), lobe_pieces(pair, f, "female"), contact=contact)
+
+
+def on_flats(x: np.ndarray, margin: float = 0.2) -> np.ndarray:
+    """Rack x positions on the generating rack's flats, ``margin`` mm away from their roundings."""
+    period = PAIR.rack.period
+    flats = [g for kind, g in PAIR.rack.pieces() if kind == "line" and abs(g[0][1] - g[1][1]) < 1e-12]
+    u = np.mod(x, period)
+    inside = np.zeros(len(x), dtype=bool)
+    for (x0, _), (x1, _) in flats:
+        lo, hi = min(x0, x1), max(x0, x1)
+        if lo <= 0.0 + 1e-9 or hi >= period - 1e-9:  # the bottom flat is split at the period's ends
+            inside |= (u >= (lo + margin if lo > 1e-9 else -1.0)) & (u <= (hi - margin if hi < period - 1e-9 else period + 1.0))
+        else:
+            inside |= (u >= lo + margin) & (u <= hi - margin)
+    return inside
+
+
+def regions(mc: MeshingClearance) -> dict[str, np.ndarray]:
+    """Datum (female rack) points in contact, by what they are on the generating rack: the rising
+    and falling flanks where both rotors touch them (rack heights -6.9 to 6.6 mm: above 6.73 mm the
+    rack's flat has cut the male's tip back, below -7.10 mm the female's) and the flats (the
+    lands' images) 0.2 mm away from the roundings; the roundings are left out (module docstring)."""
+    pts, tan = mc.female_rack.points, mc.female_rack.tangents
+    used = mc._in_both_bores(mc.clearance) & np.isfinite(mc.clearance)
+    flank = (pts[:, 1] >= -6.9) & (pts[:, 1] <= 6.6)
+    return {
+        "rising": used & flank & (tan[:, 1] > 0),
+        "falling": used & flank & (tan[:, 1] < 0),
+        "lands": used & (np.abs(pts[:, 1]) > 7.9) & on_flats(pts[:, 0] - mc.shift),
+    }
+
+
+def normal_offset(delta_t: float, lead: float = LEAD) -> float:
+    beta = np.arctan(2 * np.pi * PAIR.male_pitch_radius / lead)
+    return delta_t / np.sqrt(np.cos(ALPHA) ** 2 / np.cos(beta) ** 2 + np.sin(ALPHA) ** 2)
+
+
+def test_the_generator_cuts_involute_flanks_and_lands():
+    # Closed form (Litvin sec. 10): the rack's straight flank generates the involute of the base
+    # circle r_b = r_w cos(alpha), whose polar angle is theta0 +- inv(arccos(r_b / r)); the flats
+    # generate lands at r_w +- h. The brute-force cut must follow both within 0.5 um.
+    ring = male()
+    r, theta = np.hypot(*ring.T), np.unwrap(np.arctan2(ring[:, 1], ring[:, 0]))
+    rb = PAIR.male_pitch_radius * np.cos(ALPHA)
+    assert np.abs(r.max() - 48.0) < 1e-6 and np.abs(r.min() - 32.0) < 1e-6
+    flank = (r > 35.2) & (r < 47.9)  # the straight flank generates r from 35.07 to the tip
+    runs = np.split(np.flatnonzero(flank), np.flatnonzero(np.diff(np.flatnonzero(flank)) > 1) + 1)
+    assert len(runs) == 8  # two flanks a lobe
+    for run in runs:
+        a = np.arccos(rb / r[run])
+        inv = np.tan(a) - a
+        sign = np.sign(np.polyfit(r[run], theta[run], 1)[0])
+        theta0 = np.median(theta[run] - sign * inv)
+        assert np.abs(r[run] * (theta[run] - theta0 - sign * inv)).max() < 5e-4
+
+
+@pytest.mark.parametrize("kind", ["exact", "noisy"])
+def test_a_conjugate_pair_measures_no_clearance_on_flanks_and_lands(kind):
+    # Both rotors cut by the same rack: on the flanks and lands the normal clearance is zero
+    # within 2 um (exact cut outlines) and 5 um (CMM-like points, whole male, one clockwise
+    # female lobe starting mid-flank).
+    if kind == "exact":
+        m, f = male(), female()
+    else:
+        m, f = noisy(male(), 1), one_lobe(noisy(female(), 2), 6, start_deg=17.0)[::-1]
+    mc = clearance(m, f)
+    for name, sel in regions(mc).items():
+        assert sel.sum() > 100, name
+        assert np.abs(mc.clearance[sel]).max() < (2e-3 if kind == "exact" else 5e-3), name
+
+
+@pytest.mark.parametrize("kind", ["exact", "noisy"])
+def test_a_designed_flank_offset_comes_back_in_the_normal_section(kind):
+    # The female's falling flank cut 50 um deeper by the rack: with contact on the driving
+    # (rising) flank, the falling flank reads delta_n (closed form above) within 3 um, the
+    # driving flank and the lands zero within 2 um (5 um noisy).
+    m, f = male(), female(OFFSET)
+    if kind == "noisy":
+        m, f = noisy(m, 3), noisy(f, 4)
+    mc = clearance(m, f)
+    sel = regions(mc)
+    expected = normal_offset(OFFSET)
+    np.testing.assert_allclose(mc.clearance[sel["falling"]], expected, atol=3e-3)
+    tol = 2e-3 if kind == "exact" else 5e-3
+    assert np.abs(mc.clearance[sel["rising"]]).max() < tol
+    assert np.abs(mc.clearance[sel["lands"]]).max() < tol
+
+
+def test_the_offset_holds_for_a_straight_rotor_too():
+    # lead -> infinity: the normal section is the transverse one, delta_n = delta_t exactly.
+    mc = clearance(male(), female(OFFSET), contact="as-given", lead=1e6)
+    sel = regions(mc)
+    np.testing.assert_allclose(mc.clearance[sel["falling"]], OFFSET, atol=2e-3)
+    assert np.abs(mc.clearance[sel["rising"]]).max() < 1e-3
+
+
+@pytest.mark.parametrize("rotor", ["male", "female"])
+def test_racks_from_points_of_either_rotor_follow_the_generating_rack(rotor):
+    # Inverse generation of the cut rotor, exact and noisy, against the closed-form rack (lines
+    # and arcs): within 2 um wherever the rotor touches it (flanks and lands).
+    pair = rotor_pair()
+    chain = PAIR.rack.polygon_chain(1e-7)
+    period = PAIR.rack.period
+    rack_line = shapely.LineString(np.vstack([chain + [k * period, 0.0] for k in range(-3, 4)]))
+    ring = male() if rotor == "male" else female()
+    for pts in (ring, noisy(ring, 5)):
+        rack = rotor_rack(pair, lobe_pieces(pair, pts, rotor), rotor)
+        y = rack.points[:, 1]
+        sel = ((y >= -6.9) & (y <= 6.6)) | ((np.abs(y) > 7.9) & on_flats(rack.points[:, 0]))
+        d = shapely.distance(shapely.points(rack.points[sel]), rack_line)
+        assert d.max() < 2e-3
+
+
+def test_the_female_from_male_points_is_the_female_the_male_cuts():
+    # rotor -> rack -> mate against brute force: the female cut with the male outline as the tool
+    # (rotor-rotor generation, 4000 positions; its own scallops and the sharp tip corner's path
+    # between positions are within a few um). Mean distance within 2 um, exact and noisy.
+    pair = rotor_pair()
+    reference = shapely.LinearRing(female_cut_by_male(PAIR, male(), positions=4000))
+    for pts in (male(), noisy(male(), 6)):
+        rebuilt = pair_from_rotor_points(pair, pts, "male").section("female", 1e-4).exterior
+        dense = np.asarray(shapely.segmentize(rebuilt, 0.01).coords)
+        d = shapely.distance(shapely.points(dense), reference)
+        assert d.mean() < 2e-3
+        assert d.max() < 10e-3
+
+
+def test_outline_forms_give_the_same_clearance():
+    # one lobe or the whole outline, either direction, any start, with or without a repeated end
+    # point: the same pieces, hence the same clearance (1 um).
+    m, f = male(), female(OFFSET)
+    ref = clearance(m, f).clearance
+    forms = [
+        (m[::-1], np.vstack([f, f[:1]])),
+        (np.roll(m, 1234, axis=0), one_lobe(f, 6, start_deg=40.0)),
+        (one_lobe(m, 4, start_deg=-20.0)[::-1], np.roll(f[::-1], 77, axis=0)),
+    ]
+    for mm, ff in forms:
+        c = clearance(mm, ff)
+        a, b = np.nanmax(np.abs(ref)), np.nanmax(np.abs(c.clearance))
+        assert abs(a - b) < 1e-3
+        assert c.summary()["mean_clearance"] == pytest.approx(clearance(m, f).summary()["mean_clearance"], abs=1e-3)
+
+
+def test_cli_refuses_a_wrong_lobe_count_and_a_binary_file(tmp_path, capsys):
+    write_points(tmp_path / "m.csv", male())
+    write_points(tmp_path / "f.csv", female())
+    (tmp_path / "b.csv").write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(range(256)) * 4)
+    base = ["clearance", "--female-points", str(tmp_path / "f.csv"), "--female-teeth", "6", "--center-distance", "100"]
+    capsys.readouterr()
+    assert main([*base, "--male-points", str(tmp_path / "m.csv"), "--male-teeth", "5"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--male-points" in err and "4 lobes" in err and "Traceback" not in err and len(err.splitlines()) == 1
+    assert main([*base, "--male-points", str(tmp_path / "b.csv"), "--male-teeth", "4"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--male-points" in err and "Traceback" not in err and len(err.splitlines()) == 1
+    assert main([*base, "--male-points", str(tmp_path / "m.csv"), "--male-teeth", "4", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert abs(data["min_normal_clearance"]) < 2e-3
