@@ -28,6 +28,9 @@ import shapely
 
 from hob.rack import DerivedRack
 
+FOLD_TOLERANCE = 5e-4  # mm: folds and zigzags of a measured rack below this are not loops
+CURVATURE_BASE = 0.02  # mm: arc length over which the rack's curvature is taken
+
 
 @dataclass(frozen=True)
 class HobLimits:
@@ -108,6 +111,16 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
     ds = np.hypot(*np.diff(pts, axis=0).T)
     same = (idx[:-1] == idx[1:]) & cutting[:-1] & cutting[1:] & (ds > 0)
     kappa = np.where(same, np.diff(psi) / np.where(ds > 0, ds, 1.0), 0.0)
+    # the turn over an arc length of CURVATURE_BASE at least, within one cutting piece: sub-micrometre
+    # folds of a measured rack (see above) must not read as a sharp tool radius
+    arc = np.concatenate([[0.0], np.cumsum(ds)])
+    j = np.minimum(np.searchsorted(arc, arc + CURVATURE_BASE), len(arc) - 1)
+    piece_ok = (idx[j] == idx) & cutting & cutting[j] & (arc[j] - arc > 0.5 * CURVATURE_BASE)
+    kappa_w = np.where(piece_ok, (psi[j] - psi) / np.where(arc[j] > arc, arc[j] - arc, 1.0), 0.0)[:-1]
+    short = np.zeros(len(kappa), dtype=bool)
+    last = np.flatnonzero(np.diff(idx) != 0)  # pieces too short for the base keep their own estimate
+    short[last] = True
+    kappa = np.where(piece_ok[:-1], kappa_w, np.where(short, 0.0, kappa))
     jumps = (idx[:-1] != idx[1:]) & cutting[:-1] & cutting[1:] & (np.abs(np.diff(psi)) > 1e-3) & (ds < 1e-6 * rack.period)
     tip_r = float(1.0 / kappa[kappa > 0].max()) if np.any(kappa > 0) else np.inf
     root_r = float(-1.0 / kappa[kappa < 0].min()) if np.any(kappa < 0) else np.inf
@@ -143,17 +156,25 @@ def _tip_thickness(pts: np.ndarray, period: float) -> float:
     top = y1 + (y1 - y0)
     poly = shapely.make_valid(shapely.Polygon(np.vstack([chain, [[chain[-1, 0], top], [chain[0, 0], top]]])))
     cut = poly.intersection(shapely.LineString([(pts[0, 0], level), (pts[0, 0] + period, level)]))
-    widths = [g.length for g in getattr(cut, "geoms", [cut]) if g.length > 0]
+    widths = [g.length for g in getattr(cut, "geoms", [cut]) if g.length > FOLD_TOLERANCE]  # not a fold's sliver
     return float(min(widths)) if widths else 0.0
 
 
 def _crosses_itself(pts: np.ndarray) -> bool:
-    """True if two non-adjacent segments of the polyline cross or touch (shapely's STRtree over
-    the segments; neighbours that only share their common vertex do not count)."""
+    """True if the polyline crosses itself so that it encloses a loop wider than FOLD_TOLERANCE
+    (mean width 2 area / perimeter of each loop that shapely's noding and polygonizing finds):
+    an undercut's swallowtail is tens of micrometres wide, the zigzag of a measured rack where
+    its samples fold back along the curve is not."""
     segs = shapely.linestrings(np.stack([pts[:-1], pts[1:]], axis=1))
     tree = shapely.STRtree(segs)
     a, b = tree.query(segs, predicate="intersects")
     far = np.abs(a - b) > 1
     if len(pts) > 2 and np.allclose(pts[0], pts[-1]):
         far &= ~(((a == 0) & (b == len(segs) - 1)) | ((b == 0) & (a == len(segs) - 1)))
-    return bool(np.any(far))
+    if not np.any(far):
+        return False
+    loops = shapely.get_parts(shapely.polygonize(shapely.get_parts(shapely.node(shapely.LineString(pts)))))
+    if len(loops) == 0:
+        return False
+    width = 2 * shapely.area(loops) / np.maximum(shapely.length(loops), 1e-300)
+    return bool(np.any(width > FOLD_TOLERANCE))

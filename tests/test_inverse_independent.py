@@ -174,16 +174,16 @@ def test_racks_from_points_of_either_rotor_follow_the_generating_rack(rotor):
 
 def test_the_female_from_male_points_is_the_female_the_male_cuts():
     # rotor -> rack -> mate against brute force: the female cut with the male outline as the tool
-    # (rotor-rotor generation, 4000 positions; its own scallops and the sharp tip corner's path
-    # between positions are within a few um). Mean distance within 2 um, exact and noisy.
+    # (rotor-rotor generation, 3000 positions; its own scallops and the sharp tip corner's path
+    # between positions reach 13 um against 6000 positions). Mean distance within 2 um, exact and noisy.
     pair = rotor_pair()
-    reference = shapely.LinearRing(female_cut_by_male(PAIR, male(), positions=4000))
+    reference = shapely.LinearRing(female_cut_by_male(PAIR, male(), positions=3000))
     for pts in (male(), noisy(male(), 6)):
         rebuilt = pair_from_rotor_points(pair, pts, "male").section("female", 1e-4).exterior
         dense = np.asarray(shapely.segmentize(rebuilt, 0.01).coords)
         d = shapely.distance(shapely.points(dense), reference)
         assert d.mean() < 2e-3
-        assert d.max() < 10e-3
+        assert d.max() < 15e-3
 
 
 def test_outline_forms_give_the_same_clearance():
@@ -218,3 +218,24 @@ def test_cli_refuses_a_wrong_lobe_count_and_a_binary_file(tmp_path, capsys):
     assert main([*base, "--male-points", str(tmp_path / "m.csv"), "--male-teeth", "4", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert abs(data["min_normal_clearance"]) < 2e-3
+
+
+@pytest.mark.parametrize("rotor", ["male", "female"])
+def test_a_plain_trapezoid_rotor_is_hobbable(tmp_path, capsys, rotor):
+    # A rotor cut by a trapezoid rack (30 deg flanks, 1.5 mm roundings) is what any hob makes: the
+    # verdict from its points (exact, and CMM-like) is "hobbable" with no reasons, and the normal
+    # rack's flank angle is the closed form atan(tan(30 deg) cos(beta)) (Wu & Chi eq. 7).
+    ring = male() if rotor == "male" else female()
+    beta = np.arctan(2 * np.pi * PAIR.male_pitch_radius / LEAD)
+    alpha_n = np.degrees(np.arctan(np.tan(ALPHA) * np.cos(beta)))
+    dims = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--lead", str(LEAD)]
+    dims += [f"--{k.replace('_', '-')}={v}" for k, v in PAIR.radii().items()]
+    for k, pts in enumerate((ring, noisy(ring, 7))):
+        write_points(tmp_path / f"p{k}.csv", pts)
+        capsys.readouterr()
+        assert main(["hob", f"--{rotor}-points", str(tmp_path / f"p{k}.csv"), *dims, "--json"]) == 0
+        data = json.loads(capsys.readouterr().out)
+        assert data["hobbable"] and data["reasons"] == []
+        # the smallest flank angle is a minimum over the flank: with 1 um scatter the smoothed
+        # spline's slope wanders by a few mrad, so 0.3 deg there, 0.02 deg for the exact cut
+        assert data["racks"][rotor]["normal_pressure_angle_min_deg"] == pytest.approx(alpha_n, abs=0.3 if k else 0.02)
