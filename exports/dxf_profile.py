@@ -513,3 +513,17 @@ def read_profile_points(path: Path, label: str, layer: str | None = None) -> np.
     if path.suffix.lower() == ".dxf" or looks_like_dxf(head):
         return sample_profile_dxf(path, label, layer)
     return read_points(path, label)
+
+
+def read_profile(path: Path, label: str, layer: str | None = None) -> np.ndarray | list[Curve]:
+    """A rotor profile as the user gave it: the exact curves of a DXF drawing
+    (:func:`read_profile_dxf`: arcs stay arcs, splines the drawing's splines) or the points of a
+    CSV file (:func:`exports.csv_points.read_points`), whichever ``path`` is (see
+    :func:`read_profile_points`)."""
+    path = Path(path)
+    check_regular_file(path, label, "CSV points file or DXF drawing")
+    with open(path, "rb") as f:
+        head = f.read(512)
+    if path.suffix.lower() == ".dxf" or looks_like_dxf(head):
+        return read_profile_dxf(path, label, layer)
+    return read_points(path, label)

@@ -195,7 +195,14 @@ class ThermalState:
             lead=pair.lead * k,
             length=pair.length * k,
         )
-        return hot, np.asarray(male) * k, np.asarray(female) * k
+        return hot, _scaled(male, k), _scaled(female, k)
+
+
+def _scaled(profile: Array | list[Curve], k: float) -> Array | list[Curve]:
+    """Points (n, 2) or exact curves grown by the factor ``k`` about the rotor's centre."""
+    if isinstance(profile, list | tuple):
+        return [Mapped(c, ((k, 0.0), (0.0, k))) for c in profile]
+    return np.asarray(profile) * k
 
 
 @dataclass(frozen=True, eq=False)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import optimize
 
-from rotorcad.curves import Arc, Curve, Mapped, Spline
+from rotorcad.curves import Arc, Curve, Mapped, Spline, rotated, sample_curve
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
@@ -156,7 +156,7 @@ def _refined_corners(
 
 def lobe_pieces(
     pair: RotorPair,
-    points: np.ndarray,
+    points: np.ndarray | list[Curve],
     rotor: str,
     smoothing: float | None = None,
     corner_angle_deg: float = 30.0,
@@ -169,9 +169,11 @@ def lobe_pieces(
     ----------
     pair : RotorPair
         Tooth counts and centre distance (mm).
-    points : (n, 2) float, mm
+    points : (n, 2) float, mm, or list of Curve
         One lobe or the whole outline in the rotor's own frame, either direction, any start;
-        exact, measured (scatter of a few um) or polygonal (boolean cutting, with scallops).
+        exact, measured (scatter of a few um) or polygonal (boolean cutting, with scallops). Or
+        the exact curves of a drawing, chained counter-clockwise (lines, arcs, splines), which are
+        used as they are.
     rotor : "male" or "female"
     smoothing : float or None
         scipy's spline smoothing (mm^2) for every piece; None: n sigma^2 from the estimated
@@ -189,6 +191,8 @@ def lobe_pieces(
     """
     teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
     label = label or f"{rotor} points"
+    if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
+        return _lobe_from_curves(list(points), teeth, rotor, label)
     whole = whole_outline(points, teeth, label)
     sigma = scatter(whole) if smoothing is None else 0.0
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
@@ -205,6 +209,14 @@ def lobe_pieces(
         ring = np.roll(whole, -start, axis=0)
         runs = [np.vstack([ring, ring[:1]])]
     fitted = [piece for run in runs for piece in _fit_run(run, sigma, smoothing)]
+    return _cut_lobe(fitted, whole, teeth, rotor, label)
+
+
+def _cut_lobe(
+    fitted: list[tuple[Curve, np.ndarray, np.ndarray]], whole: np.ndarray, teeth: int, rotor: str, label: str
+) -> list[tuple[str, Curve]]:
+    """The lobe facing the mate, from root to root, out of the whole outline's curves (each with
+    sample points and their parameters), trimmed at the two roots' polar angles."""
     theta = _facing_root_angle(whole, teeth, 0.0 if rotor == "male" else np.pi)
 
     def locate(th: float) -> tuple[int, float]:
@@ -226,6 +238,30 @@ def lobe_pieces(
             k = (k + 1) % len(fitted)
         curves.append(last.trimmed(last.s0, s_b))
     return [(f"lobe part {i + 1}", c) for i, c in enumerate(curves) if abs(c.s1 - c.s0) > 1e-9]
+
+
+def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -> np.ndarray:
+    """Points (n, 2) of a profile given by points (returned as they are) or by exact curves
+    (sampled to the chord ``tolerance``, mm)."""
+    if isinstance(profile, list | tuple):
+        return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
+    return np.asarray(profile, dtype=float)
+
+
+def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -> list[tuple[str, Curve]]:
+    """The lobe facing the mate from exact curves of a drawing (one lobe, patterned, or the whole
+    outline, counter-clockwise: :func:`exports.dxf_profile.read_profile_dxf`): arcs stay arcs,
+    splines stay the drawing's splines, and the lobe is cut from them at the roots."""
+    samples = [sample_curve(c, 1e-4) for c in curves]
+    pts = np.vstack([p for _, p, _ in samples])
+    whole = whole_outline(pts, teeth, label)  # checks the lobe count or the span of one lobe
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    pitch = 2 * np.pi / teeth
+    if abs(ang[-1] - ang[0]) < 2 * np.pi - 0.5 * pitch:  # one lobe: pattern the curves
+        curves = [rotated(c, k * pitch) for k in range(teeth) for c in curves]
+        samples = [sample_curve(c, 1e-4) for c in curves]
+    fitted = [(c, p, s) for c, (s, p, _) in zip(curves, samples, strict=True)]
+    return _cut_lobe(fitted, whole, teeth, rotor, label)
 
 
 def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tuple[Curve, np.ndarray, np.ndarray]]:
@@ -336,7 +372,7 @@ def _mate_corner_runs(
 
 
 def pair_from_rotor_points(
-    pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None, label: str | None = None
+    pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, smoothing: float | None = None, label: str | None = None
 ) -> ScrewRotors:
     """Points of the male or the female rotor in its own frame (one lobe or the whole outline).
 

@@ -20,6 +20,7 @@ above it.
 from __future__ import annotations
 
 import functools
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -268,3 +269,41 @@ def female_cut_by_male(pair: Pair, male: np.ndarray, positions: int = 6000) -> n
         cut = max(cut.geoms, key=lambda g: g.area)
     ring = np.asarray(cut.exterior.coords)[:-1]
     return ring if shapely.LinearRing(ring).is_ccw else ring[::-1]
+
+
+def write_drawing(path: str, ring: np.ndarray, radii: tuple[float, float], flank: tuple[float, float]) -> None:
+    """The closed outline as a CAD drawing would have it (ezdxf, layer PROFILE): the lands (points
+    on the tip or root circle of ``radii`` within 0.01 um, the cut's chords) as ARCs about the centre, the flanks
+    (points with a radius inside ``flank``) as SPLINEs through their points, everything else (the
+    roundings' images, the tip corners) as LWPOLYLINEs."""
+    import ezdxf
+
+    r = np.hypot(*ring.T)
+    on_circle = np.min(np.abs(r[:, None] - np.asarray(radii)[None, :]), axis=1) < 1e-5
+    kind = np.where(on_circle, 0, np.where((r > flank[0]) & (r < flank[1]), 1, 2))
+    for _ in range(2):  # runs of fewer than 5 points are drawn with their neighbours as polylines
+        edges = np.flatnonzero(np.diff(np.concatenate([[-1], kind, [-1]])) != 0)
+        for a, b in itertools.pairwise(edges):
+            if b - a < 5:
+                kind[a:b] = 2
+    start = int(np.flatnonzero(np.diff(kind) != 0)[0]) + 1  # begin at a change of kind
+    ring, kind = np.roll(ring, -start, axis=0), np.roll(kind, -start)
+    closed = np.vstack([ring, ring[:1]])
+    bounds = [*(np.flatnonzero(np.diff(kind) != 0) + 1).tolist(), len(ring)]
+    doc = ezdxf.new("R2000")
+    msp = doc.modelspace()
+    lo = 0
+    for hi in bounds:
+        pts = closed[lo : hi + 1]  # each run shares its last point with the next run
+        if kind[lo] == 0 and len(pts) > 3:  # the arc over the land's own points, a line on to the next run
+            radius = float(np.median(np.hypot(*pts[:-1].T)))
+            a0, a1 = (float(np.degrees(np.arctan2(p[1], p[0]))) for p in (pts[0], pts[-2]))
+            msp.add_arc((0.0, 0.0), radius, a0, a1, dxfattribs={"layer": "PROFILE"})
+            end = radius * np.array([np.cos(np.radians(a1)), np.sin(np.radians(a1))])
+            msp.add_lwpolyline([tuple(end), tuple(pts[-1])], dxfattribs={"layer": "PROFILE"})
+        elif kind[lo] == 1 and len(pts) > 3:
+            msp.add_spline(fit_points=[(float(x), float(y), 0.0) for x, y in pts], dxfattribs={"layer": "PROFILE"})
+        else:
+            msp.add_lwpolyline([(float(x), float(y)) for x, y in pts], dxfattribs={"layer": "PROFILE"})
+        lo = hi
+    doc.saveas(path)

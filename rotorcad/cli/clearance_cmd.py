@@ -9,12 +9,12 @@ import click
 import numpy as np
 
 from exports.csv_points import write_points
-from exports.dxf_profile import read_profile_points
+from exports.dxf_profile import read_profile
 from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.errors import DesignError
 from rotorcad.rotor_pair import RotorPair
-from rotorcad.rotor_points import lobe_pieces
+from rotorcad.rotor_points import lobe_pieces, profile_points
 
 
 @click.command()
@@ -110,11 +110,11 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
     if opts["smoothing"] is not None and not (np.isfinite(opts["smoothing"]) and opts["smoothing"] >= 0):
         raise InputError(f"--smoothing must be at least 0 mm^2 (got {opts['smoothing']}).")
     try:
-        male = read_profile_points(opts["male_points"], "--male-points", opts["layer"])
-        female = read_profile_points(opts["female_points"], "--female-points", opts["layer"])
+        male = read_profile(opts["male_points"], "--male-points", opts["layer"])
+        female = read_profile(opts["female_points"], "--female-points", opts["layer"])
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    rm, rf = np.hypot(*male.T), np.hypot(*female.T)
+    rm, rf = np.hypot(*profile_points(male).T), np.hypot(*profile_points(female).T)
     names = {
         "male_tip_radius": "--male-points (its largest radius)",
         "male_root_radius": "--male-points (its smallest radius)",

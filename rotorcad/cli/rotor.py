@@ -10,7 +10,7 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
-from exports.dxf_profile import read_profile_points
+from exports.dxf_profile import read_profile, read_profile_points
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.design import load_rotor_design
 from rotorcad.envelope import rack_frame
@@ -193,11 +193,12 @@ def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, floa
         raise InputError(f"the pair is not described completely: {exc}.") from None
     try:
         if family in ("rack-points", "male-points", "female-points"):
-            pts = read_profile_points(points, f"--{family}", opts.get("layer"))
             if family == "rack-points":
+                pts = read_profile_points(points, f"--{family}", opts.get("layer"))
                 rotors = pair_from_rack_points(pair, pts, smoothing or 0.0)
             else:
-                rotors = pair_from_rotor_points(pair, pts, family.split("-")[0], smoothing, label=f"--{family}")
+                profile = read_profile(points, f"--{family}", opts.get("layer"))
+                rotors = pair_from_rotor_points(pair, profile, family.split("-")[0], smoothing, label=f"--{family}")
         else:
             rotors = build_family(pair, family, params)
     except DesignError as exc:
