@@ -163,8 +163,12 @@ def _is_number(text: str) -> bool:
     return "_" not in text
 
 
-def read_points(path: Path, label: str = "points file") -> np.ndarray:
+def read_points(path: Path, label: str = "points file", columns: tuple[str, str] = ("x", "y")) -> np.ndarray:
     """Read a points file; anything that is not a readable profile is refused.
+
+    With other ``columns`` than ``("x", "y")`` the file is a table of two numbers a row under that
+    header (e.g. ``x,clearance``): it is read the same way but not checked as a profile (at least
+    two rows).
 
     Parameters
     ----------
@@ -197,15 +201,17 @@ def read_points(path: Path, label: str = "points file") -> np.ndarray:
         raise DesignError(label, "a CSV points file with the header x,y and at least 4 points", str(path), "it holds no data")
     header = lines[header_at].strip()
     sep = "," if "," in header else ";" if ";" in header else "\t" if "\t" in header else None
+    want = [c.lower() for c in columns]
+    head = ",".join(columns)
     columns = [c.strip().strip("\"'").lower() for c in header.split(sep)]
-    if len(columns) < 2 or columns[:2] != ["x", "y"]:
+    if len(columns) < 2 or columns[:2] != want:
         if looks_like_dxf(text[:256].encode("latin-1", "replace")):
             detail = "it is a DXF drawing, not a CSV points file"
         else:
             detail = f"line {header_at + 1} reads {_quote(header)}"
             if all(_is_number(c) for c in header.split(sep)):
                 detail += " (the header line x,y is missing)"
-        raise DesignError(label, "a CSV points file whose first line is the header x,y", str(path), detail)
+        raise DesignError(label, f"a CSV file whose first line is the header {head}", str(path), detail)
     width = len(columns)
     sep_name = {",": "','", ";": "';'", "\t": "tabs", None: "blanks"}[sep]
     xs: list[float] = []
@@ -240,8 +246,12 @@ def read_points(path: Path, label: str = "points file") -> np.ndarray:
     if not finite.all():
         number = numbers[int(np.argmin(finite))]
         raise DesignError(
-            label, "finite numbers x,y on every line", str(path), f"line {number} reads {_quote(lines[number - 1].strip())}"
+            label, f"finite numbers {head} on every line", str(path), f"line {number} reads {_quote(lines[number - 1].strip())}"
         )
+    if want != ["x", "y"]:
+        if len(pts) < 2:
+            raise DesignError(label, f"a table of at least two rows {head}", str(path), f"{len(pts)} read")
+        return pts
     return check_profile(pts, label, str(path))
 
 

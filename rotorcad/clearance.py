@@ -205,6 +205,12 @@ def _scaled(profile: Array | list[Curve], k: float) -> Array | list[Curve]:
     return np.asarray(profile) * k
 
 
+def _turned(points: Array, angles: Array) -> Array:
+    """Points (n, 2) each turned by its own angle (n,) (rad, counter-clockwise) about the origin."""
+    c, s_ = np.cos(angles), np.sin(angles)
+    return np.stack([c * points[:, 0] - s_ * points[:, 1], s_ * points[:, 0] + c * points[:, 1]], axis=1)
+
+
 @dataclass(frozen=True, eq=False)
 class MeshingClearance:
     """Meshing clearance of a pair given by one lobe of each rotor (counter-clockwise pieces in
@@ -362,6 +368,49 @@ class MeshingClearance:
             "band_area": area,
             "contact_line_length": length,
             "wetted_perimeter": float(dl[seg].sum() + do[seg].sum() + width[:-1][starts].sum() + width[1:][ends].sum()),
+        }
+
+    def distribution(self) -> dict[str, Array]:
+        """The clearance on both rotors and over the rotation (Wu & Chi Fig. 9), one row per datum
+        rack point (arrays (n,), mm and deg):
+
+        ``x``, ``y`` the positioned datum normal rack; ``clearance`` along its normal;
+        ``male_angle_deg`` the male rotation angle at which the point is in contact and ``z`` its
+        axial position on the contact line (z = h1 phi / 2 pi from the first contact inside both
+        bores, so that 0 is the suction end and ``length`` the discharge end); ``contact_x``,
+        ``contact_y`` the contact point in the fixed transverse frame; ``female_x``, ``female_y``
+        the female profile point there (own frame, mesh position), ``male_x``, ``male_y`` the male
+        point facing it across the transverse gap (own frame); ``in_contact`` (0/1) whether the
+        contact lies inside both bores and within the rotor length."""
+        pair = self.pair
+        contact, angle = self._contacts(self.shift)
+        delta = self.clearance
+        z = pair.lead * angle / (2 * np.pi)
+        use = self._in_both_bores(delta) & np.isfinite(delta) & np.isfinite(z)
+        z = z - (z[use].min() if use.any() else 0.0)
+        use &= z <= pair.length + 1e-9
+        tan = self.female_rack.tangents  # transverse rack tangent, CONTRACT frame (x along the pitch line)
+        towards_male = np.stack([-tan[:, 0], tan[:, 1]], axis=1)  # the datum's normal in fixed axes (x = rack y)
+        # the normal clearance in the transverse section (clearance_design: delta_t / delta_n)
+        stretch = np.sqrt(tan[:, 1] ** 2 / np.cos(self.helix_angle) ** 2 + tan[:, 0] ** 2)
+        gap_t = np.nan_to_num(delta) * stretch
+        phi2 = -angle * pair.male_teeth / pair.female_teeth
+        female = _turned(contact - np.array([pair.center_distance, 0.0]), -phi2)
+        male = _turned(contact + gap_t[:, None] * towards_male, -angle)
+        pts = self.datum_rack
+        return {
+            "x": pts[:, 0],
+            "y": pts[:, 1],
+            "clearance": delta,
+            "male_angle_deg": np.degrees(angle),
+            "z": z,
+            "contact_x": contact[:, 0],
+            "contact_y": contact[:, 1],
+            "female_x": female[:, 0],
+            "female_y": female[:, 1],
+            "male_x": male[:, 0],
+            "male_y": male[:, 1],
+            "in_contact": use.astype(float),
         }
 
     def summary(self) -> dict[str, float]:

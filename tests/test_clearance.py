@@ -139,7 +139,7 @@ def test_cli_clearance_keys_files_and_bad_input(tmp_path, capsys):
     assert keys <= set(data)
     assert data["min_normal_clearance"] == pytest.approx(0.0, abs=2e-5)  # contact on the driving flank
     assert (tmp_path / "c.png").stat().st_size > 0
-    assert "x,y,clearance" in open(tmp_path / "c.csv").read().splitlines()[:3]
+    assert any(line.startswith("x,y,clearance,male_angle_deg,z") for line in open(tmp_path / "c.csv").read().splitlines()[:6])
     for args, word in (
         ([*base, "--male-teeth", "5", "--female-teeth", "6"], "--center-distance"),
         ([*base, "--male-teeth", "1", "--female-teeth", "6", "--center-distance", "116"], "--male-teeth"),

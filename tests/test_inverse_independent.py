@@ -275,3 +275,53 @@ def test_a_drawing_with_arcs_splines_and_polylines_gives_the_csv_result(tmp_path
         results.append(json.loads(capsys.readouterr().out))
     for key in ("min_normal_clearance", "female_rack_shift"):
         assert results[1][key] == pytest.approx(results[0][key], abs=1e-3), key
+
+
+def test_a_designed_clearance_is_made_and_measured_back(tmp_path, capsys):
+    # Make: the trapezoid rack given to `rotor --rack-points` with --clearance sealing=0.04 writes
+    # a female thinned on its sealing (falling) flank. Independent check: on that flank it lies on
+    # the female that the rack with its falling flank moved by delta_t (the transverse offset of
+    # the closed form, inverted) cuts by brute force, within 3 um (0.1 um typical). Round trip: `clearance
+    # --contact as-given` reads 40 um there within 3 um and zero on the driving flank within 2 um.
+    delta_n = 0.04
+    beta = np.arctan(2 * np.pi * PAIR.male_pitch_radius / LEAD)
+    delta_t = delta_n * np.sqrt(np.cos(ALPHA) ** 2 / np.cos(beta) ** 2 + np.sin(ALPHA) ** 2)
+    rack, _ = PAIR.rack.sample(0.01)
+    write_points(tmp_path / "rack.csv", np.vstack([rack, rack[:1] + [PAIR.rack.period, 0.0]]))
+    dims = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--lead", str(LEAD)]
+    dims += [f"--{k.replace('_', '-')}={v}" for k, v in PAIR.radii().items()]
+    out = ["--male-csv", str(tmp_path / "m.csv"), "--female-csv", str(tmp_path / "f.csv"), "--json"]
+    capsys.readouterr()
+    assert main(["rotor", "--rack-points", str(tmp_path / "rack.csv"), *dims, "--clearance", "sealing=0.04", *out]) == 0
+    assert json.loads(capsys.readouterr().out)["designed_clearance"] == {"driving": 0.0, "sealing": 0.04, "lands": 0.0}
+    made = np.loadtxt(tmp_path / "f.csv", delimiter=",", comments="#", skiprows=2)
+    reference = shapely.LinearRing(female(delta_t))
+    r = np.hypot(*made.T)
+    flank = (r > 53.5) & (r < 66.5)
+    d = shapely.distance(shapely.points(made[flank]), reference)
+    assert np.median(d) < 1e-4 and d.max() < 3e-3  # 2.1 um at the flank's foot, 0.01 um typical
+    mc = clearance(np.loadtxt(tmp_path / "m.csv", delimiter=",", comments="#", skiprows=2), made, contact="as-given")
+    sel = regions(mc)
+    np.testing.assert_allclose(mc.clearance[sel["falling"]], delta_n, atol=3e-3)
+    assert np.abs(mc.clearance[sel["rising"]]).max() < 2e-3
+
+
+@pytest.mark.parametrize("offset", [0.0, OFFSET])
+def test_the_distribution_lands_on_both_rotor_profiles(offset):
+    # Wu & Chi Fig. 9: each datum point's clearance placed on the female profile (its contact
+    # point turned into the female frame) and on the male (across the transverse gap, turned into
+    # the male frame). Both must lie on the cut outlines given as input: female within 1 um, male
+    # within 1.5 um (which checks the normal-to-transverse conversion on the offset flank: 50 um
+    # transverse there), over a contact line from z = 0 to the rotor length.
+    mc = clearance(male(), female(offset))
+    dist = mc.distribution()
+    sel = np.zeros(len(mc.clearance), dtype=bool)
+    for part in regions(mc).values():
+        sel |= part
+    sel &= dist["in_contact"] > 0
+    f = np.column_stack([dist["female_x"], dist["female_y"]])[sel]
+    m = np.column_stack([dist["male_x"], dist["male_y"]])[sel]
+    assert shapely.distance(shapely.points(f), shapely.LinearRing(female(offset))).max() < 1e-3
+    assert shapely.distance(shapely.points(m), shapely.LinearRing(male())).max() < 1.5e-3
+    z = dist["z"][dist["in_contact"] > 0]
+    assert z.min() == pytest.approx(0.0, abs=1e-9) and z.max() <= 190.0 + 1e-9

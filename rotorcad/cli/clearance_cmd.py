@@ -64,7 +64,8 @@ from rotorcad.rotor_points import lobe_pieces, profile_points
     "--csv",
     "csv_path",
     type=click.Path(path_type=Path, dir_okay=False),
-    help="Write the datum (female) normal rack with the clearance at each point: x, y, clearance [mm].",
+    help="Write the clearance distribution: datum (female) normal rack x, y, clearance [mm], male angle [deg], z, "
+    "contact point, female and male profile points [mm], in_contact.",
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def clearance(**opts: Any) -> None:
@@ -85,15 +86,16 @@ def clearance(**opts: Any) -> None:
     if opts["plot"]:
         out.add(opts["plot"], lambda p: _plot(mc).savefig(p, format="png"), "--plot")
     if opts["csv_path"]:
-        rows = np.column_stack([mc.datum_rack, mc.clearance])
+        dist = mc.distribution()
+        rows = np.column_stack(list(dist.values()))
         ok = np.isfinite(rows).all(axis=1)
-        out.add(
-            opts["csv_path"],
-            lambda p: write_points(
-                p, rows[ok], ["female normal rack (datum), clearance along its normal [mm]"], header="x,y,clearance"
-            ),
-            "--csv",
-        )
+        notes = [
+            "meshing clearance (Wu & Chi) per point of the female normal rack (the datum): x, y [mm] on it, clearance along",
+            "its normal [mm], male rotation angle [deg] and axial position z [mm] of the contact (0: first contact inside both",
+            "bores), contact point in the fixed transverse frame [mm], female and male profile points there [mm, own frames],",
+            "in_contact 1 where the contact lies inside both bores and the rotor length",
+        ]
+        out.add(opts["csv_path"], lambda p: write_points(p, rows[ok], notes, header=",".join(dist)), "--csv")
     result["files"] = [str(p) for p in out.write()]
     if opts["as_json"]:
         emit_json(result)
@@ -184,7 +186,7 @@ def _plot(mc: MeshingClearance):
     pts, delta, n = mc.datum_rack, mc.clearance, mc.datum_normals
     ok = np.isfinite(delta)
     scale = 0.1 * np.ptp(pts[:, 1]) / max(np.nanmax(np.abs(delta)), 1e-9)
-    fig, (ax, bx) = plt.subplots(2, 1, figsize=(8, 8))
+    fig, (ax, bx, cx) = plt.subplots(3, 1, figsize=(8, 11))
     ax.plot(pts[:, 0], pts[:, 1], "k-", lw=0.8, label="female normal rack (datum)")
     tip = pts + (scale * np.nan_to_num(delta))[:, None] * n
     ax.plot(tip[ok, 0], tip[ok, 1], "r-", lw=0.8, label=f"clearance x {scale:.0f}")
@@ -196,6 +198,12 @@ def _plot(mc: MeshingClearance):
     bx.plot(length[ok], 1e3 * delta[ok], "r-", lw=0.8)
     bx.axhline(0.0, color="k", lw=0.5)
     bx.set_xlabel("along the datum rack [mm]")
-    bx.set_ylabel("normal clearance [um]")
+    bx.set_ylabel("normal clearance [µm]")
+    dist = mc.distribution()
+    inside = dist["in_contact"] > 0
+    cx.plot(dist["male_angle_deg"][inside], 1e3 * dist["clearance"][inside], "b.", ms=1.5)
+    cx.axhline(0.0, color="k", lw=0.5)
+    cx.set_xlabel("male rotation angle of the contact [deg] (suction end to discharge end)")
+    cx.set_ylabel("normal clearance [µm]")
     fig.tight_layout()
     return fig

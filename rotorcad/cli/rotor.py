@@ -8,9 +8,10 @@ from typing import Any
 import click
 import numpy as np
 
-from exports.csv_points import write_points
+from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile, read_profile_points
+from rotorcad.clearance_design import ClearanceDistribution, corrected_female
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.design import load_rotor_design
 from rotorcad.envelope import rack_frame
@@ -107,6 +108,17 @@ CONTRACT_KEYS = (
     "--female-csv", type=click.Path(path_type=Path, dir_okay=False), help="Write the female outline (own frame, mesh position)."
 )
 @click.option("--rack-csv", type=click.Path(path_type=Path, dir_okay=False), help="Write one rack period (rack frame).")
+@click.option(
+    "--clearance",
+    "designed",
+    help="Meshing clearance to design into the female written by --female-csv / --dxf, in the normal section [mm]: "
+    "a value (uniform) or driving=D,sealing=S,lands=L (Wu & Chi's measure: rotorcad clearance reads it back).",
+)
+@click.option(
+    "--clearance-table",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="CSV x,clearance [mm]: the designed normal clearance over the datum rack's x (one rack period).",
+)
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def rotor(design: Path | None, **opts: Any) -> None:
     """A screw-rotor pair from a design file (profile family) or from measured points, with
@@ -127,8 +139,17 @@ def rotor(design: Path | None, **opts: Any) -> None:
         plot = Path(opts["plot"])
         out.add(plot, lambda p: plot_pair(analysis, clearance).savefig(p, format="png"), "--plot")
         out.add(plot.with_name(plot.stem + "_sliding.png"), lambda p: plot_sliding(analysis).savefig(p, format="png"), "--plot")
+    designed = _designed_clearance(opts)
     male_pts = lambda: _exterior(analysis.sections[0])  # noqa: E731
     female_pts = lambda: _exterior(analysis.sections[1])  # noqa: E731
+    if designed is not None:
+        result["designed_clearance"] = (
+            {"driving": designed.driving, "sealing": designed.sealing, "lands": designed.lands}
+            if designed.table is None
+            else {"table": str(opts["clearance_table"])}
+        )
+        corrected = _corrected(rotors, designed, tol)
+        female_pts = lambda: corrected  # noqa: E731
     out.add(opts["male_csv"], lambda p: write_points(p, male_pts(), ["male outline, own frame, male angle 0"]), "--male-csv")
     out.add(
         opts["female_csv"],
@@ -149,6 +170,34 @@ def rotor(design: Path | None, **opts: Any) -> None:
             )
         for p in result["files"]:
             click.echo(f"wrote {p}")
+
+
+def _designed_clearance(opts: dict[str, Any]) -> ClearanceDistribution | None:
+    """The clearance to design from --clearance or --clearance-table (one sentence on bad input)."""
+    if opts.get("designed") is not None and opts.get("clearance_table") is not None:
+        raise InputError("give only one of --clearance and --clearance-table.")
+    try:
+        if opts.get("designed") is not None:
+            return ClearanceDistribution.parse(opts["designed"])
+        if opts.get("clearance_table") is not None:
+            rows = read_points(opts["clearance_table"], "--clearance-table", columns=("x", "clearance"))
+            return ClearanceDistribution(table=tuple(map(tuple, rows)))
+    except DesignError as exc:
+        label = "--clearance-table" if opts.get("clearance_table") is not None else "--clearance"
+        raise InputError(exc.sentence(label if exc.param.startswith("clearance") else exc.param)) from None
+    return None
+
+
+def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float) -> np.ndarray:
+    """The female thinned by the designed clearance, clipped to its tip circle, counter-clockwise."""
+    import shapely
+
+    pts = corrected_female(rotors, designed, tol)
+    tip = shapely.Point(0.0, 0.0).buffer(rotors.pair.female_tip_radius + 1e-6, quad_segs=512)
+    poly = shapely.make_valid(shapely.Polygon(pts)).intersection(tip)
+    if not isinstance(poly, shapely.Polygon):
+        poly = max((g for g in getattr(poly, "geoms", []) if isinstance(g, shapely.Polygon)), key=lambda g: g.area)
+    return _exterior(poly)
 
 
 def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, float, float]:
