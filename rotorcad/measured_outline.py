@@ -113,7 +113,8 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     The turn across edge i (from point i to point i + 1) is the angle between the chord from point
     i - k to point i and the chord from point i + 1 to point i + 1 + k, so a corner shows in full
     whether it falls on a point or between two (a resampled or measured outline). k is chosen so
-    that the chords are five scatters long at least (at most 0.1 mm). Of the edges within k of each
+    that the chords are 40 scatters long at least (their directions then wander by 2 deg at most,
+    however dense the points), but at most 0.1 mm. Of the edges within k of each
     other only the one of largest turn is kept, and the corner's point is where the lines of its two
     chords cross (on the points for an exact corner vertex, between them otherwise).
 
@@ -126,7 +127,7 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     p = np.asarray(whole, dtype=float)
     n = len(p)
     h = float(np.median(np.hypot(*np.diff(p, axis=0).T)))
-    k = 1 if sigma <= 0 else int(np.clip(np.ceil(5 * sigma / h), 1, max(1, int(0.1 / h))))
+    k = 1 if sigma <= 0 else int(np.clip(np.ceil(40 * sigma / h), 1, max(1, int(0.1 / h))))
     a0, a1 = np.roll(p, k, axis=0), p  # chord before the edge
     b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
     back, ahead = a1 - a0, b1 - b0

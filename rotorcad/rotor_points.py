@@ -139,19 +139,25 @@ def _refined_corners(
         before, after = fits[j - 1], fits[j]  # the run ending at corner j, and the one starting there
         if before is None or after is None:
             continue
-        u, v = before.s1, after.s0
-        for _ in range(8):
-            (pa,), (ta,) = before.frame(np.array([u]))
-            (pb,), (tb,) = after.frame(np.array([v]))
-            jac = np.column_stack([ta, -tb])
-            if abs(np.linalg.det(jac)) < 1e-6:
-                break
-            du, dv = np.linalg.solve(jac, pb - pa)
-            u, v = u + du, v + dv
-        p = before.frame(np.array([u]))[0][0]
-        if np.hypot(*(p - after.frame(np.array([v]))[0][0])) < 1e-7 and np.hypot(*(p - out[j])) < 2 * h:
+        with np.errstate(all="ignore"):  # a diverging Newton step is refused below, not reported
+            p = _cross_ends(before, after, before.s1, after.s0)
+        if p is not None and np.hypot(*(p - out[j])) < 2 * h:
             out[j] = p
     return out
+
+
+def _cross_ends(before: Curve, after: Curve, u: float, v: float) -> np.ndarray | None:
+    """Where two curves extended past their ends cross (Newton on both parameters from u, v)."""
+    for _ in range(8):
+        (pa,), (ta,) = before.frame(np.array([u]))
+        (pb,), (tb,) = after.frame(np.array([v]))
+        jac = np.column_stack([ta, -tb])
+        if not np.all(np.isfinite(jac)) or abs(np.linalg.det(jac)) < 1e-6:
+            return None
+        du, dv = np.linalg.solve(jac, pb - pa)
+        u, v = u + du, v + dv
+    p, q = before.frame(np.array([u]))[0][0], after.frame(np.array([v]))[0][0]
+    return p if np.all(np.isfinite(p)) and np.hypot(*(p - q)) < 1e-7 else None
 
 
 def lobe_pieces(
