@@ -51,18 +51,58 @@ def emit_json(data: dict[str, Any]) -> None:
     click.echo(json.dumps(plain(data), indent=2))
 
 
+DIMENSIONLESS = ("teeth", "steps", "positions", "contact_ratio", "irregularity", "utilisation", "count", "faces", "triangles")
+_UNIT_RULES = (  # (pattern in the key, unit), first match wins
+    ("_deg", "deg"),
+    ("_hz", "Hz"),
+    ("_rpm", "rpm"),
+    ("_percent", "%"),
+    ("area", "mm²"),
+    ("volume", "mm³"),
+    ("displacement", "mm³"),
+    ("velocity", "m/s"),
+    ("mean_flow", "L/min"),
+    ("module", "mm"),
+    ("shift", "mm"),
+    ("clearance", "mm"),
+    ("deviation", "mm"),
+    ("radius", "mm"),
+    ("distance", "mm"),
+    ("length", "mm"),
+    ("perimeter", "mm"),
+    ("thickness", "mm"),
+    ("backlash", "mm"),
+    ("lead", "mm"),
+    ("tolerance", "mm"),
+)
+
+
+def unit_of(key: str) -> str:
+    """The unit of a result key as the command prints it (CONTRACT.md: lengths mm, areas mm², volumes
+    mm³, angles deg, speeds m/s, flows L/min); "1" for counts and ratios, "" if not known."""
+    if any(word in key for word in DIMENSIONLESS):
+        return "1"
+    return next((unit for pattern, unit in _UNIT_RULES if pattern in key), "")
+
+
 def print_table(title: str, rows: dict[str, Any]) -> None:
+    """The result as a table of quantity, value and unit (mm unless the unit column says else)."""
     table = Table(title=title, show_header=True, header_style="bold")
     table.add_column("quantity")
     table.add_column("value", justify="right")
+    table.add_column("unit")
     for key, value in plain(rows).items():
-        if isinstance(value, float):
-            text = f"{value:.6f}"
+        if isinstance(value, bool):
+            text, unit = str(value), ""
+        elif isinstance(value, float):
+            text, unit = f"{value:.6f}", unit_of(key)
+        elif isinstance(value, int):
+            text, unit = str(value), unit_of(key)
         elif isinstance(value, (dict, list)):
             continue
         else:
-            text = str(value)
-        table.add_row(key, text)
+            text, unit = str(value), ""
+        table.add_row(key, text, unit)
     Console(file=sys.stdout, highlight=False).print(table)
 
 
