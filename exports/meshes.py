@@ -17,7 +17,7 @@ MESHIO_FORMATS = {"vtu": "vtu", "xdmf": "xdmf"}
 MESH_FORMATS = tuple(TRIMESH_FORMATS) + tuple(MESHIO_FORMATS)
 EXTENSIONS = {
     "stl": ".stl",
-    "stl-ascii": ".stl",
+    "stl-ascii": "_ascii.stl",  # not the binary STL's name: both may be written at once
     "3mf": ".3mf",
     "obj": ".obj",
     "ply": ".ply",
@@ -36,7 +36,10 @@ def write_mesh(path: Path, mesh: trimesh.Trimesh, fmt: str) -> None:
             f.write(data)
     elif fmt in MESHIO_FORMATS:
         m = meshio.Mesh(np.asarray(mesh.vertices, dtype=float), [("triangle", np.asarray(mesh.faces, dtype=np.int64))])
-        meshio.write(str(path), m, file_format=MESHIO_FORMATS[fmt])
+        # XDMF with its data inline (XML), so that no HDF5 file is left beside it under the
+        # temporary name it was written to
+        extra = {"data_format": "XML"} if fmt == "xdmf" else {}
+        meshio.write(str(path), m, file_format=MESHIO_FORMATS[fmt], **extra)
     else:
         raise ValueError(f"unknown mesh format {fmt}")
 

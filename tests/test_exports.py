@@ -36,6 +36,7 @@ def solid():
 def test_mesh_formats_read_back_with_the_same_volume(tmp_path, solid, fmt):
     path = tmp_path / f"m.{fmt}"
     write_mesh(path, solid.mesh, fmt)
+    assert [p.name for p in tmp_path.iterdir()] == [path.name]  # no data file beside it (XDMF inline)
     back = read_mesh(path, fmt)
     assert back.is_watertight
     rel = 1e-5 if fmt in ("stl", "ply", "glb", "3mf") else 1e-9  # float32 storage in those formats (binary STL too)
