@@ -39,7 +39,7 @@ class Drawing:
 
 def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
     """Write ``drawing``: outlines as closed LWPOLYLINEs (R2000+) or POLYLINEs (R12)."""
-    doc = ezdxf.new(version)
+    doc = _new(version)
     if version != "R12":  # R12 has no units variable
         doc.header["$INSUNITS"] = 4  # millimetres
         doc.header["$MEASUREMENT"] = 1  # metric
@@ -84,7 +84,7 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
 def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: str = "MESH", version: str = "R2000") -> None:
     """A 3D triangle mesh as a MESH entity (R2000+) or a POLYFACE (R12). Meant for small meshes:
     a POLYFACE of 0.1 M triangles takes ezdxf ~10 s to build (STACK-NOTES)."""
-    doc = ezdxf.new(version)
+    doc = _new(version)
     if version != "R12":
         doc.header["$INSUNITS"] = 4
     doc.layers.add(layer, color=7)
@@ -101,6 +101,18 @@ def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: s
             data.vertices = v
             data.faces = f
     _save(doc, path, version)
+
+
+def _new(version: str) -> ezdxf.document.Drawing:
+    """A new drawing; ezdxf warns on stderr that R12 has no units variable when it sets its default
+    units - keep a successful run's stderr clean."""
+    logger = logging.getLogger("ezdxf")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    try:
+        return ezdxf.new(version)
+    finally:
+        logger.setLevel(level)
 
 
 def _save(doc: ezdxf.document.Drawing, path: Path, version: str) -> None:

@@ -17,7 +17,8 @@ from rich.table import Table
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf, write_dxf_mesh
 from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
-from exports.step import ocp_available, write_bspline_step, write_faceted_step
+from exports.step import ocp_available, write_faceted_step
+from exports.step_exact import SectionSegment, write_exact_step
 from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
 from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
@@ -145,9 +146,10 @@ def export(
             if fmt in MESH_FORMATS:
                 mesh = solids[body].mesh.copy()
                 mesh.apply_translation([*shift[body], 0.0])
-                row.update(triangles=len(mesh.faces), volume=solids[body].volume)
+                row.update(triangles=len(mesh.faces), volume=solids[body].volume, tolerance=solids[body].tolerance)
                 outputs.add(path, lambda p, m=mesh, f=fmt: write_mesh(p, m, f), "--out")
             elif fmt in ("dxf", "dxf-r12"):
+                row.update(tolerance=tol / 2)  # the section's chords
                 drawing = Drawing(mark_size=0.05 * pair.male_tip_radius)
                 drawing.outlines.append((body.upper(), placed))
                 drawing.circles.append(
@@ -160,11 +162,18 @@ def export(
             elif fmt in ("dxf-mesh", "dxf-mesh-r12"):
                 mesh = solids[body].mesh
                 if len(mesh.faces) > DXF_MESH_MAX:
+                    needed = tol
+                    for _ in range(12):  # find the tolerance that would do (triangles fall slower than 1/tolerance)
+                        needed *= 1.5
+                        coarse = helical_solid(rotors.section(body, needed / 2), leads[body], pair.length, needed)
+                        if len(coarse.mesh.faces) <= DXF_MESH_MAX:
+                            break
                     raise InputError(
-                        f"--tolerance must be coarser for a DXF mesh ({len(mesh.faces)} triangles; at most {DXF_MESH_MAX})."
+                        f"--tolerance must be coarser for a DXF mesh ({len(mesh.faces)} triangles; at most {DXF_MESH_MAX}): "
+                        f"{needed:.3g} mm or coarser would do."
                     )
                 verts = mesh.vertices + np.array([*shift[body], 0.0])
-                row.update(triangles=len(mesh.faces), volume=solids[body].volume)
+                row.update(triangles=len(mesh.faces), volume=solids[body].volume, tolerance=solids[body].tolerance)
                 outputs.add(
                     path,
                     lambda p, v=verts, fc=mesh.faces, b=body, f=fmt: write_dxf_mesh(
@@ -173,16 +182,22 @@ def export(
                     "--out",
                 )
             elif fmt == "csv":
+                row.update(tolerance=tol / 2)
                 own = np.asarray(sections[body].exterior.coords)[:-1]
                 outputs.add(path, lambda p, pts=own: write_points(p, pts), "--out")
             elif fmt == "step" and ocp_available():
-                outputs.add(
-                    path,
-                    lambda p, b=body: write_bspline_step(
-                        p, np.asarray(sections[b].exterior.coords)[:-1], leads[b], pair.length, b, shift[b]
-                    ),
-                    "--out",
-                )
+                step_tol = min(tol, STEP_TOLERANCE)
+                segments, exact = _step_section(rotors, body, turn[body], step_tol)
+                row.update(faces=len(segments) + 2, tolerance=step_tol, volume=float(shapely.Polygon(exact).area * pair.length))
+
+                def write_step(p: Path, b: str = body, segs=segments, ex=exact, r=row, t=step_tol) -> None:
+                    try:
+                        done = write_exact_step(p, segs, leads[b], pair.length, t, b, shift[b], exact=ex)
+                    except ValueError as exc:
+                        raise InputError(f"--tolerance {t:g} mm cannot be met by the STEP of the {b}: {exc}.") from None
+                    r["tolerance"] = done["deviation"]  # measured on the solid's faces
+
+                outputs.add(path, write_step, "--out")
             else:  # faceted STEP: coarse enough for OpenCASCADE to read
                 solid = solids[body]
                 coarse_tol = tol
@@ -232,24 +247,49 @@ def export(
     if as_json:
         emit_json(result)
     else:
-        table = Table(title=f"{stem}: {len(written)} files", header_style="bold")
-        for col in ("file", "format", "body", "triangles", "volume mm³", "size"):
-            table.add_column(col, justify="right" if col not in ("file", "format", "body") else "left")
+        table = Table(title=f"{len(written)} files {stem}_<file> in {folder}", header_style="bold")
+        table.add_column("file", overflow="fold")  # the whole name after the stem, folded, never cut
+        table.add_column("format")
+        for col in ("tolerance µm", "volume mm³", "size MB"):
+            table.add_column(col, justify="right")
         for row in rows:
+            met = row.get("tolerance")
             table.add_row(
-                Path(row["path"]).name,
+                Path(row["path"]).name.removeprefix(f"{stem}_"),
                 row["format"],
-                row["body"],
-                str(row["triangles"]),
+                "-" if met is None else f"{met * 1e3:.3g}",
                 f"{row['volume']:.1f}",
-                f"{row['size'] / 1e6:.2f} MB",
+                f"{row['size'] / 1e6:.2f}",
             )
         Console(file=sys.stdout, highlight=False).print(table)
 
 
+STEP_TOLERANCE = 1e-3  # mm: the exact STEP is checked against the helicoid to 1 um unless --tolerance is finer
+
+
+def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[list[SectionSegment], np.ndarray]:
+    """The section of one rotor as segments (its exact pieces, sampled with their tangents, turned
+    by ``turn``) and as a fine polyline for the deviation check."""
+    outline = rotors.male_outline(tolerance / 4) if body == "male" else rotors.female_outline(tolerance / 4)
+    fine = rotors.male_outline(tolerance / 100) if body == "male" else rotors.female_outline(tolerance / 100)
+    c, s = np.cos(turn), np.sin(turn)
+    rot = np.array([[c, -s], [s, c]])
+    segments = [SectionSegment(seg.name, seg.points @ rot.T, seg.tangents @ rot.T) for seg in outline.segments]
+    return segments, fine.points @ rot.T
+
+
 def _extension(fmt: str) -> str:
     return EXTENSIONS.get(
-        fmt, {"dxf": ".dxf", "dxf-r12": "_r12.dxf", "step": ".step", "step-faceted": "_faceted.step", "csv": ".csv"}.get(fmt, "")
+        fmt,
+        {
+            "dxf": ".dxf",
+            "dxf-r12": "_r12.dxf",
+            "dxf-mesh": "_mesh.dxf",
+            "dxf-mesh-r12": "_mesh_r12.dxf",
+            "step": ".step",
+            "step-faceted": "_faceted.step",
+            "csv": ".csv",
+        }.get(fmt, ""),
     )
 
 
