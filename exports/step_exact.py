@@ -85,6 +85,12 @@ def helical_solid(segments: list[SectionSegment], lead: float, length: float, to
         if not wire.IsDone():
             raise ValueError(f"the section's segment '{seg.name}' does not continue the previous one")
     profile = wire.Wire()
+    if not np.isfinite(lead):  # a straight prism (a spur gear)
+        from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+        from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+        from OCP.gp import gp_Vec
+
+        return BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(profile).Face(), gp_Vec(0.0, 0.0, float(length))).Shape()
     spine = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(0, 0, length)).Edge()).Wire()
     radius = max(float(np.hypot(*s.points.T).max()) for s in segments)
     cyl = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), radius)

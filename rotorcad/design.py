@@ -23,6 +23,7 @@ GEAR_KEYS: dict[str, type | tuple[type, ...]] = {
     "addendum": NUMBER,
     "dedendum": NUMBER,
     "tip_radius": NUMBER,
+    "face_width": NUMBER,  # mm, for solids (rotorcad export)
 }
 MATE_KEYS: dict[str, type | tuple[type, ...]] = {"teeth": int, "shift": NUMBER, "center_distance": NUMBER}
 

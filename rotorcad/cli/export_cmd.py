@@ -20,6 +20,7 @@ from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_faceted_step
 from exports.step_exact import SectionSegment, write_exact_step
 from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
+from rotorcad.cli.gear_export import export_gear, is_gear_design
 from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design import load_rotor_design
@@ -87,7 +88,11 @@ def export(
 ) -> None:
     """Helical male and female rotor solids of a design, written in each format (one file per body
     and format; the female is placed in mesh at (a, 0) at the male angle --angle). With a housing,
-    the block minus the two bores and the bores alone are written as meshes and STEP too."""
+    the block minus the two bores and the bores alone are written as meshes and STEP too. A gear
+    design ([gear], optional [mate] and face_width) gives the gear and its mate in mesh."""
+    if is_gear_design(design):
+        _export_gear(design, formats, out, tolerance, as_json)
+        return
     settings = _design_settings(design)
     fmts = (
         [f.strip().lower() for f in formats.split(",")]
@@ -276,6 +281,33 @@ def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[lis
     rot = np.array([[c, -s], [s, c]])
     segments = [SectionSegment(seg.name, seg.points @ rot.T, seg.tangents @ rot.T) for seg in outline.segments]
     return segments, fine.points @ rot.T
+
+
+def _export_gear(design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool) -> None:
+    """The gear branch of ``export``: formats default to stl, step and dxf, tolerance to 5 um."""
+    fmts = [f.strip().lower() for f in (formats or "stl,step,dxf").split(",")]
+    tol = 0.005 if tolerance is None else tolerance
+    if not (np.isfinite(tol) and 0 < tol <= 1.0):
+        raise InputError(f"--tolerance must be a surface tolerance between 0 and 1 mm (got {tol}).")
+    folder = output_folder(out)
+    rows = export_gear(design, fmts, folder, tol)
+    if as_json:
+        emit_json({"files": rows, "tolerance": tol})
+        return
+    table = Table(title=f"{len(rows)} files {design.stem}_<file> in {folder}", header_style="bold")
+    table.add_column("file", overflow="fold")
+    table.add_column("format")
+    for col in ("tolerance µm", "volume mm³", "size MB"):
+        table.add_column(col, justify="right")
+    for row in rows:
+        table.add_row(
+            Path(row["path"]).name.removeprefix(f"{design.stem}_"),
+            row["format"],
+            f"{row['tolerance'] * 1e3:.3g}",
+            f"{row['volume']:.1f}",
+            f"{row['size'] / 1e6:.2f}",
+        )
+    Console(file=sys.stdout, highlight=False).print(table)
 
 
 def _extension(fmt: str) -> str:

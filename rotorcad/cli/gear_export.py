@@ -1,0 +1,119 @@
+"""``rotorcad export GEAR.toml``: solids of an involute gear (and its mate in mesh) in every format.
+
+A gear design is a TOML file with a ``[gear]`` table (see ``samples/gear_pair.toml``; the face
+width is ``face_width`` in mm, ten modules when not given) and an optional ``[mate]``. The gear is
+swept along its helix (lead 2 pi r / tan(beta) at the pitch radius r, right hand for a positive
+helix angle; a spur gear is a straight prism), the mate with the opposite hand and its own lead,
+placed in mesh at the working centre distance.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import shapely
+
+from exports.csv_points import write_points
+from exports.dxf import Drawing, write_dxf
+from exports.meshes import MESH_FORMATS, write_mesh
+from exports.step_exact import SectionSegment, write_exact_step
+from rotorcad.cli.common import InputError, Outputs
+from rotorcad.cli.gear import build_gear, merge_gear_params
+from rotorcad.design import load_toml
+from rotorcad.errors import DesignError
+from rotorcad.gear import InvoluteGear
+from rotorcad.geometry import rotate
+from rotorcad.solids import helical_solid
+
+GEAR_FORMATS = (*MESH_FORMATS, "dxf", "step", "csv")
+STEP_TOLERANCE = 1e-3  # mm
+
+
+def is_gear_design(design: Path) -> bool:
+    """True for a TOML design with a ``[gear]`` table."""
+    try:
+        return "gear" in load_toml(design)
+    except DesignError:
+        return False
+
+
+def gear_lead(g: InvoluteGear) -> float:
+    """Lead of the gear's helix, mm (inf for a spur gear): 2 pi r / tan(beta) at the pitch radius."""
+    beta = g.helix_angle
+    return float("inf") if abs(beta) < 1e-12 else float(2 * np.pi * g.pitch_radius / np.tan(beta))
+
+
+def export_gear(design: Path, fmts: list[str], folder: Path, tol: float) -> list[dict[str, Any]]:
+    """Write the gear (and mate) solids; return the summary rows (path, format, body, volume,
+    tolerance, triangles or faces)."""
+    for f in fmts:
+        if f not in GEAR_FORMATS:
+            raise InputError(
+                f"--format for a gear design must be a comma-separated list of {', '.join(GEAR_FORMATS)} (got {f!r})."
+            )
+    params = merge_gear_params(design, {})
+    width = params.get("face_width")
+    if width is None:
+        width = 10.0 * float(params["module"])
+    if not (np.isfinite(width) and 0 < width <= 1e4):
+        raise InputError(f"[gear] face_width must be a length from 0 to 10000 mm (got {width}).")
+    g, pair = build_gear(params, tol / 4)
+    bodies: dict[str, tuple[InvoluteGear, float, tuple[float, float], float]] = {"gear": (g, gear_lead(g), (0.0, 0.0), 0.0)}
+    if pair is not None:
+        mate = pair.mate
+        lead2 = -gear_lead(g) * mate.teeth / g.teeth if np.isfinite(gear_lead(g)) else float("inf")
+        bodies["mate"] = (mate, lead2, (float(pair.working_center_distance), 0.0), np.pi + np.pi / mate.teeth)
+    outputs = Outputs()
+    rows: list[dict[str, Any]] = []
+    for body, (gear, lead, shift, turn) in bodies.items():
+        outline = gear.outline(tol / 4)
+        section = shapely.Polygon(rotate(outline.points, turn))
+        for fmt in fmts:
+            path = folder / f"{design.stem}_{body}{_extension(fmt)}"
+            row: dict[str, Any] = {"path": str(path), "format": fmt, "body": body, "volume": float(section.area * width)}
+            if fmt in MESH_FORMATS:
+                solid = helical_solid(section, lead if np.isfinite(lead) else 1e12 * width, width, tol)
+                mesh = solid.mesh.copy()
+                mesh.apply_translation([*shift, 0.0])
+                row.update(triangles=len(mesh.faces), volume=solid.volume, tolerance=solid.tolerance)
+                outputs.add(path, lambda p, m=mesh, f=fmt: write_mesh(p, m, f), "--out")
+            elif fmt == "dxf":
+                d = Drawing(mark_size=gear.module)
+                d.outlines.append((body.upper(), np.asarray(section.exterior.coords)[:-1] + np.array(shift)))
+                d.circles.append(("PITCH", shift, gear.pitch_radius))
+                row.update(tolerance=tol / 4)
+                outputs.add(path, lambda p, dr=d: write_dxf(p, dr), "--out")
+            elif fmt == "csv":
+                row.update(tolerance=tol / 4)
+                outputs.add(path, lambda p, s=section: write_points(p, np.asarray(s.exterior.coords)[:-1]), "--out")
+            else:
+                step_tol = min(tol, STEP_TOLERANCE)
+                c, s_ = np.cos(turn), np.sin(turn)
+                rot = np.array([[c, -s_], [s_, c]])
+                segs = [
+                    SectionSegment(sg.name, sg.points @ rot.T, sg.tangents @ rot.T) for sg in gear.outline(step_tol / 4).segments
+                ]
+                exact = gear.outline(step_tol / 100).points @ rot.T
+                row.update(faces=len(segs) + 2, volume=float(shapely.Polygon(exact).area * width))
+
+                def write_step(p: Path, sg=segs, ex=exact, ld=lead, b=body, sh=shift, r=row, t=step_tol) -> None:
+                    done = write_exact_step(p, sg, ld, width, t, b, sh, exact=ex)
+                    r["tolerance"] = done["deviation"]
+
+                outputs.add(path, write_step, "--out")
+            rows.append(row)
+    outputs.write()
+    for row in rows:
+        row["size"] = Path(row["path"]).stat().st_size
+    return rows
+
+
+def _extension(fmt: str) -> str:
+    from exports.meshes import EXTENSIONS
+
+    return EXTENSIONS.get(fmt, {"dxf": ".dxf", "step": ".step", "csv": ".csv"}.get(fmt, ""))
+
+
+__all__ = ["GEAR_FORMATS", "export_gear", "gear_lead", "is_gear_design"]
