@@ -38,7 +38,26 @@ class SectionSegment:
     center: tuple[float, float] | None = None
 
 
-def _edge(segment: SectionSegment, tolerance: float, evaluate=None):
+def section_segments(profile, turn: float = 0.0) -> list[SectionSegment]:
+    """The segments of a :class:`rotorcad.profile.Profile` turned by ``turn`` (rad): a straight
+    segment is a line and a circular arc (its curve has a centre) an arc, the rest curves."""
+    from rotorcad.curves import Line
+
+    c, s = np.cos(turn), np.sin(turn)
+    rot = np.array([[c, -s], [s, c]])
+    out = []
+    for seg in profile.segments:
+        centre = seg.curve.arc_center()
+        kind = "line" if isinstance(seg.curve, Line) else "arc" if centre is not None and not seg.curve.is_corner() else "curve"
+        out.append(
+            SectionSegment(
+                seg.name, seg.points @ rot.T, seg.tangents @ rot.T, kind, None if centre is None else tuple(rot @ centre)
+            )
+        )
+    return out
+
+
+def _edge(segment: SectionSegment, tolerance: float):
     """The OpenCASCADE edge of one segment (see the module docstring)."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
     from OCP.collections import Array1_gp_Vec, HArray1_bool, HArray1_gp_Pnt
@@ -188,4 +207,4 @@ def write_exact_step(
     return result
 
 
-__all__ = ["SectionSegment", "faces", "helical_solid", "helicoid_deviation", "write_exact_step"]
+__all__ = ["SectionSegment", "faces", "helical_solid", "helicoid_deviation", "section_segments", "write_exact_step"]

@@ -18,7 +18,7 @@ from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf, write_dxf_mesh
 from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_faceted_step
-from exports.step_exact import SectionSegment, write_exact_step
+from exports.step_exact import SectionSegment, section_segments, write_exact_step
 from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
 from rotorcad.cli.gear_export import export_gear, is_gear_design
 from rotorcad.cli.rotor import PAIR_OPTIONS
@@ -278,9 +278,7 @@ def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[lis
     outline = rotors.male_outline(tolerance / 4) if body == "male" else rotors.female_outline(tolerance / 4)
     fine = rotors.male_outline(tolerance / 100) if body == "male" else rotors.female_outline(tolerance / 100)
     c, s = np.cos(turn), np.sin(turn)
-    rot = np.array([[c, -s], [s, c]])
-    segments = [SectionSegment(seg.name, seg.points @ rot.T, seg.tangents @ rot.T) for seg in outline.segments]
-    return segments, fine.points @ rot.T
+    return section_segments(outline, turn), fine.points @ np.array([[c, -s], [s, c]]).T
 
 
 def _export_gear(design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool) -> None:
@@ -320,7 +318,7 @@ def _extension(fmt: str) -> str:
             "dxf-mesh-r12": "_mesh_r12.dxf",
             "step": ".step",
             "step-faceted": "_faceted.step",
-            "csv": ".csv",
+            "csv": "_own_frame.csv",  # the section in the body's own frame, unlike the placed solids
         }.get(fmt, ""),
     )
 

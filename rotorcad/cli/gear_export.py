@@ -18,7 +18,7 @@ import shapely
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from exports.meshes import MESH_FORMATS, write_mesh
-from exports.step_exact import SectionSegment, write_exact_step
+from exports.step_exact import section_segments, write_exact_step
 from rotorcad.cli.common import InputError, Outputs
 from rotorcad.cli.gear import build_gear, merge_gear_params
 from rotorcad.design import load_toml
@@ -90,11 +90,8 @@ def export_gear(design: Path, fmts: list[str], folder: Path, tol: float) -> list
                 outputs.add(path, lambda p, s=section: write_points(p, np.asarray(s.exterior.coords)[:-1]), "--out")
             else:
                 step_tol = min(tol, STEP_TOLERANCE)
-                c, s_ = np.cos(turn), np.sin(turn)
-                rot = np.array([[c, -s_], [s_, c]])
-                segs = [
-                    SectionSegment(sg.name, sg.points @ rot.T, sg.tangents @ rot.T) for sg in gear.outline(step_tol / 4).segments
-                ]
+                rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+                segs = section_segments(gear.outline(step_tol / 4), turn)
                 exact = gear.outline(step_tol / 100).points @ rot.T
                 row.update(faces=len(segs) + 2, volume=float(shapely.Polygon(exact).area * width))
 
