@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -16,6 +17,7 @@ from rich.table import Table
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf, write_dxf_mesh
+from exports.dxf_profile import read_profile_points
 from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_faceted_step
 from exports.step_exact import SectionSegment, section_segments, write_exact_step
@@ -26,6 +28,8 @@ from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design import load_rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.interference import interference_2d, intersection_3d
+from rotorcad.measured_outline import whole_outline
+from rotorcad.rotor_pair import RotorPair
 from rotorcad.solids import HelicalSolid, helical_solid, housing_solids
 
 FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "dxf-mesh", "dxf-mesh-r12", "step", "step-faceted", "csv")
@@ -53,6 +57,22 @@ def _progress(quiet: bool) -> Progress | None:
     return Progress(console=Console(file=sys.stderr), transient=True)
 
 
+ASSEMBLY_OPTIONS = (
+    click.option(
+        "--center-distance",
+        type=float,
+        help="Assembly centre distance [mm] at which the rotors (built at the design's) are placed. Default: the design's.",
+    ),
+    click.option(
+        "--phase-deg",
+        type=float,
+        default=0.0,
+        show_default=True,
+        help="Female turned by this angle [deg] (counter-clockwise seen from the suction end) from its mesh position.",
+    ),
+)
+
+
 @click.command()
 @click.argument("design", type=click.Path(path_type=Path, dir_okay=False))
 @click.option(
@@ -74,6 +94,8 @@ def _progress(quiet: bool) -> Progress | None:
     default=None,
     help="Also write the housing (block minus bores) and the bores. Default: when the design has [housing].",
 )
+@ASSEMBLY_OPTIONS[0]
+@ASSEMBLY_OPTIONS[1]
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
 def export(
@@ -83,6 +105,8 @@ def export(
     tolerance: float | None,
     angle: float,
     housing: bool | None,
+    center_distance: float | None,
+    phase_deg: float,
     as_json: bool,
     quiet: bool,
 ) -> None:
@@ -106,13 +130,13 @@ def export(
     if not (np.isfinite(tol) and 0 < tol <= 1.0):
         raise InputError(f"--tolerance must be a surface tolerance between 0 and 1 mm (got {tol}).")
     rotors, _, clearance = build_rotors(design, _rotor_options(design))
+    pair, phase = _assembly(rotors.pair, center_distance, phase_deg, clearance)
     folder = output_folder(out)
-    pair = rotors.pair
     stem = Path(design).stem
     if not np.isfinite(angle):
         raise InputError(f"--angle must be a number of degrees (got {angle}).")
     phi = np.radians(angle)
-    turn = {"male": phi, "female": -phi * pair.male_teeth / pair.female_teeth}
+    turn = {"male": phi, "female": -phi * pair.male_teeth / pair.female_teeth + phase}
     sections = {
         b: shapely.affinity.rotate(rotors.section(b, tol / 2), turn[b], origin=(0, 0), use_radians=True)
         for b in ("male", "female")
@@ -308,6 +332,25 @@ def _export_gear(design: Path, formats: str | None, out: Path, tolerance: float 
     Console(file=sys.stdout, highlight=False).print(table)
 
 
+def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, clearance: float) -> tuple[RotorPair, float]:
+    """The pair as assembled: the design's rotors at another centre distance (the bores follow)
+    and the female's extra turn (rad); bad values are refused in one sentence."""
+    if not (np.isfinite(clearance) and clearance >= 0):
+        raise InputError(f"[housing] radial_clearance must be a clearance of at least 0 mm (got {clearance}).")
+    if not np.isfinite(phase_deg) or abs(phase_deg) > 360:
+        raise InputError(f"--phase-deg must be an angle from -360 to 360 deg (got {phase_deg}).")
+    if center_distance is None:
+        return pair, float(np.radians(phase_deg))
+    low = max(pair.male_tip_radius, pair.female_tip_radius)
+    high = pair.male_tip_radius + pair.female_tip_radius
+    if not (np.isfinite(center_distance) and low < center_distance <= high):
+        raise InputError(
+            f"--center-distance must be more than the larger tip radius {low:g} mm and at most the sum of the tip radii "
+            f"{high:g} mm (got {center_distance})."
+        )
+    return replace(pair, center_distance=float(center_distance), strict=False), float(np.radians(phase_deg))
+
+
 def _extension(fmt: str) -> str:
     return EXTENSIONS.get(
         fmt,
@@ -332,20 +375,62 @@ def _extension(fmt: str) -> str:
 @click.option(
     "--check-3d", is_flag=True, help="Also intersect the 3D solids at the angle of the maximum (slow at fine tolerance)."
 )
+@ASSEMBLY_OPTIONS[0]
+@ASSEMBLY_OPTIONS[1]
+@click.option(
+    "--male-points",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="The male as built: measured outline (CSV or DXF, own frame, one lobe or whole) in place of the design's.",
+)
+@click.option(
+    "--female-points",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="The female as built: measured outline (CSV or DXF, own frame, one lobe or whole) in place of the design's.",
+)
+@click.option("--layer", help="Layer of the outline in DXF points files.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
-def interfere(design: Path, steps: int, tolerance: float, check_3d: bool, as_json: bool, quiet: bool) -> None:
+def interfere(
+    design: Path,
+    steps: int,
+    tolerance: float,
+    check_3d: bool,
+    center_distance: float | None,
+    phase_deg: float,
+    male_points: Path | None,
+    female_points: Path | None,
+    layer: str | None,
+    as_json: bool,
+    quiet: bool,
+) -> None:
     """Interference of the rotor pair over one lobe pitch (integral of 2D section intersections
-    along the helix) and of the rotors with the housing bores."""
+    along the helix) and of the rotors with the housing bores, as assembled: at --center-distance
+    and with the female turned by --phase-deg from its mesh position (the rotors keep their
+    profiles; the bores follow the centre distance)."""
     if not 1 <= steps <= 100_000:
         raise InputError(f"--steps must be a whole number from 1 to 100000 (got {steps}).")
     if not (np.isfinite(tolerance) and 0 < tolerance <= 1.0):
         raise InputError(f"--tolerance must be between 0 and 1 mm (got {tolerance}).")
     rotors, _, clearance = build_rotors(design, _rotor_options(design))
-    pair = rotors.pair
     male, female = rotors.section("male", tolerance / 2), rotors.section("female", tolerance / 2)
-    result_2d = interference_2d(pair, male, female, steps, tolerance, clearance=clearance)
+    for option, path, teeth in (
+        ("--male-points", male_points, rotors.pair.male_teeth),
+        ("--female-points", female_points, rotors.pair.female_teeth),
+    ):
+        if path is not None:
+            try:
+                outline = shapely.Polygon(whole_outline(read_profile_points(path, option, layer), teeth, option))
+            except DesignError as exc:
+                raise InputError(exc.sentence()) from None
+            if option == "--male-points":
+                male = outline
+            else:
+                female = outline
+    pair, phase = _assembly(rotors.pair, center_distance, phase_deg, clearance)
+    result_2d = interference_2d(pair, male, female, steps, tolerance, female_phase=phase, clearance=clearance)
     result: dict[str, Any] = {
+        "center_distance": pair.center_distance,
+        "phase_deg": float(np.degrees(phase)),
         "max_intersection_volume": result_2d.max_volume if result_2d.interferes else 0.0,
         "max_intersection_volume_raw": result_2d.max_volume,
         "angle_deg": float(np.degrees(result_2d.angle_of_max)),

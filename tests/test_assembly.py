@@ -1,0 +1,116 @@
+"""Interference at the assembly: the design's rotors placed at another centre distance and with the
+female turned from its mesh position (`interfere` / `export --center-distance --phase-deg`).
+
+References: a section overlap computed here with shapely from the two sections placed by hand
+(the female turned about its own centre and moved to the assembly distance), and the geometry of a
+conjugate pair that touches on both flanks (rack-generated): any closer distance or any turn of the
+female beyond the sampling makes the flanks overlap, a wider distance opens them."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from rotorcad.cli.main import main
+from rotorcad.design import load_rotor_design
+from rotorcad.interference import interference_2d
+from rotorcad.rotor_families import build_family
+from rotorcad.rotor_pair import RotorPair
+
+SAMPLE = Path(__file__).resolve().parents[1] / "samples" / "rack_involute_5_6.toml"
+BASE = ["interfere", str(SAMPLE), "--steps", "12", "--tolerance", "0.02", "--json"]
+
+
+def run(capsys, *extra: str) -> dict:
+    capsys.readouterr()
+    assert main([*BASE, *extra]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_half_a_percent_closer_interferes_and_half_a_percent_apart_does_not(capsys):
+    closer, apart = run(capsys, "--center-distance", "115.42"), run(capsys, "--center-distance", "116.58")
+    assert closer["center_distance"] == 115.42 and closer["interferes"]
+    assert closer["max_intersection_volume"] > 5 * closer["touching_threshold"]  # measured 857 mm^3 against 70
+    assert not apart["interferes"] and apart["max_intersection_volume"] == 0.0
+    assert apart["housing_intersection_volume"] == 0.0  # the bores follow the centre distance
+
+
+def test_the_section_overlap_is_the_hand_placed_one():
+    # at male angle 0 the female, turned by the phase about its own centre, placed at (A, 0)
+    d = load_rotor_design(SAMPLE)
+    pair = RotorPair(**d["pair"])
+    rotors = build_family(pair, d["family"], d["params"])
+    male, female = rotors.section("male", 0.01), rotors.section("female", 0.01)
+    a, phase = 115.42, np.radians(0.3)
+    placed = shapely.affinity.translate(shapely.affinity.rotate(female, phase, origin=(0, 0), use_radians=True), a, 0.0)
+    expected = male.intersection(placed).area
+    assembled = RotorPair(**{**d["pair"], "center_distance": a, "strict": False})
+    got = interference_2d(assembled, male, female, 4, 0.02, female_phase=phase).area_table[0]
+    assert expected > 1.0 and got == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("phase", ["0.5", "-0.5"])
+def test_a_turned_female_interferes_on_one_flank_or_the_other(capsys, phase):
+    # the rack-generated pair is conjugate on both flanks: turning the female either way by 0.5 deg
+    # closes one of them (measured about 250 mm^3 against a 70 mm^3 touching threshold)
+    result = run(capsys, "--phase-deg", phase)
+    assert result["interferes"] and result["phase_deg"] == pytest.approx(float(phase))
+
+
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["--center-distance", "-1"], "--center-distance"),
+        (["--center-distance", "nan"], "--center-distance"),
+        (["--center-distance", "60"], "--center-distance"),
+        (["--phase-deg", "nan"], "--phase-deg"),
+    ],
+)
+def test_bad_assembly_values_are_refused(capsys, args, needle):
+    capsys.readouterr()
+    assert main([*BASE, *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert needle in err and "Traceback" not in err and len(err.splitlines()) == 1
+
+
+def test_a_negative_housing_clearance_is_refused(tmp_path, capsys):
+    text = SAMPLE.read_text()
+    assert "radial_clearance" in text
+    design = tmp_path / "neg.toml"
+    design.write_text(
+        "\n".join(ln if not ln.startswith("radial_clearance") else "radial_clearance = -0.01" for ln in text.splitlines())
+    )
+    capsys.readouterr()
+    assert main(["interfere", str(design), "--steps", "4"]) == 2
+    assert "[housing] radial_clearance" in capsys.readouterr().err
+    assert main(["export", str(design), "--out", str(tmp_path / "o"), "--format", "stl"]) == 2
+    assert not (tmp_path / "o").exists()
+
+
+def test_export_places_the_female_at_the_assembly(tmp_path, capsys):
+    capsys.readouterr()
+    out = tmp_path / "o"
+    args = ["export", str(SAMPLE), "--out", str(out), "--format", "csv,dxf", "--center-distance", "116.58", "--json"]
+    assert main(args) == 0
+    import ezdxf
+
+    doc = ezdxf.readfile(next(out.glob("*_female.dxf")))
+    pts = np.array(doc.modelspace().query("LWPOLYLINE")[0].get_points("xy"))
+    centre = pts.mean(axis=0)  # the female's outline is symmetric about its own centre to its sampling
+    assert centre[0] == pytest.approx(116.58, abs=0.05) and abs(centre[1]) < 0.05
+
+
+def test_measured_outlines_of_both_rotors_in_place_of_the_design(tmp_path, capsys):
+    # the pair as built: both outlines written by `rotor` (whole, own frames) and read back as
+    # measured points; at the design distance no interference, 0.5 % closer a clear one
+    capsys.readouterr()
+    m, f = tmp_path / "m.csv", tmp_path / "f.csv"
+    assert main(["rotor", str(SAMPLE), "--male-csv", str(m), "--female-csv", str(f)]) == 0
+    points = ["--male-points", str(m), "--female-points", str(f)]
+    assert not run(capsys, *points)["interferes"]
+    closer = run(capsys, *points, "--center-distance", "115.42")
+    assert closer["interferes"] and closer["max_intersection_volume"] > 5 * closer["touching_threshold"]
