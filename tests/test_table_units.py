@@ -56,3 +56,12 @@ def _check(out: str) -> None:
             numeric += 1
             assert cells[2], f"no unit for {cells[0]}"
     assert numeric >= 2
+
+
+def test_the_gear_table_shows_the_mate(capsys):
+    # pitch radii z m / 2 (ISO 21771) of both gears, each in its column, with the unit
+    capsys.readouterr()
+    assert main(["gear", "--teeth", "17", "--module", "3", "--mate-teeth", "29"]) == 0
+    row = next(r for r in capsys.readouterr().out.splitlines() if "pitch_radius" in r)
+    cells = [c.strip() for c in row.strip("│").split("│")]
+    assert cells == ["pitch_radius", "25.500000", "43.500000", "mm"]

@@ -106,6 +106,27 @@ def print_table(title: str, rows: dict[str, Any]) -> None:
     Console(file=sys.stdout, highlight=False).print(table)
 
 
+def print_pair_table(title: str, rows: dict[str, Any], mate: dict[str, Any], names: tuple[str, str] = ("gear", "mate")) -> None:
+    """A table of quantity, the value of each of two bodies (the mate's where it has one) and unit;
+    the quantities of the pair alone (centre distance, contact ratio, ...) in the first column."""
+    table = Table(title=title, show_header=True, header_style="bold")
+    table.add_column("quantity")
+    table.add_column(names[0], justify="right")
+    table.add_column(names[1], justify="right")
+    table.add_column("unit")
+
+    def text(value: Any) -> str:
+        return f"{value:.6f}" if isinstance(value, float) and not isinstance(value, bool) else str(value)
+
+    for key, value in plain(rows).items():
+        if isinstance(value, (dict, list)):
+            continue
+        other = plain(mate).get(key)
+        unit = "" if isinstance(value, bool) else unit_of(key)
+        table.add_row(key, text(value), "" if other is None else text(other), unit)
+    Console(file=sys.stdout, highlight=False).print(table)
+
+
 class Outputs:
     """Collects the files a command will write, checks their folders up front, writes them all
     or none (see :mod:`exports.atomic`)."""

@@ -10,7 +10,7 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
-from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder, print_table, reraise
+from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder, print_pair_table, print_table, reraise
 from rotorcad.design import load_gear_design
 from rotorcad.errors import DesignError
 from rotorcad.gear import DEG, GearPair, InvoluteGear, mate_shift
@@ -116,7 +116,10 @@ def gear(design: Path | None, **opts: Any) -> None:
         emit_json(result)
     else:
         title = f"gear z={g.teeth}, m={g.module:g} mm" + (f" with mate z={pair.mate.teeth}" if pair else "")
-        print_table(title, result)
+        if pair is not None and isinstance(result.get("mate"), dict):
+            print_pair_table(title, result, result["mate"])
+        else:
+            print_table(title, result)
         for p in written:
             click.echo(f"wrote {p}")
 
