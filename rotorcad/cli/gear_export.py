@@ -91,7 +91,7 @@ def export_gear(design: Path, fmts: list[str], folder: Path, tol: float) -> list
             else:
                 step_tol = min(tol, STEP_TOLERANCE)
                 rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
-                segs = section_segments(gear.outline(step_tol / 4), turn)
+                segs = section_segments(gear.outline(10 * step_tol), turn)  # Hermite fit: see export_cmd
                 exact = gear.outline(step_tol / 100).points @ rot.T
                 row.update(faces=len(segs) + 2, volume=float(shapely.Polygon(exact).area * width))
 
