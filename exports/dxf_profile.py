@@ -506,13 +506,19 @@ def read_profile_points(path: Path, label: str, layer: str | None = None) -> np.
     numpy.ndarray
         Points (n, 2) in mm.
     """
+    if _is_drawing(path, label):
+        return sample_profile_dxf(path, label, layer)
+    return read_points(path, label)
+
+
+def _is_drawing(path: Path, label: str) -> bool:
+    """True for a DXF drawing (by its name or its first bytes), False for anything else; a path
+    that is not a regular file is refused first."""
     path = Path(path)
     check_regular_file(path, label, "CSV points file or DXF drawing")
     with open(path, "rb") as f:
         head = f.read(512)
-    if path.suffix.lower() == ".dxf" or looks_like_dxf(head):
-        return sample_profile_dxf(path, label, layer)
-    return read_points(path, label)
+    return path.suffix.lower() == ".dxf" or looks_like_dxf(head)
 
 
 def read_profile(path: Path, label: str, layer: str | None = None) -> np.ndarray | list[Curve]:
@@ -520,10 +526,6 @@ def read_profile(path: Path, label: str, layer: str | None = None) -> np.ndarray
     (:func:`read_profile_dxf`: arcs stay arcs, splines the drawing's splines) or the points of a
     CSV file (:func:`exports.csv_points.read_points`), whichever ``path`` is (see
     :func:`read_profile_points`)."""
-    path = Path(path)
-    check_regular_file(path, label, "CSV points file or DXF drawing")
-    with open(path, "rb") as f:
-        head = f.read(512)
-    if path.suffix.lower() == ".dxf" or looks_like_dxf(head):
+    if _is_drawing(path, label):
         return read_profile_dxf(path, label, layer)
     return read_points(path, label)

@@ -6,10 +6,8 @@ POLY_LOOP per triangle - the form OpenCASCADE reads as one valid solid (STACK-NO
 with POLY_LOOP reads as an empty shell). It suits coarse meshes: OpenCASCADE needs seconds per
 10 000 facets to read it.
 
-``write_bspline_step`` (needs the optional ``cadquery-ocp``) builds a true B-spline helical solid by
-OpenCASCADE: the periodic profile interpolated by ``GeomAPI_Interpolate``, swept along the axis with
-an auxiliary helix (``BRepOffsetAPI_MakePipeShell``), a handful of faces, read back in well under a
-second.
+The exact STEP (one face per profile segment) is :mod:`exports.step_exact`; ``read_step`` reads
+any STEP back with OpenCASCADE.
 """
 
 from __future__ import annotations
@@ -108,57 +106,6 @@ def _quiet_ocp() -> None:
 
     for printer in Message.DefaultMessenger_s().Printers():
         printer.SetTraceLevel(Message_Gravity.Message_Fail)
-
-
-def write_bspline_step(
-    path: Path, section: np.ndarray, lead: float, length: float, body: str = "rotor", offset: tuple[float, float] = (0.0, 0.0)
-) -> None:
-    """A true B-spline helical solid by OpenCASCADE (needs ``cadquery-ocp``)."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire, BRepBuilderAPI_Transform
-    from OCP.BRepFill import BRepFill_TypeOfContact
-    from OCP.BRepLib import BRepLib
-    from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
-    from OCP.collections import HArray1_gp_Pnt
-    from OCP.Geom import Geom_CylindricalSurface
-    from OCP.Geom2d import Geom2d_Line
-    from OCP.GeomAPI import GeomAPI_Interpolate
-    from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.Interface import Interface_Static
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-
-    _quiet_ocp()
-    pts = np.asarray(section, dtype=float)
-    arr = HArray1_gp_Pnt(1, len(pts))
-    for i, (x, y) in enumerate(pts, start=1):  # OCP's array API takes one point at a time
-        arr.SetValue(i, gp_Pnt(float(x), float(y), 0.0))
-    interp = GeomAPI_Interpolate(arr, True, 1e-9)
-    interp.Perform()
-    profile = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(interp.Curve()).Edge()).Wire()
-    spine = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(0, 0, length)).Edge()).Wire()
-    # auxiliary helix on a cylinder: (u, v) -> (angle, height) with slope 2 pi / lead
-    radius = float(np.hypot(*pts.T).max())
-    cyl = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), radius)
-    turns = length / abs(lead)
-    line = Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(float(np.sign(lead) * 2 * np.pi), float(abs(lead))))
-    helix_len = float(np.hypot(2 * np.pi * turns, length))
-    helix = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(line, cyl, 0.0, helix_len).Edge()).Wire()
-    BRepLib.BuildCurves3d_s(helix)
-    pipe = BRepOffsetAPI_MakePipeShell(spine)
-    pipe.SetMode(helix, False, BRepFill_TypeOfContact.BRepFill_NoContact)
-    pipe.Add(profile)
-    pipe.Build()
-    pipe.MakeSolid()
-    shape = pipe.Shape()
-    if offset != (0.0, 0.0):
-        tr = gp_Trsf()
-        tr.SetTranslation(gp_Vec(offset[0], offset[1], 0.0))
-        shape = BRepBuilderAPI_Transform(shape, tr, True).Shape()
-    writer = STEPControl_Writer()
-    Interface_Static.SetCVal_s("write.step.schema", "AP214")
-    writer.Transfer(shape, STEPControl_AsIs)
-    if writer.Write(str(path)) != IFSelect_RetDone:
-        raise OSError(f"OpenCASCADE could not write {path}")
 
 
 def read_step(path: Path) -> dict[str, object]:

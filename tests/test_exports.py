@@ -15,7 +15,7 @@ import trimesh
 from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
 from exports.meshes import MESH_FORMATS, read_mesh, write_mesh
-from exports.step import read_step, write_bspline_step, write_faceted_step
+from exports.step import read_step, write_faceted_step
 from rotorcad.cli.main import main
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
@@ -80,15 +80,6 @@ def test_faceted_step_is_one_valid_solid_of_the_same_volume(tmp_path):
     info = read_step(tmp_path / "f.step")
     assert info["solids"] == 1 and info["valid"]
     assert info["volume"] == pytest.approx(coarse.volume, rel=1e-9)
-
-
-def test_bspline_step_is_one_valid_solid_of_the_section_volume(tmp_path):
-    rotors = build_family(PAIR, "rack-involute", CLEAN)
-    section = rotors.section("male", 0.0025)
-    write_bspline_step(tmp_path / "b.step", np.asarray(section.exterior.coords)[:-1], PAIR.lead, PAIR.length, "male")
-    info = read_step(tmp_path / "b.step")
-    assert info["solids"] == 1 and info["valid"]
-    assert info["volume"] == pytest.approx(section.area * PAIR.length, rel=1e-4)
 
 
 def test_csv_points_round_trip(tmp_path, solid):
