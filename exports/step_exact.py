@@ -21,7 +21,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import shapely
 
 from exports.step import _quiet_ocp
 
@@ -147,8 +146,10 @@ def helicoid_deviation(shape, exact: np.ndarray, lead: float, length: float, per
     from OCP.BRep import BRep_Tool
     from OCP.BRepTools import BRepTools
 
-    ring = shapely.LinearRing(exact)
-    worst = 0.0
+    from rotorcad.geometry import distance_to_polyline
+
+    ring = np.vstack([exact, exact[:1]])
+    batches = []
     uv = np.linspace(0.0, 1.0, per_face)
     for face in faces(shape):
         surface = BRep_Tool.Surface_s(face)
@@ -160,9 +161,10 @@ def helicoid_deviation(shape, exact: np.ndarray, lead: float, length: float, per
             continue
         turn = -2 * np.pi * pts[:, 2] / lead
         c, s = np.cos(turn), np.sin(turn)
-        back = np.column_stack([c * pts[:, 0] - s * pts[:, 1], s * pts[:, 0] + c * pts[:, 1]])
-        worst = max(worst, float(shapely.distance(shapely.points(back), ring).max()))
-    return worst
+        batches.append(np.column_stack([c * pts[:, 0] - s * pts[:, 1], s * pts[:, 0] + c * pts[:, 1]]))
+    if not batches:
+        return 0.0
+    return float(distance_to_polyline(np.vstack(batches), ring).max())  # one R-tree query for all faces
 
 
 def write_exact_step(
