@@ -119,6 +119,8 @@ def read_step(path: Path) -> dict[str, object]:
     from OCP.TopExp import TopExp_Explorer
 
     _quiet_ocp()
+    if not Path(path).is_file():  # OpenCASCADE's reader crashes on a missing file
+        raise FileNotFoundError(str(path))
     reader = STEPControl_Reader()
     reader.ReadFile(str(path))
     reader.TransferRoots()

@@ -209,4 +209,56 @@ def write_exact_step(
     return result
 
 
-__all__ = ["SectionSegment", "faces", "helical_solid", "helicoid_deviation", "section_segments", "write_exact_step"]
+def write_housing_step(
+    path: Path,
+    center_distance: float,
+    male_bore: float,
+    female_bore: float,
+    length: float,
+    wall: float = 10.0,
+    body: str = "housing",
+) -> float:
+    """The housing as exact STEP: the block (as :func:`rotorcad.solids.housing_solids` sizes it)
+    minus the two bore cylinders about O1 and O2 (``body`` "housing"), or the bores alone
+    ("bores"), by OpenCASCADE's primitives and booleans. Returns the volume (mm^3)."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+    from OCP.BRepGProp import BRepGProp
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+    from OCP.GProp import GProp_GProps
+    from OCP.IFSelect import IFSelect_RetDone
+    from OCP.Interface import Interface_Static
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
+    _quiet_ocp()
+    axis = gp_Dir(0.0, 0.0, 1.0)
+    male = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0.0, 0.0, 0.0), axis), male_bore, length).Shape()
+    female = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(center_distance, 0.0, 0.0), axis), female_bore, length).Shape()
+    bores = BRepAlgoAPI_Fuse(male, female).Shape()
+    if body == "bores":
+        shape = bores
+    else:
+        x0, x1 = -male_bore - wall, center_distance + female_bore + wall
+        half = max(male_bore, female_bore) + wall
+        block = BRepPrimAPI_MakeBox(gp_Pnt(x0, -half, 0.0), gp_Pnt(x1, half, length)).Shape()
+        shape = BRepAlgoAPI_Cut(block, bores).Shape()
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props)
+    writer = STEPControl_Writer()
+    Interface_Static.SetCVal_s("write.step.schema", "AP214")
+    Interface_Static.SetCVal_s("write.step.product.name", body)
+    writer.Transfer(shape, STEPControl_AsIs)
+    if writer.Write(str(path)) != IFSelect_RetDone:
+        raise OSError(f"OpenCASCADE could not write {path}")
+    return float(props.Mass())
+
+
+__all__ = [
+    "SectionSegment",
+    "faces",
+    "helical_solid",
+    "helicoid_deviation",
+    "section_segments",
+    "write_exact_step",
+    "write_housing_step",
+]

@@ -17,6 +17,7 @@ from exports.dxf import Drawing, write_dxf
 from exports.meshes import MESH_FORMATS, read_mesh, write_mesh
 from exports.step import read_step, write_faceted_step
 from rotorcad.cli.main import main
+from rotorcad.design import load_rotor_design
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.solids import helical_solid
@@ -232,3 +233,25 @@ def test_step_is_exact_by_default_and_says_the_tolerance_it_met(tmp_path, capsys
             assert 0 < f["tolerance"] <= 1e-3 and f["faces"] > 10
             info = read_step(Path(f["path"]))
             assert info["valid"] and info["volume"] == pytest.approx(f["volume"], rel=1e-5)
+
+
+def test_housing_and_bores_are_exact_step(tmp_path, capsys):
+    # the bores are two intersecting cylinders: their section is the union of two circles (shapely,
+    # 2^16 segments a quarter: 1e-9 relative), the housing the block minus them; OCC reads the files
+    # back as one valid solid each, of those volumes
+    design = short_design(tmp_path)
+    rc = main(["export", str(design), "--format", "step", "--out", str(tmp_path / "o"), "--json"])
+    captured = capsys.readouterr()
+    assert rc == 0, captured.err
+    files = {f["body"]: f for f in json.loads(captured.out)["files"]}
+    d = load_rotor_design(design)
+    a, length = d["pair"]["center_distance"], d["pair"]["length"]
+    r1 = d["pair"]["male_tip_radius"] + d["housing"]["radial_clearance"]
+    r2 = d["pair"]["female_tip_radius"] + d["housing"]["radial_clearance"]
+    bores = shapely.Point(0, 0).buffer(r1, quad_segs=65536).union(shapely.Point(a, 0).buffer(r2, quad_segs=65536))
+    half = max(r1, r2) + 10.0
+    block = (a + r1 + r2 + 20.0) * 2 * half
+    for body, area in (("bores", bores.area), ("housing", block - bores.area)):
+        info = read_step(Path(files[body]["path"]))
+        assert info["valid"] and info["solids"] == 1 and files[body]["tolerance"] == 0.0
+        assert info["volume"] == pytest.approx(area * length, rel=1e-7)

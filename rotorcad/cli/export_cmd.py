@@ -20,7 +20,7 @@ from exports.dxf import Drawing, write_dxf, write_dxf_mesh
 from exports.dxf_profile import read_profile_points
 from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_faceted_step
-from exports.step_exact import SectionSegment, section_segments, write_exact_step
+from exports.step_exact import SectionSegment, section_segments, write_exact_step, write_housing_step
 from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
 from rotorcad.cli.gear_export import export_gear, is_gear_design
 from rotorcad.cli.rotor import PAIR_OPTIONS
@@ -240,13 +240,16 @@ def export(
             rows.append(row)
     with_housing = housing if housing is not None else bool(settings["housing"])
     if with_housing:
+        segments = max(360, int(2 * np.pi / np.sqrt(8 * tol / pair.female_tip_radius)))
         block, bores = housing_solids(
             pair.center_distance,
             pair.male_tip_radius + clearance,
             pair.female_tip_radius + clearance,
             pair.length,
-            segments=max(360, int(2 * np.pi / np.sqrt(8 * tol / pair.female_tip_radius))),
+            segments=segments,
         )
+        housing_sag = float((pair.female_tip_radius + clearance) * (1 - np.cos(np.pi / segments)))  # chords of the bores
+        exact_volume = _housing_volumes(pair, clearance)
         for body, manifold in (("housing", block), ("bores", bores)):
             m = manifold.to_mesh64()
             mesh = trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts), process=False)
@@ -264,8 +267,24 @@ def export(
                         }
                     )
                     if fmt in MESH_FORMATS:
+                        rows[-1]["tolerance"] = housing_sag
                         outputs.add(path, lambda p, mm=mesh, f=fmt: write_mesh(p, mm, f), "--out")
+                    elif fmt == "step":  # exact: box and cylinders by OpenCASCADE
+                        rows[-1].update(tolerance=0.0, triangles=0, volume=exact_volume[body])
+                        outputs.add(
+                            path,
+                            lambda p, b=body: write_housing_step(
+                                p,
+                                pair.center_distance,
+                                pair.male_tip_radius + clearance,
+                                pair.female_tip_radius + clearance,
+                                pair.length,
+                                body=b,
+                            ),
+                            "--out",
+                        )
                     else:
+                        rows[-1]["tolerance"] = housing_sag
                         outputs.add(path, lambda p, mm=mesh, b=body: write_faceted_step(p, mm.vertices, mm.faces, b), "--out")
     written = outputs.write()
     if progress:
@@ -352,6 +371,18 @@ def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, 
             f"{high:g} mm (got {center_distance})."
         )
     return replace(pair, center_distance=float(center_distance), strict=False), float(np.radians(phase_deg))
+
+
+def _housing_volumes(pair: RotorPair, clearance: float, wall: float = 10.0) -> dict[str, float]:
+    """Closed-form volumes (mm^3) of the bores (two intersecting circles: the union's area from the
+    lens of their overlap) and of the block minus the bores, times the length."""
+    a, r1, r2 = pair.center_distance, pair.male_tip_radius + clearance, pair.female_tip_radius + clearance
+    lens = r1**2 * np.arccos((a**2 + r1**2 - r2**2) / (2 * a * r1)) + r2**2 * np.arccos((a**2 + r2**2 - r1**2) / (2 * a * r2))
+    lens -= 0.5 * np.sqrt((-a + r1 + r2) * (a + r1 - r2) * (a - r1 + r2) * (a + r1 + r2))
+    bores = (np.pi * (r1**2 + r2**2) - lens) * pair.length
+    half = max(r1, r2) + wall
+    block = (a + r1 + r2 + 2 * wall) * 2 * half * pair.length
+    return {"bores": float(bores), "housing": float(block - bores)}
 
 
 def _extension(fmt: str) -> str:
