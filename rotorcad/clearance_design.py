@@ -33,7 +33,8 @@ LAND_SLOPE = 0.5  # |sin| of the rack tangent's angle to the pitch line below wh
 @dataclass(frozen=True)
 class ClearanceDistribution:
     """Normal clearance to design (mm, >= 0): ``driving``, ``sealing`` and ``lands`` values, or a
-    ``table`` of (x on the datum rack [mm], clearance [mm]) rows over one rack period."""
+    ``table`` of (x [mm] along the pitch line of the transverse rack in the rack frame of
+    CONTRACT.md, clearance [mm]) rows over one rack period."""
 
     driving: float = 0.0
     sealing: float = 0.0

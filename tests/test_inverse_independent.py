@@ -325,3 +325,36 @@ def test_the_distribution_lands_on_both_rotor_profiles(offset):
     assert shapely.distance(shapely.points(m), shapely.LinearRing(male())).max() < 1.5e-3
     z = dist["z"][dist["in_contact"] > 0]
     assert z.min() == pytest.approx(0.0, abs=1e-9) and z.max() <= 190.0 + 1e-9
+
+
+def test_a_smooth_one_flank_clearance_from_a_table_comes_back(tmp_path, capsys):
+    # A smooth correction of the sealing flank only: 30 um sin^2 over the falling flank's rack x
+    # (rack heights -6.9 .. 6.6 mm), zero elsewhere, given as --clearance-table and measured back by
+    # `clearance --contact as-given` at each datum point within 3 um of the table's value there.
+    rack, _ = PAIR.rack.sample(0.01)
+    write_points(tmp_path / "rack.csv", np.vstack([rack, rack[:1] + [PAIR.rack.period, 0.0]]))
+    falling = next(g for kind, g in PAIR.rack.pieces() if kind == "line" and g[1][1] < g[0][1])
+    x0, x1 = falling[0][0], falling[1][0]  # the falling flank's straight part, in rack x
+
+    def table(x: np.ndarray) -> np.ndarray:
+        u = np.clip((np.mod(x, PAIR.rack.period) - x0) / (x1 - x0), 0.0, 1.0)
+        return 0.03 * np.sin(np.pi * u) ** 2
+
+    xs = np.linspace(0.0, PAIR.rack.period, 2001)
+    rows = "x,clearance\n" + "".join(f"{x:.9f},{c:.9f}\n" for x, c in zip(xs, table(xs), strict=True))
+    (tmp_path / "t.csv").write_text(rows)
+    dims = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--lead", str(LEAD)]
+    dims += [f"--{k.replace('_', '-')}={v}" for k, v in PAIR.radii().items()]
+    out = ["--male-csv", str(tmp_path / "m.csv"), "--female-csv", str(tmp_path / "f.csv")]
+    capsys.readouterr()
+    assert (
+        main(["rotor", "--rack-points", str(tmp_path / "rack.csv"), *dims, "--clearance-table", str(tmp_path / "t.csv"), *out])
+        == 0
+    )
+    load = lambda name: np.loadtxt(tmp_path / name, delimiter=",", comments="#", skiprows=2)  # noqa: E731
+    mc = clearance(load("m.csv"), load("f.csv"), contact="as-given")
+    sel = regions(mc)
+    x_transverse = mc.female_rack.points[:, 0]
+    for name in ("falling", "rising"):
+        np.testing.assert_allclose(mc.clearance[sel[name]], table(x_transverse[sel[name]]), atol=3e-3)
+    assert mc.clearance[sel["falling"]].max() > 0.025  # the bump is there

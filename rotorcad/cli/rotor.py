@@ -117,7 +117,8 @@ CONTRACT_KEYS = (
 @click.option(
     "--clearance-table",
     type=click.Path(path_type=Path, dir_okay=False),
-    help="CSV x,clearance [mm]: the designed normal clearance over the datum rack's x (one rack period).",
+    help="CSV x,clearance [mm]: the designed normal clearance over x along the pitch line of the transverse rack "
+    "(rack frame of the points files, one rack period).",
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def rotor(design: Path | None, **opts: Any) -> None:
