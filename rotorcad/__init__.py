@@ -9,16 +9,67 @@ The Python API in brief::
     pair.working_pressure_angle, pair.contact_ratio
 """
 
-from rotorcad.curves import Arc, Involute, Line, PointPath, Spline
-from rotorcad.envelope import Generated, conjugate, contact_parameter
-from rotorcad.errors import DesignError
-from rotorcad.gear import DEG, GearPair, InvoluteGear, mate_shift
-from rotorcad.kinematics import Rotation, Translation, gear_mesh, pitch_point, rotor_mesh
-from rotorcad.profile import Profile, Segment
+import importlib
 
 __version__ = "0.1.0"
 
-__all__ = [
+# the public names and the modules that define them, imported on first use (PEP 562), so that
+# `import rotorcad` (and the command line's start) does not load numpy, scipy and shapely up front
+_API = {
+    "Arc": "rotorcad.curves",
+    "Involute": "rotorcad.curves",
+    "Line": "rotorcad.curves",
+    "PointPath": "rotorcad.curves",
+    "Spline": "rotorcad.curves",
+    "Generated": "rotorcad.envelope",
+    "conjugate": "rotorcad.envelope",
+    "contact_parameter": "rotorcad.envelope",
+    "DesignError": "rotorcad.errors",
+    "DEG": "rotorcad.gear",
+    "GearPair": "rotorcad.gear",
+    "InvoluteGear": "rotorcad.gear",
+    "mate_shift": "rotorcad.gear",
+    "Rotation": "rotorcad.kinematics",
+    "Translation": "rotorcad.kinematics",
+    "gear_mesh": "rotorcad.kinematics",
+    "pitch_point": "rotorcad.kinematics",
+    "rotor_mesh": "rotorcad.kinematics",
+    "Profile": "rotorcad.profile",
+    "Segment": "rotorcad.profile",
+    "RotorPair": "rotorcad.rotor_pair",
+    "ScrewRotors": "rotorcad.screw_rotors",
+    "build_family": "rotorcad.rotor_families",
+    "MeshingAnalysis": "rotorcad.meshing",
+    "MeshingClearance": "rotorcad.clearance",
+    "ClearanceDistribution": "rotorcad.clearance_design",
+    "helical_solid": "rotorcad.solids",
+    "lobe_pieces": "rotorcad.rotor_points",
+    "pair_from_rotor_points": "rotorcad.rotor_points",
+}
+
+
+def __getattr__(name: str) -> object:
+    if name in _API:
+        value = getattr(importlib.import_module(_API[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'rotorcad' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_API])
+
+
+__all__ = [  # noqa: RUF022 - grouped as the docstring reads
+    "ClearanceDistribution",
+    "MeshingAnalysis",
+    "MeshingClearance",
+    "RotorPair",
+    "ScrewRotors",
+    "build_family",
+    "helical_solid",
+    "lobe_pieces",
+    "pair_from_rotor_points",
     "DEG",
     "Arc",
     "DesignError",

@@ -39,5 +39,21 @@ def test_the_contract_the_readme_links_is_in_the_project_and_names_every_command
     assert "](CONTRACT.md)" in README
     contract = (root / "CONTRACT.md").read_text()
     listed = set(re.findall(r"^### `rotorcad (\w+)`", contract, re.M))
-    implemented = set(cli.commands)
+    implemented = {name for name in cli.list_commands(None) if cli.get_command(None, name) is not None}
     assert {"gear", "cut", "rotor", "hob", "export", "interfere", "clearance", "pump"} <= listed & implemented
+
+
+def test_the_help_lists_every_command_without_loading_them():
+    # `rotorcad --help` must start at once: listing the commands imports none of their modules
+    # (a fresh interpreter; sys.modules is the reference)
+    import subprocess
+    import sys
+
+    code = (
+        "import sys; from rotorcad.cli.main import main; main(['--help']); "
+        "print('HEAVY', sorted(m for m in ('numpy', 'scipy', 'shapely', 'trimesh', 'matplotlib', 'OCP') if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert "HEAVY []" in out
+    for name in ("gear", "rotor", "hob", "cut", "pump", "export", "interfere", "clearance"):
+        assert f"  {name} " in out

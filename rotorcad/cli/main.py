@@ -6,38 +6,55 @@ Every input problem ends as one sentence on stderr and exit status 2, without a 
 
 from __future__ import annotations
 
+import importlib
 import sys
 
 import click
 
 from rotorcad import __version__
-from rotorcad.cli.clearance_cmd import clearance
-from rotorcad.cli.cut_cmd import cut
-from rotorcad.cli.export_cmd import export, interfere
-from rotorcad.cli.gear import gear
-from rotorcad.cli.hob_cmd import hob
-from rotorcad.cli.pump_cmd import pump
-from rotorcad.cli.rotor import rotor
 from rotorcad.errors import DesignError
 
+# name -> (module:attribute, one-line summary): a command's module (and the heavy libraries it
+# needs) is imported only when that command runs, so `rotorcad --help` starts at once
+COMMANDS: dict[str, tuple[str, str]] = {
+    "gear": ("rotorcad.cli.gear:gear", "One involute gear cut by the ISO 53 basic rack, optionally with its mate."),
+    "rotor": ("rotorcad.cli.rotor:rotor", "A screw-rotor pair from a design or from points, with Rinder's analysis."),
+    "hob": ("rotorcad.cli.hob_cmd:hob", "Rack and hob tooth of a gear or rotor pair, and the hobbability verdict."),
+    "cut": ("rotorcad.cli.cut_cmd:cut", "Hob cutting simulation of a gear against the analytic envelope."),
+    "pump": ("rotorcad.cli.pump_cmd:pump", "Delivery, irregularity and harmonics of an external gear pump."),
+    "export": ("rotorcad.cli.export_cmd:export", "Solids of a rotor pair or gear design in every format (STL, STEP, DXF, ...)."),
+    "interfere": (
+        "rotorcad.cli.export_cmd:interfere",
+        "Interference of the rotor pair and with the housing, as designed or assembled.",
+    ),
+    "clearance": ("rotorcad.cli.clearance_cmd:clearance", "Meshing clearance (Wu & Chi) of a pair from measured points."),
+}
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+
+class LazyGroup(click.Group):
+    """A command group that imports a command's module when the command is used."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return list(COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in COMMANDS:
+            return None
+        module, _, attr = COMMANDS[cmd_name][0].partition(":")
+        return getattr(importlib.import_module(module), attr)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        with formatter.section("Commands"):
+            formatter.write_dl([(name, summary) for name, (_, summary) in COMMANDS.items()])
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="rotorcad")
 def cli() -> None:
     """rotorcad: conjugate profiles, gears and screw rotors to manufacturing files.
 
     Lengths in mm, angles in degrees on the command line. Run `rotorcad COMMAND --help`.
     """
-
-
-cli.add_command(gear)
-cli.add_command(rotor)
-cli.add_command(hob)
-cli.add_command(cut)
-cli.add_command(pump)
-cli.add_command(export)
-cli.add_command(interfere)
-cli.add_command(clearance)
 
 
 def main(argv: list[str] | None = None) -> int:
