@@ -161,6 +161,7 @@ def export(
                 progress.advance(task)
     outputs = Outputs()
     rows: list[dict[str, Any]] = []
+    placed_meshes: dict[str, trimesh.Trimesh] = {}
     for body in ("male", "female"):
         placed = np.asarray(sections[body].exterior.coords)[:-1] + np.array(shift[body])
         for fmt in fmts:
@@ -173,8 +174,9 @@ def export(
                 "volume": float(sections[body].area * pair.length),
             }
             if fmt in MESH_FORMATS:
-                mesh = solids[body].mesh.copy()
-                mesh.apply_translation([*shift[body], 0.0])
+                if body not in placed_meshes:
+                    placed_meshes[body] = _placed_mesh(solids[body], shift[body])
+                mesh = placed_meshes[body]
                 row.update(triangles=len(mesh.faces), volume=solids[body].volume, tolerance=solids[body].tolerance)
                 outputs.add(path, lambda p, m=mesh, f=fmt: write_mesh(p, m, f), "--out")
             elif fmt in ("dxf", "dxf-r12"):
@@ -313,6 +315,16 @@ def export(
 
 
 STEP_TOLERANCE = 1e-3  # mm: the exact STEP is checked against the helicoid to 1 um unless --tolerance is finer
+
+
+def _placed_mesh(solid: HelicalSolid, shift: tuple[float, float]) -> trimesh.Trimesh:
+    """The solid's mesh at its place: the mesh itself at the origin, else a translated copy (the
+    caller makes it once however many formats use it: a 0.5 M-triangle mesh is some 30 MB)."""
+    if shift == (0.0, 0.0):
+        return solid.mesh
+    moved = solid.mesh.copy()
+    moved.apply_translation([*shift, 0.0])
+    return moved
 
 
 def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[list[SectionSegment], np.ndarray]:
