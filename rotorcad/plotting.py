@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-from matplotlib.figure import Figure
 
 from rotorcad.gear import GearPair, InvoluteGear
 from rotorcad.geometry import rotate
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 def mate_in_mesh(pair: GearPair, points: np.ndarray) -> np.ndarray:
@@ -30,6 +34,8 @@ def line_of_action(pair: GearPair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def plot_gears(gear: InvoluteGear, pair: GearPair | None = None) -> Figure:
     """The gear (and its mate in mesh) with pitch, base, tip circles and the line of action."""
+    from matplotlib.figure import Figure  # matplotlib only when a picture is drawn
+
     fig = Figure(figsize=(8, 6), dpi=120)
     ax = fig.add_subplot()
     pts = gear.outline().points

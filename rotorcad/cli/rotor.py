@@ -20,7 +20,6 @@ from rotorcad.meshing import MeshingAnalysis
 from rotorcad.profile import Segment
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
-from rotorcad.rotor_plotting import plot_pair, plot_sliding
 from rotorcad.rotor_points import pair_from_rack_points, pair_from_rotor_points
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -137,6 +136,8 @@ def rotor(design: Path | None, **opts: Any) -> None:
     tol = opts["tolerance"]
     out = Outputs()
     if opts["plot"]:
+        from rotorcad.rotor_plotting import plot_pair, plot_sliding  # matplotlib only when a plot is asked for
+
         plot = Path(opts["plot"])
         out.add(plot, lambda p: plot_pair(analysis, clearance).savefig(p, format="png"), "--plot")
         out.add(plot.with_name(plot.stem + "_sliding.png"), lambda p: plot_sliding(analysis).savefig(p, format="png"), "--plot")
