@@ -74,3 +74,11 @@ def test_a_spur_gear_pair_from_the_command_line(tmp_path, capsys):
     whole = [a for a in arcs if a > 0.75 * expected]  # the tooth across the circle's seam comes in two halves
     assert len(whole) >= 16
     np.testing.assert_allclose(whole, expected, atol=1e-3)  # measured: within 1 nm
+
+
+def test_a_bad_gear_export_leaves_no_folder(tmp_path, capsys):
+    out = tmp_path / "o"
+    capsys.readouterr()
+    assert main(["export", str(SAMPLES / "gear_pair.toml"), "--out", str(out), "--format", "iges"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--format" in err and len(err.splitlines()) == 1 and not out.exists()

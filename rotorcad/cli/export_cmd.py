@@ -22,7 +22,7 @@ from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_faceted_step
 from exports.step_exact import SectionSegment, section_segments, write_exact_step, write_housing_step
 from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
-from rotorcad.cli.gear_export import export_gear, is_gear_design
+from rotorcad.cli.gear_export import GEAR_FORMATS, export_gear, is_gear_design
 from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design import load_rotor_design
@@ -345,6 +345,11 @@ def _export_gear(design: Path, formats: str | None, out: Path, tolerance: float 
     tol = 0.005 if tolerance is None else tolerance
     if not (np.isfinite(tol) and 0 < tol <= 1.0):
         raise InputError(f"--tolerance must be a surface tolerance between 0 and 1 mm (got {tol}).")
+    for f in fmts:  # before the folder is made: a failed run leaves none behind
+        if f not in GEAR_FORMATS:
+            raise InputError(
+                f"--format for a gear design must be a comma-separated list of {', '.join(GEAR_FORMATS)} (got {f!r})."
+            )
     folder = output_folder(out)
     rows = export_gear(design, fmts, folder, tol)
     if as_json:
