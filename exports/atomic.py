@@ -1,9 +1,11 @@
 """All-or-nothing writing of a group of output files.
 
-Each file is written by its writer function to a hidden temporary name in the target folder;
-only when every writer succeeded are the temporaries renamed over the targets (``os.replace`` is
-atomic on one file system). On any failure the temporaries are removed and the existing files
-are left untouched.
+Each file is written by its writer to a hidden temporary name in the target folder; only when
+every writer succeeded are the temporaries renamed over the targets (``os.replace`` is atomic on
+one file system). On any failure the temporaries are removed and the existing files are left
+untouched. A writer is either a function of the path, run here in order, or a
+:class:`~exports.background.BackgroundWriter`, started first in a worker process so that it runs
+while the others do.
 """
 
 from __future__ import annotations
@@ -13,9 +15,10 @@ import tempfile
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
+from exports.background import BackgroundWriter, WorkerPool
 from rotorcad.errors import DesignError
 
-Writer = Callable[[Path], None]
+Writer = Callable[[Path], None] | BackgroundWriter
 
 
 def check_writable(path: Path, label: str) -> None:
@@ -29,25 +32,37 @@ def check_writable(path: Path, label: str) -> None:
         raise DesignError(label, "in a writable folder", str(path))
 
 
-def write_all(outputs: Iterable[tuple[Path, Writer]]) -> list[Path]:
-    """Write every ``(target, writer)`` pair or none of them; return the targets written."""
-    staged: list[tuple[Path, Path]] = []
+def write_all(outputs: Iterable[tuple[Path, Writer]], pool: WorkerPool | None = None) -> list[Path]:
+    """Write every ``(target, writer)`` pair or none of them; return the targets written.
+
+    The background writers start first, in ``pool``'s worker (here without a pool); the others
+    run here meanwhile, in the given order.
+    """
+    staged: list[tuple[Path, Path, Writer]] = []
+    workers = pool or WorkerPool(background=False)
     try:
         for target, writer in outputs:
             target = Path(target)
             fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
             os.close(fd)
-            staged.append((Path(tmp), target))
-            writer(Path(tmp))
+            staged.append((Path(tmp), target, writer))
+        waiting = [workers.submit(w, tmp) for tmp, _, w in staged if isinstance(w, BackgroundWriter)]
+        for tmp, _, writer in staged:
+            if not isinstance(writer, BackgroundWriter):
+                writer(tmp)
+        for finish in waiting:
+            finish()
+        for tmp, target, _ in staged:
             mode = target.stat().st_mode & 0o777 if target.exists() else 0o666 & ~_umask()
             os.chmod(tmp, mode)
-        for tmp, target in staged:
+        for tmp, target, _ in staged:
             os.replace(tmp, target)
     except BaseException:
-        for tmp, _ in staged:
+        workers.stop()  # no job may write after its temporary is removed
+        for tmp, *_ in staged:
             tmp.unlink(missing_ok=True)
         raise
-    return [t for _, t in staged]
+    return [target for _, target, _ in staged]
 
 
 def _umask() -> int:

@@ -1,14 +1,20 @@
 """DXF drawings of profiles with ezdxf: closed polylines on named layers, reference circles and
-centre marks on their own layers, true scale in millimetres ($INSUNITS = 4)."""
+centre marks on their own layers, true scale in millimetres ($INSUNITS = 4).
+
+ezdxf is imported by the writers (0.15 s): the export command hands DXF writing to its worker
+process and need not load it (see :mod:`exports.background`)."""
 
 from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import ezdxf
 import numpy as np
+
+if TYPE_CHECKING:
+    import ezdxf.document
 
 LAYER_COLOURS = {
     "GEAR": 5,
@@ -106,6 +112,8 @@ def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: s
 def _new(version: str) -> ezdxf.document.Drawing:
     """A new drawing; ezdxf warns on stderr that R12 has no units variable when it sets its default
     units - keep a successful run's stderr clean."""
+    import ezdxf
+
     logger = logging.getLogger("ezdxf")
     level = logger.level
     logger.setLevel(logging.ERROR)

@@ -26,7 +26,6 @@ import re
 from collections import Counter
 from pathlib import Path
 
-import ezdxf
 import numpy as np
 
 from exports.csv_points import check_profile, check_regular_file, looks_like_dxf, read_points
@@ -56,6 +55,8 @@ def _name(entity) -> str:
 
 def _load(path: Path, label: str):
     """The ezdxf document of ``path``; a file ezdxf cannot read is refused."""
+    import ezdxf  # here: commands that only may read a DXF do not pay its import (0.15 s)
+
     check_regular_file(path, label, "DXF drawing")
     try:
         return ezdxf.readfile(path)

@@ -110,8 +110,16 @@ def helical_solid(section: shapely.Polygon, lead: float, length: float, toleranc
     return HelicalSolid(solid, poly, float(length), float(lead), n, float(tolerance))
 
 
+HOUSING_WALL = 10.0  # mm: the housing block stands this far beyond the bores
+
+
 def housing_solids(
-    center_distance: float, male_bore: float, female_bore: float, length: float, wall: float = 10.0, segments: int = 720
+    center_distance: float,
+    male_bore: float,
+    female_bore: float,
+    length: float,
+    wall: float = HOUSING_WALL,
+    segments: int = 720,
 ) -> tuple[m3.Manifold, m3.Manifold]:
     """The housing of a pair: (block minus bores, bores alone). The bores are the two intersecting
     cylinders of radii ``male_bore`` and ``female_bore`` (tip radius + radial clearance) about O1 and

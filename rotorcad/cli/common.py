@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import math
 import sys
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -14,7 +13,8 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from exports.atomic import check_writable, write_all
+from exports.atomic import Writer, check_writable, write_all
+from exports.background import WorkerPool
 from rotorcad.errors import DesignError
 
 
@@ -132,9 +132,9 @@ class Outputs:
     or none (see :mod:`exports.atomic`)."""
 
     def __init__(self) -> None:
-        self._items: list[tuple[Path, Callable[[Path], None]]] = []
+        self._items: list[tuple[Path, Writer]] = []
 
-    def add(self, path: Path | None, writer: Callable[[Path], None], option: str) -> None:
+    def add(self, path: Path | None, writer: Writer, option: str) -> None:
         if path is None:
             return
         try:
@@ -143,9 +143,10 @@ class Outputs:
             raise InputError(exc.sentence()) from None
         self._items.append((Path(path), writer))
 
-    def write(self) -> list[Path]:
+    def write(self, pool: WorkerPool | None = None) -> list[Path]:
+        """Write every file or none; background writers run in ``pool``'s worker if given."""
         try:
-            return write_all(self._items)
+            return write_all(self._items, pool)
         except OSError as exc:
             raise InputError(f"output file could not be written ({exc.strerror}): {exc.filename}.") from None
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import click
 import numpy as np
@@ -15,6 +15,7 @@ from rich.console import Console
 from rich.progress import Progress
 from rich.table import Table
 
+from exports.background import BackgroundWriter, WorkerPool
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf, write_dxf_mesh
 from exports.dxf_profile import read_profile_points
@@ -30,7 +31,7 @@ from rotorcad.errors import DesignError
 from rotorcad.interference import interference_2d, intersection_3d
 from rotorcad.measured_outline import whole_outline
 from rotorcad.rotor_pair import RotorPair
-from rotorcad.solids import HelicalSolid, helical_solid, housing_solids
+from rotorcad.solids import HOUSING_WALL, helical_solid, housing_solids
 
 FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "dxf-mesh", "dxf-mesh-r12", "step", "step-faceted", "csv")
 DXF_MESH_MAX = 50_000  # triangles: a DXF mesh is for small meshes (STACK-NOTES)
@@ -129,166 +130,172 @@ def export(
     tol = tolerance if tolerance is not None else float(settings["export"].get("tolerance", 0.005))
     if not (np.isfinite(tol) and 0 < tol <= 1.0):
         raise InputError(f"--tolerance must be a surface tolerance between 0 and 1 mm (got {tol}).")
-    rotors, _, clearance = build_rotors(design, _rotor_options(design))
-    pair, phase = _assembly(rotors.pair, center_distance, phase_deg, clearance)
-    folder = output_folder(out)
-    stem = Path(design).stem
-    if not np.isfinite(angle):
-        raise InputError(f"--angle must be a number of degrees (got {angle}).")
-    phi = np.radians(angle)
-    turn = {"male": phi, "female": -phi * pair.male_teeth / pair.female_teeth + phase}
-    sections = {
-        b: shapely.affinity.rotate(rotors.section(b, tol / 2), turn[b], origin=(0, 0), use_radians=True)
-        for b in ("male", "female")
-    }
-    leads = {"male": pair.lead if pair.hand == "right" else -pair.lead}
-    leads["female"] = -np.sign(leads["male"]) * pair.female_lead
-    shift = {"male": (0.0, 0.0), "female": (pair.center_distance, 0.0)}
-    solids: dict[str, HelicalSolid] = {}
-    needs_mesh = [
-        f
-        for f in fmts
-        if f in MESH_FORMATS or f.startswith("dxf-mesh") or f == "step-faceted" or (f == "step" and not ocp_available())
-    ]
-    progress = _progress(quiet)
-    if progress:
-        progress.start()
-        task = progress.add_task("sweeping solids", total=2)
-    if needs_mesh:
-        for body in ("male", "female"):
-            solids[body] = helical_solid(sections[body], leads[body], pair.length, tol)
-            if progress:
-                progress.advance(task)
-    outputs = Outputs()
-    rows: list[dict[str, Any]] = []
-    placed_meshes: dict[str, trimesh.Trimesh] = {}
-    for body in ("male", "female"):
-        placed = np.asarray(sections[body].exterior.coords)[:-1] + np.array(shift[body])
-        for fmt in fmts:
-            path = folder / f"{stem}_{body}{_extension(fmt)}"
-            row: dict[str, Any] = {
-                "path": str(path),
-                "format": fmt,
-                "body": body,
-                "triangles": 0,
-                "volume": float(sections[body].area * pair.length),
-            }
-            if fmt in MESH_FORMATS:
-                if body not in placed_meshes:
-                    placed_meshes[body] = _placed_mesh(solids[body], shift[body])
-                mesh = placed_meshes[body]
-                row.update(triangles=len(mesh.faces), volume=solids[body].volume, tolerance=solids[body].tolerance)
-                outputs.add(path, lambda p, m=mesh, f=fmt: write_mesh(p, m, f), "--out")
-            elif fmt in ("dxf", "dxf-r12"):
-                row.update(tolerance=tol / 2)  # the section's chords
-                drawing = Drawing(mark_size=0.05 * pair.male_tip_radius)
-                drawing.outlines.append((body.upper(), placed))
-                drawing.circles.append(
-                    ("PITCH", shift[body], pair.male_pitch_radius if body == "male" else pair.female_pitch_radius)
-                )
-                drawing.centers.append(shift[body])
-                if fmt == "dxf":
-                    drawing.splines.append((f"{body.upper()}_SPLINE", placed))
-                outputs.add(path, lambda p, d=drawing, f=fmt: write_dxf(p, d, "R12" if f == "dxf-r12" else "R2000"), "--out")
-            elif fmt in ("dxf-mesh", "dxf-mesh-r12"):
-                mesh = solids[body].mesh
-                if len(mesh.faces) > DXF_MESH_MAX:
-                    needed = tol
-                    for _ in range(12):  # find the tolerance that would do (triangles fall slower than 1/tolerance)
-                        needed *= 1.5
-                        coarse = helical_solid(rotors.section(body, needed / 2), leads[body], pair.length, needed)
-                        if len(coarse.mesh.faces) <= DXF_MESH_MAX:
-                            break
-                    raise InputError(
-                        f"--tolerance must be coarser for a DXF mesh ({len(mesh.faces)} triangles; at most {DXF_MESH_MAX}): "
-                        f"{needed:.3g} mm or coarser would do."
-                    )
-                verts = mesh.vertices + np.array([*shift[body], 0.0])
-                row.update(triangles=len(mesh.faces), volume=solids[body].volume, tolerance=solids[body].tolerance)
-                outputs.add(
-                    path,
-                    lambda p, v=verts, fc=mesh.faces, b=body, f=fmt: write_dxf_mesh(
-                        p, v, fc, b.upper(), "R12" if f.endswith("r12") else "R2000"
-                    ),
-                    "--out",
-                )
-            elif fmt == "csv":
-                row.update(tolerance=tol / 2)
-                own = np.asarray(sections[body].exterior.coords)[:-1]
-                outputs.add(path, lambda p, pts=own: write_points(p, pts), "--out")
-            elif fmt == "step" and ocp_available():
-                step_tol = min(tol, STEP_TOLERANCE)
-                segments, exact = _step_section(rotors, body, turn[body], step_tol)
-                row.update(faces=len(segments) + 2, tolerance=step_tol, volume=float(shapely.Polygon(exact).area * pair.length))
+    # STEP and DXF are written by a worker process (exports.background), forked before the
+    # progress bar's thread, while this one sweeps and meshes
+    preload = ("OCP.STEPControl",) if "step" in fmts and ocp_available() else ()
+    preload += ("ezdxf",) if {"dxf", "dxf-r12"} & set(fmts) else ()
+    with WorkerPool(background=bool(preload), preload=preload) as pool:
+        rotors, _, clearance = build_rotors(design, _rotor_options(design))
+        pair, phase = _assembly(rotors.pair, center_distance, phase_deg, clearance)
+        folder = output_folder(out)
+        stem = Path(design).stem
+        if not np.isfinite(angle):
+            raise InputError(f"--angle must be a number of degrees (got {angle}).")
+        phi = np.radians(angle)
+        turn = {"male": phi, "female": -phi * pair.male_teeth / pair.female_teeth + phase}
+        sections = {
+            b: shapely.affinity.rotate(rotors.section(b, tol / 2), turn[b], origin=(0, 0), use_radians=True)
+            for b in ("male", "female")
+        }
+        leads = {"male": pair.lead if pair.hand == "right" else -pair.lead}
+        leads["female"] = -np.sign(leads["male"]) * pair.female_lead
+        shift = {"male": (0.0, 0.0), "female": (pair.center_distance, 0.0)}
+        swept: dict[str, _SweptBody] = {}
+        progress = _progress(quiet)
+        if progress:
+            progress.start()
+            task = progress.add_task("sweeping solids", total=2)
 
-                def write_step(p: Path, b: str = body, segs=segments, ex=exact, r=row, t=step_tol) -> None:
-                    try:
-                        done = write_exact_step(p, segs, leads[b], pair.length, t, b, shift[b], exact=ex)
-                    except ValueError as exc:
-                        raise InputError(f"--tolerance {t:g} mm cannot be met by the STEP of the {b}: {exc}.") from None
-                    r["tolerance"] = done["deviation"]  # measured on the solid's faces
+        def body_mesh(body: str) -> _SweptBody:
+            """The body swept and meshed in place when a writer first needs it (while the worker
+            writes STEP and DXF); the manifold is let go once meshed (some 150 MB a rotor)."""
+            if body not in swept:
+                made = helical_solid(sections[body], leads[body], pair.length, tol)
+                mesh = made.mesh
+                mesh.apply_translation([*shift[body], 0.0])  # the mesh is the solid's own: moved, not copied
+                swept[body] = _SweptBody(mesh, made.volume, made.tolerance)
+                if progress:
+                    progress.advance(task)
+            return swept[body]
 
-                outputs.add(path, write_step, "--out")
-            else:  # faceted STEP: coarse enough for OpenCASCADE to read
-                solid = solids[body]
-                coarse_tol = tol
-                while len(solid.mesh.faces) > FACETED_STEP_MAX:  # facets go like 1/tol: coarsen until readable
-                    coarse_tol *= 1.5 * len(solid.mesh.faces) / FACETED_STEP_MAX
-                    solid = helical_solid(rotors.section(body, coarse_tol / 2), leads[body], pair.length, coarse_tol)
-                mesh = solid.mesh.copy()
+        def write_placed_mesh(p: Path, body: str, fmt: str, row: dict[str, Any]) -> None:
+            made = body_mesh(body)
+            row.update(triangles=len(made.mesh.faces), volume=made.volume, tolerance=made.tolerance)
+            write_mesh(p, made.mesh, fmt)
+
+        def write_mesh_dxf(p: Path, body: str, fmt: str, row: dict[str, Any]) -> None:
+            made = body_mesh(body)
+            if len(made.mesh.faces) > DXF_MESH_MAX:
+                needed = tol
+                for _ in range(12):  # find the tolerance that would do (triangles fall slower than 1/tolerance)
+                    needed *= 1.5
+                    coarse = helical_solid(rotors.section(body, needed / 2), leads[body], pair.length, needed)
+                    if len(coarse.mesh.faces) <= DXF_MESH_MAX:
+                        break
+                raise InputError(
+                    f"--tolerance must be coarser for a DXF mesh ({len(made.mesh.faces)} triangles; at most {DXF_MESH_MAX}): "
+                    f"{needed:.3g} mm or coarser would do."
+                )
+            row.update(triangles=len(made.mesh.faces), volume=made.volume, tolerance=made.tolerance)
+            write_dxf_mesh(p, made.mesh.vertices, made.mesh.faces, body.upper(), "R12" if fmt.endswith("r12") else "R2000")
+
+        def write_faceted(p: Path, body: str, row: dict[str, Any]) -> None:
+            made = body_mesh(body)
+            coarse_tol = tol
+            faces = len(made.mesh.faces)
+            while faces > FACETED_STEP_MAX:  # facets go like 1/tol: coarsen until readable
+                coarse_tol *= 1.5 * faces / FACETED_STEP_MAX
+                coarse = helical_solid(rotors.section(body, coarse_tol / 2), leads[body], pair.length, coarse_tol)
+                mesh = coarse.mesh.copy()
                 mesh.apply_translation([*shift[body], 0.0])
-                row.update(triangles=len(mesh.faces), volume=solid.volume, tolerance=solid.tolerance)
-                outputs.add(path, lambda p, m=mesh, b=body: write_faceted_step(p, m.vertices, m.faces, b), "--out")
-            rows.append(row)
-    with_housing = housing if housing is not None else bool(settings["housing"])
-    if with_housing:
-        segments = max(360, int(2 * np.pi / np.sqrt(8 * tol / pair.female_tip_radius)))
-        block, bores = housing_solids(
-            pair.center_distance,
-            pair.male_tip_radius + clearance,
-            pair.female_tip_radius + clearance,
-            pair.length,
-            segments=segments,
-        )
-        housing_sag = float((pair.female_tip_radius + clearance) * (1 - np.cos(np.pi / segments)))  # chords of the bores
-        exact_volume = _housing_volumes(pair, clearance)
-        for body, manifold in (("housing", block), ("bores", bores)):
-            m = manifold.to_mesh64()
-            mesh = trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts), process=False)
+                made = _SweptBody(mesh, coarse.volume, coarse.tolerance)
+                faces = len(mesh.faces)
+            row.update(triangles=faces, volume=made.volume, tolerance=made.tolerance)
+            write_faceted_step(p, made.mesh.vertices, made.mesh.faces, body)
+
+        outputs = Outputs()
+        rows: list[dict[str, Any]] = []
+        for body in ("male", "female"):
+            placed = np.asarray(sections[body].exterior.coords)[:-1] + np.array(shift[body])
             for fmt in fmts:
-                if fmt in MESH_FORMATS or fmt in ("step", "step-faceted"):
-                    ext = _extension(fmt) if fmt in MESH_FORMATS else ("_faceted.step" if fmt == "step-faceted" else ".step")
-                    path = folder / f"{stem}_{body}{ext}"
-                    rows.append(
-                        {
-                            "path": str(path),
-                            "format": fmt,
-                            "body": body,
-                            "triangles": len(mesh.faces),
-                            "volume": float(manifold.volume()),
-                        }
+                path = folder / f"{stem}_{body}{_extension(fmt)}"
+                row: dict[str, Any] = {
+                    "path": str(path),
+                    "format": fmt,
+                    "body": body,
+                    "triangles": 0,
+                    "volume": float(sections[body].area * pair.length),
+                }
+                if fmt in MESH_FORMATS:
+                    outputs.add(path, lambda p, b=body, f=fmt, r=row: write_placed_mesh(p, b, f, r), "--out")
+                elif fmt in ("dxf", "dxf-r12"):
+                    row.update(tolerance=tol / 2)  # the section's chords
+                    drawing = Drawing(mark_size=0.05 * pair.male_tip_radius)
+                    drawing.outlines.append((body.upper(), placed))
+                    drawing.circles.append(
+                        ("PITCH", shift[body], pair.male_pitch_radius if body == "male" else pair.female_pitch_radius)
                     )
-                    if fmt in MESH_FORMATS:
-                        rows[-1]["tolerance"] = housing_sag
-                        outputs.add(path, lambda p, mm=mesh, f=fmt: write_mesh(p, mm, f), "--out")
-                    elif fmt == "step":  # exact: box and cylinders by OpenCASCADE
-                        rows[-1].update(tolerance=0.0, triangles=0, volume=exact_volume[body])
-                        outputs.add(
-                            path,
-                            lambda p, b=body: write_housing_step(
-                                p,
-                                pair.center_distance,
-                                pair.male_tip_radius + clearance,
-                                pair.female_tip_radius + clearance,
-                                pair.length,
-                                body=b,
-                            ),
-                            "--out",
+                    drawing.centers.append(shift[body])
+                    if fmt == "dxf":
+                        drawing.splines.append((f"{body.upper()}_SPLINE", placed))
+                    outputs.add(path, BackgroundWriter(write_dxf, (drawing, "R12" if fmt == "dxf-r12" else "R2000")), "--out")
+                elif fmt in ("dxf-mesh", "dxf-mesh-r12"):
+                    outputs.add(path, lambda p, b=body, f=fmt, r=row: write_mesh_dxf(p, b, f, r), "--out")
+                elif fmt == "csv":
+                    row.update(tolerance=tol / 2)
+                    own = np.asarray(sections[body].exterior.coords)[:-1]
+                    outputs.add(path, lambda p, pts=own: write_points(p, pts), "--out")
+                elif fmt == "step" and ocp_available():
+                    step_tol = min(tol, STEP_TOLERANCE)
+                    segments, exact = _step_section(rotors, body, turn[body], step_tol)
+                    row.update(
+                        faces=len(segments) + 2, tolerance=step_tol, volume=float(shapely.Polygon(exact).area * pair.length)
+                    )
+                    job = BackgroundWriter(
+                        write_exact_step,
+                        (segments, leads[body], pair.length, step_tol, body, shift[body], exact),
+                        done=lambda done, r=row: r.update(tolerance=done["deviation"]),  # measured on the solid's faces
+                        failed=lambda exc, b=body, t=step_tol: InputError(
+                            f"--tolerance {t:g} mm cannot be met by the STEP of the {b}: {exc}."
+                        ),
+                    )
+                    outputs.add(path, job, "--out")
+                else:  # faceted STEP: coarse enough for OpenCASCADE to read
+                    outputs.add(path, lambda p, b=body, r=row: write_faceted(p, b, r), "--out")
+                rows.append(row)
+        with_housing = housing if housing is not None else bool(settings["housing"])
+        if with_housing:
+            segments = max(360, int(2 * np.pi / np.sqrt(8 * tol / pair.female_tip_radius)))
+            block, bores = housing_solids(
+                pair.center_distance,
+                pair.male_tip_radius + clearance,
+                pair.female_tip_radius + clearance,
+                pair.length,
+                wall=HOUSING_WALL,
+                segments=segments,
+            )
+            housing_sag = float((pair.female_tip_radius + clearance) * (1 - np.cos(np.pi / segments)))  # chords of the bores
+            exact_volume = _housing_volumes(pair, clearance)
+            for body, manifold in (("housing", block), ("bores", bores)):
+                m = manifold.to_mesh64()
+                mesh = trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts), process=False)
+                for fmt in fmts:
+                    if fmt in MESH_FORMATS or fmt in ("step", "step-faceted"):
+                        ext = _extension(fmt) if fmt in MESH_FORMATS else ("_faceted.step" if fmt == "step-faceted" else ".step")
+                        path = folder / f"{stem}_{body}{ext}"
+                        rows.append(
+                            {
+                                "path": str(path),
+                                "format": fmt,
+                                "body": body,
+                                "triangles": len(mesh.faces),
+                                "volume": float(manifold.volume()),
+                            }
                         )
-                    else:
-                        rows[-1]["tolerance"] = housing_sag
-                        outputs.add(path, lambda p, mm=mesh, b=body: write_faceted_step(p, mm.vertices, mm.faces, b), "--out")
-    written = outputs.write()
+                        if fmt in MESH_FORMATS:
+                            rows[-1]["tolerance"] = housing_sag
+                            outputs.add(path, lambda p, mm=mesh, f=fmt: write_mesh(p, mm, f), "--out")
+                        elif fmt == "step":  # exact: box and cylinders by OpenCASCADE
+                            rows[-1].update(tolerance=0.0, triangles=0, volume=exact_volume[body])
+                            bores_at = (pair.male_tip_radius + clearance, pair.female_tip_radius + clearance)
+                            job = BackgroundWriter(
+                                write_housing_step, (pair.center_distance, *bores_at, pair.length, HOUSING_WALL, body)
+                            )
+                            outputs.add(path, job, "--out")
+                        else:
+                            rows[-1]["tolerance"] = housing_sag
+                            outputs.add(path, lambda p, mm=mesh, b=body: write_faceted_step(p, mm.vertices, mm.faces, b), "--out")
+        written = outputs.write(pool)
     if progress:
         progress.stop()
     for row in rows:
@@ -317,14 +324,12 @@ def export(
 STEP_TOLERANCE = 1e-3  # mm: the exact STEP is checked against the helicoid to 1 um unless --tolerance is finer
 
 
-def _placed_mesh(solid: HelicalSolid, shift: tuple[float, float]) -> trimesh.Trimesh:
-    """The solid's mesh at its place: the mesh itself at the origin, else a translated copy (the
-    caller makes it once however many formats use it: a 0.5 M-triangle mesh is some 30 MB)."""
-    if shift == (0.0, 0.0):
-        return solid.mesh
-    moved = solid.mesh.copy()
-    moved.apply_translation([*shift, 0.0])
-    return moved
+class _SweptBody(NamedTuple):
+    """What the mesh writers need of a swept rotor: its mesh in place and what it was made to."""
+
+    mesh: trimesh.Trimesh  # float64, placed (the female at the centre distance)
+    volume: float  # mm^3, of the mesh
+    tolerance: float  # mm, surface tolerance it was made to
 
 
 def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[list[SectionSegment], np.ndarray]:
@@ -390,7 +395,7 @@ def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, 
     return replace(pair, center_distance=float(center_distance), strict=False), float(np.radians(phase_deg))
 
 
-def _housing_volumes(pair: RotorPair, clearance: float, wall: float = 10.0) -> dict[str, float]:
+def _housing_volumes(pair: RotorPair, clearance: float, wall: float = HOUSING_WALL) -> dict[str, float]:
     """Closed-form volumes (mm^3) of the bores (two intersecting circles: the union's area from the
     lens of their overlap) and of the block minus the bores, times the length."""
     a, r1, r2 = pair.center_distance, pair.male_tip_radius + clearance, pair.female_tip_radius + clearance

@@ -1,0 +1,61 @@
+"""Run a command and report its wall time and the peak memory of its whole process tree.
+
+GNU time's %M is the largest single process; an export that hands STEP and DXF to a forked
+worker process uses two, and what the machine must hold is their sum. The sum is taken of the
+proportional set sizes (Pss in /proc/PID/smaps_rollup: a page shared by the two after the fork is
+counted half in each), sampled every 10 ms; the sampling itself takes some of a core.
+
+Usage: python benchmarks/peak_tree.py rotorcad export samples/rack_involute_5_6.toml --out out
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+
+
+def _tree_rss_kb(root: int) -> int:
+    """Summed proportional set size of ``root`` and its descendants (kB), from /proc."""
+    children: dict[int, list[int]] = {}
+    rss: dict[int, int] = {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as fh:
+                fields = fh.read().rsplit(")", 1)[1].split()
+            with open(f"/proc/{entry}/smaps_rollup") as fh:
+                pss = next(int(line.split()[1]) for line in fh if line.startswith("Pss:"))
+        except OSError:
+            continue
+        pid = int(entry)
+        children.setdefault(int(fields[1]), []).append(pid)
+        rss[pid] = pss
+    total, todo = 0, [root]
+    while todo:
+        pid = todo.pop()
+        total += rss.get(pid, 0)
+        todo.extend(children.get(pid, []))
+    return total
+
+
+def run_with_peak(command: list[str]) -> tuple[float, float, int]:
+    """Run ``command``; return (wall time s, peak PSS of its process tree MB, exit status)."""
+    start = time.perf_counter()
+    proc = subprocess.Popen(command, stdout=subprocess.DEVNULL)
+    peak = 0
+    while proc.poll() is None:
+        peak = max(peak, _tree_rss_kb(proc.pid))
+        time.sleep(0.01)
+    return time.perf_counter() - start, peak / 1024, proc.returncode
+
+
+def main() -> None:
+    wall, peak, status = run_with_peak(sys.argv[1:])
+    print(f"{wall:.2f} s wall, peak PSS of the process tree {peak:.0f} MB, exit {status}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,137 @@
+"""Writers that run in a second process while this one goes on.
+
+An export spends its time in two independent halves: sweeping and meshing (manifold3d, trimesh)
+and the exact STEP and DXF files (OpenCASCADE, whose import alone takes 0.6 s, and ezdxf). On a
+Linux machine with two or more cores the second half runs in one worker process, so that
+OpenCASCADE is never loaded here.
+
+The worker is forked, not spawned: ``spawn`` (and ``forkserver``) run the caller's main script again
+in the worker, which breaks any user script that calls rotorcad without the
+``if __name__ == "__main__"`` guard. A fork copies only the calling thread, so the pool is made
+before the command starts any thread of its own (the progress bar) and is not made at all when
+other Python threads are running. With one core, another system, ``ROTORCAD_WORKERS=0`` in the
+environment, or when no worker can be started, every job runs here, in order, with the same result.
+"""
+
+from __future__ import annotations
+
+import importlib
+import multiprocessing
+import os
+import signal
+import sys
+import threading
+from collections.abc import Callable
+from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+
+@dataclass(frozen=True)
+class BackgroundWriter:
+    """A file writer that may run in the worker process.
+
+    Parameters
+    ----------
+    function
+        A module-level function (it is pickled by name), called as ``function(path, *args)``.
+    args
+        Its further arguments; they are pickled, so plain values and numpy arrays, not meshes.
+    done
+        Called in this process with the function's return value (e.g. to fill a table row).
+    failed
+        Called in this process with a ``ValueError`` the function raised; returns the exception
+        to raise instead (e.g. one naming the command-line option).
+    """
+
+    function: Callable[..., Any]
+    args: tuple[Any, ...] = ()
+    done: Callable[[Any], None] | None = None
+    failed: Callable[[ValueError], BaseException] | None = None
+
+    def finish(self, run: Callable[[], Any]) -> None:
+        """Run ``run`` (which returns the function's value) and hand its value or failure on."""
+        try:
+            value = run()
+        except ValueError as exc:
+            if self.failed is None:
+                raise
+            raise self.failed(exc) from None
+        if self.done is not None:
+            self.done(value)
+
+
+def worker_count() -> int:
+    """Worker processes to use: 1 on Linux with two or more cores and no other Python thread
+    running, else 0 (run here); ``ROTORCAD_WORKERS=0`` in the environment also says 0."""
+    if os.environ.get("ROTORCAD_WORKERS", "").strip() == "0":
+        return 0
+    if sys.platform != "linux" or threading.active_count() > 1:
+        return 0
+    return 1 if (os.cpu_count() or 1) >= 2 else 0
+
+
+def _start_worker(preload: tuple[str, ...]) -> None:
+    """In the worker: leave Ctrl-C to the parent (which stops the worker and removes what it
+    wrote), then import ``preload`` while the parent goes on."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for module in preload:
+        importlib.import_module(module)
+
+
+class WorkerPool:
+    """Runs :class:`BackgroundWriter` jobs in one worker process, or here when there is none.
+
+    Use as a context manager around the work, entered before any thread is started: the worker is
+    forked on entry. Leaving it waits for the running job (so that no file is written after the
+    caller has cleaned up) and stops the worker.
+
+    Parameters
+    ----------
+    background
+        False runs every job here (e.g. when nothing will be written in the background).
+    preload
+        Modules the worker imports as soon as it starts (e.g. ``"OCP.STEPControl"``, 0.6 s).
+    """
+
+    def __init__(self, background: bool = True, preload: tuple[str, ...] = ()) -> None:
+        self._executor: ProcessPoolExecutor | None = None
+        if background and worker_count():
+            try:
+                self._executor = ProcessPoolExecutor(
+                    max_workers=1,
+                    mp_context=multiprocessing.get_context("fork"),
+                    initializer=_start_worker,
+                    initargs=(preload,),
+                )
+                self._executor.submit(int)  # forks now, while this is the only thread
+            except (OSError, NotImplementedError, ValueError, BrokenProcessPool):  # e.g. no /dev/shm: run here
+                self._executor = None
+
+    def __enter__(self) -> WorkerPool:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
+
+    def stop(self) -> None:
+        """Cancel what has not started, wait for the running job, stop the worker (idempotent)."""
+        if self._executor is not None:
+            self._executor.shutdown(wait=True, cancel_futures=True)
+            self._executor = None
+
+    def submit(self, job: BackgroundWriter, path: Path) -> Callable[[], None]:
+        """Start ``job`` writing ``path``; return the call that waits for it and finishes it."""
+        if self._executor is None:
+            return lambda: job.finish(lambda: job.function(path, *job.args))
+        future: Future = self._executor.submit(job.function, path, *job.args)
+
+        def result() -> Any:
+            try:
+                return future.result()
+            except BrokenProcessPool:  # the worker died (killed, out of memory): do it here instead
+                return job.function(path, *job.args)
+
+        return lambda: job.finish(result)
