@@ -1,0 +1,253 @@
+"""``rotorcad coupling``: lubricant film of a gear coupling with barrel-shaped teeth (CONTRACT.md;
+Belkov, Maksimov & Shitikov)."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+from matplotlib.figure import Figure
+from rich.console import Console
+from rich.table import Table
+
+from rotorcad.cli.common import InputError, Outputs, emit_json, plain, reraise
+from rotorcad.coupling import CouplingResult, GearCoupling, analyse, sweep_teeth
+from rotorcad.errors import DesignError
+
+OPTION_OF = {
+    "teeth": "--teeth",
+    "module": "--module",
+    "barrel_radius": "--barrel-radius",
+    "pressure_angle": "--pressure-angle",
+    "addendum": "--addendum",
+    "face_width": "--face-width",
+    "speed_rpm": "--speed",
+    "viscosity": "--viscosity",
+    "power_kw": "--power",
+    "pressure_viscosity": "--pressure-viscosity",
+    "misalignment": "--misalignment-deg",
+    "load_factor": "--load-factor",
+}
+
+# option key -> (flag, low, high, low included, the allowed range as words); None = required option absent
+RANGES: dict[str, tuple[str, float, float, bool, str]] = {
+    "teeth": ("--teeth", 6, 1000, True, "a whole number from 6 to 1000"),
+    "module": ("--module", 0.0, 100.0, False, "a positive number up to 100 (mm)"),
+    "face_width": ("--face-width", 0.0, 2000.0, False, "a positive number up to 2000 (mm)"),
+    "speed": ("--speed", 0.0, 1e6, False, "a positive number up to 1e6 (rpm)"),
+    "viscosity": ("--viscosity", 0.0, 100.0, False, "a positive number up to 100 (Pa s)"),
+    "power": ("--power", 0.0, 1e7, False, "a positive number up to 1e7 (kW)"),
+    "pressure_viscosity": ("--pressure-viscosity", 0.0, 1e-6, True, "a number from 0 to 1e-6 (1/Pa)"),
+    "misalignment_deg": ("--misalignment-deg", 0.0, 10.0, True, "a number from 0 to 10 (degrees)"),
+    "pressure_angle": ("--pressure-angle", 10.0, 40.0, True, "a number from 10 to 40 (degrees)"),
+    "addendum": ("--addendum", 0.0, 2.0, False, "a positive number up to 2"),
+    "load_factor": ("--load-factor", 1.0, 10.0, True, "a number from 1 to 10"),
+    "barrel_radius": ("--barrel-radius", 0.0, 1e7, False, "a positive number (mm)"),
+}
+OPTIONAL = {"pressure_angle", "addendum", "load_factor", "barrel_radius"}
+
+# result key -> unit in the text table (JSON: the same units)
+UNITS = {
+    "hydrodynamic": "",
+    "min_film_thickness": "mm",
+    "load_capacity": "N",
+    "max_pressure": "MPa",
+    "hertz_stress": "MPa",
+    "message": "",
+    "central_film_thickness": "mm",
+    "ehl_film_thickness": "mm",
+    "ehl_ratio": "1",
+    "pressure_to_hertz_ratio": "1",
+    "tooth_load": "N",
+    "load_per_length": "N/mm",
+    "pitch_radius": "mm",
+    "barrel_radius": "mm",
+    "flank_crown_radius": "mm",
+    "crowning_depth": "mm",
+    "contact_length": "mm",
+    "hertz_half_width": "mm",
+    "contact_excursion": "mm",
+    "edge_contact": "",
+    "mean_sliding_velocity": "m/s",
+    "mean_entraining_velocity": "m/s",
+    "max_rolling_velocity": "m/s",
+    "max_axial_sliding_velocity": "m/s",
+}
+
+HELP = """Lubricant film of a gear coupling with barrel-shaped (crowned) hub teeth: the contact-hydrodynamic
+calculation of Belkov, Maksimov & Shitikov (Reynolds equation with Barus viscosity and the elastic gap of a
+cylinder of the flank crown radius on a plane, minimum film where the film carries the tooth load).
+
+\b
+Keys (JSON and table): hydrodynamic (bool), min_film_thickness [mm], load_capacity [N, one tooth],
+max_pressure [MPa, in the film], hertz_stress [MPa, dry Hertz line contact], message; further:
+central_film_thickness [mm], ehl_film_thickness [mm, Dowson-Higginson], ehl_ratio [1, h_min / Dowson-Higginson],
+pressure_to_hertz_ratio [1], tooth_load [N, normal], load_per_length [N/mm], pitch_radius, barrel_radius (R0),
+flank_crown_radius (R_b = R0 / sin alpha), crowning_depth, contact_length, hertz_half_width, contact_excursion [mm],
+edge_contact (bool), mean_sliding_velocity, mean_entraining_velocity, max_rolling_velocity,
+max_axial_sliding_velocity [m/s], files.
+"""
+
+
+@click.command(help=HELP)
+@click.option("--teeth", type=int, help="Number of teeth z of hub and sleeve.")
+@click.option("--module", type=float, help="Module m [mm].")
+@click.option(
+    "--barrel-radius",
+    type=float,
+    help="Crowning radius R0 of the hub teeth [mm] (arc of the hob centre); default b sin(alpha) / (4 tan(gamma)).",
+)
+@click.option("--pressure-angle", type=float, default=20.0, show_default=True, help="Pressure angle alpha [deg].")
+@click.option("--addendum", type=float, default=0.8, show_default=True, help="Addendum factor h_a*.")
+@click.option("--face-width", type=float, help="Face width b [mm] (the paper: 6...10 m).")
+@click.option("--speed", type=float, help="Speed n [rpm].")
+@click.option("--viscosity", type=float, help="Mean oil viscosity mu_0 [Pa s].")
+@click.option("--power", type=float, help="Power P on the shaft [kW].")
+@click.option("--pressure-viscosity", type=float, help="Barus pressure-viscosity coefficient alpha_0 [1/Pa], e.g. 2e-8.")
+@click.option("--misalignment-deg", type=float, help="Shaft misalignment gamma [deg] (the paper: 0.17...0.4).")
+@click.option("--load-factor", type=float, default=1.0, show_default=True, help="Load distribution factor K_H.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option(
+    "--plot",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="PNG: speeds over one revolution, film pressure and shape, h_min over the number of teeth.",
+)
+@click.option("--quiet", is_flag=True, help="No progress output (there is none).")
+def coupling(**opts: Any) -> None:
+    _check_inputs(opts)
+    c = _build(opts)
+    r = analyse(c)
+    result = _result(r)
+    out = Outputs()
+    out.add(opts["plot"], lambda path: _plot(r).savefig(path, format="png"), "--plot")
+    result["files"] = [str(x) for x in out.write()]
+    if opts["as_json"]:
+        emit_json(result)
+    else:
+        _print_table(f"gear coupling z={c.teeth}, m={c.module:g} mm, n={c.speed_rpm:g} rpm, P={c.power_kw:g} kW", result)
+
+
+def _check_inputs(opts: dict[str, Any]) -> None:
+    """Every option present (unless optional), finite and in its range; misalignment > 0 without a barrel radius."""
+    for key, (flag, lo, hi, closed, allowed) in RANGES.items():
+        v = opts.get(key)
+        if v is None:
+            if key in OPTIONAL:
+                continue
+            raise InputError(f"{flag} is required ({allowed}).")
+        ok = math.isfinite(v) and (v >= lo if closed else v > lo) and v <= hi
+        if not ok:
+            raise InputError(f"{flag} must be {allowed} (got {v}).")
+    if opts["barrel_radius"] is None and opts["misalignment_deg"] == 0.0:
+        raise InputError(
+            "--misalignment-deg must be above 0 when --barrel-radius is not given (R0 = b sin(alpha) / (4 tan(gamma))) (got 0)."
+        )
+
+
+def _build(opts: dict[str, Any]) -> GearCoupling:
+    try:
+        return GearCoupling(
+            teeth=opts["teeth"],
+            module=opts["module"],
+            face_width=opts["face_width"],
+            speed_rpm=opts["speed"],
+            power_kw=opts["power"],
+            viscosity=opts["viscosity"],
+            pressure_viscosity=opts["pressure_viscosity"],
+            misalignment=math.radians(opts["misalignment_deg"]),
+            pressure_angle=math.radians(opts["pressure_angle"]),
+            addendum=opts["addendum"],
+            barrel_radius=opts["barrel_radius"],
+            load_factor=opts["load_factor"],
+        )
+    except DesignError as exc:
+        raise reraise(exc, OPTION_OF) from None
+
+
+def _result(r: CouplingResult) -> dict[str, Any]:
+    c = r.coupling
+    _, rolling, axial, _ = c.speeds()
+    return {
+        "hydrodynamic": r.hydrodynamic,
+        "min_film_thickness": r.min_film_thickness,
+        "load_capacity": r.load_capacity,
+        "max_pressure": r.max_pressure,
+        "hertz_stress": r.hertz_stress,
+        "message": r.message,
+        "central_film_thickness": r.central_film_thickness,
+        "ehl_film_thickness": r.ehl_film_thickness,
+        "ehl_ratio": r.ehl_ratio,
+        "pressure_to_hertz_ratio": r.max_pressure / r.hertz_stress,
+        "tooth_load": c.tooth_load,
+        "load_per_length": c.load_per_length * 1e-3,
+        "pitch_radius": c.pitch_radius,
+        "barrel_radius": c.crown_radius,
+        "flank_crown_radius": c.flank_radius,
+        "crowning_depth": c.crowning_depth,
+        "contact_length": c.contact_length,
+        "hertz_half_width": r.hertz_half_width,
+        "contact_excursion": c.contact_excursion,
+        "edge_contact": r.edge_contact,
+        "mean_sliding_velocity": c.mean_sliding_speed,
+        "mean_entraining_velocity": c.entraining_speed,
+        "max_rolling_velocity": float(np.abs(rolling).max()),
+        "max_axial_sliding_velocity": float(np.abs(axial).max()),
+    }
+
+
+def _print_table(title: str, rows: dict[str, Any]) -> None:
+    """Quantity, value and unit of every key (units from :data:`UNITS`)."""
+    table = Table(title=title, show_header=True, header_style="bold")
+    for name, justify in (("quantity", "left"), ("value", "right"), ("unit", "left")):
+        table.add_column(name, justify=justify)
+    for key, value in plain(rows).items():
+        if isinstance(value, list):
+            continue
+        if isinstance(value, bool) or value is None or isinstance(value, str):
+            table.add_row(key, "-" if value is None else str(value), "")
+        else:
+            table.add_row(key, f"{value:.6g}" if abs(value) < 1e-3 else f"{value:.6f}", UNITS.get(key, ""))
+    Console(file=sys.stdout, highlight=False, width=110).print(table)
+
+
+def _plot(r: CouplingResult) -> Figure:
+    """Fig. 2 (speeds over one revolution), Fig. 3 (film pressure and shape), Fig. 4 (h_min over z) of the paper."""
+    c = r.coupling
+    fig = Figure(figsize=(8, 10), dpi=110)
+    ax1, ax2, ax4 = fig.subplots(3, 1)
+    psi, rolling, axial, radial = c.speeds()
+    deg = np.degrees(psi)
+    ax1.plot(deg, rolling, label="rolling V_k", color="#08519c")
+    ax1.plot(deg, axial, label="axial sliding V_os", color="#e6550d")
+    ax1.plot(deg, radial, label="radial sliding V_r", color="#31a354")
+    ax1.set_xlabel("rotation angle [deg]")
+    ax1.set_ylabel("speed [m/s]")
+    ax1.legend(fontsize=8)
+    ax1.set_title(r.message, fontsize=8)
+    if r.film is not None:
+        x = r.film.x * 1e3
+        ax2.plot(x, r.film.pressure / 1e6, color="#08519c", label="film pressure")
+        b = r.hertz_half_width
+        xs = np.linspace(-b, b, 201)
+        ax2.plot(xs, r.hertz_stress * np.sqrt(1.0 - (xs / b) ** 2), "--", color="grey", label="Hertz (dry)")
+        ax2.set_xlim(-3.0 * b, 2.0 * b)
+        ax2.set_xlabel("x along the face width [mm]")
+        ax2.set_ylabel("pressure [MPa]")
+        ax2.legend(fontsize=8, loc="upper left")
+        ax3 = ax2.twinx()
+        ax3.plot(x, r.film.film * 1e6, color="#e6550d")
+        ax3.set_ylim(0.0, 6.0 * r.min_film_thickness * 1e3)
+        ax3.set_ylabel("film thickness [um]", color="#e6550d")
+    teeth = np.unique(np.round(np.linspace(max(6, c.teeth // 2), 2 * c.teeth, 12)).astype(int))
+    ax4.plot(teeth, sweep_teeth(c, teeth) * 1e3, "o-", color="#08519c", label=f"module {c.module:g} mm kept")
+    ax4.plot(teeth, sweep_teeth(c, teeth, keep_diameter=True) * 1e3, "s--", color="#e6550d", label="pitch diameter kept")
+    ax4.axvline(c.teeth, color="grey", lw=0.8)
+    ax4.set_xlabel("number of teeth z")
+    ax4.set_ylabel("minimum film thickness h_min [um]")
+    ax4.legend(fontsize=8)
+    fig.tight_layout()
+    return fig

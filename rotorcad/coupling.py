@@ -1,0 +1,429 @@
+"""Gear coupling with barrel-shaped (crowned) hub teeth: kinematics, tooth load and lubricant film
+(Belkov, Maksimov & Shitikov, *Contact-hydrodynamic calculation of gear couplings of high-speed
+turbomachines*, seed 003; the film itself is solved in :mod:`rotorcad.coupling_film`).
+
+Geometry (paper, Fig. 1). Hub and sleeve have the same number of teeth z, module m, pressure angle
+alpha and addendum factor h_a* (0.8); no profile shift (the paper's X only balances bending
+strength and is not among its program's inputs), so the pitch radius is r = m z / 2. The hub
+teeth are crowned: the hob centre travels on an arc of radius R0 (``barrel_radius``), by default
+R0 = b sin(alpha) / (4 tan(gamma)) for face width b and misalignment gamma. A radial retraction
+dr = x^2/(2 R0) of a rack flank at alpha moves the flank by dr sin(alpha) along its normal, so the
+flank is crowned with R_b = R0 / sin(alpha) (the paper's "so-called barrel radius", section A-A).
+The two involutes have the same base circle, so the flanks conform along the tooth height: the
+contact is a cylinder of radius R_b on a plane, a line across the working depth 2 h_a* m, whose
+length along the involute is exactly l = 2 h_a* m / cos(alpha) (involute arc length
+(r_2^2 - r_1^2) / (2 r_b)).
+
+Kinematics (paper, Fig. 2 and the formulas before eq. 1). A misalignment gamma tilts a hub tooth
+at angle psi = omega t from the tilt plane by gamma cos(psi +- alpha) in the direction of its flank
+normal (tilt axis components gamma cos psi, gamma sin psi projected on the flank normal at alpha);
+the contact then sits at x_c = R_b tan(gamma cos(psi +- alpha)) on the barrel and rolls along the
+face width at V_k = R_b omega sin(gamma) sin(omega t +- alpha) (paper). The teeth slide axially at
+V_os = r omega sin(gamma) cos(psi) (paper: V_s = 0.5 omega d gamma cos(phi)) and radially at
+V_r = (r omega sin^2(gamma) / 2) sin(2 psi) (derived: the radius of a point on the tilted pitch
+circle is r sqrt(cos^2 psi + sin^2 psi cos^2 gamma)); V_r << V_os << V_k as the paper says.
+
+Mean sliding speed. The paper averages V_s over a quarter turn,
+V_cp = (2/pi) int_0^{pi/2} R omega sin(gamma) cos(phi) dphi = 2 R omega sin(gamma) / pi with
+omega = 2 pi n / 60 and R = z m / 2, which is z m n sin(gamma) / 30 -- in the unit of m per
+second: mm/s for m in mm, and m/s only with m in metres. The printed "z m n sin(gamma) / 300"
+is therefore in cm/s (or off by 100 from m/s, m in mm: the m/s form is z m n sin(gamma) / 30000);
+rotorcad uses the integral itself, in m/s.
+
+Entraining speed, eq. 7 (OCR: "V_Sigma cp / 2 = 2 omega gamma / pi [R_b - r (1 + sin alpha)], m/s").
+Read as the mean entraining speed u = V_Sigma / 2: its leading term (2/pi) R_b omega gamma is the
+mean of |V_k| above, and the Reynolds equation is printed with 6 mu V_Sigma, which is 12 mu u. The
+bracket's second term, the shift of the rolling speed by the tilt pivot (the coupling centre at
+about a pitch radius from the flank), is kept as printed; sin(gamma) replaces gamma (identical to
+1e-5 for gamma < 0.5 deg). When R_b <= r (1 + sin alpha) the formula gives no entrainment: the
+paper's "error in the input data".
+
+Tooth load. Torque T = P / omega, tangential force F_t = T / r shared by the z_c teeth in contact
+(z_c = z by default: the paper's program has no separate input for it, the load distribution
+factor K_H carries the unequal sharing), normal tooth load F_n = K_H F_t / (z_c cos alpha), and
+w' = F_n / l per unit length of the contact line.
+
+Verdict (paper: "the coupling does not work: error in the input data, or edge contact" / "the
+hydrodynamic regime is ensured"): the regime is hydrodynamic when eq. 7 gives entrainment, the
+contact strip stays on the face width (x_c + b_H <= b/2 with x_c = R_b tan(gamma) and b_H the Hertz
+half-width), the Reynolds-elastic problem has a film, and that film is thin (below a tenth of the
+module; a thicker one means a load too small for the thin-film model: "error in the input data").
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from enum import Enum
+
+import numpy as np
+from scipy.optimize import brentq
+
+from rotorcad.coupling_film import FilmSolution, LineContact, reduced_modulus, solve_line_contact
+from rotorcad.errors import DesignError
+
+Array = np.ndarray
+
+MPA = 1e6
+
+
+class Flank(Enum):
+    """Which flank of the tooth carries the torque: the sign of alpha in V_k = R_b omega sin(gamma) sin(omega t +- alpha)."""
+
+    DRIVING = 1
+    COAST = -1
+
+
+class Verdict(Enum):
+    """The kinds of result the paper's program reports, each with its message."""
+
+    HYDRODYNAMIC = "hydrodynamic regime: the oil film carries the tooth load"
+    EDGE_CONTACT = "the coupling does not work: edge contact (the contact strip runs off the face width)"
+    NO_ENTRAINMENT = (
+        "the coupling does not work: error in the input data (no rolling of the contact, eq. 7 gives a mean entraining"
+        " speed <= 0: barrel radius too small or no misalignment)"
+    )
+    NO_FILM = (
+        "the coupling does not work: no lubricant film found for this load (the Reynolds-elastic solution did not converge;"
+        " the load is far too heavy for the film)"
+    )
+    THICK_FILM = (
+        "the coupling does not work: error in the input data (the film is thicker than a tenth of the module, so the"
+        " load is too small for a thin-film contact)"
+    )
+
+
+def derived_barrel_radius(face_width: float, pressure_angle: float, misalignment: float) -> float:
+    """Crowning radius of the hub teeth R0 = b sin(alpha) / (4 tan(gamma)) (paper, geometry of Fig. 1).
+
+    Parameters
+    ----------
+    face_width : float
+        b [mm]; the paper recommends b = (6...10) m.
+    pressure_angle : float
+        alpha [rad].
+    misalignment : float
+        gamma [rad], > 0.
+
+    Returns
+    -------
+    float
+        R0 [mm]. The flank crown radius R_b = R0 / sin(alpha) = b / (4 tan(gamma)) puts the contact
+        at most b/4 from the middle of the face width.
+    """
+    return face_width * math.sin(pressure_angle) / (4.0 * math.tan(misalignment))
+
+
+def _check(name: str, value: float, lo: float, hi: float, allowed: str, *, open_lo: bool = True) -> None:
+    ok = math.isfinite(value) and (value > lo if open_lo else value >= lo) and value <= hi
+    if not ok:
+        raise DesignError(name, allowed, value)
+
+
+@dataclass(frozen=True)
+class GearCoupling:
+    """A gear coupling of crowned hub teeth in a straight-toothed sleeve, and its operating point.
+
+    Lengths in mm, angles in rad, speed in rpm, power in kW, viscosity in Pa s, the Barus
+    coefficient in 1/Pa (the paper's program inputs, its list after eq. 8).
+    """
+
+    teeth: int
+    module: float
+    face_width: float
+    speed_rpm: float
+    power_kw: float
+    viscosity: float
+    pressure_viscosity: float
+    misalignment: float
+    pressure_angle: float = math.radians(20.0)
+    addendum: float = 0.8
+    barrel_radius: float | None = None
+    load_factor: float = 1.0
+    teeth_in_contact: float | None = None
+    modulus: float = reduced_modulus()
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.teeth, (int, np.integer)) and 6 <= self.teeth <= 1000):
+            raise DesignError("teeth", "a whole number from 6 to 1000", self.teeth)
+        _check("module", self.module, 0.0, 100.0, "a positive number up to 100 mm")
+        _check("face_width", self.face_width, 0.0, 2000.0, "a positive number up to 2000 mm")
+        _check("speed_rpm", self.speed_rpm, 0.0, 1e6, "a positive number up to 1e6 rpm")
+        _check("power_kw", self.power_kw, 0.0, 1e7, "a positive number up to 1e7 kW")
+        _check("viscosity", self.viscosity, 0.0, 100.0, "a positive number up to 100 Pa s")
+        _check("pressure_viscosity", self.pressure_viscosity, 0.0, 1e-6, "a number from 0 to 1e-6 1/Pa", open_lo=False)
+        _check("misalignment", self.misalignment, 0.0, math.radians(10.0), "from 0 to 10 degrees", open_lo=False)
+        _check(
+            "pressure_angle", self.pressure_angle, math.radians(10.0), math.radians(40.0), "from 10 to 40 degrees", open_lo=False
+        )
+        _check("addendum", self.addendum, 0.0, 2.0, "a positive number up to 2")
+        _check("load_factor", self.load_factor, 1.0, 10.0, "from 1 to 10", open_lo=False)
+        if self.barrel_radius is None and self.misalignment == 0.0:
+            raise DesignError("misalignment", "above 0 when no barrel radius is given (R0 = b sin(alpha) / (4 tan(gamma)))", 0.0)
+        if self.barrel_radius is not None:
+            _check("barrel_radius", self.barrel_radius, 0.0, 1e7, "a positive number (mm)")
+        if self.teeth_in_contact is not None:
+            _check("teeth_in_contact", self.teeth_in_contact, 0.0, float(self.teeth), f"above 0 and at most z = {self.teeth}")
+
+    # geometry [mm]
+    @property
+    def pitch_radius(self) -> float:
+        """r = m z / 2 [mm] (no profile shift)."""
+        return self.module * self.teeth / 2.0
+
+    @property
+    def crown_radius(self) -> float:
+        """R0 [mm]: given, or b sin(alpha) / (4 tan(gamma))."""
+        if self.barrel_radius is not None:
+            return self.barrel_radius
+        return derived_barrel_radius(self.face_width, self.pressure_angle, self.misalignment)
+
+    @property
+    def flank_radius(self) -> float:
+        """Flank crown radius R_b = R0 / sin(alpha) [mm] (paper, section A-A of Fig. 1): the cylinder of the contact."""
+        return self.crown_radius / math.sin(self.pressure_angle)
+
+    @property
+    def crowning_depth(self) -> float:
+        """Flank crowning at the tooth ends, b^2 / (8 R_b) [mm], normal to the flank."""
+        return self.face_width**2 / (8.0 * self.flank_radius)
+
+    @property
+    def contact_length(self) -> float:
+        """Length of the contact line across the working depth, l = 2 h_a* m / cos(alpha) [mm]."""
+        return 2.0 * self.addendum * self.module / math.cos(self.pressure_angle)
+
+    @property
+    def contact_excursion(self) -> float:
+        """Largest distance of the contact from the middle of the face width, R_b tan(gamma) [mm]."""
+        return self.flank_radius * math.tan(self.misalignment)
+
+    # kinematics [m/s]
+    @property
+    def omega(self) -> float:
+        """Angular speed omega = 2 pi n / 60 [rad/s]."""
+        return 2.0 * math.pi * self.speed_rpm / 60.0
+
+    def speeds(self, samples: int = 361, flank: Flank = Flank.DRIVING) -> tuple[Array, Array, Array, Array]:
+        """Speeds of the contact of one tooth over one revolution (paper, Fig. 2).
+
+        Parameters
+        ----------
+        samples : int
+            Number of angles n_s.
+        flank : Flank
+            The loaded flank (sign of alpha in V_k).
+
+        Returns
+        -------
+        psi, rolling, axial, radial : ndarray, each shape (n_s,)
+            Rotation angle psi = omega t [rad] from the tilt plane; rolling speed of the contact
+            along the face width V_k = R_b omega sin(gamma) sin(psi +- alpha); axial sliding
+            V_os = r omega sin(gamma) cos(psi); radial sliding V_r = r omega sin^2(gamma) sin(2 psi) / 2; all m/s.
+        """
+        psi = np.linspace(0.0, 2.0 * np.pi, samples)
+        w, sg = self.omega, math.sin(self.misalignment)
+        rolling = self.flank_radius * 1e-3 * w * sg * np.sin(psi + flank.value * self.pressure_angle)
+        axial = self.pitch_radius * 1e-3 * w * sg * np.cos(psi)
+        radial = 0.5 * self.pitch_radius * 1e-3 * w * sg**2 * np.sin(2.0 * psi)
+        return psi, rolling, axial, radial
+
+    @property
+    def mean_sliding_speed(self) -> float:
+        """V_cp = (2/pi) r omega sin(gamma) = z m n sin(gamma) / 30000 [m/s] for m in mm (see the module notes on "/300")."""
+        return 2.0 / math.pi * self.pitch_radius * 1e-3 * self.omega * math.sin(self.misalignment)
+
+    @property
+    def entraining_speed(self) -> float:
+        """Mean entraining speed u = V_Sigma / 2 = (2 omega sin(gamma) / pi) [R_b - r (1 + sin alpha)] [m/s] (eq. 7)."""
+        arm = self.flank_radius - self.pitch_radius * (1.0 + math.sin(self.pressure_angle))
+        return 2.0 / math.pi * self.omega * math.sin(self.misalignment) * arm * 1e-3
+
+    # load
+    @property
+    def tooth_load(self) -> float:
+        """Normal load of the most loaded tooth, F_n = K_H T / (r z_c cos(alpha)) with T = P / omega [N]."""
+        torque = self.power_kw * 1e3 / self.omega
+        z_c = self.teeth if self.teeth_in_contact is None else self.teeth_in_contact
+        return self.load_factor * torque / (self.pitch_radius * 1e-3 * z_c * math.cos(self.pressure_angle))
+
+    @property
+    def load_per_length(self) -> float:
+        """w' = F_n / l [N/m]."""
+        return self.tooth_load / (self.contact_length * 1e-3)
+
+    def line_contact(self) -> LineContact:
+        """The cylinder-on-plane problem of eqs. 1-6 (SI units): R_b, w', u, mu_0, alpha_0, E'."""
+        return LineContact(
+            radius=self.flank_radius * 1e-3,
+            load=self.load_per_length,
+            speed=self.entraining_speed,
+            viscosity=self.viscosity,
+            pressure_viscosity=self.pressure_viscosity,
+            modulus=self.modulus,
+        )
+
+
+def dowson_higginson_film(contact: LineContact) -> float:
+    """Minimum film of a line contact by Dowson & Higginson (1977), the independent check.
+
+    H_min = 2.65 U^0.70 G^0.54 W^-0.13 with U = mu_0 u / (E' R), G = alpha_0 E', W = w' / (E' R),
+    u the mean entraining speed; h_min = H_min R [m]. For an isoviscous lubricant (alpha_0 = 0)
+    the formula does not apply and NaN is returned.
+    """
+    e, r = contact.modulus, contact.radius
+    if contact.pressure_viscosity <= 0 or not math.isfinite(e):
+        return math.nan
+    u = contact.viscosity * contact.speed / (e * r)
+    g = contact.pressure_viscosity * e
+    w = contact.load / (e * r)
+    return 2.65 * u**0.70 * g**0.54 * w**-0.13 * r
+
+
+@dataclass(frozen=True, eq=False)
+class CouplingResult:
+    """The paper's program output for one coupling: verdict, film, pressures (SI inside, see properties)."""
+
+    coupling: GearCoupling
+    verdict: Verdict
+    film: FilmSolution | None
+
+    @property
+    def hydrodynamic(self) -> bool:
+        return self.verdict is Verdict.HYDRODYNAMIC
+
+    @property
+    def edge_contact(self) -> bool:
+        """x_c + b_H > b / 2: the Hertz strip at the contact's farthest position leaves the face width."""
+        c = self.coupling
+        return c.contact_excursion + self.hertz_half_width > c.face_width / 2.0
+
+    @property
+    def min_film_thickness(self) -> float:
+        """h_min [mm] (NaN without a film)."""
+        return self.film.min_film * 1e3 if self.film is not None else math.nan
+
+    @property
+    def central_film_thickness(self) -> float:
+        """Film at the middle of the contact [mm]."""
+        return self.film.central_film * 1e3 if self.film is not None else math.nan
+
+    @property
+    def load_capacity(self) -> float:
+        """Load capacity of the film of one tooth, l int p dx [N] (equals the tooth load at the solution)."""
+        if self.film is None:
+            return math.nan
+        return self.film.load_capacity * self.coupling.contact_length * 1e-3
+
+    @property
+    def max_pressure(self) -> float:
+        """Largest film pressure p_max [MPa]."""
+        return self.film.max_pressure / MPA if self.film is not None else math.nan
+
+    @property
+    def hertz_stress(self) -> float:
+        """Hertz contact stress of the dry line contact, sqrt(w' E' / (2 pi R_b)) [MPa]."""
+        return self.coupling.line_contact().hertz_pressure / MPA
+
+    @property
+    def hertz_half_width(self) -> float:
+        """Hertz half-width b_H = sqrt(8 w' R_b / (pi E')) [mm] (the paper's b_0 = 0.34e-5 sqrt(w R) for steel)."""
+        return self.coupling.line_contact().hertz_half_width * 1e3
+
+    @property
+    def ehl_film_thickness(self) -> float:
+        """Dowson-Higginson minimum film for the same contact [mm]."""
+        c = self.coupling
+        if c.entraining_speed <= 0:
+            return math.nan
+        return dowson_higginson_film(c.line_contact()) * 1e3
+
+    @property
+    def ehl_ratio(self) -> float:
+        """h_min of the Reynolds-elastic solution / Dowson-Higginson h_min."""
+        return self.min_film_thickness / self.ehl_film_thickness
+
+    @property
+    def message(self) -> str:
+        return self.verdict.value
+
+
+def analyse(coupling: GearCoupling, nodes: int = 401) -> CouplingResult:
+    """Solve the paper's contact-hydrodynamic problem for one coupling (eqs. 1-7).
+
+    Parameters
+    ----------
+    coupling : GearCoupling
+        Geometry and operating point.
+    nodes : int
+        Grid nodes of the film solution.
+
+    Returns
+    -------
+    CouplingResult
+        Verdict with the film (None when eq. 7 gives no entrainment).
+    """
+    if coupling.entraining_speed <= 0.0:
+        return CouplingResult(coupling, Verdict.NO_ENTRAINMENT, None)
+    film = solve_line_contact(coupling.line_contact(), nodes)
+    result = CouplingResult(coupling, Verdict.HYDRODYNAMIC, film)
+    if not film.converged:
+        return CouplingResult(coupling, Verdict.NO_FILM, None)
+    if result.edge_contact:
+        return CouplingResult(coupling, Verdict.EDGE_CONTACT, film)
+    if result.min_film_thickness > 0.1 * coupling.module:
+        return CouplingResult(coupling, Verdict.THICK_FILM, film)
+    return result
+
+
+def load_capacity_at(contact: LineContact, min_film: float, nodes: int = 201) -> float:
+    """The paper's load capacity W(h_min): the load per unit length [N/m] the film carries at a
+    given minimum film thickness ``min_film`` [m] (outer root-find on log w' over the film solution).
+
+    The bracket grows from the contact's own load by factors of 4 (at most 4^15 either way);
+    NaN when no load in it gives that film.
+    """
+
+    def gap(log_w: float) -> float:
+        s = solve_line_contact(replace(contact, load=math.exp(log_w)), nodes)
+        return math.log(s.min_film / min_film) if s.converged else math.nan
+
+    lo = hi = math.log(contact.load)
+    g_lo = g_hi = gap(lo)
+    direction = 1.0 if g_lo > 0 else -1.0  # film too thick: raise the load
+    for _ in range(15):
+        if not math.isfinite(g_hi) or (g_lo * g_hi <= 0 and lo != hi):
+            break
+        lo, g_lo = hi, g_hi
+        hi += direction * math.log(4.0)
+        g_hi = gap(hi)
+    if not (math.isfinite(g_lo) and math.isfinite(g_hi)) or g_lo * g_hi > 0:
+        return math.nan
+    return math.exp(brentq(gap, min(lo, hi), max(lo, hi), xtol=1e-6))
+
+
+def sweep_teeth(coupling: GearCoupling, teeth: Array, *, keep_diameter: bool = False, nodes: int = 201) -> Array:
+    """h_min [mm] over the number of teeth, everything else as given (paper, Fig. 4).
+
+    Parameters
+    ----------
+    coupling : GearCoupling
+        The base case.
+    teeth : ndarray of int, shape (k,)
+        Numbers of teeth.
+    keep_diameter : bool
+        Keep the pitch diameter m z (the module changes as m z / z_i) instead of the module.
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        h_min [mm]; NaN where the coupling has no hydrodynamic film.
+    """
+    diameter = coupling.module * coupling.teeth
+    out = np.full(len(teeth), np.nan)
+    for k, z in enumerate(np.asarray(teeth, dtype=int)):
+        m = diameter / z if keep_diameter else coupling.module
+        r = analyse(replace(coupling, teeth=int(z), module=m), nodes)
+        if r.film is not None:
+            out[k] = r.min_film_thickness
+    return out
