@@ -88,6 +88,19 @@ OPERATING_KEYS: dict[str, type | tuple[type, ...]] = {
     "speed_rpm": NUMBER,
     "suction_pressure_bar": NUMBER,
     "discharge_pressure_bar": NUMBER,
+    "polytropic_exponent": NUMBER,  # rotorcad deflect: compression p V^n = const
+    "volume_ratio": NUMBER,  # built-in volume ratio V_i fixing the discharge port's control edge
+    "discharge_edge_deg": NUMBER,  # or the control edge as a chamber angle (male rotation since it opened)
+    "indicator": str,  # or an indicator diagram: CSV "angle_deg,pressure_bar" over the chamber angle
+}
+DEFLECTION_KEYS: dict[str, type | tuple[type, ...]] = {
+    "young_modulus": NUMBER,  # N/mm^2
+    "poisson_ratio": NUMBER,
+    "terms": int,  # sine terms of the Ritz-Galerkin series
+    "male_shaft_discharge": list,  # [[length, diameter], ...] mm, from the end face to the bearing
+    "male_shaft_suction": list,
+    "female_shaft_discharge": list,
+    "female_shaft_suction": list,
 }
 EXPORT_KEYS: dict[str, type | tuple[type, ...]] = {"tolerance": NUMBER, "formats": list}
 POINT_FAMILIES = ("rack-points", "male-points", "female-points")
@@ -95,13 +108,12 @@ POINT_FAMILIES = ("rack-points", "male-points", "female-points")
 
 def load_rotor_design(path: Path) -> dict[str, Any]:
     """A screw-rotor design (CONTRACT.md "Design files"): [pair], [profile] (family and its
-    parameters, or a points file), optional [housing], [operating], [export]."""
+    parameters, or a points file), optional [housing], [operating], [deflection], [export]."""
     data = load_toml(path)
     for table in data:
-        if table not in ("pair", "profile", "housing", "operating", "export"):
-            raise DesignError(
-                f"table [{table}]", "one of [pair], [profile], [housing], [operating], [export]", None, "unknown table"
-            )
+        if table not in ("pair", "profile", "housing", "operating", "deflection", "export"):
+            allowed = "one of [pair], [profile], [housing], [operating], [deflection], [export]"
+            raise DesignError(f"table [{table}]", allowed, None, "unknown table")
     pair = check_table(data, "pair", PAIR_KEYS, required=tuple(k for k in PAIR_KEYS if k not in ("lead", "length", "hand")))
     profile = dict(data.get("profile", {}))
     if "family" not in profile or not isinstance(profile["family"], str):
@@ -133,5 +145,6 @@ def load_rotor_design(path: Path) -> dict[str, Any]:
         "smoothing": smoothing,
         "housing": check_table(data, "housing", HOUSING_KEYS),
         "operating": check_table(data, "operating", OPERATING_KEYS),
+        "deflection": check_table(data, "deflection", DEFLECTION_KEYS),
         "export": check_table(data, "export", EXPORT_KEYS),
     }

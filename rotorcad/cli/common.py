@@ -51,12 +51,31 @@ def emit_json(data: dict[str, Any]) -> None:
     click.echo(json.dumps(plain(data), indent=2))
 
 
-DIMENSIONLESS = ("teeth", "steps", "positions", "contact_ratio", "irregularity", "utilisation", "count", "faces", "triangles")
+DIMENSIONLESS = (
+    "teeth",
+    "steps",
+    "positions",
+    "contact_ratio",
+    "irregularity",
+    "utilisation",
+    "count",
+    "faces",
+    "triangles",
+    "kappa",
+    "ratio",
+    "terms",
+    "exponent",
+    "anisotropy",
+)
 _UNIT_RULES = (  # (pattern in the key, unit), first match wins
     ("_deg", "deg"),
     ("_hz", "Hz"),
     ("_rpm", "rpm"),
     ("_percent", "%"),
+    ("_bar", "bar"),
+    ("second_moment", "mm⁴"),
+    ("deflection", "mm"),
+    ("diameter", "mm"),
     ("area", "mm²"),
     ("volume", "mm³"),
     ("displacement", "mm³"),
@@ -95,7 +114,8 @@ def print_table(title: str, rows: dict[str, Any]) -> None:
         if isinstance(value, bool):
             text, unit = str(value), ""
         elif isinstance(value, float):
-            text, unit = f"{value:.6f}", unit_of(key)
+            text = f"{value:.4g}" if 0 < abs(value) < 0.01 else f"{value:.6f}"  # micrometres keep their digits
+            unit = unit_of(key)
         elif isinstance(value, int):
             text, unit = str(value), unit_of(key)
         elif isinstance(value, (dict, list)):

@@ -28,6 +28,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "Interference of the rotor pair and with the housing, as designed or assembled.",
     ),
     "clearance": ("rotorcad.cli.clearance_cmd:clearance", "Meshing clearance (Wu & Chi) of a pair from measured points."),
+    "deflect": ("rotorcad.cli.deflect_cmd:deflect", "Deflection of the rotors under gas load (Rinder & Deix)."),
     "coupling": ("rotorcad.cli.coupling_cmd:coupling", "Oil film of a gear coupling with barrel-shaped teeth (Belkov et al.)."),
 }
 

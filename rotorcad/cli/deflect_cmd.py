@@ -1,0 +1,182 @@
+"""``rotorcad deflect``: deflection of the rotors under gas load (Rinder & Deix; CONTRACT.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+from matplotlib.figure import Figure
+
+from exports.csv_points import read_points
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.export_cmd import _rotor_options
+from rotorcad.cli.rotor import _build as build_rotors
+from rotorcad.deflection import STEEL, GasDeflection, Shaft
+from rotorcad.design import load_rotor_design
+from rotorcad.errors import DesignError
+
+SWEEP_ANGLES = 100  # male angles over one male pitch
+
+
+def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
+    """A shaft end from the design: [[length, diameter], ...] in mm."""
+    if value is None:
+        return ()
+    ok = isinstance(value, list) and all(
+        isinstance(p, list) and len(p) == 2 and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in p)
+        for p in value
+    )
+    if not ok:
+        raise InputError(f"[deflection] {key} must be a list of [length, diameter] pairs in mm (got {value!r}).")
+    for length, diameter in value:
+        if not (np.isfinite(length) and np.isfinite(diameter) and 0 < length <= 1e4 and 0 < diameter <= 1e4):
+            raise InputError(f"[deflection] {key} must have lengths and diameters from 0 to 10000 mm (got {value!r}).")
+    return tuple((float(a), float(b)) for a, b in value)
+
+
+@click.command()
+@click.argument("design", type=click.Path(path_type=Path, dir_okay=False))
+@click.option("--angle", type=float, help="Male angle [deg] to evaluate. Default: the worst over one male pitch (swept).")
+@click.option("--terms", type=int, help="Sine terms of the Ritz-Galerkin series (1..400). Default: the design's, else 40.")
+@click.option(
+    "--indicator",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Indicator diagram: CSV 'angle_deg,pressure_bar' (chamber angle since it opened at the suction end, absolute bar).",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option(
+    "--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the deflection lines (Rinder & Deix Fig. 9/10)."
+)
+@click.option("--quiet", is_flag=True, help="No progress output.")
+def deflect(
+    design: Path, angle: float | None, terms: int | None, indicator: Path | None, as_json: bool, plot: Path | None, quiet: bool
+) -> None:
+    """Deflection of the male and female under the pressure of the working chambers (Rinder & Deix):
+    section values of the real profiles, the equivalent round bar (eqs. 2-4), the chambers' volume
+    curve and pressure ([operating]: suction and discharge pressure, polytropic exponent, volume
+    ratio or control edge, or an indicator diagram), the line loads (eqs. 5-6) and the deflection
+    lines by Ritz-Galerkin (eqs. 7-9), swept over one male pitch for the worst angle (eq. 10); with
+    shaft ends in [deflection] also the whole shafts on their bearings."""
+    try:
+        settings = load_rotor_design(design)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    op, de = settings["operating"], settings["deflection"]
+    for key in ("suction_pressure_bar", "discharge_pressure_bar"):
+        if key not in op:
+            raise InputError(f"[operating] {key} is needed for the gas load (an absolute pressure in bar).")
+    terms = terms if terms is not None else int(de.get("terms", 40))
+    if not 1 <= terms <= 400:
+        raise InputError(f"--terms must be a whole number from 1 to 400 (got {terms}).")
+    if angle is not None and not np.isfinite(angle):
+        raise InputError(f"--angle must be a number of degrees (got {angle}).")
+    curve = None
+    source = indicator or (Path(design).parent / op["indicator"] if "indicator" in op else None)
+    if source is not None:
+        try:
+            rows = read_points(Path(source), "--indicator", columns=("angle_deg", "pressure_bar"))
+        except DesignError as exc:
+            raise InputError(exc.sentence()) from None
+        curve = np.c_[np.radians(rows[:, 0]), rows[:, 1]]
+    edge = op.get("discharge_edge_deg")
+    male_shaft = Shaft(
+        _shaft(de.get("male_shaft_discharge"), "male_shaft_discharge"), _shaft(de.get("male_shaft_suction"), "male_shaft_suction")
+    )
+    female_shaft = Shaft(
+        _shaft(de.get("female_shaft_discharge"), "female_shaft_discharge"),
+        _shaft(de.get("female_shaft_suction"), "female_shaft_suction"),
+    )
+    rotors, _, _ = build_rotors(design, _rotor_options(design))
+    try:
+        model = GasDeflection(
+            rotors,
+            float(op["suction_pressure_bar"]),
+            float(op["discharge_pressure_bar"]),
+            exponent=float(op.get("polytropic_exponent", 1.4)),
+            volume_ratio=op.get("volume_ratio"),
+            discharge_edge=None if edge is None else float(np.radians(edge)),
+            indicator=curve,
+            young=float(de.get("young_modulus", STEEL[0])),
+            poisson=float(de.get("poisson_ratio", STEEL[1])),
+            male_shaft=male_shaft,
+            female_shaft=female_shaft,
+            terms=terms,
+        )
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    pitch = 2 * np.pi / rotors.pair.male_teeth
+    shafts = male_shaft.given or female_shaft.given
+    sweep_angles = np.linspace(0.0, pitch, SWEEP_ANGLES, endpoint=False)
+    swept = model.sweep(sweep_angles, shaft=shafts)
+    if angle is None:
+        worst = int(np.argmax(swept.max(axis=1)))
+        at = float(sweep_angles[worst])
+    else:
+        at = float(np.radians(angle))
+    lines = model.at(at)
+    two = model.at(at, terms=2)
+    result: dict[str, Any] = {}
+    for column, (rotor, beam) in enumerate((("male", model.male), ("female", model.female))):
+        helical = lines.largest(rotor)
+        whole = lines.largest(rotor, shaft=True)
+        result[f"{rotor}_max_deflection"] = whole[0]
+        result[f"{rotor}_max_deflection_position"] = whole[1]  # from the discharge bearing (or end face)
+        result[f"{rotor}_deflection_direction_deg"] = whole[2]
+        result[f"{rotor}_max_deflection_helical"] = helical[0]
+        result[f"{rotor}_max_deflection_helical_ritz2"] = two.largest(rotor)[0]
+        result[f"{rotor}_equivalent_diameter"] = beam.diameter
+        result[f"{rotor}_root_diameter"] = beam.root_diameter
+        result[f"{rotor}_section_area"] = beam.area
+        result[f"{rotor}_second_moment"] = beam.j_total
+        result[f"{rotor}_second_moment_core"] = beam.j_core
+        result[f"{rotor}_second_moment_reduced"] = beam.j_reduced
+        result[f"{rotor}_kappa_min"], result[f"{rotor}_kappa_max"] = beam.kappa_range
+        result[f"{rotor}_worst_angle_deg"] = float(np.degrees(sweep_angles[int(np.argmax(swept[:, column]))]))
+    result["angle_deg"] = float(np.degrees(at))
+    cycle = model.cycle
+    if np.isfinite(cycle.opening):
+        result["angle_eq10_deg"] = float(np.degrees(model.worst_angle_eq10()))
+        result["suction_closing_deg"] = float(np.degrees(cycle.closing))
+        result["discharge_opening_deg"] = float(np.degrees(cycle.opening))
+        result["volume_ratio"] = cycle.volume_ratio
+    result["chamber_max_volume"] = float(cycle.volume.max())
+    result["displacement_per_male_rev"] = float(cycle.volume.max() * rotors.pair.male_teeth)
+    result["terms"] = terms
+    result["shaft_ends"] = bool(shafts)
+    out = Outputs()
+    out.add(plot, lambda p: _plot(model, lines, sweep_angles, swept, shafts).savefig(p, format="png"), "--plot")
+    result["files"] = [str(x) for x in out.write()]
+    if as_json:
+        emit_json(result)
+    else:
+        print_table(f"deflection under gas load, {Path(design).name}, male angle {np.degrees(at):.2f} deg", result)
+
+
+def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, shafts: bool) -> Figure:
+    fig = Figure(figsize=(9, 7), dpi=120)
+    axes = fig.subplots(2, 2)
+    for col, rotor in enumerate(("male", "female")):
+        ax = axes[0, col]
+        if shafts and len(getattr(lines, f"{rotor}_shaft")):
+            z, w = getattr(lines, f"{rotor}_shaft_z"), getattr(lines, f"{rotor}_shaft")
+            ax.set_xlabel("z from the discharge bearing [mm]")
+        else:
+            z, w = lines.z, getattr(lines, rotor)
+            ax.set_xlabel("z from the discharge end [mm]")
+        ax.plot(z, w[:, 0] * 1e3, label="w_x")
+        ax.plot(z, w[:, 1] * 1e3, label="w_y")
+        ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, "k", label="|w|")
+        ax.set_ylabel("deflection [µm]")
+        ax.set_title(f"{rotor} at male angle {np.degrees(lines.angle):.1f} deg", fontsize=9)
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+        ax2 = axes[1, col]
+        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color="#444")
+        ax2.set_xlabel("male angle [deg]")
+        ax2.set_ylabel("largest deflection [µm]")
+        ax2.set_title(f"{rotor} over one male pitch", fontsize=9)
+        ax2.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,288 @@
+"""Deflection of screw rotors under gas load (Rinder & Deix): section values from the real
+profile, the equivalent round bar, the load of the working chambers and the deflection lines.
+
+The helical part is the paper's equivalent beam, simply supported at its ends (w = 0, M = 0),
+solved by Ritz-Galerkin with a sine series (:mod:`rotorcad.rotor_beam`). With shaft ends
+(journals to the bearings, each a list of (length, diameter) from the rotor's end face to the
+bearing) the whole shaft is integrated as a stepped beam on its bearings, which superposes the
+journals as the paper does.
+
+z runs from the discharge end face (see :mod:`rotorcad.working_chamber`); angles are the male's in
+the rotors' frame (male at the origin, female at (a, 0)).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rotorcad.errors import DesignError
+from rotorcad.gas_load import PressureCycle, line_loads, pressure_cycle
+from rotorcad.rotor_beam import (
+    KAPPA_ROUND,
+    Beam,
+    ShaftSegment,
+    equivalent_diameter,
+    reduced_second_moment,
+    stepped_deflection,
+)
+from rotorcad.section_properties import circle_values, section_values, shear_correction_over_turn
+from rotorcad.working_chamber import ChamberTable, chamber_table
+
+STEEL = (210_000.0, 0.3)  # E in N/mm^2, Poisson's ratio
+
+
+@dataclass(frozen=True)
+class RotorBeam:
+    """The equivalent beam of one rotor's helical part (Rinder & Deix sec. 2).
+
+    Attributes
+    ----------
+    area : float, mm^2
+        A_ges of the real section.
+    j_total : float, mm^4
+        J_ges (the same about every axis for z > 2).
+    j_anisotropy : float
+        |J_x - J_y| / J and |J_xy| / J of the real section, the larger (0 for z > 2 up to sampling).
+    kappa_range : tuple[float, float]
+        Shear correction eq. (1) of the real section over its turn gamma, min and max.
+    root_diameter, tip_diameter : float, mm
+        d_F, d_K.
+    j_core : float, mm^4
+        J_F of the root circle.
+    j_reduced : float, mm^4
+        J_red, eq. (2).
+    diameter : float, mm
+        d_aeq, eq. (3).
+    beam : Beam
+        (EJ)_ers, (GA/kappa)_ers of eq. (4) over the helical length.
+    """
+
+    area: float
+    j_total: float
+    j_anisotropy: float
+    kappa_range: tuple[float, float]
+    root_diameter: float
+    tip_diameter: float
+    j_core: float
+    j_reduced: float
+    diameter: float
+    beam: Beam
+
+
+def rotor_beam(
+    outline: np.ndarray,
+    root_radius: float,
+    tip_radius: float,
+    wrap_deg: float,
+    length: float,
+    young: float = STEEL[0],
+    poisson: float = STEEL[1],
+) -> RotorBeam:
+    """The equivalent beam of a rotor from its transverse outline.
+
+    Parameters
+    ----------
+    outline : (n, 2) float, mm
+        The closed transverse outline about the rotor's axis.
+    root_radius, tip_radius : float, mm
+    wrap_deg : float, deg
+        Wrap angle phi_L of the rotor over ``length``.
+    length : float, mm
+        Helical length l.
+    young : float, N/mm^2
+    poisson : float
+    """
+    if not (np.isfinite(young) and young > 0):
+        raise DesignError("young_modulus", "a positive modulus in N/mm^2", young)
+    if not (np.isfinite(poisson) and 0 <= poisson < 0.5):
+        raise DesignError("poisson_ratio", "from 0 to below 0.5", poisson)
+    values = section_values(outline)
+    j = values.j
+    kappa = shear_correction_over_turn(outline, np.linspace(0.0, np.pi, 19))
+    j_core = circle_values(2 * root_radius)[1]
+    j_red = reduced_second_moment(j, j_core, 2 * root_radius, 2 * tip_radius, wrap_deg / length)
+    d = equivalent_diameter(values.area, j_red, length, poisson, KAPPA_ROUND)
+    return RotorBeam(
+        area=values.area,
+        j_total=j,
+        j_anisotropy=float(max(abs(values.j_x - values.j_y), abs(values.j_xy)) / j),
+        kappa_range=(float(kappa.min()), float(kappa.max())),
+        root_diameter=2 * root_radius,
+        tip_diameter=2 * tip_radius,
+        j_core=j_core,
+        j_reduced=j_red,
+        diameter=d,
+        beam=Beam.round_bar(d, length, young, poisson),
+    )
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """Journals of one rotor: (length, diameter) pieces in mm from each end face to its bearing."""
+
+    discharge: tuple[tuple[float, float], ...] = ()
+    suction: tuple[tuple[float, float], ...] = ()
+
+    def segments(self, helical: Beam, young: float, poisson: float) -> tuple[list[ShaftSegment], int]:
+        """Beam segments from the discharge bearing to the suction bearing and the helical part's index."""
+
+        def piece(length: float, diameter: float) -> ShaftSegment:
+            for name, value in (("journal length", length), ("journal diameter", diameter)):
+                if not (np.isfinite(value) and value > 0):
+                    raise DesignError(name, "a positive length in mm", value)
+            bar = Beam.round_bar(diameter, length, young, poisson)
+            return ShaftSegment(length, bar.bending, bar.shear)
+
+        near = [piece(*p) for p in reversed(self.discharge)]  # bearing first
+        far = [piece(*p) for p in self.suction]
+        return [*near, ShaftSegment(helical.length, helical.bending, helical.shear), *far], len(near)
+
+    @property
+    def given(self) -> bool:
+        return bool(self.discharge or self.suction)
+
+
+@dataclass(frozen=True)
+class DeflectionLines:
+    """The deflection of both rotors at one male angle.
+
+    Attributes
+    ----------
+    angle : float, rad
+        Male angle in the discharge-end section.
+    z : (n,) float, mm
+        Positions along the helical part from the discharge end.
+    male, female : (n, 2) float, mm
+        w_x, w_y of the helical parts (simply supported at their ends), eq. (8).
+    male_shaft_z, female_shaft_z : (m,) float, mm
+        Positions from the discharge bearing (empty without shaft ends).
+    male_shaft, female_shaft : (m, 2) float, mm
+        The whole shafts' deflection on their bearings.
+    """
+
+    angle: float
+    z: np.ndarray
+    male: np.ndarray
+    female: np.ndarray
+    male_shaft_z: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    male_shaft: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    female_shaft_z: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    female_shaft: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+
+    def largest(self, rotor: str, shaft: bool = False) -> tuple[float, float, float]:
+        """(|w| max in mm, its z in mm, its direction in deg: tan phi = w_y / w_x) of a rotor."""
+        w = getattr(self, f"{rotor}_shaft" if shaft else rotor)
+        z = getattr(self, f"{rotor}_shaft_z") if shaft else self.z
+        if len(w) == 0:
+            return self.largest(rotor)
+        mag = np.hypot(w[:, 0], w[:, 1])
+        i = int(np.argmax(mag))
+        return float(mag[i]), float(z[i]), float(np.degrees(np.arctan2(w[i, 1], w[i, 0])) % 360.0)
+
+
+class GasDeflection:
+    """Deflection of a rotor pair under the pressure of its working chambers.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair (its sections give the chamber and the beams).
+    suction_bar, discharge_bar : float, bar absolute
+    exponent, volume_ratio, discharge_edge, indicator
+        The pressure model (:func:`rotorcad.gas_load.pressure_cycle`; ``discharge_edge`` in rad).
+    young, poisson : float
+        E (N/mm^2) and mu of the rotors.
+    male_shaft, female_shaft : Shaft
+        Journals (optional).
+    terms : int
+        Sine terms of the Ritz-Galerkin series (the paper used 2; 40 are converged to < 0.1 %).
+    cells : int
+        Cells along the length for the load.
+    step_deg : float
+        Phase step of the chamber table.
+    """
+
+    def __init__(
+        self,
+        rotors,
+        suction_bar: float,
+        discharge_bar: float,
+        exponent: float = 1.4,
+        volume_ratio: float | None = None,
+        discharge_edge: float | None = None,
+        indicator: np.ndarray | None = None,
+        young: float = STEEL[0],
+        poisson: float = STEEL[1],
+        male_shaft: Shaft = Shaft(),
+        female_shaft: Shaft = Shaft(),
+        terms: int = 40,
+        cells: int = 1000,
+        step_deg: float = 1.0,
+    ) -> None:
+        if not 1 <= int(terms) <= 400:
+            raise DesignError("terms", "a whole number from 1 to 400", terms)
+        if not (np.isfinite(young) and young > 0):
+            raise DesignError("young_modulus", "a positive modulus in N/mm^2", young)
+        if not (np.isfinite(poisson) and 0 <= poisson < 0.5):
+            raise DesignError("poisson_ratio", "from 0 to below 0.5", poisson)
+        pair = rotors.pair
+        self.pair = pair
+        self.terms = int(terms)
+        male = rotors.section("male", 0.01)
+        female = rotors.section("female", 0.01)
+        self.table: ChamberTable = chamber_table(
+            male, female, pair.male_teeth, pair.female_teeth, pair.center_distance, pair.lead, pair.length, step_deg
+        )
+        self.cycle: PressureCycle = pressure_cycle(
+            self.table, suction_bar, discharge_bar, exponent, volume_ratio, discharge_edge, indicator
+        )
+        wrap1 = np.degrees(self.table.wrap)
+        wrap2 = wrap1 * pair.male_teeth / pair.female_teeth
+        fine1 = rotors.male_outline(1e-3).points
+        fine2 = rotors.female_outline(1e-3).points
+        self.male = rotor_beam(fine1, pair.male_root_radius, pair.male_tip_radius, wrap1, pair.length, young, poisson)
+        self.female = rotor_beam(fine2, pair.female_root_radius, pair.female_tip_radius, wrap2, pair.length, young, poisson)
+        self.z = (np.arange(cells) + 0.5) * pair.length / cells
+        self._young, self._poisson = young, poisson
+        self._shafts = {
+            "male": male_shaft.segments(self.male.beam, young, poisson) if male_shaft.given else None,
+            "female": female_shaft.segments(self.female.beam, young, poisson) if female_shaft.given else None,
+        }
+
+    def loads(self, angle: float) -> tuple[np.ndarray, np.ndarray]:
+        """Line loads (cells, 2) N/mm on the male and the female at male angle ``angle`` (rad)."""
+        male = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "male")
+        female = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "female")
+        return male, female
+
+    def at(self, angle: float, terms: int | None = None, points: int = 201) -> DeflectionLines:
+        """Deflection lines of both rotors at male angle ``angle`` (rad)."""
+        terms = self.terms if terms is None else terms
+        z = np.linspace(0.0, self.pair.length, points)
+        loads = dict(zip(("male", "female"), self.loads(angle), strict=True))
+        lines = {}
+        for rotor, model in (("male", self.male), ("female", self.female)):
+            coeff = model.beam.sine_coefficients(self.z, loads[rotor], terms)
+            lines[rotor] = model.beam.deflection(coeff, z)
+            shaft = self._shafts[rotor]
+            if shaft is not None:
+                lines[f"{rotor}_shaft_z"], lines[f"{rotor}_shaft"] = stepped_deflection(shaft[0], shaft[1], loads[rotor])
+        return DeflectionLines(float(angle), z, **lines)
+
+    def sweep(self, angles: np.ndarray, shaft: bool = False) -> np.ndarray:
+        """Largest |w| (mm) of (male, female) at each male angle, shape (k, 2)."""
+        out = np.empty((len(angles), 2))
+        for i, a in enumerate(np.asarray(angles, dtype=float)):  # each angle is vectorised inside
+            lines = self.at(a, points=101)
+            out[i] = [lines.largest("male", shaft)[0], lines.largest("female", shaft)[0]]
+        return out
+
+    def worst_angle_eq10(self) -> float:
+        """Male angle (rad, in [0, pitch)) of eq. (10): a chamber has just reached the discharge
+        port's control edge, so the discharge pressure reaches farthest towards the suction end."""
+        if not np.isfinite(self.cycle.opening):
+            raise DesignError("indicator diagram", "the built-in port model for eq. (10)", "an indicator diagram")
+        start, _ = self.table.cycle
+        return float((start + self.cycle.opening) % (2 * np.pi / self.pair.male_teeth))

@@ -1,0 +1,299 @@
+"""The working chamber of a screw compressor from the rotors themselves: its transverse area and
+the pressure force it puts on each rotor, over one working cycle; its volume curve.
+
+Conventions (documented choices; Rinder & Deix do not fix them in the text that survives):
+
+- The male turns counter-clockwise in the rotors' frame (male at the origin, female at (a, 0)),
+  the female clockwise (phi2 = -phi1 z1/z2, CONTRACT.md). The lobes then pass the mesh from y < 0 to
+  y > 0: below the line of centres the lobes enter each other's flutes (the closing side, joined to
+  the discharge), above it they leave them (the opening side, joined to the suction).
+- A male flute's *phase* psi is the male angle of its bisector (psi = 0: the flute points at O2,
+  the female lobe fully inside it). One working cycle of the flute runs psi from 0 (it leaves the
+  mesh) to 2 pi (it is filled again by the next female lobe).
+- z is measured from the discharge end face. Along z the flute is turned ahead in the direction of
+  rotation by 2 pi z / h (h the male lead), so a chamber's sections at the suction end are further
+  in their cycle: the suction end opens first and closes first. With a right-hand male that puts
+  the discharge end at Z = 0 of the solids (``rotorcad.solids``), with a left-hand one at Z = L.
+
+In a transverse section at phase psi the gas space is the two bores (tip circles) minus both
+rotors, shrunk by ``GAP`` so that parts that touch only at a contact point or along a tip land come
+apart. The chamber's part of it is what lies in the flute's sector (between its two bounding tips,
+inside the male tip circle) or in the sector of the female flute that meshes with it, in pieces
+not joined to the cusp on the other side of the mesh (the upper cusp while the flute closes,
+psi > pi; the lower one while it opens). Its area is a(psi); the force of a unit overpressure on the
+male is the integral of the outward normal of that gas space over its edges on the male's outline
+(for a flute open from tip to tip, the chord P1P2 turned by 90 degrees: Rinder & Deix eq. 5).
+
+The chamber whose flute is at phase psi0 at the discharge end holds the sections with phases
+psi0 + 2 pi z / h inside [0, 2 pi): its volume is V(psi0) = h / (2 pi) * integral of a over that
+window. It opens at the suction end (psi0 = -wrap) and ends at psi0 = 2 pi; the cycle lasts
+2 pi + wrap of male rotation.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from rotorcad.errors import DesignError
+
+GAP = 1e-3  # mm: the gas space is shrunk by this to part pieces that touch at a point or along a tip land (area ~0.03 % less)
+SEAL = 0.01  # mm: a gap narrower than twice this seals (the sections' chords and a contact's neighbourhood)
+
+
+@dataclass(frozen=True)
+class ChamberTable:
+    """The chamber of one male flute over its working cycle, in transverse sections.
+
+    Attributes
+    ----------
+    phase : (m,) float, rad
+        Flute phases psi, equally spaced; each row holds for [psi, psi + step).
+    area : (m,) float, mm^2
+        a(psi): the chamber's area in a section at that phase.
+    male_force, female_force : (m, 2) float, mm
+        Force per unit length and unit overpressure (N/mm per N/mm^2) on each rotor, in the
+        rotors' frame at that phase.
+    male_flute_area, female_flute_area : float, mm^2
+        Area between a rotor and its tip circle over one flute (pi r_tip^2 - A) / z.
+    lead : float, mm
+        Male lead h.
+    length : float, mm
+        Rotor length L.
+    """
+
+    phase: np.ndarray
+    area: np.ndarray
+    male_force: np.ndarray
+    female_force: np.ndarray
+    male_flute_area: float
+    female_flute_area: float
+    lead: float
+    length: float
+
+    @property
+    def wrap(self) -> float:
+        """Male wrap angle 2 pi L / h (rad)."""
+        return 2 * np.pi * self.length / self.lead
+
+    @property
+    def step(self) -> float:
+        """Phase step (rad)."""
+        return float(self.phase[1] - self.phase[0])
+
+    @property
+    def span(self) -> tuple[float, float]:
+        """First and last phase (rad) at which the chamber has gas in a section: [start, stop)."""
+        return float(self.phase[0]), float(self.phase[-1] + self.step)
+
+    @property
+    def cycle(self) -> tuple[float, float]:
+        """Discharge-end phases psi0 (rad) from the chamber's opening at the suction end to its end."""
+        start, stop = self.span
+        return start - self.wrap, stop
+
+    def volume(self, psi0: np.ndarray) -> np.ndarray:
+        """V(psi0): the chamber's volume (mm^3) with its flute at phase psi0 at the discharge end.
+
+        Parameters
+        ----------
+        psi0 : (k,) float, rad
+            Over :attr:`cycle` (before and after it the volume is 0).
+
+        Returns
+        -------
+        (k,) float, mm^3
+            h / (2 pi) times the integral of a(psi) over [psi0, psi0 + wrap] within the span (each
+            table value holds over [phase, phase + step)).
+        """
+        nodes = np.append(self.phase, self.phase[-1] + self.step)
+        cum = np.concatenate([[0.0], np.cumsum(self.area * self.step)])
+        start, stop = self.span
+        psi0 = np.asarray(psi0, dtype=float)
+        lo = np.clip(psi0, start, stop)
+        hi = np.clip(psi0 + self.wrap, start, stop)
+        return self.lead / (2 * np.pi) * (np.interp(hi, nodes, cum) - np.interp(lo, nodes, cum))
+
+    def force_at(self, psi: np.ndarray, rotor: str) -> np.ndarray:
+        """Force per unit length and overpressure (mm) at phases ``psi`` (any shape, rad), shape
+        (..., 2), linear between the table's phases; zero outside :attr:`span` (those sections
+        belong to other chambers)."""
+        table = self.male_force if rotor == "male" else self.female_force
+        psi = np.asarray(psi, dtype=float)
+        start, stop = self.span
+        inside = (psi >= start) & (psi < stop)
+        x = np.clip((psi - start) / self.step, 0.0, len(self.phase) - 1.0)
+        i = np.minimum(x.astype(int), len(self.phase) - 2)
+        t = (x - i)[..., None]
+        return np.where(inside[..., None], (1.0 - t) * table[i] + t * table[i + 1], 0.0)
+
+
+def _sector(center: tuple[float, float], radius: float, start: float, stop: float, within: shapely.Geometry) -> shapely.Geometry:
+    """The circular sector about ``center`` from angle ``start`` to ``stop`` (rad), cut to ``within``."""
+    t = np.linspace(start, stop, 9)
+    r = 1.5 * radius / np.cos((stop - start) / 16)  # beyond the tip circle between the 9 rays
+    pts = np.vstack([[center], np.c_[center[0] + r * np.cos(t), center[1] + r * np.sin(t)]])
+    return shapely.intersection(shapely.Polygon(pts), within)
+
+
+def _female_sector(a: float, r2: float, z1: int, z2: int, psi: float, within: shapely.Geometry) -> shapely.Geometry:
+    """Sector of the female flute that closes with the male flute at phase ``psi``.
+
+    At psi = 2 pi the male flute holds the female lobe at angle pi about O2; the female flute that
+    reaches the mesh with it lies just below that lobe (it is filled half a male pitch later).
+    """
+    pitch2 = 2 * np.pi / z2
+    centre = np.pi + (z1 + 0.5) * pitch2 - psi * z1 / z2
+    return _sector((a, 0.0), r2, centre - pitch2 / 2, centre + pitch2 / 2, within)
+
+
+@dataclass(frozen=True)
+class _Section:
+    """The gas space of one transverse section and what it touches."""
+
+    gas: shapely.Geometry
+    to_upper: shapely.Geometry  # the gas joined to the upper (opening-side) cusp
+    to_lower: shapely.Geometry
+    male_near: shapely.Geometry  # a thin band about the male's outline (prepared)
+    female_near: shapely.Geometry
+
+    @classmethod
+    def at(
+        cls,
+        male: shapely.Polygon,
+        female: shapely.Polygon,
+        z1: int,
+        z2: int,
+        a: float,
+        bores: shapely.Geometry,
+        upper: shapely.Point,
+        lower: shapely.Point,
+        psi: float,
+    ) -> _Section:
+        m = shapely.affinity.rotate(male, psi, origin=(0, 0), use_radians=True)
+        f = shapely.affinity.translate(shapely.affinity.rotate(female, -psi * z1 / z2, origin=(0, 0), use_radians=True), a, 0)
+        parts = shapely.get_parts(shapely.difference(bores, shapely.union(m, f)).buffer(-GAP, quad_segs=2))
+        parts = parts[shapely.area(parts) > 100 * GAP**2]  # slivers between a tip land and the bore's polygon
+        gas = shapely.union_all(parts)
+        # which gas is joined to a cusp: through gaps wider than 2 SEAL only (a morphological opening:
+        # shrink, keep the pieces at the cusp, grow back), so that a contact drawn with chords of a
+        # few micrometres still seals
+        cores = shapely.get_parts(gas.buffer(-SEAL, quad_segs=4))
+        joined = []
+        for cusp in (upper, lower):
+            core = shapely.union_all(cores[shapely.dwithin(cores, cusp, 3 * SEAL)])
+            joined.append(shapely.intersection(core.buffer(SEAL + GAP, quad_segs=4), gas))
+        to_upper, to_lower = joined
+        near = []
+        for rotor in (m, f):
+            band = shapely.difference(rotor.buffer(3 * GAP, quad_segs=2), rotor.buffer(-GAP, quad_segs=2))
+            shapely.prepare(band)
+            near.append(band)
+        return cls(gas, to_upper, to_lower, near[0], near[1])
+
+    @staticmethod
+    def force(gas: shapely.Geometry, near: shapely.Geometry) -> np.ndarray:
+        """The outward normal times length summed over the edges of ``gas`` that lie in the band
+        ``near`` about a rotor (mm): the force of a unit overpressure on that rotor. (2,) float."""
+        total = np.zeros(2)
+        for poly in getattr(gas, "geoms", [gas]):  # a handful of pieces
+            if poly.is_empty or not isinstance(poly, shapely.Polygon):
+                continue
+            poly = shapely.geometry.polygon.orient(poly, 1.0)
+            for ring in [poly.exterior, *poly.interiors]:
+                p = np.asarray(ring.coords)
+                e = np.diff(p, axis=0)
+                mid = 0.5 * (p[1:] + p[:-1])
+                on = shapely.contains_xy(near, mid[:, 0], mid[:, 1])
+                total += np.array([e[on, 1].sum(), -e[on, 0].sum()])  # outward normal (holes run clockwise)
+        return total
+
+
+def chamber_table(
+    male: shapely.Polygon,
+    female: shapely.Polygon,
+    male_teeth: int,
+    female_teeth: int,
+    center_distance: float,
+    lead: float,
+    length: float,
+    step_deg: float = 1.0,
+) -> ChamberTable:
+    """Build the chamber table of a pair from its transverse sections.
+
+    Parameters
+    ----------
+    male, female : shapely.Polygon
+        Sections in their own frames at the mesh position of male angle 0 (a male flute pointing
+        at +x, as rotorcad's outlines are).
+    male_teeth, female_teeth : int
+        z1, z2.
+    center_distance, lead, length : float, mm
+        a, male lead h, length L.
+    step_deg : float
+        Phase step (deg); the gas space is computed over one male pitch (it repeats) and the
+        chamber's sectors are cut from it at every phase of the cycle.
+
+    Returns
+    -------
+    ChamberTable
+        Over the chamber's phases: the male flute's part for psi in [0, 2 pi), the female flute's
+        part over its own cycle of 2 pi z2/z1 of male rotation, which ends half a male pitch after the
+        male flute's (the female flute is filled by the male lobe that follows the male flute).
+    """
+    if not (0.05 <= step_deg <= 5.0):
+        raise DesignError("phase step", "from 0.05 to 5 degrees", step_deg)
+    z1, z2, a = int(male_teeth), int(female_teeth), float(center_distance)
+    r1 = float(np.hypot(*np.asarray(male.exterior.coords).T).max())
+    r2 = float(np.hypot(*np.asarray(female.exterior.coords).T).max())
+    if not r1 + r2 > a:
+        raise DesignError("tip radii", f"adding up to more than the centre distance {a:g} mm", r1 + r2)
+    disc1, disc2 = shapely.Point(0, 0).buffer(r1, quad_segs=256), shapely.Point(a, 0).buffer(r2, quad_segs=256)
+    bores = shapely.union(disc1, disc2)
+    cusp_x = (a**2 + r1**2 - r2**2) / (2 * a)
+    cusp_y = np.sqrt(max(r1**2 - cusp_x**2, 0.0))
+    upper, lower = shapely.Point(cusp_x, cusp_y), shapely.Point(cusp_x, -cusp_y)
+    pitch1 = 2 * np.pi / z1
+    step = np.radians(step_deg)
+    per_pitch = max(1, round(pitch1 / step))
+    step = pitch1 / per_pitch  # a whole number of steps per pitch: the gas space is reused exactly
+    # cycles (phase windows) of the two flutes; gas still joined to the chamber's cusp just beyond
+    # them (a pocket closing after the flute is filled, one opening before) counts as well
+    male_cycle = (0.0, 2 * np.pi)
+    female_cycle = (2 * np.pi + pitch1 / 2 - 2 * np.pi * z2 / z1, 2 * np.pi + pitch1 / 2)
+    first = int(np.floor((min(male_cycle[0], female_cycle[0]) - pitch1) / step))
+    last = int(np.ceil((max(male_cycle[1], female_cycle[1]) + pitch1) / step))
+    psi = np.arange(first, last) * step
+    sections = [_Section.at(male, female, z1, z2, a, bores, upper, lower, j * step) for j in range(per_pitch)]
+    male_only = shapely.intersection(disc1, bores)
+    female_only = shapely.difference(disc2, disc1)  # the lens between the bores counts with the male flute
+    area = np.zeros(len(psi))
+    male_force = np.zeros((len(psi), 2))
+    female_force = np.zeros((len(psi), 2))
+    for i, p in enumerate(psi):  # a few hundred sections; shapely does the geometry of each
+        section = sections[(first + i) % per_pitch]  # the rotors turned by whole pitches are themselves
+        parts = []
+        for (lo, hi), flute in ((male_cycle, "male"), (female_cycle, "female")):
+            if not lo - pitch1 <= p < hi + pitch1:
+                continue
+            opening = p < 0.5 * (lo + hi)
+            if flute == "male":
+                sector = _sector((0.0, 0.0), r1, p - pitch1 / 2, p + pitch1 / 2, male_only)
+            else:
+                sector = _female_sector(a, r2, z1, z2, p, female_only)
+            gas = shapely.intersection(section.gas, sector)
+            if p < lo:  # before the cycle: only gas already open to the suction side
+                parts.append(shapely.intersection(gas, section.to_upper))
+            elif p >= hi:  # after it: only gas still closing towards the discharge
+                parts.append(shapely.intersection(gas, section.to_lower))
+            else:  # in it: all but what the other side's chamber holds
+                parts.append(shapely.difference(gas, section.to_lower if opening else section.to_upper))
+        for part in parts:
+            area[i] += part.area
+            male_force[i] += section.force(part, section.male_near)
+            female_force[i] += section.force(part, section.female_near)
+    flute1 = (np.pi * r1**2 - male.area) / z1
+    flute2 = (np.pi * r2**2 - female.area) / z2
+    return ChamberTable(psi, area, male_force, female_force, float(flute1), float(flute2), float(lead), float(length))
