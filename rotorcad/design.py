@@ -107,9 +107,23 @@ POINT_FAMILIES = ("rack-points", "male-points", "female-points")
 
 
 def load_rotor_design(path: Path) -> dict[str, Any]:
-    """A screw-rotor design (CONTRACT.md "Design files"): [pair], [profile] (family and its
-    parameters, or a points file), optional [housing], [operating], [deflection], [export]."""
-    data = load_toml(path)
+    """A screw-rotor design file, read and checked (:func:`rotor_design`); the points file of a
+    points family is resolved against the design file's folder."""
+    return rotor_design(load_toml(path), Path(path).parent)
+
+
+def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict[str, Any]:
+    """A screw-rotor design mapping, checked (CONTRACT.md "Design files"): [pair], [profile] (family
+    and its parameters, or a points file), optional [housing], [operating], [deflection], [export].
+
+    Parameters
+    ----------
+    data : dict
+        The design as a TOML file holds it.
+    folder : path, optional
+        Where a relative points file name is found (the design file's folder); default the
+        current folder.
+    """
     for table in data:
         if table not in ("pair", "profile", "housing", "operating", "deflection", "export"):
             allowed = "one of [pair], [profile], [housing], [operating], [deflection], [export]"
@@ -124,7 +138,7 @@ def load_rotor_design(path: Path) -> dict[str, Any]:
     if family in POINT_FAMILIES:
         if not isinstance(profile.get("points"), str):
             raise DesignError("[profile] points", "a CSV file name for the family " + family, None, "missing key")
-        points = (Path(path).parent / profile.pop("points")).resolve()
+        points = (Path(folder or ".") / profile.pop("points")).resolve()
         smoothing = profile.pop("smoothing", None)
         if smoothing is not None and (isinstance(smoothing, bool) or not isinstance(smoothing, NUMBER) or not smoothing >= 0):
             raise DesignError("[profile] smoothing", "a number of at least 0 mm^2", repr(smoothing))

@@ -16,11 +16,9 @@ from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.design import load_rotor_design
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
-from rotorcad.meshing import MeshingAnalysis
 from rotorcad.profile import Segment
-from rotorcad.rotor_families import build_family
+from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair
 from rotorcad.rotor_pair import RotorPair
-from rotorcad.rotor_points import pair_from_rack_points, pair_from_rotor_points
 from rotorcad.screw_rotors import ScrewRotors
 
 PAIR_OPTIONS = (
@@ -128,11 +126,9 @@ def rotor(design: Path | None, **opts: Any) -> None:
     if not (opts["tolerance"] and opts["tolerance"] > 0):
         raise InputError(f"--tolerance must be a positive length in mm (got {opts['tolerance']}).")
     try:
-        analysis = MeshingAnalysis(rotors, speed_rpm=speed)
-        result = analysis.summary()
+        analysis, result = analyse_pair(rotors, speed)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    result["rack_loss_percent"] = rotors.rack_loss
     tol = opts["tolerance"]
     out = Outputs()
     if opts["plot"]:
@@ -243,15 +239,13 @@ def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, floa
     except TypeError as exc:
         raise InputError(f"the pair is not described completely: {exc}.") from None
     try:
-        if family in ("rack-points", "male-points", "female-points"):
-            if family == "rack-points":
-                pts = read_profile_points(points, f"--{family}", opts.get("layer"))
-                rotors = pair_from_rack_points(pair, pts, smoothing or 0.0)
-            else:
-                profile = read_profile(points, f"--{family}", opts.get("layer"))
-                rotors = pair_from_rotor_points(pair, profile, family.split("-")[0], smoothing, label=f"--{family}")
-        else:
-            rotors = build_family(pair, family, params)
+        data = None
+        if family == "rack-points":
+            data = read_profile_points(points, f"--{family}", opts.get("layer"))
+        elif family in ("male-points", "female-points"):
+            data = read_profile(points, f"--{family}", opts.get("layer"))
+        spec = PairSpec(pair, family, params, data, smoothing, float(speed), clearance)
+        rotors = build_pair(spec, label=f"--{family}")
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     return rotors, float(speed), clearance

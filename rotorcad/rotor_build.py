@@ -1,0 +1,121 @@
+"""A rotor pair from a design, and its analysis as plain numbers: the core that the CLI, a design
+sweep and a notebook share.
+
+The design is a mapping as a TOML file holds it (tables ``pair``, ``profile``, ``housing``,
+``operating``, ...; CONTRACT.md "Design files"), checked by :func:`rotorcad.design.rotor_design`.
+A profile given by points arrives already read (the caller reads files): an ``(n, 2)`` array or the
+curves of a drawing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rotorcad.design import rotor_design
+from rotorcad.errors import DesignError
+from rotorcad.meshing import MeshingAnalysis
+from rotorcad.rotor_families import build_family
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.rotor_points import pair_from_rack_points, pair_from_rotor_points
+from rotorcad.screw_rotors import ScrewRotors
+
+PAIR_DEFAULTS = {"lead": 300.0, "length": 190.0}
+SPEED_DEFAULT = 3000.0  # rpm
+
+
+@dataclass(frozen=True)
+class PairSpec:
+    """What builds a rotor pair: dimensions, the profile family and its parameters or points.
+
+    Attributes
+    ----------
+    pair : RotorPair
+    family : str
+        A family name (``rotorcad.rotor_families``) or ``rack-points`` / ``male-points`` /
+        ``female-points``.
+    params : dict
+        The family's parameters (empty for points).
+    points : (n, 2) float array or list of curves, optional
+        The profile of a points family, already read.
+    smoothing : float, optional, mm^2
+        Spline smoothing of measured points (None: estimated from their scatter).
+    speed_rpm : float
+        Male speed for sliding velocities.
+    radial_clearance : float, mm
+        Housing bores = tip radii + this.
+    """
+
+    pair: RotorPair
+    family: str
+    params: dict[str, float]
+    points: Any = None
+    smoothing: float | None = None
+    speed_rpm: float = SPEED_DEFAULT
+    radial_clearance: float = 0.0
+
+
+def pair_spec(settings: dict[str, Any], points: Any = None, overrides: dict[str, Any] | None = None) -> PairSpec:
+    """The spec of a checked design (:func:`rotorcad.design.rotor_design`).
+
+    Parameters
+    ----------
+    settings : dict
+        The checked design.
+    points : optional
+        The profile of a points family, read by the caller from ``settings["points"]``.
+    overrides : dict, optional
+        Pair dimensions that replace the design's (``male_teeth``, ..., ``lead``, ``length``).
+    """
+    values = dict(PAIR_DEFAULTS)
+    values.update(settings["pair"])
+    values.update({k: v for k, v in (overrides or {}).items() if v is not None})
+    try:
+        pair = RotorPair(**values)
+    except TypeError as exc:
+        raise DesignError("[pair]", "complete (teeth, centre distance, tip and root radii)", None, str(exc)) from None
+    speed = float(settings["operating"].get("speed_rpm", SPEED_DEFAULT))
+    if not (np.isfinite(speed) and speed > 0):
+        raise DesignError("[operating] speed_rpm", "a positive speed in rpm", speed)
+    return PairSpec(
+        pair=pair,
+        family=settings["family"],
+        params=dict(settings["params"]),
+        points=points,
+        smoothing=settings.get("smoothing"),
+        speed_rpm=speed,
+        radial_clearance=float(settings["housing"].get("radial_clearance", 0.0)),
+    )
+
+
+def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
+    """The rotor pair of a spec: a family built from its rack, or the pair from points.
+
+    Parameters
+    ----------
+    spec : PairSpec
+    label : str, optional
+        How the points are named in a refusal (e.g. ``--male-points``).
+    """
+    if spec.family == "rack-points":
+        return pair_from_rack_points(spec.pair, spec.points, spec.smoothing or 0.0)
+    if spec.family in ("male-points", "female-points"):
+        return pair_from_rotor_points(spec.pair, spec.points, spec.family.split("-")[0], spec.smoothing, label=label)
+    return build_family(spec.pair, spec.family, spec.params)
+
+
+def analyse_pair(rotors: ScrewRotors, speed_rpm: float) -> tuple[MeshingAnalysis, dict[str, Any]]:
+    """Rinder's analysis of a pair and its summary (the keys of ``rotorcad rotor --json``)."""
+    analysis = MeshingAnalysis(rotors, speed_rpm=speed_rpm)
+    result = analysis.summary()
+    result["rack_loss_percent"] = rotors.rack_loss
+    return analysis, result
+
+
+def design_summary(mapping: dict[str, Any], folder: Any = None, points: Any = None) -> dict[str, Any]:
+    """Build and analyse the pair of a design mapping in one call: the numbers of ``rotorcad rotor
+    --json`` (``files`` aside). Refuses a bad design with :class:`DesignError`."""
+    spec = pair_spec(rotor_design(mapping, folder), points)
+    return analyse_pair(build_pair(spec), spec.speed_rpm)[1]
