@@ -45,6 +45,10 @@ _API = {
     "helical_solid": "rotorcad.solids",
     "lobe_pieces": "rotorcad.rotor_points",
     "pair_from_rotor_points": "rotorcad.rotor_points",
+    "design_summary": "rotorcad.rotor_build",
+    "GasDeflection": "rotorcad.deflection",
+    "GearCoupling": "rotorcad.coupling",
+    "sweep": "rotorcad.cli.sweep_run",
 }
 
 
@@ -61,6 +65,10 @@ def __dir__() -> list[str]:
 
 
 __all__ = [  # noqa: RUF022 - grouped as the docstring reads
+    "sweep",
+    "design_summary",
+    "GasDeflection",
+    "GearCoupling",
     "ClearanceDistribution",
     "MeshingAnalysis",
     "MeshingClearance",

@@ -29,6 +29,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     ),
     "clearance": ("rotorcad.cli.clearance_cmd:clearance", "Meshing clearance (Wu & Chi) of a pair from measured points."),
     "deflect": ("rotorcad.cli.deflect_cmd:deflect", "Deflection of the rotors under gas load (Rinder & Deix)."),
+    "sweep": ("rotorcad.cli.sweep_cmd:sweep", "Thousands of rotor variants built and judged side by side, on Dask."),
     "coupling": ("rotorcad.cli.coupling_cmd:coupling", "Oil film of a gear coupling with barrel-shaped teeth (Belkov et al.)."),
 }
 

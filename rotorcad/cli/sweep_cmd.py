@@ -1,0 +1,182 @@
+"""``rotorcad sweep``: thousands of rotor variants built and judged on Dask (CONTRACT.md)."""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+from rich.console import Console
+
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.errors import DesignError
+
+
+@click.command()
+@click.argument("sweep_file", type=click.Path(path_type=Path, dir_okay=False))
+@click.option(
+    "--out",
+    type=click.Path(path_type=Path, dir_okay=False),
+    required=True,
+    help="Parquet file of the results, one row per variant (resumed when it or OUT.parts exists).",
+)
+@click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Also write the table as CSV.")
+@click.option("--scheduler", help="Address of a running dask.distributed scheduler (default: a local cluster).")
+@click.option("--workers", type=int, help="Worker processes of the local cluster (default: one per core).")
+@click.option("--pareto", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the Pareto front of two objectives.")
+@click.option(
+    "--objectives",
+    default="blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3",
+    show_default=True,
+    help="Columns of the Pareto plot: x,y[,colour] (smaller is better, displacement larger).",
+)
+@click.option(
+    "--effects", type=click.Path(path_type=Path, dir_okay=False), help="PNG of each varied value's effect on an objective."
+)
+@click.option("--objective", default="blow_hole_area_mm2", show_default=True, help="Column of the --effects plot.")
+@click.option(
+    "--best-designs",
+    type=click.Path(path_type=Path, file_okay=False),
+    help="Folder to write the design file of the best variant per objective (best_<objective>.toml).",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def sweep(
+    sweep_file: Path,
+    out: Path,
+    csv: Path | None,
+    scheduler: str | None,
+    workers: int | None,
+    pareto: Path | None,
+    objectives: str,
+    effects: Path | None,
+    objective: str,
+    best_designs: Path | None,
+    as_json: bool,
+    quiet: bool,
+) -> None:
+    """Build and judge every variant of a sweep file (a base design and the values to vary: lists,
+    ranges, or bounds drawn at random or by Latin hypercube) as tasks on Dask, streaming one row per
+    variant to Parquet; a variant that cannot be built is a row with its reason. Interrupted and run
+    again, the sweep computes only what is missing."""
+    from rotorcad.cli.sweep_run import load_sweep, run_sweep
+    from rotorcad.cli.sweep_tasks import OBJECTIVES
+
+    if workers is not None and not 1 <= workers <= 256:
+        raise InputError(f"--workers must be a whole number from 1 to 256 (got {workers}).")
+    if out.exists() and out.is_dir():
+        raise InputError(f"--out must be a file name, but {out} is a folder.")
+    if not out.parent.is_dir():
+        raise InputError(f"--out must be in an existing folder: {out.parent}.")
+    axes = [c.strip() for c in objectives.split(",") if c.strip()]
+    if pareto is not None and len(axes) not in (2, 3):
+        raise InputError(f"--objectives must name 2 or 3 columns (got {objectives!r}).")
+    try:
+        plan, folder, points = load_sweep(sweep_file)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    total = plan.count
+    bar = None
+    if not quiet and sys.stderr.isatty():
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+        bar = Progress(
+            TextColumn("sweep"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TextColumn("{task.fields[failed]} failed, {task.fields[rate]}/s"),
+            TimeRemainingColumn(),
+            console=Console(file=sys.stderr),
+            transient=True,
+        )
+        task = bar.add_task("sweep", total=total, failed=0, rate="-")
+        bar.start()
+    started = time.perf_counter()
+
+    def report(done: int, failed: int, _total: int) -> None:
+        if bar is not None:
+            rate = done / max(time.perf_counter() - started, 1e-9)
+            bar.update(task, completed=done, failed=failed, rate=f"{rate:.1f}")
+
+    try:
+        outcome = run_sweep(plan, folder, points, out, scheduler, workers, progress=report)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    finally:
+        if bar is not None:
+            bar.stop()
+    table = outcome.table
+    for name, column in (("--objectives", axes if pareto else []), ("--objective", [objective] if effects else [])):
+        missing = [c for c in column if c not in table.columns]
+        if missing:
+            numeric = ", ".join(c for c in table.columns if c.endswith(("_mm", "_mm2", "_mm3", "_m_s")))
+            raise InputError(f"{name} must name result columns such as {numeric} (got {missing[0]!r}).")
+    files = [str(out)]
+    writers = Outputs()
+    if csv is not None:
+        writers.add(csv, lambda p: table.to_csv(p, index=False), "--csv")
+    ok = table[table["ok"].astype(bool)] if len(table) else table
+    params = [c for c in table.columns if "." in c]
+    if pareto is not None:
+        from rotorcad.sweep_plots import plot_pareto
+
+        x, y = (ok[c].to_numpy(float) for c in axes[:2])
+        colour = ok[axes[2]].to_numpy(float) if len(axes) == 3 else None
+        smaller = (OBJECTIVES.get(axes[0], True), OBJECTIVES.get(axes[1], True))
+        names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
+        writers.add(pareto, lambda p: plot_pareto(x, y, colour, names, smaller).savefig(p, format="png"), "--pareto")
+    if effects is not None:
+        from rotorcad.sweep_plots import plot_effects
+
+        values = {p: _numeric(ok[p]) for p in params}
+        target = ok[objective].to_numpy(float)
+        writers.add(effects, lambda p: plot_effects(values, target, objective).savefig(p, format="png"), "--effects")
+    best = outcome.best()
+    if best_designs is not None:
+        import tomli_w
+
+        from rotorcad.cli.common import output_folder
+        from rotorcad.sweep_plan import apply
+
+        output_folder(best_designs)
+        by_index = {v.index: v for v in plan.variants()}
+        for column, chosen in best.items():
+            design = apply(plan.base, by_index[chosen["variant"]].values)
+            writers.add(
+                best_designs / f"best_{column}.toml", lambda p, d=design: Path(p).write_text(tomli_w.dumps(d)), "--best-designs"
+            )
+    files += [str(p) for p in writers.write()]
+    result: dict[str, Any] = {
+        "variants": len(table),
+        "computed": outcome.computed,
+        "resumed": outcome.resumed,
+        "failed": outcome.failed,
+        "seconds": outcome.seconds,
+        "variants_per_second": outcome.computed / outcome.seconds if outcome.computed else 0.0,
+        "failures": outcome.failures(),
+        "best": best,
+        "files": files,
+    }
+    if as_json:
+        emit_json(result)
+        return
+    print_table(f"sweep of {len(table)} variants ({outcome.computed} computed, {outcome.resumed} resumed)", result)
+    console = Console(file=sys.stdout, highlight=False)
+    for column, best in result["best"].items():
+        values = ", ".join(f"{k} = {v}" for k, v in best.items() if k not in ("variant", "value"))
+        console.print(f"best {column}: {best['value']:.6g} (variant {best['variant']}: {values})")
+    for reason, count in result["failures"].items():
+        console.print(f"{count} failed: {reason}")
+    for p in files:
+        console.print(f"wrote {p}")
+
+
+def _numeric(column) -> np.ndarray:
+    try:
+        return column.to_numpy(float)
+    except (TypeError, ValueError):  # a varied name (e.g. the family): its values in order of appearance
+        codes = {v: i for i, v in enumerate(dict.fromkeys(column))}
+        return np.array([codes[v] for v in column], dtype=float)

@@ -1,0 +1,290 @@
+"""Running a design sweep on Dask and streaming its rows to Parquet, resumably.
+
+Every batch of variants is one Dask task (:func:`rotorcad.cli.sweep_tasks.evaluate_batch`). By
+default a ``dask.distributed.LocalCluster`` of worker processes sized to the machine runs them;
+given a scheduler address, the same tasks go to that cluster. Each finished batch is written at
+once as a Parquet part file (complete or absent: written to a temporary name and renamed) in the
+folder ``OUT.parts`` beside the output; at the end the parts are joined into ``OUT`` in variant
+order and the folder is removed. Run again after an interruption, a sweep reads what the parts (and
+an earlier ``OUT``) hold and computes only the variants missing, so none is computed twice and none
+is lost.
+
+Like any Dask program, a script that starts a sweep with the local cluster needs the
+``if __name__ == "__main__":`` guard (the worker processes are spawned and import the script).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import shutil
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from rotorcad.cli.sweep_tasks import OBJECTIVES, evaluate_batch
+from rotorcad.errors import DesignError
+from rotorcad.sweep_plan import SweepPlan, Variant
+
+
+@dataclass(frozen=True)
+class SweepOutcome:
+    """What a sweep run did: its table and the counts."""
+
+    table: pd.DataFrame
+    computed: int
+    resumed: int
+    seconds: float
+
+    @property
+    def failed(self) -> int:
+        return int((~self.table["ok"].astype(bool)).sum()) if len(self.table) else 0
+
+    def failures(self) -> dict[str, int]:
+        """Count of failed variants by reason, most frequent first."""
+        bad = self.table.loc[~self.table["ok"].astype(bool), "reason"]
+        return {str(k): int(v) for k, v in bad.value_counts().items()}
+
+    def best(self) -> dict[str, dict[str, Any]]:
+        """Per objective column present: the best variant's number, value and varied values."""
+        ok = self.table[self.table["ok"].astype(bool)]
+        params = [c for c in self.table.columns if "." in c]
+        out = {}
+        for column, smaller in OBJECTIVES.items():
+            if column not in ok or ok[column].isna().all():
+                continue
+            row = ok.loc[ok[column].idxmin() if smaller else ok[column].idxmax()]
+            out[column] = {"variant": int(row["variant"]), "value": float(row[column]), **{p: _plain(row[p]) for p in params}}
+        return out
+
+
+def _plain(value: Any) -> Any:
+    return value.item() if hasattr(value, "item") else value
+
+
+def parts_folder(out: Path) -> Path:
+    """Where the finished batches of a sweep writing ``out`` are kept until it ends."""
+    return out.with_name(out.name + ".parts")
+
+
+def _done(out: Path | None, keys: set[str]) -> pd.DataFrame:
+    """The rows already computed for this plan: from ``out`` and its parts folder."""
+    frames = []
+    if out is not None:
+        sources = [out] if out.is_file() else []
+        folder = parts_folder(out)
+        if folder.is_dir():
+            sources += sorted(folder.glob("part-*.parquet"))
+        for path in sources:
+            try:
+                frame = pd.read_parquet(path)
+            except Exception as exc:  # not a Parquet table we wrote: refuse rather than overwrite it
+                raise DesignError(
+                    "--out", "a Parquet file of an earlier sweep (or a new name)", str(path), str(exc)[:80]
+                ) from None
+            if "key" not in frame:
+                raise DesignError(
+                    "--out", "a Parquet file of an earlier sweep (or a new name)", str(path), "it has no key column"
+                )
+            frames.append(frame[frame["key"].isin(keys)])
+    if not frames:
+        return pd.DataFrame()
+    return pd.concat(frames, ignore_index=True).drop_duplicates("key")
+
+
+def _write_part(folder: Path, rows: list[dict[str, Any]]) -> None:
+    fd, tmp = tempfile.mkstemp(prefix=".part-", suffix=".tmp", dir=folder)
+    os.close(fd)
+    try:
+        pd.DataFrame(rows).to_parquet(tmp, index=False)
+        os.replace(tmp, folder / f"part-{rows[0]['variant']:09d}.parquet")
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _client(scheduler: str | None, workers: int | None):
+    """A Dask client: of the cluster at ``scheduler``, or of a local cluster of worker processes."""
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            return Client(scheduler, timeout="10s"), None
+        except (OSError, TimeoutError) as exc:
+            raise DesignError(
+                "--scheduler", "the address of a running dask.distributed scheduler", scheduler, str(exc)[:80]
+            ) from None
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(
+        n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.CRITICAL, memory_limit=0
+    )
+    return Client(cluster), cluster
+
+
+def run_sweep(
+    plan: SweepPlan,
+    folder: Path | None,
+    points: Any = None,
+    out: Path | None = None,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    batch: int | None = None,
+    progress: Callable[[int, int, int], None] | None = None,
+) -> SweepOutcome:
+    """Compute every variant of ``plan`` not yet in ``out``; return the whole table.
+
+    Parameters
+    ----------
+    plan : SweepPlan
+    folder : Path, optional
+        The base design's folder (for a relative points file).
+    points : optional
+        The base design's profile points, already read.
+    out : Path, optional
+        Parquet file to write (resumed if it or its parts folder exists); None keeps all in memory.
+    scheduler : str, optional
+        Address of a running ``dask.distributed`` scheduler; default a local cluster.
+    workers : int, optional
+        Worker processes of the local cluster (default: one per core).
+    batch : int, optional
+        Variants per task (default: about eight tasks per worker, at most 50 variants a task).
+    progress : callable, optional
+        Called with (done, failed, total) after every batch.
+    """
+    start = time.perf_counter()
+    variants = plan.variants()
+    keys = {v.key for v in variants}
+    earlier = _done(out, keys)
+    done_keys = set(earlier["key"]) if len(earlier) else set()
+    todo = [v for v in variants if v.key not in done_keys]
+    rows: list[dict[str, Any]] = []
+    failed = int((~earlier["ok"].astype(bool)).sum()) if len(earlier) else 0
+    if todo:
+        quiet = logging.getLogger("distributed")
+        level = quiet.level
+        quiet.setLevel(logging.CRITICAL)  # its INFO lines about closing connections are not the user's business
+        parts = parts_folder(out) if out is not None else None
+        if parts is not None:
+            parts.mkdir(exist_ok=True)
+        client, cluster = _client(scheduler, workers)
+        try:
+            n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or os.cpu_count() or 1))
+            size = batch or max(1, min(50, len(todo) // (8 * n_workers)))
+            batches = [todo[i : i + size] for i in range(0, len(todo), size)]
+            from dask.distributed import as_completed
+
+            futures = client.map(
+                evaluate_batch,
+                batches,
+                base=plan.base,
+                folder=None if folder is None else str(folder),
+                points=points,
+                extras=plan.extras,
+                pure=False,
+            )
+            done = len(earlier)
+            for future in as_completed(futures):
+                batch_rows = future.result()
+                future.release()
+                if parts is not None:
+                    _write_part(parts, batch_rows)
+                else:
+                    rows.extend(batch_rows)
+                done += len(batch_rows)
+                failed += sum(not r["ok"] for r in batch_rows)
+                if progress:
+                    progress(done, failed, len(variants))
+        finally:
+            if cluster is not None:
+                client.retire_workers(close_workers=True)  # workers first: no heartbeat to a closed scheduler
+            client.close()
+            if cluster is not None:
+                cluster.close()
+            quiet.setLevel(level)
+    table = _done(out, keys) if out is not None else pd.concat([earlier, pd.DataFrame(rows)], ignore_index=True)
+    if len(table):
+        table = table.sort_values("variant", kind="stable").reset_index(drop=True)
+    if out is not None:
+        _replace(out, table)
+        shutil.rmtree(parts_folder(out), ignore_errors=True)
+    return SweepOutcome(table, len(todo), len(variants) - len(todo), time.perf_counter() - start)
+
+
+def _replace(out: Path, table: pd.DataFrame) -> None:
+    """Write ``out`` whole (a temporary name renamed over it)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
+    os.close(fd)
+    try:
+        table.to_parquet(tmp, index=False)
+        os.replace(tmp, out)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def sweep(
+    sweep_file: str | os.PathLike,
+    out: str | os.PathLike | None = None,
+    scheduler: str | None = None,
+    workers: int | None = None,
+) -> pd.DataFrame:
+    """Run a design sweep file (see :mod:`rotorcad.sweep_plan`) and return its table.
+
+    Parameters
+    ----------
+    sweep_file : path
+        The sweep (TOML).
+    out : path, optional
+        Parquet file to stream to and resume from.
+    scheduler : str, optional
+        Address of a running ``dask.distributed`` scheduler (default: a local cluster).
+    workers : int, optional
+        Local worker processes (default: one per core).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per variant: its number and key, the varied values (``table.key`` columns), ``ok``,
+        ``reason``, ``seconds`` and the results with their unit in the column name.
+    """
+    plan, folder, points = load_sweep(Path(sweep_file))
+    return run_sweep(plan, folder, points, None if out is None else Path(out), scheduler, workers).table
+
+
+def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
+    """Read a sweep file, its base design and the base's points (if a points family)."""
+    from exports.dxf_profile import read_profile, read_profile_points
+    from rotorcad.design import load_toml, rotor_design
+    from rotorcad.sweep_plan import sweep_plan
+
+    data = load_toml(path)
+    section = data.get("sweep", {})
+    if "base" in data and "base" in section:
+        raise DesignError("[sweep] base", "either a design file or a [base] table, not both", section["base"])
+    if "base" in data:
+        base, folder = data["base"], path.parent
+    elif isinstance(section.get("base"), str):
+        base_path = (path.parent / section["base"]).resolve()
+        base, folder = load_toml(base_path), base_path.parent
+    else:
+        raise DesignError("[sweep] base", "a design file name (or a [base] table)", None, "missing key")
+    plan = sweep_plan(data, base)
+    settings = rotor_design(base, folder)  # the base must be a valid design
+    points = None
+    if settings["family"] == "rack-points":
+        points = read_profile_points(settings["points"], "[profile] points")
+    elif settings["family"] in ("male-points", "female-points"):
+        points = read_profile(settings["points"], "[profile] points")
+    return plan, folder, points
+
+
+def variant_design(plan: SweepPlan, variant: Variant) -> dict[str, Any]:
+    """The design mapping of one variant (to write it as a design file)."""
+    from rotorcad.sweep_plan import apply
+
+    return apply(plan.base, variant.values)

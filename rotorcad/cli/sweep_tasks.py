@@ -1,0 +1,102 @@
+"""What one worker of a design sweep runs: a batch of variants, each built and judged, each
+giving one row of plain values (numbers with their unit in the column name, or the reason in one
+sentence why the variant could not be built). Nothing here keeps a mesh or a profile: a worker
+ships numbers back.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from rotorcad.errors import DesignError
+from rotorcad.sweep_plan import Extra, Variant, apply
+
+# summary key of ``rotorcad rotor --json`` -> column (unit in the name)
+RESULT_COLUMNS = {
+    "meshline_closed": "meshline_closed",
+    "blow_hole_area": "blow_hole_area_mm2",
+    "contact_line_length": "contact_line_length_mm",
+    "male_flute_area": "male_flute_area_mm2",
+    "female_flute_area": "female_flute_area_mm2",
+    "displacement_per_rev": "displacement_per_rev_mm3",
+    "area_utilisation": "area_utilisation",
+    "max_sliding_velocity": "max_sliding_velocity_m_s",
+    "wrap_angle_deg": "wrap_angle_deg",
+    "rack_loss_percent": "rack_loss_percent",
+}
+# objectives and whether smaller is better
+OBJECTIVES = {
+    "blow_hole_area_mm2": True,
+    "contact_line_length_mm": True,
+    "displacement_per_rev_mm3": False,
+    "max_sliding_velocity_m_s": True,
+    "interference_volume_mm3": True,
+}
+
+
+def evaluate(
+    base: dict[str, Any], folder: str | None, points: Any, extras: tuple[Extra, ...], variant: Variant
+) -> dict[str, Any]:
+    """One variant: the base design with its values, built and judged.
+
+    Returns
+    -------
+    dict
+        ``variant``, ``key``, the varied values, ``ok``, ``reason`` (empty when ok), ``seconds``
+        and the results.
+    """
+    from rotorcad.design import rotor_design
+    from rotorcad.rotor_build import analyse_pair, build_pair, pair_spec
+
+    start = time.perf_counter()
+    row: dict[str, Any] = {"variant": variant.index, "key": variant.key, **variant.values, "ok": False, "reason": ""}
+    try:
+        spec = pair_spec(rotor_design(apply(base, variant.values), folder), points)
+        rotors = build_pair(spec)
+        _, summary = analyse_pair(rotors, spec.speed_rpm)
+        for key, column in RESULT_COLUMNS.items():
+            row[column] = summary.get(key)
+        row["max_slip_male"] = summary["max_slip_male"]["value"]
+        row["max_slip_female"] = summary["max_slip_female"]["value"]
+        row["defects"] = len(summary["defects"])
+        row["defect_kinds"] = ", ".join(sorted({d["kind"] for d in summary["defects"]}))
+        for extra in extras:
+            row.update(_extra(extra, rotors, spec))
+        row["ok"] = True
+    except DesignError as exc:
+        row["reason"] = exc.sentence()
+    except Exception as exc:  # a variant that breaks the code must not stop the sweep: its reason is kept
+        row["reason"] = f"{type(exc).__name__}: {' '.join(str(exc).split())[:200]}"
+    row["seconds"] = time.perf_counter() - start
+    return row
+
+
+def _extra(extra: Extra, rotors, spec) -> dict[str, Any]:
+    """The optional analyses: hobbability (hob.verdict), interference at the design centre
+    distance (2D sections over one lobe pitch), the solids' volume (section area x length)."""
+    if extra is Extra.HOBBABILITY:
+        from hob.rack import rotor_rack
+        from hob.verdict import HobLimits, judge
+
+        verdicts = [judge(rotor_rack(rotors, rotor), HobLimits()) for rotor in ("male", "female")]
+        reasons = [r for v in verdicts for r in v.reasons]
+        return {"hobbable": all(v.hobbable for v in verdicts), "hob_reason": reasons[0] if reasons else ""}
+    if extra is Extra.INTERFERENCE:
+        from rotorcad.interference import interference_2d
+
+        tol = 1e-3
+        result = interference_2d(spec.pair, rotors.section("male", tol), rotors.section("female", tol), 36, tol, 72)
+        return {"interference_volume_mm3": result.max_volume, "interferes": result.interferes}
+    length = spec.pair.length
+    return {
+        "male_volume_mm3": rotors.section("male", 1e-3).area * length,
+        "female_volume_mm3": rotors.section("female", 1e-3).area * length,
+    }
+
+
+def evaluate_batch(
+    variants: list[Variant], base: dict[str, Any], folder: str | None, points: Any, extras: tuple[Extra, ...]
+) -> list[dict[str, Any]]:
+    """A batch of variants (one task: enough work to make the scheduler's cost small)."""
+    return [evaluate(base, folder, points, extras, v) for v in variants]
