@@ -170,6 +170,7 @@ def test_killed_sweep_resumes_without_repeating_or_losing_a_variant(tmp_path):
     assert 0 < len(done) < 400 and not out.exists()
     second = subprocess.run(command, capture_output=True, text=True, timeout=300)
     assert second.returncode == 0, second.stderr
+    assert second.stderr == ""  # no log lines of Dask's on a successful run
     summary = json.loads(second.stdout)
     assert summary["resumed"] == len(done) and summary["computed"] == 400 - len(done)
     table = pd.read_parquet(out)

@@ -110,7 +110,13 @@ def _write_part(folder: Path, rows: list[dict[str, Any]]) -> None:
 
 def _client(scheduler: str | None, workers: int | None):
     """A Dask client: of the cluster at ``scheduler``, or of a local cluster of worker processes."""
+    # the worker processes read their log levels from the environment when they start
+    os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "error")
     from dask.distributed import Client, LocalCluster
+
+    # distributed logs INFO lines (connections closed, workers retired) on stderr: only errors are the user's business
+    for name in ["distributed", *(n for n in logging.root.manager.loggerDict if n.startswith("distributed."))]:
+        logging.getLogger(name).setLevel(logging.ERROR)
 
     if scheduler:
         try:
@@ -165,9 +171,6 @@ def run_sweep(
     rows: list[dict[str, Any]] = []
     failed = int((~earlier["ok"].astype(bool)).sum()) if len(earlier) else 0
     if todo:
-        quiet = logging.getLogger("distributed")
-        level = quiet.level
-        quiet.setLevel(logging.CRITICAL)  # its INFO lines about closing connections are not the user's business
         parts = parts_folder(out) if out is not None else None
         if parts is not None:
             parts.mkdir(exist_ok=True)
@@ -205,7 +208,6 @@ def run_sweep(
             client.close()
             if cluster is not None:
                 cluster.close()
-            quiet.setLevel(level)
     table = _done(out, keys) if out is not None else pd.concat([earlier, pd.DataFrame(rows)], ignore_index=True)
     if len(table):
         table = table.sort_values("variant", kind="stable").reset_index(drop=True)
