@@ -22,10 +22,13 @@ Writer = Callable[[Path], None] | BackgroundWriter
 
 
 def check_writable(path: Path, label: str) -> None:
-    """Refuse, before any work is done, a target whose folder is missing or not writable."""
+    """Refuse, before any work is done, a target whose folder is missing or not writable, or that
+    is not a regular file (a device, a FIFO or a socket would be replaced by a file)."""
     folder = path.parent if str(path.parent) else Path(".")
     if path.exists() and path.is_dir():
         raise DesignError(label, "a file path, not a folder", str(path))
+    if path.exists() and not path.is_file():
+        raise DesignError(label, "a regular file (not a device, FIFO or socket)", str(path))
     if not folder.is_dir():
         raise DesignError(label, "in an existing folder", str(path))
     if not os.access(folder, os.W_OK):
@@ -43,6 +46,8 @@ def write_all(outputs: Iterable[tuple[Path, Writer]], pool: WorkerPool | None = 
     try:
         for target, writer in outputs:
             target = Path(target)
+            if target.is_symlink():  # write the file the link points to; the link stays
+                target = Path(os.path.realpath(target))
             fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
             os.close(fd)
             staged.append((Path(tmp), target, writer))

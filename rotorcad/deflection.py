@@ -279,6 +279,21 @@ class GasDeflection:
             out[i] = [lines.largest("male", shaft)[0], lines.largest("female", shaft)[0]]
         return out
 
+    def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False) -> float:
+        """The male angle (rad) of the largest deflection of either rotor: the best of a sweep
+        (``angles``, ``largest``), refined by a bounded scalar search between its neighbours."""
+        from scipy.optimize import minimize_scalar
+
+        i = int(np.argmax(largest))
+        step = float(angles[1] - angles[0]) if len(angles) > 1 else 0.01
+
+        def minus(a: float) -> float:
+            lines = self.at(a, points=101)
+            return -max(lines.largest("male", shaft)[0], lines.largest("female", shaft)[0])
+
+        best = minimize_scalar(minus, bounds=(angles[i] - step, angles[i] + step), method="bounded", options={"xatol": 1e-4})
+        return float(best.x) if -best.fun >= largest[i] else float(angles[i])
+
     def worst_angle_eq10(self) -> float:
         """Male angle (rad, in [0, pitch)) of eq. (10): a chamber has just reached the discharge
         port's control edge, so the discharge pressure reaches farthest towards the suction end."""

@@ -52,7 +52,7 @@ def check_table(
             raise DesignError(f"key '{key}' in [{table}]", "one of " + ", ".join(sorted(keys)), None, "unknown key")
         expected = keys[key]
         if isinstance(value, bool) or not isinstance(value, expected):
-            kind = "a whole number" if expected is int else "a number"
+            kind = {int: "a whole number", list: "a list", str: "a text in quotes"}.get(expected, "a number")
             raise DesignError(f"[{table}] {key}", kind, repr(value))
     for key in required:
         if key not in section:

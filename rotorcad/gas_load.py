@@ -67,7 +67,7 @@ class PressureCycle:
         """Built-in volume ratio V_max / V(opening) (nan for an indicator diagram)."""
         if not np.isfinite(self.opening):
             return float("nan")
-        return float(self.volume.max() / np.interp(self.opening, self.angle, self.volume))
+        return float(self.volume.max() / self.volume[np.searchsorted(self.angle, self.opening)])
 
 
 def pressure_cycle(
@@ -112,8 +112,10 @@ def pressure_cycle(
     ps, pd = suction_bar * BAR, discharge_bar * BAR
     if indicator is not None:
         ind = np.asarray(indicator, dtype=float)
-        if ind.ndim != 2 or ind.shape[1] != 2 or len(ind) < 2 or not np.all(np.diff(ind[:, 0]) > 0):
-            raise DesignError("indicator diagram", "rows of (chamber angle, pressure) with increasing angles", ind.shape)
+        if ind.ndim != 2 or ind.shape[1] != 2 or len(ind) < 2 or not np.all(np.diff(ind[:, 0]) >= 0):
+            raise DesignError(
+                "indicator diagram", "rows of (chamber angle, pressure) with angles that do not decrease", ind.shape
+            )
         if not np.all(ind[:, 1] > 0):
             raise DesignError("indicator diagram", "positive absolute pressures in bar", float(ind[:, 1].min()))
         p = np.interp(theta, ind[:, 0], ind[:, 1] * BAR, left=ind[0, 1] * BAR, right=ind[-1, 1] * BAR)
@@ -128,7 +130,7 @@ def pressure_cycle(
                 f"{np.degrees(theta[-1]):.1f} deg",
                 None if discharge_edge is None else float(np.degrees(discharge_edge)),
             )
-        opening = int(np.searchsorted(theta, discharge_edge))
+        edge = float(discharge_edge)
     else:
         vi = (pd / ps) ** (1.0 / exponent) if volume_ratio is None else float(volume_ratio)
         if not (np.isfinite(vi) and vi > 1.0):
@@ -136,12 +138,19 @@ def pressure_cycle(
         after = np.nonzero(volume[closing:] <= vmax / vi)[0]
         if len(after) == 0:
             raise DesignError("volume_ratio", "one the chamber reaches (its smallest volume is near 0)", vi)
-        opening = closing + int(after[0])
+        i = closing + int(after[0])  # V crosses V_max / V_i between samples i - 1 and i: the edge exactly there
+        v0, v1 = volume[i - 1], volume[i]
+        edge = float(theta[i - 1] + (v0 - vmax / vi) / (v0 - v1) * (theta[i] - theta[i - 1]))
+    # the edge as a node of its own, twice: the end of compression and the start of discharge
+    j = int(np.searchsorted(theta, edge))
+    v_edge = float(np.interp(edge, theta, volume))
+    theta = np.concatenate([theta[:j], [edge, edge], theta[j:]])
+    volume = np.concatenate([volume[:j], [v_edge, v_edge], volume[j:]])
     p = np.full(len(theta), ps)
-    compress = np.arange(closing, opening)
+    compress = np.arange(closing, j + 1)
     p[compress] = ps * (vmax / np.maximum(volume[compress], 1e-12)) ** exponent
-    p[opening:] = pd
-    return PressureCycle(theta, volume, p, ps, pd, float(theta[closing]), float(theta[opening]))
+    p[j + 1 :] = pd
+    return PressureCycle(theta, volume, p, ps, pd, float(theta[closing]), edge)
 
 
 def line_loads(

@@ -256,3 +256,14 @@ def test_cli_bad_input(capsys, tmp_path, change, option):
 def test_cli_missing_option(capsys):
     rc, _, err = run(capsys, "coupling", "--teeth", "40", "--module", "4")
     assert rc == 2 and "--face-width is required" in err
+
+
+def test_cli_inputs_that_make_no_sense_exit_2(capsys):
+    # a new user's check: a vanishing misalignment made the derived crowning radius 1.6e11 mm and a
+    # film of 0.8 m; a film thicker than a tenth of the module is the paper's "error in the input data"
+    base = ["coupling", "--teeth", "40", "--module", "4", "--speed", "8000", "--power", "4000", "--viscosity", "0.02"]
+    base += ["--pressure-viscosity", "2e-8"]
+    assert main([*base, "--face-width", "32", "--misalignment-deg", "1e-9"]) == 2
+    assert "--misalignment-deg must be at least" in capsys.readouterr().err
+    assert main([*base, "--face-width", "500", "--misalignment-deg", "0.3"]) == 2
+    assert "error in the input data" in capsys.readouterr().err

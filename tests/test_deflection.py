@@ -7,6 +7,8 @@ Timoshenko beam, the paper's printed eq. (9), shapely's gas space of independent
 from __future__ import annotations
 
 import json
+import os
+import stat
 from functools import lru_cache
 from pathlib import Path
 
@@ -382,3 +384,42 @@ def test_indicator_diagram_gives_the_built_in_result_when_it_is_the_same_curve(t
     assert given["male_max_deflection"] == pytest.approx(built_in["male_max_deflection"], rel=2e-3)
     assert given["female_max_deflection"] == pytest.approx(built_in["female_max_deflection"], rel=2e-3)
     assert "volume_ratio" not in given  # no port model with an indicator diagram
+
+
+@pytest.mark.parametrize(
+    ("extra", "args", "words"),
+    [
+        ("volume_ratio = 3.0\ndischarge_edge_deg = 600.0\n", [], "give only one of volume_ratio, discharge_edge_deg"),
+        ("volume_ratio = 60.0\n", [], "[operating] volume_ratio must be above 1 and up to 50"),
+        ("", ["--angle", "1e300"], "--angle"),
+    ],
+)
+def test_deflect_refuses_conflicting_or_out_of_range_operating_values(tmp_path, capsys, extra, args, words):
+    # found by a new user's check: a second way to set the discharge edge was dropped silently
+    text = (ROOT / "samples" / "rack_involute_5_6.toml").read_text().replace("[operating]\n", "[operating]\n" + extra)
+    design = tmp_path / "p.toml"
+    design.write_text(text)
+    assert main(["deflect", str(design), *args]) == 2
+    assert words in capsys.readouterr().err
+
+
+def test_indicator_must_cover_the_cycle(tmp_path, capsys):
+    # 0..200 deg only (or angles in radians by mistake) would hold the last pressure silently
+    csv = tmp_path / "partial.csv"
+    csv.write_text("angle_deg,pressure_bar\n0,1\n100,2\n200,4\n")
+    assert main(["deflect", str(ROOT / "samples" / "rack_involute_5_6.toml"), "--indicator", str(csv), "--terms", "3"]) == 2
+    err = capsys.readouterr().err
+    assert "--indicator must cover the chamber's cycle from 0 to" in err and "200.0" in err
+
+
+def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys):
+    import xml.etree.ElementTree as ET
+
+    design = str(ROOT / "samples" / "rack_involute_5_6.toml")
+    svg = tmp_path / "d.svg"
+    assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(svg)]) == 0
+    assert ET.parse(svg).getroot().tag.endswith("svg")
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(fifo)]) == 2
+    assert "regular file" in capsys.readouterr().err and stat.S_ISFIFO(os.stat(fifo).st_mode)

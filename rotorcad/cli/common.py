@@ -171,6 +171,21 @@ class Outputs:
             raise InputError(f"output file could not be written ({exc.strerror}): {exc.filename}.") from None
 
 
+PLOT_FORMATS = ("png", "svg", "pdf")
+
+
+def plot_format(path: Path | None) -> str:
+    """The picture format of ``--plot NAME`` from its suffix (PNG, SVG or PDF; PNG without one)."""
+    if path is None:
+        return "png"
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if not suffix:
+        return "png"
+    if suffix not in PLOT_FORMATS:
+        raise InputError(f"--plot must name a .png, .svg or .pdf file (got {path}).")
+    return suffix
+
+
 def output_folder(path: Path | None) -> Path | None:
     """Create ``--out DIR`` if needed; refuse a path that is a file or cannot be created."""
     if path is None:

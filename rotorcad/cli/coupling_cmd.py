@@ -14,8 +14,8 @@ from matplotlib.figure import Figure
 from rich.console import Console
 from rich.table import Table
 
-from rotorcad.cli.common import InputError, Outputs, emit_json, plain, reraise
-from rotorcad.coupling import CouplingResult, GearCoupling, analyse, sweep_teeth
+from rotorcad.cli.common import InputError, Outputs, emit_json, plain, plot_format, reraise
+from rotorcad.coupling import CouplingResult, GearCoupling, Verdict, analyse, sweep_teeth
 from rotorcad.errors import DesignError
 
 OPTION_OF = {
@@ -46,9 +46,10 @@ RANGES: dict[str, tuple[str, float, float, bool, str]] = {
     "pressure_angle": ("--pressure-angle", 10.0, 40.0, True, "a number from 10 to 40 (degrees)"),
     "addendum": ("--addendum", 0.0, 2.0, False, "a positive number up to 2"),
     "load_factor": ("--load-factor", 1.0, 10.0, True, "a number from 1 to 10"),
-    "barrel_radius": ("--barrel-radius", 0.0, 1e7, False, "a positive number (mm)"),
+    "barrel_radius": ("--barrel-radius", 0.0, 1e7, False, "a positive number up to 1e7 (mm)"),
 }
 OPTIONAL = {"pressure_angle", "addendum", "load_factor", "barrel_radius"}
+MIN_DERIVED_MISALIGNMENT = 0.01  # deg: below it the derived crowning radius exceeds ~100 b
 
 # result key -> unit in the text table (JSON: the same units)
 UNITS = {
@@ -80,7 +81,9 @@ UNITS = {
 
 HELP = """Lubricant film of a gear coupling with barrel-shaped (crowned) hub teeth: the contact-hydrodynamic
 calculation of Belkov, Maksimov & Shitikov (Reynolds equation with Barus viscosity and the elastic gap of a
-cylinder of the flank crown radius on a plane, minimum film where the film carries the tooth load).
+cylinder of the flank crown radius on a plane, minimum film where the film carries the tooth load). Steel
+teeth, E = 200 GPa and nu = 0.3 (the paper's values). Inputs that make no sense for a coupling (no rolling of
+the contact, a film thicker than a tenth of the module) exit 2 with the paper's message.
 
 \b
 Keys (JSON and table): hydrodynamic (bool), min_film_thickness [mm], load_capacity [N, one tooth],
@@ -114,16 +117,20 @@ max_axial_sliding_velocity [m/s], files.
 @click.option(
     "--plot",
     type=click.Path(path_type=Path, dir_okay=False),
-    help="PNG: speeds over one revolution, film pressure and shape, h_min over the number of teeth.",
+    help="Picture (PNG, SVG or PDF by the suffix): speeds over one revolution, film pressure and shape, "
+    "h_min over the number of teeth.",
 )
 @click.option("--quiet", is_flag=True, help="No progress output (there is none).")
 def coupling(**opts: Any) -> None:
     _check_inputs(opts)
     c = _build(opts)
     r = analyse(c)
+    if r.verdict in (Verdict.NO_ENTRAINMENT, Verdict.THICK_FILM):  # the paper's "error in the input data"
+        raise InputError(f"the inputs make no sense for a coupling: {r.message}.")
     result = _result(r)
     out = Outputs()
-    out.add(opts["plot"], lambda path: _plot(r).savefig(path, format="png"), "--plot")
+    fmt = plot_format(opts["plot"])
+    out.add(opts["plot"], lambda path: _plot(r).savefig(path, format=fmt), "--plot")
     result["files"] = [str(x) for x in out.write()]
     if opts["as_json"]:
         emit_json(result)
@@ -142,9 +149,11 @@ def _check_inputs(opts: dict[str, Any]) -> None:
         ok = math.isfinite(v) and (v >= lo if closed else v > lo) and v <= hi
         if not ok:
             raise InputError(f"{flag} must be {allowed} (got {v}).")
-    if opts["barrel_radius"] is None and opts["misalignment_deg"] == 0.0:
+    if opts["barrel_radius"] is None and opts["misalignment_deg"] < MIN_DERIVED_MISALIGNMENT:
         raise InputError(
-            "--misalignment-deg must be above 0 when --barrel-radius is not given (R0 = b sin(alpha) / (4 tan(gamma))) (got 0)."
+            f"--misalignment-deg must be at least {MIN_DERIVED_MISALIGNMENT} when --barrel-radius is not given "
+            f"(R0 = b sin(alpha) / (4 tan(gamma)) grows without bound as gamma -> 0; give --barrel-radius) "
+            f"(got {opts['misalignment_deg']})."
         )
 
 

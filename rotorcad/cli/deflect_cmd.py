@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from exports.csv_points import read_points
-from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, plot_format, print_table
 from rotorcad.cli.export_cmd import _rotor_options
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.deflection import STEEL, GasDeflection, Shaft
@@ -32,7 +32,7 @@ def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
         raise InputError(f"[deflection] {key} must be a list of [length, diameter] pairs in mm (got {value!r}).")
     for length, diameter in value:
         if not (np.isfinite(length) and np.isfinite(diameter) and 0 < length <= 1e4 and 0 < diameter <= 1e4):
-            raise InputError(f"[deflection] {key} must have lengths and diameters from 0 to 10000 mm (got {value!r}).")
+            raise InputError(f"[deflection] {key} must have lengths and diameters above 0 and up to 10000 mm (got {value!r}).")
     return tuple((float(a), float(b)) for a, b in value)
 
 
@@ -47,7 +47,9 @@ def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option(
-    "--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the deflection lines (Rinder & Deix Fig. 9/10)."
+    "--plot",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Picture of the deflection lines (Rinder & Deix Fig. 9/10): PNG, SVG or PDF by the name's suffix.",
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def deflect(
@@ -67,18 +69,36 @@ def deflect(
     for key in ("suction_pressure_bar", "discharge_pressure_bar"):
         if key not in op:
             raise InputError(f"[operating] {key} is needed for the gas load (an absolute pressure in bar).")
+    terms_label = "--terms" if terms is not None else "[deflection] terms"
     terms = terms if terms is not None else int(de.get("terms", 40))
     if not 1 <= terms <= 400:
-        raise InputError(f"--terms must be a whole number from 1 to 400 (got {terms}).")
-    if angle is not None and not np.isfinite(angle):
-        raise InputError(f"--angle must be a number of degrees (got {angle}).")
+        raise InputError(f"{terms_label} must be a whole number from 1 to 400 (got {terms}).")
+    if angle is not None and not (np.isfinite(angle) and abs(angle) <= 3600):
+        raise InputError(f"--angle must be a male angle from -3600 to 3600 degrees (got {angle}).")
+    for key in ("suction_pressure_bar", "discharge_pressure_bar"):
+        if not (np.isfinite(op[key]) and 0 < op[key] <= 1000):
+            raise InputError(f"[operating] {key} must be an absolute pressure above 0 and up to 1000 bar (got {op[key]}).")
+    if "volume_ratio" in op and not (np.isfinite(op["volume_ratio"]) and 1 < op["volume_ratio"] <= 50):
+        raise InputError(f"[operating] volume_ratio must be above 1 and up to 50 (got {op['volume_ratio']}).")
+    given = [k for k in ("volume_ratio", "discharge_edge_deg", "indicator") if k in op] + (["--indicator"] if indicator else [])
+    if len(given) > 1:
+        raise InputError(f"give only one of {', '.join(given)}: each sets where the discharge opens (got {len(given)}).")
     curve = None
     source = indicator or (Path(design).parent / op["indicator"] if "indicator" in op else None)
     if source is not None:
+        label = "--indicator" if indicator else "[operating] indicator"
         try:
-            rows = read_points(Path(source), "--indicator", columns=("angle_deg", "pressure_bar"))
+            rows = read_points(Path(source), label, columns=("angle_deg", "pressure_bar"))
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
+        if not (np.all(np.diff(rows[:, 0]) >= 0) and rows[-1, 0] > rows[0, 0]):
+            line = int(np.argmin(np.diff(rows[:, 0]) >= 0)) + 2
+            raise InputError(
+                f"{label} must have chamber angles that do not decrease (a pressure jump: one angle twice; data row {line} "
+                f"goes back): {source}."
+            )
+        if not np.all((rows[:, 1] > 0) & (rows[:, 1] <= 1000)):
+            raise InputError(f"{label} must have absolute pressures above 0 and up to 1000 bar: {source}.")
         curve = np.c_[np.radians(rows[:, 0]), rows[:, 1]]
     edge = op.get("discharge_edge_deg")
     male_shaft = Shaft(
@@ -106,13 +126,20 @@ def deflect(
         )
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    if curve is not None:
+        end = float(np.degrees(model.cycle.angle[-1]))
+        first, last = np.degrees(curve[0, 0]), np.degrees(curve[-1, 0])
+        if first > 1.0 or last < end - 1.0:
+            raise InputError(
+                f"{label} must cover the chamber's cycle from 0 to {end:.1f} deg (male rotation since the chamber "
+                f"opened at the suction end; it covers {first:.1f} to {last:.1f} deg)."
+            )
     pitch = 2 * np.pi / rotors.pair.male_teeth
     shafts = male_shaft.given or female_shaft.given
     sweep_angles = np.linspace(0.0, pitch, SWEEP_ANGLES, endpoint=False)
     swept = model.sweep(sweep_angles, shaft=shafts)
     if angle is None:
-        worst = int(np.argmax(swept.max(axis=1)))
-        at = float(sweep_angles[worst])
+        at = model.refine_worst(sweep_angles, swept.max(axis=1), shaft=shafts)
     else:
         at = float(np.radians(angle))
     lines = model.at(at)
@@ -146,7 +173,8 @@ def deflect(
     result["terms"] = terms
     result["shaft_ends"] = bool(shafts)
     out = Outputs()
-    out.add(plot, lambda p: _plot(model, lines, sweep_angles, swept, shafts).savefig(p, format="png"), "--plot")
+    fmt = plot_format(plot)
+    out.add(plot, lambda p: _plot(model, lines, sweep_angles, swept, shafts).savefig(p, format=fmt), "--plot")
     result["files"] = [str(x) for x in out.write()]
     if as_json:
         emit_json(result)
