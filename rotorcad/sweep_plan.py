@@ -7,7 +7,8 @@ A sweep file (TOML) reads::
     method = "grid"                   # grid | random | latin-hypercube
     samples = 200                     # variants drawn by random / latin-hypercube
     seed = 1
-    compute = ["hobbability", "interference", "volume"]  # beside the pair and Rinder's analysis
+    compute = ["hobbability", "interference", "volume", "clearance"]  # beside the pair and Rinder's analysis
+    clearance = 0.05                  # mm: the normal clearance designed into the female for "clearance"
 
     [vary]                            # "table.key" of the design = values
     "pair.male_teeth" = [4, 5, 6]                          # a list
@@ -51,6 +52,7 @@ class Extra(Enum):
     HOBBABILITY = "hobbability"
     INTERFERENCE = "interference"
     VOLUME = "volume"
+    CLEARANCE = "clearance"
 
 
 @dataclass(frozen=True)
@@ -94,6 +96,7 @@ class SweepPlan:
     samples: int = 0
     seed: int = 0
     extras: tuple[Extra, ...] = ()
+    clearance: float = 0.05  # mm, designed normal clearance of the "clearance" analysis
 
     def variants(self) -> list[Variant]:
         """Every variant in a fixed order (deterministic for the plan)."""
@@ -188,7 +191,7 @@ def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
         if table not in ("sweep", "vary", "base"):
             raise DesignError(f"table [{table}]", "one of [sweep], [vary], [base] in a sweep file", None, "unknown table")
     sweep = data.get("sweep", {})
-    known = {"base", "method", "samples", "seed", "compute"}
+    known = {"base", "method", "samples", "seed", "compute", "clearance"}
     for key in sweep:
         if key not in known:
             raise DesignError(f"key '{key}' in [sweep]", "one of " + ", ".join(sorted(known)), None, "unknown key")
@@ -215,7 +218,10 @@ def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
             )
     elif not (isinstance(samples, int) and not isinstance(samples, bool) and 1 <= samples <= MAX_VARIANTS):
         raise DesignError("[sweep] samples", f"a whole number from 1 to {MAX_VARIANTS}", samples)
-    plan = SweepPlan(base, parameters, sampling, int(samples), int(seed), extras)
+    clearance = sweep.get("clearance", 0.05)
+    if not (_number(clearance) and 0 <= clearance <= 1):
+        raise DesignError("[sweep] clearance", "a normal clearance from 0 to 1 mm", clearance)
+    plan = SweepPlan(base, parameters, sampling, int(samples), int(seed), extras, float(clearance))
     if plan.count > MAX_VARIANTS:
         raise DesignError("[vary]", f"at most {MAX_VARIANTS} combinations for method grid", plan.count)
     return plan

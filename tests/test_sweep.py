@@ -195,3 +195,25 @@ def test_not_a_sweep_output_is_not_overwritten(tmp_path, capsys):
     out.write_bytes(b"my own data")
     assert main(["sweep", str(sweep_file), "--out", str(out)]) == 2
     assert "--out" in capsys.readouterr().err and out.read_bytes() == b"my own data"
+
+
+def test_optional_analyses_hobbability_interference_volume_clearance(tmp_path, capsys):
+    # the solids' volume is the section area x length (shapely, here); the designed clearance of
+    # 0.05 mm comes back as a mean normal clearance of that order, never negative (Wu & Chi)
+    import shapely
+
+    from rotorcad.design import rotor_design
+    from rotorcad.rotor_build import build_pair, pair_spec
+
+    compute = 'compute = ["hobbability", "interference", "volume", "clearance"]\nclearance = 0.05\n'
+    sweep_file = _write(tmp_path, compute + '\n[vary]\n"profile.lobe_width" = [0.7]\n')
+    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "1", "--quiet"]) == 0
+    capsys.readouterr()
+    row = pd.read_parquet(tmp_path / "r.parquet").iloc[0]
+    assert row["ok"], row["reason"]
+    rotors = build_pair(pair_spec(rotor_design(apply(load_toml(BASE), {"profile.lobe_width": 0.7}), BASE.parent)))
+    area = shapely.Polygon(rotors.male_outline(1e-4).points).area
+    assert row["male_volume_mm3"] == pytest.approx(area * 190.0, rel=1e-5)
+    assert isinstance(row["hobbable"], (bool, np.bool_)) and not row["interferes"]
+    assert row["interference_volume_mm3"] < 1.0
+    assert 0.02 < row["clearance_mean_mm"] < 0.2 and row["clearance_min_mm"] > -1e-6

@@ -188,6 +188,7 @@ def run_sweep(
                 folder=None if folder is None else str(folder),
                 points=points,
                 extras=plan.extras,
+                clearance=plan.clearance,
                 pure=False,
             )
             done = len(earlier)

@@ -36,7 +36,7 @@ OBJECTIVES = {
 
 
 def evaluate(
-    base: dict[str, Any], folder: str | None, points: Any, extras: tuple[Extra, ...], variant: Variant
+    base: dict[str, Any], folder: str | None, points: Any, extras: tuple[Extra, ...], variant: Variant, clearance: float = 0.05
 ) -> dict[str, Any]:
     """One variant: the base design with its values, built and judged.
 
@@ -62,7 +62,7 @@ def evaluate(
         row["defects"] = len(summary["defects"])
         row["defect_kinds"] = ", ".join(sorted({d["kind"] for d in summary["defects"]}))
         for extra in extras:
-            row.update(_extra(extra, rotors, spec))
+            row.update(_extra(extra, rotors, spec, clearance))
         row["ok"] = True
     except DesignError as exc:
         row["reason"] = exc.sentence()
@@ -72,9 +72,27 @@ def evaluate(
     return row
 
 
-def _extra(extra: Extra, rotors, spec) -> dict[str, Any]:
+def _extra(extra: Extra, rotors, spec, clearance: float) -> dict[str, Any]:
     """The optional analyses: hobbability (hob.verdict), interference at the design centre
-    distance (2D sections over one lobe pitch), the solids' volume (section area x length)."""
+    distance (2D sections over one lobe pitch), the solids' volume (section area x length), and the
+    meshing clearance (Wu & Chi) of the pair with ``clearance`` mm of normal clearance designed into
+    the female (what `rotor --clearance` writes and `rotorcad clearance` reads back)."""
+    if extra is Extra.CLEARANCE:
+        from rotorcad.clearance import MeshingClearance
+        from rotorcad.clearance_design import ClearanceDistribution, corrected_female
+        from rotorcad.rotor_points import lobe_pieces
+
+        female = corrected_female(rotors, ClearanceDistribution(driving=clearance, sealing=clearance, lands=clearance), 1e-3)
+        male = rotors.male_outline(1e-3).points
+        band = MeshingClearance(
+            spec.pair, lobe_pieces(spec.pair, male, "male"), lobe_pieces(spec.pair, female, "female")
+        ).summary()
+        return {
+            "clearance_mean_mm": band["mean_clearance"],
+            "clearance_max_mm": band["max_normal_clearance"],
+            "clearance_min_mm": band["min_normal_clearance"],
+            "clearance_band_area_mm2": band["band_area"],
+        }
     if extra is Extra.HOBBABILITY:
         from hob.rack import rotor_rack
         from hob.verdict import HobLimits, judge
@@ -96,7 +114,12 @@ def _extra(extra: Extra, rotors, spec) -> dict[str, Any]:
 
 
 def evaluate_batch(
-    variants: list[Variant], base: dict[str, Any], folder: str | None, points: Any, extras: tuple[Extra, ...]
+    variants: list[Variant],
+    base: dict[str, Any],
+    folder: str | None,
+    points: Any,
+    extras: tuple[Extra, ...],
+    clearance: float = 0.05,
 ) -> list[dict[str, Any]]:
     """A batch of variants (one task: enough work to make the scheduler's cost small)."""
-    return [evaluate(base, folder, points, extras, v) for v in variants]
+    return [evaluate(base, folder, points, extras, v, clearance) for v in variants]
