@@ -241,11 +241,6 @@ class Generated(Curve):
         return c.points, c.tangents * (-self.parent_direction)
 
 
-def generate(curve: Curve, generating: Body, generated: Body, **kwargs: object) -> Generated:
-    """Shorthand for :class:`Generated`."""
-    return Generated(curve, generating, generated, **kwargs)
-
-
 def rack_frame(points: Array, pitch_radius: float) -> Array:
     """Fixed-frame rack points (pitch line x = r1w, motion +y) to the rack frame of CONTRACT.md:
     x along the pitch line in the direction of motion, y = 0 on the pitch line, y > 0 away from
@@ -266,6 +261,5 @@ __all__ = [
     "conjugate",
     "contact_parameter",
     "from_rack_frame",
-    "generate",
     "rack_frame",
 ]

@@ -19,12 +19,6 @@ def as_points(points: object) -> Array:
     return arr
 
 
-def rotation_matrix(angle: float) -> Array:
-    """The 2x2 matrix turning a vector counter-clockwise by ``angle``."""
-    c, s = np.cos(angle), np.sin(angle)
-    return np.array([[c, -s], [s, c]])
-
-
 def rotate(points: Array, angle: float | Array, center: object = (0.0, 0.0)) -> Array:
     """Turn points about ``center`` by ``angle`` (a scalar, or one angle per point)."""
     p = as_points(points) - np.asarray(center, dtype=float)
@@ -33,11 +27,6 @@ def rotate(points: Array, angle: float | Array, center: object = (0.0, 0.0)) -> 
     out[:, 0] = c * p[:, 0] - s * p[:, 1]
     out[:, 1] = s * p[:, 0] + c * p[:, 1]
     return out + np.asarray(center, dtype=float)
-
-
-def rotate_vectors(vectors: Array, angle: float | Array) -> Array:
-    """Turn free vectors by ``angle`` (scalar or per vector)."""
-    return rotate(vectors, angle)
 
 
 def cross(a: Array, b: Array) -> Array:
@@ -51,12 +40,6 @@ def perp_cw(t: Array) -> Array:
     """Turn vectors clockwise by 90 degrees: the outward normal of a counter-clockwise boundary."""
     t = np.asarray(t, dtype=float)
     return np.stack([t[..., 1], -t[..., 0]], axis=-1)
-
-
-def perp_ccw(n: Array) -> Array:
-    """Turn vectors counter-clockwise by 90 degrees (inverse of :func:`perp_cw`)."""
-    n = np.asarray(n, dtype=float)
-    return np.stack([-n[..., 1], n[..., 0]], axis=-1)
 
 
 def normalize(v: Array) -> Array:

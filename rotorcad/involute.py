@@ -51,10 +51,3 @@ def working_pressure_angle(z1: int, z2: int, x1: float, x2: float, alpha_t: floa
 def shift_sum(z1: int, z2: int, alpha_wt: float, alpha_t: float, alpha_n: float) -> float:
     """x1 + x2 for a working pressure angle (ISO 21771 eq. 4.14 solved for the shift sum)."""
     return float((inv(alpha_wt) - inv(alpha_t)) * (z1 + z2) / (2.0 * np.tan(alpha_n)))
-
-
-def transverse_contact_ratio(ra1: float, rb1: float, ra2: float, rb2: float, a_w: float, alpha_wt: float, p_bt: float) -> float:
-    """epsilon_alpha = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a_w sin(alpha_wt)) / p_bt
-    (ISO 21771 eq. 5.4; tip circles only, no undercut)."""
-    g = np.sqrt(ra1**2 - rb1**2) + np.sqrt(ra2**2 - rb2**2) - a_w * np.sin(alpha_wt)
-    return float(g / p_bt)
