@@ -251,6 +251,11 @@ class GasDeflection:
             "female": female_shaft.segments(self.female.beam, young, poisson) if female_shaft.given else None,
         }
 
+    def journal_length(self, rotor: str) -> float:
+        """Length (mm) from the discharge bearing to the discharge end face of a rotor (0 without shafts)."""
+        shaft = self._shafts[rotor]
+        return 0.0 if shaft is None else float(sum(seg.length for seg in shaft[0][: shaft[1]]))
+
     def loads(self, angle: float) -> tuple[np.ndarray, np.ndarray]:
         """Line loads (cells, 2) N/mm on the male and the female at male angle ``angle`` (rad)."""
         male = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "male")

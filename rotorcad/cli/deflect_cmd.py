@@ -183,28 +183,48 @@ def deflect(
 
 
 def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, shafts: bool) -> Figure:
-    fig = Figure(figsize=(9, 7), dpi=120)
+    """Deflection lines of both rotors at the chosen angle (w_x, w_y in the rotors' frame: x from O1
+    to O2, y turned 90 deg counter-clockwise; |w|), the helical part's end faces marked on a shaft,
+    and the largest deflection over one male pitch with the chosen angle marked (Rinder & Deix
+    Figs. 9 and 10)."""
+    fig = Figure(figsize=(9.5, 7.5), dpi=120)
     axes = fig.subplots(2, 2)
+    length = model.pair.length
     for col, rotor in enumerate(("male", "female")):
         ax = axes[0, col]
-        if shafts and len(getattr(lines, f"{rotor}_shaft")):
-            z, w = getattr(lines, f"{rotor}_shaft_z"), getattr(lines, f"{rotor}_shaft")
+        shaft_z = getattr(lines, f"{rotor}_shaft_z")
+        if shafts and len(shaft_z):
+            z, w = shaft_z, getattr(lines, f"{rotor}_shaft")
             ax.set_xlabel("z from the discharge bearing [mm]")
+            start = model.journal_length(rotor)
+            for end in (start, start + length):
+                ax.axvline(end, color="grey", lw=0.8, ls=":")
+            ax.axvspan(start, start + length, color="#eeeeee", zorder=0, label="helical part")
         else:
             z, w = lines.z, getattr(lines, rotor)
-            ax.set_xlabel("z from the discharge end [mm]")
-        ax.plot(z, w[:, 0] * 1e3, label="w_x")
-        ax.plot(z, w[:, 1] * 1e3, label="w_y")
+            ax.set_xlabel("z from the discharge end face [mm]")
+        ax.plot(z, w[:, 0] * 1e3, label="w_x (x from O1 to O2)")
+        ax.plot(z, w[:, 1] * 1e3, label="w_y (y: x turned 90° ccw)")
         ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, "k", label="|w|")
         ax.set_ylabel("deflection [µm]")
-        ax.set_title(f"{rotor} at male angle {np.degrees(lines.angle):.1f} deg", fontsize=9)
-        ax.legend(fontsize=7)
+        ax.set_title(f"{rotor} at male angle {np.degrees(lines.angle):.2f}°", fontsize=9)
+        ax.legend(fontsize=6, loc="lower center")
         ax.grid(alpha=0.3)
         ax2 = axes[1, col]
-        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color="#444")
+        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color="#444", label="largest |w|")
+        ax2.axvline(
+            np.degrees(lines.angle) % np.degrees(angles[-1] + angles[1] - angles[0]), color="#d62728", lw=1, label="shown above"
+        )
         ax2.set_xlabel("male angle [deg]")
         ax2.set_ylabel("largest deflection [µm]")
         ax2.set_title(f"{rotor} over one male pitch", fontsize=9)
+        ax2.legend(fontsize=7)
         ax2.grid(alpha=0.3)
+    cycle = model.cycle
+    fig.suptitle(
+        f"gas load {cycle.suction * 10:g} -> {cycle.discharge * 10:g} bar, "
+        + (f"built-in volume ratio {cycle.volume_ratio:.2f}" if np.isfinite(cycle.opening) else "indicator diagram"),
+        fontsize=10,
+    )
     fig.tight_layout()
     return fig
