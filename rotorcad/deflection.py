@@ -256,6 +256,31 @@ class GasDeflection:
         shaft = self._shafts[rotor]
         return 0.0 if shaft is None else float(sum(seg.length for seg in shaft[0][: shaft[1]]))
 
+    def chambers(self, angle: float) -> list[dict[str, float]]:
+        """The chambers alive at male angle ``angle`` (rad): the discharge-end phase of each, its
+        chamber angle (male rotation since it opened), its pressure (bar, absolute) and where along
+        the rotors (mm from the discharge end) it holds gas: up to the contact line that seals it."""
+        start, stop = self.table.cycle
+        span = self.table.span
+        pitch = 2 * np.pi / self.pair.male_teeth
+        first = int(np.floor((start - angle) / pitch))
+        out = []
+        for k in range(first, int(np.ceil((stop - angle) / pitch)) + 1):
+            psi0 = angle + k * pitch
+            if not start <= psi0 < stop:
+                continue
+            theta = psi0 - start
+            scale = self.table.lead / (2 * np.pi)
+            out.append(
+                {
+                    "chamber_angle_deg": float(np.degrees(theta)),
+                    "pressure_bar": float((self.cycle.overpressure(np.array([theta]))[0] + self.cycle.suction) * 10),
+                    "from_z": float(np.clip((span[0] - psi0) * scale, 0.0, self.pair.length)),
+                    "to_z": float(np.clip((span[1] - psi0) * scale, 0.0, self.pair.length)),
+                }
+            )
+        return sorted(out, key=lambda c: c["chamber_angle_deg"])
+
     def loads(self, angle: float) -> tuple[np.ndarray, np.ndarray]:
         """Line loads (cells, 2) N/mm on the male and the female at male angle ``angle`` (rad)."""
         male = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "male")

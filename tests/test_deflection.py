@@ -338,6 +338,13 @@ def test_deflect_json_worst_angle_and_journals(tmp_path, capsys):
     # the paper's two-term Ritz form: a few per cent
     assert abs(out["male_max_deflection_helical_ritz2"] / out["male_max_deflection_helical"] - 1) < 0.1
     assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the volume curve's largest chamber times z1 is the displacement that `rotorcad rotor` finds from
+    # the flute areas alone (Rinder: A1f + A2f per lobe pair, times L)
+    assert main(["rotor", str(design), "--json"]) == 0
+    rotor = json.loads(capsys.readouterr().out)
+    assert out["displacement_per_male_rev"] == pytest.approx(rotor["displacement_per_rev"], rel=1e-3)
+    # which chambers carry which pressure, and how far: one at discharge pressure reaching into the rotors
+    assert any(c["pressure_bar"] == pytest.approx(8.0) and 0 < c["to_z"] < 190.0 for c in out["chambers"])
 
 
 @pytest.mark.parametrize(

@@ -170,6 +170,7 @@ def deflect(
         result["volume_ratio"] = cycle.volume_ratio
     result["chamber_max_volume"] = float(cycle.volume.max())
     result["displacement_per_male_rev"] = float(cycle.volume.max() * rotors.pair.male_teeth)
+    result["chambers"] = model.chambers(at)  # at the angle shown: pressure and reach of each chamber
     result["terms"] = terms
     result["shaft_ends"] = bool(shafts)
     out = Outputs()
