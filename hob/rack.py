@@ -21,6 +21,7 @@ from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import distance_to_polyline
 from rotorcad.inverse_rack import DerivedRack, contact_of_rack_points, derive_rack
 from rotorcad.kinematics import gear_mesh
+from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -44,7 +45,8 @@ def rotor_rack(rotors: ScrewRotors, rotor: str, samples: int = 400) -> DerivedRa
     """Transverse rack derived from the male or the female of a pair (one lobe)."""
     pair = rotors.pair
     mesh = pair.mesh
-    if rotor == "male":
+    side = Side(rotor)
+    if side is Side.MALE:
         pieces = [(name, curve) for name, curve, _ in rotors.male_pieces]
         body, r_w = mesh.male, pair.male_pitch_radius
         beta = np.arctan(2 * np.pi * r_w / pair.lead)
@@ -53,11 +55,11 @@ def rotor_rack(rotors: ScrewRotors, rotor: str, samples: int = 400) -> DerivedRa
         pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve, _ in rotors.female_pieces]
         body, r_w = mesh.female, pair.female_pitch_radius
         beta = np.arctan(2 * np.pi * r_w / pair.female_lead)
-    tip = pair.male_tip_radius if rotor == "male" else pair.female_tip_radius
+    tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
     centre = np.asarray(body.center, dtype=float)
     pieces = [p for p in (_within(name, curve, centre, tip) for name, curve in pieces) if p is not None]
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)
-    teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
+    teeth = side.pick(pair.male_teeth, pair.female_teeth)
     return derive_rack(
         pieces,
         body,
@@ -103,7 +105,7 @@ def _within(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[st
 
 def rack_in_contract_frame(rack: DerivedRack, rotor: str) -> np.ndarray:
     """Rack points in the rack frame of CONTRACT.md (y > 0 on the female side)."""
-    return rack.points if rotor == "male" else rack.points * np.array([1.0, -1.0])
+    return rack.points if Side(rotor) is Side.MALE else rack.points * np.array([1.0, -1.0])
 
 
 def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
@@ -118,7 +120,7 @@ def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
     for rotor in ("male", "female"):
         rack = rotor_rack(rotors, rotor, samples)
         pts = rack_in_contract_frame(rack, rotor)
-        tan = rack.tangents * (np.array([1.0, -1.0]) if rotor == "female" else 1.0)
+        tan = rack.tangents * (np.array([1.0, -1.0]) if Side(rotor) is Side.FEMALE else 1.0)
         contact, _ = contact_of_rack_points(pair.male_pitch_radius, pts, tan)
         in_both = (np.hypot(*contact.T) <= pair.male_tip_radius) & (
             np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1]) <= pair.female_tip_radius

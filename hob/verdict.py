@@ -27,6 +27,7 @@ import numpy as np
 import shapely
 
 from hob.rack import DerivedRack
+from rotorcad.roles import PieceRole
 
 FOLD_TOLERANCE = 5e-4  # mm: folds and zigzags of a measured rack below this are not loops
 CURVATURE_BASE = 0.02  # mm: arc length over which the rack's curvature is taken
@@ -63,7 +64,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
         pts, tan, idx = pts[::-1], -tan[::-1], rack.piece_index[::-1]
     else:
         idx = rack.piece_index
-    cutting = np.array([not n.endswith("corner") for n in rack.names])[idx]
+    cutting = np.array([role is not PieceRole.CORNER_FAN for role in rack.roles])[idx]
     reasons: list[str] = []
 
     def at(i: int) -> str:

@@ -39,6 +39,7 @@ from rotorcad.curves import Curve, Mapped
 from rotorcad.errors import DesignError
 from rotorcad.geometry import Array, cross
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, contact_of_rack_points, derive_rack
+from rotorcad.roles import PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 
 CONTACT_SIDES = ("driving", "sealing", "as-given")
@@ -71,7 +72,8 @@ def rotor_rack(
     between samples: near roundings it runs fast along the rack. (Along the axis the contact line
     follows the rotation, which the rack's own sampling resolves.)"""
     mesh = pair.mesh
-    if rotor == "male":
+    side = Side(rotor)
+    if side is Side.MALE:
         body, r_w, teeth = mesh.male, pair.male_pitch_radius, pair.male_teeth
     else:
         shift = (pair.center_distance, 0.0)
@@ -90,9 +92,9 @@ def rotor_rack(
         contact_step=contact_step,
         min_turn=MEASURED_MIN_TURN,
     )
-    flip = np.array([1.0, 1.0 if rotor == "male" else -1.0])  # derived racks have y away from their rotor
+    flip = np.array([1.0, side.pick(1.0, -1.0)])  # derived racks have y away from their rotor
     pts, tan = rack.points * flip, rack.tangents * flip
-    corner = np.array([rack.names[k].endswith(" corner") for k in rack.piece_index], dtype=bool)
+    corner = np.array([rack.roles[k] is PieceRole.CORNER_FAN for k in rack.piece_index], dtype=bool)
     if pts[-1, 0] < pts[0, 0]:  # travel the chain in +x
         pts, tan, corner = pts[::-1], -tan[::-1], corner[::-1]
     return RackCurve(pts, tan, pair.rack_period, corner)

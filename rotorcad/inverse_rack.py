@@ -24,6 +24,7 @@ from rotorcad.curves import Arc, Curve, sample_curve, split_intervals
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross
 from rotorcad.kinematics import Rotation, Translation
+from rotorcad.roles import PieceRole
 
 MEASURED_MIN_TURN = np.radians(0.5)  # rad: the smallest corner between measured pieces
 
@@ -42,6 +43,7 @@ class DerivedRack:
     lost_fraction: float
     pitch_radius: float
     helix_angle: float = 0.0
+    roles: tuple[PieceRole, ...] = ()  # per piece: a corner fan does not cut (its image is the corner's path)
 
     def normal(self) -> np.ndarray:
         """Normal rack: lengths along the pitch line times cos(beta)."""
@@ -175,7 +177,7 @@ def derive_rack(
     # body turning clockwise), moving +y per rad of the male / driving gear
     sign = 1.0 if body.rate > 0 else -1.0
     rack = Translation((0.0, abs(body.rate) * pitch_radius))
-    pts, tans, idx, names = [], [], [], []
+    pts, tans, idx, names, roles = [], [], [], [], []
     lost, total = 0, 0
     # each generated piece runs against its parent, so the rack chain runs the pieces backwards
     for k, (name, curve) in enumerate(reversed(with_corner_fans(pieces, centre, pitch_angle, min_turn))):
@@ -192,11 +194,14 @@ def derive_rack(
         tans.append(t[ok])
         idx.append(np.full(int(ok.sum()), k))
         names.append(name)
+        roles.append(PieceRole.CORNER_FAN if curve.is_corner() else PieceRole.CURVE)
     p, t = np.vstack(pts), np.vstack(tans)
     c = centre + np.array([sign * pitch_radius, 0.0])
     r = np.stack([p[:, 1], sign * (p[:, 0] - c[0])], axis=1)  # rack frame, y away from the centre
     rt = np.stack([t[:, 1], sign * t[:, 0]], axis=1)
-    return DerivedRack(r, rt, tuple(names), np.concatenate(idx), period, lost / max(total, 1), pitch_radius, helix_angle)
+    return DerivedRack(
+        r, rt, tuple(names), np.concatenate(idx), period, lost / max(total, 1), pitch_radius, helix_angle, tuple(roles)
+    )
 
 
 __all__ = ["MEASURED_MIN_TURN", "DerivedRack", "contact_of_rack_points", "derive_rack", "with_corner_fans"]

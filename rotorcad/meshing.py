@@ -27,6 +27,7 @@ from scipy import interpolate
 
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross
+from rotorcad.roles import PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -35,7 +36,7 @@ class MeshlinePiece:
     """Contact points of one rack piece, ordered along the piece."""
 
     name: str
-    kind: str
+    kind: PieceRole
     s: np.ndarray
     t: np.ndarray  # male rotation angle at contact (rad)
     points: np.ndarray  # fixed frame
@@ -189,9 +190,9 @@ class MeshingAnalysis:
         """Flanks traced by a single corner of the mate (punkterzeugt)."""
         out = []
         for piece in self.rotors.rack:
-            if piece.kind == "male point":
+            if piece.kind is PieceRole.MALE_CORNER_PATH:
                 out.append({"rotor": "female", "flank": piece.female_name, "generated_by": "male tip corner"})
-            elif piece.kind == "female point":
+            elif piece.kind is PieceRole.FEMALE_CORNER_PATH:
                 out.append({"rotor": "male", "flank": piece.male_name, "generated_by": "female tip corner"})
         return out
 

@@ -18,6 +18,7 @@ from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
 from rotorcad.measured_outline import corners, lands, scatter, whole_outline
+from rotorcad.roles import PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -73,10 +74,11 @@ def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float
     """The spline of one lobe of the male or the female (own frame, counter-clockwise, from root to
     root), the lobe facing the mate, from points of one lobe or of the whole outline; ``smoothing``
     None estimates it from the points' scatter."""
-    teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
-    whole = whole_outline(points, teeth, f"{rotor} points")
+    side = Side(rotor)
+    teeth = side.pick(pair.male_teeth, pair.female_teeth)
+    whole = whole_outline(points, teeth, f"{side.value} points")
     s_fit = _smoothing(whole, scatter(whole), smoothing)
-    spline, s_a, s_b = _lobe_spline(whole, teeth, s_fit, 0.0 if rotor == "male" else np.pi)
+    spline, s_a, s_b = _lobe_spline(whole, teeth, s_fit, side.pick(0.0, np.pi))
     if s_b > spline.s1:  # the lobe wraps past the spline's seam: shift the seam
         p, _ = spline.evaluate(np.linspace(s_a, s_b, 4000) % spline.s1)
         spline = Spline.fit(p, smoothing=0.0)
@@ -195,7 +197,9 @@ def lobe_pieces(
     normals are added where racks are derived). An outline without corners is one periodic spline
     (:func:`lobe_curve`).
     """
-    teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
+    side = Side(rotor)
+    rotor = side.value
+    teeth = side.pick(pair.male_teeth, pair.female_teeth)
     label = label or f"{rotor} points"
     if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
         return _lobe_from_curves(list(points), teeth, rotor, label)
@@ -223,7 +227,7 @@ def _cut_lobe(
 ) -> list[tuple[str, Curve]]:
     """The lobe facing the mate, from root to root, out of the whole outline's curves (each with
     sample points and their parameters), trimmed at the two roots' polar angles."""
-    theta = _facing_root_angle(whole, teeth, 0.0 if rotor == "male" else np.pi)
+    theta = _facing_root_angle(whole, teeth, Side(rotor).pick(0.0, np.pi))
 
     def locate(th: float) -> tuple[int, float]:
         for k, (curve, pts, u) in enumerate(fitted):
@@ -392,18 +396,20 @@ def pair_from_rotor_points(
     mesh = pair.mesh
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
     pieces = lobe_pieces(pair, points, rotor, smoothing, label=label)
-    if rotor == "male":
+    side = Side(rotor)
+    rotor = side.value
+    if side is Side.MALE:
         body, mate_body, centre, teeth = mesh.male, mesh.female, np.zeros(2), pair.male_teeth
     else:
         shift = (pair.center_distance, 0.0)
         pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve in pieces]
         body, mate_body, centre, teeth = mesh.female, mesh.male, np.array(shift), pair.female_teeth
-    own, other = ("male point", "female point") if rotor == "male" else ("female point", "male point")
+    own, other = PieceRole.corner_path_of(side), PieceRole.corner_path_of(side.other)
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
     for _name, curve in with_corner_fans(pieces, centre, 2 * np.pi / teeth, MEASURED_MIN_TURN):
         gen = Generated(curve, body, mesh.rack, limits=depth)
-        rack_curve = gen.reversed() if rotor == "male" else gen  # travelled in +y (the rack's +x)
+        rack_curve = gen.reversed() if side is Side.MALE else gen  # travelled in +y (the rack's +x)
         ok = np.isfinite(rack_curve.evaluate(np.linspace(rack_curve.s0, rack_curve.s1, 400))[0]).all(axis=1)
         lost, total = lost + int((~ok).sum()), total + len(ok)
         if curve.is_corner():
@@ -411,9 +417,11 @@ def pair_from_rotor_points(
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
         runs = _mate_corner_runs(rack_curve, mate)
-        parts.append([RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else "curve") for a, b, c in runs])
+        parts.append(
+            [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
+        )
     # the male's counter-clockwise pieces follow the rack's travel, the female's run against it
-    rack = [p for group in (parts if rotor == "male" else reversed(parts)) for p in group]
+    rack = [p for group in (parts if side is Side.MALE else reversed(parts)) for p in group]
     lost_share = 100.0 * lost / max(total, 1)
     if lost_share > 2.0:  # a few points at sharp corners may miss their pitch circle; more is not a rotor
         raise DesignError(

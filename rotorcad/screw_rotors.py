@@ -24,6 +24,7 @@ import shapely
 from rotorcad.curves import Arc, Curve, Line, Mapped
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.profile import Profile, Segment
+from rotorcad.roles import PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 
 
@@ -31,14 +32,14 @@ from rotorcad.rotor_pair import RotorPair
 class RackPiece:
     """One piece of the rack chain with the names of what it generates on each rotor.
 
-    ``kind`` is "curve", or "male point" / "female point" for the path of a rotor's corner (it
-    generates only that corner on its own rotor).
+    ``kind`` is :attr:`PieceRole.CURVE`, or the corner path of a rotor (it generates only that
+    corner on its own rotor).
     """
 
     curve: Curve
     male_name: str
     female_name: str
-    kind: str = "curve"
+    kind: PieceRole = PieceRole.CURVE
 
 
 def rack_line(pair: RotorPair, a: tuple[float, float], b: tuple[float, float]) -> Line:
@@ -73,7 +74,7 @@ class ScrewRotors:
         mesh = self.pair.mesh
         out = []
         for piece in self.rack:
-            if piece.kind == "male point":
+            if piece.kind is PieceRole.MALE_CORNER_PATH:
                 continue
             out.append((piece.male_name, Generated(piece.curve.reversed(), mesh.rack, mesh.male), piece))
         return out
@@ -86,7 +87,7 @@ class ScrewRotors:
         shift = (-self.pair.center_distance, 0.0)
         out = []
         for piece in reversed(self.rack):
-            if piece.kind == "female point":
+            if piece.kind is PieceRole.FEMALE_CORNER_PATH:
                 continue
             gen = Generated(piece.curve, mesh.rack, mesh.female)
             out.append((piece.female_name, Mapped(gen, ((1.0, 0.0), (0.0, 1.0)), shift), piece))
@@ -124,8 +125,9 @@ class ScrewRotors:
     def section(self, rotor: str, tolerance: float | None = None) -> shapely.Polygon:
         """The rotor's transverse section as a valid polygon in its own frame, clipped to its tip
         circle (generated curves may overshoot it by the rounding of the rack's corners)."""
-        outline = self.male_outline(tolerance) if rotor == "male" else self.female_outline(tolerance)
-        tip = self.pair.male_tip_radius if rotor == "male" else self.pair.female_tip_radius
+        side = Side(rotor)
+        outline = self.male_outline(tolerance) if side is Side.MALE else self.female_outline(tolerance)
+        tip = side.pick(self.pair.male_tip_radius, self.pair.female_tip_radius)
         poly = shapely.make_valid(shapely.Polygon(outline.points))
         disk = shapely.Point(0.0, 0.0).buffer(tip + 1e-6, quad_segs=512)
         clipped = poly.intersection(disk)

@@ -38,6 +38,7 @@ import numpy as np
 import shapely
 
 from rotorcad.errors import DesignError
+from rotorcad.roles import Side
 
 GAP = 1e-3  # mm: the gas space is shrunk by this to part pieces that touch at a point or along a tip land (area ~0.03 % less)
 SEAL = 0.01  # mm: a gap narrower than twice this seals (the sections' chords and a contact's neighbourhood)
@@ -120,7 +121,7 @@ class ChamberTable:
         """Force per unit length and overpressure (mm) at phases ``psi`` (any shape, rad), shape
         (..., 2), linear between the table's phases; zero outside :attr:`span` (those sections
         belong to other chambers)."""
-        table = self.male_force if rotor == "male" else self.female_force
+        table = Side(rotor).pick(self.male_force, self.female_force)
         psi = np.asarray(psi, dtype=float)
         start, stop = self.span
         inside = (psi >= start) & (psi < stop)
@@ -275,11 +276,11 @@ def chamber_table(
     for i, p in enumerate(psi):  # a few hundred sections; shapely does the geometry of each
         section = sections[(first + i) % per_pitch]  # the rotors turned by whole pitches are themselves
         parts = []
-        for (lo, hi), flute in ((male_cycle, "male"), (female_cycle, "female")):
+        for (lo, hi), flute in ((male_cycle, Side.MALE), (female_cycle, Side.FEMALE)):
             if not lo - pitch1 <= p < hi + pitch1:
                 continue
             opening = p < 0.5 * (lo + hi)
-            if flute == "male":
+            if flute is Side.MALE:
                 sector = _sector((0.0, 0.0), r1, p - pitch1 / 2, p + pitch1 / 2, male_only)
             else:
                 sector = _female_sector(a, r2, z1, z2, p, female_only)

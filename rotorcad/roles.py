@@ -1,0 +1,49 @@
+"""Roles as types: which rotor, and what a piece of a profile or rack does.
+
+Decisions are taken on these values, never on names (a segment may be renamed freely) or on
+strings compared in place. ``Side`` is a ``StrEnum``: ``Side("male")`` reads what a user or a file
+gives, a ``Side`` prints as its text ("male") and compares equal to it where a caller still passes one.
+"""
+
+from __future__ import annotations
+
+from enum import Enum, StrEnum
+
+
+class Side(StrEnum):
+    """Rotor 1, the male (main, Hauptläufer), or rotor 2, the female (gate, Nebenläufer)."""
+
+    MALE = "male"
+    FEMALE = "female"
+
+    @property
+    def other(self) -> Side:
+        """The mating rotor."""
+        return Side.FEMALE if self is Side.MALE else Side.MALE
+
+    def pick(self, male: object, female: object) -> object:
+        """``male`` for the male, ``female`` for the female (one of a pair of per-rotor values)."""
+        return male if self is Side.MALE else female
+
+
+class PieceRole(Enum):
+    """What a piece of a rack chain or of a derived rack does.
+
+    CURVE generates a curve on both rotors; a corner path is the path of one rotor's sharp corner
+    (it generates only that corner on its own rotor, and a point-generated flank on the other); a
+    corner fan is the zero-radius arc inserted at a profile's corner by inverse generation (its rack
+    image is the corner's path: it does not cut a hob's flank).
+    """
+
+    CURVE = "curve"
+    MALE_CORNER_PATH = "male corner path"
+    FEMALE_CORNER_PATH = "female corner path"
+    CORNER_FAN = "corner fan"
+
+    @staticmethod
+    def corner_path_of(side: Side) -> PieceRole:
+        """The corner path of ``side``'s corner."""
+        return PieceRole.MALE_CORNER_PATH if Side(side) is Side.MALE else PieceRole.FEMALE_CORNER_PATH
+
+
+__all__ = ["PieceRole", "Side"]
