@@ -26,6 +26,12 @@ from rotorcad.errors import DesignError
 @click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Also write the table as CSV.")
 @click.option("--scheduler", help="Address of a running dask.distributed scheduler (default: a local cluster).")
 @click.option("--workers", type=int, help="Worker processes of the local cluster (default: one per core).")
+@click.option(
+    "--batch",
+    type=int,
+    help="Variants per Dask task (1..10000). Default: about 8 tasks per worker, at most 50 variants a task; "
+    "raise it on a large cluster so that the scheduler handles fewer tasks.",
+)
 @click.option("--pareto", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the Pareto front of two objectives.")
 @click.option(
     "--objectives",
@@ -50,6 +56,7 @@ def sweep(
     csv: Path | None,
     scheduler: str | None,
     workers: int | None,
+    batch: int | None,
     pareto: Path | None,
     objectives: str,
     effects: Path | None,
@@ -67,6 +74,8 @@ def sweep(
 
     if workers is not None and not 1 <= workers <= 256:
         raise InputError(f"--workers must be a whole number from 1 to 256 (got {workers}).")
+    if batch is not None and not 1 <= batch <= 10_000:
+        raise InputError(f"--batch must be a whole number from 1 to 10000 (got {batch}).")
     if out.exists() and out.is_dir():
         raise InputError(f"--out must be a file name, but {out} is a folder.")
     if not out.parent.is_dir():
@@ -102,7 +111,7 @@ def sweep(
             bar.update(task, completed=done, failed=failed, rate=f"{rate:.1f}")
 
     try:
-        outcome = run_sweep(plan, folder, points, out, scheduler, workers, progress=report)
+        outcome = run_sweep(plan, folder, points, out, scheduler, workers, batch, progress=report)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     finally:
