@@ -217,3 +217,23 @@ def test_optional_analyses_hobbability_interference_volume_clearance(tmp_path, c
     assert isinstance(row["hobbable"], (bool, np.bool_)) and not row["interferes"]
     assert row["interference_volume_mm3"] < 1.0
     assert 0.02 < row["clearance_mean_mm"] < 0.2 and row["clearance_min_mm"] > -1e-6
+
+
+def test_pareto_front_equals_brute_force_and_pictures_are_written(tmp_path, capsys):
+    from rotorcad.sweep_plots import pareto_mask
+
+    rng = np.random.default_rng(0)
+    x, y = rng.random(300), rng.random(300)
+    x[::17] = np.nan
+    # brute force: no other point at most as large in both and smaller in one
+    ok = np.isfinite(x) & np.isfinite(y)
+    front = np.array([ok[i] and not np.any(ok & (x <= x[i]) & (y <= y[i]) & ((x < x[i]) | (y < y[i]))) for i in range(len(x))])
+    assert np.array_equal(pareto_mask(x, y), front)
+    assert np.array_equal(pareto_mask(x, -y, True, False), front)  # larger is better for the second
+    sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.64, 0.68, 0.72]\n"pair.lead" = [260.0, 320.0]\n')
+    args = ["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "1", "--quiet"]
+    args += ["--pareto", str(tmp_path / "p.png"), "--effects", str(tmp_path / "e.png")]
+    assert main(args) == 0
+    capsys.readouterr()
+    for name in ("p.png", "e.png"):
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
