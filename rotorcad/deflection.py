@@ -281,6 +281,33 @@ class GasDeflection:
             )
         return sorted(out, key=lambda c: c["chamber_angle_deg"])
 
+    def bearing_loads(self, angle: float) -> dict[str, dict[str, float]]:
+        """The gas force on each rotor and what it puts on the two bearings at male angle ``angle``
+        (rad): statics of the shaft on its bearings (at the end faces without shaft ends).
+
+        Returns
+        -------
+        dict
+            Per rotor: ``force`` (N, magnitude of the radial resultant), ``direction_deg`` (of the
+            resultant, from +x towards +y), ``discharge_bearing`` and ``suction_bearing`` (N).
+        """
+        out = {}
+        cell = self.pair.length / len(self.z)
+        for rotor, load in zip(("male", "female"), self.loads(angle), strict=True):
+            near = self.journal_length(rotor)
+            shaft = self._shafts[rotor]
+            span = sum(seg.length for seg in shaft[0]) if shaft is not None else self.pair.length
+            force = load.sum(axis=0) * cell  # (2,) N
+            suction = (load * (near + self.z)[:, None]).sum(axis=0) * cell / span
+            discharge = force - suction
+            out[rotor] = {
+                "force": float(np.hypot(*force)),
+                "direction_deg": float(np.degrees(np.arctan2(force[1], force[0])) % 360.0),
+                "discharge_bearing": float(np.hypot(*discharge)),
+                "suction_bearing": float(np.hypot(*suction)),
+            }
+        return out
+
     def loads(self, angle: float) -> tuple[np.ndarray, np.ndarray]:
         """Line loads (cells, 2) N/mm on the male and the female at male angle ``angle`` (rad)."""
         male = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "male")

@@ -343,6 +343,11 @@ def test_deflect_json_worst_angle_and_journals(tmp_path, capsys):
     assert main(["rotor", str(design), "--json"]) == 0
     rotor = json.loads(capsys.readouterr().out)
     assert out["displacement_per_male_rev"] == pytest.approx(rotor["displacement_per_rev"], rel=1e-3)
+    # the bearings share the gas force (statics: |R_d| + |R_s| >= |F|, the discharge end carries more)
+    for rotor in ("male", "female"):
+        force, r_d, r_s = (out[f"{rotor}_{k}"] for k in ("gas_force_n", "discharge_bearing_load_n", "suction_bearing_load_n"))
+        assert r_d + r_s >= force > 0 and r_d > r_s
+        assert out[f"{rotor}_discharge_bearing_load_max_n"] >= r_d
     # which chambers carry which pressure, and how far: one at discharge pressure reaching into the rotors
     assert any(c["pressure_bar"] == pytest.approx(8.0) and 0 < c["to_z"] < 190.0 for c in out["chambers"])
 

@@ -171,6 +171,14 @@ def deflect(
     result["chamber_max_volume"] = float(cycle.volume.max())
     result["displacement_per_male_rev"] = float(cycle.volume.max() * rotors.pair.male_teeth)
     result["chambers"] = model.chambers(at)  # at the angle shown: pressure and reach of each chamber
+    loads = model.bearing_loads(at)
+    peak = [loads] + [model.bearing_loads(a) for a in sweep_angles[::4]]  # and 25 angles over the pitch
+    for rotor in ("male", "female"):
+        result[f"{rotor}_gas_force_n"] = loads[rotor]["force"]
+        result[f"{rotor}_gas_force_direction_deg"] = loads[rotor]["direction_deg"]
+        for end in ("discharge", "suction"):
+            result[f"{rotor}_{end}_bearing_load_n"] = loads[rotor][f"{end}_bearing"]
+            result[f"{rotor}_{end}_bearing_load_max_n"] = max(p[rotor][f"{end}_bearing"] for p in peak)
     result["terms"] = terms
     result["shaft_ends"] = bool(shafts)
     out = Outputs()
