@@ -267,3 +267,16 @@ def test_cli_inputs_that_make_no_sense_exit_2(capsys):
     assert "--misalignment-deg must be at least" in capsys.readouterr().err
     assert main([*base, "--face-width", "500", "--misalignment-deg", "0.3"]) == 2
     assert "error in the input data" in capsys.readouterr().err
+
+
+def test_inlet_zone_against_the_face_closed_form(capsys):
+    # the inlet zone is where the crowned flank's gap x^2 / (2 R_b) stays within ten central films:
+    # x = sqrt(20 R_b h_c), computed here from the reported R_b and h_c; the room is b/2 - R_b tan(gamma)
+    args = ["coupling", "--teeth", "40", "--module", "4", "--face-width", "32", "--speed", "8000", "--power", "4000"]
+    args += ["--viscosity", "0.02", "--pressure-viscosity", "2e-8", "--misalignment-deg", "0.3", "--json"]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["inlet_length"] == pytest.approx(math.sqrt(20 * out["flank_crown_radius"] * out["central_film_thickness"]))
+    room = 16.0 - out["flank_crown_radius"] * math.tan(math.radians(0.3))
+    assert out["inlet_room"] == pytest.approx(room)
+    assert out["inlet_off_face"] == (out["inlet_length"] > room)

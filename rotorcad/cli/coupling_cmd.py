@@ -73,6 +73,9 @@ UNITS = {
     "hertz_half_width": "mm",
     "contact_excursion": "mm",
     "edge_contact": "",
+    "inlet_length": "mm",
+    "inlet_room": "mm",
+    "inlet_off_face": "",
     "mean_sliding_velocity": "m/s",
     "mean_entraining_velocity": "m/s",
     "max_rolling_velocity": "m/s",
@@ -91,8 +94,9 @@ max_pressure [MPa, in the film], hertz_stress [MPa, dry Hertz line contact], mes
 central_film_thickness [mm], ehl_film_thickness [mm, Dowson-Higginson], ehl_ratio [1, h_min / Dowson-Higginson],
 pressure_to_hertz_ratio [1], tooth_load [N, normal], load_per_length [N/mm], pitch_radius, barrel_radius (R0),
 flank_crown_radius (R_b = R0 / sin alpha), crowning_depth, contact_length, hertz_half_width, contact_excursion [mm],
-edge_contact (bool), mean_sliding_velocity, mean_entraining_velocity, max_rolling_velocity,
-max_axial_sliding_velocity [m/s], files.
+edge_contact (bool), inlet_length [mm, where the gap is within ten central films], inlet_room [mm, from the
+contact's farthest position to the face edge], inlet_off_face (bool: the film may be starved),
+mean_sliding_velocity, mean_entraining_velocity, max_rolling_velocity, max_axial_sliding_velocity [m/s], files.
 """
 
 
@@ -201,6 +205,9 @@ def _result(r: CouplingResult) -> dict[str, Any]:
         "hertz_half_width": r.hertz_half_width,
         "contact_excursion": c.contact_excursion,
         "edge_contact": r.edge_contact,
+        "inlet_length": r.inlet_length,
+        "inlet_room": r.inlet_room,
+        "inlet_off_face": r.inlet_off_face,
         "mean_sliding_velocity": c.mean_sliding_speed,
         "mean_entraining_velocity": c.entraining_speed,
         "max_rolling_velocity": float(np.abs(rolling).max()),
