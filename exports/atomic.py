@@ -19,12 +19,22 @@ from exports.background import BackgroundWriter, WorkerPool
 from rotorcad.errors import DesignError
 
 Writer = Callable[[Path], None] | BackgroundWriter
+NAME_MAX = 255  # bytes of one file name (Linux, macOS, Windows)
+
+
+def staging_prefix(target: Path) -> str:
+    """The hidden temporary name's start for ``target``: its name cut to 100 bytes, so that a
+    name near the file system's limit still leaves room for the temporary's suffix."""
+    return "." + os.fsencode(target.name)[:100].decode(errors="ignore") + "."
 
 
 def check_writable(path: Path, label: str) -> None:
     """Refuse, before any work is done, a target whose folder is missing or not writable, or that
     is not a regular file (a device, a FIFO or a socket would be replaced by a file)."""
     folder = path.parent if str(path.parent) else Path(".")
+    size = len(os.fsencode(path.name))
+    if size > NAME_MAX:
+        raise DesignError(label, f"a file name of at most {NAME_MAX} bytes", f"{size} bytes")
     if path.exists() and path.is_dir():
         raise DesignError(label, "a file path, not a folder", str(path))
     if path.exists() and not path.is_file():
@@ -48,7 +58,7 @@ def write_all(outputs: Iterable[tuple[Path, Writer]], pool: WorkerPool | None = 
             target = Path(target)
             if target.is_symlink():  # write the file the link points to; the link stays
                 target = Path(os.path.realpath(target))
-            fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
+            fd, tmp = tempfile.mkstemp(prefix=staging_prefix(target), suffix=".tmp", dir=target.parent or ".")
             os.close(fd)
             staged.append((Path(tmp), target, writer))
         waiting = [workers.submit(w, tmp) for tmp, _, w in staged if isinstance(w, BackgroundWriter)]

@@ -60,17 +60,17 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
         doc.layers.add(name, color=LAYER_COLOURS.get(name, 7))
     msp = doc.modelspace()
     for layer, pts in drawing.outlines:
-        xy = [(float(x), float(y)) for x, y in np.asarray(pts, dtype=float)]
         if version == "R12":
+            xy = [(float(x), float(y)) for x, y in np.asarray(pts, dtype=float)]
             msp.add_polyline2d(xy, close=True, dxfattribs={"layer": layer})
         else:
-            msp.add_lwpolyline(xy, close=True, dxfattribs={"layer": layer})
+            _lwpolyline(msp, pts, True, layer)
     for layer, pts in drawing.polylines:
-        xy = [(float(x), float(y)) for x, y in np.asarray(pts, dtype=float)]
         if version == "R12":
+            xy = [(float(x), float(y)) for x, y in np.asarray(pts, dtype=float)]
             msp.add_polyline2d(xy, dxfattribs={"layer": layer})
         else:
-            msp.add_lwpolyline(xy, dxfattribs={"layer": layer})
+            _lwpolyline(msp, pts, False, layer)
     if version != "R12":  # SPLINE needs R2000+; a closed outline gets a seam where it starts (STACK-NOTES)
         for layer, pts in drawing.splines:
             closed = np.vstack([pts, pts[:1]])
@@ -85,6 +85,14 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
         msp.add_line((cx - h, cy), (cx + h, cy), dxfattribs={"layer": "CENTER"})
         msp.add_line((cx, cy - h), (cx, cy + h), dxfattribs={"layer": "CENTER"})
     _save(doc, path, version)
+
+
+def _lwpolyline(msp, pts: np.ndarray, close: bool, layer: str) -> None:
+    """An LWPOLYLINE of ``pts`` set in one piece: ezdxf appends points one by one, copying the
+    whole array each time (a 126 000-point gear outline took minutes)."""
+    pts = np.asarray(pts, dtype=float)
+    poly = msp.add_lwpolyline([], close=close, dxfattribs={"layer": layer})
+    poly.lwpoints.set(np.column_stack([pts[:, :2], np.zeros((len(pts), 3))]))
 
 
 def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: str = "MESH", version: str = "R2000") -> None:

@@ -123,6 +123,9 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
     short[last] = True
     kappa = np.where(piece_ok[:-1], kappa_w, np.where(short, 0.0, kappa))
     jumps = (idx[:-1] != idx[1:]) & cutting[:-1] & cutting[1:] & (np.abs(np.diff(psi)) > 1e-3) & (ds < 1e-6 * rack.period)
+    # a turn of less than a micro-radian over a rack period is a straight piece (rounding noise of
+    # its tangents), whose radius is infinite, not 1e12 mm
+    kappa = np.where(np.abs(kappa) * rack.period < 1e-6, 0.0, kappa)
     tip_r = float(1.0 / kappa[kappa > 0].max()) if np.any(kappa > 0) else np.inf
     root_r = float(-1.0 / kappa[kappa < 0].min()) if np.any(kappa < 0) else np.inf
     corners = np.nonzero(jumps)[0]

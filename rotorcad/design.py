@@ -6,6 +6,8 @@ degrees in keys ending in ``_deg``.
 
 from __future__ import annotations
 
+import os
+import stat
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -28,16 +30,75 @@ GEAR_KEYS: dict[str, type | tuple[type, ...]] = {
 MATE_KEYS: dict[str, type | tuple[type, ...]] = {"teeth": int, "shift": NUMBER, "center_distance": NUMBER}
 
 
-def load_toml(path: Path) -> dict[str, Any]:
-    """Read a TOML design file; a missing or malformed file is refused in one sentence."""
-    path = Path(path)
-    if not path.is_file():
-        raise DesignError("design file", "an existing TOML file", str(path))
+MAX_DESIGN_BYTES = 2**20
+"""Largest design file read, bytes (1 MiB; a design is a few hundred bytes)."""
+
+
+def read_text_file(path: Path, label: str, kind: str, limit: int = MAX_DESIGN_BYTES) -> str:
+    """The text of a user's file, read defensively.
+
+    A path that is missing, not a regular file (a FIFO, a device, a folder: checked before it is
+    opened, so nothing blocks) or larger than ``limit`` bytes is refused, as is binary content.
+    The text is UTF-8 (a byte-order mark is dropped) or, failing that, Latin-1.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    label : str
+        The option or key that named the file; it leads the error sentence.
+    kind : str
+        What the file should be (``"TOML design file"``), for the error sentence.
+    limit : int
+        Largest size accepted, bytes.
+
+    Returns
+    -------
+    str
+        The decoded text.
+
+    Raises
+    ------
+    DesignError
+        Naming ``label`` and what is allowed.
+    """
     try:
-        with open(path, "rb") as f:
-            return tomllib.load(f)
+        st = os.stat(path)
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or "it cannot be read"
+        raise DesignError(label, f"an existing {kind}", str(path), reason) from None
+    if not stat.S_ISREG(st.st_mode):
+        raise DesignError(label, f"a {kind}, not a folder, pipe or device", str(path))
+    if st.st_size > limit:
+        raise DesignError(label, f"a {kind} of at most {limit // 1024} KiB", str(path), f"it has {st.st_size} bytes")
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as f:
+            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                raise DesignError(label, f"a {kind}, not a folder, pipe or device", str(path))
+            data = f.read(limit + 1)
+    except OSError as exc:
+        raise DesignError(label, f"a readable {kind}", str(path), exc.strerror or "it cannot be read") from None
+    if len(data) > limit:
+        raise DesignError(label, f"a {kind} of at most {limit // 1024} KiB", str(path), "it grew while being read")
+    if b"\x00" in data:
+        line = data[: data.index(b"\x00")].count(b"\n") + 1
+        raise DesignError(label, f"a {kind} (text)", str(path), f"line {line} holds a NUL byte (binary data)")
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
+
+
+def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
+    """Read a TOML design file (UTF-8 or Latin-1); a missing, special, binary or malformed file is
+    refused in one sentence naming ``label``."""
+    path = Path(path)
+    text = read_text_file(path, label, "TOML design file")
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise DesignError("design file", "valid TOML", str(path), str(exc)) from None
+        raise DesignError(label, "valid TOML", str(path), str(exc)) from None
 
 
 def check_table(
@@ -83,6 +144,8 @@ PAIR_KEYS: dict[str, type | tuple[type, ...]] = {
     "length": NUMBER,
     "hand": str,
 }
+MAX_RADIAL_CLEARANCE = 10.0
+"""Largest radial clearance of the housing bores, mm (rotor clearances are tenths of a mm)."""
 HOUSING_KEYS: dict[str, type | tuple[type, ...]] = {"radial_clearance": NUMBER}
 OPERATING_KEYS: dict[str, type | tuple[type, ...]] = {
     "speed_rpm": NUMBER,
@@ -140,7 +203,8 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
             raise DesignError("[profile] points", "a CSV file name for the family " + family, None, "missing key")
         points = (Path(folder or ".") / profile.pop("points")).resolve()
         smoothing = profile.pop("smoothing", None)
-        if smoothing is not None and (isinstance(smoothing, bool) or not isinstance(smoothing, NUMBER) or not smoothing >= 0):
+        bad = isinstance(smoothing, bool) or not isinstance(smoothing, NUMBER) or not 0 <= smoothing < float("inf")
+        if smoothing is not None and bad:
             raise DesignError("[profile] smoothing", "a number of at least 0 mm^2", repr(smoothing))
         smoothing = None if smoothing is None else float(smoothing)
         if profile:
@@ -151,13 +215,17 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
         for key, value in profile.items():
             if isinstance(value, bool) or not isinstance(value, NUMBER):
                 raise DesignError(f"[profile] {key}", "a number", repr(value))
+    housing = check_table(data, "housing", HOUSING_KEYS)
+    gap = housing.get("radial_clearance", 0.0)
+    if not (0.0 <= gap <= MAX_RADIAL_CLEARANCE):  # also NaN
+        raise DesignError("[housing] radial_clearance", f"a clearance from 0 to {MAX_RADIAL_CLEARANCE:g} mm", gap)
     return {
         "pair": pair,
         "family": family,
         "params": profile,
         "points": points,
         "smoothing": smoothing,
-        "housing": check_table(data, "housing", HOUSING_KEYS),
+        "housing": housing,
         "operating": check_table(data, "operating", OPERATING_KEYS),
         "deflection": check_table(data, "deflection", DEFLECTION_KEYS),
         "export": check_table(data, "export", EXPORT_KEYS),

@@ -35,6 +35,13 @@ from rotorcad.kinematics import gear_mesh
 from rotorcad.profile import DEFAULT_TOLERANCE, Profile, Segment
 
 DEG = np.pi / 180.0
+MAX_TEETH = 1000
+"""Most teeth of a gear: its outline (some 250 points a tooth) and cutting stay within seconds."""
+MODULE_RANGE = (0.01, 1000.0)
+"""Normal module, mm: from watch gears to the largest mill gears."""
+RELATIVE_TOLERANCE = (1e-7, 0.1)
+"""Chord tolerance of an outline as a fraction of the module: finer needs millions of points a
+tooth, coarser loses the tooth's shape."""
 
 
 def tool_tip_radius_limit(pressure_angle: float, dedendum: float) -> float:
@@ -63,10 +70,10 @@ class InvoluteGear:
     tolerance: float = DEFAULT_TOLERANCE
 
     def __post_init__(self) -> None:
-        if not isinstance(self.teeth, (int, np.integer)) or self.teeth < 3:
-            raise DesignError("teeth", "a whole number of at least 3", self.teeth)
-        if not np.isfinite(self.module) or self.module <= 0:
-            raise DesignError("module", "a positive length in mm", self.module)
+        if not isinstance(self.teeth, (int, np.integer)) or not 3 <= self.teeth <= MAX_TEETH:
+            raise DesignError("teeth", f"a whole number from 3 to {MAX_TEETH}", self.teeth)
+        if not (np.isfinite(self.module) and MODULE_RANGE[0] <= self.module <= MODULE_RANGE[1]):
+            raise DesignError("module", f"a length from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm", self.module)
         if not (0.0 < self.pressure_angle < 45.0 * DEG):
             raise DesignError("pressure_angle", "between 0 and 45 degrees (exclusive)", round(self.pressure_angle / DEG, 6))
         if not (-60.0 * DEG < self.helix_angle < 60.0 * DEG):
@@ -82,11 +89,18 @@ class InvoluteGear:
             raise DesignError(
                 "tip_radius_factor", f"between 0 and {rho_max:.4f} for this pressure angle and dedendum", self.tip_radius_factor
             )
-        if not (self.tolerance > 0.0):
-            raise DesignError("tolerance", "a positive length in mm", self.tolerance)
+        lo, hi = RELATIVE_TOLERANCE[0] * self.module, RELATIVE_TOLERANCE[1] * self.module
+        if not (np.isfinite(self.tolerance) and lo <= self.tolerance <= hi):
+            raise DesignError("tolerance", f"from {lo:.3g} to {hi:.3g} mm for a module of {self.module:g} mm", self.tolerance)
         if self.root_radius <= 0.0:
             lowest = self.dedendum - self.teeth / (2.0 * np.cos(self.helix_angle))
             raise DesignError("shift", f"greater than {lowest:.4f} so that the root circle stays outside the centre", self.shift)
+        if self.shift <= -self.addendum:
+            raise DesignError(
+                "shift",
+                f"greater than {-self.addendum:g} (minus the addendum) so that the tip circle lies outside the pitch circle",
+                self.shift,
+            )
 
     # ----- closed-form dimensions (ISO 21771) ---------------------------------------------
     @property

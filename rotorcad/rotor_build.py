@@ -102,8 +102,32 @@ def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
     if spec.family == "rack-points":
         return pair_from_rack_points(spec.pair, spec.points, spec.smoothing or 0.0)
     if spec.family in ("male-points", "female-points"):
-        return pair_from_rotor_points(spec.pair, spec.points, spec.family.split("-")[0], spec.smoothing, label=label)
+        rotors = pair_from_rotor_points(spec.pair, spec.points, spec.family.split("-")[0], spec.smoothing, label=label)
+        _check_generated(rotors, spec.family.split("-")[0], label or f"[profile] points ({spec.family})")
+        return rotors
     return build_family(spec.pair, spec.family, spec.params)
+
+
+MAX_LOBE_POINTS = 50_000
+"""Most points of one generated lobe at the default tolerance (a smooth lobe has a few hundred)."""
+
+
+def _check_generated(rotors: ScrewRotors, given: str, label: str) -> None:
+    """Refuse a mate generated from measured points that is not a rotor: one that runs far beyond
+    its tip circle or folds into tens of thousands of pieces (noise the smoothing left in)."""
+    mate = "female" if given == "male" else "male"
+    lobe = rotors.female_lobe() if mate == "female" else rotors.male_lobe()
+    tip = rotors.pair.female_tip_radius if mate == "female" else rotors.pair.male_tip_radius
+    pts = np.vstack([seg.points for seg in lobe.segments if len(seg.points)]) if lobe.segments else np.zeros((0, 2))
+    reach = float(np.hypot(*pts.T).max()) if len(pts) else 0.0
+    if len(pts) == 0 or len(pts) > MAX_LOBE_POINTS or reach > 1.5 * tip:
+        raise DesignError(
+            label,
+            "a smooth profile that generates a mate",
+            None,
+            f"the {mate} generated from it has {len(pts)} points in a lobe and reaches {reach:.4g} mm against its tip radius "
+            f"{tip:g} mm; noise in the points? (raise --smoothing or [profile] smoothing)",
+        )
 
 
 def analyse_pair(rotors: ScrewRotors, speed_rpm: float) -> tuple[MeshingAnalysis, dict[str, Any]]:

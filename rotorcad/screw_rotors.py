@@ -100,7 +100,7 @@ class ScrewRotors:
             if abs(curve.s1 - curve.s0) < 1e-15:
                 continue
             seg = Segment.sample(name, curve, tol)
-            if np.ptp(seg.points, axis=0).max() < 1e-9:  # degenerate piece (a single point)
+            if len(seg.points) == 0 or np.ptp(seg.points, axis=0).max() < 1e-9:  # degenerate piece (none or one point)
                 continue
             segs.append(seg)
         return Profile(tuple(segs), closed=False)

@@ -13,7 +13,7 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from exports.atomic import Writer, check_writable, write_all
+from exports.atomic import Writer, check_writable, staging_prefix, write_all
 from exports.background import WorkerPool
 from rotorcad.errors import DesignError
 
@@ -73,6 +73,7 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
     ("_rpm", "rpm"),
     ("_percent", "%"),
     ("_bar", "bar"),
+    ("_n", "N"),
     ("second_moment", "mm⁴"),
     ("deflection", "mm"),
     ("diameter", "mm"),
@@ -153,6 +154,7 @@ class Outputs:
 
     def __init__(self) -> None:
         self._items: list[tuple[Path, Writer]] = []
+        self._options: dict[Path, str] = {}
 
     def add(self, path: Path | None, writer: Writer, option: str) -> None:
         if path is None:
@@ -162,13 +164,25 @@ class Outputs:
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
         self._items.append((Path(path), writer))
+        self._options[Path(path)] = option
 
     def write(self, pool: WorkerPool | None = None) -> list[Path]:
         """Write every file or none; background writers run in ``pool``'s worker if given."""
         try:
             return write_all(self._items, pool)
         except OSError as exc:
-            raise InputError(f"output file could not be written ({exc.strerror}): {exc.filename}.") from None
+            raise InputError(self._failure(exc)) from None
+
+    def _failure(self, exc: OSError) -> str:
+        """The sentence for a failed write, naming the option and its file (never the temporary)."""
+        failed = Path(str(exc.filename)) if exc.filename else None
+        for path, option in self._options.items():
+            if failed is not None and (
+                failed == path or (failed.parent == path.parent and failed.name.startswith(staging_prefix(path)))
+            ):
+                return f"{option} must be a file that can be written ({exc.strerror}): {path}."
+        names = ", ".join(dict.fromkeys(self._options.values()))
+        return f"{names} must be files that can be written ({exc.strerror})."
 
 
 PLOT_FORMATS = ("png", "svg", "pdf")
@@ -193,8 +207,25 @@ def output_folder(path: Path | None) -> Path | None:
     path = Path(path)
     if path.exists() and not path.is_dir():
         raise InputError(f"--out must be a folder, but {path} is a file.")
+    missing = [p for p in (path, *path.parents) if not p.exists()]  # deepest first
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise InputError(f"--out must be a folder that can be created ({exc.strerror}): {path}.") from None
+    CREATED_FOLDERS.extend(missing)
     return path
+
+
+CREATED_FOLDERS: list[Path] = []
+"""Folders made by :func:`output_folder` in this run; a failed run removes those still empty."""
+
+
+def remove_created_folders() -> None:
+    """Remove the folders this run created that are still empty, deepest first (a failed run
+    leaves no folder behind); forget them all."""
+    while CREATED_FOLDERS:
+        folder = CREATED_FOLDERS.pop(0)
+        try:
+            folder.rmdir()
+        except OSError:
+            pass

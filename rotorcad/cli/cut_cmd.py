@@ -12,11 +12,13 @@ from matplotlib.figure import Figure
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
-from hob.cutting import simulate_cutting, simulated_form_radius
+from hob.cutting import MAX_UNION_VERTICES, cutting_work, simulate_cutting, simulated_form_radius
 from hob.tools import TrapezoidalHob
 from hob.undercut import effective_addendum, kollek_model
-from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
-from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
+from rotorcad.cli.gear import GEAR_OPTION, build_gear, gear_options, merge_gear_params
+from rotorcad.errors import DesignError
+from rotorcad.gear import RELATIVE_TOLERANCE
 
 
 @click.command()
@@ -42,14 +44,24 @@ def cut(design: Path | None, **opts: Any) -> None:
         raise InputError(f"--tolerance must be a scallop height between 0 and 1 mm (got {tol}).")
     if opts["positions"] is not None and not 3 <= opts["positions"] <= 100000:
         raise InputError(f"--positions must be a whole number from 3 to 100000 (got {opts['positions']}).")
-    g, pair = build_gear(merge_gear_params(design, opts), min(tol / 4, 1e-4))
-    res = simulate_cutting(g, tol, opts["positions"])
+    params = merge_gear_params(design, opts)
+    module = params["module"] if np.isfinite(params["module"]) else 1.0
+    if 0 < module and tol > RELATIVE_TOLERANCE[1] * module:
+        raise InputError(
+            f"--tolerance must be at most {RELATIVE_TOLERANCE[1] * module:.3g} mm (a tenth of the module; got {tol:g})."
+        )
+    g, pair = build_gear(params, max(min(tol / 4, 1e-4), RELATIVE_TOLERANCE[0] * module))
+    _check_work(g, tol, opts["positions"])
+    try:
+        res = simulate_cutting(g, tol, opts["positions"])
+    except DesignError as exc:
+        raise reraise(exc, GEAR_OPTION) from None
     model = kollek_model(
         g.teeth, g.module, g.pressure_angle, g.shift, effective_addendum(g.dedendum, g.tip_radius_factor, g.pressure_angle)
     )
     result: dict[str, Any] = {
         "undercut": g.undercut,
-        "undercut_radius": simulated_form_radius(g, res, 1.5 * tol) if g.undercut else None,
+        "undercut_radius": _undercut_radius(g, res, tol),
         "undercut_radius_exact": g.form_radius if g.undercut else None,
         "undercut_radius_model": model.active_base_radius if model.undercut else None,
         "max_deviation_from_envelope": res.max_deviation,
@@ -57,6 +69,7 @@ def cut(design: Path | None, **opts: Any) -> None:
         "tooth_thickness_pitch": 2 * g.pitch_radius * _half_angle(res.tooth, g.pitch_radius),
         "tooth_thickness_pitch_exact": g.tooth_thickness(g.pitch_radius),
         "positions": res.positions,
+        "tolerance_met": bool(res.max_deviation <= tol),
     }
     if pair is not None:
         result["contact_ratio"] = pair.contact_ratio
@@ -70,6 +83,43 @@ def cut(design: Path | None, **opts: Any) -> None:
         emit_json(result)
     else:
         print_table(f"cutting simulation z={g.teeth}, m={g.module:g} mm, x={g.shift:g}", result)
+
+
+def _undercut_radius(g, res, tol: float) -> float | None:
+    """r'_z of the simulated profile, None without undercut. The point where the simulated flank
+    leaves the involute is searched within 1.5 x the scallop, then within the flank deviation the
+    simulation reached (a budget-limited run); a profile with no involute left is refused."""
+    if not g.undercut:
+        return None
+    for within in (1.5 * tol, 1.5 * max(tol, res.flank_deviation), 0.02 * g.module):
+        found = simulated_form_radius(g, res, within)
+        if np.isfinite(found):
+            return found
+    raise InputError(
+        "--teeth, --shift and --tip-radius must leave an involute flank on the simulated gear (it is undercut up to its tip)."
+    )
+
+
+def _check_work(g, tol: float, positions: int | None) -> None:
+    """Refuse, before it starts, a simulation whose first pass alone would exceed the budget of
+    :data:`hob.cutting.MAX_UNION_VERTICES`, naming the coarsest setting that fits."""
+    try:
+        n, vertices = cutting_work(g, tol, positions)
+    except MemoryError:
+        n, vertices = 10**9, 10**9
+    work = 2 * n * vertices
+    if work <= MAX_UNION_VERTICES:
+        return
+    if positions is not None:
+        raise InputError(
+            f"--positions must be at most {MAX_UNION_VERTICES // (2 * vertices)} for this gear and tolerance "
+            f"(got {positions}; each tool tooth has {vertices} vertices)."
+        )
+    need = tol * work / MAX_UNION_VERTICES  # positions and tool vertices each grow like 1/sqrt(tolerance)
+    raise InputError(
+        f"--tolerance must be at least {need:.2g} mm for this gear (got {tol:g}: {n} tool positions of "
+        f"{vertices} vertices, more than this machine simulates in a minute)."
+    )
 
 
 def _half_angle(tooth: shapely.Polygon, radius: float) -> float:

@@ -32,6 +32,7 @@ from rotorcad.interference import interference_2d, intersection_3d
 from rotorcad.measured_outline import whole_outline
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.solids import HOUSING_WALL, helical_solid, housing_solids
+from rotorcad.work import MAX_SECTION_POINTS, MAX_TRIANGLES, points_at, solid_triangles
 
 FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "dxf-mesh", "dxf-mesh-r12", "step", "step-faceted", "csv")
 DXF_MESH_MAX = 50_000  # triangles: a DXF mesh is for small meshes (STACK-NOTES)
@@ -137,6 +138,7 @@ def export(
     with WorkerPool(background=bool(preload), preload=preload) as pool:
         rotors, _, clearance = build_rotors(design, _rotor_options(design))
         pair, phase = _assembly(rotors.pair, center_distance, phase_deg, clearance)
+        _check_solid_work(rotors, tol, "--tolerance" if tolerance is not None else "[export] tolerance")
         folder = output_folder(out)
         stem = Path(design).stem
         if not np.isfinite(angle):
@@ -376,6 +378,37 @@ def _export_gear(design: Path, formats: str | None, out: Path, tolerance: float 
     Console(file=sys.stdout, highlight=False).print(table)
 
 
+def _check_solid_work(rotors, tol: float, label: str) -> None:
+    """Refuse, before any solid is swept, a request whose two solids would have more than
+    :data:`rotorcad.work.MAX_TRIANGLES` triangles, naming the smallest tolerance that fits (or the
+    lead or the size when no tolerance up to 1 mm does)."""
+    pair = rotors.pair
+    coarse = max(tol / 2, 0.05)
+    total = 0.0
+    for body, lead in (("male", pair.lead), ("female", pair.female_lead)):
+        section = rotors.section(body, coarse)
+        r_max = float(np.hypot(*np.asarray(section.exterior.coords).T).max())
+        total += solid_triangles(points_at(section, coarse, tol / 2), lead, pair.length, r_max, tol)
+    if total <= MAX_TRIANGLES:
+        return
+    need = tol * total / MAX_TRIANGLES * 1.05  # triangles grow like 1/tolerance
+    what = f"the solids would have {total / 1e6:.3g} million triangles, at most {MAX_TRIANGLES / 1e6:g} million fit in memory"
+    if need <= 1.0:
+        raise InputError(f"{label} must be at least {need:.2g} mm for this design (got {tol:g}: {what}).")
+    at_1mm = total * tol
+    wrap_turns = pair.length / pair.lead
+    if wrap_turns > 2:
+        lead = pair.lead * at_1mm / MAX_TRIANGLES * 1.05
+        raise InputError(
+            f"[pair] lead must be at least {lead:.3g} mm for solids of this length (got {pair.lead:g}: {what} even at a "
+            "tolerance of 1 mm)."
+        )
+    raise InputError(
+        f"[pair] center_distance and the radii must be smaller for solids (got {pair.center_distance:g} mm: {what} even "
+        "at a tolerance of 1 mm)."
+    )
+
+
 def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, clearance: float) -> tuple[RotorPair, float]:
     """The pair as assembled: the design's rotors at another centre distance (the bores follow)
     and the female's extra turn (rad); bad values are refused in one sentence."""
@@ -462,12 +495,26 @@ def interfere(
     """Interference of the rotor pair over one lobe pitch (integral of 2D section intersections
     along the helix) and of the rotors with the housing bores, as assembled: at --center-distance
     and with the female turned by --phase-deg from its mesh position (the rotors keep their
-    profiles; the bores follow the centre distance)."""
+    profiles; the bores follow the centre distance).
+
+    Exit status: 0 when clean, 1 when the rotors interfere with each other or with the housing by
+    more than the touching threshold (key touching_threshold, mm³, set by --tolerance), 2 on bad
+    input."""
     if not 1 <= steps <= 100_000:
         raise InputError(f"--steps must be a whole number from 1 to 100000 (got {steps}).")
     if not (np.isfinite(tolerance) and 0 < tolerance <= 1.0):
         raise InputError(f"--tolerance must be between 0 and 1 mm (got {tolerance}).")
     rotors, _, clearance = build_rotors(design, _rotor_options(design))
+    coarse = max(tolerance / 2, 0.05)
+    points = sum(points_at(rotors.section(b, coarse), coarse, tolerance / 2) for b in ("male", "female"))
+    if points > MAX_SECTION_POINTS:
+        need = tolerance * (points / MAX_SECTION_POINTS) ** 2 * 1.05  # points grow like 1/sqrt(tolerance)
+        raise InputError(
+            f"--tolerance must be at least {need:.2g} mm for this design (got {tolerance:g}: the sections would have "
+            f"{points:.3g} points, at most {MAX_SECTION_POINTS} can be turned through the sweep)."
+        )
+    if check_3d:
+        _check_solid_work(rotors, tolerance, "--tolerance")
     male, female = rotors.section("male", tolerance / 2), rotors.section("female", tolerance / 2)
     for option, path, teeth in (
         ("--male-points", male_points, rotors.pair.male_teeth),
@@ -506,6 +553,8 @@ def interfere(
         from rotorcad.cli.common import print_table
 
         print_table(f"interference of {Path(design).stem}", {k: v for k, v in result.items() if k != "check_3d"})
+    if result["interferes"]:
+        click.get_current_context().exit(1)  # a finding, not an error: pipelines test the status
 
 
 __all__ = ["export", "interfere"]

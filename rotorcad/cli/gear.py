@@ -29,7 +29,13 @@ GEAR_OPTION = {
     "center_distance": "--center-distance",
     "radius": "radius",
 }
-MATE_OPTION = {"teeth": "--mate-teeth", "shift": "--mate-shift", "center_distance": "--center-distance"}
+MATE_OPTION = {
+    "teeth": "--mate-teeth",
+    "shift": "--mate-shift",
+    "center_distance": "--center-distance",
+    "shifts": "--shift and --mate-shift",
+    "mesh": "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle",
+}
 DEFAULTS = {"pressure_angle": 20.0, "helix_angle": 0.0, "shift": 0.0, "addendum": 1.0, "dedendum": 1.25, "tip_radius": 0.38}
 
 
@@ -190,7 +196,25 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
         pair = GearPair(g, mate, a)
     except DesignError as exc:
         raise reraise(exc, MATE_OPTION) from None
+    check_contact(pair.contact_ratio, "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle")
     return g, pair
+
+
+def check_contact(eps: float, label: str) -> None:
+    """Refuse a pair whose flanks never meet (contact ratio 0 or undefined) instead of reporting it.
+
+    Parameters
+    ----------
+    eps : float
+        The pair's transverse contact ratio.
+    label : str
+        The options that set it, for the sentence.
+    """
+    if not (np.isfinite(eps) and eps > 0.0):
+        raise InputError(
+            f"{label} must be chosen so that the flanks meet (a contact ratio above 0; got {eps:g}): the tips do not reach "
+            "the usable involute of the mate; raise the addendum, the shifts or the pressure angle."
+        )
 
 
 def _comments(g: InvoluteGear, body: str) -> list[str]:

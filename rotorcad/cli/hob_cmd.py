@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -18,6 +17,7 @@ from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.rotor import PAIR_OPTIONS, rotor_input_options
 from rotorcad.cli.rotor import _build as build_rotors
+from rotorcad.design import load_toml
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.gear import InvoluteGear
@@ -79,6 +79,8 @@ def hob(design: Path | None, **opts: Any) -> None:
                 "normal_pressure_angle_min_deg": v.normal_pressure_angle_min_deg,
                 "hob_tip_radius": v.min_tip_radius,
                 "hob_root_radius": v.min_root_radius,
+                "hob_tip_radius_infinite": bool(np.isinf(v.min_tip_radius)),  # straight: JSON null and this flag
+                "hob_root_radius_infinite": bool(np.isinf(v.min_root_radius)),
                 "hob_tip_thickness": v.tip_thickness,
                 "helix_angle_deg": float(np.degrees(racks[name].helix_angle)),
                 "no_rack_share": racks[name].lost_fraction,
@@ -107,10 +109,9 @@ def _is_rotor_input(design: Path | None, opts: dict[str, Any]) -> bool:
     if design is None:
         return False
     try:
-        with open(design, "rb") as f:
-            return "pair" in tomllib.load(f)
-    except (OSError, tomllib.TOMLDecodeError):
-        return False
+        return "pair" in load_toml(design)
+    except DesignError:
+        return False  # the gear reader refuses the file in one sentence
 
 
 def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:

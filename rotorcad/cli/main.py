@@ -6,13 +6,28 @@ Every input problem ends as one sentence on stderr and exit status 2, without a 
 
 from __future__ import annotations
 
-import importlib
+import os
 import sys
+import warnings
 
-import click
 
-from rotorcad import __version__
-from rotorcad.errors import DesignError
+def _interrupted_hook(kind, value, tb):  # pragma: no cover - exercised by a real Ctrl-C at start-up
+    """Ctrl-C before :func:`main` runs (while Python imports the command): one line, exit 130."""
+    if issubclass(kind, KeyboardInterrupt):
+        sys.stderr.write("\nrotorcad: interrupted.\n")
+        sys.stderr.flush()
+        os._exit(130)
+    sys.__excepthook__(kind, value, tb)
+
+
+sys.excepthook = _interrupted_hook
+
+import importlib  # noqa: E402
+
+import click  # noqa: E402
+
+from rotorcad import __version__  # noqa: E402
+from rotorcad.errors import DesignError  # noqa: E402
 
 # name -> (module:attribute, one-line summary): a command's module (and the heavy libraries it
 # needs) is imported only when that command runs, so `rotorcad --help` starts at once
@@ -61,24 +76,67 @@ def cli() -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the CLI; return the exit status (0 success, 2 bad input)."""
+    """Run the CLI; return the exit status.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``rotorcad``; ``sys.argv[1:]`` when None.
+
+    Returns
+    -------
+    int
+        0 success, 1 a finding a command reports as its status (``interfere``: interference),
+        2 bad input, 130 interrupted (Ctrl-C), 70 an internal error (a bug: please report it).
+    """
+    args = sys.argv[1:] if argv is None else list(argv)
+    with warnings.catch_warnings():  # numpy's RuntimeWarnings are no message for a user: results are checked
+        warnings.simplefilter("ignore", RuntimeWarning)
+        status = _run(args)
+    common = sys.modules.get("rotorcad.cli.common")  # imported by any command that makes a folder
+    if common is not None:
+        if status not in (0, 1):
+            common.remove_created_folders()
+        common.CREATED_FOLDERS.clear()
+    return status
+
+
+def _run(args: list[str]) -> int:
+    """:func:`main` without the clean-up: the exit status of one command line."""
     try:
-        cli.main(args=argv, prog_name="rotorcad", standalone_mode=False)
+        if not args:  # bare `rotorcad`: the help, as with --help
+            with click.Context(cli, info_name="rotorcad") as ctx:
+                click.echo(cli.get_help(ctx))
+            return 0
+        status = cli.main(args=args, prog_name="rotorcad", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
-    except click.exceptions.Abort:
-        click.echo("rotorcad: aborted.", err=True)
+    except (click.exceptions.Abort, KeyboardInterrupt):
+        click.echo("rotorcad: interrupted.", err=True)
         return 130
     except click.ClickException as exc:
         message = " ".join(exc.format_message().split())
-        if not message.endswith("."):
+        if not message.endswith((".", "?", "!")):
             message += "."
         click.echo(f"rotorcad: error: {message}", err=True)
         return 2 if exc.exit_code in (1, 2) else int(exc.exit_code)
     except DesignError as exc:
         click.echo(f"rotorcad: error: {exc}", err=True)
         return 2
-    return 0
+    except MemoryError:
+        click.echo("rotorcad: error: the request needs more memory than this machine has; ask for less detail.", err=True)
+        return 2
+    except Exception as exc:  # a bug: one line (set ROTORCAD_DEBUG=1 for the traceback), never a silent pass
+        if os.environ.get("ROTORCAD_DEBUG"):
+            raise
+        text = " ".join(str(exc).split())[:300]
+        click.echo(
+            f"rotorcad: internal error ({type(exc).__name__}: {text}); please report it with the command line "
+            "(ROTORCAD_DEBUG=1 shows the traceback).",
+            err=True,
+        )
+        return 70
+    return status if isinstance(status, int) and not isinstance(status, bool) else 0
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -10,11 +10,16 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from hob.nomogram import plot_nomogram
-from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
-from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
+from rotorcad.cli.gear import build_gear, check_contact, gear_options, merge_gear_params
+from rotorcad.errors import DesignError
 from rotorcad.pump import GearPump, kollek_coefficients
 
 MM3_PER_S_TO_L_PER_MIN = 60.0 / 1e6
+PUMP_OPTION = {
+    "shifts": "--shift of the two equal gears",
+    "mesh": "--teeth, --shift, --addendum and --pressure-angle",
+}
 
 
 @click.command()
@@ -44,7 +49,16 @@ def pump(design: Path | None, **opts: Any) -> None:
         raise InputError(f"--harmonics must be a whole number from 1 to 64 (got {opts['count']}).")
     g, _ = build_gear(merge_gear_params(design, opts), 1e-4)
     p = GearPump(g, opts["face_width"], opts["speed"])
-    eps = p.contact_ratio
+    try:
+        eps = p.contact_ratio
+    except DesignError as exc:
+        raise reraise(exc, PUMP_OPTION) from None
+    check_contact(eps, "--teeth, --shift, --addendum and --pressure-angle")
+    if not (np.isfinite(p.mean_flow) and p.mean_flow > 0 and np.isfinite(p.irregularity) and p.irregularity >= 0):
+        raise InputError(
+            "--teeth, --shift and --addendum must give a pump that delivers (a positive mean flow; got "
+            f"{p.mean_flow * MM3_PER_S_TO_L_PER_MIN:.4g} L/min): the tips reach too little beyond the working pitch circle."
+        )
     result = {
         "mean_flow": p.mean_flow * MM3_PER_S_TO_L_PER_MIN,
         "flow_irregularity": p.irregularity,

@@ -123,8 +123,8 @@ def rotor(design: Path | None, **opts: Any) -> None:
     Rinder's meshing analysis: meshline, cusps / jamming / slipping, tightness and blow-hole,
     contact-line length, flute areas, displacement, sliding velocity and slip."""
     rotors, speed, clearance = _build(design, opts)
-    if not (opts["tolerance"] and opts["tolerance"] > 0):
-        raise InputError(f"--tolerance must be a positive length in mm (got {opts['tolerance']}).")
+    if not (1e-6 <= opts["tolerance"] <= 1.0):  # also NaN; finer than 1 um gives millions of points
+        raise InputError(f"--tolerance must be a chord tolerance from 1e-06 to 1 mm (got {opts['tolerance']}).")
     try:
         analysis, result = analyse_pair(rotors, speed)
     except DesignError as exc:
@@ -247,7 +247,11 @@ def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, floa
         spec = PairSpec(pair, family, params, data, smoothing, float(speed), clearance)
         rotors = build_pair(spec, label=f"--{family}")
     except DesignError as exc:
-        raise InputError(exc.sentence()) from None
+        # a family's parameter is the design's key with its table (the family names it bare)
+        bare = exc.param == "family" or exc.param in params or exc.param in ("points", "smoothing")
+        raise InputError(
+            exc.sentence(f"[profile] {exc.param}" if design is not None and not sources and bare else None)
+        ) from None
     return rotors, float(speed), clearance
 
 

@@ -1,0 +1,295 @@
+"""Regression tests for the examples of issue 15 ("Every input gets an answer"): each test names
+the example it covers. Fast: refusals come before any heavy work."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorcad.cli.main import main
+
+SAMPLES = Path(__file__).resolve().parent.parent / "samples"
+ASYM = SAMPLES / "srm_asymmetric_5_6.toml"
+SYM_PAIR = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--male-tip-radius", "54"]
+SYM_PAIR += ["--male-root-radius", "40", "--female-tip-radius", "60", "--female-root-radius", "46", "--lead", "260"]
+SYM_PAIR += ["--length", "150"]
+
+
+def run(capsys, *argv: str) -> tuple[int, str, str]:
+    capsys.readouterr()
+    status = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    assert "Traceback" not in err
+    return status, out, err
+
+
+def refused(capsys, needle: str, *argv: str) -> str:
+    status, _, err = run(capsys, *argv)
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert status == 2 and len(lines) == 1 and needle in lines[0], err
+    return lines[0]
+
+
+def design(tmp_path: Path, text: str | bytes, name: str = "d.toml") -> Path:
+    path = tmp_path / name
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    return path
+
+
+def sym_points(tmp_path: Path, rotor: str) -> np.ndarray:
+    run_ok = main(["rotor", str(SAMPLES / "srm_symmetric_4_6.toml"), f"--{rotor}-csv", str(tmp_path / f"{rotor}.csv")])
+    assert run_ok == 0
+    return np.loadtxt(tmp_path / f"{rotor}.csv", delimiter=",", comments="#", skiprows=2)
+
+
+def write_points(path: Path, pts: np.ndarray) -> Path:
+    path.write_text("x,y\n" + "\n".join(f"{float(x)!r},{float(y)!r}" for x, y in pts) + "\n")
+    return path
+
+
+# ----- crashes and hangs ----------------------------------------------------------------------
+def test_crash_export_every_dimension_x1000(capsys, tmp_path):
+    """Crash: the srm-asymmetric sample x1000, `rotorcad export` (segfault at 12.7 GB)."""
+    text = ASYM.read_text()
+    for key in ("center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius", "lead"):
+        text = re.sub(rf"^{key} = ([0-9.]+)", lambda m, k=key: f"{k} = {float(m.group(1)) * 1000}", text, flags=re.M)
+    text = re.sub(r"^length = ([0-9.]+)", "length = 190000.0", text, flags=re.M)
+    line = refused(capsys, "tolerance must be at least", "export", design(tmp_path, text), "--out", tmp_path / "out")
+    assert "million triangles" in line
+    assert not (tmp_path / "out").exists()  # no folder left
+
+
+def test_crash_interfere_check_3d_lead_0_001(capsys, tmp_path):
+    """Crash: `lead = 0.001` with `interfere --steps 8 --tolerance 1.0 --check-3d`."""
+    path = design(tmp_path, re.sub(r"^lead = .*$", "lead = 0.001", ASYM.read_text(), flags=re.M))
+    refused(capsys, "[pair] lead must be at least", "interfere", path, "--steps", "8", "--tolerance", "1.0", "--check-3d")
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs")
+@pytest.mark.parametrize("command", ["hob", "rotor", "gear", "cut", "interfere", "deflect"])
+def test_hang_fifo_design_path(capsys, tmp_path, command):
+    """Hang: a design path that is a FIFO (`hob` opened it before checking it)."""
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    refused(capsys, "pipe or device", command, fifo)
+
+
+def test_hang_dxf_writer_500_teeth(capsys, tmp_path):
+    """Hang: `gear --teeth 500 --module 5 --csv g.csv --dxf g.dxf` (ezdxf appended point by point)."""
+    status, _, _ = run(
+        capsys, "gear", "--teeth", "500", "--module", "5", "--csv", tmp_path / "g.csv", "--dxf", tmp_path / "g.dxf"
+    )
+    assert status == 0 and (tmp_path / "g.dxf").stat().st_size > 1e6
+
+
+def test_hang_rotor_female_points_with_noise(capsys, tmp_path):
+    """Hang: `rotor --female-points` with 0.1 mm of noise on the symmetric sample's points."""
+    pts = sym_points(tmp_path, "female")
+    noisy = write_points(tmp_path / "noisy.csv", pts + np.random.default_rng(2).uniform(-0.1, 0.1, pts.shape))
+    refused(capsys, "--female-points must be a smooth profile", "rotor", "--female-points", noisy, *SYM_PAIR)
+
+
+def test_hang_cut_module_50_helical_pointed(capsys):
+    """Hang: `cut --teeth 100 --module 50 --helix-angle 15 --shift -2 --addendum 3 --tip-radius 0
+    --mate-teeth 4 --center-distance 2574` (the refinement grew to 57 000 positions): now bounded, and
+    a shift below -addendum is refused."""
+    argv = ["cut", "--teeth", "100", "--module", "50", "--helix-angle", "15", "--shift", "-2", "--addendum", "3"]
+    argv += ["--tip-radius", "0", "--mate-teeth", "4", "--center-distance", "2574"]
+    status, out, _ = run(capsys, *argv, "--json")
+    assert status in (0, 2)
+    if status == 0:
+        result = json.loads(out)
+        assert result["tolerance_met"] == (result["max_deviation_from_envelope"] <= 1e-3)
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (["cut", "--teeth", "20", "--module", "2", "--tolerance", "1e-9"], "--tolerance must be at least"),
+        (["cut", "--teeth", "20", "--module", "1e9"], "--module must be"),
+        (["interfere", str(ASYM), "--tolerance", "1e-9"], "--tolerance must be at least"),
+    ],
+)
+def test_memory_cut_and_interfere_tiny_tolerance_huge_module(capsys, argv, needle):
+    """10 GB runs: `cut --tolerance 1e-9`, `cut --module 1e9`, `interfere --tolerance 1e-9`."""
+    refused(capsys, needle, *argv)
+
+
+# ----- tracebacks on valid-looking inputs ---------------------------------------------------
+def test_traceback_cut_teeth_3(capsys):
+    """`cut --teeth 3 --module 25` (GEOSException in hob/cutting.py): an answer, 0 or one sentence."""
+    status, out, err = run(capsys, "cut", "--teeth", "3", "--module", "25", "--json")
+    assert status in (0, 2)
+    if status == 2:
+        assert "--teeth" in err
+    status, out, _ = run(capsys, "cut", "--teeth", "4", "--module", "25", "--json")
+    assert status == 0 and json.loads(out)["undercut_radius"] is not None
+
+
+def test_traceback_cut_pitch_circle_outside_tooth(capsys):
+    """`cut --teeth 400 --module 0.25 --shift -1.5` (zero-size array in cut_cmd._half_angle)."""
+    refused(capsys, "--shift must be greater than -1", "cut", "--teeth", "400", "--module", "0.25", "--shift", "-1.5")
+
+
+def test_traceback_latin1_byte_in_design_and_points(capsys, tmp_path):
+    """A Latin-1 byte anywhere in a design or points file, even in a comment (UnicodeDecodeError)."""
+    path = design(tmp_path, ASYM.read_bytes().replace(b"# Asymmetric", b"# Asym\xe9trique"))
+    assert run(capsys, "rotor", path, "--json")[0] == 0
+    pts = sym_points(tmp_path, "female")
+    body = write_points(tmp_path / "f.csv", pts).read_bytes()
+    (tmp_path / "latin.csv").write_bytes(b"# Me\xdfpunkte\n" + body)
+    assert run(capsys, "rotor", "--female-points", tmp_path / "latin.csv", *SYM_PAIR, "--json")[0] == 0
+
+
+@pytest.mark.parametrize("kind", ["duplicated", "identical", "collinear"])
+def test_traceback_duplicated_identical_collinear_points(capsys, tmp_path, kind):
+    """Duplicated or identical points (`curves.fit`), collinear points (`meshing.cusp`)."""
+    pts = sym_points(tmp_path, "female")
+    x = np.linspace(0.0, 10.0, 50)
+    spoilt = {"duplicated": np.repeat(pts, 2, axis=0), "identical": np.tile(pts[:1], (50, 1)), "collinear": np.c_[x, 2 * x + 1]}
+    path = write_points(tmp_path / "p.csv", spoilt[kind])
+    status, _, err = run(capsys, "rotor", "--female-points", path, *SYM_PAIR, "--json")
+    assert status == 0 or (status == 2 and "--female-points" in err)
+
+
+@pytest.mark.parametrize("value", ["-1", "nan", "inf"])
+def test_negative_or_nan_smoothing_refused(capsys, tmp_path, value):
+    """Negative smoothing ("Invalid inputs."), and `--smoothing nan` / `-1` accepted."""
+    pts = write_points(tmp_path / "f.csv", sym_points(tmp_path, "female"))
+    refused(capsys, "--smoothing", "rotor", "--female-points", pts, *SYM_PAIR, "--smoothing", value)
+
+
+def test_radial_clearance_nan(capsys, tmp_path):
+    """`radial_clearance = nan`."""
+    path = design(tmp_path, ASYM.read_text().replace("radial_clearance = 0.05", "radial_clearance = nan"))
+    refused(capsys, "[housing] radial_clearance", "rotor", path)
+
+
+def test_output_name_over_255_bytes(capsys, tmp_path):
+    """An output name over 255 bytes (OSError in exports/atomic.py)."""
+    refused(
+        capsys,
+        "--csv must be a file name of at most 255 bytes",
+        "gear",
+        "--teeth",
+        "20",
+        "--module",
+        "2",
+        "--csv",
+        tmp_path / ("a" * 300),
+    )
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_shift_1e30_module_1e300_teeth_1e20_hob_module_1e_12(capsys, tmp_path):
+    """`shift = 1e30`, `--module 1e300`, teeth 1e20, `hob --module 1e-12`."""
+    path = design(tmp_path, (SAMPLES / "gear_pair.toml").read_text().replace("shift = 0.3", "shift = 1e30"))
+    refused(capsys, "--shift", "gear", path)
+    refused(capsys, "--module must be a length from", "gear", "--teeth", "20", "--module", "1e300")
+    refused(capsys, "--teeth must be a whole number from 3 to", "gear", "--teeth", str(10**20), "--module", "1")
+    refused(capsys, "--module must be a length from", "hob", "--teeth", "20", "--module", "1e-12")
+
+
+# ----- wrong numbers with exit 0 --------------------------------------------------------------
+def test_pump_negative_flow(capsys):
+    """`pump --teeth 9 --module 1 --shift -1.5 --face-width 5 --speed 100`: negative mean flow."""
+    refused(capsys, "--shift", "pump", "--teeth", "9", "--module", "1", "--shift", "-1.5", "--face-width", "5", "--speed", "100")
+
+
+def test_contact_ratio_zero_is_refused(capsys):
+    """`contact_ratio: 0.0` as success: `gear --pressure-angle 1` with a mate; `gear --teeth 12
+    --module 2 --shift -0.5 --mate-teeth 4` (working pressure angle 0)."""
+    refused(
+        capsys, "contact ratio above 0", "gear", "--teeth", "20", "--module", "2", "--pressure-angle", "1", "--mate-teeth", "30"
+    )
+    refused(capsys, "contact ratio above 0", "gear", "--teeth", "12", "--module", "2", "--shift", "-0.5", "--mate-teeth", "4")
+
+
+def test_undercut_true_with_null_radius(capsys):
+    """`cut --teeth 8 --module 0.1 --tolerance 1`: `undercut: true` with `undercut_radius: null`."""
+    refused(capsys, "--tolerance must be at most", "cut", "--teeth", "8", "--module", "0.1", "--tolerance", "1")
+    status, out, _ = run(capsys, "cut", "--teeth", "8", "--module", "0.1", "--tolerance", "0.01", "--json")
+    result = json.loads(out)
+    assert status == 0 and result["undercut"] and result["undercut_radius"] > 0
+
+
+def test_backlash_never_null(capsys):
+    """`backlash: null` (infinite backlash of teeth that never meet) is refused, not printed."""
+    status, out, _ = run(
+        capsys, "gear", "--teeth", "20", "--module", "2", "--mate-teeth", "30", "--center-distance", "60", "--json"
+    )
+    assert status == 2 or json.loads(out)["backlash"] is not None
+
+
+def test_hob_root_radius_of_a_straight_piece_is_infinite(capsys):
+    """`hob_root_radius` of 1e12-1e13 for a straight rack piece: null plus a flag (CONTRACT.md)."""
+    status, out, _ = run(capsys, "hob", SAMPLES / "gear_pair.toml", "--json")
+    rack = json.loads(out)["racks"]["gear"]
+    assert status == 0 and rack["hob_root_radius"] is None and rack["hob_root_radius_infinite"] is True
+    assert rack["hob_tip_radius_infinite"] is False and 0 < rack["hob_tip_radius"] < 1e6
+
+
+def test_clearance_mean_at_lead_1e9(capsys, tmp_path):
+    """Clearance `mean_clearance: null` at lead 1e9."""
+    m = write_points(tmp_path / "m.csv", sym_points(tmp_path, "male"))
+    f = write_points(tmp_path / "f.csv", sym_points(tmp_path, "female"))
+    argv = ["clearance", "--male-points", m, "--female-points", f, "--male-teeth", "4", "--female-teeth", "6"]
+    status, out, _ = run(capsys, *argv, "--center-distance", "100", "--lead", "1e9", "--json")
+    assert status == 2 or json.loads(out)["mean_clearance"] is not None
+
+
+@pytest.mark.parametrize("command", [["cut"], ["gear"], ["rotor", str(ASYM)], ["interfere", str(ASYM)]])
+def test_tolerance_inf_refused(capsys, command):
+    """`--tolerance inf` accepted."""
+    extra = ["--teeth", "20", "--module", "2"] if command[0] in ("cut", "gear") else []
+    refused(capsys, "--tolerance", *command, *extra, "--tolerance", "inf")
+
+
+# ----- messages -------------------------------------------------------------------------------
+def test_messages_name_tip_radius_and_profile_keys(capsys, tmp_path):
+    """Messages name `--tip-radius` and `[profile] lobe_width`-style keys, not internal names."""
+    refused(capsys, "--tip-radius", "gear", "--teeth", "20", "--module", "2", "--tip-radius", "5")
+    text = ASYM.read_text().replace('family = "srm-asymmetric"', 'family = "sigma"')
+    refused(capsys, "[profile] family", "rotor", design(tmp_path, text))
+    refused(
+        capsys, "[profile] seal_stop", "rotor", design(tmp_path, ASYM.read_text().replace("seal_stop = 0.55", "seal_stop = 5.0"))
+    )
+
+
+def test_bare_rotorcad_prints_help(capsys):
+    """A bare `rotorcad` printed the whole help squashed into one error line."""
+    status, out, err = run(capsys)
+    assert status == 0 and out.startswith("Usage: rotorcad") and err == ""
+
+
+def test_unwritable_output_names_the_option(capsys):
+    """An unwritable output under /proc named a hidden temporary file instead of the option."""
+    line = refused(
+        capsys, "--csv must be a file that can be written", "gear", "--teeth", "20", "--module", "2", "--csv", "/proc/x.csv"
+    )
+    assert ".tmp" not in line
+
+
+def test_dxf_r12_no_warning(capsys, tmp_path):
+    """`dxf-r12` printed an ezdxf warning on stderr on success."""
+    status, _, err = run(capsys, "export", ASYM, "--out", tmp_path / "o", "--format", "dxf-r12", "--quiet")
+    assert status == 0 and err == ""
+
+
+def test_failed_run_leaves_no_out_folder(capsys, tmp_path):
+    """29 failed runs left an empty `--out` folder they created."""
+    refused(capsys, "--dxf", "gear", "--teeth", "20", "--module", "2", "--out", tmp_path / "a" / "b", "--dxf", "/proc/x.dxf")
+    assert list(tmp_path.iterdir()) == []
+
+
+# ----- interference as an exit code -----------------------------------------------------------
+def test_interfere_exit_status(capsys):
+    """`interfere` exits 0 when clean and 1 when it finds interference beyond its threshold."""
+    assert run(capsys, "interfere", ASYM, "--steps", "8")[0] == 0
+    status, out, _ = run(capsys, "interfere", ASYM, "--steps", "8", "--center-distance", "110", "--json")
+    assert status == 1 and json.loads(out)["interferes"] is True
