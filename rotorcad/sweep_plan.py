@@ -98,17 +98,34 @@ class SweepPlan:
     extras: tuple[Extra, ...] = ()
     clearance: float = 0.05  # mm, designed normal clearance of the "clearance" analysis
 
+    @property
+    def signature(self) -> str:
+        """A digest of what every variant shares: the base design, the extra analyses and the
+        designed clearance. A variant's key holds it, so that results of a changed base are never
+        taken for this plan's."""
+        shared = [self.base, sorted(e.value for e in self.extras), self.clearance]
+        return hashlib.sha1(json.dumps(shared, sort_keys=True, default=str).encode()).hexdigest()
+
     def variants(self) -> list[Variant]:
-        """Every variant in a fixed order (deterministic for the plan)."""
+        """Every variant in a fixed order (deterministic for the plan).
+
+        A variant's key is a digest of :attr:`signature`, its values and how many earlier variants
+        have the same values: it stays the same when a list gets more values, so a resumed sweep
+        computes only the new ones.
+        """
         names = [p.name for p in self.parameters]
         if self.sampling is Sampling.GRID:
             rows = itertools.product(*(p.values for p in self.parameters))
         else:
             rows = zip(*(self._draw(p, u) for p, u in zip(self.parameters, self._unit().T, strict=True)), strict=True)
         out = []
+        seen: dict[str, int] = {}
+        signature = self.signature
         for i, row in enumerate(rows):
             values = {n: _plain(v) for n, v in zip(names, row, strict=True)}
-            digest = hashlib.sha1(json.dumps([i, values], sort_keys=True).encode()).hexdigest()[:16]
+            text = json.dumps(values, sort_keys=True)
+            seen[text] = seen.get(text, -1) + 1
+            digest = hashlib.sha1(f"{signature}|{text}|{seen[text]}".encode()).hexdigest()[:16]
             out.append(Variant(i, digest, values))
         return out
 
@@ -177,6 +194,43 @@ def _parameter(name: str, spec: Any) -> Parameter:
     raise DesignError(f"[vary] '{name}'", "a list, {from, to, step} or {min, max}", spec)
 
 
+def _check_values(parameter: Parameter, base: dict[str, Any]) -> None:
+    """A varied key must be a key of the design (of its family for [profile]) and every value of the
+    type the design takes there: refused before anything is computed, naming the [vary] entry."""
+    from rotorcad.design import HOUSING_KEYS, OPERATING_KEYS, PAIR_KEYS
+    from rotorcad.rotor_families import FAMILIES
+
+    table, _, key = parameter.name.partition(".")
+    label = f"[vary] '{parameter.name}'"
+    if table == "profile":
+        family = base.get("profile", {}).get("family")
+        if key == "family":
+            raise DesignError(label, "a profile parameter (the family is the base design's)", None)
+        schema = FAMILIES.get(family, (None, {}))[1]
+        if key not in schema:
+            allowed = ", ".join(sorted(schema)) or "none"
+            raise DesignError(label, f"one of the {family} family's parameters: {allowed}", None, "unknown key")
+        kind = (int, float)
+    else:
+        keys = {"pair": PAIR_KEYS, "housing": HOUSING_KEYS, "operating": OPERATING_KEYS}[table]
+        if key not in keys:
+            raise DesignError(label, f"a key of [{table}]: " + ", ".join(sorted(keys)), None, "unknown key")
+        kind = keys[key]
+    values = parameter.values if parameter.values is not None else parameter.bounds
+    for value in values:
+        if kind is str:
+            ok = isinstance(value, str)
+        elif kind is int:
+            ok = isinstance(value, int) and not isinstance(value, bool)
+        else:
+            ok = _number(value) and bool(np.isfinite(value))
+        if not ok:
+            need = {str: "text", int: "whole numbers"}.get(kind, "finite numbers")
+            raise DesignError(label, f"{need} for {parameter.name}", repr(value))
+    if kind is int and parameter.bounds is not None and not parameter.integer:
+        raise DesignError(label, f"whole-number bounds for {parameter.name}", parameter.bounds)
+
+
 def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
     """The plan of a sweep file's mapping, with its base design already read.
 
@@ -207,6 +261,8 @@ def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
     if not isinstance(vary, dict) or not vary:
         raise DesignError("[vary]", "at least one design value to vary", None, "missing table")
     parameters = tuple(_parameter(name, spec) for name, spec in vary.items())
+    for parameter in parameters:
+        _check_values(parameter, base)
     samples, seed = sweep.get("samples", 0), sweep.get("seed", 0)
     if not isinstance(seed, int) or isinstance(seed, bool) or seed < 0:
         raise DesignError("[sweep] seed", "a whole number of at least 0", seed)
@@ -218,6 +274,8 @@ def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
             )
     elif not (isinstance(samples, int) and not isinstance(samples, bool) and 1 <= samples <= MAX_VARIANTS):
         raise DesignError("[sweep] samples", f"a whole number from 1 to {MAX_VARIANTS}", samples)
+    if sampling is Sampling.GRID and "samples" in sweep:
+        raise DesignError("[sweep] samples", "left out for method grid (it takes every combination)", samples)
     clearance = sweep.get("clearance", 0.05)
     if not (_number(clearance) and 0 <= clearance <= 1):
         raise DesignError("[sweep] clearance", "a normal clearance from 0 to 1 mm", clearance)

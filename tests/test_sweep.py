@@ -237,3 +237,60 @@ def test_pareto_front_equals_brute_force_and_pictures_are_written(tmp_path, caps
     capsys.readouterr()
     for name in ("p.png", "e.png"):
         assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize(
+    ("vary", "words"),
+    [
+        ('"profile.lobe_widht" = [0.7]', "[vary] 'profile.lobe_widht' must be one of the rack-involute family's parameters"),
+        ('"pair.colour" = ["red"]', "[vary] 'pair.colour' must be a key of [pair]"),
+        ('"pair.male_teeth" = [4.5, 5.0]', "whole numbers"),
+        ('"pair.lead" = [true, 300.0]', "finite numbers"),
+    ],
+)
+def test_vary_typos_and_wrong_types_are_refused_before_anything_is_computed(tmp_path, capsys, vary, words):
+    # a new user's check: these ran to the end with every row failed (or an internal error)
+    sweep_file = _write(tmp_path, "[vary]\n" + vary + "\n")
+    out = tmp_path / "r.parquet"
+    assert main(["sweep", str(sweep_file), "--out", str(out)]) == 2
+    assert words in capsys.readouterr().err
+    assert not out.exists() and not parts_folder(out).exists()
+
+
+def test_results_of_another_sweep_are_never_taken_nor_lost_and_a_longer_list_computes_only_the_new(tmp_path, capsys):
+    out = tmp_path / "r.parquet"
+    first = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.66, 0.7]\n')
+    assert main(["sweep", str(first), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    before = out.read_bytes()
+    # the same values on another base design (length changed): refused, the file kept
+    changed = tmp_path / "changed.toml"
+    changed.write_text(BASE.read_text().replace("length = 190.0", "length = 100.0"))
+    other = tmp_path / "other.toml"
+    other.write_text(f'[sweep]\nbase = "{changed.as_posix()}"\n[vary]\n"profile.lobe_width" = [0.66, 0.7]\n')
+    capsys.readouterr()
+    assert main(["sweep", str(other), "--out", str(out)]) == 2
+    assert "rows are of another sweep" in capsys.readouterr().err and out.read_bytes() == before
+    # one more value in the list: only that variant is computed
+    longer = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.64, 0.66, 0.7]\n', "longer.toml")
+    assert main(["sweep", str(longer), "--out", str(out), "--workers", "1", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert (summary["computed"], summary["resumed"]) == (1, 2)
+    assert list(pd.read_parquet(out)["profile.lobe_width"]) == [0.64, 0.66, 0.7]
+
+
+def test_outputs_and_objectives_are_checked_before_the_work(tmp_path, capsys):
+    sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.7]\n')
+    out = tmp_path / "r.parquet"
+    assert main(["sweep", str(sweep_file), "--out", str(out), "--pareto", str(tmp_path / "p.png"), "--objectives", "a,b"]) == 2
+    assert "--objectives must name result columns" in capsys.readouterr().err and not out.exists()
+    assert main(["sweep", str(sweep_file), "--out", str(out), "--csv", str(tmp_path / "missing" / "r.csv")]) == 2
+    assert "--csv" in capsys.readouterr().err and not out.exists()
+    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.csv")]) == 2
+    assert ".parquet" in capsys.readouterr().err
+
+
+def test_failures_are_counted_by_cause_not_by_value(tmp_path, capsys):
+    sweep_file = _write(tmp_path, '[vary]\n"pair.male_root_radius" = [64.0, 65.0, 66.0]\n')
+    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "1", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["failed"] == 3 and list(summary["failures"].values()) == [3]

@@ -69,8 +69,9 @@ def sweep(
     ranges, or bounds drawn at random or by Latin hypercube) as tasks on Dask, streaming one row per
     variant to Parquet; a variant that cannot be built is a row with its reason. Interrupted and run
     again, the sweep computes only what is missing."""
+    from exports.atomic import check_writable
     from rotorcad.cli.sweep_run import load_sweep, run_sweep
-    from rotorcad.cli.sweep_tasks import OBJECTIVES
+    from rotorcad.cli.sweep_tasks import OBJECTIVES, result_columns
 
     if workers is not None and not 1 <= workers <= 256:
         raise InputError(f"--workers must be a whole number from 1 to 256 (got {workers}).")
@@ -78,8 +79,18 @@ def sweep(
         raise InputError(f"--batch must be a whole number from 1 to 10000 (got {batch}).")
     if out.exists() and out.is_dir():
         raise InputError(f"--out must be a file name, but {out} is a folder.")
-    if not out.parent.is_dir():
-        raise InputError(f"--out must be in an existing folder: {out.parent}.")
+    if out.suffix.lower() != ".parquet":
+        raise InputError(f"--out must name a .parquet file (got {out}); --csv writes CSV beside it.")
+    targets = {"--out": out, "--csv": csv, "--pareto": pareto, "--effects": effects}
+    for option, path in targets.items():  # every output checked before hours of work
+        if path is not None:
+            try:
+                check_writable(Path(path), option)
+            except DesignError as exc:
+                raise InputError(exc.sentence()) from None
+    named = [Path(p).resolve() for p in targets.values() if p is not None]
+    if len(set(named)) < len(named):
+        raise InputError("--out, --csv, --pareto and --effects must name different files.")
     axes = [c.strip() for c in objectives.split(",") if c.strip()]
     if pareto is not None and len(axes) not in (2, 3):
         raise InputError(f"--objectives must name 2 or 3 columns (got {objectives!r}).")
@@ -87,6 +98,11 @@ def sweep(
         plan, folder, points = load_sweep(sweep_file)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    columns = result_columns(plan.extras)
+    for option, wanted in (("--objectives", axes if pareto else []), ("--objective", [objective] if effects else [])):
+        unknown = [c for c in wanted if c not in columns]
+        if unknown:
+            raise InputError(f"{option} must name result columns: {', '.join(columns)} (got {unknown[0]!r}).")
     total = plan.count
     bar = None
     if not quiet and sys.stderr.isatty():
@@ -118,11 +134,6 @@ def sweep(
         if bar is not None:
             bar.stop()
     table = outcome.table
-    for name, column in (("--objectives", axes if pareto else []), ("--objective", [objective] if effects else [])):
-        missing = [c for c in column if c not in table.columns]
-        if missing:
-            numeric = ", ".join(c for c in table.columns if c.endswith(("_mm", "_mm2", "_mm3", "_m_s")))
-            raise InputError(f"{name} must name result columns such as {numeric} (got {missing[0]!r}).")
     files = [str(out)]
     writers = Outputs()
     if csv is not None:
@@ -154,6 +165,8 @@ def sweep(
         by_index = {v.index: v for v in plan.variants()}
         for column, chosen in best.items():
             design = apply(plan.base, by_index[chosen["variant"]].values)
+            if isinstance(design.get("profile", {}).get("points"), str):  # the points file from anywhere
+                design["profile"]["points"] = str((folder / design["profile"]["points"]).resolve())
             writers.add(
                 best_designs / f"best_{column}.toml", lambda p, d=design: Path(p).write_text(tomli_w.dumps(d)), "--best-designs"
             )

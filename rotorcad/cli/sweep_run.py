@@ -15,10 +15,14 @@ Like any Dask program, a script that starts a sweep with the local cluster needs
 
 from __future__ import annotations
 
+import itertools
 import logging
 import os
+import re
 import shutil
+import signal
 import tempfile
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -46,13 +50,19 @@ class SweepOutcome:
         return int((~self.table["ok"].astype(bool)).sum()) if len(self.table) else 0
 
     def failures(self) -> dict[str, int]:
-        """Count of failed variants by reason, most frequent first."""
+        """Count of failed variants by reason, most frequent first; numbers in a reason stand as
+        '#' so that the same cause with other values counts once."""
         bad = self.table.loc[~self.table["ok"].astype(bool), "reason"]
-        return {str(k): int(v) for k, v in bad.value_counts().items()}
+        causes = bad.map(lambda r: re.sub(r"-?\d+(\.\d+)?(e[-+]?\d+)?", "#", str(r)))
+        return {str(k): int(v) for k, v in causes.value_counts().items()}
 
     def best(self) -> dict[str, dict[str, Any]]:
         """Per objective column present: the best variant's number, value and varied values."""
         ok = self.table[self.table["ok"].astype(bool)]
+        if "hobbable" in ok:  # best among the variants a hob can make, and that do not interfere
+            ok = ok[ok["hobbable"].astype(bool)]
+        if "interferes" in ok:
+            ok = ok[~ok["interferes"].astype(bool)]
         params = [c for c in self.table.columns if "." in c]
         out = {}
         for column, smaller in OBJECTIVES.items():
@@ -67,13 +77,18 @@ def _plain(value: Any) -> Any:
     return value.item() if hasattr(value, "item") else value
 
 
+EARLIER = "a Parquet file of an earlier sweep (or a new name)"
+
+
 def parts_folder(out: Path) -> Path:
     """Where the finished batches of a sweep writing ``out`` are kept until it ends."""
     return out.with_name(out.name + ".parts")
 
 
-def _done(out: Path | None, keys: set[str]) -> pd.DataFrame:
-    """The rows already computed for this plan: from ``out`` and its parts folder."""
+def _done(out: Path | None, keys: dict[str, int]) -> pd.DataFrame:
+    """The rows already computed for this plan, from ``out`` and its parts folder, numbered as the
+    plan numbers them. Rows of another sweep (another base design, other analyses, other values)
+    are refused, not dropped: ``out`` would lose them."""
     frames = []
     if out is not None:
         sources = [out] if out.is_file() else []
@@ -84,17 +99,24 @@ def _done(out: Path | None, keys: set[str]) -> pd.DataFrame:
             try:
                 frame = pd.read_parquet(path)
             except Exception as exc:  # not a Parquet table we wrote: refuse rather than overwrite it
-                raise DesignError(
-                    "--out", "a Parquet file of an earlier sweep (or a new name)", str(path), str(exc)[:80]
-                ) from None
+                reason = " ".join(str(exc).split())[:160]
+                raise DesignError("--out", EARLIER, str(path), reason) from None
             if "key" not in frame:
+                raise DesignError("--out", EARLIER, str(path), "it has no key column")
+            foreign = int((~frame["key"].isin(keys)).sum())
+            if foreign:
                 raise DesignError(
-                    "--out", "a Parquet file of an earlier sweep (or a new name)", str(path), "it has no key column"
+                    "--out",
+                    "a new file name, or the results of this same sweep",
+                    str(path),
+                    f"{foreign} of its rows are of another sweep (its base design, analyses or values differ)",
                 )
-            frames.append(frame[frame["key"].isin(keys)])
+            frames.append(frame)
     if not frames:
         return pd.DataFrame()
-    return pd.concat(frames, ignore_index=True).drop_duplicates("key")
+    done = pd.concat(frames, ignore_index=True).drop_duplicates("key")
+    done["variant"] = done["key"].map(keys)
+    return done
 
 
 def _write_part(folder: Path, rows: list[dict[str, Any]]) -> None:
@@ -102,6 +124,7 @@ def _write_part(folder: Path, rows: list[dict[str, Any]]) -> None:
     os.close(fd)
     try:
         pd.DataFrame(rows).to_parquet(tmp, index=False)
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, folder / f"part-{rows[0]['variant']:09d}.parquet")
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
@@ -126,9 +149,22 @@ def _client(scheduler: str | None, workers: int | None):
                 "--scheduler", "the address of a running dask.distributed scheduler", scheduler, str(exc)[:80]
             ) from None
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(
-        n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.CRITICAL, memory_limit=0
-    )
+    # the workers start with Ctrl-C ignored (they inherit it): the sweep stops them itself, and
+    # their tracebacks would bury the one line a user is owed
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        cluster = LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            silence_logs=logging.CRITICAL,
+            memory_limit=0,
+        )
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
     return Client(cluster), cluster
 
 
@@ -164,7 +200,7 @@ def run_sweep(
     """
     start = time.perf_counter()
     variants = plan.variants()
-    keys = {v.key for v in variants}
+    keys = {v.key: v.index for v in variants}
     earlier = _done(out, keys)
     done_keys = set(earlier["key"]) if len(earlier) else set()
     todo = [v for v in variants if v.key not in done_keys]
@@ -181,9 +217,9 @@ def run_sweep(
             batches = [todo[i : i + size] for i in range(0, len(todo), size)]
             from dask.distributed import as_completed
 
-            futures = client.map(
-                evaluate_batch,
-                batches,
+            # at most four tasks a worker in flight: a small graph however large the sweep
+            pending = iter(batches)
+            submit = dict(
                 base=plan.base,
                 folder=None if folder is None else str(folder),
                 points=points,
@@ -191,10 +227,14 @@ def run_sweep(
                 clearance=plan.clearance,
                 pure=False,
             )
+            queue = as_completed([client.submit(evaluate_batch, b, **submit) for b in itertools.islice(pending, 4 * n_workers)])
             done = len(earlier)
-            for future in as_completed(futures):
+            for future in queue:
                 batch_rows = future.result()
                 future.release()
+                following = next(pending, None)
+                if following is not None:
+                    queue.add(client.submit(evaluate_batch, following, **submit))
                 if parts is not None:
                     _write_part(parts, batch_rows)
                 else:
@@ -224,10 +264,17 @@ def _replace(out: Path, table: pd.DataFrame) -> None:
     os.close(fd)
     try:
         table.to_parquet(tmp, index=False)
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, out)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def sweep(
@@ -255,6 +302,10 @@ def sweep(
         One row per variant: its number and key, the varied values (``table.key`` columns), ``ok``,
         ``reason``, ``seconds`` and the results with their unit in the column name.
     """
+    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+        raise DesignError("workers", "a whole number of at least 1", workers)
+    if out is not None and not Path(out).parent.is_dir():
+        raise DesignError("out", "a file in an existing folder", str(out))
     plan, folder, points = load_sweep(Path(sweep_file))
     return run_sweep(plan, folder, points, None if out is None else Path(out), scheduler, workers).table
 
@@ -265,7 +316,7 @@ def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
     from rotorcad.design import load_toml, rotor_design
     from rotorcad.sweep_plan import sweep_plan
 
-    data = load_toml(path)
+    data = load_toml(path, "sweep file")
     section = data.get("sweep", {})
     if "base" in data and "base" in section:
         raise DesignError("[sweep] base", "either a design file or a [base] table, not both", section["base"])
@@ -273,7 +324,7 @@ def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
         base, folder = data["base"], path.parent
     elif isinstance(section.get("base"), str):
         base_path = (path.parent / section["base"]).resolve()
-        base, folder = load_toml(base_path), base_path.parent
+        base, folder = load_toml(base_path, "[sweep] base"), base_path.parent
     else:
         raise DesignError("[sweep] base", "a design file name (or a [base] table)", None, "missing key")
     plan = sweep_plan(data, base)

@@ -31,8 +31,22 @@ OBJECTIVES = {
     "contact_line_length_mm": True,
     "displacement_per_rev_mm3": False,
     "max_sliding_velocity_m_s": True,
-    "interference_volume_mm3": True,
 }
+
+
+EXTRA_COLUMNS = {
+    Extra.HOBBABILITY: ("hobbable", "hob_reason"),
+    Extra.INTERFERENCE: ("interference_volume_mm3", "interferes"),
+    Extra.VOLUME: ("male_volume_mm3", "female_volume_mm3"),
+    Extra.CLEARANCE: ("clearance_mean_mm", "clearance_max_mm", "clearance_min_mm", "clearance_band_area_mm2"),
+}
+
+
+def result_columns(extras: tuple[Extra, ...]) -> list[str]:
+    """The numeric result columns of a sweep with these extra analyses (for plots and objectives)."""
+    cols = [*RESULT_COLUMNS.values(), "max_slip_male", "max_slip_female", "defects"]
+    cols += [c for e in extras for c in EXTRA_COLUMNS[e] if c not in ("hob_reason", "hobbable", "interferes")]
+    return [c for c in cols if c != "meshline_closed"]
 
 
 def evaluate(
@@ -50,7 +64,14 @@ def evaluate(
     from rotorcad.rotor_build import analyse_pair, build_pair, pair_spec
 
     start = time.perf_counter()
-    row: dict[str, Any] = {"variant": variant.index, "key": variant.key, **variant.values, "ok": False, "reason": ""}
+    row: dict[str, Any] = {
+        "variant": variant.index,
+        "key": variant.key,
+        **variant.values,
+        "ok": False,
+        "reason": "",
+        "seconds": 0.0,
+    }
     try:
         spec = pair_spec(rotor_design(apply(base, variant.values), folder), points)
         rotors = build_pair(spec)
@@ -98,8 +119,8 @@ def _extra(extra: Extra, rotors, spec, clearance: float) -> dict[str, Any]:
         from hob.verdict import HobLimits, judge
 
         verdicts = [judge(rotor_rack(rotors, rotor), HobLimits()) for rotor in ("male", "female")]
-        reasons = [r for v in verdicts for r in v.reasons]
-        return {"hobbable": all(v.hobbable for v in verdicts), "hob_reason": reasons[0] if reasons else ""}
+        reasons = [f"{rotor}: {r}" for rotor, v in zip(("male", "female"), verdicts, strict=True) for r in v.reasons]
+        return {"hobbable": all(v.hobbable for v in verdicts), "hob_reason": "; ".join(reasons)}
     if extra is Extra.INTERFERENCE:
         from rotorcad.interference import interference_2d
 
