@@ -74,16 +74,16 @@ class InvoluteGear:
             raise DesignError("teeth", f"a whole number from 3 to {MAX_TEETH}", self.teeth)
         if not (np.isfinite(self.module) and MODULE_RANGE[0] <= self.module <= MODULE_RANGE[1]):
             raise DesignError("module", f"a length from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm", self.module)
-        if not (0.0 < self.pressure_angle < 45.0 * DEG):
-            raise DesignError("pressure_angle", "between 0 and 45 degrees (exclusive)", round(self.pressure_angle / DEG, 6))
+        if not (1.0 * DEG <= self.pressure_angle < 45.0 * DEG):  # below 1 deg the involute's solvers lose it
+            raise DesignError("pressure_angle", "from 1 to below 45 degrees", float(self.pressure_angle / DEG))
         if not (-60.0 * DEG < self.helix_angle < 60.0 * DEG):
             raise DesignError("helix_angle", "between -60 and 60 degrees (exclusive)", round(self.helix_angle / DEG, 6))
         if not np.isfinite(self.shift) or not (-2.0 <= self.shift <= 3.0):
             raise DesignError("shift", "between -2 and 3 modules", self.shift)
-        if not (0.0 < self.addendum <= 3.0):
-            raise DesignError("addendum", "greater than 0 and at most 3 (factor of the module)", self.addendum)
-        if not (0.0 < self.dedendum <= 3.0):
-            raise DesignError("dedendum", "greater than 0 and at most 3 (factor of the module)", self.dedendum)
+        if not (0.1 <= self.addendum <= 3.0):
+            raise DesignError("addendum", "from 0.1 to 3 (factor of the module)", self.addendum)
+        if not (0.1 <= self.dedendum <= 3.0):
+            raise DesignError("dedendum", "from 0.1 to 3 (factor of the module)", self.dedendum)
         rho_max = tool_tip_radius_limit(self.pressure_angle, self.dedendum)
         if not (0.0 <= self.tip_radius_factor <= rho_max + 1e-12):
             raise DesignError(

@@ -293,3 +293,23 @@ def test_interfere_exit_status(capsys):
     assert run(capsys, "interfere", ASYM, "--steps", "8")[0] == 0
     status, out, _ = run(capsys, "interfere", ASYM, "--steps", "8", "--center-distance", "110", "--json")
     assert status == 1 and json.loads(out)["interferes"] is True
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        # found by the long fuzz run (ROTORCAD_FUZZ_EXAMPLES=800): both were internal errors
+        (
+            ["gear", "--teeth", "17", "--module", "2", "--pressure-angle", "1.3344119962731866e-139"],
+            "--pressure-angle must be from 1",
+        ),
+        (
+            ["cut", "--teeth", "12", "--module", "2", "--tip-radius", "0", "--hob-addendum", "1e-09"],
+            "--hob-addendum must be from 0.1",
+        ),
+    ],
+)
+def test_long_fuzz_findings_are_refused_in_one_sentence(capsys, argv, words):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1

@@ -38,6 +38,8 @@ def cut(design: Path | None, **opts: Any) -> None:
     """Cut a gear with the ISO 53 basic-rack tool (a trapezoidal hob) by polygon booleans and compare
     it with the analytic envelope; undercut radius from the simulation and from Kollek's model."""
     if opts.get("hob_addendum") is not None:
+        if not (np.isfinite(opts["hob_addendum"]) and 0.1 <= opts["hob_addendum"] <= 3.0):
+            raise InputError(f"--hob-addendum must be from 0.1 to 3 (factor of the module) (got {opts['hob_addendum']}).")
         opts["dedendum"] = opts["hob_addendum"]
     tol = opts["tolerance"]
     if not (tol and np.isfinite(tol) and 0 < tol <= 1.0):

@@ -43,7 +43,7 @@ GEAR_DECORATORS = [
     click.option("--teeth", type=int, help="Number of teeth z (at least 3)."),
     click.option("--module", type=float, help="Normal module m [mm], > 0."),
     click.option(
-        "--pressure-angle", type=float, help="Normal pressure angle of the basic rack [deg], 0 < alpha < 45. Default 20."
+        "--pressure-angle", type=float, help="Normal pressure angle of the basic rack [deg], 1 <= alpha < 45. Default 20."
     ),
     click.option("--helix-angle", type=float, help="Helix angle beta at the pitch cylinder [deg], |beta| < 60. Default 0."),
     click.option("--shift", type=float, help="Profile shift coefficient x [modules]. Default 0."),
