@@ -31,6 +31,7 @@ from rotorcad.section_properties import circle_values, section_values, shear_cor
 from rotorcad.working_chamber import ChamberTable, chamber_table
 
 STEEL = (210_000.0, 0.3)  # E in N/mm^2, Poisson's ratio
+MAX_WRAP_DEG = 720.0  # screw rotors wrap 200-360 deg; beyond two turns the model is not meant
 
 
 @dataclass(frozen=True)
@@ -228,6 +229,11 @@ class GasDeflection:
         if not (np.isfinite(poisson) and 0 <= poisson < 0.5):
             raise DesignError("poisson_ratio", "from 0 to below 0.5", poisson)
         pair = rotors.pair
+        wrap = 360.0 * pair.length / pair.lead
+        if not wrap <= MAX_WRAP_DEG:  # more chambers than a rotor has, and work that grows with them
+            raise DesignError(
+                "[pair] lead", f"one that gives a male wrap of at most {MAX_WRAP_DEG:g} degrees over the length", pair.lead
+            )
         self.pair = pair
         self.terms = int(terms)
         male = rotors.section("male", 0.01)

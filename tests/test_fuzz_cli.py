@@ -246,7 +246,9 @@ def output_path(folder: Path, kind: str, suffix: str) -> Path | None:
 
 
 # ----- the check ------------------------------------------------------------------------------
-PARAMETER = re.compile(r"--[a-z]|\[[a-z]+\]|design file|DESIGN|sweep file|points file|\b[a-z_]+ must\b|command|argument|option")
+PARAMETER = re.compile(
+    r"--[a-z]|\[[a-z]+\]|design file|DESIGN|SWEEP_FILE|sweep file|points file|\b[a-z_]+ must\b|command|argument|option"
+)
 
 
 def snapshot(folder: Path) -> dict[str, bytes | None]:

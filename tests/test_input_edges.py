@@ -313,3 +313,17 @@ def test_long_fuzz_findings_are_refused_in_one_sentence(capsys, argv, words):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1
+
+
+def test_more_long_fuzz_findings(tmp_path, capsys):
+    # deflect with a lead that wraps the rotors many times ran past two minutes: refused (at most 720 deg)
+    root = Path(__file__).resolve().parents[1]
+    design = tmp_path / "lead.toml"
+    design.write_text((root / "samples" / "rack_involute_5_6.toml").read_text().replace("lead = 300.0", "lead = 20.0"))
+    assert main(["deflect", str(design)]) == 2
+    assert "[pair] lead must be one that gives a male wrap of at most 720 degrees" in capsys.readouterr().err
+    # coupling's "error in the input data" names the options that caused it
+    args = ["coupling", "--face-width", "1e-12", "--teeth", "40", "--module", "3", "--speed", "1500", "--viscosity", "0.05"]
+    args += ["--power", "50", "--misalignment-deg", "0.1", "--pressure-viscosity", "2e-8"]
+    assert main(args) == 2
+    assert "--barrel-radius, --face-width and --misalignment-deg make no sense" in capsys.readouterr().err

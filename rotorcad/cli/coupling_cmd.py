@@ -129,8 +129,10 @@ def coupling(**opts: Any) -> None:
     _check_inputs(opts)
     c = _build(opts)
     r = analyse(c)
-    if r.verdict in (Verdict.NO_ENTRAINMENT, Verdict.THICK_FILM):  # the paper's "error in the input data"
-        raise InputError(f"the inputs make no sense for a coupling: {r.message}.")
+    if r.verdict is Verdict.NO_ENTRAINMENT:  # the paper's "error in the input data"
+        raise InputError(f"--barrel-radius, --face-width and --misalignment-deg make no sense for a coupling: {r.message}.")
+    if r.verdict is Verdict.THICK_FILM:
+        raise InputError(f"--power, --speed and --viscosity make no sense for a coupling: {r.message}.")
     result = _result(r)
     out = Outputs()
     fmt = plot_format(opts["plot"])
