@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorcad.errors import DesignError
+from rotorcad.profile import polygon_moments
 
 
 @dataclass(frozen=True)
@@ -79,19 +80,9 @@ def section_values(points: np.ndarray) -> SectionValues:
     SectionValues
         Exact for the polygon (Green's theorem over its edges).
     """
-    p = _ccw(points)
-    x0, y0 = p.T
-    x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
-    cross = x0 * y1 - x1 * y0
-    area = 0.5 * cross.sum()
-    cx = ((x0 + x1) * cross).sum() / (6 * area)
-    cy = ((y0 + y1) * cross).sum() / (6 * area)
-    ixx = ((y0**2 + y0 * y1 + y1**2) * cross).sum() / 12  # about the x axis through the origin
-    iyy = ((x0**2 + x0 * x1 + x1**2) * cross).sum() / 12
-    ixy = ((x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * cross).sum() / 24
-    return SectionValues(
-        float(area), (float(cx), float(cy)), float(ixx - area * cy**2), float(iyy - area * cx**2), float(ixy - area * cx * cy)
-    )
+    m = polygon_moments(_ccw(points))  # Green's theorem over the edges (rotorcad.profile)
+    area, cx, cy = m["area"], m["cx"], m["cy"]
+    return SectionValues(area, (cx, cy), m["Ixx"] - area * cy**2, m["Iyy"] - area * cx**2, m["Ixy"] - area * cx * cy)
 
 
 def width_profile(points: np.ndarray, levels: np.ndarray) -> np.ndarray:

@@ -161,3 +161,22 @@ def test_installed_command_runs_as_a_process(tmp_path):
     assert proc.stderr.count("\n") == 1 and "--teeth" in proc.stderr
     ok = subprocess.run([sys.executable, "-m", "rotorcad.cli.main", "gear", "--help"], capture_output=True, text=True)
     assert ok.returncode == 0 and "--pressure-angle" in ok.stdout and "[deg]" in ok.stdout
+
+
+def test_plot_format_follows_the_suffix_for_every_command(tmp_path, capsys):
+    # one mechanism (Outputs.add_figure) for all pictures: SVG read back by the standard XML parser,
+    # an unknown suffix refused naming the option, nothing written
+    import xml.etree.ElementTree as ET
+
+    from rotorcad.cli.main import main
+
+    svg = tmp_path / "g.svg"
+    assert main(["gear", "--teeth", "17", "--module", "2", "--plot", str(svg)]) == 0
+    assert ET.parse(svg).getroot().tag.endswith("svg")
+    pump = tmp_path / "p.pdf"
+    assert main(["pump", "--teeth", "11", "--module", "4", "--face-width", "20", "--speed", "1500", "--plot", str(pump)]) == 0
+    assert pump.read_bytes()[:5] == b"%PDF-"
+    capsys.readouterr()
+    assert main(["gear", "--teeth", "17", "--module", "2", "--plot", str(tmp_path / "g.jpg")]) == 2
+    assert "--plot must name a .png, .svg or .pdf file" in capsys.readouterr().err
+    assert not (tmp_path / "g.jpg").exists()

@@ -70,7 +70,6 @@ def test_crash_interfere_check_3d_lead_0_001(capsys, tmp_path):
     refused(capsys, "[pair] lead must be at least", "interfere", path, "--steps", "8", "--tolerance", "1.0", "--check-3d")
 
 
-@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs")
 @pytest.mark.parametrize("command", ["hob", "rotor", "gear", "cut", "interfere", "deflect"])
 def test_hang_fifo_design_path(capsys, tmp_path, command):
     """Hang: a design path that is a FIFO (`hob` opened it before checking it)."""

@@ -180,13 +180,18 @@ def test_killed_sweep_resumes_without_repeating_or_losing_a_variant(tmp_path):
     assert np.allclose(kept, done["blow_hole_area_mm2"].to_numpy(), equal_nan=True)  # the first run's rows kept
 
 
-def test_python_api_returns_the_table(tmp_path):
+def test_python_api_returns_the_table(tmp_path, capsys):
     import rotorcad
 
     sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.66, 0.7]\n')
     table = rotorcad.sweep(sweep_file, workers=1)
     assert list(table["profile.lobe_width"]) == [0.66, 0.7] and table["ok"].all()
-    assert (table["blow_hole_area_mm2"] > 0).all()
+    # the base design (lobe width 0.6 -> 0.7 written by hand into a copy) through `rotorcad rotor --json`
+    design = tmp_path / "w07.toml"
+    design.write_text(BASE.read_text().replace("lobe_width = 0.6 ", "lobe_width = 0.7 "))
+    assert main(["rotor", str(design), "--json"]) == 0
+    reference = json.loads(capsys.readouterr().out)
+    assert table["contact_line_length_mm"].iloc[1] == pytest.approx(reference["contact_line_length"], rel=1e-12)
 
 
 def test_not_a_sweep_output_is_not_overwritten(tmp_path, capsys):

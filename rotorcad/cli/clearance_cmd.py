@@ -84,7 +84,7 @@ def clearance(**opts: Any) -> None:
         raise InputError(exc.sentence()) from None
     out = Outputs()
     if opts["plot"]:
-        out.add(opts["plot"], lambda p: _plot(mc).savefig(p, format="png"), "--plot")
+        out.add_figure(opts["plot"], lambda: _plot(mc), "--plot")
     if opts["csv_path"]:
         dist = mc.distribution()
         rows = np.column_stack(list(dist.values()))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -166,6 +167,14 @@ class Outputs:
         self._items.append((Path(path), writer))
         self._options[Path(path)] = option
 
+    def add_figure(self, path: Path | None, figure: Callable[[], Any], option: str) -> None:
+        """A picture: ``figure()`` makes the matplotlib figure, saved as PNG, SVG or PDF by the
+        suffix of ``path`` (PNG without one; any other suffix is refused naming ``option``)."""
+        if path is None:
+            return
+        fmt = plot_format(path, option)
+        self.add(path, lambda p: figure().savefig(p, format=fmt), option)
+
     def write(self, pool: WorkerPool | None = None) -> list[Path]:
         """Write every file or none; background writers run in ``pool``'s worker if given."""
         try:
@@ -188,15 +197,13 @@ class Outputs:
 PLOT_FORMATS = ("png", "svg", "pdf")
 
 
-def plot_format(path: Path | None) -> str:
-    """The picture format of ``--plot NAME`` from its suffix (PNG, SVG or PDF; PNG without one)."""
-    if path is None:
-        return "png"
+def plot_format(path: Path, option: str = "--plot") -> str:
+    """The picture format of ``path`` from its suffix (PNG, SVG or PDF; PNG without one)."""
     suffix = Path(path).suffix.lower().lstrip(".")
     if not suffix:
         return "png"
     if suffix not in PLOT_FORMATS:
-        raise InputError(f"--plot must name a .png, .svg or .pdf file (got {path}).")
+        raise InputError(f"{option} must name a .png, .svg or .pdf file (got {path}).")
     return suffix
 
 

@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 from rich.console import Console
 from rich.table import Table
 
-from rotorcad.cli.common import InputError, Outputs, emit_json, plain, plot_format, reraise
+from rotorcad.cli.common import InputError, Outputs, emit_json, plain, reraise
 from rotorcad.coupling import CouplingResult, GearCoupling, Verdict, analyse, sweep_teeth
 from rotorcad.errors import DesignError
 
@@ -135,8 +135,7 @@ def coupling(**opts: Any) -> None:
         raise InputError(f"--power, --speed and --viscosity make no sense for a coupling: {r.message}.")
     result = _result(r)
     out = Outputs()
-    fmt = plot_format(opts["plot"])
-    out.add(opts["plot"], lambda path: _plot(r).savefig(path, format=fmt), "--plot")
+    out.add_figure(opts["plot"], lambda: _plot(r), "--plot")
     result["files"] = [str(x) for x in out.write()]
     if opts["as_json"]:
         emit_json(result)

@@ -79,7 +79,7 @@ def cut(design: Path | None, **opts: Any) -> None:
     out = Outputs()
     out.add(opts["csv"], lambda p: write_points(p, _ccw(whole), ["simulated gear, basic-rack cutting"]), "--csv")
     out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(g, whole)), "--dxf")
-    out.add(opts["plot"], lambda p: _plot(g, res).savefig(p, format="png"), "--plot")
+    out.add_figure(opts["plot"], lambda: _plot(g, res), "--plot")
     result["files"] = [str(p) for p in out.write()]
     if opts["as_json"]:
         emit_json(result)

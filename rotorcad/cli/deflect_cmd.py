@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from exports.csv_points import read_points
-from rotorcad.cli.common import InputError, Outputs, emit_json, plot_format, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.export_cmd import _rotor_options
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.deflection import STEEL, GasDeflection, Shaft
@@ -182,8 +182,7 @@ def deflect(
     result["terms"] = terms
     result["shaft_ends"] = bool(shafts)
     out = Outputs()
-    fmt = plot_format(plot)
-    out.add(plot, lambda p: _plot(model, lines, sweep_angles, swept, shafts).savefig(p, format=fmt), "--plot")
+    out.add_figure(plot, lambda: _plot(model, lines, sweep_angles, swept, shafts), "--plot")
     result["files"] = [str(x) for x in out.write()]
     if as_json:
         emit_json(result)

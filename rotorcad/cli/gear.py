@@ -114,7 +114,7 @@ def gear(design: Path | None, **opts: Any) -> None:
                 mate_path, lambda path: write_points(path, pair.mate.outline().points, _comments(pair.mate, "mate")), "--csv"
             )
     for p in png_paths:
-        outputs.add(p, lambda path: plot_gears(g, pair).savefig(path, format="png"), "--plot")
+        outputs.add_figure(p, lambda: plot_gears(g, pair), "--plot")
     written = outputs.write()
     result["files"] = [str(p) for p in written]
 

@@ -71,8 +71,8 @@ def pump(design: Path | None, **opts: Any) -> None:
         },
     }
     out = Outputs()
-    out.add(opts["plot"], lambda path: _plot(p).savefig(path, format="png"), "--plot")
-    out.add(opts["nomogram"], lambda path: plot_nomogram(g.teeth, g.pressure_angle).savefig(path, format="png"), "--nomogram")
+    out.add_figure(opts["plot"], lambda: _plot(p), "--plot")
+    out.add_figure(opts["nomogram"], lambda: plot_nomogram(g.teeth, g.pressure_angle), "--nomogram")
     result["files"] = [str(x) for x in out.write()]
     if opts["as_json"]:
         emit_json(result)

@@ -135,8 +135,8 @@ def rotor(design: Path | None, **opts: Any) -> None:
         from rotorcad.rotor_plotting import plot_pair, plot_sliding  # matplotlib only when a plot is asked for
 
         plot = Path(opts["plot"])
-        out.add(plot, lambda p: plot_pair(analysis, clearance).savefig(p, format="png"), "--plot")
-        out.add(plot.with_name(plot.stem + "_sliding.png"), lambda p: plot_sliding(analysis).savefig(p, format="png"), "--plot")
+        out.add_figure(plot, lambda: plot_pair(analysis, clearance), "--plot")
+        out.add_figure(plot.with_name(plot.stem + "_sliding" + (plot.suffix or ".png")), lambda: plot_sliding(analysis), "--plot")
     designed = _designed_clearance(opts)
     male_pts = lambda: _exterior(analysis.sections[0])  # noqa: E731
     female_pts = lambda: _exterior(analysis.sections[1])  # noqa: E731

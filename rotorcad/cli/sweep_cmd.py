@@ -147,13 +147,13 @@ def sweep(
         colour = ok[axes[2]].to_numpy(float) if len(axes) == 3 else None
         smaller = (OBJECTIVES.get(axes[0], True), OBJECTIVES.get(axes[1], True))
         names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
-        writers.add(pareto, lambda p: plot_pareto(x, y, colour, names, smaller).savefig(p, format="png"), "--pareto")
+        writers.add_figure(pareto, lambda: plot_pareto(x, y, colour, names, smaller), "--pareto")
     if effects is not None:
         from rotorcad.sweep_plots import plot_effects
 
         values = {p: _numeric(ok[p]) for p in params}
         target = ok[objective].to_numpy(float)
-        writers.add(effects, lambda p: plot_effects(values, target, objective).savefig(p, format="png"), "--effects")
+        writers.add_figure(effects, lambda: plot_effects(values, target, objective), "--effects")
     best = outcome.best()
     if best_designs is not None:
         import tomli_w
