@@ -18,16 +18,17 @@ computed.
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 import shapely
 from scipy import interpolate
 
+from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross
-from rotorcad.roles import PieceRole
+from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -43,6 +44,89 @@ class MeshlinePiece:
     tangents: np.ndarray  # common tangent of the flanks at contact (unit)
     male_name: str = ""
     female_name: str = ""
+    roles: np.ndarray = field(
+        default_factory=lambda: np.zeros(0, dtype=object)
+    )  # (n,) Flank per point: the lobe part (read off the rack)
+
+
+_FLANKS = np.array(list(Flank), dtype=object)
+
+
+def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
+    """The lobe part of rack points (fixed frame at t = 0, pitch line x = r1w, motion +y).
+
+    Parameters
+    ----------
+    points, tangents : (n, 2) float
+        Rack points (mm) and unit tangents along the chain (the direction of motion).
+    pitch_radius : float
+        Male pitch radius r1w (mm): the rack's pitch line.
+    scale : float
+        A length of the pair (mm) for the flatness tolerance.
+
+    Returns
+    -------
+    (n,) object array of Flank
+        DRIVING where the rack rises towards the male tip (x grows along the chain), SEALING
+        where it falls, TIP / ROOT on a land above / below the pitch line (Rinder sec. 1.2).
+    """
+    rise = tangents[:, 0]
+    flat = np.abs(rise) <= 1e-9
+    above = points[:, 0] > pitch_radius + 1e-9 * scale
+    order = list(Flank)
+    code = np.where(
+        flat,
+        np.where(above, order.index(Flank.TIP), order.index(Flank.ROOT)),
+        np.where(rise > 0, order.index(Flank.DRIVING), order.index(Flank.SEALING)),
+    )
+    return _FLANKS[code]
+
+
+@dataclass(frozen=True)
+class FlankReport:
+    """How one flank of the lobes meshes (Rinder sec. 1.2 and 2.2.1).
+
+    ``meshline_length`` (mm) of its contacts inside both bores; ``geometric_share`` the part of it
+    where the flanks touch with a common tangent (not a corner against a flank); ``defects`` the
+    cusps and jamming points on it; ``runs_without_timing_gears``: geometric contact everywhere and
+    no cusp or jamming (slipping is allowed: the helix carries the drive past it, Rinder 2.2.1);
+    ``transverse_contact_ratio``: the male rotation over which the flank is in geometric contact,
+    per angular pitch 2 pi / z1 (0 where a circular flank centred on the pitch point touches at one
+    instant only: Lysholm's "nur infinitesimale Stirnüberdeckung").
+    """
+
+    flank: Flank
+    meshline_length: float
+    geometric_share: float
+    defects: tuple[str, ...]
+    transverse_contact_ratio: float
+
+    @property
+    def runs_without_timing_gears(self) -> bool:
+        return self.meshline_length > 0 and self.geometric_share >= 1.0 - 1e-6 and not self.defects
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "meshline_length": self.meshline_length,
+            "geometric_contact": self.geometric_share >= 1.0 - 1e-6,
+            "geometric_share": self.geometric_share,
+            "defects": list(self.defects),
+            "runs_without_timing_gears": self.runs_without_timing_gears,
+            "transverse_contact_ratio": self.transverse_contact_ratio,
+        }
+
+
+def _covered(intervals: list[np.ndarray]) -> float:
+    """Measure of the union of the ranges of the given sets of angles (rad): the rotation over which
+    at least one of them is in contact. A piece touching at one instant adds nothing."""
+    spans = sorted((float(t.min()), float(t.max())) for t in intervals if len(t))
+    total, reach = 0.0, -np.inf
+    for lo, hi in spans:
+        lo = max(lo, reach)
+        if hi > lo:
+            total += hi - lo
+            reach = hi
+    return total
 
 
 @dataclass(frozen=True)
@@ -55,6 +139,7 @@ class Defect:
     flank: str
     point_generated: bool = False
     extent: float = 0.0  # meshline length over which it holds (0: a single point)
+    role: Flank | None = None  # the lobe part where it occurs
 
     def as_dict(self) -> dict[str, object]:
         return {
@@ -66,6 +151,7 @@ class Defect:
             "flank": self.flank,
             "point_generated": self.point_generated,
             "extent": self.extent,
+            "flank_role": None if self.role is None else str(self.role),
         }
 
 
@@ -94,11 +180,20 @@ class MeshingAnalysis:
             ok = c.in_contact & inside & np.all(np.isfinite(x), axis=1)
             if ok.sum() < 2:
                 continue
-            _, tan = piece.curve.evaluate(s)
+            rack_pts, tan = piece.curve.evaluate(s)
             tan_fixed = mesh.rack.vectors_to_fixed(tan, c.t)
+            roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, pair.center_distance)
             out.append(
                 MeshlinePiece(
-                    piece.male_name, piece.kind, s[ok], c.t[ok], x[ok], tan_fixed[ok], piece.male_name, piece.female_name
+                    piece.male_name,
+                    piece.kind,
+                    s[ok],
+                    c.t[ok],
+                    x[ok],
+                    tan_fixed[ok],
+                    piece.male_name,
+                    piece.female_name,
+                    roles,
                 )
             )
         return out
@@ -139,7 +234,16 @@ class MeshingAnalysis:
                         continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
                     mid = len(pts) // 2
                     found.append(
-                        Defect(kind, rotor, *map(float, pts[mid]), float(np.degrees(piece.t[mid])), piece.name, True, length)
+                        Defect(
+                            kind,
+                            rotor,
+                            *map(float, pts[mid]),
+                            float(np.degrees(piece.t[mid])),
+                            piece.name,
+                            True,
+                            length,
+                            piece.roles[mid],
+                        )
                     )
                     continue
                 for i in np.nonzero((np.sign(f[:-1]) * np.sign(f[1:]) < 0) & judged[:-1] & judged[1:])[0]:
@@ -148,7 +252,8 @@ class MeshingAnalysis:
                     if np.hypot(*(p - q)) < 1e-3 * scale or abs(p[1]) < 1e-3 * scale:
                         continue  # through q itself (C lies on every meshline), or on O1O2 (slipping rule)
                     ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
-                    found.append(Defect(kind, rotor, float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name))
+                    role = piece.roles[i if w < 0.5 else i + 1]
+                    found.append(Defect(kind, rotor, float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name, role=role))
             # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
             # with its neighbour (_slipping_between_pieces)
             y = pts[:, 1]
@@ -159,7 +264,10 @@ class MeshingAnalysis:
                     p = pts[i] + w * (pts[j] - pts[i])
                     if abs(p[0] - c[0]) > 1e-6 * scale:
                         ang = piece.t[i] + w * (piece.t[j] - piece.t[i])
-                        found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name))
+                        role = piece.roles[i] if piece.roles[i] == piece.roles[j] else (Flank.TIP if p[0] > c[0] else Flank.ROOT)
+                        found.append(
+                            Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name, role=role)
+                        )
         found.extend(self._slipping_between_pieces())
         return found
 
@@ -181,8 +289,10 @@ class MeshingAnalysis:
         found = []
         for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
             if abs(p[1]) <= 1e-6 * scale and out_sign * in_sign < 0 and abs(p[0] - c_x) > 1e-6 * scale:
-                land = "male tip on the female root" if p[0] > c_x else "female tip on the male root"
-                found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), land))
+                tip = p[0] > c_x
+                land = "male tip on the female root" if tip else "female tip on the male root"
+                role = Flank.TIP if tip else Flank.ROOT
+                found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), land, role=role))
         return found
 
     @property
@@ -194,6 +304,64 @@ class MeshingAnalysis:
                 out.append({"rotor": "female", "flank": piece.female_name, "generated_by": "male tip corner"})
             elif piece.kind is PieceRole.FEMALE_CORNER_PATH:
                 out.append({"rotor": "male", "flank": piece.male_name, "generated_by": "female tip corner"})
+        return out
+
+    # ---- running without timing gears (1.2, 2.2.1) -----------------------------------------
+    @cached_property
+    def flanks(self) -> dict[Flank, FlankReport]:
+        """Per flank (driving, sealing): geometric contact, defects, and the transverse contact ratio.
+
+        A contact is geometric where a rack curve touches both rotors (a common tangent); a corner
+        path's contacts are a corner against a flank (Rinder 1.2: "eine Berührung ... im
+        geometrischen Sinn mit gemeinsamen Tangenten ... ist in keinem Flankenteil gegeben").
+        Contact pieces shorter than 1e-6 of the centre distance (a corner touching only at C) do not
+        count.
+        """
+        pair = self.rotors.pair
+        pitch_angle = 2 * np.pi / pair.male_teeth
+        out = {}
+        for flank in (Flank.DRIVING, Flank.SEALING):
+            total = geometric = 0.0
+            t_geo: list[np.ndarray] = []
+            for piece in self.pieces:
+                mask = piece.roles == flank
+                if mask.sum() < 2:
+                    continue
+                seg = np.hypot(*np.diff(piece.points, axis=0).T)
+                length = float(seg[mask[:-1] & mask[1:]].sum())
+                if length < 1e-6 * pair.center_distance:
+                    continue
+                total += length
+                if piece.kind is PieceRole.CURVE:
+                    geometric += length
+                    t_geo.append(piece.t[mask])
+            defects = tuple(sorted({d.kind for d in self.defects if d.role is flank and d.kind != "slipping"}))
+            ratio = _covered(t_geo) / pitch_angle
+            out[flank] = FlankReport(flank, total, geometric / total if total > 0 else 0.0, defects, ratio)
+        return out
+
+    @property
+    def running_reasons(self) -> list[str]:
+        """Why the pair does not run without timing gears, one sentence per flank (empty: it runs)."""
+        out = []
+        for flank, report in self.flanks.items():
+            if report.runs_without_timing_gears:
+                continue
+            if report.meshline_length == 0:
+                out.append(f"the {flank} flank has no contact inside the bores.")
+                continue
+            parts = []
+            if report.geometric_share < 1e-6:
+                parts.append("no geometric contact anywhere (a tip corner against the mate's flank, no common tangent)")
+            elif report.geometric_share < 1.0 - 1e-6:
+                parts.append(
+                    f"geometric contact on {100 * report.geometric_share:.0f} % of its meshline only, the rest a tip "
+                    "corner against the mate's flank"
+                )
+            for kind in report.defects:
+                rotors = sorted({d.rotor for d in self.defects if d.role is flank and d.kind == kind})
+                parts.append(f"{kind} on the {' and '.join(rotors)}")
+            out.append(f"the {flank} flank: " + "; ".join(parts) + ".")
         return out
 
     # ---- tightness (2.2.2) -----------------------------------------------------------------
@@ -242,6 +410,16 @@ class MeshingAnalysis:
     @property
     def blow_hole_area(self) -> float:
         return float(self.blow_hole.area)
+
+    @cached_property
+    def spatial_blow_hole(self) -> SpatialBlowHole:
+        """The blow-hole triangle in 3D (:mod:`rotorcad.blow_hole`), its apex at the meshline end
+        nearest the cusp, at that point's height on the contact line (z measured as in
+        :attr:`contact_line`, from the contact line's start)."""
+        pts = self.meshline
+        i = int(np.argmin(np.hypot(*(pts - self.cusp).T)))
+        z = self.rotors.pair.lead * self.contact_angles / (2 * np.pi)
+        return SpatialBlowHole(self.rotors.pair, pts[i], float(z[i] - z.min()), self.cusp)
 
     # ---- contact line (eq. 1) ------------------------------------------------------------
     @cached_property
@@ -334,6 +512,7 @@ class MeshingAnalysis:
             "family": self.rotors.family,
             "meshline_closed": self.meshline_closed,
             "blow_hole_area": self.blow_hole_area,
+            "blow_hole_spatial": self.spatial_blow_hole.as_dict(),
             "contact_line_length": self.contact_line_length,
             "male_flute_area": self.male_flute_area,
             "female_flute_area": self.female_flute_area,
@@ -346,5 +525,8 @@ class MeshingAnalysis:
             "speed_rpm": self.speed_rpm,
             "defects": [d.as_dict() for d in self.defects],
             "point_generated_flanks": self.point_generated_flanks,
+            "flanks": {str(f): r.as_dict() for f, r in self.flanks.items()},
+            "runs_without_timing_gears": all(r.runs_without_timing_gears for r in self.flanks.values()),
+            "running_reasons": self.running_reasons,
             "wrap_angle_deg": float(np.degrees(pair.wrap_angle)),
         }

@@ -46,4 +46,19 @@ class PieceRole(Enum):
         return PieceRole.MALE_CORNER_PATH if Side(side) is Side.MALE else PieceRole.FEMALE_CORNER_PATH
 
 
-__all__ = ["PieceRole", "Side"]
+class Flank(StrEnum):
+    """Which part of a lobe a contact belongs to (Rinder sec. 1.2), read off the rack's geometry.
+
+    Along the rack chain (travelled in the direction of motion) the male lobe's trailing flank
+    rises towards the male tip: the driving flank (Triebflanke); its leading flank falls from it
+    towards the housing cusp: the sealing flank (Dichtflanke). TIP is the male tip land (on the
+    female root), ROOT the male root land (under the female tip).
+    """
+
+    DRIVING = "driving"
+    SEALING = "sealing"
+    TIP = "tip"
+    ROOT = "root"
+
+
+__all__ = ["Flank", "PieceRole", "Side"]

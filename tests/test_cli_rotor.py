@@ -133,7 +133,7 @@ def test_bad_design_files(tmp_path, capsys):
     text = (SAMPLES / "srm_asymmetric_5_6.toml").read_text()
     for bad, needle in (
         (text.replace('family = "srm-asymmetric"', 'family = "spiral"'), "family"),
-        (text.replace("seal_stop = 0.55", "seal_stop = 0.55\nsael_stop = 1"), "sael_stop"),
+        (text.replace("seal_stop = 0.9", "seal_stop = 0.9\nsael_stop = 1"), "sael_stop"),
         (text.replace("male_teeth = 5", "male_teeth = 1"), "male_teeth"),
     ):
         design = tmp_path / "d.toml"

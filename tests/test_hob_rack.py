@@ -23,6 +23,7 @@ from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_line
 DEG = np.pi / 180
 PAIR_56 = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0)
 PAIR_46 = RotorPair(4, 6, 100.0, 54.0, 40.0, 60.0, 46.0)
+PAIR_56_SRM = RotorPair(5, 6, 116.0, 63.0, 116.0 * 5 / 11, 116.0 * 6 / 11, 53.0)  # male root, female tip on the pitch circles
 CLEAN = {"tip_rounding": 1.4, "root_rounding": 1.0, "lobe_width": 0.6}
 
 
@@ -55,8 +56,11 @@ FAMILIES = [
     ("rack-involute", PAIR_56, {}),
     ("srm-symmetric", PAIR_46, {}),
     ("lysholm", PAIR_46, {}),
-    ("srm-asymmetric", PAIR_56, {}),
-    ("srm-asymmetric", PAIR_56, {"seal_stop": 0.55, "tip_land": 2.0}),
+    ("srm-asymmetric", PAIR_56_SRM, {}),
+    ("srm-asymmetric", PAIR_56_SRM, {"seal_stop": 0.8, "tip_land": 2.0}),
+    ("srm-b", PAIR_56_SRM, {}),
+    ("krigar", PAIR_46, {}),
+    ("narrow-tip", RotorPair(5, 6, 116.0, 70.0, 116.0 * 5 / 11, 116.0 * 6 / 11, 46.0), {}),
     ("srm-asymmetric", PAIR_46, {"seal_stop": 0.85}),
 ]
 

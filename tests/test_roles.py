@@ -15,7 +15,7 @@ from rotorcad.rotor_pair import RotorPair
 
 
 def test_renamed_rack_pieces_give_the_same_verdict():
-    pair = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0)
+    pair = RotorPair(5, 6, 116.0, 63.0, 116.0 * 5 / 11, 116.0 * 6 / 11, 53.0)
     rotors = build_family(pair, "srm-asymmetric", {})
     for side in Side:
         rack = rotor_rack(rotors, side)

