@@ -29,7 +29,7 @@ from independent_pairs import resample
 from hob.rack import rotor_rack
 from hob.verdict import judge
 from rotorcad.clearance import MeshingClearance
-from rotorcad.design import load_rotor_design
+from rotorcad.cli.common import load_rotor_design
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import lobe_pieces, pair_from_rotor_points

@@ -15,9 +15,9 @@ from pathlib import Path
 
 from peak_tree import run_with_peak
 
+from rotorcad.cli.common import load_toml
 from rotorcad.cli.sweep_run import run_sweep
 from rotorcad.cli.sweep_tasks import evaluate
-from rotorcad.design import load_toml
 from rotorcad.sweep_plan import sweep_plan
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -4,7 +4,7 @@ line in order along the curve, comment lines starting with ``#``.
 The reader takes files from users and measuring machines, so it refuses anything it cannot read
 as a profile with one sentence naming the file's option (``label``): a path that is not a regular
 file (checked with ``os.stat`` before opening, so a FIFO or a device never blocks it), a file over
-:data:`MAX_BYTES`, binary data, a missing header, a malformed or non-finite value (naming the
+:data:`exports.reading.MAX_BYTES`, binary data, a missing header, a malformed or non-finite value (naming the
 line), fewer than 4 distinct points, more than :data:`MAX_POINTS`, and points that are all the
 same or all on one straight line. Accepted variants: UTF-8 (with or without a byte-order mark) or
 Latin-1 text; the separators ``,``, ``;``, tab or blanks, as the header line uses them; more
@@ -13,17 +13,13 @@ columns than two (``x,y,z,...``), of which the first two are read.
 
 from __future__ import annotations
 
-import os
 import re
-import stat
 from pathlib import Path
 
 import numpy as np
 
+from exports.reading import read_bytes
 from rotorcad.errors import DesignError
-
-MAX_BYTES = 64 * 2**20
-"""Largest points (or DXF) file read, bytes (64 MiB)."""
 
 MAX_POINTS = 2_000_000
 """Largest number of points in a profile."""
@@ -44,13 +40,6 @@ _MAGIC = (
 )
 _CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")  # C0 controls other than tab, line feed, VT, FF, CR
 _DXF_TEXT = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(?:999[ \t]*\r?\n[^\r\n]*\r?\n\s*)*0[ \t]*\r?\n[ \t]*SECTION\b")
-_FILE_KINDS = (
-    (stat.S_ISDIR, "a directory"),
-    (stat.S_ISFIFO, "a FIFO (named pipe)"),
-    (stat.S_ISCHR, "a character device"),
-    (stat.S_ISBLK, "a block device"),
-    (stat.S_ISSOCK, "a socket"),
-)
 
 
 def write_points(path: Path, points: np.ndarray, comments: list[str] | None = None, header: str = "x,y") -> None:
@@ -68,63 +57,6 @@ def looks_like_dxf(head: bytes) -> bool:
     ``AutoCAD Binary DXF``, or (after optional blanks and ``999`` comments) the group code ``0``
     followed by ``SECTION``."""
     return head.startswith(b"AutoCAD Binary DXF") or _DXF_TEXT.match(head) is not None
-
-
-def check_regular_file(path: Path, label: str, kind: str = "CSV points file") -> os.stat_result:
-    """Refuse, without opening it, a ``path`` that is missing, not a regular file (a directory,
-    FIFO, device or socket) or larger than :data:`MAX_BYTES`.
-
-    Parameters
-    ----------
-    path : Path
-        The file to be read.
-    label : str
-        The option or key that named the file; it leads the error sentence.
-    kind : str
-        What the file should be, a noun for the error sentence (``"CSV points file"``).
-
-    Returns
-    -------
-    os.stat_result
-        The file's status (``st_size`` in bytes).
-    """
-    try:
-        st = os.stat(path)
-    except (FileNotFoundError, NotADirectoryError):
-        raise DesignError(label, f"an existing {kind}", str(path), "there is no such file") from None
-    except PermissionError:
-        raise DesignError(label, f"a readable {kind}", str(path), "permission denied") from None
-    except (OSError, ValueError) as exc:
-        reason = getattr(exc, "strerror", None) or str(exc)
-        raise DesignError(label, f"an existing {kind}", str(path), reason.rstrip(".")) from None
-    if not stat.S_ISREG(st.st_mode):
-        what = next((name for test, name in _FILE_KINDS if test(st.st_mode)), "not a regular file")
-        raise DesignError(label, f"a {kind}, not a directory, pipe or device", str(path), f"it is {what}")
-    if st.st_size > MAX_BYTES:
-        raise DesignError(
-            label,
-            f"a {kind} of at most {MAX_BYTES // 2**20} MiB",
-            str(path),
-            f"it has {st.st_size} bytes ({st.st_size / 2**20:.1f} MiB)",
-        )
-    return st
-
-
-def _read_bytes(path: Path, label: str, kind: str) -> bytes:
-    """The whole content of a regular file checked by :func:`check_regular_file`."""
-    check_regular_file(path, label, kind)
-    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
-    try:
-        fd = os.open(path, flags)  # non-blocking: a FIFO swapped in after the check cannot hang the read
-    except OSError as exc:
-        raise DesignError(label, f"a readable {kind}", str(path), exc.strerror or "it cannot be opened") from None
-    with os.fdopen(fd, "rb") as f:
-        if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
-            raise DesignError(label, f"a {kind}, not a directory, pipe or device", str(path), "it changed while opened")
-        data = f.read(MAX_BYTES + 1)
-    if len(data) > MAX_BYTES:
-        raise DesignError(label, f"a {kind} of at most {MAX_BYTES // 2**20} MiB", str(path), "it grew while being read")
-    return data
 
 
 def _decode(data: bytes, label: str, path: Path) -> str:
@@ -194,7 +126,7 @@ def read_points(path: Path, label: str = "points file", columns: tuple[str, str]
         2 000 000 points, all points identical or on one straight line.
     """
     path = Path(path)
-    text = _decode(_read_bytes(path, label, "CSV points file"), label, path)
+    text = _decode(read_bytes(path, label, "CSV points file"), label, path)
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
     header_at = next((i for i, raw in enumerate(lines) if raw.strip() and not raw.strip().startswith("#")), None)
     if header_at is None:

@@ -28,7 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-from exports.csv_points import check_profile, check_regular_file, looks_like_dxf, read_points
+from exports.csv_points import check_profile, looks_like_dxf, read_points
+from exports.reading import check_regular_file
 from rotorcad.curves import Arc, Curve, Line, Spline, sample_curve
 from rotorcad.errors import DesignError
 

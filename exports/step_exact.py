@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from exports.step import _quiet_ocp
+from rotorcad.geometry import rotate
 
 
 @dataclass(frozen=True)
@@ -42,15 +43,17 @@ def section_segments(profile, turn: float = 0.0) -> list[SectionSegment]:
     segment is a line and a circular arc (its curve has a centre) an arc, the rest curves."""
     from rotorcad.curves import Line
 
-    c, s = np.cos(turn), np.sin(turn)
-    rot = np.array([[c, -s], [s, c]])
     out = []
     for seg in profile.segments:
         centre = seg.curve.arc_center()
         kind = "line" if isinstance(seg.curve, Line) else "arc" if centre is not None and not seg.curve.is_corner() else "curve"
         out.append(
             SectionSegment(
-                seg.name, seg.points @ rot.T, seg.tangents @ rot.T, kind, None if centre is None else tuple(rot @ centre)
+                seg.name,
+                rotate(seg.points, turn),
+                rotate(seg.tangents, turn),
+                kind,
+                None if centre is None else tuple(rotate(centre, turn)[0]),
             )
         )
     return out
@@ -159,9 +162,7 @@ def helicoid_deviation(shape, exact: np.ndarray, lead: float, length: float, per
         )
         if np.ptp(pts[:, 2]) < 1e-9 * max(length, 1.0):  # an end cap
             continue
-        turn = -2 * np.pi * pts[:, 2] / lead
-        c, s = np.cos(turn), np.sin(turn)
-        batches.append(np.column_stack([c * pts[:, 0] - s * pts[:, 1], s * pts[:, 0] + c * pts[:, 1]]))
+        batches.append(rotate(pts[:, :2], -2 * np.pi * pts[:, 2] / lead))  # each point by its own turn
     if not batches:
         return 0.0
     return float(distance_to_polyline(np.vstack(batches), ring).max())  # one R-tree query for all faces

@@ -8,18 +8,18 @@ tan(beta) = 2 pi r_w / h for a screw rotor of lead h). The hob tooth is the norm
 hob thread: the normal rack's tool material, i.e. the space of the gear, with a clearance added
 under its root so that the hob never touches the gear's tip.
 
-The inverse generation itself, corner fans included, is :mod:`rotorcad.inverse_rack`.
+The inverse generation itself, corner fans included, and the rack of a rotor
+(:func:`rotorcad.inverse_rack.rotor_rack`, also used by the meshing clearance) are
+:mod:`rotorcad.inverse_rack`.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy import optimize
 
-from rotorcad.curves import Curve, Mapped
 from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import distance_to_polyline
-from rotorcad.inverse_rack import DerivedRack, contact_of_rack_points, derive_rack
+from rotorcad.inverse_rack import DerivedRack, contact_of_rack_points, derive_rack, rotor_rack
 from rotorcad.kinematics import gear_mesh
 from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
@@ -41,68 +41,6 @@ def gear_rack(gear: InvoluteGear, samples: int = 400) -> DerivedRack:
     )
 
 
-def rotor_rack(rotors: ScrewRotors, rotor: str, samples: int = 400) -> DerivedRack:
-    """Transverse rack derived from the male or the female of a pair (one lobe)."""
-    pair = rotors.pair
-    mesh = pair.mesh
-    side = Side(rotor)
-    if side is Side.MALE:
-        pieces = [(name, curve) for name, curve, _ in rotors.male_pieces]
-        body, r_w = mesh.male, pair.male_pitch_radius
-        beta = np.arctan(2 * np.pi * r_w / pair.lead)
-    else:
-        shift = (pair.center_distance, 0.0)
-        pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve, _ in rotors.female_pieces]
-        body, r_w = mesh.female, pair.female_pitch_radius
-        beta = np.arctan(2 * np.pi * r_w / pair.female_lead)
-    tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
-    centre = np.asarray(body.center, dtype=float)
-    pieces = [p for p in (_within(name, curve, centre, tip) for name, curve in pieces) if p is not None]
-    depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)
-    teeth = side.pick(pair.male_teeth, pair.female_teeth)
-    return derive_rack(
-        pieces,
-        body,
-        r_w,
-        pair.rack_period,
-        beta,
-        depth=depth,
-        samples=samples,
-        pitch_angle=2 * np.pi / teeth,
-    )
-
-
-def _within(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[str, Curve] | None:
-    """The longest part of a generated piece inside the rotor's tip circle (generated flanks can
-    overshoot it; the rotor is cut off there)."""
-    s = np.linspace(curve.s0, curve.s1, 257)  # the ends are refined by root finding below
-    p, _ = curve.evaluate(s)
-    inside = np.hypot(*(p - centre).T) <= tip + 2e-3  # a measured land may wander by the fit error
-    if inside.all():
-        return name, curve
-    if not inside.any():
-        return None
-    edges = np.diff(np.concatenate([[0], inside.astype(int), [0]]))
-    starts, ends = np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0] - 1
-    k = int(np.argmax(ends - starts))
-    if ends[k] <= starts[k]:
-        return None
-
-    def gap(v: float) -> float:
-        return float(np.hypot(*(curve.evaluate(v)[0][0] - centre)) - tip)
-
-    def refine(inner: float, outer: float) -> float:
-        fi, fo = gap(inner), gap(outer)
-        if np.isfinite(fi) and np.isfinite(fo) and fi * fo < 0:
-            return float(optimize.brentq(gap, inner, outer, xtol=1e-15))
-        return inner
-
-    # refine where the piece leaves the tip circle (the map to the rack is steep there)
-    a = refine(s[starts[k]], s[starts[k] - 1]) if starts[k] > 0 else s[0]
-    b = refine(s[ends[k]], s[ends[k] + 1]) if ends[k] < len(s) - 1 else s[-1]
-    return name, curve.trimmed(a, b)
-
-
 def rack_in_contract_frame(rack: DerivedRack, rotor: str) -> np.ndarray:
     """Rack points in the rack frame of CONTRACT.md (y > 0 on the female side)."""
     return rack.points if Side(rotor) is Side.MALE else rack.points * np.array([1.0, -1.0])
@@ -118,7 +56,7 @@ def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
     pair = rotors.pair
     racks = []
     for rotor in ("male", "female"):
-        rack = rotor_rack(rotors, rotor, samples)
+        rack = rotor_rack(rotors, rotor, samples=samples)
         pts = rack_in_contract_frame(rack, rotor)
         tan = rack.tangents * (np.array([1.0, -1.0]) if Side(rotor) is Side.FEMALE else 1.0)
         contact, _ = contact_of_rack_points(pair.male_pitch_radius, pts, tan)

@@ -29,9 +29,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.roots import bracket_root
 
 
 @dataclass(frozen=True)
@@ -93,4 +93,5 @@ def real_limit_shift(
     a, b = xg - 1.0, xg + 0.2
     if shortened(b) > 0 or shortened(a) < 0:
         return float("nan")
-    return float(optimize.brentq(shortened, a, b, xtol=1e-10))
+    root = bracket_root(shortened, (a, b), xtol=1e-10)
+    return float("nan") if root is None else root

@@ -24,11 +24,8 @@ from functools import cached_property
 
 import numpy as np
 
+from rotorcad.geometry import wrap_angle
 from rotorcad.rotor_pair import RotorPair
-
-
-def _wrap(angle: float) -> float:
-    return float(np.mod(angle + np.pi, 2 * np.pi) - np.pi)
 
 
 @dataclass(frozen=True)
@@ -66,7 +63,7 @@ class SpatialBlowHole:
         e = self.apex - centre
         phi_e = float(np.arctan2(e[1], e[0]))
         k = self.cusp - centre
-        dphi = _wrap(float(np.arctan2(k[1], k[0])) - phi_e)
+        dphi = float(wrap_angle(float(np.arctan2(k[1], k[0])) - phi_e))
         dz = dphi / rate
         z = self.apex_z + np.linspace(0.0, dz, self.samples)
         ang = phi_e + rate * (z - self.apex_z)

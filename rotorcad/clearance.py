@@ -28,76 +28,22 @@ normal rack (the paper's average over its contact points, which are spread along
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
-from scipy import optimize
 from scipy.spatial import cKDTree
 
 from rotorcad.curves import Curve, Mapped
 from rotorcad.errors import DesignError
-from rotorcad.geometry import Array, cross
-from rotorcad.inverse_rack import MEASURED_MIN_TURN, contact_of_rack_points, derive_rack
-from rotorcad.roles import PieceRole, Side
+from rotorcad.geometry import Array, cross, rotate
+from rotorcad.inverse_rack import MEASURED_MIN_TURN, DerivedRack, contact_of_rack_points, rotor_rack
+from rotorcad.roles import Side
+from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
 
 CONTACT_SIDES = ("driving", "sealing", "as-given")
-
-
-@dataclass(frozen=True, eq=False)
-class RackCurve:
-    """One rotor's rack: transverse points and unit tangents in the rack frame of CONTRACT.md
-    (x along the pitch line, y > 0 towards the female), travelled in +x, one period."""
-
-    points: Array
-    tangents: Array
-    period: float
-    corner_path: Array | None = None  # (n,) bool: the point lies on the path of a sharp corner (a fan)
-
-    def normal_section(self, helix_angle: float) -> tuple[Array, Array]:
-        """The normal rack (Wu & Chi eq. 7) and its unit tangents."""
-        c = np.cos(helix_angle)
-        t = self.tangents * np.array([c, 1.0])
-        return self.points * np.array([c, 1.0]), t / np.linalg.norm(t, axis=1, keepdims=True)
-
-
-def rotor_rack(
-    pair: RotorPair, pieces: list[tuple[str, Curve]], rotor: str, tolerance: float = 1e-4, contact_step: float = 0.0
-) -> RackCurve:
-    """Transverse rack of one lobe of the male or the female (pieces in its own frame, counter-
-    clockwise) by inverse generation (:func:`rotorcad.inverse_rack.derive_rack`, corner fans
-    included), sampled to ``tolerance`` (mm of chord on the rack) and, with ``contact_step``, so
-    that the contact point in the transverse plane (the meshline) advances at most that far (mm)
-    between samples: near roundings it runs fast along the rack. (Along the axis the contact line
-    follows the rotation, which the rack's own sampling resolves.)"""
-    mesh = pair.mesh
-    side = Side(rotor)
-    if side is Side.MALE:
-        body, r_w, teeth = mesh.male, pair.male_pitch_radius, pair.male_teeth
-    else:
-        shift = (pair.center_distance, 0.0)
-        pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve in pieces]
-        body, r_w, teeth = mesh.female, pair.female_pitch_radius, pair.female_teeth
-    depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
-    rack = derive_rack(
-        pieces,
-        body,
-        r_w,
-        pair.rack_period,
-        depth=depth,
-        samples=800,
-        pitch_angle=2 * np.pi / teeth,
-        tolerance=tolerance,
-        contact_step=contact_step,
-        min_turn=MEASURED_MIN_TURN,
-    )
-    flip = np.array([1.0, side.pick(1.0, -1.0)])  # derived racks have y away from their rotor
-    pts, tan = rack.points * flip, rack.tangents * flip
-    corner = np.array([rack.roles[k] is PieceRole.CORNER_FAN for k in rack.piece_index], dtype=bool)
-    if pts[-1, 0] < pts[0, 0]:  # travel the chain in +x
-        pts, tan, corner = pts[::-1], -tan[::-1], corner[::-1]
-    return RackCurve(pts, tan, pair.rack_period, corner)
 
 
 def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Array, Array]:
@@ -209,8 +155,7 @@ def _scaled(profile: Array | list[Curve], k: float) -> Array | list[Curve]:
 
 def _turned(points: Array, angles: Array) -> Array:
     """Points (n, 2) each turned by its own angle (n,) (rad, counter-clockwise) about the origin."""
-    c, s_ = np.cos(angles), np.sin(angles)
-    return np.stack([c * points[:, 0] - s_ * points[:, 1], s_ * points[:, 0] + c * points[:, 1]], axis=1)
+    return rotate(points, angles)
 
 
 @dataclass(frozen=True, eq=False)
@@ -235,12 +180,28 @@ class MeshingClearance:
         return float(np.arctan(2 * np.pi * self.pair.male_pitch_radius / self.pair.lead))
 
     @cached_property
-    def male_rack(self) -> RackCurve:
-        return rotor_rack(self.pair, self.male_pieces, "male", self.tolerance)
+    def male_rack(self) -> DerivedRack:
+        """The male's rack (:func:`rotorcad.inverse_rack.rotor_rack`) in the CONTRACT.md rack frame."""
+        return self._rack(Side.MALE, 0.0)
 
     @cached_property
-    def female_rack(self) -> RackCurve:
-        return rotor_rack(self.pair, self.female_pieces, "female", self.tolerance, contact_step=self.contact_step)
+    def female_rack(self) -> DerivedRack:
+        """The female's rack, the datum, sampled so that its contact points advance at most
+        ``contact_step`` (mm), in the CONTRACT.md rack frame (y > 0 towards the female)."""
+        return self._rack(Side.FEMALE, self.contact_step)
+
+    def _rack(self, side: Side, contact_step: float) -> DerivedRack:
+        pieces = side.pick(self.male_pieces, self.female_pieces)
+        rack = rotor_rack(
+            self.pair,
+            side,
+            pieces,
+            tolerance=self.tolerance,
+            samples=800,
+            contact_step=contact_step,
+            min_turn=MEASURED_MIN_TURN,
+        )
+        return rack.in_contract_frame()
 
     @cached_property
     def _compared(self) -> tuple[Array, Array]:
@@ -305,6 +266,7 @@ class MeshingClearance:
         # moving the female rack in +x closes the driving (rising) flanks and opens the sealing ones
         sign = 1.0 if self.contact == "driving" else -1.0
 
+        @functools.cache
         def gap(g: float) -> float:
             d = self.clearance_at(sign * g, inside)
             return float(np.nanmin(d)) if np.isfinite(d).any() else np.nan
@@ -312,13 +274,14 @@ class MeshingClearance:
         g0 = gap(0.0)
         step = max(abs(g0), 1e-3) if np.isfinite(g0) else 1e-3
         direction = 1.0 if not np.isfinite(g0) or g0 >= 0 else -1.0
-        a, fa = 0.0, g0
+        # step out from the given position, doubling, up to a quarter of the rack period
+        steps = [0.0]
         while step < self.pair.rack_period / 4:
-            b = direction * step
-            fb = gap(b)
-            if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
-                return sign * float(optimize.brentq(gap, min(a, b), max(a, b), xtol=1e-12))
-            a, fa, step = b, fb, 2 * step
+            steps.append(direction * step)
+            step *= 2
+        root = bracket_root(gap, steps, xtol=1e-12)
+        if root is not None:
+            return sign * root
         raise DesignError(
             "female points",
             f"a female lobe that can be brought into contact with the male on the {self.contact} flank",
@@ -434,8 +397,6 @@ class MeshingClearance:
 __all__ = [
     "CONTACT_SIDES",
     "MeshingClearance",
-    "RackCurve",
     "ThermalState",
     "normal_clearance",
-    "rotor_rack",
 ]

@@ -52,15 +52,16 @@ module; a thicker one means a load too small for the thin-film model: "error in 
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 from enum import Enum
 
 import numpy as np
-from scipy.optimize import brentq
 
 from rotorcad.coupling_film import FilmSolution, LineContact, reduced_modulus, solve_line_contact
 from rotorcad.errors import DesignError
+from rotorcad.roots import bracket_root
 
 Array = np.ndarray
 
@@ -410,18 +411,12 @@ def load_capacity_at(contact: LineContact, min_film: float, nodes: int = 201) ->
         s = solve_line_contact(replace(contact, load=math.exp(log_w)), nodes)
         return math.log(s.min_film / min_film) if s.converged else math.nan
 
-    lo = hi = math.log(contact.load)
-    g_lo = g_hi = gap(lo)
-    direction = 1.0 if g_lo > 0 else -1.0  # film too thick: raise the load
-    for _ in range(15):
-        if not math.isfinite(g_hi) or (g_lo * g_hi <= 0 and lo != hi):
-            break
-        lo, g_lo = hi, g_hi
-        hi += direction * math.log(4.0)
-        g_hi = gap(hi)
-    if not (math.isfinite(g_lo) and math.isfinite(g_hi)) or g_lo * g_hi > 0:
-        return math.nan
-    return math.exp(brentq(gap, min(lo, hi), max(lo, hi), xtol=1e-6))
+    gap = functools.cache(gap)  # the start is evaluated for the direction, then as the first trial
+    start = math.log(contact.load)
+    direction = 1.0 if gap(start) > 0 else -1.0  # film too thick: raise the load
+    trials = (start + k * direction * math.log(4.0) for k in range(16))
+    root = bracket_root(gap, trials, xtol=1e-6, stop_at_nan=True)
+    return math.nan if root is None else math.exp(root)
 
 
 def sweep_teeth(coupling: GearCoupling, teeth: Array, *, keep_diameter: bool = False, nodes: int = 201) -> Array:

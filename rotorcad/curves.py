@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from scipy import interpolate
@@ -85,10 +86,17 @@ class Line(Curve):
         if np.isnan(self.s1):
             object.__setattr__(self, "s1", float(np.hypot(*np.subtract(self.b, self.a))))
 
+    @cached_property
+    def _start_and_direction(self) -> tuple[Array, Array]:
+        """The start point ``a`` (2,) and the unit direction from ``a`` to ``b`` (2,)."""
+        return np.asarray(self.a, dtype=float), normalize(np.subtract(self.b, self.a, dtype=float))
+
     def frame(self, s: Array) -> tuple[Array, Array]:
-        d = normalize(np.subtract(self.b, self.a, dtype=float))
-        p = np.asarray(self.a, dtype=float) + np.multiply.outer(s, d)
-        return p, np.broadcast_to(d, p.shape).copy()
+        a, d = self._start_and_direction
+        p = a + np.multiply.outer(s, d)
+        t = np.empty_like(p)
+        t[...] = d
+        return p, t
 
 
 @dataclass(frozen=True)
@@ -102,8 +110,13 @@ class Arc(Curve):
 
     def frame(self, s: Array) -> tuple[Array, Array]:
         c, si = np.cos(s), np.sin(s)
-        p = np.asarray(self.center, dtype=float) + self.radius * np.stack([c, si], axis=-1)
-        return p, np.stack([-si, c], axis=-1)
+        t = np.empty((*np.shape(s), 2))
+        t[..., 0] = -si
+        t[..., 1] = c
+        p = np.empty_like(t)
+        p[..., 0] = c
+        p[..., 1] = si
+        return np.asarray(self.center, dtype=float) + self.radius * p, t
 
     def arc_center(self) -> Array | None:
         return np.asarray(self.center, dtype=float)
@@ -188,20 +201,43 @@ class Mapped(Curve):
             object.__setattr__(self, "s0", self.curve.s0)
             object.__setattr__(self, "s1", self.curve.s1)
 
+    @cached_property
+    def _map(self) -> tuple[Array, Array]:
+        """The transposed matrix (2, 2) and the shift (2,), mm, as arrays (made once)."""
+        return np.asarray(self.matrix, dtype=float).T.copy(), np.asarray(self.shift, dtype=float)
+
+    @cached_property
+    def _similar(self) -> bool:
+        """Whether the map keeps circles circles: A A^T = |det A| I (to numpy's ``allclose``)."""
+        (a, b), (c, d) = self.matrix
+        det = abs(a * d - b * c)
+        aat = ((a * a + b * b, a * c + b * d), (a * c + b * d, c * c + d * d))
+        eye = ((det, 0.0), (0.0, det))
+        return all(abs(aat[i][j] - eye[i][j]) <= 1e-14 + 1e-5 * abs(eye[i][j]) for i in (0, 1) for j in (0, 1))
+
     def frame(self, s: Array) -> tuple[Array, Array]:
         p, t = self.curve.frame(s)
-        m = np.asarray(self.matrix, dtype=float)
-        return p @ m.T + np.asarray(self.shift, dtype=float), normalize(t @ m.T)
+        if self._identity:  # A p = p exactly for finite points: skip the products
+            return p + self._map[1], normalize(t)
+        mt, shift = self._map
+        return p @ mt + shift, normalize(t @ mt)
+
+    @cached_property
+    def _identity(self) -> bool:
+        """Whether the matrix is the identity (an unstretched tool, a shifted female piece)."""
+        return tuple(map(tuple, self.matrix)) == ((1.0, 0.0), (0.0, 1.0))
 
     def is_corner(self) -> bool:
         return self.curve.is_corner()
 
     def arc_center(self) -> Array | None:
         c = self.curve.arc_center()
-        m = np.asarray(self.matrix, dtype=float)
-        if c is None or not np.allclose(m @ m.T, np.eye(2) * abs(np.linalg.det(m)), atol=1e-14):
+        if c is None:
             return None
-        return m @ c + np.asarray(self.shift, dtype=float)
+        if not self._similar:
+            return None
+        mt, shift = self._map
+        return mt.T @ c + shift
 
 
 def rotated(curve: Curve, angle: float, center: object = (0.0, 0.0)) -> Mapped:
@@ -266,47 +302,116 @@ def sample_curve(curve: Curve, tolerance: float, minimum: int = 2, passes: int =
 
     The sagitta of a chord of length L whose end tangents turn by d(psi) is L*|d(psi)|/8 for a
     circular arc; each interval is split uniformly in ``s`` until every estimate is within the
-    tolerance (a few vectorised passes, evaluating only the new parameters).
+    tolerance (a few vectorised passes, evaluating only the new parameters). The middle of every
+    interval is then checked against its chord (an inflection). Each pass evaluates the curve
+    once: the new parameters together with the middles of the intervals they make, which the
+    check needs should the pass be the last.
+
+    Parameters
+    ----------
+    curve : Curve
+        The curve, sampled from ``curve.s0`` to ``curve.s1``.
+    tolerance : float, mm
+        Largest chord error.
+    minimum : int
+        Fewest samples (at least 17 are taken).
+    passes : int
+        Most refinement passes of each kind.
+
+    Returns
+    -------
+    s : (n,) float array
+        Parameters along the travel.
+    points : (n, 2) float array, mm
+        Points at ``s``.
+    tangents : (n, 2) float array
+        Unit tangents along the travel at ``s``.
     """
     s = np.linspace(curve.s0, curve.s1, max(minimum, 17))
-    p, t = curve.evaluate(s)
+    p, t, q = _evaluate_with_middles(curve, s)
     for _ in range(passes):
-        chord = np.hypot(*np.diff(p, axis=0).T)
-        sag = np.nan_to_num(chord * np.abs(turning_angle(t[:-1], t[1:])) / 8.0, nan=0.0)
-        n = np.maximum(np.ceil(np.sqrt(sag / tolerance) * 1.05).astype(int), 1)
-        if np.all(n == 1):
+        d = p[1:] - p[:-1]
+        chord = np.hypot(d[:, 0], d[:, 1])
+        sag = _finite(chord * np.abs(turning_angle(t[:-1], t[1:])) / 8.0)
+        parts = np.sqrt(sag / tolerance) * 1.05
+        if (parts <= 1.0).all():  # n = 1 everywhere
             break
-        s, p, t = split_intervals(curve, s, p, t, n)
+        n = np.maximum(np.ceil(parts).astype(int), 1)
+        s, p, t, q = _split(curve, s, p, t, n)
     # the end tangents of an interval around an inflection are parallel although the curve bulges
     # between them: check the middle of every interval against its chord and split where needed
     for _ in range(passes):
-        mid = 0.5 * (s[:-1] + s[1:])
-        q, _ = curve.evaluate(mid)
-        d = np.diff(p, axis=0)
-        length = np.hypot(*d.T)
-        off = np.abs(cross(d, q - p[:-1])) / np.where(length > 0, length, 1.0)
-        n = np.where(np.nan_to_num(off, nan=0.0) > tolerance, 2, 1) * np.maximum(
-            np.ceil(np.sqrt(np.nan_to_num(off, nan=0.0) / tolerance)).astype(int), 1
-        )
-        if np.all(n == 1):
+        d = p[1:] - p[:-1]
+        length = np.hypot(d[:, 0], d[:, 1])
+        off = _finite(np.abs(cross(d, q - p[:-1])) / np.where(length > 0, length, 1.0))
+        n = np.where(off > tolerance, 2, 1) * np.maximum(np.ceil(np.sqrt(off / tolerance)).astype(int), 1)
+        if (n == 1).all():
             break
-        s, p, t = split_intervals(curve, s, p, t, n)
+        s, p, t, q = _split(curve, s, p, t, n)
     return s, p, t
 
 
+def _finite(values: Array) -> Array:
+    """``np.nan_to_num(values, nan=0.0)``, skipped where every value is finite (the usual case)."""
+    return values if np.isfinite(values).all() else np.nan_to_num(values, nan=0.0)
+
+
+def _evaluate_with_middles(curve: Curve, s: Array, extra: Array | None = None) -> tuple[Array, Array, Array]:
+    """Points and tangents at ``extra`` (default ``s``), (m, 2) each, and the points at the middles
+    of the intervals of ``s``, (len(s) - 1, 2): one evaluation of the curve."""
+    at = s if extra is None else extra
+    p, t = curve.evaluate(np.concatenate([at, 0.5 * (s[:-1] + s[1:])]))
+    return p[: len(at)], t[: len(at)], p[len(at) :]
+
+
+def _split(
+    curve: Curve, s: Array, p: Array, t: Array, n: Array, middles: bool = True
+) -> tuple[Array, Array, Array, Array | None]:
+    """:func:`split_intervals`, and with ``middles`` the points at the middles of the new
+    intervals, (len - 1, 2), from the same evaluation (else None)."""
+    parts = np.maximum(np.asarray(n, dtype=int), 1)  # interval i becomes parts[i] intervals
+    if (parts == 1).all():
+        return s, p, t, (_evaluate_with_middles(curve, s, s[:0])[2] if middles else None)
+    # every sample of the refined chain but the last lies in an old interval j, k steps of
+    # (s[j+1] - s[j]) / parts[j] after its start (k = 0: the old sample itself)
+    j = np.repeat(np.arange(len(parts)), parts)
+    k = np.arange(len(j)) - np.repeat(np.cumsum(parts) - parts, parts)
+    new = k > 0
+    jn = j[new]
+    s_new = s[jn] + (s[1:] - s[:-1])[jn] * k[new] / parts[jn]
+    # the refined chain as the old samples followed by the new ones, reordered
+    order = np.empty(len(j) + 1, dtype=np.intp)
+    order[:-1] = np.where(new, len(s) - 1 + np.cumsum(new), j)
+    order[-1] = len(s) - 1
+    s_all = np.concatenate([s, s_new]).take(order)
+    if middles:
+        p_new, t_new, q = _evaluate_with_middles(curve, s_all, s_new)
+    else:
+        (p_new, t_new), q = curve.evaluate(s_new), None
+    return s_all, np.concatenate([p, p_new]).take(order, axis=0), np.concatenate([t, t_new]).take(order, axis=0), q
+
+
 def split_intervals(curve: Curve, s: Array, p: Array, t: Array, n: Array) -> tuple[Array, Array, Array]:
-    """Samples (parameters ``s``, points, tangents) with interval i split into ``n[i]`` equal
-    parts in ``s``; only the new parameters are evaluated, and the order of travel is kept (a
-    generated curve runs to smaller parameters)."""
-    extra = np.maximum(np.asarray(n, dtype=int) - 1, 0)  # new parameters inside each interval
-    if not extra.any():
-        return s, p, t
-    i = np.repeat(np.arange(len(extra)), extra)
-    k = np.arange(extra.sum()) - np.repeat(np.cumsum(extra) - extra, extra) + 1
-    s_new = s[i] + np.diff(s)[i] * k / (extra[i] + 1)
-    p_new, t_new = curve.evaluate(s_new)
-    order = np.argsort(np.concatenate([s, s_new]) * np.sign(curve.s1 - curve.s0), kind="stable")
-    return np.concatenate([s, s_new])[order], np.concatenate([p, p_new])[order], np.concatenate([t, t_new])[order]
+    """Samples with interval i split into ``n[i]`` equal parts in ``s``; only the new parameters
+    are evaluated, and the order of travel is kept (a generated curve runs to smaller parameters).
+
+    Parameters
+    ----------
+    curve : Curve
+        The sampled curve.
+    s : (m,) float array
+        Parameters along the travel.
+    p, t : (m, 2) float arrays
+        Points (mm) and unit tangents at ``s``.
+    n : (m - 1,) int array
+        Parts of each interval (1: kept as it is).
+
+    Returns
+    -------
+    s, p, t : arrays
+        The refined samples, (m', ) and (m', 2).
+    """
+    return _split(curve, s, p, t, n, middles=False)[:3]
 
 
 def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> Array:

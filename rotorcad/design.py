@@ -1,14 +1,13 @@
-"""Design files (TOML, CONTRACT.md "Design files"): reading and checking them.
+"""Design files (TOML, CONTRACT.md "Design files"): checking the mapping a file holds.
 
+This module parses mappings only; the command line opens and reads the files
+(:func:`rotorcad.cli.common.load_toml`, with the defensive reading of :mod:`exports.reading`).
 Unknown keys are an error naming the key, so a typo never passes silently. Angles are given in
 degrees in keys ending in ``_deg``.
 """
 
 from __future__ import annotations
 
-import os
-import stat
-import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -28,77 +27,6 @@ GEAR_KEYS: dict[str, type | tuple[type, ...]] = {
     "face_width": NUMBER,  # mm, for solids (rotorcad export)
 }
 MATE_KEYS: dict[str, type | tuple[type, ...]] = {"teeth": int, "shift": NUMBER, "center_distance": NUMBER}
-
-
-MAX_DESIGN_BYTES = 2**20
-"""Largest design file read, bytes (1 MiB; a design is a few hundred bytes)."""
-
-
-def read_text_file(path: Path, label: str, kind: str, limit: int = MAX_DESIGN_BYTES) -> str:
-    """The text of a user's file, read defensively.
-
-    A path that is missing, not a regular file (a FIFO, a device, a folder: checked before it is
-    opened, so nothing blocks) or larger than ``limit`` bytes is refused, as is binary content.
-    The text is UTF-8 (a byte-order mark is dropped) or, failing that, Latin-1.
-
-    Parameters
-    ----------
-    path : Path
-        The file.
-    label : str
-        The option or key that named the file; it leads the error sentence.
-    kind : str
-        What the file should be (``"TOML design file"``), for the error sentence.
-    limit : int
-        Largest size accepted, bytes.
-
-    Returns
-    -------
-    str
-        The decoded text.
-
-    Raises
-    ------
-    DesignError
-        Naming ``label`` and what is allowed.
-    """
-    try:
-        st = os.stat(path)
-    except (OSError, ValueError) as exc:
-        reason = getattr(exc, "strerror", None) or "it cannot be read"
-        raise DesignError(label, f"an existing {kind}", str(path), reason) from None
-    if not stat.S_ISREG(st.st_mode):
-        raise DesignError(label, f"a {kind}, not a folder, pipe or device", str(path))
-    if st.st_size > limit:
-        raise DesignError(label, f"a {kind} of at most {limit // 1024} KiB", str(path), f"it has {st.st_size} bytes")
-    try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-        with os.fdopen(fd, "rb") as f:
-            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
-                raise DesignError(label, f"a {kind}, not a folder, pipe or device", str(path))
-            data = f.read(limit + 1)
-    except OSError as exc:
-        raise DesignError(label, f"a readable {kind}", str(path), exc.strerror or "it cannot be read") from None
-    if len(data) > limit:
-        raise DesignError(label, f"a {kind} of at most {limit // 1024} KiB", str(path), "it grew while being read")
-    if b"\x00" in data:
-        line = data[: data.index(b"\x00")].count(b"\n") + 1
-        raise DesignError(label, f"a {kind} (text)", str(path), f"line {line} holds a NUL byte (binary data)")
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        return data.decode("latin-1")
-
-
-def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
-    """Read a TOML design file (UTF-8 or Latin-1); a missing, special, binary or malformed file is
-    refused in one sentence naming ``label``."""
-    path = Path(path)
-    text = read_text_file(path, label, "TOML design file")
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(label, "valid TOML", str(path), str(exc)) from None
 
 
 def check_table(
@@ -121,9 +49,26 @@ def check_table(
     return dict(section)
 
 
-def load_gear_design(path: Path) -> dict[str, dict[str, Any]]:
-    """A gear design: ``[gear]`` (required: teeth, module) and optional ``[mate]``."""
-    data = load_toml(path)
+def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """A gear design mapping, checked (CONTRACT.md "Design files").
+
+    Parameters
+    ----------
+    data : dict
+        The design as a TOML file holds it: ``[gear]`` (required keys teeth, module) and an
+        optional ``[mate]``.
+
+    Returns
+    -------
+    dict
+        ``{"gear": {...}, "mate": {...}}`` (the mate empty if not given); lengths in mm, angles
+        in degrees as given.
+
+    Raises
+    ------
+    DesignError
+        Naming the table or key that is wrong.
+    """
     for table in data:
         if table not in ("gear", "mate"):
             raise DesignError(f"table [{table}]", "one of [gear], [mate] in a gear design", None, "unknown table")
@@ -167,12 +112,6 @@ DEFLECTION_KEYS: dict[str, type | tuple[type, ...]] = {
 }
 EXPORT_KEYS: dict[str, type | tuple[type, ...]] = {"tolerance": NUMBER, "formats": list}
 POINT_FAMILIES = ("rack-points", "male-points", "female-points")
-
-
-def load_rotor_design(path: Path) -> dict[str, Any]:
-    """A screw-rotor design file, read and checked (:func:`rotor_design`); the points file of a
-    points family is resolved against the design file's folder."""
-    return rotor_design(load_toml(path), Path(path).parent)
 
 
 def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict[str, Any]:
@@ -230,3 +169,16 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
         "deflection": check_table(data, "deflection", DEFLECTION_KEYS),
         "export": check_table(data, "export", EXPORT_KEYS),
     }
+
+
+_READERS = ("load_toml", "load_gear_design", "load_rotor_design")
+
+
+def __getattr__(name: str) -> object:
+    """The file readers, which moved to the command line (:mod:`rotorcad.cli.common`), under their
+    old names here (PEP 562), so that ``from rotorcad.design import load_rotor_design`` still works."""
+    if name in _READERS:
+        from rotorcad.cli import common
+
+        return getattr(common, name)
+    raise AttributeError(f"module 'rotorcad.design' has no attribute {name!r}")

@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rotorcad.curves import Curve
-from rotorcad.geometry import Array, as_points, cross, perp_cw
+from rotorcad.geometry import Array, as_points, cross, perp_cw, wrap_angle
 from rotorcad.kinematics import Body, Rotation, Translation, pitch_point
 
 
@@ -71,10 +71,6 @@ class Contact:
     def sliding_speed(self) -> Array:
         """|v_rel| at the contact point per unit of the motion parameter (mm/rad)."""
         return np.hypot(*self.sliding.T)
-
-
-def _wrap(angle: Array, reference: float) -> Array:
-    return reference + np.mod(angle - reference + np.pi, 2.0 * np.pi) - np.pi
 
 
 def contact_parameter(
@@ -116,7 +112,7 @@ def contact_parameter(
     if arc_center is not None:
         k = np.asarray(arc_center, dtype=float) - o
         if abs(np.hypot(*k) - r_w) <= 1e-9 * r_w:
-            theta = _wrap(np.array(beta - np.arctan2(k[1], k[0])), reference)
+            theta = wrap_angle(np.array(beta - np.arctan2(k[1], k[0])), reference)
             return np.full(len(p), theta / generating.rate)
     q = cross(n, p - o) / r_w
     psi = np.arctan2(n[:, 1], n[:, 0])
@@ -126,15 +122,15 @@ def contact_parameter(
         phi = np.pi - phi
     elif branch != "A":
         raise ValueError("branch must be 'A' or 'B'")
-    theta = _wrap(beta - psi - phi, reference)
+    theta = wrap_angle(beta - psi - phi, reference)
     if corner:
         # a corner on the pitch circle touches trivially, for every normal of its fan, at the
         # instant it passes C; the path it cuts comes from the other root
         d = p - o
         trivial = beta - np.arctan2(d[:, 1], d[:, 0])
         on_circle = np.abs(np.hypot(*d.T) - r_w) <= 1e-9 * r_w
-        same = np.abs(np.mod(theta - trivial + np.pi, 2 * np.pi) - np.pi) < 1e-9
-        other = _wrap(beta - psi - (np.pi - phi), reference)
+        same = np.abs(wrap_angle(theta - trivial)) < 1e-9
+        other = wrap_angle(beta - psi - (np.pi - phi), reference)
         theta = np.where(on_circle & same, other, theta)
     return theta / generating.rate
 

@@ -18,7 +18,7 @@ C = (r, 0), the rack's pitch line x = r moving +y as the gear turns counter-cloc
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import cached_property
 
 import numpy as np
@@ -33,6 +33,7 @@ from rotorcad.involute import inv as inv_fn
 from rotorcad.involute import inv_inverse, shift_sum, transverse_pressure_angle, working_pressure_angle
 from rotorcad.kinematics import gear_mesh
 from rotorcad.profile import DEFAULT_TOLERANCE, Profile, Segment
+from rotorcad.roots import bracket_root
 
 DEG = np.pi / 180.0
 MAX_TEETH = 1000
@@ -101,6 +102,9 @@ class InvoluteGear:
                 f"greater than {-self.addendum:g} (minus the addendum) so that the tip circle lies outside the pitch circle",
                 self.shift,
             )
+        severed = _severed(self)
+        if severed:
+            raise DesignError("shift", _severed_allowed(self), self.shift, severed)
 
     # ----- closed-form dimensions (ISO 21771) ---------------------------------------------
     @property
@@ -177,7 +181,7 @@ class InvoluteGear:
         # flank parameter s runs from the tool's fillet tangency (s = 0) up to the top;
         # the interference point (contact at the base tangency T1) is where the roll vanishes.
         s_end = flank.s0
-        s_grid = np.linspace(0.0, s_end, 257)
+        s_grid = np.array([0.0, s_end])  # the roll is linear in s: its two ends give it
         p_grid = flank.contact(s_grid)
         c = p_grid.pitch_point
         normal = p_grid.normal[0]
@@ -190,9 +194,10 @@ class InvoluteGear:
         undercut = bool(a0 < 0.0)
         s_int = -a0 / a1 if undercut else 0.0
         s_a = (np.sqrt(ra * ra - rb * rb) - a0) / a1
-        # the flank is an involute: polar angle + inv(alpha_R) is constant along it
-        pts, _ = flank.evaluate(s_a)
-        theta_c = float(polar_angle(pts)[0]) + inv_fn(np.arccos(rb / ra))
+        # the flank is an involute: polar angle + inv(alpha_R) is constant along it; taken at its top
+        # (generated above the tip circle, well clear of the base circle where alpha_R is ill-conditioned)
+        top = p_grid.points[1:]
+        theta_c = float(polar_angle(top)[0]) + inv_fn(np.arccos(rb / float(radius(top)[0])))
 
         def flank_angle(r: Array) -> Array:
             return theta_c - inv_fn(np.arccos(np.clip(rb / r, -1.0, 1.0)))
@@ -296,18 +301,31 @@ class InvoluteGear:
         return float(self._half_tooth["form_radius"])
 
     def tooth_profile(self, tolerance: float | None = None) -> Profile:
-        """One tooth from space centre to space centre, counter-clockwise (open chain)."""
+        """One tooth from space centre to space centre, counter-clockwise (open chain).
+
+        The upper half's flank pieces (involute, fillet, root arc) are sampled once and mirrored
+        in the tooth's centre line for the lower half; the tip arc, which the centre line cuts, is
+        sampled whole.
+
+        Parameters
+        ----------
+        tolerance : float, optional
+            Chord error of the samples, mm (default: the gear's ``tolerance``).
+
+        Returns
+        -------
+        Profile
+            The open chain lower root arc, fillet, involute, tip arc (unless pointed), upper
+            involute, fillet, root arc; points (n, 2), mm.
+        """
         tol = self.tolerance if tolerance is None else tolerance
-        upper = [Segment.sample(name, curve, tol) for name, curve in self._half_tooth["pieces"]]
-        half = Profile(tuple(upper), closed=False)
-        lower = half.mirrored(0.0)
-        segs = list(lower.segments)
-        if upper[0].name == "tip arc":  # merge the two halves of the tip arc into one segment
-            tip = Arc((0.0, 0.0), self.nominal_tip_radius, -upper[0].curve.s1, upper[0].curve.s1)
-            segs = [*segs[:-1], Segment.sample("tip arc", tip, tol), *upper[1:]]
-        else:
-            segs = segs + upper
-        return Profile(tuple(segs), closed=False)
+        pieces = self._half_tooth["pieces"]
+        tip = pieces[0][1] if pieces[0][0] == "tip arc" else None
+        upper = [Segment.sample(name, curve, tol) for name, curve in (pieces[1:] if tip is not None else pieces)]
+        lower = [seg.mirrored(0.0) for seg in reversed(upper)]
+        if tip is not None:  # the two halves of the tip arc as one segment
+            upper.insert(0, Segment.sample("tip arc", Arc((0.0, 0.0), self.nominal_tip_radius, -tip.s1, tip.s1), tol))
+        return Profile((*lower, *upper), closed=False)
 
     def outline(self, tolerance: float | None = None) -> Profile:
         """The whole gear as a closed counter-clockwise profile (``teeth`` teeth)."""
@@ -332,10 +350,8 @@ class InvoluteGear:
             exact = np.nonzero(np.abs(r) <= 1e-11 * max(at_radius, 1.0))[0]
             if len(exact):
                 return float(polar_angle(curve.evaluate(s[exact[0]])[0])[0])
-            k = np.nonzero(np.sign(r[:-1]) != np.sign(r[1:]))[0]
-            if len(k):
-                i = k[0]
-                root = optimize.brentq(lambda v, c=curve: radius(c.evaluate(v)[0])[0] - at_radius, s[i], s[i + 1], xtol=1e-15)
+            root = bracket_root(lambda v, c=curve: radius(c.evaluate(v)[0])[0] - at_radius, s, values=r, xtol=1e-15)
+            if root is not None:
                 return float(polar_angle(curve.evaluate(root)[0])[0])
         # between the root circle and the fillet end: on the root arc
         return float(np.pi / self.teeth)
@@ -352,6 +368,66 @@ class InvoluteGear:
             "undercut": self.undercut,
             "tip_pointed": self.tip_pointed,
         }
+
+
+def _severed(gear: InvoluteGear) -> str:
+    """Why the generated flank (involute or root fillet) crosses the tooth's centre line, so that it
+    meets its mirror image from the other flank and the outline crosses itself; "" when it does
+    not. With few teeth and a negative shift the fillets meet low in the tooth and cut its head off
+    (z = 3, x = -0.2); with a large positive shift the tooth is pointed before its involute starts
+    (z = 12, x = 2.8)."""
+    worst, at = 0.0, 0.0
+    for name, curve in gear._half_tooth["pieces"]:
+        if name in ("involute", "fillet"):
+            pts = curve.evaluate(np.linspace(curve.s0, curve.s1, 513))[0]
+            d = polar_angle(pts) * radius(pts)
+            i = int(np.argmin(d))
+            if d[i] < worst:
+                worst, at = float(d[i]), float(radius(pts[i : i + 1])[0])
+    if worst >= -1e-9 * gear.module:
+        return ""
+    if at < gear.pitch_radius:
+        return "the root fillets of the two flanks meet inside the tooth and cut its head off"
+    return "the tooth is pointed below the start of its involute (no involute flank is left)"
+
+
+def _severed_allowed(gear: InvoluteGear) -> str:
+    """The shifts nearest to ``gear.shift`` whose tooth holds together, to 0.001, from a scan of the
+    allowed shift range and bisection of its ends (gears built without the check)."""
+
+    def whole(shift: float) -> bool:
+        g = object.__new__(InvoluteGear)
+        for f in fields(InvoluteGear):
+            object.__setattr__(g, f.name, shift if f.name == "shift" else getattr(gear, f.name))
+        try:
+            return not _severed(g)
+        except (DesignError, ValueError, ArithmeticError):
+            return False
+
+    lowest = max(-2.0, -gear.addendum, gear.dedendum - gear.teeth / (2.0 * np.cos(gear.helix_angle))) + 1e-6
+    grid = np.linspace(lowest, 3.0, 101)
+    ok = np.array([whole(x) for x in grid])
+    if not ok.any():
+        return f"a value that leaves a tooth for {gear.teeth} teeth and this tool (none from -2 to 3 does)"
+
+    def edge(good: float, bad: float) -> float:
+        while abs(good - bad) > 2e-4:
+            mid = 0.5 * (good + bad)
+            good, bad = (mid, bad) if whole(mid) else (good, mid)
+        return good
+
+    k = int(np.argmin(np.where(ok, np.abs(grid - gear.shift), np.inf)))  # the nearest good grid shift
+    lo_i, hi_i = k, k
+    while lo_i > 0 and ok[lo_i - 1]:
+        lo_i -= 1
+    while hi_i < len(grid) - 1 and ok[hi_i + 1]:
+        hi_i += 1
+    lo = np.ceil(edge(grid[lo_i], grid[lo_i - 1]) * 1000.0) / 1000.0 if lo_i > 0 else None
+    hi = np.floor(edge(grid[hi_i], grid[hi_i + 1]) * 1000.0) / 1000.0 if hi_i < len(grid) - 1 else None
+    where = f"for {gear.teeth} teeth and this tool"
+    if lo is not None and hi is not None:
+        return f"from {lo:.3f} to {hi:.3f} {where}"
+    return f"at least {lo:.3f} {where}" if lo is not None else f"at most {hi:.3f} {where}"
 
 
 @dataclass(frozen=True, eq=False)

@@ -9,45 +9,118 @@ from __future__ import annotations
 import numpy as np
 
 Array = np.ndarray
+ORIGIN = (0.0, 0.0)
+"""The origin, mm: the default centre of a turn."""
 
 
 def as_points(points: object) -> Array:
-    """Return ``points`` as a float64 array of shape (n, 2)."""
-    arr = np.asarray(points, dtype=float)
+    """Return ``points`` as a float64 array of shape (n, 2) (a single point (2,) becomes (1, 2))."""
+    arr = points if type(points) is np.ndarray and points.dtype == np.float64 else np.asarray(points, dtype=float)
     if arr.ndim == 1:
         arr = arr.reshape(1, 2)
     return arr
 
 
-def rotate(points: Array, angle: float | Array, center: object = (0.0, 0.0)) -> Array:
-    """Turn points about ``center`` by ``angle`` (a scalar, or one angle per point)."""
-    p = as_points(points) - np.asarray(center, dtype=float)
+def rotate(points: Array, angle: float | Array, center: object = ORIGIN) -> Array:
+    """Turn points about ``center``: the one rotation of the package.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        Points (or vectors, with the default ``center``).
+    angle : float or array, rad
+        Counter-clockwise turn. A scalar; one angle per point, shape (n,); or a stack of angles
+        that broadcasts against the points, e.g. shape (k, 1) for ``k`` turned copies of all
+        points (a pattern), giving shape (k, n, 2).
+    center : (2,) float, mm
+        Centre of the turn.
+
+    Returns
+    -------
+    (..., n, 2) float array, mm
+        The turned points: x' = c x - s y, y' = s x + c y about ``center``.
+    """
+    p = as_points(points)
+    about_origin = center is ORIGIN or (type(center) is tuple and center == ORIGIN)
+    if not about_origin:
+        ctr = np.asarray(center, dtype=float)
+        p = p - ctr
     c, s = np.cos(angle), np.sin(angle)
-    out = np.empty_like(p)
-    out[:, 0] = c * p[:, 0] - s * p[:, 1]
-    out[:, 1] = s * p[:, 0] + c * p[:, 1]
-    return out + np.asarray(center, dtype=float)
+    x, y = p[:, 0], p[:, 1]
+    if np.ndim(c) <= 1:
+        out = np.empty_like(p)
+        np.subtract(c * x, s * y, out=out[:, 0])
+        np.add(s * x, c * y, out=out[:, 1])
+    else:
+        out = np.stack([c * x - s * y, s * x + c * y], axis=-1)
+    return out if about_origin else out + ctr
+
+
+def wrap_angle(angle: float | Array, reference: float | Array = 0.0, period: float = 2.0 * np.pi) -> float | Array:
+    """Angle brought into the turn centred on ``reference``: the one angle wrap of the package.
+
+    Parameters
+    ----------
+    angle : float or array, rad
+        Angles, any shape.
+    reference : float or array, rad
+        Centre of the interval; broadcasts against ``angle``.
+    period : float
+        Length of the turn: 2 pi for an angle, or 2 pi / rate for a time of a body turning at
+        ``rate``.
+
+    Returns
+    -------
+    float or array
+        ``reference + mod(angle - reference + period / 2, period) - period / 2``, in
+        [reference - period / 2, reference + period / 2).
+    """
+    half = period / 2.0
+    return reference + np.mod(angle - reference + half, period) - half
 
 
 def cross(a: Array, b: Array) -> Array:
     """z-component of the cross product of two (n, 2) arrays (or broadcastable)."""
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    out = a[..., 0] * b[..., 1]
+    out -= a[..., 1] * b[..., 0]
+    return out
 
 
 def perp_cw(t: Array) -> Array:
     """Turn vectors clockwise by 90 degrees: the outward normal of a counter-clockwise boundary."""
     t = np.asarray(t, dtype=float)
-    return np.stack([t[..., 1], -t[..., 0]], axis=-1)
+    out = np.empty_like(t)
+    out[..., 0] = t[..., 1]
+    out[..., 1] = -t[..., 0]
+    return out
 
 
 def normalize(v: Array) -> Array:
-    """Unit vectors along ``v`` (rows of zero length stay zero)."""
+    """Unit vectors along ``v`` (rows of zero length stay zero).
+
+    Parameters
+    ----------
+    v : (..., d) float array
+        Vectors along the last axis (d = 2 takes a shorter path).
+
+    Returns
+    -------
+    (..., d) float array
+        ``v / |v|``, zero where ``|v| = 0``.
+    """
     v = np.asarray(v, dtype=float)
-    norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    if v.shape[-1] == 2:
+        x, y = v[..., 0], v[..., 1]
+        norm = np.sqrt(x * x + y * y)[..., None]  # the sum np.linalg.norm forms, without its overhead
+    else:
+        norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    if norm.min(initial=np.inf) > 0.0:  # no zero (nor NaN) length: a plain division
+        return v / norm
+    positive = norm > 0.0
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(norm > 0.0, v / np.where(norm > 0.0, norm, 1.0), 0.0)
+        return np.where(positive, v / np.where(positive, norm, 1.0), 0.0)
 
 
 def polar_angle(points: Array) -> Array:

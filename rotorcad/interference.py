@@ -24,6 +24,7 @@ import manifold3d as m3
 import numpy as np
 import shapely
 
+from rotorcad.geometry import rotate
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.solids import HelicalSolid
 
@@ -50,9 +51,8 @@ class Interference:
 
 
 def _rotate_coords(pts: np.ndarray, angles: np.ndarray, centre: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
-    c, s = np.cos(angles)[:, None], np.sin(angles)[:, None]
-    x, y = pts[:, 0] - centre[0], pts[:, 1] - centre[1]
-    return np.stack([c * x - s * y + centre[0], s * x + c * y + centre[1]], axis=-1)
+    """Points (n, 2), mm, turned by each of ``angles`` (k,), rad, about ``centre``: (k, n, 2)."""
+    return rotate(pts, np.asarray(angles, dtype=float)[:, None], centre)
 
 
 def touching_threshold(pair: RotorPair, tolerance: float) -> float:

@@ -16,24 +16,52 @@ Used by the hob (:mod:`hob.rack`: hobbability, hob tooth) and by the meshing cle
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
-from rotorcad.curves import Arc, Curve, sample_curve, split_intervals
-from rotorcad.envelope import Generated
-from rotorcad.geometry import cross
-from rotorcad.kinematics import Rotation, Translation
-from rotorcad.roles import PieceRole
+from rotorcad.curves import Arc, Curve, Mapped, sample_curve, split_intervals
+from rotorcad.envelope import Generated, conjugate, from_rack_frame
+from rotorcad.geometry import cross, rotate, wrap_angle
+from rotorcad.kinematics import Rotation, Translation, gear_mesh
+from rotorcad.roles import PieceRole, Side
+from rotorcad.roots import bracket_root
 
 MEASURED_MIN_TURN = np.radians(0.5)  # rad: the smallest corner between measured pieces
 
 
 @dataclass(frozen=True, eq=False)
 class DerivedRack:
-    """A rack derived from a profile: points in the rack frame of CONTRACT.md (x along the pitch
-    line, y > 0 away from the profile's centre), one period, with the generating pieces' names,
-    and the share of profile points that have no rack point (their normal misses the pitch circle)."""
+    """A rack derived from a profile, one period: the one rack value of hob and clearance.
+
+    Attributes
+    ----------
+    points : (n, 2) float array, mm
+        Rack points in the rack frame of CONTRACT.md (x along the pitch line); y > 0 away from
+        the profile's centre, or, with ``contract_frame``, towards the female for either rotor
+        (:meth:`in_contract_frame`).
+    tangents : (n, 2) float array
+        Unit tangents along the chain, exact (from the envelope).
+    names : tuple of str
+        The generating pieces' names, one per piece.
+    piece_index : (n,) int array
+        The piece of each point.
+    period : float, mm
+        Rack period (transverse).
+    lost_fraction : float
+        Share of profile points without a rack point (their normal misses the pitch circle).
+    pitch_radius : float, mm
+        Pitch radius of the rotor or gear the rack rolls on.
+    helix_angle : float, rad
+        beta at the pitch cylinder (for the normal rack).
+    roles : tuple of PieceRole
+        Per piece: a corner fan does not cut (its image is the corner's path).
+    side : Side or None
+        The rotor the rack was derived from (None for a gear).
+    contract_frame : bool
+        Whether y > 0 points to the female for either rotor, the chain travelled in +x.
+    """
 
     points: np.ndarray
     tangents: np.ndarray  # unit tangents along the chain, exact (from the envelope)
@@ -43,25 +71,75 @@ class DerivedRack:
     lost_fraction: float
     pitch_radius: float
     helix_angle: float = 0.0
-    roles: tuple[PieceRole, ...] = ()  # per piece: a corner fan does not cut (its image is the corner's path)
+    roles: tuple[PieceRole, ...] = ()
+    side: Side | None = None
+    contract_frame: bool = False
 
     def normal(self) -> np.ndarray:
-        """Normal rack: lengths along the pitch line times cos(beta)."""
+        """Normal rack: lengths along the pitch line times cos(beta), (n, 2), mm."""
         return self.points * np.array([np.cos(self.helix_angle), 1.0])
+
+    def normal_section(self, helix_angle: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The normal rack (Wu & Chi eq. 7) and its unit tangents, each (n, 2).
+
+        Parameters
+        ----------
+        helix_angle : float, optional
+            beta, rad (default the rack's own).
+        """
+        c = np.cos(self.helix_angle if helix_angle is None else helix_angle)
+        t = self.tangents * np.array([c, 1.0])
+        return self.points * np.array([c, 1.0]), t / np.linalg.norm(t, axis=1, keepdims=True)
+
+    @property
+    def corner_path(self) -> np.ndarray:
+        """(n,) bool: the point lies on the path of a sharp corner (a corner's fan)."""
+        fan = np.array([role is PieceRole.CORNER_FAN for role in self.roles], dtype=bool)
+        return fan[self.piece_index] if len(fan) else np.zeros(len(self.points), dtype=bool)
+
+    def in_contract_frame(self) -> DerivedRack:
+        """The same rack with y > 0 towards the female for either rotor (a female's rack flipped),
+        travelled in +x (CONTRACT.md rack frame)."""
+        if self.contract_frame:
+            return self
+        flip = np.array([1.0, -1.0 if self.side is Side.FEMALE else 1.0])
+        pts, tan, idx = self.points * flip, self.tangents * flip, self.piece_index
+        if pts[-1, 0] < pts[0, 0]:  # travel the chain in +x
+            pts, tan, idx = pts[::-1], -tan[::-1], idx[::-1]
+        return replace(self, points=pts, tangents=tan, piece_index=idx, contract_frame=True)
 
     @property
     def normal_period(self) -> float:
+        """Period of the normal rack, mm: the transverse period times cos(beta)."""
         return self.period * np.cos(self.helix_angle)
 
 
 def contact_of_rack_points(pitch_radius: float, points: np.ndarray, tangents: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Contact point (fixed transverse frame, pitch point at (r_w, 0)) and rotation angle of rack
-    points (rack frame of CONTRACT.md, unit tangents): where a point's normal meets the pitch
-    line, that foot is at the pitch point C (law of gearing)."""
-    r1 = pitch_radius
-    with np.errstate(divide="ignore", invalid="ignore"):
-        offset = points[:, 1] * tangents[:, 1] / tangents[:, 0]  # foot of the normal, along the pitch line
-    return np.stack([r1 + points[:, 1], -offset], axis=1), -(points[:, 0] + offset) / r1
+    """Contact point and male rotation angle of rack points, from the envelope engine
+    (:func:`rotorcad.envelope.conjugate`: the point's normal passes the pitch point C).
+
+    Parameters
+    ----------
+    pitch_radius : float, mm
+        Male pitch radius r_w (the rack's pitch line rolls on it).
+    points : (n, 2) float array, mm
+        Rack points in the rack frame of CONTRACT.md.
+    tangents : (n, 2) float array
+        Their unit tangents (either direction).
+
+    Returns
+    -------
+    contact : (n, 2) float array, mm
+        Contact point in the fixed transverse frame (male centre at the origin, C at (r_w, 0));
+        NaN where the normal runs along the pitch line (no contact).
+    angle : (n,) float array, rad
+        Male rotation at which the point is in contact.
+    """
+    mesh = gear_mesh(pitch_radius)
+    p = from_rack_frame(points, pitch_radius)
+    t = from_rack_frame(tangents, 0.0)  # the axes swapped: a direction in the fixed frame
+    contact = conjugate(p, t, mesh.rack, mesh.male)
+    return contact.meshline, contact.t
 
 
 def with_corner_fans(
@@ -93,9 +171,7 @@ def with_corner_fans(
     piece_ends = [ends(curve) for _, curve in pieces]  # generated curves are costly: evaluate once
     if centre is not None and pitch_angle and n:
         (_, _), (p_last, t_last) = piece_ends[-1]
-        c, s_ = np.cos(-pitch_angle), np.sin(-pitch_angle)
-        rot = np.array([[c, -s_], [s_, c]])
-        back = (rot @ (p_last - centre) + centre, rot @ t_last)
+        back = (rotate(p_last, -pitch_angle, centre)[0], rotate(t_last, -pitch_angle)[0])
         first = fan(pieces[-1][0], back, piece_ends[0][0])
         if first is not None:
             out.append(first)
@@ -131,7 +207,7 @@ def _on_the_corner_path(
     theta_f = np.arctan2(w[1], w[0]) - np.arctan2(d[1], d[0])  # the corner at the pitch point
     t = gen.contact(s).t
     half_turn = np.pi / abs(body.rate)
-    lag = np.mod(t - theta_f / body.rate + half_turn, 2 * half_turn) - half_turn
+    lag = wrap_angle(t - theta_f / body.rate, 0.0, 2 * half_turn)  # time since the corner passed C, within a turn
     start = 0 if abs(lag[0]) <= abs(lag[-1]) else len(lag) - 1  # the end at the flank, nearer the cusp
     same = np.sign(lag) == np.sign(lag[start])
     run = np.cumprod(same if start == 0 else same[::-1]).astype(bool)
@@ -204,4 +280,111 @@ def derive_rack(
     )
 
 
-__all__ = ["MEASURED_MIN_TURN", "DerivedRack", "contact_of_rack_points", "derive_rack", "with_corner_fans"]
+def rotor_rack(
+    rotors: Any,
+    side: Side | str,
+    pieces: list[tuple[str, Curve]] | None = None,
+    *,
+    tolerance: float = 1e-4,
+    samples: int = 400,
+    contact_step: float = 0.0,
+    min_turn: float = 1e-6,
+    clip_at_tip: bool | None = None,
+) -> DerivedRack:
+    """The transverse rack of one lobe of the male or the female of a pair: the one function for
+    the rack of a rotor, used by the hob (:mod:`hob.rack`) and the meshing clearance
+    (:mod:`rotorcad.clearance`). Inverse generation by :func:`derive_rack`, corner fans included.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors or RotorPair
+        The pair (a :class:`~rotorcad.screw_rotors.ScrewRotors` also gives the lobe's pieces).
+    side : Side or str
+        The rotor.
+    pieces : list of (str, Curve), optional
+        One lobe, counter-clockwise, in the rotor's own frame (centre at the origin), e.g.
+        :func:`rotorcad.rotor_points.lobe_pieces`; default the lobe of ``rotors``.
+    tolerance : float, mm
+        Chord tolerance of the rack's samples.
+    samples : int
+        Fewest samples of each piece.
+    contact_step : float, mm
+        If > 0, samples are added until the contact points (the meshline) of neighbours are at
+        most this far apart (the contact runs fast along the rack near roundings).
+    min_turn : float, rad
+        Smaller turns between pieces are not corners (:data:`MEASURED_MIN_TURN` for measured
+        pieces, whose fits leave kinks of a fraction of a degree at the lands).
+    clip_at_tip : bool, optional
+        Cut the pieces at the rotor's tip circle (generated flanks can overshoot it); default
+        for the lobe of ``rotors`` only.
+
+    Returns
+    -------
+    DerivedRack
+        Rack points (n, 2), mm, with y > 0 away from this rotor's centre (see
+        :meth:`DerivedRack.in_contract_frame`), its ``side`` set and the helix angle at the
+        pitch cylinder, tan(beta) = 2 pi r_w / h.
+    """
+    side = Side(side)
+    pair = getattr(rotors, "pair", rotors)
+    if pieces is None:
+        lobe = side.pick(rotors.male_pieces, rotors.female_pieces)
+        pieces = [(name, curve) for name, curve, *_ in lobe]
+        clip_at_tip = True if clip_at_tip is None else clip_at_tip
+    mesh = pair.mesh
+    if side is Side.FEMALE:  # the female's pieces to the fixed frame, its centre at (a, 0)
+        shift = (pair.center_distance, 0.0)
+        pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve in pieces]
+    body = side.pick(mesh.male, mesh.female)
+    r_w = side.pick(pair.male_pitch_radius, pair.female_pitch_radius)
+    if clip_at_tip:
+        tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
+        centre = np.asarray(body.center, dtype=float)
+        pieces = [p for p in (_inside_tip(name, curve, centre, tip) for name, curve in pieces) if p is not None]
+    depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
+    rack = derive_rack(
+        pieces,
+        body,
+        r_w,
+        pair.rack_period,
+        float(np.arctan(2 * np.pi * r_w / side.pick(pair.lead, pair.female_lead))),
+        depth=depth,
+        samples=samples,
+        pitch_angle=2 * np.pi / side.pick(pair.male_teeth, pair.female_teeth),
+        tolerance=tolerance,
+        contact_step=contact_step,
+        min_turn=min_turn,
+    )
+    return replace(rack, side=side)
+
+
+def _inside_tip(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[str, Curve] | None:
+    """The longest part of a generated piece inside the rotor's tip circle (generated flanks can
+    overshoot it; the rotor is cut off there), or None."""
+    s = np.linspace(curve.s0, curve.s1, 257)  # the ends are refined by root finding below
+    p, _ = curve.evaluate(s)
+    inside = np.hypot(*(p - centre).T) <= tip + 2e-3  # a measured land may wander by the fit error
+    if inside.all():
+        return name, curve
+    if not inside.any():
+        return None
+    edges = np.diff(np.concatenate([[0], inside.astype(int), [0]]))
+    starts, ends = np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0] - 1
+    k = int(np.argmax(ends - starts))
+    if ends[k] <= starts[k]:
+        return None
+
+    def gap(v: float) -> float:
+        return float(np.hypot(*(curve.evaluate(v)[0][0] - centre)) - tip)
+
+    def refine(inner: float, outer: float) -> float:
+        root = bracket_root(gap, (inner, outer), xtol=1e-15)
+        return inner if root is None else root
+
+    # refine where the piece leaves the tip circle (the map to the rack is steep there)
+    a = refine(s[starts[k]], s[starts[k] - 1]) if starts[k] > 0 else s[0]
+    b = refine(s[ends[k]], s[ends[k] + 1]) if ends[k] < len(s) - 1 else s[-1]
+    return name, curve.trimmed(a, b)
+
+
+__all__ = ["MEASURED_MIN_TURN", "DerivedRack", "contact_of_rack_points", "derive_rack", "rotor_rack", "with_corner_fans"]

@@ -14,6 +14,7 @@ pitch line x = r1w moving in +y at r1w per radian of the male.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -45,9 +46,13 @@ class Rotation:
         return rotate(vectors, -self.angle(t))
 
     def velocity_at(self, points: Array) -> Array:
-        """Velocity (per unit t) of the body's material at fixed-frame ``points``."""
+        """Velocity (per unit t) of the body's material at fixed-frame ``points`` (n, 2), mm:
+        rate * (-(y - y_O), x - x_O), shape (n, 2)."""
         d = as_points(points) - np.asarray(self.center, dtype=float)
-        return self.rate * np.stack([-d[:, 1], d[:, 0]], axis=-1)
+        v = np.empty_like(d)
+        v[:, 0] = -d[:, 1]
+        v[:, 1] = d[:, 0]
+        return self.rate * v
 
 
 @dataclass(frozen=True)
@@ -57,12 +62,17 @@ class Translation:
     velocity: tuple[float, float] = (0.0, 1.0)
     rate: float = 0.0
 
+    @cached_property
+    def _velocity(self) -> Array:
+        """``velocity`` as a (2,) float array, mm per unit t."""
+        return np.asarray(self.velocity, dtype=float)
+
     def to_fixed(self, points: Array, t: Array | float) -> Array:
-        shift = np.multiply.outer(np.asarray(t, dtype=float), np.asarray(self.velocity))
+        shift = np.multiply.outer(np.asarray(t, dtype=float), self._velocity)
         return as_points(points) + shift
 
     def to_body(self, points: Array, t: Array | float) -> Array:
-        shift = np.multiply.outer(np.asarray(t, dtype=float), np.asarray(self.velocity))
+        shift = np.multiply.outer(np.asarray(t, dtype=float), self._velocity)
         return as_points(points) - shift
 
     def vectors_to_fixed(self, vectors: Array, t: Array | float) -> Array:
@@ -72,7 +82,10 @@ class Translation:
         return as_points(vectors)
 
     def velocity_at(self, points: Array) -> Array:
-        return np.broadcast_to(np.asarray(self.velocity, dtype=float), as_points(points).shape)
+        """The rack's velocity (per unit t) at every one of ``points`` (n, 2): shape (n, 2), mm."""
+        out = np.empty_like(as_points(points))
+        out[...] = self._velocity
+        return out
 
 
 Body = Rotation | Translation
@@ -83,7 +96,23 @@ def pitch_point(a: Body, b: Body) -> Array:
 
     Two rotations: C = (w_a O_a - w_b O_b) / (w_a - w_b). A rotation and a translation V:
     the point of the rotating body whose velocity equals V.
+
+    Parameters
+    ----------
+    a, b : Rotation or Translation
+        The two bodies (not both translating, not turning at the same rate).
+
+    Returns
+    -------
+    (2,) float array, mm
+        C in the fixed frame (a new array on every call).
     """
+    return _pitch_point(a, b).copy()
+
+
+@lru_cache(maxsize=64)
+def _pitch_point(a: Body, b: Body) -> Array:
+    """:func:`pitch_point`, remembered for the few meshes in use (the bodies are frozen values)."""
     if isinstance(a, Translation) and isinstance(b, Translation):
         raise ValueError("two translating bodies have no pitch point")
     if isinstance(a, Translation):

@@ -20,7 +20,7 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, minimum_filter1d
 
 from rotorcad.errors import DesignError
-from rotorcad.geometry import cross, rotate
+from rotorcad.geometry import cross, rotate, wrap_angle
 
 SCATTER_FLOOR = 1e-4  # mm: below this the points are taken as exact (interpolated)
 
@@ -148,7 +148,7 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     # a little off it): the end of the edge that turns by more than the threshold on its own
     d = np.roll(p, -1, axis=0) - p
     heading = np.arctan2(d[:, 1], d[:, 0])
-    vertex_turn = np.abs(np.mod(heading - np.roll(heading, 1) + np.pi, 2 * np.pi) - np.pi)
+    vertex_turn = np.abs(wrap_angle(heading - np.roll(heading, 1)))
     if sigma <= 0:
         at_start = vertex_turn[idx] > np.radians(angle_deg)
         at_end = vertex_turn[(idx + 1) % n] > np.radians(angle_deg)

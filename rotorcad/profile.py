@@ -18,8 +18,8 @@ from functools import cached_property
 import numpy as np
 import shapely
 
-from rotorcad.curves import Curve, Mapped, mirrored, rotated, sample_curve
-from rotorcad.geometry import Array, perp_cw
+from rotorcad.curves import Curve, mirrored, rotated, sample_curve
+from rotorcad.geometry import Array, perp_cw, rotate
 
 DEFAULT_TOLERANCE = 1e-4  # mm chord error: 0.1 micrometre
 
@@ -38,7 +38,9 @@ class Segment:
     def sample(name: str, curve: Curve, tolerance: float = DEFAULT_TOLERANCE) -> Segment:
         """Sample ``curve`` so that chords deviate from it by at most ``tolerance`` (mm)."""
         s, p, t = sample_curve(curve, tolerance)
-        ok = np.all(np.isfinite(p), axis=1) & np.all(np.isfinite(t), axis=1)  # no-contact points are dropped
+        ok = np.isfinite(p).all(axis=1) & np.isfinite(t).all(axis=1)  # no-contact points are dropped
+        if ok.all():
+            return Segment(name, curve, s, p, t)
         return Segment(name, curve, s[ok], p[ok], t[ok])
 
     @staticmethod
@@ -56,11 +58,14 @@ class Segment:
         return Segment.sample(self.name, self.curve, tolerance)
 
     def rotated(self, angle: float, center: object = (0.0, 0.0)) -> Segment:
-        curve = rotated(self.curve, angle, center)
-        c, s = np.cos(angle), np.sin(angle)
-        m = np.array([[c, -s], [s, c]])
-        ctr = np.asarray(center, dtype=float)
-        return Segment(self.name, curve, self.s, (self.points - ctr) @ m.T + ctr, self.tangents @ m.T)
+        """The segment turned by ``angle`` (rad) about ``center`` (mm), its curve too."""
+        return Segment(
+            self.name,
+            rotated(self.curve, angle, center),
+            self.s,
+            rotate(self.points, angle, center),
+            rotate(self.tangents, angle),
+        )
 
     def mirrored(self, angle: float = 0.0) -> Segment:
         """Mirror in the line through the origin at ``angle``; travel is reversed so a boundary
@@ -88,19 +93,8 @@ class Profile:
         """Concatenated samples; a segment's first point is dropped where it repeats the
         previous segment's last point (and the closing point of a closed chain)."""
         segs = self.segments
-        p = np.concatenate([s.points for s in segs])
-        t = np.concatenate([s.tangents for s in segs])
         lengths = np.array([len(s.points) for s in segs])
-        idx = np.repeat(np.arange(len(segs)), lengths)
-        keep = np.ones(len(p), dtype=bool)
-        starts = np.cumsum(lengths) - lengths
-        if len(segs) > 1:
-            gap = np.hypot(*(p[starts[1:]] - p[starts[1:] - 1]).T)
-            keep[starts[1:][gap < 1e-9]] = False
-        p, t, idx = p[keep], t[keep], idx[keep]
-        if self.closed and len(p) > 1 and np.hypot(*(p[0] - p[-1])) < 1e-9:
-            p, t, idx = p[:-1], t[:-1], idx[:-1]
-        return p, t, idx
+        return _join(np.concatenate([s.points for s in segs]), np.concatenate([s.tangents for s in segs]), lengths, self.closed)
 
     @property
     def points(self) -> Array:
@@ -133,30 +127,24 @@ class Profile:
         return Profile(self.segments + other.segments, self.closed and other.closed)
 
     def patterned(self, count: int, center: object = (0.0, 0.0)) -> Profile:
-        """``count`` copies turned by 2*pi/count about ``center`` (one tooth -> the whole gear).
+        """``count`` copies turned by 2 pi / count about ``center`` (one tooth -> the whole gear).
 
-        The sample arrays of all copies are rotated in one vectorised step.
+        Parameters
+        ----------
+        count : int
+            Number of copies (teeth or lobes), the first one this profile itself.
+        center : (2,) float, mm
+            Centre of the pattern.
+
+        Returns
+        -------
+        Profile
+            A closed profile of ``count * len(self.segments)`` segments. Its points and tangents
+            are this profile's samples turned in one vectorised step (a stack of ``count``
+            rotations, :func:`rotorcad.geometry.rotate`); the segment objects, each with its
+            exact curve under the turn, are only made when :attr:`segments` is first read.
         """
-        ctr = np.asarray(center, dtype=float)
-        ang = 2.0 * np.pi * np.arange(count) / count
-        c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
-        segs: list[Segment] = []
-        arrays = []
-        for seg in self.segments:
-            x, y = (seg.points - ctr).T
-            tx, ty = seg.tangents.T
-            pts = np.stack([c * x - s * y, s * x + c * y], axis=-1) + ctr
-            tan = np.stack([c * tx - s * ty, s * tx + c * ty], axis=-1)
-            arrays.append((pts, tan))
-        for k in range(count):
-            m = ((float(c[k, 0]), float(-s[k, 0])), (float(s[k, 0]), float(c[k, 0])))
-            shift = ctr - np.asarray(m) @ ctr
-            for seg, (pts, tan) in zip(self.segments, arrays, strict=True):
-                curve = (
-                    seg.curve if k == 0 else Mapped(seg.curve, m, (float(shift[0]), float(shift[1])), seg.curve.s0, seg.curve.s1)
-                )
-                segs.append(Segment(seg.name, curve, seg.s, pts[k], tan[k]))
-        return Profile(tuple(segs), True)
+        return _Patterned(self, int(count), (float(center[0]), float(center[1])))
 
     def resampled(self, tolerance: float) -> Profile:
         """Every segment re-evaluated on its exact curve to the chord ``tolerance`` (mm)."""
@@ -181,6 +169,101 @@ class Profile:
             return {"Ixx": m["Ixx"], "Iyy": m["Iyy"], "Ixy": m["Ixy"]}
         a, cx, cy = m["area"], m["cx"], m["cy"]
         return {"Ixx": m["Ixx"] - a * cy * cy, "Iyy": m["Iyy"] - a * cx * cx, "Ixy": m["Ixy"] - a * cx * cy}
+
+
+class _Patterned(Profile):
+    """A closed profile made of ``count`` turned copies of ``unit`` (see :meth:`Profile.patterned`).
+
+    Points, tangents and segment indices come from one vectorised rotation of the unit's samples;
+    :attr:`segments` (one :class:`Segment` per piece and copy, with its exact curve) is built on
+    first use, so that a caller who wants the polygon pays for no per-piece objects.
+    """
+
+    def __init__(self, unit: Profile, count: int, center: tuple[float, float]) -> None:
+        object.__setattr__(self, "closed", True)
+        object.__setattr__(self, "unit", unit)
+        object.__setattr__(self, "count", count)
+        object.__setattr__(self, "center", center)
+
+    @cached_property
+    def _turned(self) -> tuple[Array, Array]:
+        """Points and tangents of every copy, each (count, m, 2): the unit's samples turned."""
+        unit = self.unit.segments
+        ang = (2.0 * np.pi * np.arange(self.count) / self.count)[:, None]
+        pts = rotate(np.concatenate([s.points for s in unit]), ang, self.center)
+        tan = rotate(np.concatenate([s.tangents for s in unit]), ang)
+        return pts, tan
+
+    @cached_property
+    def _joined(self) -> tuple[Array, Array, Array]:
+        pts, tan = self._turned
+        lengths = np.tile([len(s.points) for s in self.unit.segments], self.count)
+        return _join(pts.reshape(-1, 2), tan.reshape(-1, 2), lengths, True)
+
+    @property
+    def points(self) -> Array:
+        """All sample points in order, (n, 2), mm (no repeated end point); see :meth:`Profile.points`."""
+        if "_joined" in self.__dict__:
+            return self._joined[0]
+        return self._points_only
+
+    @cached_property
+    def _points_only(self) -> Array:
+        """The joined points without turning the tangents (what a polygon needs)."""
+        unit = self.unit.segments
+        ang = (2.0 * np.pi * np.arange(self.count) / self.count)[:, None]
+        pts = rotate(np.concatenate([s.points for s in unit]), ang, self.center).reshape(-1, 2)
+        lengths = np.tile([len(s.points) for s in unit], self.count)
+        return _join(pts, None, lengths, True)[0]
+
+    @cached_property
+    def segments(self) -> tuple[Segment, ...]:  # type: ignore[override]
+        """The segments of all copies, the copies' curves as :class:`~rotorcad.curves.Mapped`."""
+        pts, tan = self._turned
+        unit = self.unit.segments
+        bounds = np.cumsum([0] + [len(s.points) for s in unit])
+        segs: list[Segment] = []
+        for k in range(self.count):
+            turn = 2.0 * np.pi * k / self.count
+            for j, seg in enumerate(unit):
+                curve = seg.curve if k == 0 else rotated(seg.curve, turn, self.center)
+                a, b = bounds[j], bounds[j + 1]
+                segs.append(Segment(seg.name, curve, seg.s, pts[k, a:b], tan[k, a:b]))
+        return tuple(segs)
+
+
+def _join(p: Array, t: Array | None, lengths: Array, closed: bool) -> tuple[Array, Array | None, Array]:
+    """A chain's samples joined: the first point of a segment is dropped where it repeats (within
+    1e-9 mm) the previous segment's last point, and a closed chain's repeated end point.
+
+    Parameters
+    ----------
+    p, t : (n, 2) float arrays
+        Points (mm) and unit tangents of all segments, in order (``t`` may be None: points only).
+    lengths : (k,) int array
+        Number of samples of each segment (summing to n).
+    closed : bool
+        Whether the chain is closed.
+
+    Returns
+    -------
+    points, tangents : (m, 2) float arrays
+        The joined samples.
+    index : (m,) int array
+        The segment of every sample.
+    """
+    idx = np.repeat(np.arange(len(lengths)), lengths)
+    keep = np.ones(len(p), dtype=bool)
+    starts = np.cumsum(lengths) - lengths
+    if len(lengths) > 1:
+        gap = np.hypot(*(p[starts[1:]] - p[starts[1:] - 1]).T)
+        keep[starts[1:][gap < 1e-9]] = False
+    if not keep.all():  # compress: not the slow path of a boolean mask on a 2-D array
+        p, idx = np.compress(keep, p, axis=0), idx[keep]
+        t = None if t is None else np.compress(keep, t, axis=0)
+    if closed and len(p) > 1 and np.hypot(*(p[0] - p[-1])) < 1e-9:
+        p, t, idx = p[:-1], None if t is None else t[:-1], idx[:-1]
+    return p, t, idx
 
 
 def polygon_moments(points: Array) -> dict[str, float]:

@@ -11,14 +11,15 @@ mate's (point-generated flanks, Rinder Fig. 1-4), are found and marked as in the
 from __future__ import annotations
 
 import numpy as np
-from scipy import optimize
 
 from rotorcad.curves import Arc, Curve, Mapped, Spline, rotated, sample_curve
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
+from rotorcad.geometry import wrap_angle
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
 from rotorcad.measured_outline import corners, lands, scatter, whole_outline
 from rotorcad.roles import PieceRole, Side
+from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -89,19 +90,18 @@ def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float
 def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: float) -> float | None:
     """Parameter where ``curve`` (through ``points`` at parameters ``u``) crosses the polar ray at
     ``theta`` counter-clockwise, or None."""
-    rel = np.mod(np.arctan2(points[:, 1], points[:, 0]) - theta + np.pi, 2 * np.pi) - np.pi
+    rel = wrap_angle(np.arctan2(points[:, 1], points[:, 0]) - theta)
     i = np.nonzero((rel[:-1] < 0) & (rel[1:] >= 0) & (np.abs(rel[:-1]) < np.pi / 2) & (np.abs(rel[1:]) < np.pi / 2))[0]
     if len(i) == 0:
         return None
 
     def f(v: float) -> float:
         q = curve.evaluate(v)[0][0]
-        return float(np.mod(np.arctan2(q[1], q[0]) - theta + np.pi, 2 * np.pi) - np.pi)
+        return float(wrap_angle(np.arctan2(q[1], q[0]) - theta))
 
     a, b = u[i[0]], u[i[0] + 1]
-    if f(a) * f(b) > 0:  # the spline between the points: take the chord's crossing
-        return float(a)
-    return float(optimize.brentq(f, a, b, xtol=1e-13))
+    root = bracket_root(f, (a, b), xtol=1e-13)
+    return float(a) if root is None else root  # no sign change on the spline: the chord's crossing
 
 
 def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray) -> list[np.ndarray]:

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorcad.errors import DesignError
+from rotorcad.geometry import rotate
 from rotorcad.profile import polygon_moments
 
 
@@ -170,8 +171,7 @@ def shear_correction_over_turn(points: np.ndarray, turns: np.ndarray, samples: i
     p = _ccw(points)
     out = np.empty(len(turns))
     for i, g in enumerate(np.asarray(turns, dtype=float)):  # a few dozen turns, each vectorised
-        c, s = np.cos(g), np.sin(g)
-        out[i] = shear_correction(p @ np.array([[c, s], [-s, c]]), samples)
+        out[i] = shear_correction(rotate(p, g), samples)
     return out
 
 

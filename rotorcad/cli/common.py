@@ -25,6 +25,59 @@ class InputError(click.ClickException):
     exit_code = 2
 
 
+MAX_DESIGN_BYTES = 2**20
+"""Largest design or sweep file read, bytes (1 MiB; a design is a few hundred bytes)."""
+
+
+def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
+    """The mapping a TOML design (or sweep) file holds: the one place that opens design files.
+
+    Parameters
+    ----------
+    path : Path
+        The file (UTF-8 or Latin-1 text of at most :data:`MAX_DESIGN_BYTES`).
+    label : str
+        The option or key that named the file; it leads the error sentence.
+
+    Returns
+    -------
+    dict
+        The tables and keys as TOML reads them (not checked: see :mod:`rotorcad.design`).
+
+    Raises
+    ------
+    DesignError
+        A missing, special (FIFO, device, folder), oversized, binary or malformed file, in one
+        sentence naming ``label`` (NUL bytes by their line).
+    """
+    import tomllib
+
+    from exports.reading import read_text
+
+    text = read_text(Path(path), label, "TOML design file", MAX_DESIGN_BYTES)
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(label, "valid TOML", str(path), str(exc)) from None
+
+
+def load_gear_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, dict[str, Any]]:
+    """A gear design file read (unless its mapping ``data`` was read already) and checked by
+    :func:`rotorcad.design.gear_design`; raises :class:`DesignError`."""
+    from rotorcad.design import gear_design
+
+    return gear_design(load_toml(path) if data is None else data)
+
+
+def load_rotor_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, Any]:
+    """A screw-rotor design file read (unless its mapping ``data`` was read already) and checked by
+    :func:`rotorcad.design.rotor_design`; a points file is found beside the design file. Raises
+    :class:`DesignError`."""
+    from rotorcad.design import rotor_design
+
+    return rotor_design(load_toml(path) if data is None else data, Path(path).parent)
+
+
 def reraise(exc: DesignError, names: dict[str, str]) -> InputError:
     """A library :class:`DesignError` as a CLI error naming the option the user typed."""
     return InputError(exc.sentence(names.get(exc.param, exc.param)))
@@ -169,11 +222,18 @@ class Outputs:
 
     def add_figure(self, path: Path | None, figure: Callable[[], Any], option: str) -> None:
         """A picture: ``figure()`` makes the matplotlib figure, saved as PNG, SVG or PDF by the
-        suffix of ``path`` (PNG without one; any other suffix is refused naming ``option``)."""
+        suffix of ``path`` (PNG without one; any other suffix is refused naming ``option``), in
+        the style of :mod:`rotorcad.plot_style` (cut to what is drawn, labels tagged in SVG)."""
         if path is None:
             return
         fmt = plot_format(path, option)
-        self.add(path, lambda p: figure().savefig(p, format=fmt), option)
+
+        def write(p: Path) -> None:
+            from rotorcad.plot_style import save  # matplotlib only when a picture is drawn
+
+            save(figure(), p, fmt)
+
+        self.add(path, write, option)
 
     def write(self, pool: WorkerPool | None = None) -> list[Path]:
         """Write every file or none; background writers run in ``pool``'s worker if given."""

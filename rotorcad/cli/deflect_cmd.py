@@ -10,12 +10,14 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from exports.csv_points import read_points
-from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad import plot_style as ps
+from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
 from rotorcad.cli.export_cmd import _rotor_options
+from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.deflection import STEEL, GasDeflection, Shaft
-from rotorcad.design import load_rotor_design
 from rotorcad.errors import DesignError
+from rotorcad.plot_style import styled
 
 SWEEP_ANGLES = 100  # male angles over one male pitch
 
@@ -108,7 +110,7 @@ def deflect(
         _shaft(de.get("female_shaft_discharge"), "female_shaft_discharge"),
         _shaft(de.get("female_shaft_suction"), "female_shaft_suction"),
     )
-    rotors, _, _ = build_rotors(design, _rotor_options(design))
+    rotors, _, _ = build_rotors(design, _rotor_options(design), settings)  # the design as read above
     try:
         model = GasDeflection(
             rotors,
@@ -137,13 +139,17 @@ def deflect(
     pitch = 2 * np.pi / rotors.pair.male_teeth
     shafts = male_shaft.given or female_shaft.given
     sweep_angles = np.linspace(0.0, pitch, SWEEP_ANGLES, endpoint=False)
-    swept = model.sweep(sweep_angles, shaft=shafts)
-    if angle is None:
-        at = model.refine_worst(sweep_angles, swept.max(axis=1), shaft=shafts)
-    else:
-        at = float(np.radians(angle))
-    lines = model.at(at)
-    two = model.at(at, terms=2)
+    with Steps("deflection: angle sweep", 3, quiet) as progress:
+        swept = model.sweep(sweep_angles, shaft=shafts)
+        progress.advance(description="deflection: worst angle")
+        if angle is None:
+            at = model.refine_worst(sweep_angles, swept.max(axis=1), shaft=shafts)
+        else:
+            at = float(np.radians(angle))
+        progress.advance(description="deflection: lines")
+        lines = model.at(at)
+        two = model.at(at, terms=2)
+        progress.advance()
     result: dict[str, Any] = {}
     for column, (rotor, beam) in enumerate((("male", model.male), ("female", model.female))):
         helical = lines.largest(rotor)
@@ -182,7 +188,9 @@ def deflect(
     result["terms"] = terms
     result["shaft_ends"] = bool(shafts)
     out = Outputs()
-    out.add_figure(plot, lambda: _plot(model, lines, sweep_angles, swept, shafts), "--plot")
+    out.add_figure(
+        plot, lambda: _plot(model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}"), "--plot"
+    )
     result["files"] = [str(x) for x in out.write()]
     if as_json:
         emit_json(result)
@@ -190,12 +198,13 @@ def deflect(
         print_table(f"deflection under gas load, {Path(design).name}, male angle {np.degrees(at):.2f} deg", result)
 
 
-def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, shafts: bool) -> Figure:
+@styled
+def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, shafts: bool, case: str = "") -> Figure:
     """Deflection lines of both rotors at the chosen angle (w_x, w_y in the rotors' frame: x from O1
     to O2, y turned 90 deg counter-clockwise; |w|), the helical part's end faces marked on a shaft,
     and the largest deflection over one male pitch with the chosen angle marked (Rinder & Deix
     Figs. 9 and 10)."""
-    fig = Figure(figsize=(9.5, 7.5), dpi=120)
+    fig = ps.new_figure(12.0, 7.6)
     axes = fig.subplots(2, 2)
     length = model.pair.length
     for col, rotor in enumerate(("male", "female")):
@@ -203,36 +212,40 @@ def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, sh
         shaft_z = getattr(lines, f"{rotor}_shaft_z")
         if shafts and len(shaft_z):
             z, w = shaft_z, getattr(lines, f"{rotor}_shaft")
-            ax.set_xlabel("z from the discharge bearing [mm]")
+            ax.set_xlabel(ps.label("z from the discharge bearing", "mm"))
             start = model.journal_length(rotor)
             for end in (start, start + length):
-                ax.axvline(end, color="grey", lw=0.8, ls=":")
-            ax.axvspan(start, start + length, color="#eeeeee", zorder=0, label="helical part")
+                ax.axvline(end, color=ps.GREY, lw=0.8, ls=":")
+            ax.axvspan(start, start + length, color="#EEEEEE", zorder=0, label="helical part")
         else:
             z, w = lines.z, getattr(lines, rotor)
-            ax.set_xlabel("z from the discharge end face [mm]")
-        ax.plot(z, w[:, 0] * 1e3, label="w_x (x from O1 to O2)")
-        ax.plot(z, w[:, 1] * 1e3, label="w_y (y: x turned 90° ccw)")
-        ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, "k", label="|w|")
-        ax.set_ylabel("deflection [µm]")
-        ax.set_title(f"{rotor} at male angle {np.degrees(lines.angle):.2f}°", fontsize=9)
-        ax.legend(fontsize=6, loc="lower center")
-        ax.grid(alpha=0.3)
+            ax.set_xlabel(ps.label("z from the discharge end face", "mm"))
+        ax.plot(z, w[:, 0] * 1e3, color=ps.BLUE, label="w_x (x from O1 to O2)")
+        ax.plot(z, w[:, 1] * 1e3, color=ps.ORANGE, label="w_y (x turned 90° ccw)")
+        ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, color=ps.BLACK, lw=1.6, label="|w|")
+        ax.axhline(0.0, color=ps.GREY, lw=0.5)
+        ax.set_ylabel(ps.label("deflection w", "µm"))
+        ax.set_title(f"{rotor} deflection line at male angle {np.degrees(lines.angle):.2f}°")
+        ps.legend_below(ax, ncol=2, bbox_to_anchor=(0.5, -0.2))
         ax2 = axes[1, col]
-        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color="#444", label="largest |w|")
+        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color=ps.BLACK, label="largest |w| over the rotor")
         ax2.axvline(
-            np.degrees(lines.angle) % np.degrees(angles[-1] + angles[1] - angles[0]), color="#d62728", lw=1, label="shown above"
+            np.degrees(lines.angle) % np.degrees(angles[-1] + angles[1] - angles[0]),
+            color=ps.VERMILLION,
+            lw=1.2,
+            label="angle shown above",
         )
-        ax2.set_xlabel("male angle [deg]")
-        ax2.set_ylabel("largest deflection [µm]")
-        ax2.set_title(f"{rotor} over one male pitch", fontsize=9)
-        ax2.legend(fontsize=7)
-        ax2.grid(alpha=0.3)
+        ax2.set_xlabel(ps.label("male rotation angle φ1", "°"))
+        ax2.set_ylabel(ps.label("largest deflection |w|", "µm"))
+        ax2.set_title(f"{rotor}: largest deflection over one male pitch")
+        ps.legend_below(ax2, ncol=2)
     cycle = model.cycle
-    fig.suptitle(
-        f"gas load {cycle.suction * 10:g} -> {cycle.discharge * 10:g} bar, "
-        + (f"built-in volume ratio {cycle.volume_ratio:.2f}" if np.isfinite(cycle.opening) else "indicator diagram"),
-        fontsize=10,
+    pair = model.pair
+    ps.title(
+        fig,
+        f"deflection under gas load, {case or 'rotor pair'} {pair.male_teeth}/{pair.female_teeth}",
+        f"{cycle.suction * 10:g} → {cycle.discharge * 10:g} bar, "
+        + (f"built-in volume ratio {cycle.volume_ratio:.2f}" if np.isfinite(cycle.opening) else "indicator diagram")
+        + (", shafts on their bearings" if shafts else ", helical part simply supported at its end faces"),
     )
-    fig.tight_layout()
     return fig

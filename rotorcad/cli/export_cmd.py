@@ -12,7 +12,6 @@ import numpy as np
 import shapely
 import trimesh
 from rich.console import Console
-from rich.progress import Progress
 from rich.table import Table
 
 from exports.background import BackgroundWriter, WorkerPool
@@ -22,12 +21,13 @@ from exports.dxf_profile import read_profile_points
 from exports.meshes import EXTENSIONS, MESH_FORMATS, write_mesh
 from exports.step import ocp_available, write_faceted_step
 from exports.step_exact import SectionSegment, section_segments, write_exact_step, write_housing_step
-from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder
+from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, output_folder
 from rotorcad.cli.gear_export import GEAR_FORMATS, export_gear, is_gear_design
+from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
-from rotorcad.design import load_rotor_design
 from rotorcad.errors import DesignError
+from rotorcad.geometry import rotate
 from rotorcad.interference import interference_2d, intersection_3d
 from rotorcad.measured_outline import whole_outline
 from rotorcad.rotor_pair import RotorPair
@@ -46,17 +46,20 @@ def _rotor_options(design: Path) -> dict[str, Any]:
     return opts
 
 
-def _design_settings(design: Path) -> dict[str, Any]:
+def _design_settings(design: Path, data: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The rotor design checked (from its mapping ``data`` if the file was read already)."""
     try:
-        return load_rotor_design(design)
+        return load_rotor_design(design, data)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
 
 
-def _progress(quiet: bool) -> Progress | None:
-    if quiet or not sys.stderr.isatty():
-        return None
-    return Progress(console=Console(file=sys.stderr), transient=True)
+def _read_design(design: Path) -> dict[str, Any]:
+    """The design file's mapping, read once; a file that cannot be read is refused in one sentence."""
+    try:
+        return load_toml(design)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
 
 
 ASSEMBLY_OPTIONS = (
@@ -116,10 +119,11 @@ def export(
     and format; the female is placed in mesh at (a, 0) at the male angle --angle). With a housing,
     the block minus the two bores and the bores alone are written as meshes and STEP too. A gear
     design ([gear], optional [mate] and face_width) gives the gear and its mate in mesh."""
-    if is_gear_design(design):
-        _export_gear(design, formats, out, tolerance, as_json)
+    data = _read_design(design)
+    if is_gear_design(data):
+        _export_gear(design, formats, out, tolerance, as_json, data)
         return
-    settings = _design_settings(design)
+    settings = _design_settings(design, data)
     fmts = (
         [f.strip().lower() for f in formats.split(",")]
         if formats
@@ -136,7 +140,7 @@ def export(
     preload = ("OCP.STEPControl",) if "step" in fmts and ocp_available() else ()
     preload += ("ezdxf",) if {"dxf", "dxf-r12"} & set(fmts) else ()
     with WorkerPool(background=bool(preload), preload=preload) as pool:
-        rotors, _, clearance = build_rotors(design, _rotor_options(design))
+        rotors, _, clearance = build_rotors(design, _rotor_options(design), settings)
         pair, phase = _assembly(rotors.pair, center_distance, phase_deg, clearance)
         _check_solid_work(rotors, tol, "--tolerance" if tolerance is not None else "[export] tolerance")
         folder = output_folder(out)
@@ -153,10 +157,7 @@ def export(
         leads["female"] = -np.sign(leads["male"]) * pair.female_lead
         shift = {"male": (0.0, 0.0), "female": (pair.center_distance, 0.0)}
         swept: dict[str, _SweptBody] = {}
-        progress = _progress(quiet)
-        if progress:
-            progress.start()
-            task = progress.add_task("sweeping solids", total=2)
+        progress = Steps("sweeping solids", 2, quiet).start()
 
         def body_mesh(body: str) -> _SweptBody:
             """The body swept and meshed in place when a writer first needs it (while the worker
@@ -166,8 +167,7 @@ def export(
                 mesh = made.mesh
                 mesh.apply_translation([*shift[body], 0.0])  # the mesh is the solid's own: moved, not copied
                 swept[body] = _SweptBody(mesh, made.volume, made.tolerance)
-                if progress:
-                    progress.advance(task)
+                progress.advance()
             return swept[body]
 
         def write_placed_mesh(p: Path, body: str, fmt: str, row: dict[str, Any]) -> None:
@@ -298,8 +298,7 @@ def export(
                             rows[-1]["tolerance"] = housing_sag
                             outputs.add(path, lambda p, mm=mesh, b=body: write_faceted_step(p, mm.vertices, mm.faces, b), "--out")
         written = outputs.write(pool)
-    if progress:
-        progress.stop()
+    progress.stop()
     for row in rows:
         row["size"] = Path(row["path"]).stat().st_size if Path(row["path"]).exists() else 0
     result = {"files": rows, "tolerance": tol, "clearance": clearance}
@@ -342,11 +341,12 @@ def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[lis
     # check below refuses any that would not be
     outline = rotors.male_outline(10 * tolerance) if body == "male" else rotors.female_outline(10 * tolerance)
     fine = rotors.male_outline(tolerance / 100) if body == "male" else rotors.female_outline(tolerance / 100)
-    c, s = np.cos(turn), np.sin(turn)
-    return section_segments(outline, turn), fine.points @ np.array([[c, -s], [s, c]]).T
+    return section_segments(outline, turn), rotate(fine.points, turn)
 
 
-def _export_gear(design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool) -> None:
+def _export_gear(
+    design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool, data: dict[str, Any] | None = None
+) -> None:
     """The gear branch of ``export``: formats default to stl, step and dxf, tolerance to 5 um."""
     fmts = [f.strip().lower() for f in (formats or "stl,step,dxf").split(",")]
     tol = 0.005 if tolerance is None else tolerance
@@ -358,7 +358,7 @@ def _export_gear(design: Path, formats: str | None, out: Path, tolerance: float 
                 f"--format for a gear design must be a comma-separated list of {', '.join(GEAR_FORMATS)} (got {f!r})."
             )
     folder = output_folder(out)
-    rows = export_gear(design, fmts, folder, tol)
+    rows = export_gear(design, fmts, folder, tol, data)
     if as_json:
         emit_json({"files": rows, "tolerance": tol})
         return
@@ -530,7 +530,9 @@ def interfere(
             else:
                 female = outline
     pair, phase = _assembly(rotors.pair, center_distance, phase_deg, clearance)
+    progress = Steps("interference: 2-D sweep", 4 if check_3d else 1, quiet).start()
     result_2d = interference_2d(pair, male, female, steps, tolerance, female_phase=phase, clearance=clearance)
+    progress.advance(description="interference: male solid")
     result: dict[str, Any] = {
         "center_distance": pair.center_distance,
         "phase_deg": float(np.degrees(phase)),
@@ -545,8 +547,12 @@ def interfere(
     if check_3d:
         lead = pair.lead if pair.hand == "right" else -pair.lead
         m = helical_solid(male, lead, pair.length, tolerance)
+        progress.advance(description="interference: female solid")
         f = helical_solid(female, -np.sign(lead) * pair.female_lead, pair.length, tolerance)
+        progress.advance(description="interference: 3-D intersection")
         result["check_3d"] = intersection_3d(pair, m, f, result_2d.angle_of_max, result_2d.threshold)
+        progress.advance()
+    progress.stop()
     if as_json:
         emit_json(result)
     else:

@@ -10,8 +10,17 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
-from rotorcad.cli.common import InputError, Outputs, emit_json, output_folder, print_pair_table, print_table, reraise
-from rotorcad.design import load_gear_design
+from rotorcad.cli.common import (
+    InputError,
+    Outputs,
+    emit_json,
+    load_gear_design,
+    output_folder,
+    print_pair_table,
+    print_table,
+    reraise,
+)
+from rotorcad.cli.progress import Steps
 from rotorcad.errors import DesignError
 from rotorcad.gear import DEG, GearPair, InvoluteGear, mate_shift
 from rotorcad.plotting import line_of_action, mate_in_mesh, plot_gears
@@ -115,7 +124,8 @@ def gear(design: Path | None, **opts: Any) -> None:
             )
     for p in png_paths:
         outputs.add_figure(p, lambda: plot_gears(g, pair), "--plot")
-    written = outputs.write()
+    with Steps("gear: writing files", None, opts["quiet"] or not (dxf_paths or csv_paths or png_paths)):
+        written = outputs.write()  # 1000 teeth at the finest tolerance: some 20 s
     result["files"] = [str(p) for p in written]
 
     if opts["as_json"]:
@@ -130,12 +140,13 @@ def gear(design: Path | None, **opts: Any) -> None:
             click.echo(f"wrote {p}")
 
 
-def merge_gear_params(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
-    """Design-file values overridden by the options given; defaults last."""
+def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str, Any] | None = None) -> dict[str, Any]:
+    """Design-file values overridden by the options given; defaults last. ``data`` is the design
+    file's mapping if it was read already (the file is read once)."""
     params: dict[str, Any] = {}
     if design is not None:
         try:
-            d = load_gear_design(design)
+            d = load_gear_design(design, data)
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
         gd, md = d["gear"], d["mate"]

@@ -21,8 +21,6 @@ from exports.meshes import MESH_FORMATS, write_mesh
 from exports.step_exact import section_segments, write_exact_step
 from rotorcad.cli.common import InputError, Outputs
 from rotorcad.cli.gear import build_gear, merge_gear_params
-from rotorcad.design import load_toml
-from rotorcad.errors import DesignError
 from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import rotate
 from rotorcad.solids import helical_solid
@@ -31,12 +29,9 @@ GEAR_FORMATS = (*MESH_FORMATS, "dxf", "step", "csv")
 STEP_TOLERANCE = 1e-3  # mm
 
 
-def is_gear_design(design: Path) -> bool:
-    """True for a TOML design with a ``[gear]`` table."""
-    try:
-        return "gear" in load_toml(design)
-    except DesignError:
-        return False
+def is_gear_design(data: dict[str, Any]) -> bool:
+    """True for the mapping of a TOML design with a ``[gear]`` table."""
+    return "gear" in data
 
 
 def gear_lead(g: InvoluteGear) -> float:
@@ -45,10 +40,12 @@ def gear_lead(g: InvoluteGear) -> float:
     return float("inf") if abs(beta) < 1e-12 else float(2 * np.pi * g.pitch_radius / np.tan(beta))
 
 
-def export_gear(design: Path, fmts: list[str], folder: Path, tol: float) -> list[dict[str, Any]]:
+def export_gear(
+    design: Path, fmts: list[str], folder: Path, tol: float, data: dict[str, Any] | None = None
+) -> list[dict[str, Any]]:
     """Write the gear (and mate) solids; return the summary rows (path, format, body, volume,
     tolerance, triangles or faces)."""
-    params = merge_gear_params(design, {})
+    params = merge_gear_params(design, {}, data)  # data: the design's mapping, if read already
     width = params.get("face_width")
     if width is None:
         width = 10.0 * float(params["module"])
@@ -85,9 +82,8 @@ def export_gear(design: Path, fmts: list[str], folder: Path, tol: float) -> list
                 outputs.add(path, lambda p, s=section: write_points(p, np.asarray(s.exterior.coords)[:-1]), "--out")
             else:
                 step_tol = min(tol, STEP_TOLERANCE)
-                rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
                 segs = section_segments(gear.outline(10 * step_tol), turn)  # Hermite fit: see export_cmd
-                exact = gear.outline(step_tol / 100).points @ rot.T
+                exact = rotate(gear.outline(step_tol / 100).points, turn)
                 row.update(faces=len(segs) + 2, volume=float(shapely.Polygon(exact).area * width))
 
                 def write_step(p: Path, sg=segs, ex=exact, ld=lead, b=body, sh=shift, r=row, t=step_tol) -> None:

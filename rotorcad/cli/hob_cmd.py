@@ -13,11 +13,10 @@ from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.rack import DerivedRack, gear_rack, rack_deviation, rotor_rack
 from hob.verdict import HobLimits, judge
-from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.rotor import PAIR_OPTIONS, rotor_input_options
 from rotorcad.cli.rotor import _build as build_rotors
-from rotorcad.design import load_toml
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.gear import InvoluteGear
@@ -37,6 +36,12 @@ from rotorcad.gear import InvoluteGear
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="DXF of the normal rack and the hob tooth [mm].")
 @click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Normal rack points (x,y).")
+@click.option(
+    "--plot",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Picture (PNG, SVG or PDF by the suffix): the racks compared, their deviation magnified along the normal, "
+    "and the hob teeth.",
+)
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def hob(design: Path | None, **opts: Any) -> None:
     """Derive the transverse and normal rack of a gear or of both rotors of a pair, judge whether
@@ -52,21 +57,60 @@ def hob(design: Path | None, **opts: Any) -> None:
             raise InputError(f"{flag} must be a number of at least 0 (got {opts[key]}).")
     limits = HobLimits(opts["min_flank_angle"], opts["min_tip_radius_mm"], opts["min_root_radius_mm"], opts["min_tip_thickness"])
     racks: dict[str, DerivedRack] = {}
-    if _is_rotor_input(design, opts):
+    data = _read_design(design)  # the one reading of the design file
+    if any(opts.get(k) for k in ("male_points", "female_points", "rack_points")) or (data is not None and "pair" in data):
         rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer")}
         rotor_opts.update({"smoothing": None, "speed": None})
-        rotors, _, _ = build_rotors(design, rotor_opts)
+        settings = None
+        if data is not None:
+            try:
+                settings = load_rotor_design(design, data)
+            except DesignError as exc:
+                raise InputError(exc.sentence()) from None
+        rotors, _, _ = build_rotors(design, rotor_opts, settings)
         try:
             racks = {"male": rotor_rack(rotors, "male"), "female": rotor_rack(rotors, "female")}
             deviation = rack_deviation(rotors)
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
         scale = rotors.pair.male_addendum
+        body: Any = rotors
     else:
-        g, _ = build_gear(merge_gear_params(design, opts), 1e-4)
+        g, _ = build_gear(merge_gear_params(design, opts, data), 1e-4)
         racks = {"gear": gear_rack(g)}
         deviation = _basic_rack_deviation(g, racks["gear"])
         scale = g.module
+        body = g
+    verdicts, result = judge_racks(racks, deviation, limits)
+    first = next(iter(racks))
+    normal = racks[first].normal()
+    clearance = opts["root_clearance"] * scale
+    out = Outputs()
+    out.add(opts["csv"], lambda p: write_points(p, normal, [f"normal rack derived from the {first}, rack frame"]), "--csv")
+    out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(racks, clearance)), "--dxf")
+    if opts["plot"]:
+        out.add_figure(opts["plot"], lambda: _plot(racks, verdicts, clearance, deviation, body), "--plot")
+    result["files"] = [str(p) for p in out.write()]
+    if opts["as_json"]:
+        emit_json(result)
+    else:
+        print_table("hobbability", {k: v for k, v in result.items() if k not in ("reasons", "racks")})
+        for r in result["reasons"]:
+            click.echo(f"  - {r}")
+
+
+def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimits) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The verdict on each rack and the keys of ``rotorcad hob --json`` (``files`` aside), for
+    this command and ``rotorcad report``.
+
+    Parameters
+    ----------
+    racks : dict of DerivedRack
+        ``male`` and ``female``, or ``gear``.
+    deviation : float, mm
+        The largest distance between the racks (or from the basic rack).
+    limits : HobLimits
+    """
     verdicts = {name: judge(rack, limits) for name, rack in racks.items()}
     result: dict[str, Any] = {
         "hobbable": all(v.hobbable for v in verdicts.values()),
@@ -88,30 +132,18 @@ def hob(design: Path | None, **opts: Any) -> None:
             for name, v in verdicts.items()
         },
     }
-    first = next(iter(racks))
-    normal = racks[first].normal()
-    clearance = opts["root_clearance"] * scale
-    out = Outputs()
-    out.add(opts["csv"], lambda p: write_points(p, normal, [f"normal rack derived from the {first}, rack frame"]), "--csv")
-    out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(racks, clearance)), "--dxf")
-    result["files"] = [str(p) for p in out.write()]
-    if opts["as_json"]:
-        emit_json(result)
-    else:
-        print_table("hobbability", {k: v for k, v in result.items() if k not in ("reasons", "racks")})
-        for r in result["reasons"]:
-            click.echo(f"  - {r}")
+    return verdicts, result
 
 
-def _is_rotor_input(design: Path | None, opts: dict[str, Any]) -> bool:
-    if any(opts.get(k) for k in ("male_points", "female_points", "rack_points")):
-        return True
+def _read_design(design: Path | None) -> dict[str, Any] | None:
+    """The design file's mapping (None without a file); a file that cannot be read is refused in
+    one sentence."""
     if design is None:
-        return False
+        return None
     try:
-        return "pair" in load_toml(design)
-    except DesignError:
-        return False  # the gear reader refuses the file in one sentence
+        return load_toml(design)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
 
 
 def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
@@ -127,13 +159,37 @@ def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
     return float(shapely.distance(lines, shapely.points(rack.points[cutting])).max())
 
 
+def _plot(racks: dict[str, DerivedRack], verdicts: dict[str, Any], clearance: float, deviation: float, body: Any):
+    """The racks compared (deviation magnified along the normal) and the hob teeth side by side."""
+    from hob.plotting import gear_rack_comparison, plot_hob, rotor_rack_comparison
+
+    if "male" in racks:
+        pair = body.pair
+        case = f"the {body.family} {pair.male_teeth}/{pair.female_teeth} rotor pair (a = {pair.center_distance:g} mm)"
+        comparison = rotor_rack_comparison(body, racks)
+    else:
+        case = f"the gear z = {body.teeth}, m = {body.module:g} mm, x = {body.shift:g}"
+        comparison = gear_rack_comparison(body, racks["gear"])
+    return plot_hob(racks, verdicts, comparison, clearance, case, deviation)
+
+
 def _drawing(racks: dict[str, DerivedRack], clearance: float) -> Drawing:
+    """The normal racks and hob teeth side by side (each in its own rack frame, the next one
+    shifted along the pitch line by its width and a gap), labelled on the layer LABELS."""
     d = Drawing()
+    offset = 0.0
     for name, rack in racks.items():
         # normal rack; the female's is flipped into the rack frame of CONTRACT.md (y > 0 to the female)
         pts = rack.normal() * np.array([1.0, -1.0 if name == "female" else 1.0])
+        pts = pts + np.array([offset, 0.0])
         d.polylines.append((f"RACK_{name.upper()}", pts))
         top = pts[:, 1].max() + clearance if name != "female" else pts[:, 1].min() - clearance
         tooth = np.vstack([pts, [[pts[-1, 0], top], [pts[0, 0], top]]])
         d.outlines.append((f"HOB_TOOTH_{name.upper()}", tooth))
+        width = float(np.ptp(tooth[:, 0]))
+        height = max(0.04 * max(width, float(np.ptp(tooth[:, 1]))), 0.05)
+        left, high = float(tooth[:, 0].min()), float(tooth[:, 1].max())
+        d.texts.append(("LABELS", (left, high + 1.0 * height), f"normal rack and hob tooth from the {name}", height))
+        d.texts.append(("LABELS", (left, high + 2.4 * height), f"shifted {offset:.4f} mm along the pitch line", 0.7 * height))
+        offset += width * 1.25
     return d

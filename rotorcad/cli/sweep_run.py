@@ -313,7 +313,8 @@ def sweep(
 def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
     """Read a sweep file, its base design and the base's points (if a points family)."""
     from exports.dxf_profile import read_profile, read_profile_points
-    from rotorcad.design import load_toml, rotor_design
+    from rotorcad.cli.common import load_toml
+    from rotorcad.design import rotor_design
     from rotorcad.sweep_plan import sweep_plan
 
     data = load_toml(path, "sweep file")
