@@ -17,6 +17,7 @@ import numpy as np
 from rotorcad.design import rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.meshing import MeshingAnalysis
+from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import pair_from_rack_points, pair_from_rotor_points
@@ -111,22 +112,52 @@ def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
 MAX_LOBE_POINTS = 50_000
 """Most points of one generated lobe at the default tolerance (a smooth lobe has a few hundred)."""
 
+LOBE_POINTS_FACTOR = 3.0
+"""Most points of a generated lobe as a multiple of :func:`smooth_lobe_points`: the samples' lobes
+have 0.17 to 0.32 of it, mates generated from points with 0.05-0.2 mm of noise 7 to 16 (their
+sections then took minutes to make valid, and their numbers were those of the noise: a contact line
+30 times as long)."""
+
+
+def smooth_lobe_points(tip_radius: float, teeth: int, tolerance: float = DEFAULT_TOLERANCE) -> float:
+    """Points of a smooth lobe, generously: three times the tip circle's arc of one lobe, sampled to
+    the chord ``tolerance`` on a radius of curvature of the tip radius (chord sqrt(8 R t)).
+
+    Parameters
+    ----------
+    tip_radius : float
+        Tip radius of the rotor, mm.
+    teeth : int
+        Its lobes.
+    tolerance : float
+        Chord tolerance of the sampled lobe, mm.
+
+    Returns
+    -------
+    float
+        The estimated number of points.
+    """
+    return 3.0 * 2.0 * np.pi * tip_radius / (teeth * np.sqrt(8.0 * tip_radius * tolerance))
+
 
 def _check_generated(rotors: ScrewRotors, given: str, label: str) -> None:
     """Refuse a mate generated from measured points that is not a rotor: one that runs far beyond
-    its tip circle or folds into tens of thousands of pieces (noise the smoothing left in)."""
+    its tip circle or folds into many more points than a smooth lobe has (noise the smoothing left
+    in). Checked before the sections are made: their cost grows with the folds."""
     mate = "female" if given == "male" else "male"
     lobe = rotors.female_lobe() if mate == "female" else rotors.male_lobe()
     tip = rotors.pair.female_tip_radius if mate == "female" else rotors.pair.male_tip_radius
+    teeth = rotors.pair.female_teeth if mate == "female" else rotors.pair.male_teeth
     pts = np.vstack([seg.points for seg in lobe.segments if len(seg.points)]) if lobe.segments else np.zeros((0, 2))
     reach = float(np.hypot(*pts.T).max()) if len(pts) else 0.0
-    if len(pts) == 0 or len(pts) > MAX_LOBE_POINTS or reach > 1.5 * tip:
+    most = int(min(MAX_LOBE_POINTS, LOBE_POINTS_FACTOR * smooth_lobe_points(tip, teeth)))
+    if len(pts) == 0 or len(pts) > most or reach > 1.5 * tip:
         raise DesignError(
             label,
             "a smooth profile that generates a mate",
             None,
-            f"the {mate} generated from it has {len(pts)} points in a lobe and reaches {reach:.4g} mm against its tip radius "
-            f"{tip:g} mm; noise in the points? (raise --smoothing or [profile] smoothing)",
+            f"the {mate} generated from it has {len(pts)} points in a lobe (a smooth lobe has at most {most}) and reaches "
+            f"{reach:.4g} mm against its tip radius {tip:g} mm; noise in the points? (raise --smoothing or [profile] smoothing)",
         )
 
 

@@ -93,6 +93,40 @@ def test_hang_rotor_female_points_with_noise(capsys, tmp_path):
     refused(capsys, "--female-points must be a smooth profile", "rotor", "--female-points", noisy, *SYM_PAIR)
 
 
+@pytest.mark.parametrize(("seed", "noise", "smoothing"), [(76, 0.15, "0"), (77, 0.1, "1e-9"), (89, 0.1, None), (49, 0.15, "1")])
+def test_slow_noisy_female_points_refused_before_the_sections(capsys, tmp_path, seed, noise, smoothing):
+    """Slow (up to 120 s): `rotor --female-points` with 0.1-0.15 mm of noise on the symmetric
+    sample's female; the generated male folded into 8 000-20 000 points a lobe, which made its
+    section take minutes, and the numbers that came out were the noise's (a contact line 30 times
+    the clean one's). Refused by the points a smooth lobe can have, before the sections are made."""
+    from rotorcad.cli.rotor import _build
+
+    opts = dict.fromkeys(["male_points", "female_points", "rack_points", "layer", "smoothing", "speed"])
+    pts = _build(SAMPLES / "srm_symmetric_4_6.toml", opts)[0].female_outline().points
+    noisy = pts + np.random.default_rng(seed).uniform(-noise, noise, pts.shape)
+    path = write_points(tmp_path / "noisy.csv", noisy)
+    extra = [] if smoothing is None else ["--smoothing", smoothing]
+    line = refused(capsys, "--female-points must be a smooth profile", "rotor", "--female-points", path, *SYM_PAIR, *extra)
+    assert "points in a lobe (a smooth lobe has at most" in line and "--smoothing" in line
+
+
+def test_smooth_lobe_points_leave_room_for_every_sample():
+    """The limit on a generated lobe's points is three times a generous estimate; the samples' lobes
+    (built from their racks) have at most a third of the estimate."""
+    from rotorcad.cli.rotor import _build
+    from rotorcad.rotor_build import smooth_lobe_points
+
+    opts = dict.fromkeys(["male_points", "female_points", "rack_points", "layer", "smoothing", "speed"])
+    for sample in sorted(SAMPLES.glob("srm_*.toml")) + [SAMPLES / "rack_involute_5_6.toml", SAMPLES / "lysholm_4_6.toml"]:
+        rotors = _build(sample, opts)[0]
+        p = rotors.pair
+        for lobe, tip, teeth in (
+            (rotors.male_lobe(), p.male_tip_radius, p.male_teeth),
+            (rotors.female_lobe(), p.female_tip_radius, p.female_teeth),
+        ):
+            assert sum(len(s.points) for s in lobe.segments) < 0.35 * smooth_lobe_points(tip, teeth), sample.name
+
+
 def test_hang_cut_module_50_helical_pointed(capsys):
     """Hang: `cut --teeth 100 --module 50 --helix-angle 15 --shift -2 --addendum 3 --tip-radius 0
     --mate-teeth 4 --center-distance 2574` (the refinement grew to 57 000 positions): now bounded, and
@@ -121,13 +155,32 @@ def test_memory_cut_and_interfere_tiny_tolerance_huge_module(capsys, argv, needl
 
 # ----- tracebacks on valid-looking inputs ---------------------------------------------------
 def test_traceback_cut_teeth_3(capsys):
-    """`cut --teeth 3 --module 25` (GEOSException in hob/cutting.py): an answer, 0 or one sentence."""
-    status, out, err = run(capsys, "cut", "--teeth", "3", "--module", "25", "--json")
-    assert status in (0, 2)
-    if status == 2:
-        assert "--teeth" in err
-    status, out, _ = run(capsys, "cut", "--teeth", "4", "--module", "25", "--json")
-    assert status == 0 and json.loads(out)["undercut_radius"] is not None
+    """`cut --teeth 3 --module 25` (GEOSException in hob/cutting.py, then a refusal): now cut, and its
+    undercut point agrees with the analytic one (the pitch circle of z = 3 lies on the fillet: the
+    involute was taken from there, and the simulated P' was 2 mm off for z = 4 as well)."""
+    for teeth in ("3", "4"):
+        status, out, err = run(capsys, "cut", "--teeth", teeth, "--module", "25", "--json")
+        assert status == 0, err
+        res = json.loads(out)
+        assert res["tolerance_met"] and res["max_deviation_from_envelope"] <= 1e-3
+        assert res["undercut_radius"] == pytest.approx(res["undercut_radius_exact"], abs=3e-3)
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        # the fillets of both flanks meet inside the tooth: an outline that crosses itself was written
+        # by `gear`, and `cut` ended in an internal error (GEOSException)
+        (["gear", "--teeth", "3", "--module", "0.3", "--shift", "-0.2", "--tip-radius", "0"], "--shift must be from -0.0"),
+        (["cut", "--teeth", "3", "--module", "0.3", "--shift", "-0.2", "--tip-radius", "0"], "--shift must be from -0.0"),
+        (["gear", "--teeth", "4", "--module", "1", "--shift", "-0.5"], "cut its head off"),
+        # pointed before the involute starts: the fillet runs past the tooth's centre line
+        (["gear", "--teeth", "12", "--module", "1", "--shift", "3"], "--shift must be at most 2.53"),
+        (["pump", "--teeth", "12", "--module", "1", "--shift", "2.8", "--face-width", "5", "--speed", "100"], "--shift must"),
+    ],
+)
+def test_gear_whose_outline_crosses_itself_is_refused(capsys, argv, needle):
+    refused(capsys, needle, *argv)
 
 
 def test_traceback_cut_pitch_circle_outside_tooth(capsys):
@@ -256,7 +309,7 @@ def test_messages_name_tip_radius_and_profile_keys(capsys, tmp_path):
     text = ASYM.read_text().replace('family = "srm-asymmetric"', 'family = "sigma"')
     refused(capsys, "[profile] family", "rotor", design(tmp_path, text))
     refused(
-        capsys, "[profile] seal_stop", "rotor", design(tmp_path, ASYM.read_text().replace("seal_stop = 0.55", "seal_stop = 5.0"))
+        capsys, "[profile] seal_stop", "rotor", design(tmp_path, ASYM.read_text().replace("seal_stop = 0.9", "seal_stop = 5.0"))
     )
 
 
@@ -306,6 +359,20 @@ def test_interfere_exit_status(capsys):
             ["cut", "--teeth", "12", "--module", "2", "--tip-radius", "0", "--hob-addendum", "1e-09"],
             "--hob-addendum must be from 0.1",
         ),
+        # the 20 000-case run: a film that underflowed to 0 was divided by (ZeroDivisionError)
+        (
+            ["coupling", "--teeth", "66", "--speed", "1.1125369292536007e-308", "--misalignment-deg", "0.9168647369500968"]
+            + ["--json", "--module", "3", "--face-width", "20", "--viscosity", "0.05", "--power", "50"]
+            + ["--pressure-viscosity", "2e-8"],
+            "--speed must be a number from 0.1 to 1e6",
+        ),
+        (
+            ["coupling", "--teeth", "40", "--speed", "1500", "--misalignment-deg", "0.1", "--module", "1e-300"]
+            + ["--face-width", "20", "--viscosity", "0.05", "--power", "50", "--pressure-viscosity", "2e-8"],
+            "--module must be a number from 0.1 to 100",
+        ),
+        # the 20 000-case run: sampling the tool to 1e-198 mm asked for an array too big to exist
+        (["cut", "--teeth", "12", "--module", "2", "--tolerance", "3.057997538222402e-198"], "--tolerance must be at least 3.3"),
     ],
 )
 def test_long_fuzz_findings_are_refused_in_one_sentence(capsys, argv, words):
@@ -322,7 +389,28 @@ def test_more_long_fuzz_findings(tmp_path, capsys):
     assert main(["deflect", str(design)]) == 2
     assert "[pair] lead must be one that gives a male wrap of at most 720 degrees" in capsys.readouterr().err
     # coupling's "error in the input data" names the options that caused it
-    args = ["coupling", "--face-width", "1e-12", "--teeth", "40", "--module", "3", "--speed", "1500", "--viscosity", "0.05"]
+    args = ["coupling", "--face-width", "0.1", "--teeth", "40", "--module", "3", "--speed", "1500", "--viscosity", "0.05"]
     args += ["--power", "50", "--misalignment-deg", "0.1", "--pressure-viscosity", "2e-8"]
     assert main(args) == 2
     assert "--barrel-radius, --face-width and --misalignment-deg make no sense" in capsys.readouterr().err
+
+
+def test_cut_writes_the_whole_gear(capsys, tmp_path):
+    """Found while bounding cut's memory: the simulated gear of --csv and --dxf was the union of the z
+    turned tooth sectors, which did not fuse (one tooth came out) and, for 1000 teeth, took 30 s and
+    1.5 GB; it is now tooth 0's outline turned and chained. The whole outline matches the analytic
+    gear to the scallop height."""
+    import shapely
+
+    from rotorcad.gear import DEG, InvoluteGear
+
+    for teeth in ("7", "1000"):
+        path = tmp_path / f"g{teeth}.csv"
+        status, _, err = run(capsys, "cut", "--teeth", teeth, "--module", "1", "--tolerance", "0.01", "--csv", path)
+        assert status == 0, err
+        simulated = shapely.Polygon(np.loadtxt(path, delimiter=",", comments="#", skiprows=2))
+        analytic = shapely.Polygon(InvoluteGear(int(teeth), 1.0, 20 * DEG).outline(1e-3).points)
+        assert simulated.is_valid
+        if teeth == "7":  # (quadratic in the points)
+            assert shapely.hausdorff_distance(simulated.exterior, analytic.exterior) < 0.02
+        assert 0 <= simulated.area - analytic.area < 0.01 * analytic.length  # cutting leaves scallops, never less

@@ -14,9 +14,11 @@ from matplotlib.figure import Figure
 from rich.console import Console
 from rich.table import Table
 
+from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, plain, reraise
 from rotorcad.coupling import CouplingResult, GearCoupling, Verdict, analyse, sweep_teeth
 from rotorcad.errors import DesignError
+from rotorcad.plot_style import styled
 
 OPTION_OF = {
     "teeth": "--teeth",
@@ -33,14 +35,16 @@ OPTION_OF = {
     "load_factor": "--load-factor",
 }
 
-# option key -> (flag, low, high, low included, the allowed range as words); None = required option absent
+# option key -> (flag, low, high, low included, the allowed range as words); None = required option absent.
+# The lower ends keep the film thicknesses above underflow: `--speed 1e-308` or `--module 1e-300`
+# made the EHL film 0 and its ratio a division by zero (issue 15, the 20 000-case run)
 RANGES: dict[str, tuple[str, float, float, bool, str]] = {
     "teeth": ("--teeth", 6, 1000, True, "a whole number from 6 to 1000"),
-    "module": ("--module", 0.0, 100.0, False, "a positive number up to 100 (mm)"),
-    "face_width": ("--face-width", 0.0, 2000.0, False, "a positive number up to 2000 (mm)"),
-    "speed": ("--speed", 0.0, 1e6, False, "a positive number up to 1e6 (rpm)"),
-    "viscosity": ("--viscosity", 0.0, 100.0, False, "a positive number up to 100 (Pa s)"),
-    "power": ("--power", 0.0, 1e7, False, "a positive number up to 1e7 (kW)"),
+    "module": ("--module", 0.1, 100.0, True, "a number from 0.1 to 100 (mm)"),
+    "face_width": ("--face-width", 0.1, 2000.0, True, "a number from 0.1 to 2000 (mm)"),
+    "speed": ("--speed", 0.1, 1e6, True, "a number from 0.1 to 1e6 (rpm)"),
+    "viscosity": ("--viscosity", 1e-5, 100.0, True, "a number from 1e-5 (a gas) to 100 (Pa s)"),
+    "power": ("--power", 1e-3, 1e7, True, "a number from 0.001 to 1e7 (kW)"),
     "pressure_viscosity": ("--pressure-viscosity", 0.0, 1e-6, True, "a number from 0 to 1e-6 (1/Pa)"),
     "misalignment_deg": ("--misalignment-deg", 0.0, 10.0, True, "a number from 0 to 10 (degrees)"),
     "pressure_angle": ("--pressure-angle", 10.0, 40.0, True, "a number from 10 to 40 (degrees)"),
@@ -231,40 +235,52 @@ def _print_table(title: str, rows: dict[str, Any]) -> None:
     Console(file=sys.stdout, highlight=False, width=110).print(table)
 
 
+@styled
 def _plot(r: CouplingResult) -> Figure:
     """Fig. 2 (speeds over one revolution), Fig. 3 (film pressure and shape), Fig. 4 (h_min over z) of the paper."""
     c = r.coupling
-    fig = Figure(figsize=(8, 10), dpi=110)
+    fig = ps.new_figure(10.0, 10.0)
     ax1, ax2, ax4 = fig.subplots(3, 1)
     psi, rolling, axial, radial = c.speeds()
     deg = np.degrees(psi)
-    ax1.plot(deg, rolling, label="rolling V_k", color="#08519c")
-    ax1.plot(deg, axial, label="axial sliding V_os", color="#e6550d")
-    ax1.plot(deg, radial, label="radial sliding V_r", color="#31a354")
-    ax1.set_xlabel("rotation angle [deg]")
-    ax1.set_ylabel("speed [m/s]")
-    ax1.legend(fontsize=8)
-    ax1.set_title(r.message, fontsize=8)
+    ax1.plot(deg, rolling, label="rolling V_k", color=ps.BLUE)
+    ax1.plot(deg, axial, label="axial sliding V_os", color=ps.ORANGE)
+    ax1.plot(deg, radial, label="radial sliding V_r", color=ps.GREEN)
+    ax1.set_xlabel(ps.label("rotation angle ψ", "°"))
+    ax1.set_ylabel(ps.label("speed", "m/s"))
+    ax1.set_title("speeds at the tooth contact over one revolution (Fig. 2)")
+    ps.legend_outside(ax1)
     if r.film is not None:
         x = r.film.x * 1e3
-        ax2.plot(x, r.film.pressure / 1e6, color="#08519c", label="film pressure")
+        ax2.plot(x, r.film.pressure / 1e6, color=ps.BLUE, label="film pressure")
         b = r.hertz_half_width
         xs = np.linspace(-b, b, 201)
-        ax2.plot(xs, r.hertz_stress * np.sqrt(1.0 - (xs / b) ** 2), "--", color="grey", label="Hertz (dry)")
+        ax2.plot(xs, r.hertz_stress * np.sqrt(1.0 - (xs / b) ** 2), "--", color=ps.GREY, label="Hertz pressure (dry)")
         ax2.set_xlim(-3.0 * b, 2.0 * b)
-        ax2.set_xlabel("x along the face width [mm]")
-        ax2.set_ylabel("pressure [MPa]")
-        ax2.legend(fontsize=8, loc="upper left")
+        ax2.set_xlabel(ps.label("x along the face width", "mm"))
+        ax2.set_ylabel(ps.label("pressure p", "MPa"))
         ax3 = ax2.twinx()
-        ax3.plot(x, r.film.film * 1e6, color="#e6550d")
+        ax3.plot(x, r.film.film * 1e6, color=ps.VERMILLION, label="film thickness h")
         ax3.set_ylim(0.0, 6.0 * r.min_film_thickness * 1e3)
-        ax3.set_ylabel("film thickness [µm]", color="#e6550d")
+        ax3.set_ylabel(ps.label("film thickness h", "µm"), color=ps.VERMILLION)
+        ax3.grid(False)
+        handles = ax2.get_legend_handles_labels()[0] + ax3.get_legend_handles_labels()[0]
+        ps.legend_outside(ax2, handles, bbox_to_anchor=(1.1, 1.0))
+    else:
+        ax2.set_axis_off()
+    ax2.set_title("pressure and film shape in the contact (Fig. 3)")
     teeth = np.unique(np.round(np.linspace(max(6, c.teeth // 2), 2 * c.teeth, 12)).astype(int))
-    ax4.plot(teeth, sweep_teeth(c, teeth) * 1e3, "o-", color="#08519c", label=f"module {c.module:g} mm kept")
-    ax4.plot(teeth, sweep_teeth(c, teeth, keep_diameter=True) * 1e3, "s--", color="#e6550d", label="pitch diameter kept")
-    ax4.axvline(c.teeth, color="grey", lw=0.8)
-    ax4.set_xlabel("number of teeth z")
-    ax4.set_ylabel("minimum film thickness h_min [µm]")
-    ax4.legend(fontsize=8)
-    fig.tight_layout()
+    ax4.plot(teeth, sweep_teeth(c, teeth) * 1e3, "o-", color=ps.BLUE, label=f"module {c.module:g} mm kept")
+    ax4.plot(teeth, sweep_teeth(c, teeth, keep_diameter=True) * 1e3, "s--", color=ps.ORANGE, label="pitch diameter kept")
+    ax4.axvline(c.teeth, color=ps.GREY, lw=0.8, label=f"this coupling, z = {c.teeth}")
+    ax4.set_xlabel(ps.label("number of teeth z", "1"))
+    ax4.set_ylabel(ps.label("minimum film thickness h_min", "µm"))
+    ax4.set_title("h_min over the number of teeth (Fig. 4)")
+    ps.legend_outside(ax4)
+    ps.title(
+        fig,
+        f"gear coupling z = {c.teeth}, m = {c.module:g} mm, b = {c.face_width:g} mm: {r.message}",
+        f"n = {c.speed_rpm:g} rpm, P = {c.power_kw:g} kW, misalignment γ = {math.degrees(c.misalignment):g}°, "
+        f"η0 = {c.viscosity:g} Pa·s, α0 = {c.pressure_viscosity:g} 1/Pa; h_min = {r.min_film_thickness * 1e3:.3g} µm",
+    )
     return fig

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 import numpy as np
 import shapely
-from matplotlib.figure import Figure
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
@@ -17,8 +16,12 @@ from hob.tools import TrapezoidalHob
 from hob.undercut import effective_addendum, kollek_model
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
 from rotorcad.cli.gear import GEAR_OPTION, build_gear, gear_options, merge_gear_params
+from rotorcad.cli.progress import Steps
 from rotorcad.errors import DesignError
 from rotorcad.gear import RELATIVE_TOLERANCE
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 @click.command()
@@ -55,7 +58,13 @@ def cut(design: Path | None, **opts: Any) -> None:
     g, pair = build_gear(params, max(min(tol / 4, 1e-4), RELATIVE_TOLERANCE[0] * module))
     _check_work(g, tol, opts["positions"])
     try:
-        res = simulate_cutting(g, tol, opts["positions"])
+        with Steps("cutting", None, opts["quiet"]) as steps:
+            res = simulate_cutting(
+                g,
+                tol,
+                opts["positions"],
+                progress=lambda n, dev: steps.advance(description=f"cutting: pass {steps.done + 1}, {n} positions, {dev:.2g} mm"),
+            )
     except DesignError as exc:
         raise reraise(exc, GEAR_OPTION) from None
     model = kollek_model(
@@ -75,11 +84,11 @@ def cut(design: Path | None, **opts: Any) -> None:
     }
     if pair is not None:
         result["contact_ratio"] = pair.contact_ratio
-    whole = _whole_gear(res.tooth, g.teeth)
+    whole = _whole_gear(res.tooth, g.teeth, g.module)
     out = Outputs()
     out.add(opts["csv"], lambda p: write_points(p, _ccw(whole), ["simulated gear, basic-rack cutting"]), "--csv")
     out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(g, whole)), "--dxf")
-    out.add_figure(opts["plot"], lambda: _plot(g, res), "--plot")
+    out.add_figure(opts["plot"], lambda: _plot(g, res, tol), "--plot")
     result["files"] = [str(p) for p in out.write()]
     if opts["as_json"]:
         emit_json(result)
@@ -102,26 +111,54 @@ def _undercut_radius(g, res, tol: float) -> float | None:
     )
 
 
+def _work(g, tol: float, positions: int | None) -> tuple[int, int] | None:
+    """:func:`hob.cutting.cutting_work`, or None for a scallop so small that even sampling the tool
+    would not fit (below a billionth of the module: `--tolerance 3e-198` was an internal error)."""
+    if tol < 1e-9 * g.module:
+        return None
+    try:
+        return cutting_work(g, tol, positions)
+    except (MemoryError, ValueError, OverflowError):
+        return None
+
+
 def _check_work(g, tol: float, positions: int | None) -> None:
     """Refuse, before it starts, a simulation whose first pass alone would exceed the budget of
     :data:`hob.cutting.MAX_UNION_VERTICES`, naming the coarsest setting that fits."""
-    try:
-        n, vertices = cutting_work(g, tol, positions)
-    except MemoryError:
-        n, vertices = 10**9, 10**9
-    work = 2 * n * vertices
-    if work <= MAX_UNION_VERTICES:
+    work = _work(g, tol, positions)
+    if work is not None and 2 * work[0] * work[1] <= MAX_UNION_VERTICES:
         return
-    if positions is not None:
+    if work is not None and positions is not None and 2 * 3 * work[1] <= MAX_UNION_VERTICES:
         raise InputError(
-            f"--positions must be at most {MAX_UNION_VERTICES // (2 * vertices)} for this gear and tolerance "
-            f"(got {positions}; each tool tooth has {vertices} vertices)."
+            f"--positions must be at most {MAX_UNION_VERTICES // (2 * work[1])} for this gear and tolerance "
+            f"(got {positions}; each tool tooth has {work[1]} vertices)."
         )
-    need = tol * work / MAX_UNION_VERTICES  # positions and tool vertices each grow like 1/sqrt(tolerance)
+    what = "far more tool positions and vertices" if work is None else f"{work[0]} tool positions of {work[1]} vertices"
     raise InputError(
-        f"--tolerance must be at least {need:.2g} mm for this gear (got {tol:g}: {n} tool positions of "
-        f"{vertices} vertices, more than this machine simulates in a minute)."
+        f"--tolerance must be at least {_coarsest_needed(g, tol):.2g} mm for this gear (got {tol:g}: {what}, more than "
+        "this machine simulates in a minute)."
     )
+
+
+def _coarsest_needed(g, tol: float) -> float:
+    """The finest scallop height (two significant digits, rounded up) whose first pass fits
+    :data:`hob.cutting.MAX_UNION_VERTICES`, by bisection on the estimate (positions and tool
+    vertices each grow like 1/sqrt(tolerance), but the vertices in steps)."""
+
+    def fits(t: float) -> bool:
+        work = _work(g, t, None)
+        return work is not None and 2 * work[0] * work[1] <= MAX_UNION_VERTICES
+
+    lo, hi = np.log(tol), np.log(max(tol, RELATIVE_TOLERANCE[1] * g.module))
+    if not fits(np.exp(hi)):
+        return float(np.exp(hi))
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if fits(np.exp(mid)) else (mid, hi)
+    need = float(np.exp(hi))
+    digits = 1 - int(np.floor(np.log10(need)))
+    up = float(np.ceil(need * 10**digits) / 10**digits)
+    return up if fits(up) else need
 
 
 def _half_angle(tooth: shapely.Polygon, radius: float) -> float:
@@ -131,9 +168,24 @@ def _half_angle(tooth: shapely.Polygon, radius: float) -> float:
     return float(np.abs(np.arctan2(pts[:, 1], pts[:, 0])).max())
 
 
-def _whole_gear(tooth: shapely.Polygon, z: int) -> shapely.Polygon:
+def _whole_gear(tooth: shapely.Polygon, z: int, module: float = 1.0) -> shapely.Polygon:
+    """The whole simulated gear from tooth 0's sector, as one closed outline: the sector's outline
+    without its two radii, turned z times and chained. Failing that, a union of the turned sectors,
+    which meet along radial lines only up to rounding, so the slivers between them (which took the
+    outline through the centre) are closed by a mitred closing of a millionth of the module."""
+    ring = np.asarray(shapely.geometry.polygon.orient(tooth, 1.0).exterior.coords)[:-1]
+    apex = np.flatnonzero(np.hypot(*ring.T) <= 1e-12 * max(1.0, float(np.abs(ring).max())))
+    if len(apex) == 1:  # tooth 0's outline without the two radii to the centre, turned z times and chained
+        chain = np.roll(ring, -int(apex[0]), axis=0)[1:]  # from the radius at -pi/z round to the one at +pi/z
+        turns = 2.0 * np.pi * np.arange(z) / z
+        c, s = np.cos(turns)[:, None], np.sin(turns)[:, None]
+        pts = np.stack([c * chain[:, 0] - s * chain[:, 1], s * chain[:, 0] + c * chain[:, 1]], axis=-1)
+        whole = shapely.Polygon(pts[:, :-1].reshape(-1, 2))  # a chain's end is the next one's start
+        if whole.is_valid:
+            return whole  # 1000 teeth: 20 ms (the union and closing below took 30 s and 1.5 GB)
     parts = [shapely.affinity.rotate(tooth, 360.0 * k / z, origin=(0, 0)) for k in range(z)]
-    whole = shapely.unary_union(parts).buffer(0)
+    eps = 1e-6 * module
+    whole = shapely.unary_union(parts).buffer(eps, join_style="mitre").buffer(-eps, join_style="mitre")
     return max(getattr(whole, "geoms", [whole]), key=lambda g: g.area)
 
 
@@ -161,15 +213,9 @@ def _drawing(g, whole: shapely.Polygon) -> Drawing:
     return d
 
 
-def _plot(g, res) -> Figure:
-    fig = Figure(figsize=(7, 7), dpi=120)
-    ax = fig.add_subplot()
-    ax.plot(*res.envelope.exterior.xy, "-", color="#08519c", lw=1.2, label="analytic envelope")
-    ax.plot(*res.tooth.exterior.xy, "--", color="#e6550d", lw=1.0, label=f"simulated ({res.positions} positions)")
-    th = np.linspace(-np.pi / g.teeth, np.pi / g.teeth, 200)
-    for r, style in ((g.base_radius, ":"), (g.pitch_radius, "--"), (g.form_radius, "-.")):
-        ax.plot(r * np.cos(th), r * np.sin(th), style, color="grey", lw=0.6)
-    ax.set_aspect("equal")
-    ax.set_title(f"z={g.teeth}, x={g.shift:g}: max deviation {res.max_deviation * 1e3:.2f} um", fontsize=9)
-    ax.legend(fontsize=7)
-    return fig
+def _plot(g, res, tolerance: float) -> Figure:
+    """The simulated tooth over the analytic one, the deviation magnified along the normal and
+    over the radius (:func:`hob.plotting.plot_cut`)."""
+    from hob.plotting import plot_cut
+
+    return plot_cut(g, res, tolerance)

@@ -12,6 +12,7 @@ import numpy as np
 from rich.console import Console
 
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.progress import Steps
 from rotorcad.errors import DesignError
 
 
@@ -104,35 +105,18 @@ def sweep(
         if unknown:
             raise InputError(f"{option} must name result columns: {', '.join(columns)} (got {unknown[0]!r}).")
     total = plan.count
-    bar = None
-    if not quiet and sys.stderr.isatty():
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-        bar = Progress(
-            TextColumn("sweep"),
-            BarColumn(),
-            MofNCompleteColumn(),
-            TextColumn("{task.fields[failed]} failed, {task.fields[rate]}/s"),
-            TimeRemainingColumn(),
-            console=Console(file=sys.stderr),
-            transient=True,
-        )
-        task = bar.add_task("sweep", total=total, failed=0, rate="-")
-        bar.start()
+    bar = Steps("sweep", total, quiet, ("{task.fields[failed]} failed, {task.fields[rate]}/s",), failed=0, rate="-")
     started = time.perf_counter()
 
     def report(done: int, failed: int, _total: int) -> None:
-        if bar is not None:
-            rate = done / max(time.perf_counter() - started, 1e-9)
-            bar.update(task, completed=done, failed=failed, rate=f"{rate:.1f}")
+        rate = done / max(time.perf_counter() - started, 1e-9)
+        bar.update(done, failed=failed, rate=f"{rate:.1f}")
 
     try:
-        outcome = run_sweep(plan, folder, points, out, scheduler, workers, batch, progress=report)
+        with bar:
+            outcome = run_sweep(plan, folder, points, out, scheduler, workers, batch, progress=report)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    finally:
-        if bar is not None:
-            bar.stop()
     table = outcome.table
     files = [str(out)]
     writers = Outputs()
@@ -147,13 +131,13 @@ def sweep(
         colour = ok[axes[2]].to_numpy(float) if len(axes) == 3 else None
         smaller = (OBJECTIVES.get(axes[0], True), OBJECTIVES.get(axes[1], True))
         names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
-        writers.add_figure(pareto, lambda: plot_pareto(x, y, colour, names, smaller), "--pareto")
+        writers.add_figure(pareto, lambda: plot_pareto(x, y, colour, names, smaller, case=Path(sweep_file).name), "--pareto")
     if effects is not None:
         from rotorcad.sweep_plots import plot_effects
 
         values = {p: _numeric(ok[p]) for p in params}
         target = ok[objective].to_numpy(float)
-        writers.add_figure(effects, lambda: plot_effects(values, target, objective), "--effects")
+        writers.add_figure(effects, lambda: plot_effects(values, target, objective, case=Path(sweep_file).name), "--effects")
     best = outcome.best()
     if best_designs is not None:
         import tomli_w

@@ -1,0 +1,102 @@
+"""Progress of a command's long stages (issue 15: nothing runs longer than a minute without a
+progress bar).
+
+A :class:`Steps` is opened around every stage that can run long on valid input: the cutting
+passes of ``cut``, the solids and files of ``export``, the 2-D sweep and the solids of
+``interfere``, the angle sweep of ``deflect``, the outline and files of ``gear``, the build and
+analysis of ``rotor``, the variants of ``sweep``. It draws a rich bar on stderr only on a terminal
+and without ``--quiet`` (CONTRACT.md: progress bars appear only on a terminal); it is counted in
+:data:`OPENED` either way, so that the fuzz suite can check that a long case reported its
+progress whether or not a terminal was there to show it.
+"""
+
+from __future__ import annotations
+
+import sys
+from types import TracebackType
+from typing import Any
+
+OPENED: list[str] = []
+"""The descriptions of every :class:`Steps` opened in this process, in order (for the tests)."""
+
+
+def on_terminal() -> bool:
+    """Whether stderr is a terminal (the tests replace this to see the bars)."""
+    return bool(getattr(sys.stderr, "isatty", lambda: False)())
+
+
+class Steps:
+    """A progress bar over ``total`` steps (None: a pulsing bar of unknown length).
+
+    Parameters
+    ----------
+    description : str
+        What the command is doing, shown left of the bar ("cutting", "sweeping solids").
+    total : int or None
+        Number of steps, or None when it is not known beforehand.
+    quiet : bool
+        The command's ``--quiet``: no bar at all.
+
+    Use as a context manager; :meth:`advance` after each step. The bar is transient: it is gone
+    when the stage ends, so that a table or JSON printed afterwards stands alone.
+    """
+
+    def __init__(
+        self, description: str, total: int | None, quiet: bool = False, columns: tuple[str, ...] = (), **fields: Any
+    ) -> None:
+        self.description = description
+        self.total = total
+        self.done = 0
+        self._bar: Any = None
+        self._task: Any = None
+        OPENED.append(description)
+        if quiet or not on_terminal():
+            return
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+        shown = [TextColumn("{task.description}"), BarColumn()]
+        shown += [MofNCompleteColumn()] if total is not None else []
+        shown += [TextColumn(c) for c in columns]  # e.g. "{task.fields[failed]} failed" with failed=0 in ``fields``
+        self._bar = Progress(*shown, TimeElapsedColumn(), console=Console(file=sys.stderr, force_terminal=True), transient=True)
+        self._task = self._bar.add_task(description, total=total, **fields)
+
+    @property
+    def shown(self) -> bool:
+        """Whether a bar is drawn (a terminal and no ``--quiet``)."""
+        return self._bar is not None
+
+    def __enter__(self) -> Steps:
+        return self.start()
+
+    def start(self) -> Steps:
+        """Draw the bar (when shown); the context manager does this."""
+        if self._bar is not None:
+            self._bar.start()
+        return self
+
+    def stop(self) -> None:
+        """Take the bar away (when shown); the context manager does this."""
+        if self._bar is not None:
+            self._bar.stop()
+
+    def advance(self, steps: int = 1, description: str | None = None) -> None:
+        """One step (or ``steps``) done; ``description`` replaces the text left of the bar."""
+        self.done += steps
+        if self._bar is not None:
+            fields: dict[str, Any] = {"advance": steps}
+            if description is not None:
+                fields["description"] = description
+            self._bar.update(self._task, **fields)
+
+    def update(self, completed: int, **fields: Any) -> None:
+        """Set the steps done to ``completed`` and the extra ``fields`` of the columns."""
+        self.done = completed
+        if self._bar is not None:
+            self._bar.update(self._task, completed=completed, **fields)
+
+    def __exit__(self, kind: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None) -> None:
+        self.stop()
+
+
+__all__ = ["OPENED", "Steps", "on_terminal"]
