@@ -1,5 +1,6 @@
 """DXF drawings of profiles with ezdxf: closed polylines on named layers, reference circles and
-centre marks on their own layers, true scale in millimetres ($INSUNITS = 4).
+centre marks on their own layers, labels as TEXT on theirs, true scale in millimetres
+($INSUNITS = 4).
 
 ezdxf is imported by the writers (0.15 s): the export command hands DXF writing to its worker
 process and need not load it (see :mod:`exports.background`)."""
@@ -27,6 +28,7 @@ LAYER_COLOURS = {
     "BASE": 8,
     "CENTER": 2,
     "LINE_OF_ACTION": 6,
+    "LABELS": 7,
 }
 
 
@@ -40,6 +42,7 @@ class Drawing:
     centers: list[tuple[float, float]] = field(default_factory=list)
     polylines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, open points)
     splines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, closed points): cubic through them
+    texts: list[tuple[str, tuple[float, float], str, float]] = field(default_factory=list)  # (layer, insert, text, height mm)
     mark_size: float = 2.0
 
 
@@ -53,6 +56,7 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
         {name for name, _ in drawing.outlines + drawing.polylines}
         | {c[0] for c in drawing.circles}
         | {ln[0] for ln in drawing.lines}
+        | {t[0] for t in drawing.texts}
     )
     if drawing.centers:
         layers.add("CENTER")
@@ -80,6 +84,8 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
         msp.add_circle(centre, r, dxfattribs={"layer": layer})
     for layer, a, b in drawing.lines:
         msp.add_line(a, b, dxfattribs={"layer": layer})
+    for layer, insert, text, height in drawing.texts:  # one line each: TEXT is in R12 too (MTEXT is not)
+        msp.add_text(text, height=height, dxfattribs={"layer": layer, "insert": (float(insert[0]), float(insert[1]))})
     h = drawing.mark_size
     for cx, cy in drawing.centers:
         msp.add_line((cx - h, cy), (cx + h, cy), dxfattribs={"layer": "CENTER"})

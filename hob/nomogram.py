@@ -7,10 +7,13 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
 from hob.undercut import effective_addendum, limit_shift, practical_limit_shift, real_limit_shift
+from rotorcad import plot_style as ps
 from rotorcad.errors import DesignError
 from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.plot_style import styled
 
 
 def contact_ratio_grid(
@@ -47,29 +50,79 @@ def contact_ratio_grid(
     return eps
 
 
+def pointed_limits(xs: np.ndarray, eps: np.ndarray) -> np.ndarray:
+    """For each row of ``eps`` (an addendum factor), the first shift after the last computed one
+    where the gear could not be made (its tip pointed); NaN when every shift to the end was made."""
+    out = np.full(len(eps), np.nan)
+    for i, row in enumerate(eps):
+        ok = np.nonzero(np.isfinite(row))[0]
+        if len(ok) and ok[-1] + 1 < len(xs):
+            out[i] = xs[ok[-1] + 1]
+    return out
+
+
+@styled
 def plot_nomogram(
     z: int = 11, alpha0: float = 20.0 * np.pi / 180.0, xs: np.ndarray | None = None, ys: np.ndarray | None = None
 ) -> Figure:
+    """The contact ratio of two equal gears over the shift x, one curve per addendum factor y,
+    with the line epsilon = 1, the undercut limits x_g, x'_g, x''_g and the undercut and
+    pointed-tooth regions shaded; the legend, outside the plot, says what each limit means."""
+    from matplotlib.patches import Patch
+
     xs = np.linspace(-0.2, 1.0, 25) if xs is None else xs
     ys = np.linspace(0.8, 1.2, 9) if ys is None else ys
     eps = contact_ratio_grid(z, alpha0, xs, ys)
-    fig = Figure(figsize=(8, 6), dpi=120)
+    fig = ps.new_figure(11.0, 6.2)
     ax = fig.add_subplot()
+    handles = []
     for i, y in enumerate(ys):
-        ax.plot(xs, eps[i], "-", lw=1.0, label=f"y = {y:.2f}")
+        colour = ps.CYCLE[i % 7]
+        style = "-" if i < 7 else "--"
+        handles.append(ax.plot(xs, eps[i], style, color=colour, lw=1.2, label=f"y = {y:.2f}")[0])
+        ok = np.nonzero(np.isfinite(eps[i]))[0]
+        if len(ok) and ok[-1] + 1 < len(xs):
+            ax.plot(xs[ok[-1]], eps[i][ok[-1]], "x", color=colour, ms=7, mew=1.6)
     y_eff = effective_addendum(1.25, 0.38, alpha0)
-    for value, style, name in (
-        (limit_shift(z, alpha0, y_eff), "--", "x_g"),
-        (practical_limit_shift(z, alpha0, y_eff), ":", "x'_g"),
-        (real_limit_shift(z, 1.0, alpha0, 1.0), "-.", "x''_g (y = 1)"),
-    ):
+    limits = {
+        "x_g": limit_shift(z, alpha0, y_eff),
+        "x'_g": practical_limit_shift(z, alpha0, y_eff),
+        "x''_g": real_limit_shift(z, 1.0, alpha0, 1.0),
+    }
+    meaning = {
+        "x_g": "x_g = {v:.3f}: theoretical undercut limit (no undercut for x ≥ x_g)",
+        "x'_g": "x′_g = {v:.3f}: practical limit (a slight undercut accepted)",
+        "x''_g": "x″_g = {v:.3f} (y = 1): below it the undercut shortens the path of contact",
+    }
+    x_lo, x_hi = float(xs.min()), float(xs.max())
+    if np.isfinite(limits["x_g"]):
+        ax.axvspan(x_lo, limits["x_g"], color=ps.SKY_BLUE, alpha=0.15, lw=0)
+        handles.append(Patch(color=ps.SKY_BLUE, alpha=0.3, label="undercut (x < x_g)"))
+    if np.isfinite(limits["x''_g"]):
+        ax.axvspan(x_lo, limits["x''_g"], color=ps.BLUE, alpha=0.15, lw=0)
+        handles.append(Patch(color=ps.BLUE, alpha=0.35, label="undercut shortens the contact (x < x″_g)"))
+    pointed = pointed_limits(xs, eps)
+    if np.isfinite(pointed).any():
+        first, last = float(np.nanmin(pointed)), float(np.nanmax(pointed))
+        ax.axvspan(first, x_hi, facecolor="none", edgecolor=ps.GREY, hatch="//", lw=0, alpha=0.5)
+        handles.append(
+            Patch(facecolor="none", edgecolor=ps.GREY, hatch="//", label=f"pointed tooth tip for the larger y (x ≥ {first:.2f})")
+        )
+        if np.isfinite(pointed).all():
+            ax.axvspan(last, x_hi, color=ps.GREY, alpha=0.25, lw=0)
+            handles.append(Patch(color=ps.GREY, alpha=0.4, label=f"pointed for every y shown (x ≥ {last:.2f})"))
+        handles.append(Line2D([], [], ls="none", marker="x", color=ps.GREY, mew=1.6, label="curve ends: the tip turns pointed"))
+    for (name, value), style in zip(limits.items(), ("--", ":", "-."), strict=True):
         if np.isfinite(value):
-            ax.axvline(value, ls=style, color="k", lw=0.8, label=f"{name} = {value:.3f}")
-    ax.set_xlabel("profile shift x")
-    ax.set_ylabel("contact ratio ε")
-    ax.set_title(
-        f"contact ratio of two equal gears, z = {z}, α0 = {np.degrees(alpha0):g}° (after Kollek & Osiński Fig. 4)", fontsize=9
+            handles.append(ax.axvline(value, ls=style, color=ps.BLACK, lw=1.0, label=meaning[name].format(v=value)))
+    handles.append(ax.axhline(1.0, color="#999999", lw=3.0, zorder=1, label="ε = 1: below it the delivery is interrupted"))
+    ax.set_xlim(x_lo, x_hi)
+    ax.set_xlabel(ps.label("profile shift x", "1"))
+    ax.set_ylabel(ps.label("transverse contact ratio ε_α", "1"))
+    ps.legend_outside(ax, handles, title="addendum factor y and limits", alignment="left")
+    ps.title(
+        fig,
+        f"contact-ratio nomogram of two equal gears, z = {z}, α0 = {np.degrees(alpha0):g}°",
+        "after Kollek & Osiński Fig. 4; basic rack tool h_a0* = 1.25, ρ_a0* = 0.38",
     )
-    ax.grid(True, lw=0.3)
-    ax.legend(fontsize=7, ncol=2)
     return fig

@@ -6,8 +6,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rotorcad import plot_style as ps
 from rotorcad.gear import GearPair, InvoluteGear
 from rotorcad.geometry import rotate
+from rotorcad.plot_style import styled
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -32,36 +34,77 @@ def line_of_action(pair: GearPair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return t1, t2, c
 
 
-def plot_gears(gear: InvoluteGear, pair: GearPair | None = None) -> Figure:
-    """The gear (and its mate in mesh) with pitch, base, tip circles and the line of action."""
-    from matplotlib.figure import Figure  # matplotlib only when a picture is drawn
+def path_of_contact(pair: GearPair) -> np.ndarray:
+    """End points (2, 2) of the path of contact on the line of action (mm): where the flanks
+    meet between the tip circles and the usable involutes (:meth:`GearPair.contact_interval`)."""
+    t1, t2, _ = line_of_action(pair)
+    lo1, hi1, lo2, hi2 = pair.contact_interval()
+    u = (t2 - t1) / np.hypot(*(t2 - t1))
+    return np.array([t1 + max(lo1, lo2) * u, t1 + min(hi1, hi2) * u])
 
-    fig = Figure(figsize=(8, 6), dpi=120)
+
+@styled
+def plot_gears(gear: InvoluteGear, pair: GearPair | None = None) -> Figure:
+    """The gear (and its mate in mesh) with pitch, base and tip circles, the line of action and
+    the path of contact; the title states the gear data, the legend stands beside the drawing."""
+    from matplotlib.lines import Line2D
+
+    ra1 = gear.tip_radius
+    if pair is None:
+        fig = ps.new_figure(7.5, 5.6)
+    else:
+        a = pair.working_center_distance
+        ra2 = pair.mate.tip_radius
+        aspect = (ra1 + a + ra2) / (2 * max(ra1, ra2))
+        fig = ps.new_figure(min(3.0 + 5.0 * aspect, 13.0), 5.6)
     ax = fig.add_subplot()
     pts = gear.outline().points
-    ax.fill(*pts.T, facecolor="#9ecae1", edgecolor="#08519c", lw=0.6, label=f"gear z={gear.teeth}")
-    circles = [((0.0, 0.0), gear.pitch_radius, "--", "#31a354"), ((0.0, 0.0), gear.base_radius, ":", "#636363")]
+    ax.fill(*pts.T, facecolor=ps.MALE_FILL, edgecolor=ps.MALE_EDGE, lw=0.7, label=f"gear z1 = {gear.teeth}")
+    circles = [((0.0, 0.0), gear.pitch_radius, "--", ps.PITCH), ((0.0, 0.0), gear.base_radius, ":", ps.GREY)]
+    seen = [pts]
     if pair is not None:
         mp = mate_in_mesh(pair, pair.mate.outline().points)
-        ax.fill(*mp.T, facecolor="#fcbba1", edgecolor="#a50f15", lw=0.6, alpha=0.9, label=f"mate z={pair.mate.teeth}")
+        ax.fill(*mp.T, facecolor=ps.FEMALE_FILL, edgecolor=ps.FEMALE_EDGE, lw=0.7, label=f"mate z2 = {pair.mate.teeth}")
+        seen.append(mp)
         o2 = (pair.working_center_distance, 0.0)
-        circles += [(o2, pair.mate.pitch_radius, "--", "#31a354"), (o2, pair.mate.base_radius, ":", "#636363")]
+        circles += [(o2, pair.mate.pitch_radius, "--", ps.PITCH), (o2, pair.mate.base_radius, ":", ps.GREY)]
         t1, t2, c = line_of_action(pair)
-        ax.plot(*np.array([t1, t2]).T, "-", color="#756bb1", lw=1.0, label="line of action")
-        ax.plot(*c, "o", color="k", ms=3)
-        ax.annotate("C", c, textcoords="offset points", xytext=(4, 4))
+        ax.plot(*np.array([t1, t2]).T, "-", color=ps.PURPLE, lw=0.9, label="line of action T1T2")
+        ax.plot(*path_of_contact(pair).T, "-", color=ps.BLACK, lw=2.4, solid_capstyle="butt", label="path of contact")
+        ax.plot(*np.array([t1, t2]).T, "o", color=ps.PURPLE, ms=3)
+        ax.plot(*c, "o", color=ps.BLACK, ms=4)
+        ax.annotate("C", c, textcoords="offset points", xytext=(5, 5), fontsize=8)
     for centre, r, style, colour in circles:
-        th = np.linspace(0.0, 2.0 * np.pi, 721)
-        ax.plot(centre[0] + r * np.cos(th), centre[1] + r * np.sin(th), style, color=colour, lw=0.7)
-    ax.plot([], [], "--", color="#31a354", lw=0.7, label="pitch circles")
-    ax.plot([], [], ":", color="#636363", lw=0.7, label="base circles")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    title = f"m={gear.module:g} mm, alpha={np.degrees(gear.pressure_angle):g} deg"
-    if pair is not None:
-        title += f", a_w={pair.working_center_distance:.4f} mm, eps_alpha={pair.contact_ratio:.3f}"
-    ax.set_title(title, fontsize=9)
-    ax.legend(loc="upper right", fontsize=7)
-    ax.grid(True, lw=0.3)
+        ax.plot(*ps.circle_points(centre, r).T, style, color=colour, lw=0.8)
+    handles, _ = ax.get_legend_handles_labels()
+    handles += [
+        Line2D([], [], ls="--", color=ps.PITCH, lw=0.8, label="pitch circles"),
+        Line2D([], [], ls=":", color=ps.GREY, lw=0.8, label="base circles"),
+    ]
+    ps.frame(ax, seen, margin=0.03)
+    ax.set_xlabel(ps.label("x", "mm"))
+    ax.set_ylabel(ps.label("y", "mm"))
+    ps.legend_outside(ax, handles)
+    ps.title(fig, _gear_case(gear, pair), _gear_settings(gear, pair))
     return fig
+
+
+def _gear_case(gear: InvoluteGear, pair: GearPair | None) -> str:
+    return f"involute gear z1 = {gear.teeth}" + (f" with mate z2 = {pair.mate.teeth}" if pair is not None else "")
+
+
+def _gear_settings(gear: InvoluteGear, pair: GearPair | None) -> str:
+    text = (
+        f"m = {gear.module:g} mm, α = {np.degrees(gear.pressure_angle):g}°, β = {np.degrees(gear.helix_angle):g}°, "
+        f"x1 = {gear.shift:g}"
+    )
+    if pair is not None:
+        text += (
+            f", x2 = {pair.mate.shift:.4g}; a_w = {pair.working_center_distance:.4f} mm, "
+            f"α_wt = {np.degrees(pair.working_pressure_angle):.3f}°, ε_α = {pair.contact_ratio:.3f}"
+        )
+    else:
+        text += f"; d = {2 * gear.pitch_radius:.4g} mm, d_a = {2 * gear.tip_radius:.4g} mm" + (
+            ", undercut" if gear.undercut else ""
+        )
+    return text

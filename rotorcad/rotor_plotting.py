@@ -1,80 +1,260 @@
 """Pictures of a screw-rotor pair: the pair in mesh with its meshline, defects and blow-hole, and
-sliding velocity and slip over the rotation angle in the manner of Rinder's Figs. 10-13."""
+sliding velocity and slip over the rotation angle in the manner of Rinder's Figs. 10-13, one
+labelled branch per pair of flanks in contact. Style: :mod:`rotorcad.plot_style`."""
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
+from rotorcad import plot_style as ps
 from rotorcad.meshing import MeshingAnalysis
+from rotorcad.plot_style import styled
 
-MARKERS = {"cusp": ("v", "#d62728"), "jamming": ("s", "#9467bd"), "slipping": ("D", "#ff7f0e")}
-
-
-def _circle(ax, centre, r, style, colour, lw=0.7):
-    th = np.linspace(0.0, 2.0 * np.pi, 721)
-    ax.plot(centre[0] + r * np.cos(th), centre[1] + r * np.sin(th), style, color=colour, lw=lw)
+MARKERS = {"cusp": ("v", ps.VERMILLION), "jamming": ("s", ps.PURPLE), "slipping": ("D", ps.YELLOW)}
 
 
+def pair_case(analysis: MeshingAnalysis) -> str:
+    """``family z1/z2`` of the analysed pair, as the titles name it."""
+    pair = analysis.rotors.pair
+    return f"{analysis.rotors.family} {pair.male_teeth}/{pair.female_teeth}"
+
+
+def pair_settings(analysis: MeshingAnalysis) -> str:
+    """The pair's dimensions for a title line (mm)."""
+    p = analysis.rotors.pair
+    return (
+        f"a = {p.center_distance:g} mm, r1a = {p.male_tip_radius:g} mm, r1f = {p.male_root_radius:g} mm, "
+        f"r2a = {p.female_tip_radius:g} mm, r2f = {p.female_root_radius:g} mm, h1 = {p.lead:g} mm, L = {p.length:g} mm"
+    )
+
+
+@styled
 def plot_pair(analysis: MeshingAnalysis, clearance: float = 0.0) -> Figure:
     """Male and female in mesh at male angle 0, pitch circles, housing bores, meshline with the
-    flagged points, the housing cusp and the (projected) blow-hole."""
+    flagged points, the housing cusp and the (projected) blow-hole; the legend beside the pair.
+
+    Parameters
+    ----------
+    analysis : MeshingAnalysis
+    clearance : float, mm
+        Radial clearance of the housing bores over the tip circles.
+    """
     rotors = analysis.rotors
     pair = rotors.pair
     a = pair.center_distance
-    fig = Figure(figsize=(9, 7), dpi=120)
+    r1, r2 = pair.male_tip_radius + clearance, pair.female_tip_radius + clearance
+    aspect = (r1 + a + r2) / (2 * max(r1, r2))
+    fig = ps.new_figure(min(3.2 + 4.6 * aspect, 13.0), 5.2)
     ax = fig.add_subplot()
     male, female = analysis.sections
-    ax.fill(*male.exterior.xy, facecolor="#9ecae1", edgecolor="#08519c", lw=0.6, label=f"male z1={pair.male_teeth}")
+    ax.fill(*male.exterior.xy, facecolor=ps.MALE_FILL, edgecolor=ps.MALE_EDGE, lw=0.7, label=f"male rotor z1 = {pair.male_teeth}")
     fx, fy = female.exterior.xy
-    ax.fill(np.asarray(fx) + a, fy, facecolor="#fcbba1", edgecolor="#a50f15", lw=0.6, label=f"female z2={pair.female_teeth}")
-    _circle(ax, (0, 0), pair.male_pitch_radius, "--", "#31a354")
-    _circle(ax, (a, 0), pair.female_pitch_radius, "--", "#31a354")
-    _circle(ax, (0, 0), pair.male_tip_radius + clearance, "-", "#444444", 0.9)
-    _circle(ax, (a, 0), pair.female_tip_radius + clearance, "-", "#444444", 0.9)
-    ax.plot([], [], "--", color="#31a354", lw=0.7, label="pitch circles")
-    ax.plot([], [], "-", color="#444444", lw=0.9, label="housing bores")
+    ax.fill(
+        np.asarray(fx) + a,
+        fy,
+        facecolor=ps.FEMALE_FILL,
+        edgecolor=ps.FEMALE_EDGE,
+        lw=0.7,
+        label=f"female rotor z2 = {pair.female_teeth}",
+    )
+    for centre, r in (((0.0, 0.0), pair.male_pitch_radius), ((a, 0.0), pair.female_pitch_radius)):
+        ax.plot(*ps.circle_points(centre, r).T, "--", color=ps.PITCH, lw=0.8)
+    bores = [ps.circle_points((0.0, 0.0), r1), ps.circle_points((a, 0.0), r2)]
+    for pts in bores:
+        ax.plot(*pts.T, "-", color=ps.BORE, lw=1.0)
+    ax.plot([], [], "--", color=ps.PITCH, lw=0.8, label="pitch circles")
+    ax.plot([], [], "-", color=ps.BORE, lw=1.0, label=f"housing bores (tip + {clearance:g} mm)")
     for k, piece in enumerate(analysis.pieces):
-        ax.plot(*piece.points.T, "-", color="k", lw=1.4, label="meshline" if k == 0 else None)
+        ax.plot(*piece.points.T, "-", color=ps.BLACK, lw=1.6, label="meshline" if k == 0 else None)
     for kind, (marker, colour) in MARKERS.items():
         pts = [(d.x, d.y) for d in analysis.defects if d.kind == kind]
         if pts:
-            ax.plot(*np.array(pts).T, marker, color=colour, ms=6, ls="none", label=kind)
+            ax.plot(*np.array(pts).T, marker, color=colour, mec=ps.BLACK, mew=0.6, ms=7, ls="none", label=f"{kind} ({len(pts)})")
     bh = analysis.blow_hole
+    first = True
     for g in getattr(bh, "geoms", [bh]):
         if hasattr(g, "exterior") and not g.is_empty:
-            ax.fill(*g.exterior.xy, color="#e31a1c", alpha=0.7)
-    ax.plot(*analysis.cusp, "k*", ms=9, label=f"cusp, blow-hole {analysis.blow_hole_area:.2f} mm²")
-    ax.plot(pair.male_pitch_radius, 0.0, "ko", ms=3)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_title(
-        f"{rotors.family} {pair.male_teeth}/{pair.female_teeth}, a = {a:g} mm, meshline "
-        + ("closed" if analysis.meshline_closed else "open"),
-        fontsize=9,
+            ax.fill(*g.exterior.xy, color=ps.VERMILLION, alpha=0.8, label="blow-hole" if first else None)
+            first = False
+    ax.plot(
+        *analysis.cusp, "*", color=ps.BLACK, ms=10, ls="none", label=f"housing cusp; blow-hole {analysis.blow_hole_area:.3g} mm²"
     )
-    ax.legend(loc="upper left", fontsize=7)
-    ax.grid(True, lw=0.3)
+    ax.plot(pair.male_pitch_radius, 0.0, "o", color=ps.BLACK, ms=3.5)
+    ax.annotate("C", (pair.male_pitch_radius, 0.0), textcoords="offset points", xytext=(4, -10), fontsize=8)
+    ps.frame(ax, bores, margin=0.02)
+    ax.set_xlabel(ps.label("x", "mm"))
+    ax.set_ylabel(ps.label("y", "mm"))
+    ps.legend_outside(ax)
+    closed = "closed" if analysis.meshline_closed else "open"
+    ps.title(
+        fig,
+        f"screw-rotor pair {pair_case(analysis)} in mesh at male angle 0°: meshline {closed}, {len(analysis.defects)} defects",
+        pair_settings(analysis),
+    )
     return fig
 
 
+def branches(analysis: MeshingAnalysis) -> list[tuple[str, slice, str]]:
+    """The meshline's branches as (label, slice of the kinematics arrays, colour): one per rack
+    piece, labelled by the male and the female flank in contact; the same pair of flanks keeps
+    one colour."""
+    colours: dict[str, str] = {}
+    out = []
+    start = 0
+    for piece in analysis.pieces:
+        n = len(piece.t)
+        text = f"male {piece.male_name} ↔ female {piece.female_name}"
+        if text not in colours:
+            colours[text] = ps.CYCLE[len(colours) % len(ps.CYCLE)]
+        out.append((text, slice(start, start + n), colours[text]))
+        start += n
+    return out
+
+
+@styled
 def plot_sliding(analysis: MeshingAnalysis) -> Figure:
-    """Sliding velocity v_g (eq. 3) and slip of male and female (eq. 4) over the male rotation
-    angle at contact; slip is clipped to +-10 where it runs to infinity (v_t = 0)."""
+    """Sliding velocity |v_g| (Rinder eq. 3) and slip of male and female (eq. 4) over the male
+    rotation angle at contact, one line per branch of the meshline (labelled by its flanks). Slip
+    is drawn on a symmetric logarithmic scale, so that its run to infinity where a tangential
+    velocity vanishes stays visible; a slip that is infinite is marked at the frame's edge."""
     k = analysis.kinematics
     ang = k["angle_deg"]
-    order = np.argsort(ang)
-    fig = Figure(figsize=(9, 7), dpi=120)
+    fig = ps.new_figure(11.0, 7.2)
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    ax1.plot(ang[order], np.abs(k["sliding"][order]), ".", ms=2, color="#08519c")
-    ax1.set_ylabel("sliding velocity |v_g| [m/s]")
-    ax1.set_title(f"{analysis.rotors.family}: sliding and slip at {analysis.speed_rpm:g} rpm (Rinder eqs. 3-4)", fontsize=9)
-    ax1.grid(True, lw=0.3)
-    ax2.plot(ang[order], np.clip(k["slip_male"][order], -10, 10), ".", ms=2, color="#08519c", label="male slip ζ1")
-    ax2.plot(ang[order], np.clip(k["slip_female"][order], -10, 10), ".", ms=2, color="#a50f15", label="female slip ζ2")
-    ax2.set_ylabel("slip [-] (clipped to ±10)")
-    ax2.set_xlabel("male rotation angle at contact [deg]")
-    ax2.legend(fontsize=7)
-    ax2.grid(True, lw=0.3)
+    handles = []
+    seen: set[str] = set()
+    infinite = False
+    for text, sl, colour in branches(analysis):
+        wrapped = "\n".join(textwrap.wrap(text, 44))
+        line = ax1.plot(ang[sl], np.abs(k["sliding"][sl]), "-", color=colour, lw=1.4, label=wrapped)[0]
+        if text not in seen:
+            handles.append(line)
+            seen.add(text)
+        for key, style in (("slip_male", "-"), ("slip_female", "--")):
+            z = k[key][sl]
+            ax2.plot(ang[sl], np.where(np.isfinite(z), z, np.nan), style, color=colour, lw=1.2)
+            bad = ~np.isfinite(z) & np.isfinite(ang[sl])
+            if bad.any():
+                infinite = True
+                ax2.plot(ang[sl][bad], np.full(bad.sum(), 1e4), "^", color=colour, ms=5, clip_on=False)
+    ax1.set_ylabel(ps.label("sliding velocity |v_g|", "m/s"))
+    ax1.set_title("sliding velocity along each branch of the meshline (Rinder eq. 3)")
+    ps.legend_outside(ax1, handles, title="branch: flanks in contact", alignment="left")
+    ax2.set_yscale("symlog", linthresh=1.0, linscale=1.0)
+    ax2.axhline(0.0, color=ps.GREY, lw=0.6)
+    finite = np.abs(np.concatenate([k["slip_male"], k["slip_female"]]))
+    finite = finite[np.isfinite(finite)]
+    top = max(10.0, 10 ** np.ceil(np.log10(max(float(finite.max()) if len(finite) else 1.0, 1.0))))
+    ax2.set_ylim(-top, top)
+    ax2.set_ylabel(ps.label("slip ζ (symmetric log scale)", "1"))
+    ax2.set_xlabel(ps.label("male rotation angle at contact φ1", "°"))
+    ax2.set_title("slip ζ1 = v_g / v1t and ζ2 = v_g / v2t (Rinder eq. 4), colours as above")
+    styles = [
+        Line2D([], [], color=ps.GREY, ls="-", label="male slip ζ1"),
+        Line2D([], [], color=ps.GREY, ls="--", label="female slip ζ2"),
+    ]
+    if infinite:
+        styles.append(Line2D([], [], color=ps.GREY, marker="^", ls="none", label="|ζ| infinite (v_t = 0)"))
+    ps.legend_outside(ax2, styles)
+    pair = analysis.rotors.pair
+    n2 = analysis.speed_rpm * pair.male_teeth / pair.female_teeth
+    peak = analysis.summary()["max_sliding_velocity"] if analysis.pieces else float("nan")
+    ps.title(
+        fig,
+        f"sliding velocity and slip, screw-rotor pair {pair_case(analysis)}",
+        f"male {analysis.speed_rpm:g} rpm, female {n2:.4g} rpm, a = {pair.center_distance:g} mm; largest |v_g| = {peak:.3g} m/s",
+    )
+    return fig
+
+
+def point_deviation(section, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Deviation of measured points from a rotor's section (the profile the pair is built on).
+
+    Parameters
+    ----------
+    section : shapely.Polygon
+        The rotor's transverse section in its own frame (mm).
+    points : (n, 2) float, mm
+        The measured points, same frame.
+
+    Returns
+    -------
+    foot : (n, 2) float, mm
+        The nearest point of the section's outline to each measured point.
+    normal : (n, 2) float
+        Unit outward normal of the outline there (the direction of excess material).
+    deviation : (n,) float, mm
+        Signed normal distance: positive outside the section (material beyond the profile).
+    """
+    import shapely
+
+    ring = section.exterior
+    pts = np.asarray(points, dtype=float)
+    geoms = shapely.points(pts)
+    foot = shapely.get_coordinates(shapely.line_interpolate_point(ring, shapely.line_locate_point(ring, geoms)))
+    dist = np.hypot(*(pts - foot).T)
+    sign = np.where(shapely.contains(section, geoms), -1.0, 1.0)
+    # the outward normal from the outline's tangent at the foot (a short chord of the exact outline)
+    s = shapely.line_locate_point(ring, geoms)
+    step = 1e-3
+    ahead = shapely.get_coordinates(shapely.line_interpolate_point(ring, (s + step) % ring.length))
+    behind = shapely.get_coordinates(shapely.line_interpolate_point(ring, (s - step) % ring.length))
+    tangent = ahead - behind
+    tangent /= np.linalg.norm(tangent, axis=1, keepdims=True)
+    ccw = 1.0 if ring.is_ccw else -1.0
+    normal = ccw * np.stack([tangent[:, 1], -tangent[:, 0]], axis=1)
+    return foot, normal, sign * dist
+
+
+@styled
+def plot_point_deviation(analysis: MeshingAnalysis, rotor: str, points: np.ndarray, source: str) -> Figure:
+    """Measured points against the profile the pair is built on (the smoothed fit of those points):
+    the deviation of every point along the profile's normal, magnified with the factor stated, and
+    the deviation over the point number with its spread.
+
+    Parameters
+    ----------
+    analysis : MeshingAnalysis
+        The pair built from the points.
+    rotor : "male" or "female"
+        Which rotor the points measure.
+    points : (n, 2) float, mm
+        The measured points in the rotor's own frame.
+    source : str
+        The file named in the title.
+    """
+    side = 0 if rotor == "male" else 1
+    section = analysis.sections[side]
+    foot, normal, dev = point_deviation(section, points)
+    fig = ps.new_figure(11.0, 5.6)
+    ax1, ax2 = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.2, 1.0]})
+    ring = np.asarray(section.exterior.coords)
+    ax1.plot(*ring.T, "-", color=ps.REFERENCE, lw=0.8, label=f"{rotor} profile built from the points")
+    largest = float(np.max(np.abs(dev))) if len(dev) else 0.0
+    extent = float(np.ptp(ring, axis=0).max())
+    scale = ps.magnification(largest, extent)
+    handles = ps.draw_deviation(ax1, foot, normal, dev, scale, what="measured − profile", every=max(1, len(dev) // 400))
+    ps.scale_bar(ax1, scale, largest)
+    ax1.set_xlabel(ps.label("x", "mm"))
+    ax1.set_ylabel(ps.label("y", "mm"))
+    ax1.set_title(f"deviation along the normal, ×{scale:g}")
+    ps.frame(ax1, [ring])
+    ps.legend_below(ax1, ncol=1, handles=[ax1.lines[0], *handles])
+    ax2.plot(np.arange(len(dev)), dev * 1e3, ".", color=ps.BLUE, ms=2)
+    sigma = float(np.std(dev)) if len(dev) else 0.0
+    for k, style in ((1, "--"), (-1, "--")):
+        ax2.axhline(k * 2 * sigma * 1e3, color=ps.GREY, ls=style, lw=0.7)
+    ax2.axhline(0.0, color=ps.BLACK, lw=0.6)
+    ax2.set_xlabel(ps.label("measured point number", "1"))
+    ax2.set_ylabel(ps.label("deviation from the profile, outward", "µm"))
+    ax2.set_title(f"spread: σ = {sigma * 1e3:.3g} µm (±2σ dashed), largest {largest * 1e3:.3g} µm")
+    ps.title(
+        fig,
+        f"measured {rotor} points ({source}) against the profile of {pair_case(analysis)}",
+        f"{len(dev)} points; positive: material outside the profile; {pair_settings(analysis)}",
+    )
     return fig

@@ -6,6 +6,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from rotorcad import plot_style as ps
+from rotorcad.plot_style import styled
+
 
 def pareto_mask(x: np.ndarray, y: np.ndarray, smaller_x: bool = True, smaller_y: bool = True) -> np.ndarray:
     """The variants no other beats in both objectives (the Pareto front).
@@ -31,53 +34,120 @@ def pareto_mask(x: np.ndarray, y: np.ndarray, smaller_x: bool = True, smaller_y:
     return front
 
 
+_SUFFIX_UNITS = (  # a result column's unit from the end of its name (CONTRACT.md, sweep rows)
+    ("_mm2", "mm²"),
+    ("_mm3", "mm³"),
+    ("_m_s", "m/s"),
+    ("_mm", "mm"),
+    ("_deg", "°"),
+    ("_percent", "%"),
+    ("_rpm", "rpm"),
+    ("_bar", "bar"),
+    ("seconds", "s"),
+)
+_LENGTH_WORDS = ("distance", "radius", "lead", "length", "clearance", "land", "width_mm")
+
+
+def column_label(name: str) -> str:
+    """An axis label with its unit for a sweep column: a result (its unit at the end of its name,
+    ``blow_hole_area_mm2`` -> ``blow hole area [mm²]``) or a varied design value (``pair.lead``
+    -> ``pair.lead [mm]``; counts, shares and factors ``[–]``)."""
+    if "." in name:  # a varied value: "table.key" of the design
+        key = name.split(".", 1)[1]
+        if key.endswith("_deg"):
+            unit = "°"
+        elif key.endswith("_rpm"):
+            unit = "rpm"
+        elif key.endswith("_bar"):
+            unit = "bar"
+        elif "teeth" in key:
+            unit = "1"
+        elif name.startswith(("pair.", "housing.")) and any(w in key for w in _LENGTH_WORDS):
+            unit = "mm"
+        elif key in ("tip_land",):
+            unit = "mm"
+        else:
+            unit = "1"  # the families' shares and factors (lobe_width, tip_rounding, ...)
+        return ps.label(name, unit)
+    for suffix, unit in _SUFFIX_UNITS:
+        if name.endswith(suffix):
+            return ps.label(name[: -len(suffix)].replace("_", " ").strip() if suffix != "seconds" else name, unit)
+    return ps.label(name.replace("_", " "), "1")
+
+
+@styled
 def plot_pareto(
     x: np.ndarray,
     y: np.ndarray,
     colour: np.ndarray | None,
     names: tuple[str, str, str | None],
     smaller: tuple[bool, bool] = (True, True),
+    case: str = "",
 ) -> Figure:
-    """Every variant in the plane of two objectives, coloured by a third, the front drawn."""
-    fig = Figure(figsize=(8, 6), dpi=120)
+    """Every variant in the plane of two objectives, coloured by a third, the front drawn.
+
+    Parameters
+    ----------
+    x, y : (n,) float
+        The two objectives of every variant.
+    colour : (n,) float, optional
+        A third column that colours the points.
+    names : tuple of str
+        The columns' names (their units follow from them, :func:`column_label`).
+    smaller : tuple of bool
+        Whether smaller is better for x and y.
+    case : str
+        The sweep (its file name), for the title.
+    """
+    fig = ps.new_figure(9.0, 6.0)
     ax = fig.subplots()
     front = pareto_mask(x, y, *smaller)
-    sc = ax.scatter(x, y, c=colour if colour is not None else "#1f77b4", s=12, cmap="viridis", alpha=0.8)
+    sc = ax.scatter(x, y, c=colour if colour is not None else ps.SKY_BLUE, s=14, cmap="viridis", alpha=0.8, label="variant")
     if colour is not None:
-        fig.colorbar(sc, ax=ax, label=names[2])
+        fig.colorbar(sc, ax=ax, label=column_label(names[2]))
     order = np.argsort(x[front])
-    ax.plot(x[front][order], y[front][order], "-o", color="#d62728", ms=4, label=f"Pareto front ({front.sum()} variants)")
-    ax.set_xlabel(names[0])
-    ax.set_ylabel(names[1])
-    ax.set_title(f"{len(x)} variants: {names[1]} against {names[0]}", fontsize=10)
-    ax.legend(loc="best", fontsize=8)
-    ax.grid(alpha=0.3)
-    fig.tight_layout()
+    ax.plot(x[front][order], y[front][order], "-o", color=ps.VERMILLION, ms=4, label=f"Pareto front ({front.sum()} variants)")
+    ax.set_xlabel(column_label(names[0]))
+    ax.set_ylabel(column_label(names[1]))
+    better = ", ".join(f"{n}: {'smaller' if s else 'larger'} is better" for n, s in zip(names[:2], smaller, strict=True))
+    ax.set_title(better)
+    ps.legend_outside(ax)
+    ps.title(fig, f"design sweep {case}: {len(x)} variants".replace("  ", " "), f"{names[1]} against {names[0]}")
     return fig
 
 
-def plot_effects(parameters: dict[str, np.ndarray], objective: np.ndarray, name: str) -> Figure:
+@styled
+def plot_effects(parameters: dict[str, np.ndarray], objective: np.ndarray, name: str, case: str = "") -> Figure:
     """One panel per varied parameter: the objective over the parameter's values (every variant
-    as a point, the mean per value as a line)."""
+    as a point, the mean per value as a line).
+
+    Parameters
+    ----------
+    parameters : dict of (n,) float
+        The varied values by column name.
+    objective : (n,) float
+    name : str
+        The objective's column name.
+    case : str
+        The sweep (its file name), for the title.
+    """
     n = max(1, len(parameters))
     cols = min(3, n)
     rows = int(np.ceil(n / cols))
-    fig = Figure(figsize=(4.2 * cols, 3.4 * rows), dpi=110)
+    fig = ps.new_figure(4.4 * cols, 3.6 * rows + 0.6)
     axes = np.atleast_1d(fig.subplots(rows, cols)).ravel()
     for ax, (pname, values) in zip(axes, parameters.items(), strict=False):
         v = np.asarray(values, dtype=float)
         ok = np.isfinite(v) & np.isfinite(objective)
-        ax.scatter(v[ok], objective[ok], s=8, alpha=0.5, color="#1f77b4")
+        ax.scatter(v[ok], objective[ok], s=8, alpha=0.5, color=ps.SKY_BLUE, label="variant")
         levels = np.unique(v[ok])
         if 1 < len(levels) <= 50:
             means = [objective[ok][v[ok] == level].mean() for level in levels]
-            ax.plot(levels, means, "-", color="#d62728", label="mean")
-            ax.legend(fontsize=7)
-        ax.set_xlabel(pname)
-        ax.set_ylabel(name)
-        ax.grid(alpha=0.3)
+            ax.plot(levels, means, "-", color=ps.VERMILLION, label="mean per value")
+        ax.legend(loc="best")
+        ax.set_xlabel(column_label(pname))
+        ax.set_ylabel(column_label(name))
     for ax in axes[n:]:
         ax.set_visible(False)
-    fig.suptitle(f"effect of each varied value on {name}", fontsize=10)
-    fig.tight_layout()
+    ps.title(fig, f"design sweep {case}: effect of each varied value".replace("  ", " "), f"on {column_label(name)}")
     return fig

@@ -218,11 +218,13 @@ def test_cli_table_has_units(capsys):
     assert rows["min_film_thickness"] == "mm" and rows["max_pressure"] == "MPa" and rows["load_capacity"] == "N"
 
 
-def test_cli_plot_writes_png(capsys, tmp_path):
-    path = tmp_path / "c.png"
+def test_cli_plot_writes_a_picture_that_reads_at_a_glance(capsys, tmp_path):
+    from test_pictures import check_picture  # units on every axis, the case in the title (issue 16)
+
+    path = tmp_path / "c.svg"
     rc, _, err = run(capsys, "coupling", *ARGS, "--plot", path)
     assert rc == 0, err
-    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    check_picture(path, ["gear coupling z = ", " rpm", " kW"])
 
 
 @pytest.mark.parametrize(

@@ -431,6 +431,9 @@ def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys
     svg = tmp_path / "d.svg"
     assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(svg)]) == 0
     assert ET.parse(svg).getroot().tag.endswith("svg")
+    from test_pictures import check_picture  # units on every axis, the case in the title (issue 16)
+
+    check_picture(svg, ["rack_involute_5_6.toml", "rack-involute 5/6", "1 → 8 bar"])
     fifo = tmp_path / "fifo"
     os.mkfifo(fifo)
     assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(fifo)]) == 2

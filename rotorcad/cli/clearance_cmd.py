@@ -16,6 +16,10 @@ from rotorcad.errors import DesignError
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import lobe_pieces, profile_points
 
+INTERFERENCE_THRESHOLD = 2e-3
+"""mm: a clearance below minus this is an interference. A conjugate pair given by points measures
+0 within 2 µm (the spline fit of the points, README), so less is no finding."""
+
 
 @click.command()
 @click.option(
@@ -82,9 +86,16 @@ def clearance(**opts: Any) -> None:
         }
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    result["interference"] = bool(result["min_normal_clearance"] < -INTERFERENCE_THRESHOLD)
+    if result["interference"]:  # never silent: a hot pair can run into interference
+        click.echo(
+            f"rotorcad: warning: the rotors interfere: the normal clearance goes down to "
+            f"{result['min_normal_clearance'] * 1e3:.1f} µm (negative) on the contact line.",
+            err=True,
+        )
     out = Outputs()
     if opts["plot"]:
-        out.add_figure(opts["plot"], lambda: _plot(mc), "--plot")
+        out.add_figure(opts["plot"], lambda: _plot(mc, opts), "--plot")
     if opts["csv_path"]:
         dist = mc.distribution()
         rows = np.column_stack(list(dist.values()))
@@ -175,35 +186,9 @@ def _thermal(opts: dict[str, Any]) -> ThermalState | None:
     )
 
 
-def _plot(mc: MeshingClearance):
-    """The datum rack with its clearance drawn along the normals (magnified, as in Wu & Chi
-    Fig. 4f), and the clearance along the rack."""
-    import matplotlib
+def _plot(mc: MeshingClearance, opts: dict[str, Any]):
+    """The clearance pictures (:func:`rotorcad.clearance_plotting.plot_clearance`), titled with
+    the state (cold or hot, temperatures, contact flank)."""
+    from rotorcad.clearance_plotting import clearance_state, plot_clearance
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    pts, delta, n = mc.datum_rack, mc.clearance, mc.datum_normals
-    ok = np.isfinite(delta)
-    scale = 0.1 * np.ptp(pts[:, 1]) / max(np.nanmax(np.abs(delta)), 1e-9)
-    fig, (ax, bx, cx) = plt.subplots(3, 1, figsize=(8, 11))
-    ax.plot(pts[:, 0], pts[:, 1], "k-", lw=0.8, label="female normal rack (datum)")
-    tip = pts + (scale * np.nan_to_num(delta))[:, None] * n
-    ax.plot(tip[ok, 0], tip[ok, 1], "r-", lw=0.8, label=f"clearance x {scale:.0f}")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.legend(loc="best", fontsize=8)
-    length = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
-    bx.plot(length[ok], 1e3 * delta[ok], "r-", lw=0.8)
-    bx.axhline(0.0, color="k", lw=0.5)
-    bx.set_xlabel("along the datum rack [mm]")
-    bx.set_ylabel("normal clearance [µm]")
-    dist = mc.distribution()
-    inside = dist["in_contact"] > 0
-    cx.plot(dist["male_angle_deg"][inside], 1e3 * dist["clearance"][inside], "b.", ms=1.5)
-    cx.axhline(0.0, color="k", lw=0.5)
-    cx.set_xlabel("male rotation angle of the contact [deg] (suction end to discharge end)")
-    cx.set_ylabel("normal clearance [µm]")
-    fig.tight_layout()
-    return fig
+    return plot_clearance(mc, clearance_state(mc, _thermal(opts), opts["reference_temperature"]))

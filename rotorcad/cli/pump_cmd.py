@@ -10,9 +10,11 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from hob.nomogram import plot_nomogram
+from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
 from rotorcad.cli.gear import build_gear, check_contact, gear_options, merge_gear_params
 from rotorcad.errors import DesignError
+from rotorcad.plot_style import styled
 from rotorcad.pump import GearPump, kollek_coefficients
 
 MM3_PER_S_TO_L_PER_MIN = 60.0 / 1e6
@@ -80,18 +82,32 @@ def pump(design: Path | None, **opts: Any) -> None:
         print_table(f"gear pump z={g.teeth}, b={opts['face_width']:g} mm, n={opts['speed']:g} rpm", result)
 
 
+@styled
 def _plot(p: GearPump) -> Figure:
-    fig = Figure(figsize=(8, 7), dpi=120)
+    """Delivery over one tooth pitch with its mean, and the harmonics of the delivery."""
+    g = p.gear
+    fig = ps.new_figure(10.0, 7.0)
     ax1, ax2 = fig.subplots(2, 1)
     phi, q = p.delivery()
-    ax1.plot(np.degrees(phi), q * MM3_PER_S_TO_L_PER_MIN, "-", color="#08519c")
-    ax1.axhline(p.mean_flow * MM3_PER_S_TO_L_PER_MIN, ls="--", color="grey", lw=0.8)
-    ax1.set_xlabel("rotation angle within one tooth pitch [deg]")
-    ax1.set_ylabel("delivery [L/min]")
-    ax1.set_title(f"eps = {p.contact_ratio:.3f}, irregularity {p.irregularity:.3f}, f = {p.pump_frequency:.0f} Hz", fontsize=9)
+    mean = p.mean_flow * MM3_PER_S_TO_L_PER_MIN
+    ax1.plot(np.degrees(phi), q * MM3_PER_S_TO_L_PER_MIN, "-", color=ps.BLUE, lw=1.4, label="instantaneous delivery Q(φ)")
+    ax1.axhline(mean, ls="--", color=ps.VERMILLION, lw=1.0, label=f"mean flow {mean:.4g} L/min")
+    ax1.set_xlabel(ps.label("rotation angle within one tooth pitch φ", "°"))
+    ax1.set_ylabel(ps.label("delivery Q", "L/min"))
+    ax1.set_title(f"delivery (Kollek & Osiński eqs. 2-3): irregularity δ_Q = {p.irregularity:.3f}")
+    ps.legend_outside(ax1)
     h = p.harmonics(12)
-    ax2.bar(np.arange(1, len(h) + 1) * p.pump_frequency, h, width=0.6 * p.pump_frequency, color="#e6550d")
-    ax2.set_xlabel("frequency [Hz]")
-    ax2.set_ylabel("amplitude / mean flow")
-    fig.tight_layout()
+    ax2.bar(
+        np.arange(1, len(h) + 1) * p.pump_frequency, h, width=0.6 * p.pump_frequency, color=ps.ORANGE, label="harmonic amplitude"
+    )
+    ax2.set_xlabel(ps.label("frequency f", "Hz"))
+    ax2.set_ylabel(ps.label("amplitude / mean flow", "1"))
+    ax2.set_title(f"harmonics of the delivery at k × the pump frequency {p.pump_frequency:.4g} Hz")
+    ps.legend_outside(ax2)
+    ps.title(
+        fig,
+        f"external gear pump z = {g.teeth}, m = {g.module:g} mm, x = {g.shift:g}",
+        f"α = {np.degrees(g.pressure_angle):g}°, b = {p.face_width:g} mm, n = {p.speed_rpm:g} rpm; ε = {p.contact_ratio:.3f}, "
+        f"f = {p.pump_frequency:.4g} Hz",
+    )
     return fig

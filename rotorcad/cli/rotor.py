@@ -12,8 +12,7 @@ from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile, read_profile_points
 from rotorcad.clearance_design import ClearanceDistribution, corrected_female
-from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
-from rotorcad.design import load_rotor_design
+from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.profile import Segment
@@ -137,6 +136,16 @@ def rotor(design: Path | None, **opts: Any) -> None:
         plot = Path(opts["plot"])
         out.add_figure(plot, lambda: plot_pair(analysis, clearance), "--plot")
         out.add_figure(plot.with_name(plot.stem + "_sliding" + (plot.suffix or ".png")), lambda: plot_sliding(analysis), "--plot")
+        measured = _measured_points(opts)
+        if measured is not None:
+            from rotorcad.rotor_plotting import plot_point_deviation
+
+            side, pts, source = measured
+            out.add_figure(
+                plot.with_name(plot.stem + "_deviation" + (plot.suffix or ".png")),
+                lambda: plot_point_deviation(analysis, side, pts, source),
+                "--plot",
+            )
     designed = _designed_clearance(opts)
     male_pts = lambda: _exterior(analysis.sections[0])  # noqa: E731
     female_pts = lambda: _exterior(analysis.sections[1])  # noqa: E731
@@ -166,8 +175,34 @@ def rotor(design: Path | None, **opts: Any) -> None:
                 f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, flank '{d['flank']}'"
                 + (" (point-generated)" if d["point_generated"] else "")
             )
+        spatial = result["blow_hole_spatial"]
+        if spatial["area"] > 0:
+            click.echo(
+                f"  spatial blow-hole {spatial['area']:.3f} mm² (projected {spatial['projected_area']:.3f} mm²) "
+                f"between z = {spatial['z_min']:.2f} and {spatial['z_max']:.2f} mm of the contact line"
+            )
+        for flank, report in result["flanks"].items():
+            click.echo(
+                f"  {flank} flank: geometric contact on {100 * report['geometric_share']:.0f} % of "
+                f"{report['meshline_length']:.2f} mm of meshline, "
+                f"transverse contact ratio {report['transverse_contact_ratio']:.3f}"
+            )
+        for reason in result["running_reasons"]:
+            click.echo(f"  does not run without timing gears: {reason}")
         for p in result["files"]:
             click.echo(f"wrote {p}")
+
+
+def _measured_points(opts: dict[str, Any]) -> tuple[str, np.ndarray, str] | None:
+    """The rotor and the points of --male-points / --female-points when they are points (a CSV or a
+    drawing's points), for the picture of their deviation from the profile; None otherwise."""
+    for side in ("male", "female"):
+        path = opts.get(f"{side}_points")
+        if path is None:
+            continue
+        data = read_profile(path, f"--{side}-points", opts.get("layer"))
+        return (side, np.asarray(data, dtype=float), Path(path).name) if isinstance(data, np.ndarray) else None
+    return None
 
 
 def _designed_clearance(opts: dict[str, Any]) -> ClearanceDistribution | None:
@@ -198,7 +233,11 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
     return _exterior(poly)
 
 
-def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, float, float]:
+def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None) -> tuple[ScrewRotors, float, float]:
+    """The rotors of a design file (or of ``settings``, the design already read and checked by
+    :func:`rotorcad.cli.common.load_rotor_design`, so that the file is read once) or of measured
+    points, with the command-line overrides; the speed (rpm) and the housing's radial clearance
+    (mm) too."""
     sources = [k for k in ("male_points", "female_points", "rack_points") if opts.get(k)]
     if len(sources) > 1:
         raise InputError("give only one of --male-points, --female-points, --rack-points.")
@@ -206,7 +245,7 @@ def _build(design: Path | None, opts: dict[str, Any]) -> tuple[ScrewRotors, floa
     family, params, points, smoothing, speed, clearance = None, {}, None, opts["smoothing"], 3000.0, 0.0
     if design is not None:
         try:
-            d = load_rotor_design(design)
+            d = load_rotor_design(design) if settings is None else settings
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
         values.update(d["pair"])
