@@ -27,7 +27,7 @@ from scipy import interpolate
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
-from rotorcad.geometry import cross
+from rotorcad.geometry import cross, wrap_angle
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -400,7 +400,7 @@ class MeshingAnalysis:
         def arc(center: np.ndarray, r: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
             t0 = np.arctan2(*(a - center)[::-1])
             t1 = np.arctan2(*(b - center)[::-1])
-            t1 = t0 + (t1 - t0 + np.pi) % (2 * np.pi) - np.pi
+            t1 = wrap_angle(t1, t0)
             th = np.linspace(t0, t1, 200)
             return center + r * np.stack([np.cos(th), np.sin(th)], axis=1)
 
@@ -501,7 +501,17 @@ class MeshingAnalysis:
         v = np.where(np.isfinite(v), v, -1.0)
         i = int(np.argmax(v))
         p = self.meshline[i]
-        return {"value": float(v[i]), "x": float(p[0]), "y": float(p[1]), "angle_deg": float(k["angle_deg"][i])}
+        pair = self.rotors.pair
+        roles = np.concatenate([piece.roles for piece in self.pieces])
+        return {
+            "value": float(v[i]),
+            "x": float(p[0]),
+            "y": float(p[1]),
+            "angle_deg": float(k["angle_deg"][i]),
+            "flank": str(roles[i]),
+            "male_radius": float(np.hypot(*p)),
+            "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
+        }
 
     def summary(self) -> dict[str, object]:
         pair = self.rotors.pair

@@ -42,7 +42,7 @@ from scipy import optimize
 from rotorcad.curves import Curve, Line, PointPath
 from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
-from rotorcad.geometry import rotate
+from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.roles import PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_arc, rack_line
@@ -126,7 +126,7 @@ def _female_corner_path(pair: RotorPair, contact: np.ndarray, t_n: float, at_end
     # corner is nearest O1 at polar angle pi
     ang = np.arctan2(contact[1], contact[0] - pair.center_distance)
     ratio = pair.female_teeth / pair.male_teeth
-    t_f = t_n + (np.mod(ang, 2 * np.pi) - np.pi) * ratio  # the nearest passage, before or after t_n
+    t_f = t_n + wrap_angle(ang - np.pi) * ratio  # the nearest passage, before or after t_n
     if abs(pair.male_dedendum) < 1e-9:
         t_f += CUSP_MARGIN * np.sign(t_n - t_f)
     path = (

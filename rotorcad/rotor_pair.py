@@ -48,6 +48,8 @@ class RotorPair:
         if self.hand not in ("right", "left"):
             raise DesignError("hand", "'right' or 'left'", self.hand)
         for rotor, pitch in (("male", self.male_pitch_radius), ("female", self.female_pitch_radius)):
+            if not self.strict:
+                break  # an assembled or measured pair: its radii need not straddle these pitch circles
             tip, root = getattr(self, f"{rotor}_tip_radius"), getattr(self, f"{rotor}_root_radius")
             if not root < pitch + 1e-9:
                 raise DesignError(f"{rotor}_root_radius", f"at most the {rotor} pitch radius {pitch:.6g} mm", root)

@@ -284,3 +284,22 @@ def _toml(path: Path) -> dict:
 
     with path.open("rb") as f:
         return tomllib.load(f)
+
+
+# ---- Rinder's comparison (sec. 3.2) -----------------------------------------------------------------
+
+
+def test_rinder_comparison_in_the_readme_is_what_rotorcad_computes():
+    # The README's table of extremes is the script's output for the shipped samples (not stale),
+    # and the narrow-tip's largest sliding velocity lies where Rinder puts it: at the male tip, on
+    # the sealing flank, at about -25 deg in his count (+25 deg here, the sense reversed), within 5 deg.
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("compare", SAMPLES / "rinder_comparison" / "compare.py")
+    compare = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(compare)
+    readme = (SAMPLES.parent / "README.md").read_text()
+    assert compare.table() in readme
+    narrow = compare.extremes("narrow_tip_5_6")["largest sliding velocity"]
+    assert narrow["flank"] == "sealing" and narrow["place"].startswith("male tip")
+    assert abs(narrow["angle_deg"] - 25.0) < 5.0
