@@ -241,7 +241,7 @@ def test_output_name_over_255_bytes(capsys, tmp_path):
 def test_shift_1e30_module_1e300_teeth_1e20_hob_module_1e_12(capsys, tmp_path):
     """`shift = 1e30`, `--module 1e300`, teeth 1e20, `hob --module 1e-12`."""
     path = design(tmp_path, (SAMPLES / "gear_pair.toml").read_text().replace("shift = 0.3", "shift = 1e30"))
-    refused(capsys, "--shift", "gear", path)
+    refused(capsys, "[gear] shift", "gear", path)  # the key as the file names it
     refused(capsys, "--module must be a length from", "gear", "--teeth", "20", "--module", "1e300")
     refused(capsys, "--teeth must be a whole number from 3 to", "gear", "--teeth", str(10**20), "--module", "1")
     refused(capsys, "--module must be a length from", "hob", "--teeth", "20", "--module", "1e-12")
@@ -414,3 +414,14 @@ def test_cut_writes_the_whole_gear(capsys, tmp_path):
         if teeth == "7":  # (quadratic in the points)
             assert shapely.hausdorff_distance(simulated.exterior, analytic.exterior) < 0.02
         assert 0 <= simulated.area - analytic.area < 0.01 * analytic.length  # cutting leaves scallops, never less
+
+
+def test_gear_design_keys_are_named_by_their_table(capsys, tmp_path):
+    """A bad `[gear] shift` in a design file was reported as `--shift`, an option the user never typed;
+    an option given beside the file is still named as the option."""
+    path = tmp_path / "g.toml"
+    path.write_text("[gear]\nteeth = 3\nmodule = 2.0\nshift = -0.5\n")
+    refused(capsys, "[gear] shift", "gear", str(path))
+    refused(capsys, "--shift", "gear", str(path), "--shift", "-0.6")
+    path.write_text("[gear]\nteeth = 20\nmodule = 2.0\n[mate]\nteeth = 30\nshift = 9.0\n")
+    refused(capsys, "[mate] shift", "gear", str(path))

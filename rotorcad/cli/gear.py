@@ -45,6 +45,9 @@ MATE_OPTION = {
     "shifts": "--shift and --mate-shift",
     "mesh": "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle",
 }
+# design-file keys ([gear], without _deg) by the parameter names of the gear's errors, where they differ
+DESIGN_PARAM = {"tip_radius": "tip_radius_factor"}
+FROM_DESIGN = "_named_in_design"
 DEFAULTS = {"pressure_angle": 20.0, "helix_angle": 0.0, "shift": 0.0, "addendum": 1.0, "dedendum": 1.25, "tip_radius": 0.38}
 
 
@@ -151,10 +154,14 @@ def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str,
             raise InputError(exc.sentence()) from None
         gd, md = d["gear"], d["mate"]
         params.update({k.removesuffix("_deg"): v for k, v in gd.items()})
+        # what the design file gave, by the names the gear's errors use, to name its key in them
+        named = {DESIGN_PARAM.get(k.removesuffix("_deg"), k.removesuffix("_deg")): f"[gear] {k}" for k in gd}
         if md:
             params["mate_teeth"] = md.get("teeth")
             params["mate_shift"] = md.get("shift")
             params["center_distance"] = md.get("center_distance")
+            named.update({f"mate {k}": f"[mate] {k}" for k in md})
+        params[FROM_DESIGN] = named
     for key in (
         "teeth",
         "module",
@@ -170,6 +177,8 @@ def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str,
     ):
         if opts.get(key) is not None:
             params[key] = opts[key]
+            params.get(FROM_DESIGN, {}).pop(DESIGN_PARAM.get(key, key), None)  # the option overrides the file
+            params.get(FROM_DESIGN, {}).pop(f"mate {key.removeprefix('mate_')}", None)
     for key, value in DEFAULTS.items():
         params.setdefault(key, value)
     for key in ("teeth", "module"):
@@ -188,10 +197,11 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
         "tip_radius_factor": p["tip_radius"],
         "tolerance": tolerance,
     }
+    named = p.get(FROM_DESIGN, {})
     try:
         g = InvoluteGear(teeth=p["teeth"], shift=p["shift"], **common)
     except DesignError as exc:
-        raise reraise(exc, GEAR_OPTION) from None
+        raise reraise(exc, {**GEAR_OPTION, **{k: v for k, v in named.items() if not k.startswith("mate ")}}) from None
     z2, a = p.get("mate_teeth"), p.get("center_distance")
     if z2 is None:
         if a is not None or p.get("mate_shift") is not None:
@@ -206,7 +216,8 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
         mate = InvoluteGear(teeth=z2, shift=x2, **common)
         pair = GearPair(g, mate, a)
     except DesignError as exc:
-        raise reraise(exc, MATE_OPTION) from None
+        mate_named = {k.removeprefix("mate "): v for k, v in named.items() if k.startswith("mate ")}
+        raise reraise(exc, {**MATE_OPTION, **mate_named}) from None
     check_contact(pair.contact_ratio, "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle")
     return g, pair
 
