@@ -74,8 +74,8 @@ def report_unit(key: str) -> str:
         return "m/s"
     if last == "value" and key.startswith("max_slip"):
         return "–"
-    if last in ("x", "y"):
-        return "mm"
+    if last in ("x", "y", "z_min", "z_max") or last.endswith("_z") or key.startswith("blow_hole_spatial.apex"):
+        return "mm"  # coordinates, and heights along the contact line
     if "share" in last:
         return "–"
     unit = unit_of(last) or unit_of(key)
