@@ -126,6 +126,48 @@ class Arc(Curve):
 
 
 @dataclass(frozen=True)
+class GeneralisedArc(Curve):
+    """A quarter of Stosic's generalised arc (x/a)^p + (y/b)^q = 1 between its two axis points.
+
+    Points are ``center + e1 cos^(2/p) s + e2 sin^(2/q) s`` for s in [0, pi/2]: the end on ``e1``
+    (s = 0) has its tangent along ``e2`` and the end on ``e2`` (s = pi/2) along ``e1`` for
+    exponents above 1, so the arc joins a line or circle tangentially at both ends. p = q = 2 with
+    |e1| = |e2| is a circular quarter, with |e1| != |e2| an elliptic one (Stosic & Hanjalic 1997; Stosic,
+    Smith & Kovacevic, *Screw Compressors*, 2005, sec. 2.4, where the N rack uses it).
+
+    Parameters
+    ----------
+    center : tuple of float
+        Centre of the generalised ellipse, mm.
+    e1, e2 : tuple of float
+        Its two semi-axes as vectors (mm); |e1| = a, |e2| = b.
+    p, q : float
+        Exponents on the ``e1`` and ``e2`` coordinates, at least 1.
+    s0, s1 : float
+        Parameter range in use and its direction of travel, within [0, pi/2].
+    """
+
+    center: tuple[float, float]
+    e1: tuple[float, float]
+    e2: tuple[float, float]
+    p: float = 2.0
+    q: float = 2.0
+    s0: float = 0.0
+    s1: float = np.pi / 2
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        s = np.clip(np.asarray(s, dtype=float), 0.0, np.pi / 2)
+        c, si = np.cos(s), np.sin(s)
+        e1, e2 = np.asarray(self.e1, dtype=float), np.asarray(self.e2, dtype=float)
+        p = np.asarray(self.center, dtype=float) + np.multiply.outer(c ** (2 / self.p), e1)
+        p = p + np.multiply.outer(si ** (2 / self.q), e2)
+        # d/ds times the positive factor sin^(1-2/q) cos^(1-2/p): finite and non-zero at both ends
+        t = np.multiply.outer(-(2 / self.p) * si ** (2 - 2 / self.q), e1)
+        t = t + np.multiply.outer((2 / self.q) * c ** (2 - 2 / self.p), e2)
+        return p, normalize(t)
+
+
+@dataclass(frozen=True)
 class Involute(Curve):
     """Ordinary involute of the base circle ``base_radius`` about the origin.
 
@@ -438,6 +480,7 @@ def chord_error(curve: Curve, s: Array, probes: int = 8) -> float:
 __all__ = [
     "Arc",
     "Curve",
+    "GeneralisedArc",
     "Involute",
     "Line",
     "Mapped",

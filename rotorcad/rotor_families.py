@@ -43,6 +43,7 @@ from rotorcad.curves import Curve, Line, PointPath
 from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate, wrap_angle
+from rotorcad.n_rack import n_rack
 from rotorcad.roles import PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_arc, rack_line
@@ -672,6 +673,25 @@ SRM_ASYMMETRIC_PARAMS = {
 }
 SRM_B_PARAMS = dict(SRM_ASYMMETRIC_PARAMS)
 
+def _exponent(v: float) -> bool:
+    return bool(np.isfinite(v) and 1.5 <= v <= 6.0)
+
+
+def _within(low: float, high: float) -> Callable[[float], bool]:
+    return lambda v: bool(np.isfinite(v) and low <= v <= high)
+
+
+N_RACK_PARAMS = {
+    "driving_width": Param(1.25, "between 0.3 and 1.5 (fraction of the male addendum)", _within(0.3, 1.5)),
+    "driving_exponent_along": Param(2.0, "between 1.5 and 6", _exponent),
+    "driving_exponent_across": Param(2.0, "between 1.5 and 6", _exponent),
+    "driving_center_depth": Param(0.5, "between 0 and 1 (fraction of the male addendum)", _within(0, 1)),
+    "driving_root_rounding": Param(0.3, "between 0.01 and 1 (fraction of the male addendum)", _within(0.01, 1)),
+    "tip_land": Param(0.0, "at least 0 mm", _nonneg),
+    "male_tip_rounding": Param(0.05, "between 0 and 0.5 (fraction of the male addendum)", _within(0, 0.5)),
+    "female_tip_rounding": Param(0.1, "between 0 and 0.5 (fraction of the male addendum)", _within(0, 0.5)),
+}
+
 FAMILIES: dict[str, tuple[Callable[..., ScrewRotors], dict[str, Param]]] = {
     "krigar": (krigar, KRIGAR_PARAMS),
     "srm-symmetric": (srm_symmetric, SRM_SYMMETRIC_PARAMS),
@@ -680,6 +700,7 @@ FAMILIES: dict[str, tuple[Callable[..., ScrewRotors], dict[str, Param]]] = {
     "srm-b": (srm_b, SRM_B_PARAMS),
     "narrow-tip": (narrow_tip, NARROW_TIP_PARAMS),
     "rack-involute": (rack_involute, RACK_INVOLUTE_PARAMS),
+    "n-rack": (n_rack, N_RACK_PARAMS),
 }
 
 

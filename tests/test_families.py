@@ -15,6 +15,7 @@ from shapely import affinity
 
 from hob.rack import rack_deviation, rotor_rack
 from hob.verdict import judge
+from rotorcad.cli.common import load_rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.meshing import MeshingAnalysis
 from rotorcad.roles import Flank, PieceRole
@@ -30,6 +31,10 @@ PAIR_SRM = RotorPair(5, 6, A, 63.0, R1W, R2W, A - 63.0)
 PAIR_NARROW = RotorPair(5, 6, A, 70.0, R1W, R2W, A - 70.0)
 PAIR_56 = RotorPair(5, 6, A, 63.0, 45.0, 71.0, 53.0)
 PAIR_46 = RotorPair(4, 6, 100.0, 54.0, 40.0, 60.0, 46.0)
+# Wu & Chi (seed 004) Table 1, the N4 pair: 5/6, a = 82 mm, outer/inner radii 57.99/35.66 (male) and
+# 46.34/24.01 mm (female), pitch helix angle 46 deg, screw length 162.079 mm
+N4_LEAD = 2 * np.pi * (82.0 * 5 / 11) / np.tan(np.radians(46.0))
+PAIR_N4 = RotorPair(5, 6, 82.0, 57.99, 35.66, 46.34, 24.01, lead=N4_LEAD, length=162.079)
 
 EVERY_FAMILY = [
     ("krigar", PAIR_46, {}),
@@ -42,6 +47,9 @@ EVERY_FAMILY = [
     ("srm-b", PAIR_SRM, {"driving_rounding": 0.3}),
     ("narrow-tip", PAIR_NARROW, {}),
     ("rack-involute", PAIR_56, {"tip_rounding": 1.4, "root_rounding": 1.0, "lobe_width": 0.6}),
+    ("n-rack", PAIR_N4, {}),
+    ("n-rack", PAIR_N4, {"driving_width": 1.1, "driving_exponent_along": 2.5, "tip_land": 1.5, "male_tip_rounding": 0.0}),
+    ("n-rack", PAIR_46, {"driving_exponent_across": 3.0, "female_tip_rounding": 0.2}),
 ]
 
 
@@ -226,7 +234,9 @@ def test_narrow_tip_lobe_counts_are_those_rinder_names(teeth):
 # ---- the spatial blow-hole ------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("family,pair,params", [("srm-symmetric", PAIR_46, {}), ("srm-asymmetric", PAIR_SRM, {})])
+@pytest.mark.parametrize(
+    "family,pair,params", [("srm-symmetric", PAIR_46, {}), ("srm-asymmetric", PAIR_SRM, {}), ("n-rack", PAIR_N4, {})]
+)
 def test_spatial_blow_hole_lies_on_the_tips_and_the_cusp_and_its_area_is_independent(family, pair, params):
     ma = MeshingAnalysis(build_family(pair, family, params))
     hole = ma.spatial_blow_hole
@@ -277,6 +287,79 @@ def test_spatial_blow_hole_lies_on_the_tips_and_the_cusp_and_its_area_is_indepen
     )[0]
     assert hole.area == pytest.approx(total, rel=1e-2)
     assert hole.area > hole.projected_area
+
+
+# ---- Stosic's N rack -------------------------------------------------------------------------------
+
+
+def test_n_rack_sealing_tips_are_circles_on_the_rotors_touching_with_their_normal_through_c():
+    # Stosic's N rack carries two rotor-generated pieces: the rack images of a male and a female
+    # sealing tip circle. The engine generates the rotors back from those rack pieces; the result
+    # must be the circles themselves (closed form: centre at R - r on the tip circle's radius,
+    # radius r), tangent to the tip circles, and the two circles must touch at one point K whose
+    # common normal runs through the pitch point C (the construction's defining property).
+    pair = PAIR_N4
+    h1 = pair.male_addendum
+    rm, rf = 0.05 * h1, 0.1 * h1
+    rotors = build_family(pair, "n-rack", {})
+    male = dict((name, curve) for name, curve, _ in rotors.male_pieces)["sealing tip circle"]
+    female = dict((name, curve) for name, curve, _ in rotors.female_pieces)["sealing tip circle"]
+    o2 = np.array([pair.center_distance, 0.0])
+    for curve, tip, r in ((male, pair.male_tip_radius, rm), (female, pair.female_tip_radius, rf)):  # own frames
+        pts = curve.evaluate(np.linspace(curve.s0, curve.s1, 201))[0]
+        # the circle's centre: least squares on the points (Kasa fit), independent of the builder
+        A = np.c_[2 * pts, np.ones(len(pts))]
+        cx, cy, c0 = np.linalg.lstsq(A, (pts**2).sum(axis=1), rcond=None)[0]
+        radius = np.sqrt(c0 + cx**2 + cy**2)
+        assert radius == pytest.approx(r, abs=1e-7)
+        assert np.hypot(cx, cy) == pytest.approx(tip - r, abs=1e-7)
+        assert np.abs(np.hypot(*(pts - [cx, cy]).T) - r).max() < 1e-7
+        # one end on the tip circle (tangent there), the rest inside it
+        assert np.hypot(*pts.T).max() == pytest.approx(tip, abs=1e-7)
+    # the two circles touch at the rack's junction H: at the instant they touch, the centres and
+    # the contact point are collinear with C
+    from rotorcad.n_rack import sealing_contact
+
+    k = sealing_contact(pair, rm, rf)
+    c = np.array([pair.male_pitch_radius, 0.0])
+    u = (k - c) / np.hypot(*(k - c))
+    assert np.hypot(*(k - rm * u)) == pytest.approx(pair.male_tip_radius - rm, abs=1e-9)
+    assert np.hypot(*(k + rf * u - o2)) == pytest.approx(pair.female_tip_radius - rf, abs=1e-9)
+
+
+def test_n4_sample_has_the_published_dimensions_and_reports_its_blow_hole_and_contact_line():
+    # Wu & Chi Table 1 (the N4 rotors): the sample carries those dimensions; its pitch helix angle
+    # atan(2 pi r1w / lead) is 46.0 deg and its wrap angle follows from the length.
+    d = load_rotor_design(SAMPLES / "n_rack_5_6.toml")
+    pair = RotorPair(**d["pair"])
+    assert (pair.male_teeth, pair.female_teeth, pair.center_distance) == (5, 6, 82.0)
+    assert (pair.male_tip_radius, pair.male_root_radius) == (57.99, 35.66)
+    assert (pair.female_tip_radius, pair.female_root_radius) == (46.34, 24.01)
+    assert pair.length == 162.079
+    assert np.degrees(np.arctan(2 * np.pi * pair.male_pitch_radius / pair.lead)) == pytest.approx(46.0, abs=1e-4)
+    summary = design_summary(_toml(SAMPLES / "n_rack_5_6.toml"), SAMPLES)
+    # a small blow-hole that opens because the tips are rounded; the projected one against the
+    # curved triangle it bounds (shapely: the bores' lens corner beyond the meshline end)
+    ma = MeshingAnalysis(build_family(pair, d["family"], d["params"]))
+    assert 0 < summary["blow_hole_area"] < 5.0
+    assert summary["blow_hole_spatial"]["area"] > summary["blow_hole_area"]
+    assert summary["contact_line_length"] == pytest.approx(ma.contact_line_length)
+    # the contact line is the meshline lifted along the rotors: longer than its projection
+    planar = np.linalg.norm(np.diff(ma.meshline, axis=0), axis=1).sum()
+    assert summary["contact_line_length"] > planar
+    # geometric contact on both flanks: it runs without timing gears (Stosic's aim for the N rotors)
+    assert summary["runs_without_timing_gears"]
+    # the rounded tips are what opens the blow-hole: sharp tips (radii to 0) close it
+    sharper = build_family(pair, "n-rack", {"male_tip_rounding": 0.0, "female_tip_rounding": 0.08})
+    assert MeshingAnalysis(sharper).blow_hole_area < summary["blow_hole_area"]
+
+
+def test_n_rack_refuses_a_female_tip_circle_centred_outside_the_female_pitch_circle():
+    # with r_f <= d1 the female circle's part nearest its tip has normals that miss the female
+    # pitch circle: no generating position, and the rotors would overlap
+    d1 = PAIR_N4.male_dedendum
+    with pytest.raises(DesignError, match="female_tip_rounding"):
+        build_family(PAIR_N4, "n-rack", {"female_tip_rounding": 0.95 * d1 / PAIR_N4.male_addendum})
 
 
 def _toml(path: Path) -> dict:
