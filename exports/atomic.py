@@ -24,13 +24,15 @@ NAME_MAX = 255  # bytes of one file name (Linux, macOS, Windows)
 
 def staging_prefix(target: Path) -> str:
     """The hidden temporary name's start for ``target``: its name cut to 100 bytes, so that a
-    name near the file system's limit still leaves room for the temporary's suffix."""
+    name near the file system's limit still leaves room for the temporary's suffix.
+    """
     return "." + os.fsencode(target.name)[:100].decode(errors="ignore") + "."
 
 
 def check_writable(path: Path, label: str) -> None:
     """Refuse, before any work is done, a target whose folder is missing or not writable, or that
-    is not a regular file (a device, a FIFO or a socket would be replaced by a file)."""
+    is not a regular file (a device, a FIFO or a socket would be replaced by a file).
+    """
     folder = path.parent if str(path.parent) else Path(".")
     size = len(os.fsencode(path.name))
     if size > NAME_MAX:

@@ -65,7 +65,8 @@ class BackgroundWriter:
 
 def worker_count() -> int:
     """Worker processes to use: 1 on Linux with two or more cores and no other Python thread
-    running, else 0 (run here); ``ROTORCAD_WORKERS=0`` in the environment also says 0."""
+    running, else 0 (run here); ``ROTORCAD_WORKERS=0`` in the environment also says 0.
+    """
     if os.environ.get("ROTORCAD_WORKERS", "").strip() == "0":
         return 0
     if sys.platform != "linux" or threading.active_count() > 1:
@@ -75,7 +76,8 @@ def worker_count() -> int:
 
 def _start_worker(preload: tuple[str, ...]) -> None:
     """In the worker: leave Ctrl-C to the parent (which stops the worker and removes what it
-    wrote), then import ``preload`` while the parent goes on."""
+    wrote), then import ``preload`` while the parent goes on.
+    """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for module in preload:
         importlib.import_module(module)

@@ -44,7 +44,8 @@ _DXF_TEXT = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(?:999[ \t]*\r?\n[^\r\n]*\r?\n\s
 
 def write_points(path: Path, points: np.ndarray, comments: list[str] | None = None, header: str = "x,y") -> None:
     """Write ``points`` (n, 2), or rows with the columns ``header`` names, to ``path`` with full
-    double precision."""
+    double precision.
+    """
     with open(path, "w", encoding="utf-8", newline="\n") as f:
         for line in comments or []:
             f.write(f"# {line}\n")
@@ -55,13 +56,15 @@ def write_points(path: Path, points: np.ndarray, comments: list[str] | None = No
 def looks_like_dxf(head: bytes) -> bool:
     """True when the first bytes of a file are those of a DXF drawing: the binary sentinel
     ``AutoCAD Binary DXF``, or (after optional blanks and ``999`` comments) the group code ``0``
-    followed by ``SECTION``."""
+    followed by ``SECTION``.
+    """
     return head.startswith(b"AutoCAD Binary DXF") or _DXF_TEXT.match(head) is not None
 
 
 def _decode(data: bytes, label: str, path: Path) -> str:
     """Text of a points file: UTF-8 (a byte-order mark is dropped), else Latin-1; binary data is
-    refused."""
+    refused.
+    """
     allowed = "a CSV points file (text with the header x,y)"
     for magic, name in _MAGIC:
         if data.startswith(magic):

@@ -3,7 +3,8 @@ centre marks on their own layers, labels as TEXT on theirs, true scale in millim
 ($INSUNITS = 4).
 
 ezdxf is imported by the writers (0.15 s): the export command hands DXF writing to its worker
-process and need not load it (see :mod:`exports.background`)."""
+process and need not load it (see :mod:`exports.background`).
+"""
 
 from __future__ import annotations
 
@@ -95,7 +96,8 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
 
 def _lwpolyline(msp, pts: np.ndarray, close: bool, layer: str) -> None:
     """An LWPOLYLINE of ``pts`` set in one piece: ezdxf appends points one by one, copying the
-    whole array each time (a 126 000-point gear outline took minutes)."""
+    whole array each time (a 126 000-point gear outline took minutes).
+    """
     pts = np.asarray(pts, dtype=float)
     poly = msp.add_lwpolyline([], close=close, dxfattribs={"layer": layer})
     poly.lwpoints.set(np.column_stack([pts[:, :2], np.zeros((len(pts), 3))]))
@@ -103,7 +105,8 @@ def _lwpolyline(msp, pts: np.ndarray, close: bool, layer: str) -> None:
 
 def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: str = "MESH", version: str = "R2000") -> None:
     """A 3D triangle mesh as a MESH entity (R2000+) or a POLYFACE (R12). Meant for small meshes:
-    a POLYFACE of 0.1 M triangles takes ezdxf ~10 s to build (STACK-NOTES)."""
+    a POLYFACE of 0.1 M triangles takes ezdxf ~10 s to build (STACK-NOTES).
+    """
     doc = _new(version)
     if version != "R12":
         doc.header["$INSUNITS"] = 4
@@ -125,7 +128,8 @@ def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: s
 
 def _new(version: str) -> ezdxf.document.Drawing:
     """A new drawing; ezdxf warns on stderr that R12 has no units variable when it sets its default
-    units - keep a successful run's stderr clean."""
+    units - keep a successful run's stderr clean.
+    """
     import ezdxf
 
     logger = logging.getLogger("ezdxf")

@@ -116,7 +116,8 @@ def _layer_entities(doc, label: str, value: str, layer: str | None) -> list:
 
 def _ocs_mirror(entity, label: str, value: str) -> bool:
     """Whether the entity's object coordinate system is the xy plane seen from below (extrusion
-    (0, 0, -1): x mirrored); an entity in any other plane is refused."""
+    (0, 0, -1): x mirrored); an entity in any other plane is refused.
+    """
     n = np.asarray(entity.dxf.extrusion, dtype=float)
     n = n / np.linalg.norm(n)
     if abs(n[0]) > 1e-9 or abs(n[1]) > 1e-9:
@@ -150,7 +151,8 @@ def _mirrored(curve: Curve) -> Curve:
 
 def _segment(p0: np.ndarray, p1: np.ndarray, bulge: float) -> Curve | None:
     """A polyline segment: straight, or the circular arc of ``bulge`` = tan(included angle / 4),
-    positive counter-clockwise (DXF reference, LWPOLYLINE group 42). None for a zero-length one."""
+    positive counter-clockwise (DXF reference, LWPOLYLINE group 42). None for a zero-length one.
+    """
     d = p1 - p0
     if not np.any(d):
         return None
@@ -356,7 +358,8 @@ def _spans(curve: Curve) -> int:
 def _samples(curve: Curve, tolerance: float) -> np.ndarray:
     """Points along ``curve`` to the chord tolerance (mm): the ends of a line; on a spline
     :func:`rotorcad.curves.sample_curve` starts from at least two intervals per polynomial piece,
-    so that no piece (an inflection, a small wiggle) lies unseen between two first samples."""
+    so that no piece (an inflection, a small wiggle) lies unseen between two first samples.
+    """
     if isinstance(curve, Line):
         return np.array([curve.start, curve.end])
     return sample_curve(curve, tolerance, minimum=2 * _spans(curve) + 1)[1]
@@ -364,7 +367,8 @@ def _samples(curve: Curve, tolerance: float) -> np.ndarray:
 
 def _coarse(chain: Piece) -> np.ndarray:
     """Points along the chain for its orientation: line ends, at least 17 points on other curves
-    (two per polynomial piece of a spline)."""
+    (two per polynomial piece of a spline).
+    """
     parts = []
     for c in chain:
         if isinstance(c, Line):
@@ -376,7 +380,8 @@ def _coarse(chain: Piece) -> np.ndarray:
 
 def _orient(chain: Piece, closed: bool) -> Piece:
     """The chain in its direction of travel: counter-clockwise when closed or running around the
-    origin, else with x growing."""
+    origin, else with x growing.
+    """
     p = _coarse(chain)
     if closed:
         area = 0.5 * np.sum(p[:-1, 0] * p[1:, 1] - p[1:, 0] * p[:-1, 1])
@@ -515,7 +520,8 @@ def read_profile_points(path: Path, label: str, layer: str | None = None) -> np.
 
 def _is_drawing(path: Path, label: str) -> bool:
     """True for a DXF drawing (by its name or its first bytes), False for anything else; a path
-    that is not a regular file is refused first."""
+    that is not a regular file is refused first.
+    """
     path = Path(path)
     check_regular_file(path, label, "CSV points file or DXF drawing")
     with open(path, "rb") as f:
@@ -527,7 +533,8 @@ def read_profile(path: Path, label: str, layer: str | None = None) -> np.ndarray
     """A rotor profile as the user gave it: the exact curves of a DXF drawing
     (:func:`read_profile_dxf`: arcs stay arcs, splines the drawing's splines) or the points of a
     CSV file (:func:`exports.csv_points.read_points`), whichever ``path`` is (see
-    :func:`read_profile_points`)."""
+    :func:`read_profile_points`).
+    """
     if _is_drawing(path, label):
         return read_profile_dxf(path, label, layer)
     return read_points(path, label)

@@ -58,7 +58,8 @@ def esc(text: Any) -> str:
 
 def number_text(value: Any) -> str:
     """A value as the page shows it: floats to 6 significant digits, booleans as yes / no, None
-    as a dash, infinities as ∞."""
+    as a dash, infinities as ∞.
+    """
     if value is None:
         return "—"
     if isinstance(value, bool):
@@ -81,7 +82,8 @@ def is_number(value: Any) -> bool:
 
 def flatten(mapping: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
     """``(dotted key, value)`` for every scalar of a nested mapping, in its order (lists are left
-    to their own tables)."""
+    to their own tables).
+    """
     out: list[tuple[str, Any]] = []
     for key, value in mapping.items():
         name = f"{prefix}{key}"
@@ -94,7 +96,8 @@ def flatten(mapping: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
 
 def quantity_table(rows: Iterable[tuple[str, Any]], unit: Callable[[str], str], label: str = "quantity") -> str:
     """A table of quantity, value and unit; each row carries ``data-key`` (its dotted key) and,
-    for numbers, ``data-value`` (the full value) so that a reader can check the page."""
+    for numbers, ``data-value`` (the full value) so that a reader can check the page.
+    """
     lines = [f"<table class='quantities'><tr><th>{esc(label)}</th><th>value</th><th>unit</th></tr>"]
     for key, value in rows:
         numeric = is_number(value)
@@ -110,7 +113,8 @@ def quantity_table(rows: Iterable[tuple[str, Any]], unit: Callable[[str], str], 
 
 def record_table(records: Sequence[dict[str, Any]], columns: Sequence[tuple[str, str]], empty: str) -> str:
     """A table of records (one row each) with columns ``(key, heading with unit)``; ``empty`` is
-    said instead when there are none."""
+    said instead when there are none.
+    """
     if not records:
         return f"<p>{esc(empty)}</p>"
     head = "".join(f"<th>{esc(h)}</th>" for _, h in columns)
@@ -129,7 +133,8 @@ _METADATA = re.compile(r"<metadata>.*?</metadata>", re.S)
 
 def inline_svg(svg: str) -> str:
     """An SVG document as an element for the page: without the XML declaration, the DOCTYPE and
-    the metadata (they name web addresses, though nothing loads them)."""
+    the metadata (they name web addresses, though nothing loads them).
+    """
     return _METADATA.sub("", _PROLOGUE.sub("", svg)).strip()
 
 

@@ -94,13 +94,15 @@ def write_faceted_step(path: Path, vertices: np.ndarray, faces: np.ndarray, body
 
 def ocp_available() -> bool:
     """Whether OpenCASCADE (the ``OCP`` package) is installed; found without importing it (0.6 s),
-    which the export leaves to its worker process."""
+    which the export leaves to its worker process.
+    """
     return importlib.util.find_spec("OCP") is not None
 
 
 def _quiet_ocp() -> None:
     """OpenCASCADE's default messenger prints banners on stdout: keep only failures (stdout of a
-    --json command must hold the JSON alone)."""
+    --json command must hold the JSON alone).
+    """
     from OCP.Message import Message, Message_Gravity
 
     for printer in Message.DefaultMessenger_s().Printers():
@@ -109,7 +111,8 @@ def _quiet_ocp() -> None:
 
 def read_step(path: Path) -> dict[str, object]:
     """Read a STEP file with OpenCASCADE: number of solids, validity (BRepCheck) and volume by
-    Gauss-Kronrod integration (the plain one was 0.9 % off on a B-spline rotor; STACK-NOTES)."""
+    Gauss-Kronrod integration (the plain one was 0.9 % off on a B-spline rotor; STACK-NOTES).
+    """
     from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps

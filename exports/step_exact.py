@@ -29,7 +29,8 @@ from rotorcad.geometry import rotate
 @dataclass(frozen=True)
 class SectionSegment:
     """One segment of a closed counter-clockwise section: samples (n, 2) mm with exact unit
-    tangents (n, 2), and what it is (``line``, ``arc`` with its centre, or ``curve``)."""
+    tangents (n, 2), and what it is (``line``, ``arc`` with its centre, or ``curve``).
+    """
 
     name: str
     points: np.ndarray
@@ -40,7 +41,8 @@ class SectionSegment:
 
 def section_segments(profile, turn: float = 0.0) -> list[SectionSegment]:
     """The segments of a :class:`rotorcad.profile.Profile` turned by ``turn`` (rad): a straight
-    segment is a line and a circular arc (its curve has a centre) an arc, the rest curves."""
+    segment is a line and a circular arc (its curve has a centre) an arc, the rest curves.
+    """
     from rotorcad.curves import Line
 
     out = []
@@ -145,7 +147,8 @@ def helicoid_deviation(shape, exact: np.ndarray, lead: float, length: float, per
     """Largest distance (mm) of points sampled on the side faces of ``shape`` (a grid of
     ``per_face`` x ``per_face`` in each face's parameter range, edges included) from the exact
     section ``exact`` (a closed polyline (n, 2) sampled finer than the tolerance checked) after
-    turning each point back by -2 pi z / h. End faces (planes at z = 0 and z = length) are left out."""
+    turning each point back by -2 pi z / h. End faces (planes at z = 0 and z = length) are left out.
+    """
     from OCP.BRep import BRep_Tool
     from OCP.BRepTools import BRepTools
 
@@ -181,7 +184,8 @@ def write_exact_step(
     """Write the helical solid of ``segments`` as STEP (AP214, product named ``body``), placed at
     ``offset``; with ``exact`` (the section as a fine closed polyline) the deviation of the faces
     from the helicoid is measured and returned, and a solid off by more than ``tolerance`` is
-    refused (ValueError saying what was reached)."""
+    refused (ValueError saying what was reached).
+    """
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
     from OCP.gp import gp_Trsf, gp_Vec
     from OCP.IFSelect import IFSelect_RetDone
@@ -221,7 +225,8 @@ def write_housing_step(
 ) -> float:
     """The housing as exact STEP: the block (as :func:`rotorcad.solids.housing_solids` sizes it)
     minus the two bore cylinders about O1 and O2 (``body`` "housing"), or the bores alone
-    ("bores"), by OpenCASCADE's primitives and booleans. Returns the volume (mm^3)."""
+    ("bores"), by OpenCASCADE's primitives and booleans. Returns the volume (mm^3).
+    """
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
     from OCP.BRepGProp import BRepGProp
     from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder

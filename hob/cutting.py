@@ -40,7 +40,8 @@ class CutResult:
 
 def _tool_tooth_polygon(gear: InvoluteGear, tolerance: float) -> np.ndarray:
     """One tool tooth (tip line, tip arcs, flanks, closed high above the blank) in the fixed frame
-    at t = 0, centred on the line y = p/2 (the space of tooth 0's upper neighbour)."""
+    at t = 0, centred on the line y = p/2 (the space of tooth 0's upper neighbour).
+    """
     half: list[np.ndarray] = []
     for name in ("tip line", "tip arc", "flank"):
         curve: Curve | None = gear.tool.get(name)
@@ -60,7 +61,8 @@ def _drop_repeats(pts: np.ndarray, eps: float) -> np.ndarray:
     first). The pieces of the tool tooth (tip line, tip arc, flank) share their end points; turned
     to a tool position, such a pair a rounding error apart is a spike that makes the position an
     invalid polygon, and GEOS then unites the positions wrongly (issue 15: z = 3 lost up to all of
-    the tooth, z = 4 and 7 some positions too)."""
+    the tooth, z = 4 and 7 some positions too).
+    """
     keep = np.r_[True, np.hypot(*np.diff(pts, axis=0).T) > eps]
     pts = pts[keep]
     if len(pts) > 1 and np.hypot(*(pts[-1] - pts[0])) <= eps:
@@ -73,7 +75,8 @@ def _cut_blank(
 ) -> shapely.Polygon | None:
     """The blank minus the union of the tool teeth j = -1, 0 at the rolling angles ``ts``; None when
     the polygon booleans fail. A position that is still not a valid polygon is repaired first, and a
-    failing union is redone on a grid of ``eps`` (snap rounding, robust, well below the scallop)."""
+    failing union is redone on a grid of ``eps`` (snap rounding, robust, well below the scallop).
+    """
     polys = shapely.polygons([rotate(tooth + np.array([0.0, pt * j + r * t]), -t) for t in ts for j in (-1, 0)])
     bad = ~shapely.is_valid(polys)
     if bad.any():
@@ -135,7 +138,8 @@ def simulate_cutting(
     :class:`hob.tools.TrapezoidalHob` or :class:`hob.tools.RackTool`) replaces the basic-rack
     tool; the deviation is then still measured against the basic-rack envelope of ``gear``, so it
     shows what the tool changes (protuberance relief, chamfer). ``progress(positions, deviation)``
-    is called after each pass."""
+    is called after each pass.
+    """
     pt = np.pi * gear.transverse_module
     r = gear.pitch_radius
     rho_max = np.sqrt(max(gear.nominal_tip_radius**2 - gear.base_radius**2, 1e-12))
@@ -180,7 +184,8 @@ def simulate_cutting(
 
 def _exact_tooth(gear: InvoluteGear, tolerance: float) -> shapely.Polygon:
     """The analytic tooth 0 closed at the centre: its profile from space centre to space centre
-    (not the whole gear: a thousand teeth at a fine tolerance were a million points)."""
+    (not the whole gear: a thousand teeth at a fine tolerance were a million points).
+    """
     chain = gear.tooth_profile(tolerance).points
     return shapely.Polygon(np.vstack([[0.0, 0.0], chain]))
 
@@ -226,7 +231,8 @@ def _sector(gear: InvoluteGear, half_pitches: float) -> shapely.Polygon:
 
 def _deviation(gear: InvoluteGear, simulated: shapely.Polygon, exact: shapely.Polygon, scallop: float) -> tuple[float, float]:
     """Largest distance from the analytic tooth boundary to the simulated one (and on the involute
-    alone), away from the sector's straight cut edges."""
+    alone), away from the sector's straight cut edges.
+    """
     inner = _sector(gear, 0.98)
     boundary = np.asarray(exact.exterior.coords)
     pts = boundary[shapely.contains_xy(inner, boundary[:, 0], boundary[:, 1])]
@@ -240,7 +246,8 @@ def _deviation(gear: InvoluteGear, simulated: shapely.Polygon, exact: shapely.Po
 def simulated_form_radius(gear: InvoluteGear, result: CutResult, tolerance: float) -> float:
     """Radius where the simulated flank leaves the involute (the undercut point P' when undercut,
     else the start of the usable involute): the lowest boundary point of the simulated tooth that
-    lies on the involute of r_b within ``tolerance`` (closed-form involute polar angle)."""
+    lies on the involute of r_b within ``tolerance`` (closed-form involute polar angle).
+    """
     pts = np.asarray(result.tooth.exterior.coords)
     r = np.hypot(*pts.T)
     rb = gear.base_radius

@@ -1,7 +1,8 @@
 """Contact-ratio nomogram in the manner of Kollek & Osiński's Fig. 4: the transverse contact ratio
 of two equal gears over the profile shift x and the addendum factor y, with the undercut limits
 x_g (theoretical), x'_g (practical) and x''_g (where undercut starts to shorten the path of
-contact, from the exact envelope)."""
+contact, from the exact envelope).
+"""
 
 from __future__ import annotations
 
@@ -26,7 +27,8 @@ def contact_ratio_grid(
     tip_radius: float = 0.38,
 ) -> np.ndarray:
     """eps_alpha[i, j] for addendum factor ys[i] and shift xs[j] (NaN where the gear cannot be made:
-    pointed or refused)."""
+    pointed or refused).
+    """
     eps = np.full((len(ys), len(xs)), np.nan)
     for i, y in enumerate(ys):
         for j, x in enumerate(xs):
@@ -52,7 +54,8 @@ def contact_ratio_grid(
 
 def pointed_limits(xs: np.ndarray, eps: np.ndarray) -> np.ndarray:
     """For each row of ``eps`` (an addendum factor), the first shift after the last computed one
-    where the gear could not be made (its tip pointed); NaN when every shift to the end was made."""
+    where the gear could not be made (its tip pointed); NaN when every shift to the end was made.
+    """
     out = np.full(len(eps), np.nan)
     for i, row in enumerate(eps):
         ok = np.nonzero(np.isfinite(row))[0]
@@ -67,7 +70,8 @@ def plot_nomogram(
 ) -> Figure:
     """The contact ratio of two equal gears over the shift x, one curve per addendum factor y,
     with the line epsilon = 1, the undercut limits x_g, x'_g, x''_g and the undercut and
-    pointed-tooth regions shaded; the legend, outside the plot, says what each limit means."""
+    pointed-tooth regions shaded; the legend, outside the plot, says what each limit means.
+    """
     from matplotlib.patches import Patch
 
     xs = np.linspace(-0.2, 1.0, 25) if xs is None else xs

@@ -1,7 +1,8 @@
 """Pictures of the hob side (style of :mod:`rotorcad.plot_style`): the racks derived from a pair's
 two rotors (or from a gear, against its basic rack) with their deviation drawn along the normal,
 magnified, beside the hob teeth; and the cutting simulation of a gear tooth against the analytic
-envelope, with the deviation drawn the same way."""
+envelope, with the deviation drawn the same way.
+"""
 
 from __future__ import annotations
 
@@ -50,7 +51,8 @@ def signed_distance(points: np.ndarray, normals: np.ndarray, other: np.ndarray |
 
 def _upward_normals(tangents: np.ndarray, points: np.ndarray) -> np.ndarray:
     """Normals of a rack chain (tangent turned clockwise), turned so that the highest point's
-    normal points to +y (away from the profile's centre)."""
+    normal points to +y (away from the profile's centre).
+    """
     n = perp_cw(np.asarray(tangents, dtype=float))
     return n if n[int(np.argmax(points[:, 1])), 1] >= 0 else -n
 
@@ -59,7 +61,8 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
     """The female's rack against the male's (transverse section, CONTRACT.md rack frame): the
     male rack's points and normals, and the signed distance (mm) of the female rack (its
     neighbouring periods too) from each, NaN where the contact lies outside a bore (as
-    :func:`hob.rack.rack_deviation` judges)."""
+    :func:`hob.rack.rack_deviation` judges).
+    """
     pair = rotors.pair
     male = racks["male"]
     pts = rack_in_contract_frame(male, "male")
@@ -85,7 +88,8 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
 def gear_rack_comparison(gear: InvoluteGear, rack: DerivedRack) -> dict[str, Any]:
     """The rack derived from a gear against the basic-rack tool it was cut with (transverse
     section): the derived rack's cutting points (involute, fillet, root arc) and normals, and
-    their signed distance (mm) from the tool's flanks."""
+    their signed distance (mm) from the tool's flanks.
+    """
     half = np.vstack([c.evaluate(np.linspace(c.s0, c.s1, 2000))[0] for c in gear.tool.values()])
     half = rack_frame(half, gear.pitch_radius)
     pt = np.pi * gear.transverse_module
@@ -202,7 +206,8 @@ def plot_hob(
 def cut_deviation(gear: InvoluteGear, result: Any, tolerance: float) -> dict[str, np.ndarray]:
     """The simulated tooth against the analytic one: the analytic tooth profile's points inside
     the tooth sector (away from its straight cut edges), their outward normals, segment names and
-    the signed distance (mm) of the simulated boundary (positive: material left standing)."""
+    the signed distance (mm) of the simulated boundary (positive: material left standing).
+    """
     prof = gear.tooth_profile(min(tolerance / 4.0, 1e-4))  # sampled as hob.cutting measures it
     pts, normals = prof.points, prof.normals
     names = np.array([prof.segments[i].name for i in prof.segment_index])

@@ -111,7 +111,8 @@ class TrapezoidalHob:
 class RackTool:
     """A general rack tool: one tool tooth given as points in the rack frame of CONTRACT.md
     (x along the pitch line, y = 0 on the pitch line, y < 0 towards the blank), from its one
-    side's top over the tip to the other side's top, spanning one pitch."""
+    side's top over the tip to the other side's top, spanning one pitch.
+    """
 
     points: np.ndarray
     pitch: float

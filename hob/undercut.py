@@ -81,7 +81,8 @@ def real_limit_shift(
     z: int, m0: float, alpha0: float, y_addendum: float, tool_addendum: float = 1.25, tip_radius: float = 0.38
 ) -> float:
     """x''_g: the shift below which the undercut shortens the contact ratio of two equal gears
-    (the mate's tip reaches below the undercut point), found on the exact envelope."""
+    (the mate's tip reaches below the undercut point), found on the exact envelope.
+    """
 
     def shortened(x: float) -> float:
         g = InvoluteGear(z, m0, alpha0, 0.0, x, addendum=y_addendum, dedendum=tool_addendum, tip_radius_factor=tip_radius)

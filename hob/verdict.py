@@ -168,7 +168,8 @@ def _crosses_itself(pts: np.ndarray) -> bool:
     """True if the polyline crosses itself so that it encloses a loop wider than FOLD_TOLERANCE
     (mean width 2 area / perimeter of each loop that shapely's noding and polygonizing finds):
     an undercut's swallowtail is tens of micrometres wide, the zigzag of a measured rack where
-    its samples fold back along the curve is not."""
+    its samples fold back along the curve is not.
+    """
     segs = shapely.linestrings(np.stack([pts[:-1], pts[1:]], axis=1))
     tree = shapely.STRtree(segs)
     a, b = tree.query(segs, predicate="intersects")

@@ -59,7 +59,8 @@ class SpatialBlowHole:
 
     def _sweep(self, centre: np.ndarray, radius: float, rate: float) -> tuple[np.ndarray, float]:
         """Tip helix of one rotor from the projection of the apex to the cusp line: (n, 3) points
-        and the height where it meets the cusp line. ``rate``: turn of the section per mm of z."""
+        and the height where it meets the cusp line. ``rate``: turn of the section per mm of z.
+        """
         e = self.apex - centre
         phi_e = float(np.arctan2(e[1], e[0]))
         k = self.cusp - centre
@@ -90,7 +91,8 @@ class SpatialBlowHole:
     @cached_property
     def boundary(self) -> np.ndarray:
         """(m, 3) closed boundary: apex, male radial piece, male tip, cusp line, female tip reversed,
-        female radial piece back to the apex (mm)."""
+        female radial piece back to the apex (mm).
+        """
         a = np.array([*self.apex, self.apex_z])
         return np.vstack([[a], self.male_tip, self.cusp_line[1:], self.female_tip[::-1][1:], [a]])
 

@@ -48,7 +48,8 @@ CONTACT_SIDES = ("driving", "sealing", "as-given")
 
 def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Array, Array]:
     """Cubic Hermite point and derivative between samples with exact unit tangents (scaled by
-    the chord)."""
+    the chord).
+    """
     h = np.hypot(*(p1 - p0).T)[:, None]
     m0, m1 = t0 * h, t1 * h
     u = tau[:, None]
@@ -61,7 +62,8 @@ def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tan
     """Distance from each datum point along its unit normal to the compared polyline (Wu & Chi
     eq. 10), NaN where the normal line does not cut it nearby. The crossing nearest the datum
     point is taken among the ``window`` segments either side of the nearest compared point, then
-    refined on the Hermite cubic of that segment (Newton)."""
+    refined on the Hermite cubic of that segment (Newton).
+    """
     k = cKDTree(compared).query(datum)[1]
     n_seg = len(compared) - 1
     offsets = np.arange(-window, window)
@@ -97,7 +99,8 @@ class ThermalState:
     """Rotors and housing at working temperature (the Chinese paper in Wu & Chi's seed, sec. 1.2:
     a body grows by dL = L zeta (t_c - t0), eq. 1; the rotor's computation temperature is the
     arithmetic mean of suction and discharge temperature, and the centre distance follows the
-    housing). Temperatures in degC, expansion coefficients in 1/K."""
+    housing). Temperatures in degC, expansion coefficients in 1/K.
+    """
 
     suction_temperature: float
     discharge_temperature: float
@@ -131,7 +134,8 @@ class ThermalState:
 
     def apply(self, pair: RotorPair, male: Array, female: Array) -> tuple[RotorPair, Array, Array]:
         """The hot pair and the hot profile points (each rotor grown about its own axis, the
-        lead with it, the centre distance with the housing)."""
+        lead with it, the centre distance with the housing).
+        """
         k = self.rotor_scale
         hot = replace(
             pair,
@@ -161,7 +165,8 @@ def _turned(points: Array, angles: Array) -> Array:
 @dataclass(frozen=True, eq=False)
 class MeshingClearance:
     """Meshing clearance of a pair given by one lobe of each rotor (counter-clockwise pieces in
-    the rotor's own frame, e.g. :func:`rotorcad.rotor_points.lobe_pieces`)."""
+    the rotor's own frame, e.g. :func:`rotorcad.rotor_points.lobe_pieces`).
+    """
 
     pair: RotorPair
     male_pieces: list[tuple[str, Curve]]
@@ -187,7 +192,8 @@ class MeshingClearance:
     @cached_property
     def female_rack(self) -> DerivedRack:
         """The female's rack, the datum, sampled so that its contact points advance at most
-        ``contact_step`` (mm), in the CONTRACT.md rack frame (y > 0 towards the female)."""
+        ``contact_step`` (mm), in the CONTRACT.md rack frame (y > 0 towards the female).
+        """
         return self._rack(Side.FEMALE, self.contact_step)
 
     def _rack(self, side: Side, contact_step: float) -> DerivedRack:
@@ -219,7 +225,8 @@ class MeshingClearance:
     def _in_both_bores(self, gap: Array | float = 0.0) -> Array:
         """Female rack points whose contact lies inside both tip circles: within the fit's
         tolerance (1 um), and the male's by the local clearance ``gap`` more (a female root
-        deeper than the male tip still seals against it, across that clearance)."""
+        deeper than the male tip still seals against it, across that clearance).
+        """
         contact, _ = self._contacts(0.0)
         pair = self.pair
         slack = 1e-3 + np.maximum(np.nan_to_num(gap), 0.0)
@@ -229,13 +236,15 @@ class MeshingClearance:
 
     def _contacts(self, shift: float) -> tuple[Array, Array]:
         """Contact point and male angle of each female (datum) rack point, the rack moved by
-        ``shift`` along the pitch line."""
+        ``shift`` along the pitch line.
+        """
         contact, angle = contact_of_rack_points(self.pair.male_pitch_radius, self.female_rack.points, self.female_rack.tangents)
         return contact, angle - shift / self.pair.male_pitch_radius
 
     def clearance_at(self, shift: float, mask: Array | None = None) -> Array:
         """Normal clearance of the datum (female) rack points (those in ``mask``) with the female
-        rack moved by ``shift`` (mm, transverse) along the pitch line."""
+        rack moved by ``shift`` (mm, transverse) along the pitch line.
+        """
         pts, _, normals = self._datum
         if mask is not None:
             pts, normals = pts[mask], normals[mask]
@@ -247,7 +256,8 @@ class MeshingClearance:
     def shift(self) -> float:
         """Transverse shift of the female rack that makes the racks touch on the chosen flank:
         the smallest clearance there is zero (found by stepping out from the given position until
-        it changes sign, then Brent's method)."""
+        it changes sign, then Brent's method).
+        """
         if self.contact == "as-given":
             return 0.0
         _, tan, _ = self._datum
@@ -346,7 +356,8 @@ class MeshingClearance:
         ``contact_y`` the contact point in the fixed transverse frame; ``female_x``, ``female_y``
         the female profile point there (own frame, mesh position), ``male_x``, ``male_y`` the male
         point facing it across the transverse gap (own frame); ``in_contact`` (0/1) whether the
-        contact lies inside both bores and within the rotor length."""
+        contact lies inside both bores and within the rotor length.
+        """
         pair = self.pair
         contact, angle = self._contacts(self.shift)
         delta = self.clearance
@@ -380,7 +391,8 @@ class MeshingClearance:
 
     def summary(self) -> dict[str, float]:
         """The keys of ``rotorcad clearance`` (CONTRACT.md), plus the minimum clearance (negative:
-        interference) and the shift applied to position the racks."""
+        interference) and the shift applied to position the racks.
+        """
         return {**self._band, "female_rack_shift": self.shift, "helix_angle_deg": float(np.degrees(self.helix_angle))}
 
     @property

@@ -34,7 +34,8 @@ LAND_SLOPE = 0.5  # |sin| of the rack tangent's angle to the pitch line below wh
 class ClearanceDistribution:
     """Normal clearance to design (mm, >= 0): ``driving``, ``sealing`` and ``lands`` values, or a
     ``table`` of (x [mm] along the pitch line of the transverse rack in the rack frame of
-    CONTRACT.md, clearance [mm]) rows over one rack period."""
+    CONTRACT.md, clearance [mm]) rows over one rack period.
+    """
 
     driving: float = 0.0
     sealing: float = 0.0
@@ -77,7 +78,8 @@ class ClearanceDistribution:
 
     def at(self, x: np.ndarray, tangents: np.ndarray, period: float) -> np.ndarray:
         """The normal clearance (mm) at datum rack points x (n,) with unit tangents (n, 2) in the
-        rack frame of CONTRACT.md, travelled in +x."""
+        rack frame of CONTRACT.md, travelled in +x.
+        """
         if self.table is not None:
             rows = np.asarray(self.table, dtype=float)
             order = np.argsort(rows[:, 0])
@@ -90,7 +92,8 @@ def corrected_female(rotors: ScrewRotors, clearance: ClearanceDistribution, tole
     """The female outline (own frame, mesh position, closed counter-clockwise, (n, 2) mm) thinned
     by the designed normal clearance (module docstring). Each outline point's rack point (inverse
     generation by the envelope engine) gives its flank, its transverse flank angle alpha and its
-    x on the datum rack; the point moves into the female by delta_t along its exact normal."""
+    x on the datum rack; the point moves into the female by delta_t along its exact normal.
+    """
     pair = rotors.pair
     outline = rotors.female_outline(tolerance)
     pts, tan = outline.points, outline.tangents

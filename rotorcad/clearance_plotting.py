@@ -1,7 +1,8 @@
 """Pictures of the meshing clearance (Wu & Chi) in the style of :mod:`rotorcad.plot_style`: the
 datum rack with the clearance drawn along its normal, magnified (Wu & Chi Fig. 4f); the clearance
 along the rack and over the male rotation (Fig. 9), interference (negative clearance) shaded; and
-the clearance band on the 3D contact line."""
+the clearance band on the 3D contact line.
+"""
 
 from __future__ import annotations
 
@@ -43,7 +44,8 @@ def clearance_state(mc: MeshingClearance, thermal: ThermalState | None, referenc
 
 def _band_normals(mc: MeshingClearance, contact: np.ndarray) -> np.ndarray:
     """Unit normals (n, 3) of the helical flank at the contact points: transverse from the rack,
-    axial from the helicoid (as the band of :class:`MeshingClearance` is built)."""
+    axial from the helicoid (as the band of :class:`MeshingClearance` is built).
+    """
     tan = mc.female_rack.tangents
     n_t = np.stack([-tan[:, 0], tan[:, 1]], axis=1)
     n_z = 2 * np.pi * (contact[:, 1] * n_t[:, 0] - contact[:, 0] * n_t[:, 1]) / mc.pair.lead

@@ -302,7 +302,8 @@ class CouplingResult:
     @property
     def inlet_length(self) -> float:
         """Length of the film's inlet zone [mm]: where the gap of the crowned flank, x^2 / (2 R_b),
-        is within ten central films, x = sqrt(20 R_b h_c); most of the film pressure builds there."""
+        is within ten central films, x = sqrt(20 R_b h_c); most of the film pressure builds there.
+        """
         if self.film is None:
             return math.nan
         return math.sqrt(20.0 * self.coupling.flank_radius * self.central_film_thickness)
@@ -310,7 +311,8 @@ class CouplingResult:
     @property
     def inlet_room(self) -> float:
         """Room for the inlet zone on the face [mm]: from the contact at its farthest position to the
-        face's edge, b / 2 - x_c."""
+        face's edge, b / 2 - x_c.
+        """
         c = self.coupling
         return c.face_width / 2.0 - c.contact_excursion
 
@@ -318,7 +320,8 @@ class CouplingResult:
     def inlet_off_face(self) -> bool:
         """Whether the inlet zone (:attr:`inlet_length`) runs off the face at the contact's farthest
         position: the film may then be starved and thinner than computed (the paper's model, like
-        this one, takes the oil as supplied far upstream). Reported, not a verdict."""
+        this one, takes the oil as supplied far upstream). Reported, not a verdict.
+        """
         return bool(self.inlet_length > self.inlet_room)
 
     @property

@@ -177,7 +177,8 @@ def _grid(nodes: int, inlet: float) -> _Grid:
 def _influence(grid: _Grid) -> Array:
     """K[i, j] = -int over cell j of ln|X_i - S| dS: the deflection at node i of unit pressure on cell j.
 
-    Shape (n, n). Exact for piecewise-constant pressure (primitive t ln|t| - t of ln|t|)."""
+    Shape (n, n). Exact for piecewise-constant pressure (primitive t ln|t| - t of ln|t|).
+    """
     edges = np.concatenate([[grid.x[0]], np.cumsum(grid.width) + grid.x[0]])
 
     def prim(t: Array) -> Array:
@@ -191,7 +192,8 @@ def _influence(grid: _Grid) -> Array:
 
 def _wedge_bands(n: int, step: float) -> dict[int, Array]:
     """dH/dxi at node i as sum over offsets o of c_o[i] H[i + o]: second-order upwind differences
-    (first order at the first interior node); diagonals by offset, each of shape (n,)."""
+    (first order at the first interior node); diagonals by offset, each of shape (n,).
+    """
     c = {0: np.zeros(n), -1: np.zeros(n), -2: np.zeros(n)}
     c[0][2 : n - 1], c[-1][2 : n - 1], c[-2][2 : n - 1] = 1.5 / step, -2.0 / step, 0.5 / step
     c[0][1], c[-1][1] = 1.0 / step, -1.0 / step
@@ -272,7 +274,8 @@ class _Newton:
 
     def system(self, p: Array, h0: float, fixed: Array) -> tuple[Array, Array]:
         """Residual (shape (n+1,)) and Jacobian (shape (n+1, n+1)): Reynolds rows, rows P = 0 at the
-        ends and at cavitated nodes (``fixed``), and the load row sum(P width) = 1."""
+        ends and at cavitated nodes (``fixed``), and the load row sum(P width) = 1.
+        """
         n, d2 = self.n, self.g.step**2
         h = self.film(p, h0)
         g, face = self._coefficients(p, h)
@@ -302,7 +305,8 @@ class _Newton:
 
     def cavitated(self, p: Array, h0: float) -> Array:
         """Nodes held at P = 0: the two ends, and nodes downstream of the pressure peak where P = 0 and
-        the Reynolds equation solved for that node alone (neighbours fixed) would not give P > 0."""
+        the Reynolds equation solved for that node alone (neighbours fixed) would not give P > 0.
+        """
         h = self.film(p, h0)
         _, face = self._coefficients(p, h)
         num = np.zeros(self.n)
@@ -355,7 +359,8 @@ def _partial(s: _Scaled, t: float) -> _Scaled:
 def _newton(s: _Scaled, c: LineContact, grid: _Grid, start: tuple[Array, float] | None) -> tuple[Array, float, bool]:
     """Newton from ``start`` (or the half-ellipse start); if that fails, continuation from the rigid
     isoviscous problem (linear but for the load balance): elasticity first, then alpha_0, with
-    steps that double after a success and halve after a failure (down to 1/256)."""
+    steps that double after a success and halve after a failure (down to 1/256).
+    """
     kernel = _influence(grid)
     p, h0 = start or _start(s, c, grid)
     p, h0, ok = _Newton(s, grid, kernel).solve(p, h0)

@@ -265,7 +265,8 @@ class GasDeflection:
     def chambers(self, angle: float) -> list[dict[str, float]]:
         """The chambers alive at male angle ``angle`` (rad): the discharge-end phase of each, its
         chamber angle (male rotation since it opened), its pressure (bar, absolute) and where along
-        the rotors (mm from the discharge end) it holds gas: up to the contact line that seals it."""
+        the rotors (mm from the discharge end) it holds gas: up to the contact line that seals it.
+        """
         start, stop = self.table.cycle
         span = self.table.span
         pitch = 2 * np.pi / self.pair.male_teeth
@@ -344,7 +345,8 @@ class GasDeflection:
 
     def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False) -> float:
         """The male angle (rad) of the largest deflection of either rotor: the best of a sweep
-        (``angles``, ``largest``), refined by a bounded scalar search between its neighbours."""
+        (``angles``, ``largest``), refined by a bounded scalar search between its neighbours.
+        """
         from scipy.optimize import minimize_scalar
 
         i = int(np.argmax(largest))
@@ -359,7 +361,8 @@ class GasDeflection:
 
     def worst_angle_eq10(self) -> float:
         """Male angle (rad, in [0, pitch)) of eq. (10): a chamber has just reached the discharge
-        port's control edge, so the discharge pressure reaches farthest towards the suction end."""
+        port's control edge, so the discharge pressure reaches farthest towards the suction end.
+        """
         if not np.isfinite(self.cycle.opening):
             raise DesignError("indicator diagram", "the built-in port model for eq. (10)", "an indicator diagram")
         start, _ = self.table.cycle

@@ -176,7 +176,8 @@ _READERS = ("load_toml", "load_gear_design", "load_rotor_design")
 
 def __getattr__(name: str) -> object:
     """The file readers, which moved to the command line (:mod:`rotorcad.cli.common`), under their
-    old names here (PEP 562), so that ``from rotorcad.design import load_rotor_design`` still works."""
+    old names here (PEP 562), so that ``from rotorcad.design import load_rotor_design`` still works.
+    """
     if name in _READERS:
         from rotorcad.cli import common
 

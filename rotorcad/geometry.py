@@ -137,7 +137,8 @@ def radius(points: Array) -> Array:
 def distance_to_polyline(points: Array, polyline: Array) -> Array:
     """Exact distance of each point (n, 2) to an open polyline (m, 2), mm: the nearest of its
     segments found by shapely's STRtree (a packed R-tree), so that long segments beside dense
-    clusters of vertices (a rack's flat beside a corner's path) are measured right."""
+    clusters of vertices (a rack's flat beside a corner's path) are measured right.
+    """
     import shapely
 
     pts = as_points(points)

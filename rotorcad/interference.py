@@ -64,7 +64,8 @@ def section_overlap_areas(
     pair: RotorPair, male: shapely.Polygon, female: shapely.Polygon, thetas: np.ndarray, female_phase: float = 0.0
 ) -> np.ndarray:
     """A(theta): intersection area of the male turned by theta and the female (own frame, placed at
-    (a, 0)) turned by -theta z1/z2 + ``female_phase``, for all theta at once."""
+    (a, 0)) turned by -theta z1/z2 + ``female_phase``, for all theta at once.
+    """
     mp = np.asarray(shapely.geometry.polygon.orient(male, 1.0).exterior.coords)
     fp = np.asarray(shapely.geometry.polygon.orient(female, 1.0).exterior.coords) + np.array([pair.center_distance, 0.0])
     ratio = pair.male_teeth / pair.female_teeth
@@ -107,7 +108,8 @@ def interference_2d(
 
 def housing_overlap(pair: RotorPair, male: shapely.Polygon, female: shapely.Polygon, clearance: float) -> float:
     """Volume of the rotors outside the housing bores (tip radius + clearance about each centre);
-    each bore is a circle about its rotor's axis, so turning the rotor does not change it."""
+    each bore is a circle about its rotor's axis, so turning the rotor does not change it.
+    """
     bores = shapely.union(
         shapely.Point(0, 0).buffer(pair.male_tip_radius + clearance, quad_segs=2048),
         shapely.Point(pair.center_distance, 0).buffer(pair.female_tip_radius + clearance, quad_segs=2048),
@@ -121,7 +123,8 @@ def intersection_3d(
     pair: RotorPair, male: HelicalSolid, female: HelicalSolid, angle: float, threshold: float = 0.0
 ) -> dict[str, object]:
     """3D boolean of the two solids at male angle ``angle`` (female turned by -angle z1/z2, placed at
-    (a, 0)): total volume, and centroid and bounding box of the parts above ``threshold``."""
+    (a, 0)): total volume, and centroid and bounding box of the parts above ``threshold``.
+    """
     m = male.manifold.rotate([0.0, 0.0, float(np.degrees(angle))])
     f = female.manifold.rotate([0.0, 0.0, float(-np.degrees(angle) * pair.male_teeth / pair.female_teeth)]).translate(
         [pair.center_distance, 0.0, 0.0]

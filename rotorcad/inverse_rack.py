@@ -99,7 +99,8 @@ class DerivedRack:
 
     def in_contract_frame(self) -> DerivedRack:
         """The same rack with y > 0 towards the female for either rotor (a female's rack flipped),
-        travelled in +x (CONTRACT.md rack frame)."""
+        travelled in +x (CONTRACT.md rack frame).
+        """
         if self.contract_frame:
             return self
         flip = np.array([1.0, -1.0 if self.side is Side.FEMALE else 1.0])
@@ -150,7 +151,8 @@ def with_corner_fans(
     ``pitch_angle`` (one lobe of a patterned rotor) the corner where the previous lobe's last piece
     meets this lobe's first piece is found too, by turning that last piece back by one pitch.
     ``min_turn`` (rad): smaller turns are not corners (measured pieces that meet at a land, where
-    the fits leave a kink of a fraction of a degree, pass :data:`MEASURED_MIN_TURN`)."""
+    the fits leave a kink of a fraction of a degree, pass :data:`MEASURED_MIN_TURN`).
+    """
 
     def fan(name: str, end: tuple[np.ndarray, np.ndarray], start: tuple[np.ndarray, np.ndarray]) -> tuple[str, Curve] | None:
         (p_end, t_end), (p_next, t_next) = end, start
@@ -192,7 +194,8 @@ def _on_the_corner_path(
     The fan's normals reach every direction between the two pieces meeting at the corner, but the
     path exists only inside the rack's depth, and a corner on the pitch circle cuts a cycloid that
     ends in a cusp on the pitch line when the corner passes the pitch point: the fan's normals
-    beyond that instant belong to the next arch, which the land behind the corner sweeps away."""
+    beyond that instant belong to the next arch, which the land behind the corner sweeps away.
+    """
     centre = np.asarray(body.center, dtype=float)
     pitch = centre + np.array([np.sign(body.rate) * pitch_radius, 0.0])
     extent = p[:, 0] - pitch[0]  # height of the rack point above its pitch line (the limits' sense)
@@ -360,7 +363,8 @@ def rotor_rack(
 
 def _inside_tip(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[str, Curve] | None:
     """The longest part of a generated piece inside the rotor's tip circle (generated flanks can
-    overshoot it; the rotor is cut off there), or None."""
+    overshoot it; the rotor is cut off there), or None.
+    """
     s = np.linspace(curve.s0, curve.s1, 257)  # the ends are refined by root finding below
     p, _ = curve.evaluate(s)
     inside = np.hypot(*(p - centre).T) <= tip + 2e-3  # a measured land may wander by the fit error

@@ -47,7 +47,8 @@ class Rotation:
 
     def velocity_at(self, points: Array) -> Array:
         """Velocity (per unit t) of the body's material at fixed-frame ``points`` (n, 2), mm:
-        rate * (-(y - y_O), x - x_O), shape (n, 2)."""
+        rate * (-(y - y_O), x - x_O), shape (n, 2).
+        """
         d = as_points(points) - np.asarray(self.center, dtype=float)
         v = np.empty_like(d)
         v[:, 0] = -d[:, 1]

@@ -37,7 +37,8 @@ def _drop_repeats(points: np.ndarray) -> np.ndarray:
 
 def lobe_count(whole: np.ndarray) -> int:
     """Number of lobes of a closed outline about the origin: the cycles of its radius between the
-    lower and the upper third of its range (a hysteresis that noise cannot trip)."""
+    lower and the upper third of its range (a hysteresis that noise cannot trip).
+    """
     r = np.hypot(*whole.T)
     lo, hi = r.min() + (r.max() - r.min()) / 3, r.max() - (r.max() - r.min()) / 3
     state = np.where(r >= hi, 1, np.where(r <= lo, -1, 0))
@@ -93,7 +94,8 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
 
 def scatter(whole: np.ndarray) -> float:
     """Estimated standard deviation (mm) of the points' scatter normal to the outline, from the
-    median of the third differences (module docstring); 0 for exact points."""
+    median of the third differences (module docstring); 0 for exact points.
+    """
     p = np.asarray(whole, dtype=float)
     if len(p) < 8:
         return 0.0

@@ -118,7 +118,8 @@ class FlankReport:
 
 def _covered(intervals: list[np.ndarray]) -> float:
     """Measure of the union of the ranges of the given sets of angles (rad): the rotation over which
-    at least one of them is in contact. A piece touching at one instant adds nothing."""
+    at least one of them is in contact. A piece touching at one instant adds nothing.
+    """
     spans = sorted((float(t.min()), float(t.max())) for t in intervals if len(t))
     total, reach = 0.0, -np.inf
     for lo, hi in spans:
@@ -275,7 +276,8 @@ class MeshingAnalysis:
         """Rinder's slipping rule where the meshline crosses O1O2 between two pieces: where a tip
         touches the mate's root on O1O2 (a tip corner's path or a flank handing over to the next
         one), e.g. the female tip on the male root. The pieces are the meshline in order, and the
-        next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over."""
+        next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over.
+        """
         pair = self.rotors.pair
         scale = pair.center_distance
         c_x = pair.male_pitch_radius
@@ -368,7 +370,8 @@ class MeshingAnalysis:
     @cached_property
     def cusp(self) -> np.ndarray:
         """The housing cusp (intersection of the tip circles) that the meshline comes nearest:
-        the upper one or its mirror image below O1O2."""
+        the upper one or its mirror image below O1O2.
+        """
         k = self.rotors.pair.housing_cusp
         pts = self.meshline
         lower = k * np.array([1.0, -1.0])
@@ -415,7 +418,8 @@ class MeshingAnalysis:
     def spatial_blow_hole(self) -> SpatialBlowHole:
         """The blow-hole triangle in 3D (:mod:`rotorcad.blow_hole`), its apex at the meshline end
         nearest the cusp, at that point's height on the contact line (z measured as in
-        :attr:`contact_line`, from the contact line's start)."""
+        :attr:`contact_line`, from the contact line's start).
+        """
         pts = self.meshline
         i = int(np.argmin(np.hypot(*(pts - self.cusp).T)))
         z = self.rotors.pair.lead * self.contact_angles / (2 * np.pi)
@@ -425,7 +429,8 @@ class MeshingAnalysis:
     @cached_property
     def contact_line(self) -> np.ndarray:
         """3D contact (sealing) line: meshline points with z = h1 * alpha / 2 pi (Rinder eq. 1),
-        shifted to start at z = 0 and cut at the rotor length."""
+        shifted to start at z = 0 and cut at the rotor length.
+        """
         pair = self.rotors.pair
         pts = self.meshline
         z = pair.lead * self.contact_angles / (2 * np.pi)

@@ -93,7 +93,8 @@ def styled(fn: Callable[..., Figure]) -> Callable[..., Figure]:
 
 def new_figure(width: float, height: float) -> Figure:
     """A figure of ``width`` x ``height`` inches with constrained layout (legends outside the axes
-    are given room). Call it inside a :func:`styled` function."""
+    are given room). Call it inside a :func:`styled` function.
+    """
     from matplotlib.figure import Figure
 
     return Figure(figsize=(width, height), layout="constrained")
@@ -187,7 +188,8 @@ def nice(value: float) -> float:
 def magnification(largest: float, extent: float, share: float = 0.08, most: float = 1e4) -> float:
     """A round factor (1, 2, 5 x 10^k, from 1 to ``most``) that draws the ``largest`` deviation
     (mm) as about ``share`` of the drawing's ``extent`` (mm); 1 when there is no deviation. The
-    cap keeps numerical noise (nanometres) from being blown up into a shape."""
+    cap keeps numerical noise (nanometres) from being blown up into a shape.
+    """
     if not (np.isfinite(largest) and largest > 0):
         return 1.0
     return min(max(nice(share * extent / largest), 1.0), most)
@@ -255,7 +257,8 @@ def draw_deviation(
 
 def scale_bar(ax: Axes, scale: float, largest: float) -> None:
     """A bar in the lower right corner of ``ax`` that shows a round deviation (µm) at the drawn
-    magnification ``scale`` (the deviation's ``largest`` value in mm sets the bar's size)."""
+    magnification ``scale`` (the deviation's ``largest`` value in mm sets the bar's size).
+    """
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
     step = nice(max(largest, 1e-9))
@@ -276,7 +279,8 @@ def scale_bar(ax: Axes, scale: float, largest: float) -> None:
 
 def _tag(fig: Figure) -> None:
     """Ids for the title and the axes' labels in an SVG (``title``, ``axes-N-xlabel`` within the
-    group ``axes-N-xaxis``, ...)."""
+    group ``axes-N-xaxis``, ...).
+    """
     if getattr(fig, "_suptitle", None) is not None:
         fig._suptitle.set_gid("title")
     for i, ax in enumerate(fig.axes):

@@ -17,14 +17,16 @@ if TYPE_CHECKING:
 
 def mate_in_mesh(pair: GearPair, points: np.ndarray) -> np.ndarray:
     """Mate outline points placed in mesh: turned so a tooth space faces the gear's tooth 0,
-    centred at (a_w, 0)."""
+    centred at (a_w, 0).
+    """
     z2 = pair.mate.teeth
     return rotate(points, np.pi + np.pi / z2) + np.array([pair.working_center_distance, 0.0])
 
 
 def line_of_action(pair: GearPair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Tangency points T1, T2 of the line of action on the base circles and the working pitch
-    point C (upper flanks of the gear's tooth 0 in contact)."""
+    point C (upper flanks of the gear's tooth 0 in contact).
+    """
     aw = pair.working_pressure_angle
     a = pair.working_center_distance
     rb1, rb2 = pair.gear.base_radius, pair.mate.base_radius
@@ -36,7 +38,8 @@ def line_of_action(pair: GearPair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def path_of_contact(pair: GearPair) -> np.ndarray:
     """End points (2, 2) of the path of contact on the line of action (mm): where the flanks
-    meet between the tip circles and the usable involutes (:meth:`GearPair.contact_interval`)."""
+    meet between the tip circles and the usable involutes (:meth:`GearPair.contact_interval`).
+    """
     t1, t2, _ = line_of_action(pair)
     lo1, hi1, lo2, hi2 = pair.contact_interval()
     u = (t2 - t1) / np.hypot(*(t2 - t1))
@@ -46,7 +49,8 @@ def path_of_contact(pair: GearPair) -> np.ndarray:
 @styled
 def plot_gears(gear: InvoluteGear, pair: GearPair | None = None) -> Figure:
     """The gear (and its mate in mesh) with pitch, base and tip circles, the line of action and
-    the path of contact; the title states the gear data, the legend stands beside the drawing."""
+    the path of contact; the title states the gear data, the legend stands beside the drawing.
+    """
     from matplotlib.lines import Line2D
 
     ra1 = gear.tip_radius

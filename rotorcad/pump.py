@@ -42,7 +42,8 @@ class GearPump:
 
     def delivery(self, samples: int = 4096, phi: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Rotation angle within one tooth period (rad; midpoints of ``samples`` equal steps unless
-        ``phi`` is given) and the instantaneous delivery q (mm^3/s)."""
+        ``phi`` is given) and the instantaneous delivery q (mm^3/s).
+        """
         g = self.gear
         eps = self.contact_ratio
         pb = g.base_pitch
@@ -72,14 +73,16 @@ class GearPump:
 
     def harmonics(self, count: int = 8) -> np.ndarray:
         """Amplitudes of the first ``count`` harmonics of the delivery over one tooth period,
-        relative to the mean flow (numerical Fourier series)."""
+        relative to the mean flow (numerical Fourier series).
+        """
         q = self.delivery()[1]
         c = np.fft.rfft(q) / len(q)
         return 2.0 * np.abs(c[1 : count + 1]) / c[0].real
 
     def cosine_series(self, count: int = 8) -> np.ndarray:
         """a0 and |a_n| of q - Q_min in the even-extension series of Kollek & Osiński (eq. 3) over
-        one base pitch, by numerical integration (trapezoid, 4096 samples), divided by b w t_z^2."""
+        one base pitch, by numerical integration (trapezoid, 4096 samples), divided by b w t_z^2.
+        """
         g = self.gear
         phi, q = self.delivery(phi=np.linspace(0.0, 2.0 * np.pi / g.teeth, 8193))
         s = g.base_radius * phi
@@ -92,7 +95,8 @@ class GearPump:
 
     def trapped_volume(self, samples: int = 1024) -> tuple[np.ndarray, np.ndarray]:
         """Rotation angle over the double contact and the volume trapped between the two contacts
-        (mm^3, relative to its value when the second contact begins)."""
+        (mm^3, relative to its value when the second contact begins).
+        """
         g = self.gear
         eps = self.contact_ratio
         pb = g.base_pitch
@@ -112,7 +116,8 @@ def kollek_coefficients(eps: float, count: int) -> np.ndarray:
     q - Q_min = a0 + sum a_n cos(n pi s / t_z) over one base pitch t_z, with a0 = eps/2 - 1/3,
     a_n = -4/(pi n)^2 for even n and -4 (eps - 1)/(pi n)^2 for odd n (the printed a_2n / a_2n+1
     are these with the OCR's index garbled; the odd terms vanish as eps -> 1). Returned: a0 and the
-    amplitudes |a_n|, n = 1..count."""
+    amplitudes |a_n|, n = 1..count.
+    """
     n = np.arange(1, count + 1)
     amps = 4.0 / (np.pi * n) ** 2 * np.where(n % 2 == 0, 1.0, abs(eps - 1.0))
     return np.concatenate([[eps / 2.0 - 1.0 / 3.0], amps])

@@ -143,7 +143,8 @@ def smooth_lobe_points(tip_radius: float, teeth: int, tolerance: float = DEFAULT
 def _check_generated(rotors: ScrewRotors, given: str, label: str) -> None:
     """Refuse a mate generated from measured points that is not a rotor: one that runs far beyond
     its tip circle or folds into many more points than a smooth lobe has (noise the smoothing left
-    in). Checked before the sections are made: their cost grows with the folds."""
+    in). Checked before the sections are made: their cost grows with the folds.
+    """
     mate = "female" if given == "male" else "male"
     lobe = rotors.female_lobe() if mate == "female" else rotors.male_lobe()
     tip = rotors.pair.female_tip_radius if mate == "female" else rotors.pair.male_tip_radius
@@ -171,6 +172,7 @@ def analyse_pair(rotors: ScrewRotors, speed_rpm: float) -> tuple[MeshingAnalysis
 
 def design_summary(mapping: dict[str, Any], folder: Any = None, points: Any = None) -> dict[str, Any]:
     """Build and analyse the pair of a design mapping in one call: the numbers of ``rotorcad rotor
-    --json`` (``files`` aside). Refuses a bad design with :class:`DesignError`."""
+    --json`` (``files`` aside). Refuses a bad design with :class:`DesignError`.
+    """
     spec = pair_spec(rotor_design(mapping, folder), points)
     return analyse_pair(build_pair(spec), spec.speed_rpm)[1]

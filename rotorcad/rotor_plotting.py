@@ -1,6 +1,7 @@
 """Pictures of a screw-rotor pair: the pair in mesh with its meshline, defects and blow-hole, and
 sliding velocity and slip over the rotation angle in the manner of Rinder's Figs. 10-13, one
-labelled branch per pair of flanks in contact. Style: :mod:`rotorcad.plot_style`."""
+labelled branch per pair of flanks in contact. Style: :mod:`rotorcad.plot_style`.
+"""
 
 from __future__ import annotations
 
@@ -101,7 +102,8 @@ def plot_pair(analysis: MeshingAnalysis, clearance: float = 0.0) -> Figure:
 def branches(analysis: MeshingAnalysis) -> list[tuple[str, slice, str]]:
     """The meshline's branches as (label, slice of the kinematics arrays, colour): one per rack
     piece, labelled by the male and the female flank in contact; the same pair of flanks keeps
-    one colour."""
+    one colour.
+    """
     colours: dict[str, str] = {}
     out = []
     start = 0
@@ -120,7 +122,8 @@ def plot_sliding(analysis: MeshingAnalysis) -> Figure:
     """Sliding velocity |v_g| (Rinder eq. 3) and slip of male and female (eq. 4) over the male
     rotation angle at contact, one line per branch of the meshline (labelled by its flanks). Slip
     is drawn on a symmetric logarithmic scale, so that its run to infinity where a tangential
-    velocity vanishes stays visible; a slip that is infinite is marked at the frame's edge."""
+    velocity vanishes stays visible; a slip that is infinite is marked at the frame's edge.
+    """
     k = analysis.kinematics
     ang = k["angle_deg"]
     fig = ps.new_figure(11.0, 7.2)

@@ -38,7 +38,8 @@ def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float 
 
 def _smoothing(run: np.ndarray, sigma: float, smoothing: float | None) -> float:
     """scipy's smoothing value for a run of points: the user's, or n sigma^2 from the estimated
-    scatter (:mod:`rotorcad.measured_outline`); a run too short for a smoothing cubic interpolates."""
+    scatter (:mod:`rotorcad.measured_outline`); a run too short for a smoothing cubic interpolates.
+    """
     if smoothing is not None:
         return smoothing
     return len(run) * sigma**2 if len(run) > 8 else 0.0
@@ -55,7 +56,8 @@ def _facing_root_angle(whole: np.ndarray, teeth: int, facing: float) -> float:
 def _lobe_spline(whole: np.ndarray, teeth: int, smoothing: float, facing: float) -> tuple[Spline, float, float]:
     """Periodic spline of the whole outline and the parameters of the lobe between two
     consecutive roots that contains the polar angle ``facing`` (towards the mate, so that its
-    contacts lie within half a turn of the mesh position)."""
+    contacts lie within half a turn of the mesh position).
+    """
     spline = Spline.fit(whole, smoothing=smoothing, periodic=True)
     s = np.linspace(0.0, spline.s1, 20 * len(whole) + 1)
     p, _ = spline.evaluate(s)
@@ -74,7 +76,8 @@ def _lobe_spline(whole: np.ndarray, teeth: int, smoothing: float, facing: float)
 def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None) -> Curve:
     """The spline of one lobe of the male or the female (own frame, counter-clockwise, from root to
     root), the lobe facing the mate, from points of one lobe or of the whole outline; ``smoothing``
-    None estimates it from the points' scatter."""
+    None estimates it from the points' scatter.
+    """
     side = Side(rotor)
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     whole = whole_outline(points, teeth, f"{side.value} points")
@@ -89,7 +92,8 @@ def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float
 
 def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: float) -> float | None:
     """Parameter where ``curve`` (through ``points`` at parameters ``u``) crosses the polar ray at
-    ``theta`` counter-clockwise, or None."""
+    ``theta`` counter-clockwise, or None.
+    """
     rel = wrap_angle(np.arctan2(points[:, 1], points[:, 0]) - theta)
     i = np.nonzero((rel[:-1] < 0) & (rel[1:] >= 0) & (np.abs(rel[:-1]) < np.pi / 2) & (np.abs(rel[1:]) < np.pi / 2))[0]
     if len(i) == 0:
@@ -107,7 +111,8 @@ def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: floa
 def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray) -> list[np.ndarray]:
     """The outline cut at its corners: for each corner (on edge i, at a point) to the next, the
     corner's point, the outline's points in between and the next corner's point; points within
-    1e-6 mm of a corner point are left out (the corner is that point)."""
+    1e-6 mm of a corner point are left out (the corner is that point).
+    """
     n = len(whole)
     ring = np.vstack([whole, whole])
     out = []
@@ -127,7 +132,8 @@ def _refined_corners(
     corner, extended past their ends, cross (Newton on both parameters): the chords' crossing is
     off by a sample spacing when the corner falls between scattered points, which moves the
     corner's path on the rack by as much. A crossing not found within two spacings keeps the
-    chords' one."""
+    chords' one.
+    """
     n = len(whole)
     ring = np.vstack([whole, whole, whole])
     fits = []
@@ -226,7 +232,8 @@ def _cut_lobe(
     fitted: list[tuple[Curve, np.ndarray, np.ndarray]], whole: np.ndarray, teeth: int, rotor: str, label: str
 ) -> list[tuple[str, Curve]]:
     """The lobe facing the mate, from root to root, out of the whole outline's curves (each with
-    sample points and their parameters), trimmed at the two roots' polar angles."""
+    sample points and their parameters), trimmed at the two roots' polar angles.
+    """
     theta = _facing_root_angle(whole, teeth, Side(rotor).pick(0.0, np.pi))
 
     def locate(th: float) -> tuple[int, float]:
@@ -252,7 +259,8 @@ def _cut_lobe(
 
 def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -> np.ndarray:
     """Points (n, 2) of a profile given by points (returned as they are) or by exact curves
-    (sampled to the chord ``tolerance``, mm)."""
+    (sampled to the chord ``tolerance``, mm).
+    """
     if isinstance(profile, list | tuple):
         return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
     return np.asarray(profile, dtype=float)
@@ -261,7 +269,8 @@ def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -
 def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -> list[tuple[str, Curve]]:
     """The lobe facing the mate from exact curves of a drawing (one lobe, patterned, or the whole
     outline, counter-clockwise: :func:`exports.dxf_profile.read_profile_dxf`): arcs stay arcs,
-    splines stay the drawing's splines, and the lobe is cut from them at the roots."""
+    splines stay the drawing's splines, and the lobe is cut from them at the roots.
+    """
     samples = [sample_curve(c, 1e-4) for c in curves]
     pts = np.vstack([p for _, p, _ in samples])
     whole = whole_outline(pts, teeth, label)  # checks the lobe count or the span of one lobe
@@ -279,12 +288,14 @@ def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tup
     centre within the scatter, :func:`rotorcad.measured_outline.lands`) as that exact arc, whose
     normals are radial, so that its rack image is the exact flat at the tip or root line; the rest
     as cubic splines. Each curve comes with sample points and their parameters (for locating polar
-    crossings)."""
+    crossings).
+    """
     out: list[tuple[Curve, np.ndarray, np.ndarray]] = []
 
     def spline(i0: int, i1: int, lead_in: int, lead_out: int) -> None:
         """The spline of run[i0 : i1 + 1], fitted with ``lead_in`` / ``lead_out`` points of the
-        neighbouring lands (so that its ends see the land it runs into) and trimmed back."""
+        neighbouring lands (so that its ends see the land it runs into) and trimmed back.
+        """
         if i1 - i0 < 1 or np.hypot(*(run[i1] - run[i0])) <= 1e-9:
             return
         j0, j1 = max(i0 - lead_in, 0), min(i1 + lead_out, len(run) - 1)
@@ -317,7 +328,8 @@ def _mate_corner_runs(
     Classification (positions only, no tangents): over a stencil of 1/200 of the curve the mate's
     point moves less than ``threshold`` times the rack point; a part stalled so over at least 1/100
     of the curve is a corner path. Its ends are where the mate's point leaves that corner by more
-    than ``tolerance`` (mm), found by bisection."""
+    than ``tolerance`` (mm), found by bisection.
+    """
     span = rack_curve.s1 - rack_curve.s0
     s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
     pr, _ = rack_curve.evaluate(s)

@@ -52,7 +52,8 @@ def rack_line(pair: RotorPair, a: tuple[float, float], b: tuple[float, float]) -
 def rack_arc(pair: RotorPair, center: tuple[float, float], radius: float, psi0: float, psi1: float) -> Arc:
     """A circular rack piece given in the rack frame (centre, radius, polar angles psi0 -> psi1
     about the centre, measured in the rack frame). The rack frame is the mirror image of the fixed
-    frame, so an angle psi there is pi/2 - psi here."""
+    frame, so an angle psi there is pi/2 - psi here.
+    """
     c = from_rack_frame(np.array([center], dtype=float), pair.male_pitch_radius)[0]
     return Arc((float(c[0]), float(c[1])), radius, np.pi / 2 - psi0, np.pi / 2 - psi1)
 
@@ -70,7 +71,8 @@ class ScrewRotors:
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:
         """Generated male pieces of one lobe in counter-clockwise order (the male's polar angle
-        grows with the rack position, so the order is the rack's)."""
+        grows with the rack position, so the order is the rack's).
+        """
         mesh = self.pair.mesh
         out = []
         for piece in self.rack:
@@ -82,7 +84,8 @@ class ScrewRotors:
     @cached_property
     def female_pieces(self) -> list[tuple[str, Curve, RackPiece]]:
         """Generated female pieces of one lobe in counter-clockwise order, in the female's own frame
-        (the female turns the other way, so the order is the rack's reversed)."""
+        (the female turns the other way, so the order is the rack's reversed).
+        """
         mesh = self.pair.mesh
         shift = (-self.pair.center_distance, 0.0)
         out = []
@@ -124,7 +127,8 @@ class ScrewRotors:
 
     def section(self, rotor: str, tolerance: float | None = None) -> shapely.Polygon:
         """The rotor's transverse section as a valid polygon in its own frame, clipped to its tip
-        circle (generated curves may overshoot it by the rounding of the rack's corners)."""
+        circle (generated curves may overshoot it by the rounding of the rack's corners).
+        """
         side = Side(rotor)
         outline = self.male_outline(tolerance) if side is Side.MALE else self.female_outline(tolerance)
         tip = side.pick(self.pair.male_tip_radius, self.pair.female_tip_radius)

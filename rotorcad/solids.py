@@ -60,7 +60,8 @@ class HelicalSolid:
     def mesh(self) -> trimesh.Trimesh:
         """Float64 triangle mesh (``to_mesh64``: ``to_mesh`` is float32, ~7 um on 100 mm parts),
         with its face normals computed once here (component arithmetic, a few times faster than the
-        general cross product) so that writers need not."""
+        general cross product) so that writers need not.
+        """
         m = self.manifold.to_mesh64()
         v = np.asarray(m.vert_properties)[:, :3]
         f = np.asarray(m.tri_verts)
@@ -91,7 +92,8 @@ def layers_for(tolerance: float, wrap: float, r_max: float) -> int:
 
 def helical_solid(section: shapely.Polygon, lead: float, length: float, tolerance: float, phase: float = 0.0) -> HelicalSolid:
     """Sweep ``section`` (own frame, counter-clockwise) helically: ``lead`` > 0 right hand, < 0 left
-    hand; ``phase`` turns the section at z = 0 (rad)."""
+    hand; ``phase`` turns the section at z = 0 (rad).
+    """
     if not (np.isfinite(tolerance) and tolerance > 0):
         raise DesignError("tolerance", "a positive length in mm", tolerance)
     if not (np.isfinite(length) and length > 0):
@@ -123,7 +125,8 @@ def housing_solids(
 ) -> tuple[m3.Manifold, m3.Manifold]:
     """The housing of a pair: (block minus bores, bores alone). The bores are the two intersecting
     cylinders of radii ``male_bore`` and ``female_bore`` (tip radius + radial clearance) about O1 and
-    O2; where they cross stand the housing cusps. ``segments`` polygonise a full circle."""
+    O2; where they cross stand the housing cusps. ``segments`` polygonise a full circle.
+    """
     for name, r in (("male bore", male_bore), ("female bore", female_bore)):
         if not (np.isfinite(r) and r > 0):
             raise DesignError(name, "a positive radius in mm", r)
@@ -142,7 +145,8 @@ def helical_gear_solid(
     outline: np.ndarray, pitch_radius: float, helix_angle: float, face_width: float, tolerance: float
 ) -> HelicalSolid:
     """A helical (or spur) gear: the transverse outline swept with lead h = 2 pi r / tan(beta)
-    (right hand for beta > 0); a spur gear (beta = 0) is a straight extrusion."""
+    (right hand for beta > 0); a spur gear (beta = 0) is a straight extrusion.
+    """
     section = shapely.Polygon(outline)
     if abs(helix_angle) < 1e-12:
         cs = m3.CrossSection(

@@ -102,7 +102,8 @@ class SweepPlan:
     def signature(self) -> str:
         """A digest of what every variant shares: the base design, the extra analyses and the
         designed clearance. A variant's key holds it, so that results of a changed base are never
-        taken for this plan's."""
+        taken for this plan's.
+        """
         shared = [self.base, sorted(e.value for e in self.extras), self.clearance]
         return hashlib.sha1(json.dumps(shared, sort_keys=True, default=str).encode()).hexdigest()
 
@@ -196,7 +197,8 @@ def _parameter(name: str, spec: Any) -> Parameter:
 
 def _check_values(parameter: Parameter, base: dict[str, Any]) -> None:
     """A varied key must be a key of the design (of its family for [profile]) and every value of the
-    type the design takes there: refused before anything is computed, naming the [vary] entry."""
+    type the design takes there: refused before anything is computed, naming the [vary] entry.
+    """
     from rotorcad.design import HOUSING_KEYS, OPERATING_KEYS, PAIR_KEYS
     from rotorcad.rotor_families import FAMILIES
 

@@ -1,5 +1,6 @@
 """Pictures of a design sweep: the Pareto front of two objectives and the effect of each varied
-parameter on an objective (matplotlib figures from plain arrays)."""
+parameter on an objective (matplotlib figures from plain arrays).
+"""
 
 from __future__ import annotations
 
@@ -51,7 +52,8 @@ _LENGTH_WORDS = ("distance", "radius", "lead", "length", "clearance", "land", "w
 def column_label(name: str) -> str:
     """An axis label with its unit for a sweep column: a result (its unit at the end of its name,
     ``blow_hole_area_mm2`` -> ``blow hole area [mm²]``) or a varied design value (``pair.lead``
-    -> ``pair.lead [mm]``; counts, shares and factors ``[–]``)."""
+    -> ``pair.lead [mm]``; counts, shares and factors ``[–]``).
+    """
     if "." in name:  # a varied value: "table.key" of the design
         key = name.split(".", 1)[1]
         if key.endswith("_deg"):

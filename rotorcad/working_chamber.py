@@ -120,7 +120,8 @@ class ChamberTable:
     def force_at(self, psi: np.ndarray, rotor: str) -> np.ndarray:
         """Force per unit length and overpressure (mm) at phases ``psi`` (any shape, rad), shape
         (..., 2), linear between the table's phases; zero outside :attr:`span` (those sections
-        belong to other chambers)."""
+        belong to other chambers).
+        """
         table = Side(rotor).pick(self.male_force, self.female_force)
         psi = np.asarray(psi, dtype=float)
         start, stop = self.span
@@ -197,7 +198,8 @@ class _Section:
     @staticmethod
     def force(gas: shapely.Geometry, near: shapely.Geometry) -> np.ndarray:
         """The outward normal times length summed over the edges of ``gas`` that lie in the band
-        ``near`` about a rotor (mm): the force of a unit overpressure on that rotor. (2,) float."""
+        ``near`` about a rotor (mm): the force of a unit overpressure on that rotor. (2,) float.
+        """
         total = np.zeros(2)
         for poly in getattr(gas, "geoms", [gas]):  # a handful of pieces
             if poly.is_empty or not isinstance(poly, shapely.Polygon):

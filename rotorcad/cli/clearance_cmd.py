@@ -75,7 +75,8 @@ INTERFERENCE_THRESHOLD = 2e-3
 def clearance(**opts: Any) -> None:
     """Meshing clearance of a screw-rotor pair from measured profile points (Wu & Chi): the normal
     racks of both rotors, brought into contact, the normal clearance along the female's rack, and
-    the clearance band on the 3D contact line (area, equal clearance, wetted perimeter)."""
+    the clearance band on the 3D contact line (area, equal clearance, wetted perimeter).
+    """
     mc = _evaluate(opts)
     try:
         result = {
@@ -188,7 +189,8 @@ def _thermal(opts: dict[str, Any]) -> ThermalState | None:
 
 def _plot(mc: MeshingClearance, opts: dict[str, Any]):
     """The clearance pictures (:func:`rotorcad.clearance_plotting.plot_clearance`), titled with
-    the state (cold or hot, temperatures, contact flank)."""
+    the state (cold or hot, temperatures, contact flank).
+    """
     from rotorcad.clearance_plotting import clearance_state, plot_clearance
 
     return plot_clearance(mc, clearance_state(mc, _thermal(opts), opts["reference_temperature"]))

@@ -63,7 +63,8 @@ def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
 
 def load_gear_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, dict[str, Any]]:
     """A gear design file read (unless its mapping ``data`` was read already) and checked by
-    :func:`rotorcad.design.gear_design`; raises :class:`DesignError`."""
+    :func:`rotorcad.design.gear_design`; raises :class:`DesignError`.
+    """
     from rotorcad.design import gear_design
 
     return gear_design(load_toml(path) if data is None else data)
@@ -72,7 +73,8 @@ def load_gear_design(path: Path, data: dict[str, Any] | None = None) -> dict[str
 def load_rotor_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, Any]:
     """A screw-rotor design file read (unless its mapping ``data`` was read already) and checked by
     :func:`rotorcad.design.rotor_design`; a points file is found beside the design file. Raises
-    :class:`DesignError`."""
+    :class:`DesignError`.
+    """
     from rotorcad.design import rotor_design
 
     return rotor_design(load_toml(path) if data is None else data, Path(path).parent)
@@ -153,7 +155,8 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
 
 def unit_of(key: str) -> str:
     """The unit of a result key as the command prints it (CONTRACT.md: lengths mm, areas mm², volumes
-    mm³, angles deg, speeds m/s, flows L/min); "1" for counts and ratios, "" if not known."""
+    mm³, angles deg, speeds m/s, flows L/min); "1" for counts and ratios, "" if not known.
+    """
     if any(word in key for word in DIMENSIONLESS):
         return "1"
     return next((unit for pattern, unit in _UNIT_RULES if pattern in key), "")
@@ -183,7 +186,8 @@ def print_table(title: str, rows: dict[str, Any]) -> None:
 
 def print_pair_table(title: str, rows: dict[str, Any], mate: dict[str, Any], names: tuple[str, str] = ("gear", "mate")) -> None:
     """A table of quantity, the value of each of two bodies (the mate's where it has one) and unit;
-    the quantities of the pair alone (centre distance, contact ratio, ...) in the first column."""
+    the quantities of the pair alone (centre distance, contact ratio, ...) in the first column.
+    """
     table = Table(title=title, show_header=True, header_style="bold")
     table.add_column("quantity")
     table.add_column(names[0], justify="right")
@@ -204,7 +208,8 @@ def print_pair_table(title: str, rows: dict[str, Any], mate: dict[str, Any], nam
 
 class Outputs:
     """Collects the files a command will write, checks their folders up front, writes them all
-    or none (see :mod:`exports.atomic`)."""
+    or none (see :mod:`exports.atomic`).
+    """
 
     def __init__(self) -> None:
         self._items: list[tuple[Path, Writer]] = []
@@ -223,7 +228,8 @@ class Outputs:
     def add_figure(self, path: Path | None, figure: Callable[[], Any], option: str) -> None:
         """A picture: ``figure()`` makes the matplotlib figure, saved as PNG, SVG or PDF by the
         suffix of ``path`` (PNG without one; any other suffix is refused naming ``option``), in
-        the style of :mod:`rotorcad.plot_style` (cut to what is drawn, labels tagged in SVG)."""
+        the style of :mod:`rotorcad.plot_style` (cut to what is drawn, labels tagged in SVG).
+        """
         if path is None:
             return
         fmt = plot_format(path, option)
@@ -289,7 +295,8 @@ CREATED_FOLDERS: list[Path] = []
 
 def remove_created_folders() -> None:
     """Remove the folders this run created that are still empty, deepest first (a failed run
-    leaves no folder behind); forget them all."""
+    leaves no folder behind); forget them all.
+    """
     while CREATED_FOLDERS:
         folder = CREATED_FOLDERS.pop(0)
         try:

@@ -1,5 +1,6 @@
 """``rotorcad coupling``: lubricant film of a gear coupling with barrel-shaped teeth (CONTRACT.md;
-Belkov, Maksimov & Shitikov)."""
+Belkov, Maksimov & Shitikov).
+"""
 
 from __future__ import annotations
 

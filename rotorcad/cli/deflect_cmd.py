@@ -62,7 +62,8 @@ def deflect(
     curve and pressure ([operating]: suction and discharge pressure, polytropic exponent, volume
     ratio or control edge, or an indicator diagram), the line loads (eqs. 5-6) and the deflection
     lines by Ritz-Galerkin (eqs. 7-9), swept over one male pitch for the worst angle (eq. 10); with
-    shaft ends in [deflection] also the whole shafts on their bearings."""
+    shaft ends in [deflection] also the whole shafts on their bearings.
+    """
     try:
         settings = load_rotor_design(design)
     except DesignError as exc:
@@ -203,7 +204,8 @@ def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, sh
     """Deflection lines of both rotors at the chosen angle (w_x, w_y in the rotors' frame: x from O1
     to O2, y turned 90 deg counter-clockwise; |w|), the helical part's end faces marked on a shaft,
     and the largest deflection over one male pitch with the chosen angle marked (Rinder & Deix
-    Figs. 9 and 10)."""
+    Figs. 9 and 10).
+    """
     fig = ps.new_figure(12.0, 7.6)
     axes = fig.subplots(2, 2)
     length = model.pair.length

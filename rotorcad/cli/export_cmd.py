@@ -118,7 +118,8 @@ def export(
     """Helical male and female rotor solids of a design, written in each format (one file per body
     and format; the female is placed in mesh at (a, 0) at the male angle --angle). With a housing,
     the block minus the two bores and the bores alone are written as meshes and STEP too. A gear
-    design ([gear], optional [mate] and face_width) gives the gear and its mate in mesh."""
+    design ([gear], optional [mate] and face_width) gives the gear and its mate in mesh.
+    """
     data = _read_design(design)
     if is_gear_design(data):
         _export_gear(design, formats, out, tolerance, as_json, data)
@@ -161,7 +162,8 @@ def export(
 
         def body_mesh(body: str) -> _SweptBody:
             """The body swept and meshed in place when a writer first needs it (while the worker
-            writes STEP and DXF); the manifold is let go once meshed (some 150 MB a rotor)."""
+            writes STEP and DXF); the manifold is let go once meshed (some 150 MB a rotor).
+            """
             if body not in swept:
                 made = helical_solid(sections[body], leads[body], pair.length, tol)
                 mesh = made.mesh
@@ -335,7 +337,8 @@ class _SweptBody(NamedTuple):
 
 def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[list[SectionSegment], np.ndarray]:
     """The section of one rotor as segments (its exact pieces, sampled with their tangents, turned
-    by ``turn``) and as a fine polyline for the deviation check."""
+    by ``turn``) and as a fine polyline for the deviation check.
+    """
     # the B-splines interpolate points and exact tangents (Hermite): points at 10 x the tolerance in
     # chord keep the faces within 0.06 um of the helicoid on the samples (measured), and the face
     # check below refuses any that would not be
@@ -381,7 +384,8 @@ def _export_gear(
 def _check_solid_work(rotors, tol: float, label: str) -> None:
     """Refuse, before any solid is swept, a request whose two solids would have more than
     :data:`rotorcad.work.MAX_TRIANGLES` triangles, naming the smallest tolerance that fits (or the
-    lead or the size when no tolerance up to 1 mm does)."""
+    lead or the size when no tolerance up to 1 mm does).
+    """
     pair = rotors.pair
     coarse = max(tol / 2, 0.05)
     total = 0.0
@@ -411,7 +415,8 @@ def _check_solid_work(rotors, tol: float, label: str) -> None:
 
 def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, clearance: float) -> tuple[RotorPair, float]:
     """The pair as assembled: the design's rotors at another centre distance (the bores follow)
-    and the female's extra turn (rad); bad values are refused in one sentence."""
+    and the female's extra turn (rad); bad values are refused in one sentence.
+    """
     if not (np.isfinite(clearance) and clearance >= 0):
         raise InputError(f"[housing] radial_clearance must be a clearance of at least 0 mm (got {clearance}).")
     if not np.isfinite(phase_deg) or abs(phase_deg) > 360:
@@ -430,7 +435,8 @@ def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, 
 
 def _housing_volumes(pair: RotorPair, clearance: float, wall: float = HOUSING_WALL) -> dict[str, float]:
     """Closed-form volumes (mm^3) of the bores (two intersecting circles: the union's area from the
-    lens of their overlap) and of the block minus the bores, times the length."""
+    lens of their overlap) and of the block minus the bores, times the length.
+    """
     a, r1, r2 = pair.center_distance, pair.male_tip_radius + clearance, pair.female_tip_radius + clearance
     lens = r1**2 * np.arccos((a**2 + r1**2 - r2**2) / (2 * a * r1)) + r2**2 * np.arccos((a**2 + r2**2 - r1**2) / (2 * a * r2))
     lens -= 0.5 * np.sqrt((-a + r1 + r2) * (a + r1 - r2) * (a - r1 + r2) * (a + r1 + r2))
@@ -499,7 +505,8 @@ def interfere(
 
     Exit status: 0 when clean, 1 when the rotors interfere with each other or with the housing by
     more than the touching threshold (key touching_threshold, mm³, set by --tolerance), 2 on bad
-    input."""
+    input.
+    """
     if not 1 <= steps <= 100_000:
         raise InputError(f"--steps must be a whole number from 1 to 100000 (got {steps}).")
     if not (np.isfinite(tolerance) and 0 < tolerance <= 1.0):

@@ -145,7 +145,8 @@ def gear(design: Path | None, **opts: Any) -> None:
 
 def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str, Any] | None = None) -> dict[str, Any]:
     """Design-file values overridden by the options given; defaults last. ``data`` is the design
-    file's mapping if it was read already (the file is read once)."""
+    file's mapping if it was read already (the file is read once).
+    """
     params: dict[str, Any] = {}
     if design is not None:
         try:

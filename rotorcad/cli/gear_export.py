@@ -44,7 +44,8 @@ def export_gear(
     design: Path, fmts: list[str], folder: Path, tol: float, data: dict[str, Any] | None = None
 ) -> list[dict[str, Any]]:
     """Write the gear (and mate) solids; return the summary rows (path, format, body, volume,
-    tolerance, triangles or faces)."""
+    tolerance, triangles or faces).
+    """
     params = merge_gear_params(design, {}, data)  # data: the design's mapping, if read already
     width = params.get("face_width")
     if width is None:

@@ -45,7 +45,8 @@ from rotorcad.gear import InvoluteGear
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def hob(design: Path | None, **opts: Any) -> None:
     """Derive the transverse and normal rack of a gear or of both rotors of a pair, judge whether
-    a hob can make it (with reasons and positions) and give the hob tooth."""
+    a hob can make it (with reasons and positions) and give the hob tooth.
+    """
     for key, flag in (
         ("min_flank_angle", "--min-flank-angle"),
         ("min_tip_radius_mm", "--min-tip-radius-mm"),
@@ -137,7 +138,8 @@ def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimi
 
 def _read_design(design: Path | None) -> dict[str, Any] | None:
     """The design file's mapping (None without a file); a file that cannot be read is refused in
-    one sentence."""
+    one sentence.
+    """
     if design is None:
         return None
     try:
@@ -148,7 +150,8 @@ def _read_design(design: Path | None) -> dict[str, Any] | None:
 
 def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
     """Largest distance of the derived rack's cutting points from the basic-rack tool the gear
-    was cut with (both flanks of the tool teeth either side of the tooth space)."""
+    was cut with (both flanks of the tool teeth either side of the tooth space).
+    """
     half = np.vstack([c.evaluate(np.linspace(c.s0, c.s1, 2000))[0] for c in g.tool.values()])
     half = rack_frame(half, g.pitch_radius)
     pt = np.pi * g.transverse_module
@@ -175,7 +178,8 @@ def _plot(racks: dict[str, DerivedRack], verdicts: dict[str, Any], clearance: fl
 
 def _drawing(racks: dict[str, DerivedRack], clearance: float) -> Drawing:
     """The normal racks and hob teeth side by side (each in its own rack frame, the next one
-    shifted along the pitch line by its width and a gap), labelled on the layer LABELS."""
+    shifted along the pitch line by its width and a gap), labelled on the layer LABELS.
+    """
     d = Drawing()
     offset = 0.0
     for name, rack in racks.items():

@@ -55,7 +55,8 @@ ROTOR_INPUT_DECORATORS = [
 
 def rotor_input_options(fn):
     """The options that give a rotor pair by points and dimensions (all but the centre distance,
-    which ``rotorcad gear`` names the same way), for ``rotor`` and ``hob``."""
+    which ``rotorcad gear`` names the same way), for ``rotor`` and ``hob``.
+    """
     for deco in reversed(ROTOR_INPUT_DECORATORS):
         fn = deco(fn)
     return fn
@@ -120,7 +121,8 @@ CONTRACT_KEYS = (
 def rotor(design: Path | None, **opts: Any) -> None:
     """A screw-rotor pair from a design file (profile family) or from measured points, with
     Rinder's meshing analysis: meshline, cusps / jamming / slipping, tightness and blow-hole,
-    contact-line length, flute areas, displacement, sliding velocity and slip."""
+    contact-line length, flute areas, displacement, sliding velocity and slip.
+    """
     rotors, speed, clearance = _build(design, opts)
     if not (1e-6 <= opts["tolerance"] <= 1.0):  # also NaN; finer than 1 um gives millions of points
         raise InputError(f"--tolerance must be a chord tolerance from 1e-06 to 1 mm (got {opts['tolerance']}).")
@@ -195,7 +197,8 @@ def rotor(design: Path | None, **opts: Any) -> None:
 
 def _measured_points(opts: dict[str, Any]) -> tuple[str, np.ndarray, str] | None:
     """The rotor and the points of --male-points / --female-points when they are points (a CSV or a
-    drawing's points), for the picture of their deviation from the profile; None otherwise."""
+    drawing's points), for the picture of their deviation from the profile; None otherwise.
+    """
     for side in ("male", "female"):
         path = opts.get(f"{side}_points")
         if path is None:
@@ -237,7 +240,8 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
     """The rotors of a design file (or of ``settings``, the design already read and checked by
     :func:`rotorcad.cli.common.load_rotor_design`, so that the file is read once) or of measured
     points, with the command-line overrides; the speed (rpm) and the housing's radial clearance
-    (mm) too."""
+    (mm) too.
+    """
     sources = [k for k in ("male_points", "female_points", "rack_points") if opts.get(k)]
     if len(sources) > 1:
         raise InputError("give only one of --male-points, --female-points, --rack-points.")

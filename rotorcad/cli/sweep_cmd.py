@@ -69,7 +69,8 @@ def sweep(
     """Build and judge every variant of a sweep file (a base design and the values to vary: lists,
     ranges, or bounds drawn at random or by Latin hypercube) as tasks on Dask, streaming one row per
     variant to Parquet; a variant that cannot be built is a row with its reason. Interrupted and run
-    again, the sweep computes only what is missing."""
+    again, the sweep computes only what is missing.
+    """
     from exports.atomic import check_writable
     from rotorcad.cli.sweep_run import load_sweep, run_sweep
     from rotorcad.cli.sweep_tasks import OBJECTIVES, result_columns

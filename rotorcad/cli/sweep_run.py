@@ -51,7 +51,8 @@ class SweepOutcome:
 
     def failures(self) -> dict[str, int]:
         """Count of failed variants by reason, most frequent first; numbers in a reason stand as
-        '#' so that the same cause with other values counts once."""
+        '#' so that the same cause with other values counts once.
+        """
         bad = self.table.loc[~self.table["ok"].astype(bool), "reason"]
         causes = bad.map(lambda r: re.sub(r"-?\d+(\.\d+)?(e[-+]?\d+)?", "#", str(r)))
         return {str(k): int(v) for k, v in causes.value_counts().items()}
@@ -88,7 +89,8 @@ def parts_folder(out: Path) -> Path:
 def _done(out: Path | None, keys: dict[str, int]) -> pd.DataFrame:
     """The rows already computed for this plan, from ``out`` and its parts folder, numbered as the
     plan numbers them. Rows of another sweep (another base design, other analyses, other values)
-    are refused, not dropped: ``out`` would lose them."""
+    are refused, not dropped: ``out`` would lose them.
+    """
     frames = []
     if out is not None:
         sources = [out] if out.is_file() else []

@@ -97,7 +97,8 @@ def _extra(extra: Extra, rotors, spec, clearance: float) -> dict[str, Any]:
     """The optional analyses: hobbability (hob.verdict), interference at the design centre
     distance (2D sections over one lobe pitch), the solids' volume (section area x length), and the
     meshing clearance (Wu & Chi) of the pair with ``clearance`` mm of normal clearance designed into
-    the female (what `rotor --clearance` writes and `rotorcad clearance` reads back)."""
+    the female (what `rotor --clearance` writes and `rotorcad clearance` reads back).
+    """
     if extra is Extra.CLEARANCE:
         from rotorcad.clearance import MeshingClearance
         from rotorcad.clearance_design import ClearanceDistribution, corrected_female
