@@ -136,8 +136,10 @@ class Beam:
 
 
 def step_load_coefficients(q: float, lead: float, length: float, reach: float, psi0: float, terms: int) -> np.ndarray:
-    """Sine coefficients of the paper's flute load, eq. (6): q_x = -q cos(2 pi z / h + psi0) for
-    0 <= z <= r, 0 beyond, in closed form for every k (k = 1 is eq. 9's bracket).
+    """Return the sine coefficients of the paper's flute load (Rinder & Deix eq. 6).
+
+    q_x = -q cos(2 pi z / h + psi0) for 0 <= z <= r, 0 beyond, in closed form for every k (k = 1 is
+    eq. 9's bracket).
 
     Parameters
     ----------
@@ -148,11 +150,17 @@ def step_load_coefficients(q: float, lead: float, length: float, reach: float, p
     psi0 : float, rad
         Direction of the load's line of action at z = 0.
     terms : int
+        Number of sine terms.
 
     Returns
     -------
-    (terms, 2) float, N/mm
+    (terms, 2) float array, N/mm
         q_k for the x and y components (the y one is -q sin(...)).
+
+    Raises
+    ------
+    DesignError
+        A reach outside [0, length].
     """
     if not (0 <= reach <= length):
         raise DesignError("pressurised length r", f"from 0 to the rotor length {length:g} mm", reach)
@@ -193,8 +201,9 @@ class ShaftSegment:
 def stepped_deflection(
     segments: list[ShaftSegment], loaded: int, load: np.ndarray, cells: int = 2000
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Deflection of a shaft of segments on bearings at its two ends (statically determinate),
-    by integrating w'' = -M/(EJ) and the shear slope kappa V/(GA) along it (the classical beam
+    """Compute the deflection of a shaft of segments on bearings at its two ends (statically determinate).
+
+    By integrating w'' = -M/(EJ) and the shear slope kappa V/(GA) along it (the classical beam
     theory with which Rinder & Deix superpose the journals; the helical part is one segment with
     its equivalent stiffnesses, eq. 4).
 
@@ -204,16 +213,16 @@ def stepped_deflection(
         From the first bearing to the second.
     loaded : int
         Index of the segment that carries the load (the helical part).
-    load : (n, d) float, N/mm
+    load : (n, d) float array, N/mm
         Line load at the midpoints of n equal cells over the loaded segment.
     cells : int
         Integration cells over the whole shaft (at least 20 per segment).
 
     Returns
     -------
-    z : (m,) float, mm
+    z : (m,) float array, mm
         Positions from the first bearing.
-    w : (m, d) float, mm
+    w : (m, d) float array, mm
         Deflection, zero at both bearings.
     """
     ends = np.concatenate([[0.0], np.cumsum([s.length for s in segments])])

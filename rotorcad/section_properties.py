@@ -55,7 +55,7 @@ class SectionValues:
 
 
 def _ccw(points: np.ndarray) -> np.ndarray:
-    """The closed outline as an (n, 2) array without the repeated end, counter-clockwise."""
+    """Return the closed outline as an (n, 2) array without the repeated end, counter-clockwise."""
     p = np.asarray(points, dtype=float)
     if p.ndim != 2 or p.shape[1] != 2 or len(p) < 3:
         raise DesignError("section outline", "at least 3 points (x, y)", p.shape)
