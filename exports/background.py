@@ -64,8 +64,10 @@ class BackgroundWriter:
 
 
 def worker_count() -> int:
-    """Worker processes to use: 1 on Linux with two or more cores and no other Python thread
-    running, else 0 (run here); ``ROTORCAD_WORKERS=0`` in the environment also says 0.
+    """Return the number of worker processes to use: 1 or 0 (run here).
+
+    1 on Linux with two or more cores and no other Python thread running, else 0;
+    ``ROTORCAD_WORKERS=0`` in the environment also says 0.
     """
     if os.environ.get("ROTORCAD_WORKERS", "").strip() == "0":
         return 0
@@ -75,8 +77,9 @@ def worker_count() -> int:
 
 
 def _start_worker(preload: tuple[str, ...]) -> None:
-    """In the worker: leave Ctrl-C to the parent (which stops the worker and removes what it
-    wrote), then import ``preload`` while the parent goes on.
+    """Prepare the worker: leave Ctrl-C to the parent, then import ``preload`` while the parent goes on.
+
+    The parent stops the worker and removes what it wrote.
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for module in preload:
