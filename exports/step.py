@@ -93,15 +93,17 @@ def write_faceted_step(path: Path, vertices: np.ndarray, faces: np.ndarray, body
 
 
 def ocp_available() -> bool:
-    """Whether OpenCASCADE (the ``OCP`` package) is installed; found without importing it (0.6 s),
-    which the export leaves to its worker process.
+    """Tell whether OpenCASCADE (the ``OCP`` package) is installed.
+
+    Found without importing it (0.6 s), which the export leaves to its worker process.
     """
     return importlib.util.find_spec("OCP") is not None
 
 
 def _quiet_ocp() -> None:
-    """OpenCASCADE's default messenger prints banners on stdout: keep only failures (stdout of a
-    --json command must hold the JSON alone).
+    """Keep only failures of OpenCASCADE's default messenger, which prints banners on stdout.
+
+    The stdout of a --json command must hold the JSON alone.
     """
     from OCP.Message import Message, Message_Gravity
 
@@ -110,8 +112,25 @@ def _quiet_ocp() -> None:
 
 
 def read_step(path: Path) -> dict[str, object]:
-    """Read a STEP file with OpenCASCADE: number of solids, validity (BRepCheck) and volume by
-    Gauss-Kronrod integration (the plain one was 0.9 % off on a B-spline rotor; STACK-NOTES).
+    """Read a STEP file with OpenCASCADE and check it.
+
+    The volume is integrated by Gauss-Kronrod (the plain integration was 0.9 % off on a B-spline
+    rotor; STACK-NOTES).
+
+    Parameters
+    ----------
+    path : Path
+        The STEP file.
+
+    Returns
+    -------
+    dict
+        ``solids`` (their number), ``valid`` (BRepCheck) and ``volume`` (mm³).
+
+    Raises
+    ------
+    FileNotFoundError
+        A missing file (OpenCASCADE's reader would crash on it).
     """
     from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepGProp import BRepGProp
