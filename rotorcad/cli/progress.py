@@ -1,13 +1,13 @@
-"""Progress of a command's long stages (issue 15: nothing runs longer than a minute without a
-progress bar).
+"""Progress of a command's long stages.
 
-A :class:`Steps` is opened around every stage that can run long on valid input: the cutting
-passes of ``cut``, the solids and files of ``export``, the 2-D sweep and the solids of
-``interfere``, the angle sweep of ``deflect``, the outline and files of ``gear``, the build and
-analysis of ``rotor``, the variants of ``sweep``. It draws a rich bar on stderr only on a terminal
-and without ``--quiet`` (CONTRACT.md: progress bars appear only on a terminal); it is counted in
-:data:`OPENED` either way, so that the fuzz suite can check that a long case reported its
-progress whether or not a terminal was there to show it.
+Issue 15: nothing runs longer than a minute without a progress bar. A :class:`Steps` is opened
+around every stage that can run long on valid input: the cutting passes of ``cut``, the solids and
+files of ``export``, the 2-D sweep and the solids of ``interfere``, the angle sweep of
+``deflect``, the outline and files of ``gear``, the build and analysis of ``rotor``, the variants
+of ``sweep``. It draws a rich bar on stderr only on a terminal and without ``--quiet``
+(CONTRACT.md: progress bars appear only on a terminal); it is counted in :data:`OPENED` either
+way, so that the fuzz suite can check that a long case reported its progress whether or not a
+terminal was there to show it.
 """
 
 from __future__ import annotations
