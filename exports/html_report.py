@@ -46,7 +46,17 @@ nav ol { columns: 2; }
 
 @dataclass(frozen=True)
 class Section:
-    """A part of the page: an anchor id, a heading and its body (HTML text)."""
+    """A part of the page: an anchor id, a heading and its body (HTML text).
+
+    Parameters
+    ----------
+    id : str
+        Anchor id (the contents link to it).
+    heading : str
+        Heading text (escaped).
+    body : str
+        HTML text of the section (not escaped).
+    """
 
     id: str
     heading: str
@@ -298,7 +308,15 @@ def page(title: str, meta: Sequence[tuple[str, str]], sections: Sequence[Section
 
 
 def write_page(path: Path, text: str) -> None:
-    """Write the page as UTF-8 (to a temporary name given by :mod:`exports.atomic`)."""
+    """Write the page as UTF-8 (to a temporary name given by :mod:`exports.atomic`).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    text : str
+        The HTML document (:func:`page`).
+    """
     Path(path).write_text(text, encoding="utf-8")
 
 

@@ -55,7 +55,19 @@ def _lines(fmt: str, columns: list[np.ndarray]) -> str:
 
 
 def write_faceted_step(path: Path, vertices: np.ndarray, faces: np.ndarray, body: str = "rotor") -> None:
-    """Write a closed triangle mesh as one faceted solid (AP214)."""
+    """Write a closed triangle mesh as one faceted solid (AP214), without OpenCASCADE (module docstring).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    vertices : (n, 3) float array, mm
+        Vertices.
+    faces : (m, 3) int array
+        Triangles as vertex indices.
+    body : str
+        Product name in the file.
+    """
     v = np.asarray(vertices, dtype=float)
     f = np.asarray(faces, dtype=np.int64)
     nv, nf = len(v), len(f)

@@ -36,7 +36,19 @@ CURVATURE_BASE = 0.02  # mm: arc length over which the rack's curvature is taken
 
 @dataclass(frozen=True)
 class HobLimits:
-    """Limits of a producible hob (defaults are workshop values; adjust to the hob maker's)."""
+    """Limits of a producible hob (defaults are workshop values; adjust to the hob maker's).
+
+    Parameters
+    ----------
+    min_flank_angle_deg : float, deg
+        Smallest flank angle of the normal rack (from the normal to the pitch line).
+    min_tip_radius : float, mm
+        Smallest tool tip rounding.
+    min_root_radius : float, mm
+        Smallest tool root rounding.
+    min_tip_thickness : float, mm
+        Smallest hob tooth width at 5 % of the rack depth above its tip.
+    """
 
     min_flank_angle_deg: float = 5.0
     min_tip_radius: float = 0.1  # mm, tool tip rounding

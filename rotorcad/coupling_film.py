@@ -61,7 +61,19 @@ _INLET_FILMS = 25.0  # the fine pass puts the inlet this many sqrt(2 R h_c) upst
 
 
 def reduced_modulus(e1: float = STEEL_E, nu1: float = STEEL_NU, e2: float = STEEL_E, nu2: float = STEEL_NU) -> float:
-    """Hamrock's reduced modulus E' [Pa], 2/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2."""
+    """Return Hamrock's reduced modulus E', 2/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
+
+    Parameters
+    ----------
+    e1, e2 : float, Pa
+        Young's moduli of the two bodies (default steel, 2.0e11 Pa).
+    nu1, nu2 : float
+        Their Poisson's ratios (default 0.3).
+
+    Returns
+    -------
+    float, Pa
+    """
     return 2.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)
 
 

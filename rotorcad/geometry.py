@@ -14,7 +14,18 @@ ORIGIN = (0.0, 0.0)
 
 
 def as_points(points: object) -> Array:
-    """Return ``points`` as a float64 array of shape (n, 2) (a single point (2,) becomes (1, 2))."""
+    """Return ``points`` as a float64 array of shape (n, 2) (a single point (2,) becomes (1, 2)).
+
+    Parameters
+    ----------
+    points : array-like
+        Points, or one point.
+
+    Returns
+    -------
+    (n, 2) float array
+        The input itself when it already is a float64 array.
+    """
     arr = points if type(points) is np.ndarray and points.dtype == np.float64 else np.asarray(points, dtype=float)
     if arr.ndim == 1:
         arr = arr.reshape(1, 2)

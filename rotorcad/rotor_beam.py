@@ -95,7 +95,26 @@ class Beam:
 
     @classmethod
     def round_bar(cls, diameter: float, length: float, young: float, poisson: float, kappa: float = KAPPA_ROUND) -> Beam:
-        """Eq. (4): the equivalent round bar of diameter ``diameter`` (mm), E in N/mm^2."""
+        """Make the equivalent round bar of a diameter (Rinder & Deix eq. 4).
+
+        Parameters
+        ----------
+        diameter : float, mm
+            Diameter d of the bar.
+        length : float, mm
+            Its length.
+        young : float, N/mm²
+            Young's modulus E.
+        poisson : float
+            Poisson's ratio mu (G = E / (2 (1 + mu))).
+        kappa : float
+            Shear correction factor of the round section.
+
+        Returns
+        -------
+        Beam
+            EJ = E pi d^4 / 64 (N mm²), GA / kappa = G pi d^2 / (4 kappa) (N).
+        """
         g = young / (2.0 * (1.0 + poisson))
         return cls(young * np.pi * diameter**4 / 64.0, g * np.pi * diameter**2 / (4.0 * kappa), float(length))
 

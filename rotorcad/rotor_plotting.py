@@ -21,7 +21,7 @@ MARKERS = {"cusp": ("v", ps.VERMILLION), "jamming": ("s", ps.PURPLE), "slipping"
 
 
 def pair_case(analysis: MeshingAnalysis) -> str:
-    """``family z1/z2`` of the analysed pair, as the titles name it."""
+    """Return ``family z1/z2`` of the analysed pair, as the titles name it."""
     pair = analysis.rotors.pair
     return f"{analysis.rotors.family} {pair.male_teeth}/{pair.female_teeth}"
 

@@ -362,7 +362,23 @@ class Outputs:
         self.add(path, write, option)
 
     def write(self, pool: WorkerPool | None = None) -> list[Path]:
-        """Write every file or none; background writers run in ``pool``'s worker if given."""
+        """Write every file or none; background writers run in ``pool``'s worker if given.
+
+        Parameters
+        ----------
+        pool : WorkerPool, optional
+            Worker for the background writers.
+
+        Returns
+        -------
+        list of Path
+            The files written.
+
+        Raises
+        ------
+        InputError
+            A write that failed, naming the option and its file.
+        """
         try:
             return write_all(self._items, pool)
         except OSError as exc:
@@ -412,7 +428,25 @@ def plot_format(path: Path, option: str = "--plot") -> str:
 
 
 def output_folder(path: Path | None) -> Path | None:
-    """Create ``--out DIR`` if needed; refuse a path that is a file or cannot be created."""
+    """Create the ``--out`` folder if needed; refuse a path that is a file or cannot be created.
+
+    Folders made here are recorded in :data:`CREATED_FOLDERS`, so that a failed run removes them.
+
+    Parameters
+    ----------
+    path : Path or None
+        The folder (None: no folder).
+
+    Returns
+    -------
+    Path or None
+        The folder.
+
+    Raises
+    ------
+    InputError
+        A path that is a file, or a folder that cannot be created.
+    """
     if path is None:
         return None
     path = Path(path)

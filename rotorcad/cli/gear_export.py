@@ -35,7 +35,18 @@ def is_gear_design(data: dict[str, Any]) -> bool:
 
 
 def gear_lead(g: InvoluteGear) -> float:
-    """Lead of the gear's helix, mm (inf for a spur gear): 2 pi r / tan(beta) at the pitch radius."""
+    """Return the lead of the gear's helix: 2 pi r / tan(beta) at the pitch radius.
+
+    Parameters
+    ----------
+    g : InvoluteGear
+        The gear.
+
+    Returns
+    -------
+    float, mm
+        Signed lead (> 0 right hand); inf for a spur gear.
+    """
     beta = g.helix_angle
     return float("inf") if abs(beta) < 1e-12 else float(2 * np.pi * g.pitch_radius / np.tan(beta))
 

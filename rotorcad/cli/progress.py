@@ -81,7 +81,15 @@ class Steps:
             self._bar.stop()
 
     def advance(self, steps: int = 1, description: str | None = None) -> None:
-        """One step (or ``steps``) done; ``description`` replaces the text left of the bar."""
+        """Count one step (or ``steps``) done.
+
+        Parameters
+        ----------
+        steps : int
+            Steps done since the last call.
+        description : str, optional
+            Replaces the text left of the bar.
+        """
         self.done += steps
         if self._bar is not None:
             fields: dict[str, Any] = {"advance": steps}
@@ -90,7 +98,15 @@ class Steps:
             self._bar.update(self._task, **fields)
 
     def update(self, completed: int, **fields: Any) -> None:
-        """Set the steps done to ``completed`` and the extra ``fields`` of the columns."""
+        """Set the steps done to ``completed`` and the extra ``fields`` of the columns.
+
+        Parameters
+        ----------
+        completed : int
+            Steps done so far.
+        **fields
+            Values of the columns' fields (e.g. ``failed=3``).
+        """
         self.done = completed
         if self._bar is not None:
             self._bar.update(self._task, completed=completed, **fields)

@@ -110,7 +110,18 @@ EARLIER = "a Parquet file of an earlier sweep (or a new name)"
 
 
 def parts_folder(out: Path) -> Path:
-    """Where the finished batches of a sweep writing ``out`` are kept until it ends."""
+    """Return the folder where the finished batches of a sweep writing ``out`` are kept until it ends.
+
+    Parameters
+    ----------
+    out : Path
+        The sweep's Parquet file.
+
+    Returns
+    -------
+    Path
+        ``OUT.parts`` beside it.
+    """
     return out.with_name(out.name + ".parts")
 
 
