@@ -23,14 +23,40 @@ NAME_MAX = 255  # bytes of one file name (Linux, macOS, Windows)
 
 
 def staging_prefix(target: Path) -> str:
-    """The hidden temporary name's start for ``target``: its name cut to 100 bytes, so that a
-    name near the file system's limit still leaves room for the temporary's suffix."""
+    """Return the start of the hidden temporary name for ``target``.
+
+    Its name cut to 100 bytes, so that a name near the file system's limit still leaves room for the
+    temporary's suffix.
+
+    Parameters
+    ----------
+    target : Path
+        The file to be written.
+
+    Returns
+    -------
+    str
+        ``"." + name[:100 bytes] + "."``.
+    """
     return "." + os.fsencode(target.name)[:100].decode(errors="ignore") + "."
 
 
 def check_writable(path: Path, label: str) -> None:
-    """Refuse, before any work is done, a target whose folder is missing or not writable, or that
-    is not a regular file (a device, a FIFO or a socket would be replaced by a file)."""
+    """Refuse a target that cannot be written, before any work is done.
+
+    Parameters
+    ----------
+    path : Path
+        The file to be written.
+    label : str
+        The option that named it (leads the error sentence).
+
+    Raises
+    ------
+    DesignError
+        A name over :data:`NAME_MAX` bytes, a folder, a path that is not a regular file (a device, a
+        FIFO or a socket would be replaced by a file), or a folder that is missing or not writable.
+    """
     folder = path.parent if str(path.parent) else Path(".")
     size = len(os.fsencode(path.name))
     if size > NAME_MAX:
@@ -46,10 +72,24 @@ def check_writable(path: Path, label: str) -> None:
 
 
 def write_all(outputs: Iterable[tuple[Path, Writer]], pool: WorkerPool | None = None) -> list[Path]:
-    """Write every ``(target, writer)`` pair or none of them; return the targets written.
+    """Write every ``(target, writer)`` pair or none of them.
 
-    The background writers start first, in ``pool``'s worker (here without a pool); the others
-    run here meanwhile, in the given order.
+    The background writers start first, in ``pool``'s worker (here without a pool); the others run
+    here meanwhile, in the given order. A target that is a symbolic link is written where the link
+    points; a file replaced keeps its permissions.
+
+    Parameters
+    ----------
+    outputs : iterable of (Path, Writer)
+        Targets and their writers (a function of the temporary path, or a
+        :class:`~exports.background.BackgroundWriter`).
+    pool : WorkerPool, optional
+        Worker for the background writers; default none (they run here).
+
+    Returns
+    -------
+    list of Path
+        The targets written.
     """
     staged: list[tuple[Path, Path, Writer]] = []
     workers = pool or WorkerPool(background=False)

@@ -52,7 +52,19 @@ class BackgroundWriter:
     failed: Callable[[ValueError], BaseException] | None = None
 
     def finish(self, run: Callable[[], Any]) -> None:
-        """Run ``run`` (which returns the function's value) and hand its value or failure on."""
+        """Run ``run`` (which returns the function's value) and hand its value or failure on.
+
+        Parameters
+        ----------
+        run : callable
+            Runs the job (here or by waiting for the worker) and returns the function's value.
+
+        Raises
+        ------
+        BaseException
+            The exception ``failed`` makes of a ``ValueError`` the job raised (the ``ValueError``
+            itself without ``failed``); other exceptions pass unchanged.
+        """
         try:
             value = run()
         except ValueError as exc:
@@ -64,8 +76,11 @@ class BackgroundWriter:
 
 
 def worker_count() -> int:
-    """Worker processes to use: 1 on Linux with two or more cores and no other Python thread
-    running, else 0 (run here); ``ROTORCAD_WORKERS=0`` in the environment also says 0."""
+    """Return the number of worker processes to use: 1 or 0 (run here).
+
+    1 on Linux with two or more cores and no other Python thread running, else 0;
+    ``ROTORCAD_WORKERS=0`` in the environment also says 0.
+    """
     if os.environ.get("ROTORCAD_WORKERS", "").strip() == "0":
         return 0
     if sys.platform != "linux" or threading.active_count() > 1:
@@ -74,8 +89,10 @@ def worker_count() -> int:
 
 
 def _start_worker(preload: tuple[str, ...]) -> None:
-    """In the worker: leave Ctrl-C to the parent (which stops the worker and removes what it
-    wrote), then import ``preload`` while the parent goes on."""
+    """Prepare the worker: leave Ctrl-C to the parent, then import ``preload`` while the parent goes on.
+
+    The parent stops the worker and removes what it wrote.
+    """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for module in preload:
         importlib.import_module(module)
@@ -123,7 +140,23 @@ class WorkerPool:
             self._executor = None
 
     def submit(self, job: BackgroundWriter, path: Path) -> Callable[[], None]:
-        """Start ``job`` writing ``path``; return the call that waits for it and finishes it."""
+        """Start ``job`` writing ``path``; return the call that waits for it and finishes it.
+
+        Without a worker the job runs when that call is made. When the worker dies (killed, out of
+        memory) the job is run here instead.
+
+        Parameters
+        ----------
+        job : BackgroundWriter
+            The writer.
+        path : Path
+            The (temporary) file to write.
+
+        Returns
+        -------
+        callable
+            Call it to wait for the job and hand on its value or failure (:meth:`BackgroundWriter.finish`).
+        """
         if self._executor is None:
             return lambda: job.finish(lambda: job.function(path, *job.args))
         future: Future = self._executor.submit(job.function, path, *job.args)

@@ -1,5 +1,6 @@
-"""Points files (CONTRACT.md, "Points files"): CSV with the header ``x,y`` in mm, one point per
-line in order along the curve, comment lines starting with ``#``.
+"""Points files (CONTRACT.md, "Points files"): CSV with the header ``x,y`` in mm, one point a line.
+
+Points are in order along the curve; comment lines start with ``#``.
 
 The reader takes files from users and measuring machines, so it refuses anything it cannot read
 as a profile with one sentence naming the file's option (``label``): a path that is not a regular
@@ -43,8 +44,19 @@ _DXF_TEXT = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(?:999[ \t]*\r?\n[^\r\n]*\r?\n\s
 
 
 def write_points(path: Path, points: np.ndarray, comments: list[str] | None = None, header: str = "x,y") -> None:
-    """Write ``points`` (n, 2), or rows with the columns ``header`` names, to ``path`` with full
-    double precision."""
+    """Write points, or rows with the columns ``header`` names, to a CSV file with full double precision.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    points : (n, k) float array
+        The rows (points (n, 2) in mm for a points file).
+    comments : list of str, optional
+        Lines written first, each after ``# ``.
+    header : str
+        The header line, e.g. ``x,y``.
+    """
     with open(path, "w", encoding="utf-8", newline="\n") as f:
         for line in comments or []:
             f.write(f"# {line}\n")
@@ -53,15 +65,29 @@ def write_points(path: Path, points: np.ndarray, comments: list[str] | None = No
 
 
 def looks_like_dxf(head: bytes) -> bool:
-    """True when the first bytes of a file are those of a DXF drawing: the binary sentinel
-    ``AutoCAD Binary DXF``, or (after optional blanks and ``999`` comments) the group code ``0``
-    followed by ``SECTION``."""
+    """Tell whether the first bytes of a file are those of a DXF drawing.
+
+    The binary sentinel ``AutoCAD Binary DXF``, or (after optional blanks and ``999`` comments) the
+    group code ``0`` followed by ``SECTION``.
+
+    Parameters
+    ----------
+    head : bytes
+        The first bytes of the file.
+
+    Returns
+    -------
+    bool
+    """
     return head.startswith(b"AutoCAD Binary DXF") or _DXF_TEXT.match(head) is not None
 
 
 def _decode(data: bytes, label: str, path: Path) -> str:
-    """Text of a points file: UTF-8 (a byte-order mark is dropped), else Latin-1; binary data is
-    refused."""
+    """Return the text of a points file: UTF-8 (a byte-order mark is dropped), else Latin-1.
+
+    Binary data (known file signatures, NUL or control bytes, mostly high bytes) is refused with
+    :class:`DesignError`.
+    """
     allowed = "a CSV points file (text with the header x,y)"
     for magic, name in _MAGIC:
         if data.startswith(magic):

@@ -1,9 +1,11 @@
-"""DXF drawings of profiles with ezdxf: closed polylines on named layers, reference circles and
-centre marks on their own layers, labels as TEXT on theirs, true scale in millimetres
-($INSUNITS = 4).
+"""DXF drawings of profiles with ezdxf, true scale in millimetres ($INSUNITS = 4).
+
+Closed polylines on named layers, reference circles and centre marks on their own layers, labels
+as TEXT on theirs.
 
 ezdxf is imported by the writers (0.15 s): the export command hands DXF writing to its worker
-process and need not load it (see :mod:`exports.background`)."""
+process and need not load it (see :mod:`exports.background`).
+"""
 
 from __future__ import annotations
 
@@ -34,7 +36,27 @@ LAYER_COLOURS = {
 
 @dataclass
 class Drawing:
-    """What goes into a 2D profile drawing."""
+    """What goes into a 2D profile drawing (all coordinates in mm).
+
+    Parameters
+    ----------
+    outlines : list of (str, (n, 2) float array)
+        (layer, closed points): closed polylines.
+    circles : list of (str, (float, float), float)
+        (layer, centre, radius): reference circles.
+    lines : list of (str, (float, float), (float, float))
+        (layer, start, end).
+    centers : list of (float, float)
+        Centre marks, drawn as crosses on the layer CENTER.
+    polylines : list of (str, (n, 2) float array)
+        (layer, open points).
+    splines : list of (str, (n, 2) float array)
+        (layer, closed points): a closed cubic spline through them (R2000+ only).
+    texts : list of (str, (float, float), str, float)
+        (layer, insertion point, text, height in mm): one-line TEXT labels.
+    mark_size : float, mm
+        Half the size of a centre mark.
+    """
 
     outlines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, closed points)
     circles: list[tuple[str, tuple[float, float], float]] = field(default_factory=list)  # (layer, centre, radius)
@@ -47,7 +69,19 @@ class Drawing:
 
 
 def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
-    """Write ``drawing``: outlines as closed LWPOLYLINEs (R2000+) or POLYLINEs (R12)."""
+    """Write a drawing as DXF.
+
+    Outlines become closed LWPOLYLINEs (R2000+) or POLYLINEs (R12); splines are left out in R12.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    drawing : Drawing
+        What to draw.
+    version : str
+        DXF version, e.g. ``"R2000"`` or ``"R12"``.
+    """
     doc = _new(version)
     if version != "R12":  # R12 has no units variable
         doc.header["$INSUNITS"] = 4  # millimetres
@@ -94,16 +128,34 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
 
 
 def _lwpolyline(msp, pts: np.ndarray, close: bool, layer: str) -> None:
-    """An LWPOLYLINE of ``pts`` set in one piece: ezdxf appends points one by one, copying the
-    whole array each time (a 126 000-point gear outline took minutes)."""
+    """Add an LWPOLYLINE of ``pts`` set in one piece.
+
+    ezdxf appends points one by one, copying the whole array each time (a 126 000-point gear outline
+    took minutes).
+    """
     pts = np.asarray(pts, dtype=float)
     poly = msp.add_lwpolyline([], close=close, dxfattribs={"layer": layer})
     poly.lwpoints.set(np.column_stack([pts[:, :2], np.zeros((len(pts), 3))]))
 
 
 def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: str = "MESH", version: str = "R2000") -> None:
-    """A 3D triangle mesh as a MESH entity (R2000+) or a POLYFACE (R12). Meant for small meshes:
-    a POLYFACE of 0.1 M triangles takes ezdxf ~10 s to build (STACK-NOTES)."""
+    """Write a 3D triangle mesh as a MESH entity (R2000+) or a POLYFACE (R12).
+
+    Meant for small meshes: a POLYFACE of 0.1 M triangles takes ezdxf ~10 s to build (STACK-NOTES).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    vertices : (n, 3) float array, mm
+        Vertices.
+    faces : (m, 3) int array
+        Triangles as vertex indices.
+    layer : str
+        Layer of the mesh.
+    version : str
+        DXF version.
+    """
     doc = _new(version)
     if version != "R12":
         doc.header["$INSUNITS"] = 4
@@ -124,8 +176,11 @@ def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: s
 
 
 def _new(version: str) -> ezdxf.document.Drawing:
-    """A new drawing; ezdxf warns on stderr that R12 has no units variable when it sets its default
-    units - keep a successful run's stderr clean."""
+    """Start a new drawing, quietly.
+
+    ezdxf warns on stderr that R12 has no units variable when it sets its default units - keep a
+    successful run's stderr clean.
+    """
     import ezdxf
 
     logger = logging.getLogger("ezdxf")

@@ -55,7 +55,7 @@ def _name(entity) -> str:
 
 
 def _load(path: Path, label: str):
-    """The ezdxf document of ``path``; a file ezdxf cannot read is refused."""
+    """Read the ezdxf document of ``path``; a file ezdxf cannot read is refused with :class:`DesignError`."""
     import ezdxf  # here: commands that only may read a DXF do not pay its import (0.15 s)
 
     check_regular_file(path, label, "DXF drawing")
@@ -73,7 +73,10 @@ def _load(path: Path, label: str):
 
 
 def _layer_entities(doc, label: str, value: str, layer: str | None) -> list:
-    """The profile entities of modelspace on ``layer`` (layer names compared without case)."""
+    """Return the profile entities of modelspace on ``layer`` (layer names compared without case).
+
+    Without a layer all profile entities, which must lie on one layer; refusals name the layers found.
+    """
     by_layer: dict[str, list] = {}
     names: dict[str, str] = {}
     ignored: Counter[str] = Counter()
@@ -115,8 +118,10 @@ def _layer_entities(doc, label: str, value: str, layer: str | None) -> list:
 
 
 def _ocs_mirror(entity, label: str, value: str) -> bool:
-    """Whether the entity's object coordinate system is the xy plane seen from below (extrusion
-    (0, 0, -1): x mirrored); an entity in any other plane is refused."""
+    """Tell whether the entity's object coordinate system is the xy plane seen from below.
+
+    That is extrusion (0, 0, -1): x mirrored. An entity in any other plane is refused.
+    """
     n = np.asarray(entity.dxf.extrusion, dtype=float)
     n = n / np.linalg.norm(n)
     if abs(n[0]) > 1e-9 or abs(n[1]) > 1e-9:
@@ -149,8 +154,11 @@ def _mirrored(curve: Curve) -> Curve:
 
 
 def _segment(p0: np.ndarray, p1: np.ndarray, bulge: float) -> Curve | None:
-    """A polyline segment: straight, or the circular arc of ``bulge`` = tan(included angle / 4),
-    positive counter-clockwise (DXF reference, LWPOLYLINE group 42). None for a zero-length one."""
+    """Make a polyline segment: straight, or the circular arc of ``bulge``.
+
+    ``bulge`` = tan(included angle / 4), positive counter-clockwise (DXF reference, LWPOLYLINE group
+    42). Returns None for a zero-length segment.
+    """
     d = p1 - p0
     if not np.any(d):
         return None
@@ -171,7 +179,11 @@ def _polyline(xy: np.ndarray, bulges: np.ndarray, closed: bool) -> Piece:
 
 
 def _spline(entity, label: str, value: str) -> Curve:
-    """A non-rational SPLINE as scipy's (knots, coefficients, degree), kept exact."""
+    """Read a non-rational SPLINE as scipy's (knots, coefficients, degree), kept exact.
+
+    A SPLINE given only by fit points is built by ezdxf's construction tool (degree 3); rational,
+    malformed, non-planar or non-finite splines and degrees outside 1 to 5 are refused.
+    """
     weights = np.asarray(entity.weights, dtype=float)
     if weights.size and np.ptp(weights) > 1e-12 * np.abs(weights).max():
         raise DesignError(
@@ -209,7 +221,7 @@ def _spline(entity, label: str, value: str) -> Curve:
 
 
 def _entity_piece(entity, label: str, value: str) -> Piece:
-    """The curves of one entity in its own order, in world coordinates."""
+    """Return the curves of one entity in its own order, in world coordinates."""
     kind = entity.dxftype()
     if kind == "CIRCLE":
         raise DesignError(
@@ -271,7 +283,12 @@ def _reverse(piece: Piece) -> Piece:
 
 
 def _chain(pieces: list[Piece], names: list[str], label: str, value: str) -> tuple[Piece, bool]:
-    """The pieces joined end to end into one chain, starting from the first; and whether it closes."""
+    """Join the pieces end to end into one chain, starting from the first; return it and whether it closes.
+
+    Refused with :class:`DesignError`: a branch (two pieces continuing at one joint), pieces left
+    out of a closed chain, a gap wider than :data:`GAP_TOLERANCE`, or an open chain whose ends are
+    nearly met (:data:`CLOSING_GAP`).
+    """
     starts = np.array([p[0].start for p in pieces])
     ends = np.array([p[-1].end for p in pieces])
     free = np.ones(len(pieces), dtype=bool)
@@ -345,7 +362,7 @@ def _chain(pieces: list[Piece], names: list[str], label: str, value: str) -> tup
 
 
 def _spans(curve: Curve) -> int:
-    """Number of polynomial pieces of a spline (knot spans in use), 1 for other curves."""
+    """Count the polynomial pieces of a spline (knot spans in use); 1 for other curves."""
     if not isinstance(curve, Spline):
         return 1
     lo, hi = sorted((curve.s0, curve.s1))
@@ -354,17 +371,22 @@ def _spans(curve: Curve) -> int:
 
 
 def _samples(curve: Curve, tolerance: float) -> np.ndarray:
-    """Points along ``curve`` to the chord tolerance (mm): the ends of a line; on a spline
-    :func:`rotorcad.curves.sample_curve` starts from at least two intervals per polynomial piece,
-    so that no piece (an inflection, a small wiggle) lies unseen between two first samples."""
+    """Sample points along ``curve`` to the chord tolerance (mm).
+
+    The ends of a line; on a spline :func:`rotorcad.curves.sample_curve` starts from at least two
+    intervals per polynomial piece, so that no piece (an inflection, a small wiggle) lies unseen
+    between two first samples.
+    """
     if isinstance(curve, Line):
         return np.array([curve.start, curve.end])
     return sample_curve(curve, tolerance, minimum=2 * _spans(curve) + 1)[1]
 
 
 def _coarse(chain: Piece) -> np.ndarray:
-    """Points along the chain for its orientation: line ends, at least 17 points on other curves
-    (two per polynomial piece of a spline)."""
+    """Sample points along the chain for its orientation.
+
+    Line ends, and at least 17 points on other curves (two per polynomial piece of a spline).
+    """
     parts = []
     for c in chain:
         if isinstance(c, Line):
@@ -375,8 +397,10 @@ def _coarse(chain: Piece) -> np.ndarray:
 
 
 def _orient(chain: Piece, closed: bool) -> Piece:
-    """The chain in its direction of travel: counter-clockwise when closed or running around the
-    origin, else with x growing."""
+    """Turn the chain into its direction of travel (module docstring).
+
+    Counter-clockwise when closed or running around the origin, else with x growing.
+    """
     p = _coarse(chain)
     if closed:
         area = 0.5 * np.sum(p[:-1, 0] * p[1:, 1] - p[1:, 0] * p[:-1, 1])
@@ -416,7 +440,7 @@ def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]
 
 
 def read_profile_dxf(path: Path, label: str, layer: str | None = None) -> list[Curve]:
-    """The profile drawn in a DXF file as exact curves, end to end, in one direction of travel.
+    """Read the profile drawn in a DXF file as exact curves, end to end, in one direction of travel.
 
     Parameters
     ----------
@@ -514,8 +538,10 @@ def read_profile_points(path: Path, label: str, layer: str | None = None) -> np.
 
 
 def _is_drawing(path: Path, label: str) -> bool:
-    """True for a DXF drawing (by its name or its first bytes), False for anything else; a path
-    that is not a regular file is refused first."""
+    """Tell whether ``path`` is a DXF drawing (by its name or its first bytes).
+
+    A path that is not a regular file is refused first (:class:`DesignError`).
+    """
     path = Path(path)
     check_regular_file(path, label, "CSV points file or DXF drawing")
     with open(path, "rb") as f:
@@ -524,10 +550,31 @@ def _is_drawing(path: Path, label: str) -> bool:
 
 
 def read_profile(path: Path, label: str, layer: str | None = None) -> np.ndarray | list[Curve]:
-    """A rotor profile as the user gave it: the exact curves of a DXF drawing
-    (:func:`read_profile_dxf`: arcs stay arcs, splines the drawing's splines) or the points of a
-    CSV file (:func:`exports.csv_points.read_points`), whichever ``path`` is (see
-    :func:`read_profile_points`)."""
+    """Read a rotor profile as the user gave it: the exact curves of a DXF drawing or the points of a CSV file.
+
+    Whichever ``path`` is (see :func:`read_profile_points`): a drawing is read by
+    :func:`read_profile_dxf` (arcs stay arcs, splines the drawing's splines), a CSV file by
+    :func:`exports.csv_points.read_points`.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    label : str
+        The option or key that named the file; it leads the error sentence.
+    layer : str or None
+        Layer of the profile in a DXF drawing.
+
+    Returns
+    -------
+    list of Curve or (n, 2) float array, mm
+        The curves of a drawing, or the points of a CSV file.
+
+    Raises
+    ------
+    DesignError
+        As :func:`read_profile_dxf` or :func:`exports.csv_points.read_points`.
+    """
     if _is_drawing(path, label):
         return read_profile_dxf(path, label, layer)
     return read_points(path, label)

@@ -1,7 +1,9 @@
-"""One self-contained HTML page per design (``rotorcad report``): tables of numbers with their
-units, the verdicts, and the pictures inline as SVG. The page loads nothing: no scripts, no
-style sheets, no fonts or images from elsewhere, and a Content-Security-Policy that forbids any
-load, so that it opens the same on a machine without network and can be attached to a review.
+"""One self-contained HTML page per design (``rotorcad report``).
+
+Tables of numbers with their units, the verdicts, and the pictures inline as SVG. The page loads
+nothing: no scripts, no style sheets, no fonts or images from elsewhere, and a
+Content-Security-Policy that forbids any load, so that it opens the same on a machine without
+network and can be attached to a review.
 
 Pure text building: the caller computes the numbers and the pictures (:mod:`rotorcad.cli.report_cmd`).
 """
@@ -44,7 +46,17 @@ nav ol { columns: 2; }
 
 @dataclass(frozen=True)
 class Section:
-    """A part of the page: an anchor id, a heading and its body (HTML text)."""
+    """A part of the page: an anchor id, a heading and its body (HTML text).
+
+    Parameters
+    ----------
+    id : str
+        Anchor id (the contents link to it).
+    heading : str
+        Heading text (escaped).
+    body : str
+        HTML text of the section (not escaped).
+    """
 
     id: str
     heading: str
@@ -52,13 +64,34 @@ class Section:
 
 
 def esc(text: Any) -> str:
-    """Text for HTML (``&``, ``<``, ``>`` and quotes escaped)."""
+    """Escape text for HTML (``&``, ``<``, ``>`` and quotes).
+
+    Parameters
+    ----------
+    text : object
+        Anything; its ``str`` is escaped.
+
+    Returns
+    -------
+    str
+    """
     return html.escape(str(text), quote=True)
 
 
 def number_text(value: Any) -> str:
-    """A value as the page shows it: floats to 6 significant digits, booleans as yes / no, None
-    as a dash, infinities as ∞."""
+    """Write a value as the page shows it.
+
+    Floats to 6 significant digits, booleans as yes / no, None and NaN as a dash, infinities as ∞.
+
+    Parameters
+    ----------
+    value : object
+        The value.
+
+    Returns
+    -------
+    str
+    """
     if value is None:
         return "—"
     if isinstance(value, bool):
@@ -75,13 +108,26 @@ def number_text(value: Any) -> str:
 
 
 def is_number(value: Any) -> bool:
-    """True for an int or float that is not a bool."""
+    """Tell whether ``value`` is an int or a float (a bool is not)."""
     return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def flatten(mapping: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
-    """``(dotted key, value)`` for every scalar of a nested mapping, in its order (lists are left
-    to their own tables)."""
+    """List ``(dotted key, value)`` for every scalar of a nested mapping, in its order.
+
+    Lists are left to their own tables.
+
+    Parameters
+    ----------
+    mapping : dict
+        The nested mapping (e.g. the JSON of ``rotor --json``).
+    prefix : str
+        Put before every key.
+
+    Returns
+    -------
+    list of (str, object)
+    """
     out: list[tuple[str, Any]] = []
     for key, value in mapping.items():
         name = f"{prefix}{key}"
@@ -93,8 +139,25 @@ def flatten(mapping: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:
 
 
 def quantity_table(rows: Iterable[tuple[str, Any]], unit: Callable[[str], str], label: str = "quantity") -> str:
-    """A table of quantity, value and unit; each row carries ``data-key`` (its dotted key) and,
-    for numbers, ``data-value`` (the full value) so that a reader can check the page."""
+    """Build a table of quantity, value and unit.
+
+    Each row carries ``data-key`` (its dotted key) and, for numbers, ``data-value`` (the full value)
+    so that a reader can check the page.
+
+    Parameters
+    ----------
+    rows : iterable of (str, object)
+        Dotted keys and values.
+    unit : callable
+        The unit of a key (shown for numbers only).
+    label : str
+        Heading of the first column.
+
+    Returns
+    -------
+    str
+        The HTML table.
+    """
     lines = [f"<table class='quantities'><tr><th>{esc(label)}</th><th>value</th><th>unit</th></tr>"]
     for key, value in rows:
         numeric = is_number(value)
@@ -109,8 +172,22 @@ def quantity_table(rows: Iterable[tuple[str, Any]], unit: Callable[[str], str], 
 
 
 def record_table(records: Sequence[dict[str, Any]], columns: Sequence[tuple[str, str]], empty: str) -> str:
-    """A table of records (one row each) with columns ``(key, heading with unit)``; ``empty`` is
-    said instead when there are none."""
+    """Build a table of records, one row each.
+
+    Parameters
+    ----------
+    records : sequence of dict
+        The rows.
+    columns : sequence of (str, str)
+        ``(key, heading with unit)`` of each column.
+    empty : str
+        Said instead of the table when there are no records.
+
+    Returns
+    -------
+    str
+        The HTML table (or paragraph).
+    """
     if not records:
         return f"<p>{esc(empty)}</p>"
     head = "".join(f"<th>{esc(h)}</th>" for _, h in columns)
@@ -128,30 +205,95 @@ _METADATA = re.compile(r"<metadata>.*?</metadata>", re.S)
 
 
 def inline_svg(svg: str) -> str:
-    """An SVG document as an element for the page: without the XML declaration, the DOCTYPE and
-    the metadata (they name web addresses, though nothing loads them)."""
+    """Turn an SVG document into an element for the page.
+
+    Without the XML declaration, the DOCTYPE and the metadata (they name web addresses, though
+    nothing loads them).
+
+    Parameters
+    ----------
+    svg : str
+        The SVG document.
+
+    Returns
+    -------
+    str
+    """
     return _METADATA.sub("", _PROLOGUE.sub("", svg)).strip()
 
 
 def figure(svg: str, caption: str, fid: str) -> str:
-    """A picture (SVG text) with its caption."""
+    """Build a picture (SVG text) with its caption.
+
+    Parameters
+    ----------
+    svg : str
+        The SVG document.
+    caption : str
+        The caption.
+    fid : str
+        Id of the figure element.
+
+    Returns
+    -------
+    str
+    """
     return f"<figure class='plot' id='{esc(fid)}'>{inline_svg(svg)}<figcaption>{esc(caption)}</figcaption></figure>"
 
 
 def verdict_box(ok: bool, text: str) -> str:
-    """A verdict in a green (``ok``) or vermillion box."""
+    """Build a verdict in a green (``ok``) or vermillion box.
+
+    Parameters
+    ----------
+    ok : bool
+        Whether the verdict is good.
+    text : str
+        The verdict.
+
+    Returns
+    -------
+    str
+    """
     return f"<p class='verdict {'ok' if ok else 'bad'}'>{esc(text)}</p>"
 
 
 def bullet_list(items: Sequence[str], empty: str) -> str:
-    """A list of sentences, or ``empty`` when there are none."""
+    """Build a list of sentences, or ``empty`` when there are none.
+
+    Parameters
+    ----------
+    items : sequence of str
+        The sentences.
+    empty : str
+        Said instead when there are none.
+
+    Returns
+    -------
+    str
+    """
     if not items:
         return f"<p>{esc(empty)}</p>"
     return "<ul>" + "".join(f"<li>{esc(i)}</li>" for i in items) + "</ul>"
 
 
 def page(title: str, meta: Sequence[tuple[str, str]], sections: Sequence[Section]) -> str:
-    """The whole page: a header (title, the facts in ``meta``), the contents, the sections."""
+    """Build the whole page: a header (title, the facts in ``meta``), the contents, the sections.
+
+    Parameters
+    ----------
+    title : str
+        Title of the page.
+    meta : sequence of (str, str)
+        Facts shown under the title.
+    sections : sequence of Section
+        The sections, in order (each listed in the contents).
+
+    Returns
+    -------
+    str
+        The HTML document.
+    """
     head = "".join(f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in meta)
     nav = "".join(f"<li><a href='#{esc(s.id)}'>{esc(s.heading)}</a></li>" for s in sections)
     body = "\n".join(f"<section id='{esc(s.id)}'><h2>{esc(s.heading)}</h2>\n{s.body}\n</section>" for s in sections)
@@ -166,7 +308,15 @@ def page(title: str, meta: Sequence[tuple[str, str]], sections: Sequence[Section
 
 
 def write_page(path: Path, text: str) -> None:
-    """Write the page as UTF-8 (to a temporary name given by :mod:`exports.atomic`)."""
+    """Write the page as UTF-8 (to a temporary name given by :mod:`exports.atomic`).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    text : str
+        The HTML document (:func:`page`).
+    """
     Path(path).write_text(text, encoding="utf-8")
 
 

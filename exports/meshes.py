@@ -28,7 +28,22 @@ EXTENSIONS = {
 
 
 def write_mesh(path: Path, mesh: trimesh.Trimesh, fmt: str) -> None:
-    """Write ``mesh`` to ``path`` in format ``fmt`` (one of :data:`MESH_FORMATS`)."""
+    """Write a mesh in one of :data:`MESH_FORMATS`.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    mesh : trimesh.Trimesh
+        The mesh, float64, mm.
+    fmt : str
+        One of :data:`MESH_FORMATS` (XDMF is written with its data inline, no HDF5 file beside it).
+
+    Raises
+    ------
+    ValueError
+        An unknown format.
+    """
     if fmt in TRIMESH_FORMATS:
         data = mesh.export(file_type=TRIMESH_FORMATS[fmt])
         mode = "w" if isinstance(data, str) else "wb"
@@ -45,7 +60,19 @@ def write_mesh(path: Path, mesh: trimesh.Trimesh, fmt: str) -> None:
 
 
 def read_mesh(path: Path, fmt: str) -> trimesh.Trimesh:
-    """Read a mesh back (trimesh or meshio), merging duplicate vertices for a watertight check."""
+    """Read a mesh back (trimesh or meshio), merging duplicate vertices for a watertight check.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    fmt : str
+        One of :data:`MESH_FORMATS`.
+
+    Returns
+    -------
+    trimesh.Trimesh
+    """
     if fmt in MESHIO_FORMATS:
         m = meshio.read(str(path))
         faces = np.vstack([c.data for c in m.cells if c.type == "triangle"])

@@ -76,7 +76,7 @@ def check_regular_file(path: Path, label: str, kind: str = "CSV points file", li
 
 
 def read_bytes(path: Path, label: str, kind: str, limit: int = MAX_BYTES) -> bytes:
-    """The whole content of a regular file checked by :func:`check_regular_file`.
+    """Read the whole content of a regular file checked by :func:`check_regular_file`.
 
     Parameters
     ----------
@@ -93,6 +93,12 @@ def read_bytes(path: Path, label: str, kind: str, limit: int = MAX_BYTES) -> byt
     -------
     bytes
         The content.
+
+    Raises
+    ------
+    DesignError
+        A path that is missing, unreadable, not a regular file (also if swapped after the check) or
+        larger than ``limit``.
     """
     check_regular_file(path, label, kind, limit)
     flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
@@ -113,7 +119,7 @@ def read_bytes(path: Path, label: str, kind: str, limit: int = MAX_BYTES) -> byt
 
 
 def read_text(path: Path, label: str, kind: str, limit: int = MAX_BYTES) -> str:
-    """The text of a user's file (:func:`read_bytes`), UTF-8 or Latin-1.
+    """Read the text of a user's file (:func:`read_bytes`), UTF-8 or Latin-1.
 
     Parameters
     ----------

@@ -55,7 +55,19 @@ def _lines(fmt: str, columns: list[np.ndarray]) -> str:
 
 
 def write_faceted_step(path: Path, vertices: np.ndarray, faces: np.ndarray, body: str = "rotor") -> None:
-    """Write a closed triangle mesh as one faceted solid (AP214)."""
+    """Write a closed triangle mesh as one faceted solid (AP214), without OpenCASCADE (module docstring).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    vertices : (n, 3) float array, mm
+        Vertices.
+    faces : (m, 3) int array
+        Triangles as vertex indices.
+    body : str
+        Product name in the file.
+    """
     v = np.asarray(vertices, dtype=float)
     f = np.asarray(faces, dtype=np.int64)
     nv, nf = len(v), len(f)
@@ -93,14 +105,18 @@ def write_faceted_step(path: Path, vertices: np.ndarray, faces: np.ndarray, body
 
 
 def ocp_available() -> bool:
-    """Whether OpenCASCADE (the ``OCP`` package) is installed; found without importing it (0.6 s),
-    which the export leaves to its worker process."""
+    """Tell whether OpenCASCADE (the ``OCP`` package) is installed.
+
+    Found without importing it (0.6 s), which the export leaves to its worker process.
+    """
     return importlib.util.find_spec("OCP") is not None
 
 
 def _quiet_ocp() -> None:
-    """OpenCASCADE's default messenger prints banners on stdout: keep only failures (stdout of a
-    --json command must hold the JSON alone)."""
+    """Keep only failures of OpenCASCADE's default messenger, which prints banners on stdout.
+
+    The stdout of a --json command must hold the JSON alone.
+    """
     from OCP.Message import Message, Message_Gravity
 
     for printer in Message.DefaultMessenger_s().Printers():
@@ -108,8 +124,26 @@ def _quiet_ocp() -> None:
 
 
 def read_step(path: Path) -> dict[str, object]:
-    """Read a STEP file with OpenCASCADE: number of solids, validity (BRepCheck) and volume by
-    Gauss-Kronrod integration (the plain one was 0.9 % off on a B-spline rotor; STACK-NOTES)."""
+    """Read a STEP file with OpenCASCADE and check it.
+
+    The volume is integrated by Gauss-Kronrod (the plain integration was 0.9 % off on a B-spline
+    rotor; STACK-NOTES).
+
+    Parameters
+    ----------
+    path : Path
+        The STEP file.
+
+    Returns
+    -------
+    dict
+        ``solids`` (their number), ``valid`` (BRepCheck) and ``volume`` (mm³).
+
+    Raises
+    ------
+    FileNotFoundError
+        A missing file (OpenCASCADE's reader would crash on it).
+    """
     from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps

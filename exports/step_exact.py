@@ -1,18 +1,19 @@
-"""Exact STEP of a helical rotor or gear: the section as it is, swept along its helix by
-OpenCASCADE, one face per profile segment.
+"""Exact STEP of a helical rotor or gear: the section swept along its helix by OpenCASCADE.
 
-Each segment of the transverse section becomes one edge: a straight segment a line, a circular
-arc a circle (through its ends and its middle), every other curve (involute, trochoid, generated
-conjugate, spline) a B-spline interpolating its samples with their exact unit tangents
-(``GeomAPI_Interpolate`` with a tangent at every point: a C1 Hermite-type fit whose error falls
-with the fourth power of the spacing), refined until its middle points lie within the tolerance.
-The edges meet at the segments' ends, so a sharp corner stays a corner. The wire is swept along
-the axis with an auxiliary helix on a cylinder (``BRepOffsetAPI_MakePipeShell``, STACK-NOTES), so
-that every point turns by 2 pi z / h at height z, and closed into a solid: each segment gives one
-face, the faces a grinding or CMM program names.
+One face per profile segment. Each segment of the transverse section becomes one edge: a straight
+segment a line, a circular arc a circle (through its ends and its middle), every other curve
+(involute, trochoid, generated conjugate, spline) a B-spline interpolating its samples with their
+exact unit tangents (``GeomAPI_Interpolate`` with a tangent at every point: a C1 Hermite-type fit
+whose error falls with the fourth power of the spacing). The edges meet at the segments' ends, so
+a sharp corner stays a corner. The wire is swept along the axis with an auxiliary helix on a
+cylinder (``BRepOffsetAPI_MakePipeShell``, STACK-NOTES), so that every point turns by 2 pi z / h
+at height z, and closed into a solid: each segment gives one face, the faces a grinding or CMM
+program names.
 
-:func:`helicoid_deviation` checks the result: it samples every face's surface, turns each point
-back by -2 pi z / h and measures its distance to the exact section.
+The samples are the caller's (the export samples the section to ten times the tolerance); no
+refinement is done here. :func:`helicoid_deviation` checks the result: it samples every face's
+surface, turns each point back by -2 pi z / h and measures its distance to the exact section, and
+:func:`write_exact_step` refuses a solid off by more than the tolerance.
 """
 
 from __future__ import annotations
@@ -28,8 +29,21 @@ from rotorcad.geometry import rotate
 
 @dataclass(frozen=True)
 class SectionSegment:
-    """One segment of a closed counter-clockwise section: samples (n, 2) mm with exact unit
-    tangents (n, 2), and what it is (``line``, ``arc`` with its centre, or ``curve``)."""
+    """One segment of a closed counter-clockwise section.
+
+    Parameters
+    ----------
+    name : str
+        The segment's name (e.g. "tip arc").
+    points : (n, 2) float array, mm
+        Samples.
+    tangents : (n, 2) float array
+        Their exact unit tangents.
+    kind : {"line", "arc", "curve"}
+        What the segment is.
+    center : (float, float), mm, optional
+        Centre of an arc.
+    """
 
     name: str
     points: np.ndarray
@@ -39,8 +53,22 @@ class SectionSegment:
 
 
 def section_segments(profile, turn: float = 0.0) -> list[SectionSegment]:
-    """The segments of a :class:`rotorcad.profile.Profile` turned by ``turn`` (rad): a straight
-    segment is a line and a circular arc (its curve has a centre) an arc, the rest curves."""
+    """Return the segments of a :class:`rotorcad.profile.Profile` turned by ``turn``.
+
+    A straight segment is a line and a circular arc (its curve has a centre, and is not a corner of
+    zero radius) an arc, the rest curves.
+
+    Parameters
+    ----------
+    profile : Profile
+        A closed counter-clockwise section.
+    turn : float, rad
+        Counter-clockwise turn about the origin.
+
+    Returns
+    -------
+    list of SectionSegment
+    """
     from rotorcad.curves import Line
 
     out = []
@@ -60,7 +88,10 @@ def section_segments(profile, turn: float = 0.0) -> list[SectionSegment]:
 
 
 def _edge(segment: SectionSegment, tolerance: float):
-    """The OpenCASCADE edge of one segment (see the module docstring)."""
+    """Make the OpenCASCADE edge of one segment (see the module docstring).
+
+    ``tolerance`` is not used: the samples are interpolated as they are.
+    """
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
     from OCP.collections import Array1_gp_Vec, HArray1_bool, HArray1_gp_Pnt
     from OCP.GC import GC_MakeArcOfCircle, GC_MakeSegment
@@ -90,7 +121,28 @@ def _edge(segment: SectionSegment, tolerance: float):
 
 
 def helical_solid(segments: list[SectionSegment], lead: float, length: float, tolerance: float):
-    """The swept solid (an OpenCASCADE ``TopoDS_Shape``) of a closed section of segments."""
+    """Sweep a closed section of segments into a solid (an OpenCASCADE ``TopoDS_Shape``).
+
+    Parameters
+    ----------
+    segments : list of SectionSegment
+        The section, counter-clockwise, its segments end to end.
+    lead : float, mm
+        Signed lead (> 0 right hand); infinite for a straight prism (a spur gear).
+    length : float, mm
+        Axial length, from z = 0.
+    tolerance : float, mm
+        Not used in the sweep itself (kept for the callers' signature).
+
+    Returns
+    -------
+    OCP.TopoDS.TopoDS_Shape
+
+    Raises
+    ------
+    ValueError
+        A segment that does not continue the previous one, or a sweep OpenCASCADE cannot make.
+    """
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire
     from OCP.BRepFill import BRepFill_TypeOfContact
     from OCP.BRepLib import BRepLib
@@ -130,6 +182,17 @@ def helical_solid(segments: list[SectionSegment], lead: float, length: float, to
 
 
 def faces(shape) -> list:
+    """List the faces of an OpenCASCADE shape.
+
+    Parameters
+    ----------
+    shape : OCP.TopoDS.TopoDS_Shape
+        The shape.
+
+    Returns
+    -------
+    list of OCP.TopoDS.TopoDS_Face
+    """
     from OCP.TopAbs import TopAbs_FACE
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
@@ -142,10 +205,30 @@ def faces(shape) -> list:
 
 
 def helicoid_deviation(shape, exact: np.ndarray, lead: float, length: float, per_face: int = 10) -> float:
-    """Largest distance (mm) of points sampled on the side faces of ``shape`` (a grid of
-    ``per_face`` x ``per_face`` in each face's parameter range, edges included) from the exact
-    section ``exact`` (a closed polyline (n, 2) sampled finer than the tolerance checked) after
-    turning each point back by -2 pi z / h. End faces (planes at z = 0 and z = length) are left out."""
+    """Measure how far the side faces of a swept solid lie from the exact helicoid.
+
+    Points are sampled on a grid of ``per_face`` x ``per_face`` in each face's parameter range (edges
+    included), turned back by -2 pi z / h and measured against the exact section. End faces (planes
+    at z = 0 and z = length) are left out.
+
+    Parameters
+    ----------
+    shape : OCP.TopoDS.TopoDS_Shape
+        The solid.
+    exact : (n, 2) float array, mm
+        The exact section as a closed polyline, sampled finer than the tolerance checked.
+    lead : float, mm
+        Signed lead.
+    length : float, mm
+        Axial length.
+    per_face : int
+        Grid size per face.
+
+    Returns
+    -------
+    float, mm
+        The largest distance (0 when there is no side face).
+    """
     from OCP.BRep import BRep_Tool
     from OCP.BRepTools import BRepTools
 
@@ -178,10 +261,40 @@ def write_exact_step(
     offset: tuple[float, float] = (0.0, 0.0),
     exact: np.ndarray | None = None,
 ) -> dict[str, float]:
-    """Write the helical solid of ``segments`` as STEP (AP214, product named ``body``), placed at
-    ``offset``; with ``exact`` (the section as a fine closed polyline) the deviation of the faces
-    from the helicoid is measured and returned, and a solid off by more than ``tolerance`` is
-    refused (ValueError saying what was reached)."""
+    """Write the helical solid of ``segments`` as STEP (AP214, product named ``body``).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    segments : list of SectionSegment
+        The section (:func:`section_segments`).
+    lead : float, mm
+        Signed lead (> 0 right hand; infinite for a spur gear).
+    length : float, mm
+        Axial length.
+    tolerance : float, mm
+        Largest deviation of the faces from the helicoid accepted.
+    body : str
+        Product name in the file.
+    offset : (float, float), mm
+        Translation of the solid in x and y (e.g. the female to (a, 0)).
+    exact : (n, 2) float array, mm, optional
+        The section as a fine closed polyline: the deviation of the faces from the helicoid is
+        then measured.
+
+    Returns
+    -------
+    dict of float
+        ``faces`` (their number) and, with ``exact``, ``deviation`` (mm).
+
+    Raises
+    ------
+    ValueError
+        A solid off by more than ``tolerance`` (saying what was reached), or a sweep that fails.
+    OSError
+        When OpenCASCADE cannot write the file.
+    """
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
     from OCP.gp import gp_Trsf, gp_Vec
     from OCP.IFSelect import IFSelect_RetDone
@@ -219,9 +332,36 @@ def write_housing_step(
     wall: float = 10.0,
     body: str = "housing",
 ) -> float:
-    """The housing as exact STEP: the block (as :func:`rotorcad.solids.housing_solids` sizes it)
-    minus the two bore cylinders about O1 and O2 (``body`` "housing"), or the bores alone
-    ("bores"), by OpenCASCADE's primitives and booleans. Returns the volume (mm^3)."""
+    """Write the housing as exact STEP, by OpenCASCADE's primitives and booleans.
+
+    The block (as :func:`rotorcad.solids.housing_solids` sizes it) minus the two bore cylinders about
+    O1 = (0, 0) and O2 = (a, 0) (``body`` "housing"), or the bores alone ("bores").
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    center_distance : float, mm
+        Centre distance a.
+    male_bore, female_bore : float, mm
+        Bore radii.
+    length : float, mm
+        Length along z, from 0.
+    wall : float, mm
+        Wall beyond the bores.
+    body : {"housing", "bores"}
+        What to write (also the product name).
+
+    Returns
+    -------
+    float, mm³
+        The volume of what was written.
+
+    Raises
+    ------
+    OSError
+        When OpenCASCADE cannot write the file.
+    """
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
     from OCP.BRepGProp import BRepGProp
     from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder

@@ -1,6 +1,6 @@
-"""Generating-cutting simulation: the rack tool rolls on the blank's pitch circle and the blank
-minus the union of the tool positions (shapely) is the cut gear, undercut and all.
+"""Generating-cutting simulation: the rack tool rolls on the blank's pitch circle and cuts the gear.
 
+The blank minus the union of the tool positions (shapely) is the cut gear, undercut and all.
 This is the numerical envelope; it must agree with the analytic one of
 :class:`rotorcad.gear.InvoluteGear` (DESIGN.md: "A hob cutting simulation is the envelope
 evaluated numerically by polygon booleans"). The number of positions follows from the requested
@@ -28,7 +28,23 @@ from rotorcad.profile import Segment
 
 @dataclass(frozen=True)
 class CutResult:
-    """The simulated tooth (polygon, gear frame), its analytic counterpart and how far apart."""
+    """The simulated tooth (polygon, gear frame), its analytic counterpart and how far apart.
+
+    Parameters
+    ----------
+    tooth : shapely.Polygon
+        The simulated tooth 0 in its sector (from space centre to space centre), mm.
+    envelope : shapely.Polygon
+        The analytic tooth 0 in the same sector, mm.
+    positions : int
+        Tool positions of the last pass.
+    step : float, rad
+        Blank rotation between tool positions.
+    max_deviation : float, mm
+        Largest distance of the analytic boundary from the simulated one inside the tooth sector.
+    flank_deviation : float, mm
+        The same restricted to the involute.
+    """
 
     tooth: shapely.Polygon
     envelope: shapely.Polygon
@@ -39,8 +55,11 @@ class CutResult:
 
 
 def _tool_tooth_polygon(gear: InvoluteGear, tolerance: float) -> np.ndarray:
-    """One tool tooth (tip line, tip arcs, flanks, closed high above the blank) in the fixed frame
-    at t = 0, centred on the line y = p/2 (the space of tooth 0's upper neighbour)."""
+    """Return one tool tooth as a closed polygon (m, 2), mm, in the fixed frame at t = 0.
+
+    Tip line, tip arcs and flanks, closed high above the blank, centred on the line y = p/2 (the
+    space of tooth 0's upper neighbour).
+    """
     half: list[np.ndarray] = []
     for name in ("tip line", "tip arc", "flank"):
         curve: Curve | None = gear.tool.get(name)
@@ -56,11 +75,13 @@ def _tool_tooth_polygon(gear: InvoluteGear, tolerance: float) -> np.ndarray:
 
 
 def _drop_repeats(pts: np.ndarray, eps: float) -> np.ndarray:
-    """The ring ``pts`` without points within ``eps`` of their predecessor (nor a last point on the
-    first). The pieces of the tool tooth (tip line, tip arc, flank) share their end points; turned
-    to a tool position, such a pair a rounding error apart is a spike that makes the position an
-    invalid polygon, and GEOS then unites the positions wrongly (issue 15: z = 3 lost up to all of
-    the tooth, z = 4 and 7 some positions too)."""
+    """Drop the points of the ring ``pts`` within ``eps`` of their predecessor (and a last point on the first).
+
+    The pieces of the tool tooth (tip line, tip arc, flank) share their end points; turned to a tool
+    position, such a pair a rounding error apart is a spike that makes the position an invalid
+    polygon, and GEOS then unites the positions wrongly (issue 15: z = 3 lost up to all of the tooth,
+    z = 4 and 7 some positions too).
+    """
     keep = np.r_[True, np.hypot(*np.diff(pts, axis=0).T) > eps]
     pts = pts[keep]
     if len(pts) > 1 and np.hypot(*(pts[-1] - pts[0])) <= eps:
@@ -71,9 +92,12 @@ def _drop_repeats(pts: np.ndarray, eps: float) -> np.ndarray:
 def _cut_blank(
     blank: shapely.Polygon, tooth: np.ndarray, ts: np.ndarray, pt: float, r: float, eps: float
 ) -> shapely.Polygon | None:
-    """The blank minus the union of the tool teeth j = -1, 0 at the rolling angles ``ts``; None when
-    the polygon booleans fail. A position that is still not a valid polygon is repaired first, and a
-    failing union is redone on a grid of ``eps`` (snap rounding, robust, well below the scallop)."""
+    """Subtract the union of the tool teeth j = -1, 0 at the rolling angles ``ts`` from the blank.
+
+    A position that is still not a valid polygon is repaired first, and a failing union is redone on
+    a grid of ``eps`` (snap rounding, robust, well below the scallop). Returns the largest polygon,
+    or None when the polygon booleans fail.
+    """
     polys = shapely.polygons([rotate(tooth + np.array([0.0, pt * j + r * t]), -t) for t in ts for j in (-1, 0)])
     bad = ~shapely.is_valid(polys)
     if bad.any():
@@ -97,14 +121,14 @@ MAX_UNION_VERTICES = 3_000_000
 
 
 def cutting_work(gear: InvoluteGear, scallop: float = 1e-3, positions: int | None = None) -> tuple[int, int]:
-    """The work of a first cutting pass, estimated before it starts.
+    """Estimate the work of a first cutting pass before it starts.
 
     Parameters
     ----------
     gear : InvoluteGear
         The gear to be cut by its basic-rack tool.
-    scallop : float
-        Requested scallop height, mm.
+    scallop : float, mm
+        Requested scallop height.
     positions : int, optional
         A fixed number of tool positions instead of the one the scallop asks for.
 
@@ -130,12 +154,36 @@ def simulate_cutting(
     tool: object | None = None,
     progress: Callable[[int, float], None] | None = None,
 ) -> CutResult:
-    """Cut ``gear`` with its basic-rack tool to the scallop height ``scallop`` (mm); with
-    ``positions`` the number of tool positions is fixed instead (no refinement). ``tool`` (a
-    :class:`hob.tools.TrapezoidalHob` or :class:`hob.tools.RackTool`) replaces the basic-rack
-    tool; the deviation is then still measured against the basic-rack envelope of ``gear``, so it
-    shows what the tool changes (protuberance relief, chamfer). ``progress(positions, deviation)``
-    is called after each pass."""
+    """Cut a gear by simulation and measure it against the analytic envelope (module docstring).
+
+    Passes are refined (deviation ~ step^2) until the deviation meets ``scallop`` or the union would
+    exceed :data:`MAX_UNION_VERTICES` vertices; the deviation reached is reported either way.
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear (its basic-rack tool, unless ``tool`` is given).
+    scallop : float, mm
+        Requested scallop height.
+    positions : int, optional
+        A fixed number of tool positions (one pass, no refinement).
+    tool : TrapezoidalHob or RackTool, optional
+        A tool that replaces the basic-rack tool (one pass); the deviation is then still measured
+        against the basic-rack envelope of ``gear``, so it shows what the tool changes (protuberance
+        relief, chamfer).
+    progress : callable, optional
+        Called as ``progress(positions, deviation)`` after each pass (deviation in mm).
+
+    Returns
+    -------
+    CutResult
+
+    Raises
+    ------
+    DesignError
+        When the polygon booleans fail, or the refined simulated tooth differs from the analytic one
+        by more than 5 % of its area.
+    """
     pt = np.pi * gear.transverse_module
     r = gear.pitch_radius
     rho_max = np.sqrt(max(gear.nominal_tip_radius**2 - gear.base_radius**2, 1e-12))
@@ -179,8 +227,10 @@ def simulate_cutting(
 
 
 def _exact_tooth(gear: InvoluteGear, tolerance: float) -> shapely.Polygon:
-    """The analytic tooth 0 closed at the centre: its profile from space centre to space centre
-    (not the whole gear: a thousand teeth at a fine tolerance were a million points)."""
+    """Return the analytic tooth 0 closed at the centre: its profile from space centre to space centre.
+
+    Not the whole gear: a thousand teeth at a fine tolerance were a million points.
+    """
     chain = gear.tooth_profile(tolerance).points
     return shapely.Polygon(np.vstack([[0.0, 0.0], chain]))
 
@@ -217,7 +267,7 @@ def _fillet_step(gear: InvoluteGear, scallop: float) -> float:
 
 
 def _sector(gear: InvoluteGear, half_pitches: float) -> shapely.Polygon:
-    """The wedge of tooth 0 (from space centre to space centre), slightly enlarged radially."""
+    """Return the wedge of tooth 0 (from space centre to space centre), slightly enlarged radially."""
     a = half_pitches * np.pi / gear.teeth
     big = 2.0 * gear.nominal_tip_radius
     th = np.linspace(-a, a, 64)
@@ -225,8 +275,10 @@ def _sector(gear: InvoluteGear, half_pitches: float) -> shapely.Polygon:
 
 
 def _deviation(gear: InvoluteGear, simulated: shapely.Polygon, exact: shapely.Polygon, scallop: float) -> tuple[float, float]:
-    """Largest distance from the analytic tooth boundary to the simulated one (and on the involute
-    alone), away from the sector's straight cut edges."""
+    """Return the largest distance from the analytic tooth boundary to the simulated one, mm.
+
+    Also on the involute alone; both away from the sector's straight cut edges.
+    """
     inner = _sector(gear, 0.98)
     boundary = np.asarray(exact.exterior.coords)
     pts = boundary[shapely.contains_xy(inner, boundary[:, 0], boundary[:, 1])]
@@ -238,9 +290,26 @@ def _deviation(gear: InvoluteGear, simulated: shapely.Polygon, exact: shapely.Po
 
 
 def simulated_form_radius(gear: InvoluteGear, result: CutResult, tolerance: float) -> float:
-    """Radius where the simulated flank leaves the involute (the undercut point P' when undercut,
-    else the start of the usable involute): the lowest boundary point of the simulated tooth that
-    lies on the involute of r_b within ``tolerance`` (closed-form involute polar angle)."""
+    """Return the radius where the simulated flank leaves the involute.
+
+    The undercut point P' when undercut (Kollek & Osiński's active base radius r'_z), else the start
+    of the usable involute: the lowest boundary point of the simulated tooth that lies on the
+    involute of r_b within ``tolerance`` (closed-form involute polar angle).
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear that was cut.
+    result : CutResult
+        The simulation.
+    tolerance : float, mm
+        Distance from the involute that still counts as on it.
+
+    Returns
+    -------
+    float, mm
+        The radius; NaN when no boundary point lies on the involute.
+    """
     pts = np.asarray(result.tooth.exterior.coords)
     r = np.hypot(*pts.T)
     rb = gear.base_radius

@@ -1,7 +1,9 @@
-"""Contact-ratio nomogram in the manner of Kollek & Osiński's Fig. 4: the transverse contact ratio
-of two equal gears over the profile shift x and the addendum factor y, with the undercut limits
-x_g (theoretical), x'_g (practical) and x''_g (where undercut starts to shorten the path of
-contact, from the exact envelope)."""
+"""Contact-ratio nomogram in the manner of Kollek & Osiński's Fig. 4.
+
+The transverse contact ratio of two equal gears over the profile shift x and the addendum factor
+y, with the undercut limits x_g (theoretical), x'_g (practical) and x''_g (where undercut starts to
+shorten the path of contact, from the exact envelope).
+"""
 
 from __future__ import annotations
 
@@ -25,8 +27,30 @@ def contact_ratio_grid(
     tool_addendum: float = 1.25,
     tip_radius: float = 0.38,
 ) -> np.ndarray:
-    """eps_alpha[i, j] for addendum factor ys[i] and shift xs[j] (NaN where the gear cannot be made:
-    pointed or refused)."""
+    """Compute the transverse contact ratio of two equal gears over addendum factors and shifts.
+
+    Parameters
+    ----------
+    z : int
+        Teeth of each gear.
+    alpha0 : float, rad
+        Tool pressure angle.
+    xs : (k,) float array
+        Profile shifts x (in modules).
+    ys : (m,) float array
+        Addendum factors y of the gears (addendum y m).
+    module : float, mm
+        Module m0.
+    tool_addendum : float
+        Tool addendum factor h_a0* (the gears' dedendum factor).
+    tip_radius : float
+        Tool tip radius factor rho_a0*.
+
+    Returns
+    -------
+    (m, k) float array
+        eps_alpha[i, j] for ys[i] and xs[j]; NaN where the gear cannot be made (pointed or refused).
+    """
     eps = np.full((len(ys), len(xs)), np.nan)
     for i, y in enumerate(ys):
         for j, x in enumerate(xs):
@@ -51,8 +75,20 @@ def contact_ratio_grid(
 
 
 def pointed_limits(xs: np.ndarray, eps: np.ndarray) -> np.ndarray:
-    """For each row of ``eps`` (an addendum factor), the first shift after the last computed one
-    where the gear could not be made (its tip pointed); NaN when every shift to the end was made."""
+    """Find, for each row of ``eps`` (an addendum factor), the first shift where the tip turned pointed.
+
+    Parameters
+    ----------
+    xs : (k,) float array
+        The shifts of the columns.
+    eps : (m, k) float array
+        Contact ratios, NaN where the gear could not be made (:func:`contact_ratio_grid`).
+
+    Returns
+    -------
+    (m,) float array
+        The first shift after the last computed one; NaN when every shift to the end was made.
+    """
     out = np.full(len(eps), np.nan)
     for i, row in enumerate(eps):
         ok = np.nonzero(np.isfinite(row))[0]
@@ -65,9 +101,27 @@ def pointed_limits(xs: np.ndarray, eps: np.ndarray) -> np.ndarray:
 def plot_nomogram(
     z: int = 11, alpha0: float = 20.0 * np.pi / 180.0, xs: np.ndarray | None = None, ys: np.ndarray | None = None
 ) -> Figure:
-    """The contact ratio of two equal gears over the shift x, one curve per addendum factor y,
-    with the line epsilon = 1, the undercut limits x_g, x'_g, x''_g and the undercut and
-    pointed-tooth regions shaded; the legend, outside the plot, says what each limit means."""
+    """Draw the contact ratio of two equal gears over the shift x, one curve per addendum factor y.
+
+    With the line epsilon = 1, the undercut limits x_g, x'_g (for the effective addendum of the
+    basic rack tool h_a0* = 1.25, rho_a0* = 0.38) and x''_g (y = 1), and the undercut and
+    pointed-tooth regions shaded; the legend, outside the plot, says what each limit means.
+
+    Parameters
+    ----------
+    z : int
+        Teeth of each gear (Kollek & Osiński: 11).
+    alpha0 : float, rad
+        Tool pressure angle.
+    xs : (k,) float array, optional
+        Shifts; default -0.2 to 1.0 in 25 steps.
+    ys : (m,) float array, optional
+        Addendum factors; default 0.8 to 1.2 in 9 steps.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from matplotlib.patches import Patch
 
     xs = np.linspace(-0.2, 1.0, 25) if xs is None else xs

@@ -1,7 +1,9 @@
-"""Pictures of the hob side (style of :mod:`rotorcad.plot_style`): the racks derived from a pair's
-two rotors (or from a gear, against its basic rack) with their deviation drawn along the normal,
-magnified, beside the hob teeth; and the cutting simulation of a gear tooth against the analytic
-envelope, with the deviation drawn the same way."""
+"""Pictures of the hob side in the style of :mod:`rotorcad.plot_style`.
+
+The racks derived from a pair's two rotors (or from a gear, against its basic rack) with their
+deviation drawn along the normal, magnified, beside the hob teeth; and the cutting simulation of a
+gear tooth against the analytic envelope, with the deviation drawn the same way.
+"""
 
 from __future__ import annotations
 
@@ -23,16 +25,22 @@ from rotorcad.screw_rotors import ScrewRotors
 
 
 def signed_distance(points: np.ndarray, normals: np.ndarray, other: np.ndarray | shapely.Geometry) -> np.ndarray:
-    """Distance (mm) from each of ``points`` to the curve ``other`` (an (m, 2) polyline or a
-    shapely line or ring), positive where the nearest point of ``other`` lies on the side of the
-    point's normal.
+    """Measure the distance from each point to a curve, signed by the point's normal.
 
     Parameters
     ----------
-    points : (n, 2) float, mm
-    normals : (n, 2) float
+    points : (n, 2) float array, mm
+        The points.
+    normals : (n, 2) float array
         Unit normals at ``points``.
-    other : (m, 2) float or shapely geometry
+    other : (m, 2) float array or shapely geometry
+        The curve: a polyline, a shapely line or ring, or a polygon (its exterior), mm.
+
+    Returns
+    -------
+    (n,) float array, mm
+        Distance, positive where the nearest point of ``other`` lies on the side of the point's
+        normal.
     """
     line = other if isinstance(other, shapely.Geometry) else shapely.LineString(np.asarray(other, dtype=float))
     if isinstance(line, shapely.Polygon):
@@ -49,17 +57,33 @@ def signed_distance(points: np.ndarray, normals: np.ndarray, other: np.ndarray |
 
 
 def _upward_normals(tangents: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """Normals of a rack chain (tangent turned clockwise), turned so that the highest point's
-    normal points to +y (away from the profile's centre)."""
+    """Return the normals of a rack chain (tangent turned clockwise), all flipped if need be.
+
+    They are flipped together so that the highest point's normal points to +y (away from the
+    profile's centre).
+    """
     n = perp_cw(np.asarray(tangents, dtype=float))
     return n if n[int(np.argmax(points[:, 1])), 1] >= 0 else -n
 
 
 def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) -> dict[str, Any]:
-    """The female's rack against the male's (transverse section, CONTRACT.md rack frame): the
-    male rack's points and normals, and the signed distance (mm) of the female rack (its
-    neighbouring periods too) from each, NaN where the contact lies outside a bore (as
-    :func:`hob.rack.rack_deviation` judges)."""
+    """Compare the female's rack with the male's (transverse section, CONTRACT.md rack frame).
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair.
+    racks : dict of DerivedRack
+        ``male`` and ``female``, each from :func:`rotorcad.inverse_rack.rotor_rack`.
+
+    Returns
+    -------
+    dict
+        ``reference`` (n, 2) the male rack's points (mm) and ``normals`` (n, 2); ``deviation`` (n,)
+        the signed distance (mm) of the female rack (its neighbouring periods too) from each, NaN
+        where the contact lies outside a bore (as :func:`hob.rack.rack_deviation` judges);
+        ``compared`` the female rack's points; ``names`` of the two racks; ``period`` (mm).
+    """
     pair = rotors.pair
     male = racks["male"]
     pts = rack_in_contract_frame(male, "male")
@@ -83,9 +107,23 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
 
 
 def gear_rack_comparison(gear: InvoluteGear, rack: DerivedRack) -> dict[str, Any]:
-    """The rack derived from a gear against the basic-rack tool it was cut with (transverse
-    section): the derived rack's cutting points (involute, fillet, root arc) and normals, and
-    their signed distance (mm) from the tool's flanks."""
+    """Compare the rack derived from a gear with the basic-rack tool it was cut with (transverse section).
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear (its tool).
+    rack : DerivedRack
+        The rack derived from the gear.
+
+    Returns
+    -------
+    dict
+        ``reference`` (n, 2) the derived rack's points (mm) and ``normals`` (n, 2); ``deviation``
+        (n,) their signed distance (mm) from the tool's flanks, on the cutting pieces (involute,
+        fillet, root arc) only, NaN elsewhere; ``compared`` the tool tooth; ``names``; ``period``
+        (transverse pitch, mm).
+    """
     half = np.vstack([c.evaluate(np.linspace(c.s0, c.s1, 2000))[0] for c in gear.tool.values()])
     half = rack_frame(half, gear.pitch_radius)
     pt = np.pi * gear.transverse_module
@@ -113,9 +151,11 @@ def plot_hob(
     case: str,
     deviation: float,
 ) -> Figure:
-    """Two panels: the racks compared in the transverse section with their deviation along the
-    normal, magnified (scale stated); the hob teeth in the normal section side by side, each
-    with its verdict.
+    """Draw the racks compared and the hob teeth, each with its verdict.
+
+    Two panels: the racks compared in the transverse section with their deviation along the normal,
+    magnified (scale stated); the hob teeth in the normal section side by side, each with its
+    verdict.
 
     Parameters
     ----------
@@ -131,6 +171,10 @@ def plot_hob(
         What the racks belong to (title).
     deviation : float, mm
         The largest rack deviation the command reports (``rack_deviation``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     if len(racks) > 1:
         fig = ps.new_figure(11.0, 6.6)
@@ -200,9 +244,24 @@ def plot_hob(
 
 
 def cut_deviation(gear: InvoluteGear, result: Any, tolerance: float) -> dict[str, np.ndarray]:
-    """The simulated tooth against the analytic one: the analytic tooth profile's points inside
-    the tooth sector (away from its straight cut edges), their outward normals, segment names and
-    the signed distance (mm) of the simulated boundary (positive: material left standing)."""
+    """Measure the simulated tooth against the analytic one.
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear that was cut.
+    result : hob.cutting.CutResult
+        The simulation.
+    tolerance : float, mm
+        The scallop height asked for (the profile is sampled to a quarter of it, at most 0.1 µm).
+
+    Returns
+    -------
+    dict
+        ``points`` (n, 2) of the analytic tooth profile inside the tooth sector (away from its
+        straight cut edges, mm), their outward ``normals`` (n, 2), segment ``names`` (n,) and the
+        signed ``deviation`` (n,) of the simulated boundary (mm; positive: material left standing).
+    """
     prof = gear.tooth_profile(min(tolerance / 4.0, 1e-4))  # sampled as hob.cutting measures it
     pts, normals = prof.points, prof.normals
     names = np.array([prof.segments[i].name for i in prof.segment_index])
@@ -213,15 +272,22 @@ def cut_deviation(gear: InvoluteGear, result: Any, tolerance: float) -> dict[str
 
 @styled
 def plot_cut(gear: InvoluteGear, result: Any, tolerance: float) -> Figure:
-    """The simulated tooth over the analytic one with the deviation drawn along the normal,
-    magnified (scale stated), and the deviation along the profile over the radius.
+    """Draw the simulated tooth over the analytic one with the deviation along the normal, magnified.
+
+    And the deviation along the profile over the radius.
 
     Parameters
     ----------
     gear : InvoluteGear
+        The gear that was cut.
     result : hob.cutting.CutResult
+        The simulation.
     tolerance : float, mm
         The scallop height asked for.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     dev = cut_deviation(gear, result, tolerance)
     pts, d = dev["points"], dev["deviation"]

@@ -1,5 +1,4 @@
-"""Cutting tools: a trapezoidal hob (straight-sided rack in its normal section) and a general rack
-tool given by points.
+"""Cutting tools: a trapezoidal hob (straight-sided rack in its normal section) and a rack tool by points.
 
 A tool is described by one tool tooth in the fixed frame of :mod:`rotorcad.kinematics` at t = 0
 (pitch line x = r, motion +y), centred on y = p/2 and pointing towards the blank's centre: the
@@ -25,6 +24,38 @@ from rotorcad.errors import DesignError
 
 @dataclass(frozen=True)
 class TrapezoidalHob:
+    """A hob with a trapezoidal (straight-sided) profile in its normal section (module docstring).
+
+    Parameters
+    ----------
+    module : float, mm
+        Module m0.
+    pressure_angle : float, rad
+        Pressure angle alpha0 (0 to 45 degrees).
+    addendum : float
+        Addendum factor h_a0* (the gear's dedendum).
+    tip_radius : float
+        Tip radius factor rho_a0* (0 with a chamfer).
+    tip_chamfer : float
+        Chamfer height factor c* instead of a radius (then ``tip_radius`` must be 0).
+    chamfer_angle : float, rad
+        Angle of the chamfer to the tip line.
+    protuberance : float
+        Protuberance factor q*.
+    protuberance_height : float
+        Height factor h_pr* above the tip where the protuberance ends.
+    starts : int
+        Thread starts.
+    diameter : float, mm, optional
+        Outside diameter d_a0 (for the lead angle).
+
+    Raises
+    ------
+    DesignError
+        A module that is not positive, a pressure angle out of range, a radius and a chamfer
+        together, or fewer than 1 start.
+    """
+
     module: float
     pressure_angle: float = 20.0 * np.pi / 180.0
     addendum: float = 1.25  # h_a0*
@@ -48,7 +79,10 @@ class TrapezoidalHob:
 
     @property
     def lead_angle(self) -> float | None:
-        """gamma0 = asin(starts m0 / d_m0) of the hob thread (None without a diameter)."""
+        """Lead angle gamma0 = asin(starts m0 / d_m0) of the hob thread, rad (None without a diameter).
+
+        Raises :class:`DesignError` when the diameter is too small for the datum diameter.
+        """
         if self.diameter is None:
             return None
         dm = self.diameter - 2.0 * self.addendum * self.module
@@ -59,12 +93,33 @@ class TrapezoidalHob:
         return float(np.arcsin(self.starts * self.module / dm))
 
     def tooth(self, pitch_radius: float, shift: float, top: float, samples: int = 64) -> np.ndarray:
-        """One tool tooth as a closed polygon (fixed frame at t = 0), datum line shifted by x m0
-        outwards, centred on y = p/2, reaching up to x = ``top``.
+        """Return one tool tooth as a closed polygon in the fixed frame at t = 0.
 
-        Built in the rack coordinates (u along the pitch line, v towards the blank's outside):
-        its half facing tooth 0 runs from the tooth centre u = p/2 along the tip line, over the
+        The datum line is shifted by x m0 outwards, the tooth centred on y = p/2 and reaching up to
+        x = ``top``. Built in the rack coordinates (u along the pitch line, v towards the blank's
+        outside): its half facing tooth 0 runs from the tooth centre u = p/2 along the tip line, over the
         tip radius / chamfer / corner, up the flank u(v) = p/4 + (x m0 - v) tan(alpha0).
+
+        Parameters
+        ----------
+        pitch_radius : float, mm
+            Pitch radius r of the blank (the tool's pitch line is x = r).
+        shift : float
+            Profile shift x, in modules.
+        top : float, mm
+            x at which the tooth is closed, above the blank.
+        samples : int
+            Points of the tip radius.
+
+        Returns
+        -------
+        (n, 2) float array, mm
+            The polygon: one half, two top corners, the mirrored half.
+
+        Raises
+        ------
+        DesignError
+            A tip radius, chamfer or addendum that does not fit the tool tooth.
         """
         m, a = self.module, self.pressure_angle
         pn = np.pi * m
@@ -109,14 +164,38 @@ class TrapezoidalHob:
 
 @dataclass(frozen=True)
 class RackTool:
-    """A general rack tool: one tool tooth given as points in the rack frame of CONTRACT.md
-    (x along the pitch line, y = 0 on the pitch line, y < 0 towards the blank), from its one
-    side's top over the tip to the other side's top, spanning one pitch."""
+    """A general rack tool: one tool tooth given as points in the rack frame of CONTRACT.md.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The tooth: x along the pitch line, y = 0 on the pitch line, y < 0 towards the blank; from its
+        one side's top over the tip to the other side's top, spanning one pitch.
+    pitch : float, mm
+        The tool's pitch.
+    """
 
     points: np.ndarray
     pitch: float
 
     def tooth(self, pitch_radius: float, shift: float, top: float) -> np.ndarray:
+        """Return the tool tooth as a closed polygon in the fixed frame at t = 0.
+
+        Parameters
+        ----------
+        pitch_radius : float, mm
+            Pitch radius r of the blank (the tool's pitch line is x = r).
+        shift : float, mm
+            Outward shift of the tool, added to y as it stands (unlike :meth:`TrapezoidalHob.tooth`,
+            whose shift is in modules).
+        top : float, mm
+            x at which the tooth is closed, above the blank.
+
+        Returns
+        -------
+        (n + 2, 2) float array, mm
+            The points at X = r + y + shift, Y = x, closed by two corners at X = ``top``.
+        """
         pts = np.asarray(self.points, dtype=float)
         upper = np.column_stack([pitch_radius + pts[:, 1] + shift, pts[:, 0]])
         return np.vstack([upper, [[top, upper[-1, 1]], [top, upper[0, 1]]]])

@@ -1,8 +1,8 @@
-"""The undercut model of Kollek & Osiński (*Innovative gear pump*, eq. 1) for gears cut by a hob
-with a trapezoidal profile, and the limit shifts.
+"""The undercut model of Kollek & Osiński (*Innovative gear pump*, eq. 1), and the limit shifts.
 
-Eq. (1) as the paper prints it (OCR repaired; r_z base radius, r_p pitch radius, y the effective
-tool addendum factor, x the profile shift, m0 the module, alpha0 the tool pressure angle)::
+For gears cut by a hob with a trapezoidal profile. Eq. (1) as the paper prints it (OCR repaired;
+r_z base radius, r_p pitch radius, y the effective tool addendum factor, x the profile shift, m0
+the module, alpha0 the tool pressure angle)::
 
     p       = r_z - (r_p - (y - x) m0) / cos(alpha0)
     psi^2   = 2 p / r_z - (p / r_z)^2
@@ -36,6 +36,27 @@ from rotorcad.roots import bracket_root
 
 @dataclass(frozen=True)
 class UndercutModel:
+    """The quantities of Kollek & Osiński's eq. (1) for one gear (module docstring).
+
+    Parameters
+    ----------
+    p : float, mm
+        p = r_z - (r_p - (y - x) m0) / cos(alpha0); > 0 when the effective tool tip line passes
+        the interference point (undercut), <= 0 otherwise.
+    psi : float
+        sqrt(psi^2) of eq. (1).
+    v : float, rad
+        The smaller root of the quartic (NaN beyond the series' range).
+    phi : float
+        (sin v - v cos v) / (1 - cos v).
+    gamma : float, rad
+        Undercut angle v - phi.
+    active_base_radius : float, mm
+        r'_z = |O P'|, the radius of the undercut point (r_z without undercut).
+    undercut : bool
+        Whether the gear is undercut (p > 0).
+    """
+
     p: float
     psi: float
     v: float
@@ -46,12 +67,46 @@ class UndercutModel:
 
 
 def effective_addendum(tool_addendum: float, tip_radius: float, alpha0: float) -> float:
-    """y = h_a0* - l_w* with the tip clearance l_w* = rho_a0* (1 - sin alpha0) of a rounded tip."""
+    """Return the effective tool addendum factor y = h_a0* - l_w* (Kollek & Osiński sec. 2).
+
+    The tip clearance of a rounded tip is l_w* = rho_a0* (1 - sin alpha0).
+
+    Parameters
+    ----------
+    tool_addendum : float
+        Tool addendum factor h_a0*.
+    tip_radius : float
+        Tool tip radius factor rho_a0*.
+    alpha0 : float, rad
+        Tool pressure angle.
+
+    Returns
+    -------
+    float
+    """
     return tool_addendum - tip_radius * (1.0 - np.sin(alpha0))
 
 
 def kollek_model(z: int, m0: float, alpha0: float, x: float, y: float) -> UndercutModel:
-    """Eq. (1) of Kollek & Osiński as printed (see the module docstring)."""
+    """Evaluate eq. (1) of Kollek & Osiński as printed (see the module docstring).
+
+    Parameters
+    ----------
+    z : int
+        Teeth.
+    m0 : float, mm
+        Module.
+    alpha0 : float, rad
+        Tool pressure angle.
+    x : float
+        Profile shift (in modules).
+    y : float
+        Effective tool addendum factor (:func:`effective_addendum`).
+
+    Returns
+    -------
+    UndercutModel
+    """
     r_p = z * m0 / 2.0
     r_z = r_p * np.cos(alpha0)
     p = r_z - (r_p - (y - x) * m0) / np.cos(alpha0)
@@ -68,20 +123,71 @@ def kollek_model(z: int, m0: float, alpha0: float, x: float, y: float) -> Underc
 
 
 def limit_shift(z: int, alpha0: float, y: float) -> float:
-    """Theoretical limit shift x_g = y - z sin^2(alpha0) / 2."""
+    """Return the theoretical limit shift x_g = y - z sin^2(alpha0) / 2 (no undercut for x >= x_g).
+
+    Parameters
+    ----------
+    z : int
+        Teeth.
+    alpha0 : float, rad
+        Tool pressure angle.
+    y : float
+        Effective tool addendum factor.
+
+    Returns
+    -------
+    float
+    """
     return y - z * np.sin(alpha0) ** 2 / 2.0
 
 
 def practical_limit_shift(z: int, alpha0: float, y: float) -> float:
-    """Practical limit x'_g = (5/6) y - z sin^2(alpha0) / 2 (z'_min = 5/6 z_min)."""
+    """Return the practical limit shift x'_g = (5/6) y - z sin^2(alpha0) / 2 (z'_min = 5/6 z_min).
+
+    Parameters
+    ----------
+    z : int
+        Teeth.
+    alpha0 : float, rad
+        Tool pressure angle.
+    y : float
+        Effective tool addendum factor.
+
+    Returns
+    -------
+    float
+    """
     return 5.0 / 6.0 * y - z * np.sin(alpha0) ** 2 / 2.0
 
 
 def real_limit_shift(
     z: int, m0: float, alpha0: float, y_addendum: float, tool_addendum: float = 1.25, tip_radius: float = 0.38
 ) -> float:
-    """x''_g: the shift below which the undercut shortens the contact ratio of two equal gears
-    (the mate's tip reaches below the undercut point), found on the exact envelope."""
+    """Find x''_g: the shift below which the undercut shortens the contact ratio of two equal gears.
+
+    The mate's tip then reaches below the undercut point; found on the exact envelope by a root
+    search between x_g - 1 and x_g + 0.2.
+
+    Parameters
+    ----------
+    z : int
+        Teeth of each gear.
+    m0 : float, mm
+        Module.
+    alpha0 : float, rad
+        Tool pressure angle.
+    y_addendum : float
+        Addendum factor of the gears.
+    tool_addendum : float
+        Tool addendum factor h_a0*.
+    tip_radius : float
+        Tool tip radius factor rho_a0*.
+
+    Returns
+    -------
+    float
+        x''_g; NaN when the contact is not shortened at one end of that range or is at the other.
+    """
 
     def shortened(x: float) -> float:
         g = InvoluteGear(z, m0, alpha0, 0.0, x, addendum=y_addendum, dedendum=tool_addendum, tip_radius_factor=tip_radius)

@@ -1,5 +1,6 @@
-"""Hobbability verdict, judged through the rack (Rinder sec. 2.1: "Die Wälzfräsbarkeit ist durch
-die Beurteilung des zugehörigen Zahnstangenprofils möglich").
+"""Hobbability verdict, judged through the rack (Rinder sec. 2.1).
+
+"Die Wälzfräsbarkeit ist durch die Beurteilung des zugehörigen Zahnstangenprofils möglich."
 
 A hob is a rack wound into a thread; its tooth in the normal section is the normal rack's tool
 material (the region of the rack frame away from the profile). What a hob can make follows from
@@ -35,7 +36,19 @@ CURVATURE_BASE = 0.02  # mm: arc length over which the rack's curvature is taken
 
 @dataclass(frozen=True)
 class HobLimits:
-    """Limits of a producible hob (defaults are workshop values; adjust to the hob maker's)."""
+    """Limits of a producible hob (defaults are workshop values; adjust to the hob maker's).
+
+    Parameters
+    ----------
+    min_flank_angle_deg : float, deg
+        Smallest flank angle of the normal rack (from the normal to the pitch line).
+    min_tip_radius : float, mm
+        Smallest tool tip rounding.
+    min_root_radius : float, mm
+        Smallest tool root rounding.
+    min_tip_thickness : float, mm
+        Smallest hob tooth width at 5 % of the rack depth above its tip.
+    """
 
     min_flank_angle_deg: float = 5.0
     min_tip_radius: float = 0.1  # mm, tool tip rounding
@@ -45,6 +58,22 @@ class HobLimits:
 
 @dataclass(frozen=True)
 class Verdict:
+    """Whether a hob can make a profile, and why not.
+
+    Parameters
+    ----------
+    hobbable : bool
+        True when there is no reason against it.
+    reasons : list of str
+        One sentence per problem, with its position on the normal rack.
+    normal_pressure_angle_min_deg : float, deg
+        Smallest flank angle of the normal rack (from the normal to the pitch line).
+    min_tip_radius, min_root_radius : float, mm
+        Smallest hob tip and root radius the rack asks for (0 at a sharp corner, inf when straight).
+    tip_thickness : float, mm
+        Width of the hob tooth at 5 % of the rack depth above its tip.
+    """
+
     hobbable: bool
     reasons: list[str]
     normal_pressure_angle_min_deg: float
@@ -54,7 +83,19 @@ class Verdict:
 
 
 def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
-    """The verdict on a derived rack, in its normal section."""
+    """Judge a derived rack in its normal section (module docstring).
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        The rack of a rotor or gear (its helix angle gives the normal section).
+    limits : HobLimits, optional
+        Limits of a producible hob; default the workshop values.
+
+    Returns
+    -------
+    Verdict
+    """
     lim = limits or HobLimits()
     cb = np.cos(rack.helix_angle)
     pts = rack.points * np.array([cb, 1.0])
@@ -153,7 +194,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
 
 
 def _tip_thickness(pts: np.ndarray, period: float) -> float:
-    """Width of the hob material (above the rack curve) at 5 % of the depth above its lowest point."""
+    """Return the width (mm) of the hob material (above the rack curve) at 5 % of the depth above its lowest point."""
     y0, y1 = pts[:, 1].min(), pts[:, 1].max()
     level = y0 + 0.05 * (y1 - y0)
     chain = np.vstack([pts - [period, 0.0], pts, pts + [period, 0.0]])
@@ -165,10 +206,12 @@ def _tip_thickness(pts: np.ndarray, period: float) -> float:
 
 
 def _crosses_itself(pts: np.ndarray) -> bool:
-    """True if the polyline crosses itself so that it encloses a loop wider than FOLD_TOLERANCE
-    (mean width 2 area / perimeter of each loop that shapely's noding and polygonizing finds):
-    an undercut's swallowtail is tens of micrometres wide, the zigzag of a measured rack where
-    its samples fold back along the curve is not."""
+    """Tell whether the polyline crosses itself so that it encloses a loop wider than FOLD_TOLERANCE.
+
+    The width of a loop is its mean width 2 area / perimeter, for each loop that shapely's noding
+    and polygonizing finds: an undercut's swallowtail is tens of micrometres wide, the zigzag of a
+    measured rack where its samples fold back along the curve is not.
+    """
     segs = shapely.linestrings(np.stack([pts[:-1], pts[1:]], axis=1))
     tree = shapely.STRtree(segs)
     a, b = tree.query(segs, predicate="intersects")

@@ -7,6 +7,52 @@ The Python API in brief::
     pts = g.outline().points            # closed CCW polygon, mm
     pair = GearPair(g, InvoluteGear(29, 3.0, 20 * DEG, shift=-0.1))
     pair.working_pressure_angle, pair.contact_ratio
+
+    from rotorcad import RotorPair, build_family, MeshingAnalysis
+    rotors = build_family(RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0), "rack-involute", {})
+    MeshingAnalysis(rotors).summary()   # Rinder's figures as plain numbers
+
+Lengths are mm and angles radians throughout the Python API (degrees only in names ending in
+``_deg``); arrays of points are ``(n, 2)`` float, mm. Rotor 1 is the male about O1 = (0, 0),
+rotor 2 the female about O2 = (a, 0) (DESIGN.md conventions). Every name below is imported on
+first use (PEP 562), so ``import rotorcad`` stays light.
+
+Design studies
+
+* :func:`sweep` -- run a design sweep file on Dask, one table row per variant.
+* :func:`design_summary` -- build and analyse the pair of a design mapping (``rotor --json``).
+* :class:`GasDeflection` -- rotor deflection under gas load (Rinder & Deix eqs. 1-10).
+* :class:`GearCoupling` -- crowned gear coupling and its lubricant film (Belkov et al.).
+* :class:`ClearanceDistribution` -- a meshing clearance to design into the female.
+* :class:`MeshingAnalysis` -- Rinder's meshline analysis: defects, blow-hole, sliding (eqs. 1-4).
+* :class:`MeshingClearance` -- meshing clearance from profile points (Wu & Chi eqs. 1-10).
+
+Screw rotors
+
+* :class:`RotorPair` -- tooth counts, centre distance, radii, lead, length, hand (mm).
+* :class:`ScrewRotors` -- a pair generated from its rack chain: lobes, outlines, sections.
+* :func:`build_family`, :data:`FAMILIES` -- the profile families by name, with checked
+  parameters; :func:`krigar`, :func:`lysholm`, :func:`srm_symmetric`, :func:`srm_asymmetric`,
+  :func:`srm_b`, :func:`narrow_tip`, :func:`rack_involute` -- Rinder's Figs. 1-6.
+* :class:`SpatialBlowHole` -- the blow-hole triangle in 3D (Rinder sec. 2.2.2).
+* :class:`Flank`, :class:`PieceRole`, :class:`Side` -- roles of lobe parts, rack pieces, rotors.
+* :func:`helical_solid` -- a transverse section swept into a helical solid (manifold3d).
+* :func:`lobe_pieces`, :func:`pair_from_rotor_points` -- a pair from measured points or a
+  drawing of one rotor.
+
+Gears, curves and the envelope engine
+
+* :data:`DEG` -- one degree in radians.
+* :class:`InvoluteGear`, :class:`GearPair`, :func:`mate_shift` -- involute gears after
+  ISO 21771.
+* :class:`Line`, :class:`Arc`, :class:`Involute`, :class:`PointPath`, :class:`Spline` -- exact
+  plane curves with unit tangents.
+* :class:`Segment`, :class:`Profile` -- named sampled curve pieces and chains of them.
+* :class:`Rotation`, :class:`Translation`, :func:`pitch_point`, :func:`gear_mesh`,
+  :func:`rotor_mesh` -- the plane motions of meshing bodies.
+* :func:`conjugate`, :func:`contact_parameter`, :class:`Generated` -- the envelope engine:
+  the meshing condition n · v_rel = 0.
+* :class:`DesignError` -- the one exception for input that cannot describe a real part.
 """
 
 import importlib
@@ -65,6 +111,23 @@ _API = {
 
 
 def __getattr__(name: str) -> object:
+    """Import a public name from its module on first use (PEP 562) and keep it here.
+
+    Parameters
+    ----------
+    name : str
+        An attribute of the package.
+
+    Returns
+    -------
+    object
+        The class, function or constant of that name.
+
+    Raises
+    ------
+    AttributeError
+        A name that is not part of the API.
+    """
     if name in _API:
         value = getattr(importlib.import_module(_API[name]), name)
         globals()[name] = value
@@ -73,6 +136,7 @@ def __getattr__(name: str) -> object:
 
 
 def __dir__() -> list[str]:
+    """List the package's names, the lazily imported API included."""
     return sorted([*globals(), *_API])
 
 

@@ -1,10 +1,11 @@
-"""The spatial blow-hole of a screw-rotor pair (Rinder 2.2.2; the curvilinear triangle of the
-screw-compressor literature, e.g. Stosic, Smith & Kovacevic, *Screw Compressors*, 2005, sec. 2.4).
+"""The spatial blow-hole of a screw-rotor pair (Rinder sec. 2.2.2).
 
-Where the contact line stops short of the housing cusp, gas leaks through a curved triangle whose
-sides lie on the male tip cylinder, on the female tip cylinder and on the housing cusp line (the
-intersection of the two bores, parallel to the axes). Its apex is the contact line's end E nearest
-the cusp (Rinder eq. 1: z = h alpha / 2 pi). Definition used here (the paper gives no formula):
+The curvilinear triangle of the screw-compressor literature (e.g. Stosic, Smith & Kovacevic,
+*Screw Compressors*, 2005, sec. 2.4). Where the contact line stops short of the housing cusp, gas
+leaks through a curved triangle whose sides lie on the male tip cylinder, on the female tip
+cylinder and on the housing cusp line (the intersection of the two bores, parallel to the axes).
+Its apex is the contact line's end E nearest the cusp (Rinder eq. 1: z = h alpha / 2 pi).
+Definition used here (the paper gives no formula):
 
 * the male side: the male tip helix from the radial projection of E on the male tip circle (at the
   height of E) to where that helix meets the cusp line; the section at height z shows the male
@@ -30,19 +31,18 @@ from rotorcad.rotor_pair import RotorPair
 
 @dataclass(frozen=True)
 class SpatialBlowHole:
-    """The blow-hole triangle in 3D for a pair and the meshline end ``apex`` (fixed frame, mm) at
-    height ``apex_z`` (mm, on the contact line) next to the housing cusp ``cusp`` (x, y, mm).
+    """The blow-hole triangle in 3D of a pair, from the meshline end next to a housing cusp.
 
     Parameters
     ----------
     pair : RotorPair
         Radii, centre distance, tooth counts and male lead (mm).
-    apex : (2,) float
-        Meshline end E nearest the cusp (mm).
-    apex_z : float
-        Its height on the contact line (mm).
-    cusp : (2,) float
-        The housing cusp K the meshline comes nearest (upper or lower, mm).
+    apex : (2,) float, mm
+        Meshline end E nearest the cusp, fixed frame.
+    apex_z : float, mm
+        Its height on the contact line (Rinder eq. 1).
+    cusp : (2,) float, mm
+        The housing cusp K the meshline comes nearest (upper or lower).
     samples : int
         Points per bounding curve.
     """
@@ -55,11 +55,15 @@ class SpatialBlowHole:
 
     @property
     def empty(self) -> bool:
+        """True when the meshline reaches the cusp (apex within 1 µm of it): there is no blow-hole."""
         return bool(np.hypot(*(self.apex - self.cusp)) < 1e-3)
 
     def _sweep(self, centre: np.ndarray, radius: float, rate: float) -> tuple[np.ndarray, float]:
-        """Tip helix of one rotor from the projection of the apex to the cusp line: (n, 3) points
-        and the height where it meets the cusp line. ``rate``: turn of the section per mm of z."""
+        """Trace the tip helix of one rotor from the projection of the apex to the cusp line.
+
+        ``rate`` is the turn of the section per mm of z (rad/mm). Returns the (n, 3) points (mm) and
+        the height (mm) where the helix meets the cusp line.
+        """
         e = self.apex - centre
         phi_e = float(np.arctan2(e[1], e[0]))
         k = self.cusp - centre
@@ -89,8 +93,11 @@ class SpatialBlowHole:
 
     @cached_property
     def boundary(self) -> np.ndarray:
-        """(m, 3) closed boundary: apex, male radial piece, male tip, cusp line, female tip reversed,
-        female radial piece back to the apex (mm)."""
+        """(m, 3) closed boundary of the triangle, mm.
+
+        In order: apex, male radial piece, male tip, cusp line, female tip reversed, female radial piece
+        back to the apex (the first point is repeated at the end).
+        """
         a = np.array([*self.apex, self.apex_z])
         return np.vstack([[a], self.male_tip, self.cusp_line[1:], self.female_tip[::-1][1:], [a]])
 
@@ -118,6 +125,15 @@ class SpatialBlowHole:
         return float(z.min()), float(z.max())
 
     def as_dict(self) -> dict[str, object]:
+        """Return the blow-hole's figures as plain values (the ``blow_hole_spatial`` entry of ``MeshingAnalysis.summary``).
+
+        Returns
+        -------
+        dict
+            ``area`` and ``projected_area`` (mm²), ``apex`` [x, y, z] (mm), ``z_min``, ``z_max`` and
+            the heights where the male and the female tip helices meet the cusp line (mm,
+            contact-line frame).
+        """
         lo, hi = self.z_range if not self.empty else (self.apex_z, self.apex_z)
         return {
             "area": self.area,

@@ -1,6 +1,7 @@
-"""Meshing clearance evaluation (MCE) of a screw-rotor pair from discrete profile points, after
-Wu & Chi, *A numerical method for the evaluation of the meshing clearance for twin screw rotors
-with discrete tooth profile points* (Mech. Mach. Theory 70, 2013).
+"""Meshing clearance evaluation (MCE) of a screw-rotor pair from discrete profile points.
+
+After Wu & Chi, *A numerical method for the evaluation of the meshing clearance for twin screw
+rotors with discrete tooth profile points* (Mech. Mach. Theory 70, 2013).
 
 1. Each rotor's points are fitted with a cubic spline (sec. 2, eq. 1), so tangents are exact.
 2. Each lobe gives its transverse rack by inverse generation (eqs. 2-6: the rack point of a
@@ -47,8 +48,11 @@ CONTACT_SIDES = ("driving", "sealing", "as-given")
 
 
 def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Array, Array]:
-    """Cubic Hermite point and derivative between samples with exact unit tangents (scaled by
-    the chord)."""
+    """Evaluate the cubic Hermite point and derivative between samples with exact unit tangents.
+
+    The tangents are scaled by the chord. ``p0``, ``t0``, ``p1``, ``t1`` are (n, 2), ``tau`` (n,) in
+    [0, 1]; returns the points and the derivatives d/dtau, both (n, 2).
+    """
     h = np.hypot(*(p1 - p0).T)[:, None]
     m0, m1 = t0 * h, t1 * h
     u = tau[:, None]
@@ -58,10 +62,30 @@ def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Ar
 
 
 def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tangents: Array, window: int = 8) -> Array:
-    """Distance from each datum point along its unit normal to the compared polyline (Wu & Chi
-    eq. 10), NaN where the normal line does not cut it nearby. The crossing nearest the datum
-    point is taken among the ``window`` segments either side of the nearest compared point, then
-    refined on the Hermite cubic of that segment (Newton)."""
+    """Measure from each datum point along its unit normal to the compared polyline (Wu & Chi eq. 10).
+
+    The crossing nearest the datum point is taken among the ``window`` segments either side of the
+    nearest compared point, then refined on the Hermite cubic of that segment (Newton).
+
+    Parameters
+    ----------
+    datum : (n, 2) float array, mm
+        Points of the datum rack.
+    normals : (n, 2) float array
+        Their unit normals (positive clearance along them).
+    compared : (m, 2) float array, mm
+        The compared rack as a polyline.
+    compared_tangents : (m, 2) float array
+        Its exact unit tangents at the vertices.
+    window : int
+        Segments searched either side of the nearest compared vertex.
+
+    Returns
+    -------
+    (n,) float array, mm
+        Signed distance delta with datum + delta normal on the compared rack (positive a gap,
+        negative an interference); NaN where the normal line does not cut it nearby.
+    """
     k = cKDTree(compared).query(datum)[1]
     n_seg = len(compared) - 1
     offsets = np.arange(-window, window)
@@ -94,10 +118,30 @@ def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tan
 
 @dataclass(frozen=True)
 class ThermalState:
-    """Rotors and housing at working temperature (the Chinese paper in Wu & Chi's seed, sec. 1.2:
-    a body grows by dL = L zeta (t_c - t0), eq. 1; the rotor's computation temperature is the
-    arithmetic mean of suction and discharge temperature, and the centre distance follows the
-    housing). Temperatures in degC, expansion coefficients in 1/K."""
+    """Rotors and housing at working temperature.
+
+    After the Chinese paper in Wu & Chi's seed (sec. 1.2): a body grows by dL = L zeta (t_c - t0)
+    (its eq. 1); the rotor's computation temperature is the arithmetic mean of suction and discharge
+    temperature, and the centre distance follows the housing.
+
+    Parameters
+    ----------
+    suction_temperature, discharge_temperature : float, degC
+        Gas temperatures at suction and discharge.
+    reference_temperature : float, degC
+        Temperature at which the design's dimensions hold.
+    rotor_expansion : float, 1/K
+        Linear expansion coefficient of the rotors (default steel, 11.5e-6).
+    housing_expansion : float, 1/K
+        Linear expansion coefficient of the housing (default grey cast iron, 10.5e-6).
+    housing_temperature : float, degC, optional
+        Housing temperature; default the rotors' computation temperature.
+
+    Raises
+    ------
+    DesignError
+        A temperature at or below absolute zero, or an expansion coefficient outside [0, 0.001) 1/K.
+    """
 
     suction_temperature: float
     discharge_temperature: float
@@ -118,20 +162,38 @@ class ThermalState:
 
     @property
     def rotor_temperature(self) -> float:
+        """Rotor computation temperature, the mean of suction and discharge temperature, degC."""
         return 0.5 * (self.suction_temperature + self.discharge_temperature)
 
     @property
     def rotor_scale(self) -> float:
+        """Growth factor of the rotors, 1 + zeta_rotor (t_rotor - t_ref)."""
         return 1.0 + self.rotor_expansion * (self.rotor_temperature - self.reference_temperature)
 
     @property
     def housing_scale(self) -> float:
+        """Growth factor of the housing (and so of the centre distance), 1 + zeta_housing (t_housing - t_ref)."""
         t = self.rotor_temperature if self.housing_temperature is None else self.housing_temperature
         return 1.0 + self.housing_expansion * (t - self.reference_temperature)
 
     def apply(self, pair: RotorPair, male: Array, female: Array) -> tuple[RotorPair, Array, Array]:
-        """The hot pair and the hot profile points (each rotor grown about its own axis, the
-        lead with it, the centre distance with the housing)."""
+        """Return the hot pair and the hot profile points.
+
+        Each rotor grows about its own axis, the lead and the length with it; the centre distance grows
+        with the housing.
+
+        Parameters
+        ----------
+        pair : RotorPair
+            The cold pair.
+        male, female : (n, 2) float array or list of Curve, mm
+            Profile points (or exact curves) of each rotor in its own frame.
+
+        Returns
+        -------
+        tuple of (RotorPair, male, female)
+            The hot pair and both profiles scaled by :attr:`rotor_scale`.
+        """
         k = self.rotor_scale
         hot = replace(
             pair,
@@ -147,21 +209,41 @@ class ThermalState:
 
 
 def _scaled(profile: Array | list[Curve], k: float) -> Array | list[Curve]:
-    """Points (n, 2) or exact curves grown by the factor ``k`` about the rotor's centre."""
+    """Grow points (n, 2) or exact curves by the factor ``k`` about the rotor's centre."""
     if isinstance(profile, list | tuple):
         return [Mapped(c, ((k, 0.0), (0.0, k))) for c in profile]
     return np.asarray(profile) * k
 
 
 def _turned(points: Array, angles: Array) -> Array:
-    """Points (n, 2) each turned by its own angle (n,) (rad, counter-clockwise) about the origin."""
+    """Turn points (n, 2) each by its own angle (n,) (rad, counter-clockwise) about the origin."""
     return rotate(points, angles)
 
 
 @dataclass(frozen=True, eq=False)
 class MeshingClearance:
-    """Meshing clearance of a pair given by one lobe of each rotor (counter-clockwise pieces in
-    the rotor's own frame, e.g. :func:`rotorcad.rotor_points.lobe_pieces`)."""
+    """Meshing clearance of a pair given by one lobe of each rotor (Wu & Chi).
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Dimensions of the pair (use ``strict=False`` for measured or hot rotors).
+    male_pieces, female_pieces : list of (str, Curve)
+        One lobe of each rotor as named counter-clockwise pieces in the rotor's own frame (e.g.
+        :func:`rotorcad.rotor_points.lobe_pieces`), mm.
+    contact : {"driving", "sealing", "as-given"}
+        Flank on which the racks are brought into contact, or "as-given" to leave them as the
+        points lie.
+    tolerance : float, mm
+        Tolerance of the derived racks.
+    contact_step : float, mm
+        Largest step between the datum rack's contact points.
+
+    Raises
+    ------
+    DesignError
+        An unknown ``contact``.
+    """
 
     pair: RotorPair
     male_pieces: list[tuple[str, Curve]]
@@ -176,7 +258,7 @@ class MeshingClearance:
 
     @property
     def helix_angle(self) -> float:
-        """beta at the pitch cylinder: tan(beta) = 2 pi r1w / h1 (the same for the female)."""
+        """Helix angle beta at the pitch cylinder, rad: tan(beta) = 2 pi r1w / h1 (the same for the female)."""
         return float(np.arctan(2 * np.pi * self.pair.male_pitch_radius / self.pair.lead))
 
     @cached_property
@@ -186,8 +268,10 @@ class MeshingClearance:
 
     @cached_property
     def female_rack(self) -> DerivedRack:
-        """The female's rack, the datum, sampled so that its contact points advance at most
-        ``contact_step`` (mm), in the CONTRACT.md rack frame (y > 0 towards the female)."""
+        """The female's rack, the datum, in the CONTRACT.md rack frame (y > 0 towards the female).
+
+        Sampled so that its contact points advance at most ``contact_step`` (mm).
+        """
         return self._rack(Side.FEMALE, self.contact_step)
 
     def _rack(self, side: Side, contact_step: float) -> DerivedRack:
@@ -205,21 +289,27 @@ class MeshingClearance:
 
     @cached_property
     def _compared(self) -> tuple[Array, Array]:
-        """The male normal rack over three periods (the racks need not start at the same phase)."""
+        """The male normal rack over three periods (the racks need not start at the same phase).
+
+        Points (3m, 2), mm, and unit tangents (3m, 2).
+        """
         pts, tan = self.male_rack.normal_section(self.helix_angle)
         shift = np.array([self.pair.rack_period * np.cos(self.helix_angle), 0.0])
         return np.vstack([pts - shift, pts, pts + shift]), np.vstack([tan, tan, tan])
 
     @cached_property
     def _datum(self) -> tuple[Array, Array, Array]:
-        """Female normal rack points, unit tangents and unit normals towards the male side."""
+        """Female normal rack points (mm), unit tangents and unit normals towards the male side, each (n, 2)."""
         pts, tan = self.female_rack.normal_section(self.helix_angle)
         return pts, tan, np.stack([tan[:, 1], -tan[:, 0]], axis=1)
 
     def _in_both_bores(self, gap: Array | float = 0.0) -> Array:
-        """Female rack points whose contact lies inside both tip circles: within the fit's
-        tolerance (1 um), and the male's by the local clearance ``gap`` more (a female root
-        deeper than the male tip still seals against it, across that clearance)."""
+        """Select the female rack points whose contact lies inside both tip circles.
+
+        Inside the female's within the fit's tolerance (1 µm), and inside the male's by the local
+        clearance ``gap`` (mm) more (a female root deeper than the male tip still seals against it,
+        across that clearance). Returns an (n,) bool mask.
+        """
         contact, _ = self._contacts(0.0)
         pair = self.pair
         slack = 1e-3 + np.maximum(np.nan_to_num(gap), 0.0)
@@ -228,14 +318,29 @@ class MeshingClearance:
         )
 
     def _contacts(self, shift: float) -> tuple[Array, Array]:
-        """Contact point and male angle of each female (datum) rack point, the rack moved by
-        ``shift`` along the pitch line."""
+        """Return the contact point (n, 2), mm, and male angle (n,), rad, of each female (datum) rack point.
+
+        The rack is moved by ``shift`` (mm) along the pitch line.
+        """
         contact, angle = contact_of_rack_points(self.pair.male_pitch_radius, self.female_rack.points, self.female_rack.tangents)
         return contact, angle - shift / self.pair.male_pitch_radius
 
     def clearance_at(self, shift: float, mask: Array | None = None) -> Array:
-        """Normal clearance of the datum (female) rack points (those in ``mask``) with the female
-        rack moved by ``shift`` (mm, transverse) along the pitch line."""
+        """Return the normal clearance of the datum (female) rack points with the female rack moved.
+
+        Parameters
+        ----------
+        shift : float, mm
+            Transverse shift of the female rack along the pitch line (applied as shift cos(beta) on
+            the normal rack).
+        mask : (n,) bool array, optional
+            Datum points to evaluate; default all.
+
+        Returns
+        -------
+        (k,) float array, mm
+            Clearance of each selected point along its normal (Wu & Chi eq. 10), NaN where undefined.
+        """
         pts, _, normals = self._datum
         if mask is not None:
             pts, normals = pts[mask], normals[mask]
@@ -245,9 +350,13 @@ class MeshingClearance:
 
     @cached_property
     def shift(self) -> float:
-        """Transverse shift of the female rack that makes the racks touch on the chosen flank:
-        the smallest clearance there is zero (found by stepping out from the given position until
-        it changes sign, then Brent's method)."""
+        """Transverse shift of the female rack that makes the racks touch on the chosen flank, mm.
+
+        The smallest clearance there is zero, found by stepping out from the given position (doubling,
+        up to a quarter of the rack period) until it changes sign, then Brent's method. 0 for
+        ``contact="as-given"``. Raises :class:`DesignError` when the flank has no contact inside both
+        bores or the racks never touch there.
+        """
         if self.contact == "as-given":
             return 0.0
         _, tan, _ = self._datum
@@ -291,11 +400,16 @@ class MeshingClearance:
 
     @cached_property
     def clearance(self) -> Array:
-        """Normal clearance of every datum rack point at the positioned racks (mm)."""
+        """Normal clearance of every datum rack point at the positioned racks, (n,) float, mm."""
         return self.clearance_at(self.shift)
 
     @cached_property
     def _band(self) -> dict[str, float]:
+        """The clearance band on the 3D contact line (module docstring, step 5).
+
+        Largest, smallest, mean and equal clearance (mm), band area (mm²), contact-line length and
+        wetted perimeter (mm).
+        """
         pair = self.pair
         contact, angle = self._contacts(self.shift)
         z = pair.lead * angle / (2 * np.pi)
@@ -336,17 +450,21 @@ class MeshingClearance:
         }
 
     def distribution(self) -> dict[str, Array]:
-        """The clearance on both rotors and over the rotation (Wu & Chi Fig. 9), one row per datum
-        rack point (arrays (n,), mm and deg):
+        """Return the clearance on both rotors and over the rotation (Wu & Chi Fig. 9).
 
-        ``x``, ``y`` the positioned datum normal rack; ``clearance`` along its normal;
-        ``male_angle_deg`` the male rotation angle at which the point is in contact and ``z`` its
-        axial position on the contact line (z = h1 phi / 2 pi from the first contact inside both
-        bores, so that 0 is the suction end and ``length`` the discharge end); ``contact_x``,
-        ``contact_y`` the contact point in the fixed transverse frame; ``female_x``, ``female_y``
-        the female profile point there (own frame, mesh position), ``male_x``, ``male_y`` the male
-        point facing it across the transverse gap (own frame); ``in_contact`` (0/1) whether the
-        contact lies inside both bores and within the rotor length."""
+        Returns
+        -------
+        dict of (n,) float arrays
+            One row per datum rack point: ``x``, ``y`` the positioned datum normal rack (mm);
+            ``clearance`` along its normal (mm); ``male_angle_deg`` the male rotation angle at which the
+            point is in contact (deg) and ``z`` its axial position on the contact line (mm, z = h1 phi /
+            2 pi from the first contact inside both bores, so that 0 is the suction end and ``length``
+            the discharge end); ``contact_x``, ``contact_y`` the contact point in the fixed transverse
+            frame (mm); ``female_x``, ``female_y`` the female profile point there (own frame, mesh
+            position, mm), ``male_x``, ``male_y`` the male point facing it across the transverse gap
+            (own frame, mm); ``in_contact`` (0/1) whether the contact lies inside both bores and within
+            the rotor length.
+        """
         pair = self.pair
         contact, angle = self._contacts(self.shift)
         delta = self.clearance
@@ -379,18 +497,27 @@ class MeshingClearance:
         }
 
     def summary(self) -> dict[str, float]:
-        """The keys of ``rotorcad clearance`` (CONTRACT.md), plus the minimum clearance (negative:
-        interference) and the shift applied to position the racks."""
+        """Return the figures of ``rotorcad clearance`` (CONTRACT.md).
+
+        Returns
+        -------
+        dict of float
+            ``max_normal_clearance``, ``min_normal_clearance`` (negative: interference),
+            ``mean_clearance``, ``equal_clearance`` (mm), ``band_area`` (mm²),
+            ``contact_line_length``, ``wetted_perimeter`` (mm), ``female_rack_shift`` (mm, the shift
+            applied to position the racks) and ``helix_angle_deg`` (deg).
+        """
         return {**self._band, "female_rack_shift": self.shift, "helix_angle_deg": float(np.degrees(self.helix_angle))}
 
     @property
     def datum_rack(self) -> Array:
-        """The positioned female normal rack (the datum), for plots."""
+        """The positioned female normal rack (the datum), (n, 2) float, mm, for plots."""
         pts, _, _ = self._datum
         return pts + np.array([self.shift * np.cos(self.helix_angle), 0.0])
 
     @property
     def datum_normals(self) -> Array:
+        """Unit normals of the datum rack towards the male side, (n, 2) float."""
         return self._datum[2]
 
 

@@ -1,6 +1,7 @@
-"""Designed meshing clearance: a pair's female thinned by a clearance distribution, so that the
-corrected rotors measure that clearance back (Wu & Chi, *Meshing clearance evaluation*, eq. 7 and
-10: the clearance is the distance along the normal of the datum normal rack).
+"""Designed meshing clearance: a pair's female thinned by a clearance distribution.
+
+The corrected rotors measure that clearance back (Wu & Chi, *Meshing clearance evaluation*,
+eqs. 7 and 10: the clearance is the distance along the normal of the datum normal rack).
 
 A clearance delta_n given in the normal section at a rack point of transverse flank angle alpha
 (angle of the rack flank to the normal of the pitch line) is, in the transverse section, the
@@ -32,9 +33,23 @@ LAND_SLOPE = 0.5  # |sin| of the rack tangent's angle to the pitch line below wh
 
 @dataclass(frozen=True)
 class ClearanceDistribution:
-    """Normal clearance to design (mm, >= 0): ``driving``, ``sealing`` and ``lands`` values, or a
-    ``table`` of (x [mm] along the pitch line of the transverse rack in the rack frame of
-    CONTRACT.md, clearance [mm]) rows over one rack period."""
+    """Normal clearance to design, per flank or as a table over the rack.
+
+    Parameters
+    ----------
+    driving, sealing, lands : float, mm
+        Clearance (0 to 1 mm) on the driving flank (rack rising), the sealing flank (rack falling)
+        and the lands (rack flatter than 30 degrees to the pitch line).
+    table : tuple of (float, float), optional
+        Rows (x, clearance), mm: x along the pitch line of the transverse rack in the rack frame of
+        CONTRACT.md, over one rack period (interpolated periodically). When given, it replaces the
+        per-flank values.
+
+    Raises
+    ------
+    DesignError
+        A clearance outside [0, 1] mm, or a table with fewer than two finite rows.
+    """
 
     driving: float = 0.0
     sealing: float = 0.0
@@ -55,11 +70,37 @@ class ClearanceDistribution:
 
     @staticmethod
     def uniform(value: float) -> ClearanceDistribution:
+        """Make a distribution with the same clearance everywhere.
+
+        Parameters
+        ----------
+        value : float, mm
+            The clearance on both flanks and the lands.
+
+        Returns
+        -------
+        ClearanceDistribution
+        """
         return ClearanceDistribution(value, value, value)
 
     @staticmethod
     def parse(text: str) -> ClearanceDistribution:
-        """``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (missing flanks 0)."""
+        """Read a distribution from its command-line text.
+
+        Parameters
+        ----------
+        text : str
+            ``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (missing flanks 0), mm.
+
+        Returns
+        -------
+        ClearanceDistribution
+
+        Raises
+        ------
+        DesignError
+            Text that is neither form, or a value out of range.
+        """
         text = text.strip()
         try:
             if "=" not in text:
@@ -76,8 +117,22 @@ class ClearanceDistribution:
             raise DesignError("clearance", "a value or driving=, sealing=, lands= values in mm", text) from None
 
     def at(self, x: np.ndarray, tangents: np.ndarray, period: float) -> np.ndarray:
-        """The normal clearance (mm) at datum rack points x (n,) with unit tangents (n, 2) in the
-        rack frame of CONTRACT.md, travelled in +x."""
+        """Return the normal clearance at datum rack points.
+
+        Parameters
+        ----------
+        x : (n,) float array, mm
+            Positions along the pitch line, rack frame of CONTRACT.md.
+        tangents : (n, 2) float array
+            Unit tangents of the rack there, travelled in +x (their y part is the rise).
+        period : float, mm
+            Rack period p, for the table's periodic interpolation.
+
+        Returns
+        -------
+        (n,) float array, mm
+            The designed normal clearance delta_n.
+        """
         if self.table is not None:
             rows = np.asarray(self.table, dtype=float)
             order = np.argsort(rows[:, 0])
@@ -87,10 +142,26 @@ class ClearanceDistribution:
 
 
 def corrected_female(rotors: ScrewRotors, clearance: ClearanceDistribution, tolerance: float = 1e-3) -> np.ndarray:
-    """The female outline (own frame, mesh position, closed counter-clockwise, (n, 2) mm) thinned
-    by the designed normal clearance (module docstring). Each outline point's rack point (inverse
-    generation by the envelope engine) gives its flank, its transverse flank angle alpha and its
-    x on the datum rack; the point moves into the female by delta_t along its exact normal."""
+    """Thin the female outline by the designed normal clearance (module docstring).
+
+    Each outline point's rack point (inverse generation by the envelope engine) gives its flank, its
+    transverse flank angle alpha and its x on the datum rack; the point moves into the female by
+    delta_t along its exact normal. Points without a rack point are left as they are.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair as designed (without clearance).
+    clearance : ClearanceDistribution
+        The normal clearance to give.
+    tolerance : float, mm
+        Chord tolerance of the female outline.
+
+    Returns
+    -------
+    (n, 2) float array, mm
+        The thinned female outline, own frame at the mesh position, closed counter-clockwise.
+    """
     pair = rotors.pair
     outline = rotors.female_outline(tolerance)
     pts, tan = outline.points, outline.tangents

@@ -1,7 +1,9 @@
-"""Pictures of the meshing clearance (Wu & Chi) in the style of :mod:`rotorcad.plot_style`: the
-datum rack with the clearance drawn along its normal, magnified (Wu & Chi Fig. 4f); the clearance
-along the rack and over the male rotation (Fig. 9), interference (negative clearance) shaded; and
-the clearance band on the 3D contact line."""
+"""Pictures of the meshing clearance (Wu & Chi) in the style of :mod:`rotorcad.plot_style`.
+
+The datum rack with the clearance drawn along its normal, magnified (Wu & Chi Fig. 4f); the
+clearance along the rack and over the male rotation (Fig. 9), interference (negative clearance)
+shaded; and the clearance band on the 3D contact line.
+"""
 
 from __future__ import annotations
 
@@ -16,16 +18,22 @@ from rotorcad.plot_style import styled
 
 
 def clearance_state(mc: MeshingClearance, thermal: ThermalState | None, reference_temperature: float = 20.0) -> str:
-    """How the pair is evaluated, for a title: cold or hot with its temperatures, and the flank
-    the racks are brought into contact on.
+    """Describe how the pair is evaluated, for a title.
+
+    Cold or hot with its temperatures, and the flank the racks are brought into contact on.
 
     Parameters
     ----------
     mc : MeshingClearance
+        The evaluation (its contact flank).
     thermal : ThermalState, optional
         The working temperatures (None: cold, as measured).
     reference_temperature : float, °C
         Temperature of the points.
+
+    Returns
+    -------
+    str
     """
     contact = {"driving": "in contact on the driving flank", "sealing": "in contact on the sealing flank"}.get(
         mc.contact, "as the points were given"
@@ -42,8 +50,11 @@ def clearance_state(mc: MeshingClearance, thermal: ThermalState | None, referenc
 
 
 def _band_normals(mc: MeshingClearance, contact: np.ndarray) -> np.ndarray:
-    """Unit normals (n, 3) of the helical flank at the contact points: transverse from the rack,
-    axial from the helicoid (as the band of :class:`MeshingClearance` is built)."""
+    """Return the unit normals (n, 3) of the helical flank at the contact points.
+
+    Transverse from the rack, axial from the helicoid (as the band of :class:`MeshingClearance` is
+    built).
+    """
     tan = mc.female_rack.tangents
     n_t = np.stack([-tan[:, 0], tan[:, 1]], axis=1)
     n_z = 2 * np.pi * (contact[:, 1] * n_t[:, 0] - contact[:, 0] * n_t[:, 1]) / mc.pair.lead
@@ -53,15 +64,22 @@ def _band_normals(mc: MeshingClearance, contact: np.ndarray) -> np.ndarray:
 
 @styled
 def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
-    """Four panels: the datum rack with the clearance magnified along its normal; the 3D contact
-    line with its clearance band (magnified); the clearance along the rack; the clearance over
-    the male rotation angle. Interference (negative clearance) is vermillion and shaded.
+    """Draw the meshing clearance of a pair in four panels (Wu & Chi Figs. 4f and 9).
+
+    The datum rack with the clearance magnified along its normal; the 3D contact line with its
+    clearance band (magnified); the clearance along the rack; the clearance over the male rotation
+    angle. Interference (negative clearance) is vermillion and shaded.
 
     Parameters
     ----------
     mc : MeshingClearance
+        The evaluated pair.
     state : str
         Cold or hot, temperatures and contact flank (:func:`clearance_state`), for the title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     pts, delta, n = mc.datum_rack, mc.clearance, mc.datum_normals
     ok = np.isfinite(delta)

@@ -1,6 +1,7 @@
-"""Gear coupling with barrel-shaped (crowned) hub teeth: kinematics, tooth load and lubricant film
-(Belkov, Maksimov & Shitikov, *Contact-hydrodynamic calculation of gear couplings of high-speed
-turbomachines*, seed 003; the film itself is solved in :mod:`rotorcad.coupling_film`).
+"""Gear coupling with barrel-shaped (crowned) hub teeth: kinematics, tooth load and lubricant film.
+
+After Belkov, Maksimov & Shitikov, *Contact-hydrodynamic calculation of gear couplings of
+high-speed turbomachines* (seed 003); the film itself is solved in :mod:`rotorcad.coupling_film`.
 
 Geometry (paper, Fig. 1). Hub and sleeve have the same number of teeth z, module m, pressure angle
 alpha and addendum factor h_a* (0.8); no profile shift (the paper's X only balances bending
@@ -116,6 +117,7 @@ def derived_barrel_radius(face_width: float, pressure_angle: float, misalignment
 
 
 def _check(name: str, value: float, lo: float, hi: float, allowed: str, *, open_lo: bool = True) -> None:
+    """Refuse ``value`` unless it is finite and in (lo, hi] (or [lo, hi] with ``open_lo=False``)."""
     ok = math.isfinite(value) and (value > lo if open_lo else value >= lo) and value <= hi
     if not ok:
         raise DesignError(name, allowed, value)
@@ -125,8 +127,43 @@ def _check(name: str, value: float, lo: float, hi: float, allowed: str, *, open_
 class GearCoupling:
     """A gear coupling of crowned hub teeth in a straight-toothed sleeve, and its operating point.
 
-    Lengths in mm, angles in rad, speed in rpm, power in kW, viscosity in Pa s, the Barus
-    coefficient in 1/Pa (the paper's program inputs, its list after eq. 8).
+    The inputs of the paper's program (its list after eq. 8).
+
+    Parameters
+    ----------
+    teeth : int
+        Number of teeth z of hub and sleeve, 6 to 1000.
+    module : float, mm
+        Module m.
+    face_width : float, mm
+        Face width b (the paper recommends b = (6...10) m).
+    speed_rpm : float, rpm
+        Speed n.
+    power_kw : float, kW
+        Transmitted power P.
+    viscosity : float, Pa s
+        Lubricant viscosity at ambient pressure mu_0.
+    pressure_viscosity : float, 1/Pa
+        Barus coefficient alpha_0 (0 to 1e-6; 0 for an isoviscous lubricant).
+    misalignment : float, rad
+        Shaft misalignment angle gamma (0 to 10 degrees).
+    pressure_angle : float, rad
+        Pressure angle alpha (10 to 40 degrees).
+    addendum : float
+        Addendum factor h_a* (the working depth is 2 h_a* m).
+    barrel_radius : float, mm, optional
+        Crowning radius R0 of the hob centre's path; default b sin(alpha) / (4 tan(gamma)).
+    load_factor : float
+        Load distribution factor K_H, 1 to 10.
+    teeth_in_contact : float, optional
+        Teeth z_c sharing the load; default z.
+    modulus : float, Pa
+        Reduced modulus E' (default steel on steel).
+
+    Raises
+    ------
+    DesignError
+        A value out of its range, or no misalignment without a barrel radius.
     """
 
     teeth: int
@@ -169,7 +206,7 @@ class GearCoupling:
     # geometry [mm]
     @property
     def pitch_radius(self) -> float:
-        """r = m z / 2 [mm] (no profile shift)."""
+        """Pitch radius r = m z / 2, mm (no profile shift)."""
         return self.module * self.teeth / 2.0
 
     @property
@@ -250,11 +287,18 @@ class GearCoupling:
 
     @property
     def load_per_length(self) -> float:
-        """w' = F_n / l [N/m]."""
+        """Load per unit length of the contact line w' = F_n / l, N/m."""
         return self.tooth_load / (self.contact_length * 1e-3)
 
     def line_contact(self) -> LineContact:
-        """The cylinder-on-plane problem of eqs. 1-6 (SI units): R_b, w', u, mu_0, alpha_0, E'."""
+        """Return the cylinder-on-plane problem of Belkov et al. eqs. 1-6 for this coupling.
+
+        Returns
+        -------
+        LineContact
+            In SI units: radius R_b (m), load w' (N/m), entraining speed u (m/s, eq. 7), mu_0 (Pa s),
+            alpha_0 (1/Pa), E' (Pa).
+        """
         return LineContact(
             radius=self.flank_radius * 1e-3,
             load=self.load_per_length,
@@ -266,11 +310,21 @@ class GearCoupling:
 
 
 def dowson_higginson_film(contact: LineContact) -> float:
-    """Minimum film of a line contact by Dowson & Higginson (1977), the independent check.
+    """Return the minimum film of a line contact by Dowson & Higginson (1977), the independent check.
 
     H_min = 2.65 U^0.70 G^0.54 W^-0.13 with U = mu_0 u / (E' R), G = alpha_0 E', W = w' / (E' R),
-    u the mean entraining speed; h_min = H_min R [m]. For an isoviscous lubricant (alpha_0 = 0)
-    the formula does not apply and NaN is returned.
+    u the mean entraining speed; h_min = H_min R.
+
+    Parameters
+    ----------
+    contact : LineContact
+        The contact, SI units.
+
+    Returns
+    -------
+    float, m
+        h_min; NaN for an isoviscous lubricant (alpha_0 = 0) or rigid bodies, where the formula does
+        not apply.
     """
     e, r = contact.modulus, contact.radius
     if contact.pressure_viscosity <= 0 or not math.isfinite(e):
@@ -283,7 +337,19 @@ def dowson_higginson_film(contact: LineContact) -> float:
 
 @dataclass(frozen=True, eq=False)
 class CouplingResult:
-    """The paper's program output for one coupling: verdict, film, pressures (SI inside, see properties)."""
+    """The paper's program output for one coupling: verdict, film, pressures.
+
+    SI inside (the film solution); the properties give mm, N and MPa.
+
+    Parameters
+    ----------
+    coupling : GearCoupling
+        Geometry and operating point.
+    verdict : Verdict
+        The kind of result.
+    film : FilmSolution, optional
+        The film solution (None when there is none).
+    """
 
     coupling: GearCoupling
     verdict: Verdict
@@ -291,6 +357,7 @@ class CouplingResult:
 
     @property
     def hydrodynamic(self) -> bool:
+        """True when the verdict is the hydrodynamic regime."""
         return self.verdict is Verdict.HYDRODYNAMIC
 
     @property
@@ -301,24 +368,31 @@ class CouplingResult:
 
     @property
     def inlet_length(self) -> float:
-        """Length of the film's inlet zone [mm]: where the gap of the crowned flank, x^2 / (2 R_b),
-        is within ten central films, x = sqrt(20 R_b h_c); most of the film pressure builds there."""
+        """Length of the film's inlet zone, mm (NaN without a film).
+
+        Where the gap of the crowned flank, x^2 / (2 R_b), is within ten central films:
+        x = sqrt(20 R_b h_c); most of the film pressure builds there.
+        """
         if self.film is None:
             return math.nan
         return math.sqrt(20.0 * self.coupling.flank_radius * self.central_film_thickness)
 
     @property
     def inlet_room(self) -> float:
-        """Room for the inlet zone on the face [mm]: from the contact at its farthest position to the
-        face's edge, b / 2 - x_c."""
+        """Room for the inlet zone on the face, mm: b / 2 - x_c.
+
+        From the contact at its farthest position to the face's edge.
+        """
         c = self.coupling
         return c.face_width / 2.0 - c.contact_excursion
 
     @property
     def inlet_off_face(self) -> bool:
-        """Whether the inlet zone (:attr:`inlet_length`) runs off the face at the contact's farthest
-        position: the film may then be starved and thinner than computed (the paper's model, like
-        this one, takes the oil as supplied far upstream). Reported, not a verdict."""
+        """Whether the inlet zone (:attr:`inlet_length`) runs off the face at the contact's farthest position.
+
+        The film may then be starved and thinner than computed (the paper's model, like this one, takes
+        the oil as supplied far upstream). Reported, not a verdict.
+        """
         return bool(self.inlet_length > self.inlet_room)
 
     @property
@@ -368,11 +442,12 @@ class CouplingResult:
 
     @property
     def message(self) -> str:
+        """The verdict's message, one sentence."""
         return self.verdict.value
 
 
 def analyse(coupling: GearCoupling, nodes: int = 401) -> CouplingResult:
-    """Solve the paper's contact-hydrodynamic problem for one coupling (eqs. 1-7).
+    """Solve the paper's contact-hydrodynamic problem for one coupling (Belkov et al. eqs. 1-7).
 
     Parameters
     ----------
@@ -384,7 +459,7 @@ def analyse(coupling: GearCoupling, nodes: int = 401) -> CouplingResult:
     Returns
     -------
     CouplingResult
-        Verdict with the film (None when eq. 7 gives no entrainment).
+        Verdict with the film (None when eq. 7 gives no entrainment or no film was found).
     """
     if coupling.entraining_speed <= 0.0:
         return CouplingResult(coupling, Verdict.NO_ENTRAINMENT, None)
@@ -400,11 +475,25 @@ def analyse(coupling: GearCoupling, nodes: int = 401) -> CouplingResult:
 
 
 def load_capacity_at(contact: LineContact, min_film: float, nodes: int = 201) -> float:
-    """The paper's load capacity W(h_min): the load per unit length [N/m] the film carries at a
-    given minimum film thickness ``min_film`` [m] (outer root-find on log w' over the film solution).
+    """Return the paper's load capacity W(h_min) at a given minimum film thickness.
 
-    The bracket grows from the contact's own load by factors of 4 (at most 4^15 either way);
-    NaN when no load in it gives that film.
+    An outer root-find on log w' over the film solution. The bracket grows from the contact's own
+    load by factors of 4 (at most 4^15 either way).
+
+    Parameters
+    ----------
+    contact : LineContact
+        The contact, SI units (its load is the starting guess).
+    min_film : float, m
+        The minimum film thickness h_min.
+    nodes : int
+        Grid nodes of each film solution.
+
+    Returns
+    -------
+    float, N/m
+        The load per unit length the film carries at ``min_film``; NaN when no load in the bracket
+        gives that film.
     """
 
     def gap(log_w: float) -> float:
@@ -420,21 +509,24 @@ def load_capacity_at(contact: LineContact, min_film: float, nodes: int = 201) ->
 
 
 def sweep_teeth(coupling: GearCoupling, teeth: Array, *, keep_diameter: bool = False, nodes: int = 201) -> Array:
-    """h_min [mm] over the number of teeth, everything else as given (paper, Fig. 4).
+    """Return h_min over the number of teeth, everything else as given (paper, Fig. 4).
 
     Parameters
     ----------
     coupling : GearCoupling
         The base case.
-    teeth : ndarray of int, shape (k,)
+    teeth : (k,) int array
         Numbers of teeth.
     keep_diameter : bool
         Keep the pitch diameter m z (the module changes as m z / z_i) instead of the module.
+    nodes : int
+        Grid nodes of each film solution.
 
     Returns
     -------
-    ndarray, shape (k,)
-        h_min [mm]; NaN where the coupling has no hydrodynamic film.
+    (k,) float array, mm
+        h_min; NaN where no film was found (no entrainment, or no converged film). Cases judged
+        edge contact or too thick a film keep their h_min.
     """
     diameter = coupling.module * coupling.teeth
     out = np.full(len(teeth), np.nan)

@@ -1,6 +1,7 @@
-"""Lubricant film of a cylinder on a plane: the contact-hydrodynamic (elastohydrodynamic, EHL)
-line-contact problem of Belkov, Maksimov & Shitikov, *Contact-hydrodynamic calculation of gear
-couplings of high-speed turbomachines* (seed 003), eqs. 1-6, solved numerically.
+"""Lubricant film of a cylinder on a plane: the contact-hydrodynamic (EHL) line-contact problem.
+
+After Belkov, Maksimov & Shitikov, *Contact-hydrodynamic calculation of gear couplings of
+high-speed turbomachines* (seed 003), eqs. 1-6, solved numerically.
 
 The paper's system, as reconstructed from the damaged OCR (every symbol in SI units):
 
@@ -60,7 +61,19 @@ _INLET_FILMS = 25.0  # the fine pass puts the inlet this many sqrt(2 R h_c) upst
 
 
 def reduced_modulus(e1: float = STEEL_E, nu1: float = STEEL_NU, e2: float = STEEL_E, nu2: float = STEEL_NU) -> float:
-    """Hamrock's reduced modulus E' [Pa], 2/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2."""
+    """Return Hamrock's reduced modulus E', 2/E' = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
+
+    Parameters
+    ----------
+    e1, e2 : float, Pa
+        Young's moduli of the two bodies (default steel, 2.0e11 Pa).
+    nu1, nu2 : float
+        Their Poisson's ratios (default 0.3).
+
+    Returns
+    -------
+    float, Pa
+    """
     return 2.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)
 
 
@@ -177,7 +190,8 @@ def _grid(nodes: int, inlet: float) -> _Grid:
 def _influence(grid: _Grid) -> Array:
     """K[i, j] = -int over cell j of ln|X_i - S| dS: the deflection at node i of unit pressure on cell j.
 
-    Shape (n, n). Exact for piecewise-constant pressure (primitive t ln|t| - t of ln|t|)."""
+    Shape (n, n). Exact for piecewise-constant pressure (primitive t ln|t| - t of ln|t|).
+    """
     edges = np.concatenate([[grid.x[0]], np.cumsum(grid.width) + grid.x[0]])
 
     def prim(t: Array) -> Array:
@@ -190,8 +204,11 @@ def _influence(grid: _Grid) -> Array:
 
 
 def _wedge_bands(n: int, step: float) -> dict[int, Array]:
-    """dH/dxi at node i as sum over offsets o of c_o[i] H[i + o]: second-order upwind differences
-    (first order at the first interior node); diagonals by offset, each of shape (n,)."""
+    """Return the diagonals of the wedge term dH/dxi by offset, each of shape (n,).
+
+    dH/dxi at node i is the sum over offsets o of c_o[i] H[i + o]: second-order upwind differences
+    (first order at the first interior node).
+    """
     c = {0: np.zeros(n), -1: np.zeros(n), -2: np.zeros(n)}
     c[0][2 : n - 1], c[-1][2 : n - 1], c[-2][2 : n - 1] = 1.5 / step, -2.0 / step, 0.5 / step
     c[0][1], c[-1][1] = 1.0 / step, -1.0 / step
@@ -209,7 +226,7 @@ def _band_apply(bands: dict[int, Array], v: Array) -> Array:
 
 
 def _band_dense(bands: dict[int, Array], n: int) -> Array:
-    """The banded matrix as a dense (n, n) array."""
+    """Return the banded matrix given by its diagonals as a dense (n, n) array."""
     m = np.zeros((n, n))
     for o, c in bands.items():
         i = np.arange(max(0, -o), min(n, n - o))
@@ -258,7 +275,7 @@ class _Newton:
         return h0 + self.base + self.ek @ p
 
     def _coefficients(self, p: Array, h: Array) -> tuple[Array, Array]:
-        """g = eps / x' = H^3 exp(-alpha P) / x' at the nodes and its face means, shapes (n,), (n-1,)."""
+        """Return G = eps / X' = H^3 exp(-alpha P) / X' at the nodes and its face means, shapes (n,), (n-1,)."""
         g = h**3 * np.exp(-self.s.alpha * p) / self.g.dxdxi
         return g, 0.5 * (g[1:] + g[:-1])
 
@@ -271,8 +288,11 @@ class _Newton:
         return res - self.s.lam * _band_apply(self.wedge, h)
 
     def system(self, p: Array, h0: float, fixed: Array) -> tuple[Array, Array]:
-        """Residual (shape (n+1,)) and Jacobian (shape (n+1, n+1)): Reynolds rows, rows P = 0 at the
-        ends and at cavitated nodes (``fixed``), and the load row sum(P width) = 1."""
+        """Assemble the residual (shape (n+1,)) and the Jacobian (shape (n+1, n+1)).
+
+        Reynolds rows, rows P = 0 at the ends and at cavitated nodes (``fixed``), and the load row
+        sum(P width) = 1.
+        """
         n, d2 = self.n, self.g.step**2
         h = self.film(p, h0)
         g, face = self._coefficients(p, h)
@@ -301,8 +321,11 @@ class _Newton:
         return res, jac
 
     def cavitated(self, p: Array, h0: float) -> Array:
-        """Nodes held at P = 0: the two ends, and nodes downstream of the pressure peak where P = 0 and
-        the Reynolds equation solved for that node alone (neighbours fixed) would not give P > 0."""
+        """Return the nodes held at P = 0, a bool mask of shape (n,).
+
+        The two ends, and nodes downstream of the pressure peak where P = 0 and the Reynolds equation
+        solved for that node alone (neighbours fixed) would not give P > 0.
+        """
         h = self.film(p, h0)
         _, face = self._coefficients(p, h)
         num = np.zeros(self.n)
@@ -340,7 +363,7 @@ class _Newton:
 
 
 def _start(s: _Scaled, c: LineContact, grid: _Grid) -> tuple[Array, float]:
-    """Initial pressure (a half ellipse over the Hertz strip, or over the rigid pressure zone) and H0."""
+    """Return the initial pressure (a half ellipse over the Hertz strip, or over the rigid pressure zone) and H0."""
     half = max(c.hertz_half_width / s.ell, 0.5)
     p = np.sqrt(np.clip(1.0 - (grid.x / half) ** 2, 0.0, None))
     p /= p @ grid.width
@@ -348,14 +371,17 @@ def _start(s: _Scaled, c: LineContact, grid: _Grid) -> tuple[Array, float]:
 
 
 def _partial(s: _Scaled, t: float) -> _Scaled:
-    """The problem at continuation parameter t in [0, 1]: elasticity grows on [0, 1/2], then pressure-viscosity."""
+    """Return the problem at continuation parameter t in [0, 1]: elasticity grows on [0, 1/2], then pressure-viscosity."""
     return _Scaled(s.lam, s.alpha * max(0.0, 2.0 * t - 1.0), s.kappa * min(1.0, 2.0 * t), s.ell, s.p_scale, s.h_scale)
 
 
 def _newton(s: _Scaled, c: LineContact, grid: _Grid, start: tuple[Array, float] | None) -> tuple[Array, float, bool]:
-    """Newton from ``start`` (or the half-ellipse start); if that fails, continuation from the rigid
-    isoviscous problem (linear but for the load balance): elasticity first, then alpha_0, with
-    steps that double after a success and halve after a failure (down to 1/256)."""
+    """Run Newton from ``start`` (or the half-ellipse start), with continuation if that fails.
+
+    The continuation starts from the rigid isoviscous problem (linear but for the load balance):
+    elasticity first, then alpha_0, with steps that double after a success and halve after a failure
+    (down to 1/256). Returns (P, H0, converged).
+    """
     kernel = _influence(grid)
     p, h0 = start or _start(s, c, grid)
     p, h0, ok = _Newton(s, grid, kernel).solve(p, h0)
@@ -377,13 +403,13 @@ def _newton(s: _Scaled, c: LineContact, grid: _Grid, start: tuple[Array, float] 
 
 
 def solve_line_contact(contact: LineContact, nodes: int = 401) -> FilmSolution:
-    """Solve the Reynolds equation with Barus viscosity and the elastic gap (eqs. 1-6) for the
-    load per unit length of ``contact``.
+    """Solve the Reynolds equation with Barus viscosity and the elastic gap (Belkov et al. eqs. 1-6).
 
-    Two passes: a coarse grid with the inlet 30 scaled lengths upstream gives the central film h_c;
-    the fine grid then puts the inlet 25 sqrt(2 R h_c) upstream of the Hertz strip (fully flooded)
-    and starts Newton from the coarse solution. Newton-Raphson runs on pressure, H0 and the load
-    balance together, with continuation in the pressure-viscosity coefficient when a start fails.
+    The load per unit length of ``contact`` is carried by the film. Two passes: a coarse grid with
+    the inlet 30 scaled lengths upstream gives the central film h_c; the fine grid then puts the
+    inlet 25 sqrt(2 R h_c) upstream of the Hertz strip (fully flooded) and starts Newton from the
+    coarse solution. Newton-Raphson runs on pressure, H0 and the load balance together, with
+    continuation (elasticity, then the pressure-viscosity coefficient) when a start fails.
 
     Parameters
     ----------
@@ -397,6 +423,11 @@ def solve_line_contact(contact: LineContact, nodes: int = 401) -> FilmSolution:
     FilmSolution
         Grid x (shape (n,), m), pressure (Pa) and film (m); ``converged`` is False when Newton's
         method found no film (the lubricant cannot carry the load under these conditions).
+
+    Raises
+    ------
+    ValueError
+        A radius, load, speed or viscosity that is not positive.
     """
     if not (contact.radius > 0 and contact.load > 0 and contact.speed > 0 and contact.viscosity > 0):
         raise ValueError("radius, load, speed and viscosity must be positive")

@@ -1,5 +1,7 @@
-"""Deflection of screw rotors under gas load (Rinder & Deix): section values from the real
-profile, the equivalent round bar, the load of the working chambers and the deflection lines.
+"""Deflection of screw rotors under gas load (Rinder & Deix).
+
+Section values from the real profile, the equivalent round bar, the load of the working chambers
+and the deflection lines.
 
 The helical part is the paper's equivalent beam, simply supported at its ends (w = 0, M = 0),
 solved by Ritz-Galerkin with a sine series (:mod:`rotorcad.rotor_beam`). With shaft ends
@@ -81,19 +83,33 @@ def rotor_beam(
     young: float = STEEL[0],
     poisson: float = STEEL[1],
 ) -> RotorBeam:
-    """The equivalent beam of a rotor from its transverse outline.
+    """Make the equivalent beam of a rotor from its transverse outline (Rinder & Deix eqs. 1-4).
 
     Parameters
     ----------
-    outline : (n, 2) float, mm
+    outline : (n, 2) float array, mm
         The closed transverse outline about the rotor's axis.
     root_radius, tip_radius : float, mm
+        Root and tip radius of the rotor.
     wrap_deg : float, deg
         Wrap angle phi_L of the rotor over ``length``.
     length : float, mm
         Helical length l.
-    young : float, N/mm^2
+    young : float, N/mm²
+        Young's modulus E.
     poisson : float
+        Poisson's ratio mu.
+
+    Returns
+    -------
+    RotorBeam
+        Section values, J_red (eq. 2), the equivalent diameter (eq. 3) and the round bar of that
+        diameter over ``length``.
+
+    Raises
+    ------
+    DesignError
+        A modulus that is not positive or a Poisson's ratio outside [0, 0.5).
     """
     if not (np.isfinite(young) and young > 0):
         raise DesignError("young_modulus", "a positive modulus in N/mm^2", young)
@@ -121,13 +137,42 @@ def rotor_beam(
 
 @dataclass(frozen=True)
 class Shaft:
-    """Journals of one rotor: (length, diameter) pieces in mm from each end face to its bearing."""
+    """Journals of one rotor: (length, diameter) pieces from each end face to its bearing.
+
+    Parameters
+    ----------
+    discharge, suction : tuple of (float, float), mm
+        Pieces (length, diameter) from the discharge (suction) end face to the bearing, in that
+        order; empty: the bearing sits at the end face.
+    """
 
     discharge: tuple[tuple[float, float], ...] = ()
     suction: tuple[tuple[float, float], ...] = ()
 
     def segments(self, helical: Beam, young: float, poisson: float) -> tuple[list[ShaftSegment], int]:
-        """Beam segments from the discharge bearing to the suction bearing and the helical part's index."""
+        """Return the beam segments from the discharge bearing to the suction bearing.
+
+        Parameters
+        ----------
+        helical : Beam
+            The equivalent beam of the helical part.
+        young : float, N/mm²
+            Young's modulus of the journals.
+        poisson : float
+            Poisson's ratio of the journals.
+
+        Returns
+        -------
+        segments : list of ShaftSegment
+            Discharge journals (bearing first), the helical part, suction journals.
+        index : int
+            Index of the helical part in ``segments``.
+
+        Raises
+        ------
+        DesignError
+            A journal length or diameter that is not positive.
+        """
 
         def piece(length: float, diameter: float) -> ShaftSegment:
             for name, value in (("journal length", length), ("journal diameter", diameter)):
@@ -142,6 +187,7 @@ class Shaft:
 
     @property
     def given(self) -> bool:
+        """True when the rotor has journals at either end."""
         return bool(self.discharge or self.suction)
 
 
@@ -173,7 +219,21 @@ class DeflectionLines:
     female_shaft: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
 
     def largest(self, rotor: str, shaft: bool = False) -> tuple[float, float, float]:
-        """(|w| max in mm, its z in mm, its direction in deg: tan phi = w_y / w_x) of a rotor."""
+        """Return the largest deflection of a rotor, where it occurs and its direction.
+
+        Parameters
+        ----------
+        rotor : {"male", "female"}
+            Which rotor.
+        shaft : bool
+            True: along the whole shaft on its bearings (falls back to the helical part when there
+            are no shaft ends).
+
+        Returns
+        -------
+        tuple of float
+            (|w| max in mm, its z in mm, its direction in deg from +x towards +y: tan phi = w_y / w_x).
+        """
         w = getattr(self, f"{rotor}_shaft" if shaft else rotor)
         z = getattr(self, f"{rotor}_shaft_z") if shaft else self.z
         if len(w) == 0:
@@ -184,25 +244,40 @@ class DeflectionLines:
 
 
 class GasDeflection:
-    """Deflection of a rotor pair under the pressure of its working chambers.
+    """Deflection of a rotor pair under the pressure of its working chambers (Rinder & Deix).
 
     Parameters
     ----------
     rotors : ScrewRotors
         The pair (its sections give the chamber and the beams).
     suction_bar, discharge_bar : float, bar absolute
-    exponent, volume_ratio, discharge_edge, indicator
-        The pressure model (:func:`rotorcad.gas_load.pressure_cycle`; ``discharge_edge`` in rad).
+        Suction and discharge pressure.
+    exponent : float
+        Polytropic exponent n of the compression p V^n = const.
+    volume_ratio : float, optional
+        Built-in volume ratio V_i fixing the discharge port's control edge.
+    discharge_edge : float, rad, optional
+        Or the control edge as a chamber angle (male rotation since the chamber opened).
+    indicator : (k, 2) float array, optional
+        Or an indicator diagram: rows (chamber angle in rad, absolute pressure in bar); see
+        :func:`rotorcad.gas_load.pressure_cycle`.
     young, poisson : float
-        E (N/mm^2) and mu of the rotors.
+        E (N/mm²) and mu of the rotors.
     male_shaft, female_shaft : Shaft
         Journals (optional).
     terms : int
-        Sine terms of the Ritz-Galerkin series (the paper used 2; 40 are converged to < 0.1 %).
+        Sine terms of the Ritz-Galerkin series, 1 to 400 (the paper used 2; 40 are converged to
+        < 0.1 %).
     cells : int
         Cells along the length for the load.
-    step_deg : float
+    step_deg : float, deg
         Phase step of the chamber table.
+
+    Raises
+    ------
+    DesignError
+        Terms, modulus or Poisson's ratio out of range, a male wrap over 720 degrees, or a bad
+        pressure model.
     """
 
     def __init__(
@@ -258,14 +333,36 @@ class GasDeflection:
         }
 
     def journal_length(self, rotor: str) -> float:
-        """Length (mm) from the discharge bearing to the discharge end face of a rotor (0 without shafts)."""
+        """Return the length from the discharge bearing to the discharge end face of a rotor.
+
+        Parameters
+        ----------
+        rotor : {"male", "female"}
+            Which rotor.
+
+        Returns
+        -------
+        float, mm
+            0 without shaft ends.
+        """
         shaft = self._shafts[rotor]
         return 0.0 if shaft is None else float(sum(seg.length for seg in shaft[0][: shaft[1]]))
 
     def chambers(self, angle: float) -> list[dict[str, float]]:
-        """The chambers alive at male angle ``angle`` (rad): the discharge-end phase of each, its
-        chamber angle (male rotation since it opened), its pressure (bar, absolute) and where along
-        the rotors (mm from the discharge end) it holds gas: up to the contact line that seals it."""
+        """List the chambers alive at a male angle.
+
+        Parameters
+        ----------
+        angle : float, rad
+            Male angle in the discharge-end section.
+
+        Returns
+        -------
+        list of dict
+            One per chamber, by chamber angle: ``chamber_angle_deg`` (male rotation since it opened,
+            deg), ``pressure_bar`` (bar absolute), ``from_z`` and ``to_z`` (mm from the discharge end:
+            where along the rotors it holds gas, up to the contact line that seals it).
+        """
         start, stop = self.table.cycle
         span = self.table.span
         pitch = 2 * np.pi / self.pair.male_teeth
@@ -288,8 +385,14 @@ class GasDeflection:
         return sorted(out, key=lambda c: c["chamber_angle_deg"])
 
     def bearing_loads(self, angle: float) -> dict[str, dict[str, float]]:
-        """The gas force on each rotor and what it puts on the two bearings at male angle ``angle``
-        (rad): statics of the shaft on its bearings (at the end faces without shaft ends).
+        """Return the gas force on each rotor and what it puts on the two bearings.
+
+        Statics of the shaft on its bearings (at the end faces without shaft ends).
+
+        Parameters
+        ----------
+        angle : float, rad
+            Male angle in the discharge-end section.
 
         Returns
         -------
@@ -315,13 +418,38 @@ class GasDeflection:
         return out
 
     def loads(self, angle: float) -> tuple[np.ndarray, np.ndarray]:
-        """Line loads (cells, 2) N/mm on the male and the female at male angle ``angle`` (rad)."""
+        """Return the line loads on the male and the female (Rinder & Deix eqs. 5-6).
+
+        Parameters
+        ----------
+        angle : float, rad
+            Male angle in the discharge-end section.
+
+        Returns
+        -------
+        tuple of two (cells, 2) float arrays, N/mm
+            Load per unit length (x, y) at the cell centres :attr:`z` on the male and the female.
+        """
         male = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "male")
         female = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "female")
         return male, female
 
     def at(self, angle: float, terms: int | None = None, points: int = 201) -> DeflectionLines:
-        """Deflection lines of both rotors at male angle ``angle`` (rad)."""
+        """Compute the deflection lines of both rotors at a male angle (Rinder & Deix eqs. 7-9).
+
+        Parameters
+        ----------
+        angle : float, rad
+            Male angle in the discharge-end section.
+        terms : int, optional
+            Sine terms; default the instance's.
+        points : int
+            Points along the helical part.
+
+        Returns
+        -------
+        DeflectionLines
+        """
         terms = self.terms if terms is None else terms
         z = np.linspace(0.0, self.pair.length, points)
         loads = dict(zip(("male", "female"), self.loads(angle), strict=True))
@@ -335,7 +463,20 @@ class GasDeflection:
         return DeflectionLines(float(angle), z, **lines)
 
     def sweep(self, angles: np.ndarray, shaft: bool = False) -> np.ndarray:
-        """Largest |w| (mm) of (male, female) at each male angle, shape (k, 2)."""
+        """Return the largest deflection of each rotor at each of a set of male angles.
+
+        Parameters
+        ----------
+        angles : (k,) float array, rad
+            Male angles.
+        shaft : bool
+            True: along the whole shafts on their bearings.
+
+        Returns
+        -------
+        (k, 2) float array, mm
+            Largest |w| of (male, female) at each angle.
+        """
         out = np.empty((len(angles), 2))
         for i, a in enumerate(np.asarray(angles, dtype=float)):  # each angle is vectorised inside
             lines = self.at(a, points=101)
@@ -343,8 +484,24 @@ class GasDeflection:
         return out
 
     def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False) -> float:
-        """The male angle (rad) of the largest deflection of either rotor: the best of a sweep
-        (``angles``, ``largest``), refined by a bounded scalar search between its neighbours."""
+        """Find the male angle of the largest deflection of either rotor.
+
+        The best of a sweep, refined by a bounded scalar search between its neighbours.
+
+        Parameters
+        ----------
+        angles : (k,) float array, rad
+            The swept angles (equally spaced).
+        largest : (k,) float array, mm
+            The larger of the two rotors' deflections at each angle.
+        shaft : bool
+            True: along the whole shafts on their bearings.
+
+        Returns
+        -------
+        float, rad
+            The refined angle (the sweep's best when the search does not improve on it).
+        """
         from scipy.optimize import minimize_scalar
 
         i = int(np.argmax(largest))
@@ -358,8 +515,20 @@ class GasDeflection:
         return float(best.x) if -best.fun >= largest[i] else float(angles[i])
 
     def worst_angle_eq10(self) -> float:
-        """Male angle (rad, in [0, pitch)) of eq. (10): a chamber has just reached the discharge
-        port's control edge, so the discharge pressure reaches farthest towards the suction end."""
+        """Return the male angle of Rinder & Deix eq. (10), in [0, 2 pi / z1).
+
+        A chamber has just reached the discharge port's control edge, so the discharge pressure reaches
+        farthest towards the suction end.
+
+        Returns
+        -------
+        float, rad
+
+        Raises
+        ------
+        DesignError
+            With an indicator diagram (the built-in port model is needed).
+        """
         if not np.isfinite(self.cycle.opening):
             raise DesignError("indicator diagram", "the built-in port model for eq. (10)", "an indicator diagram")
         start, _ = self.table.cycle

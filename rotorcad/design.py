@@ -32,7 +32,30 @@ MATE_KEYS: dict[str, type | tuple[type, ...]] = {"teeth": int, "shift": NUMBER, 
 def check_table(
     data: dict[str, Any], table: str, keys: dict[str, type | tuple[type, ...]], required: tuple[str, ...] = ()
 ) -> dict[str, Any]:
-    """Validate one table of a design: known keys, right types, required keys present."""
+    """Validate one table of a design: known keys, right types, required keys present.
+
+    Parameters
+    ----------
+    data : dict
+        The design as a TOML file holds it.
+    table : str
+        Name of the table (``"pair"``, ``"gear"``, ...); a missing table is empty.
+    keys : dict
+        Allowed keys and the type (or types) of each.
+    required : tuple of str
+        Keys that must be given.
+
+    Returns
+    -------
+    dict
+        A copy of the table.
+
+    Raises
+    ------
+    DesignError
+        A table that is not a table, an unknown key, a value of the wrong type (a bool is never a
+        number) or a missing required key.
+    """
     section = data.get(table, {})
     if not isinstance(section, dict):
         raise DesignError(f"[{table}]", "a table of keys", type(section).__name__)
@@ -50,7 +73,7 @@ def check_table(
 
 
 def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
-    """A gear design mapping, checked (CONTRACT.md "Design files").
+    """Check a gear design mapping (CONTRACT.md "Design files").
 
     Parameters
     ----------
@@ -115,8 +138,10 @@ POINT_FAMILIES = ("rack-points", "male-points", "female-points")
 
 
 def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict[str, Any]:
-    """A screw-rotor design mapping, checked (CONTRACT.md "Design files"): [pair], [profile] (family
-    and its parameters, or a points file), optional [housing], [operating], [deflection], [export].
+    """Check a screw-rotor design mapping (CONTRACT.md "Design files").
+
+    Tables: [pair], [profile] (family and its parameters, or a points file), optional [housing],
+    [operating], [deflection], [export].
 
     Parameters
     ----------
@@ -125,6 +150,19 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
     folder : path, optional
         Where a relative points file name is found (the design file's folder); default the
         current folder.
+
+    Returns
+    -------
+    dict
+        ``pair``, ``family``, ``params`` (the family's parameters), ``points`` (the resolved path
+        of a points file, or None), ``smoothing`` (mm², or None), ``housing``, ``operating``,
+        ``deflection``, ``export``; lengths in mm, angles in degrees as given.
+
+    Raises
+    ------
+    DesignError
+        Naming the table or key that is wrong (unknown, of the wrong type, missing or out of
+        range).
     """
     for table in data:
         if table not in ("pair", "profile", "housing", "operating", "deflection", "export"):
@@ -175,8 +213,11 @@ _READERS = ("load_toml", "load_gear_design", "load_rotor_design")
 
 
 def __getattr__(name: str) -> object:
-    """The file readers, which moved to the command line (:mod:`rotorcad.cli.common`), under their
-    old names here (PEP 562), so that ``from rotorcad.design import load_rotor_design`` still works."""
+    """Return the file readers under their old names here (PEP 562).
+
+    The readers moved to the command line (:mod:`rotorcad.cli.common`); this keeps
+    ``from rotorcad.design import load_rotor_design`` working.
+    """
     if name in _READERS:
         from rotorcad.cli import common
 

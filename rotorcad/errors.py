@@ -10,8 +10,18 @@ from __future__ import annotations
 class DesignError(ValueError):
     """An input value or a combination of values that cannot describe a real part.
 
-    ``param`` is the library's name of the offending parameter (the CLI maps it to its option
-    name), ``allowed`` says what is allowed, ``value`` is what was given.
+    A subclass of ``ValueError``; its message is :meth:`sentence` with the library's parameter name.
+
+    Parameters
+    ----------
+    param : str
+        The library's name of the offending parameter (the CLI maps it to its option name).
+    allowed : str
+        What is allowed, phrased to follow "must be", e.g. ``"an integer >= 3"``.
+    value : object, optional
+        The value that was given; None leaves "(got ...)" out of the sentence.
+    detail : str, optional
+        A further explanation appended after a colon.
     """
 
     def __init__(self, param: str, allowed: str, value: object = None, detail: str = "") -> None:
@@ -22,7 +32,18 @@ class DesignError(ValueError):
         super().__init__(self.sentence(param))
 
     def sentence(self, label: str | None = None) -> str:
-        """The error as one sentence, naming the parameter as ``label``."""
+        """Return the error as one sentence, naming the parameter as ``label``.
+
+        Parameters
+        ----------
+        label : str, optional
+            The name to show (an option name such as ``--teeth``); default the library's ``param``.
+
+        Returns
+        -------
+        str
+            ``"<label> must be <allowed> (got <value>): <detail>."``
+        """
         label = label or self.param
         text = f"{label} must be {self.allowed}"
         if self.value is not None:

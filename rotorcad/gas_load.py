@@ -1,8 +1,8 @@
-"""Gas pressure over the working cycle and the line loads it puts on the rotors (Rinder & Deix,
-sec. 3.1: "the indicator diagram and the volume curve must be known").
+"""Gas pressure over the working cycle and the line loads it puts on the rotors (Rinder & Deix).
 
-The chamber angle theta is the male rotation since the chamber opened at the suction end
-(:meth:`ChamberTable.cycle`); the cycle ends at 2 pi + wrap + (the female flute's overlap).
+Rinder & Deix sec. 3.1: "the indicator diagram and the volume curve must be known". The chamber
+angle theta is the male rotation since the chamber opened at the suction end
+(:attr:`ChamberTable.cycle`); the cycle ends at 2 pi + wrap + (the female flute's overlap).
 
 Built-in pressure (an ideal port model): suction pressure while the volume grows (the chamber is
 open to the suction port until it is largest); then polytropic compression p = p_s (V_max / V)^n
@@ -57,7 +57,18 @@ class PressureCycle:
     opening: float
 
     def overpressure(self, theta: np.ndarray) -> np.ndarray:
-        """p - p_s (N/mm^2) at chamber angles ``theta`` (rad, any shape); 0 outside the cycle."""
+        """Return the overpressure p - p_s at chamber angles.
+
+        Parameters
+        ----------
+        theta : float array, rad
+            Chamber angles, any shape.
+
+        Returns
+        -------
+        float array, N/mm²
+            p - p_s, of the shape of ``theta``; 0 outside the cycle.
+        """
         theta = np.asarray(theta, dtype=float)
         inside = (theta >= self.angle[0]) & (theta <= self.angle[-1])
         return np.where(inside, np.interp(theta, self.angle, self.pressure) - self.suction, 0.0)
@@ -80,7 +91,7 @@ def pressure_cycle(
     indicator: np.ndarray | None = None,
     samples: int = 2001,
 ) -> PressureCycle:
-    """The pressure of a chamber over its cycle.
+    """Compute the pressure of a chamber over its cycle (module docstring).
 
     Parameters
     ----------
@@ -92,12 +103,24 @@ def pressure_cycle(
         Polytropic exponent n (1 <= n <= 2; 1.4 for air).
     volume_ratio : float, optional
         Built-in volume ratio V_i > 1 fixing the control edge; default (p_d/p_s)^(1/n).
-    discharge_edge : float, optional, rad
+    discharge_edge : float, rad, optional
         The control edge as a chamber angle (overrides ``volume_ratio``).
-    indicator : (k, 2) float, optional
+    indicator : (k, 2) float array, optional
         Indicator diagram: chamber angle (rad), absolute pressure (bar); replaces the built-in model.
     samples : int
         Points over the cycle.
+
+    Returns
+    -------
+    PressureCycle
+        Pressures in N/mm² (absolute); the control edge appears twice among the angles (the end of
+        compression and the start of discharge).
+
+    Raises
+    ------
+    DesignError
+        Pressures that are not positive or not rising, an exponent outside [1, 2], a volume ratio
+        or control edge the chamber does not reach, or a malformed indicator diagram.
     """
     for name, value in (("suction_pressure_bar", suction_bar), ("discharge_pressure_bar", discharge_bar)):
         if not (np.isfinite(value) and value > 0):

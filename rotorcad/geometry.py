@@ -14,7 +14,18 @@ ORIGIN = (0.0, 0.0)
 
 
 def as_points(points: object) -> Array:
-    """Return ``points`` as a float64 array of shape (n, 2) (a single point (2,) becomes (1, 2))."""
+    """Return ``points`` as a float64 array of shape (n, 2) (a single point (2,) becomes (1, 2)).
+
+    Parameters
+    ----------
+    points : array-like
+        Points, or one point.
+
+    Returns
+    -------
+    (n, 2) float array
+        The input itself when it already is a float64 array.
+    """
     arr = points if type(points) is np.ndarray and points.dtype == np.float64 else np.asarray(points, dtype=float)
     if arr.ndim == 1:
         arr = arr.reshape(1, 2)
@@ -80,7 +91,18 @@ def wrap_angle(angle: float | Array, reference: float | Array = 0.0, period: flo
 
 
 def cross(a: Array, b: Array) -> Array:
-    """z-component of the cross product of two (n, 2) arrays (or broadcastable)."""
+    """Return the z-component of the cross product a × b of plane vectors.
+
+    Parameters
+    ----------
+    a, b : (..., 2) float array
+        Vectors, broadcastable against each other (typically (n, 2)).
+
+    Returns
+    -------
+    (...,) float array
+        ``a_x b_y - a_y b_x``.
+    """
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
     out = a[..., 0] * b[..., 1]
@@ -89,7 +111,18 @@ def cross(a: Array, b: Array) -> Array:
 
 
 def perp_cw(t: Array) -> Array:
-    """Turn vectors clockwise by 90 degrees: the outward normal of a counter-clockwise boundary."""
+    """Turn vectors clockwise by 90 degrees: the outward normal of a counter-clockwise boundary.
+
+    Parameters
+    ----------
+    t : (..., 2) float array
+        Vectors, e.g. unit tangents (n, 2).
+
+    Returns
+    -------
+    (..., 2) float array
+        ``(t_y, -t_x)``.
+    """
     t = np.asarray(t, dtype=float)
     out = np.empty_like(t)
     out[..., 0] = t[..., 1]
@@ -98,7 +131,7 @@ def perp_cw(t: Array) -> Array:
 
 
 def normalize(v: Array) -> Array:
-    """Unit vectors along ``v`` (rows of zero length stay zero).
+    """Return unit vectors along ``v`` (rows of zero length stay zero).
 
     Parameters
     ----------
@@ -124,20 +157,57 @@ def normalize(v: Array) -> Array:
 
 
 def polar_angle(points: Array) -> Array:
-    """Polar angle of each point about the origin, in (-pi, pi]."""
+    """Return the polar angle of each point about the origin.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        Points (a single (2,) point is read as (1, 2)).
+
+    Returns
+    -------
+    (n,) float array, rad
+        ``arctan2(y, x)``, in (-pi, pi].
+    """
     p = as_points(points)
     return np.arctan2(p[:, 1], p[:, 0])
 
 
 def radius(points: Array) -> Array:
-    """Distance of each point from the origin."""
+    """Return the distance of each point from the origin.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        Points (a single (2,) point is read as (1, 2)).
+
+    Returns
+    -------
+    (n,) float array, mm
+        ``hypot(x, y)``.
+    """
     return np.hypot(*as_points(points).T)
 
 
 def distance_to_polyline(points: Array, polyline: Array) -> Array:
-    """Exact distance of each point (n, 2) to an open polyline (m, 2), mm: the nearest of its
-    segments found by shapely's STRtree (a packed R-tree), so that long segments beside dense
-    clusters of vertices (a rack's flat beside a corner's path) are measured right."""
+    """Return the exact distance of each point to an open polyline.
+
+    The nearest of the polyline's segments is found by shapely's STRtree (a packed R-tree), so that
+    long segments beside dense clusters of vertices (a rack's flat beside a corner's path) are
+    measured right. Repeated vertices (closer than 1e-12 mm) are dropped first.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The points to measure.
+    polyline : (m, 2) float array, mm
+        Vertices of the open polyline, in order; a single distinct vertex is a point.
+
+    Returns
+    -------
+    (n,) float array, mm
+        Unsigned distance of each point to the polyline.
+    """
     import shapely
 
     pts = as_points(points)

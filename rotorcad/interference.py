@@ -31,6 +31,22 @@ from rotorcad.solids import HelicalSolid
 
 @dataclass(frozen=True)
 class Interference:
+    """Interference of a pair over one male lobe pitch, from the 2D-section integral.
+
+    Parameters
+    ----------
+    angles : (k,) float array, rad
+        Male angles over one lobe pitch 2 pi / z1.
+    volumes : (k,) float array, mm³
+        Intersection volume of the two rotors at each angle.
+    threshold : float, mm³
+        Volumes below this are touching, not interference (:func:`touching_threshold`).
+    housing_volume : float, mm³
+        Volume of the rotors outside the housing bores.
+    area_table : (m,) float array, mm²
+        A(theta), the sections' intersection area over one pitch.
+    """
+
     angles: np.ndarray  # male angles (rad) over one lobe pitch
     volumes: np.ndarray  # intersection volume at each angle (mm^3)
     threshold: float  # touching below this (mm^3)
@@ -39,14 +55,17 @@ class Interference:
 
     @property
     def max_volume(self) -> float:
+        """Largest intersection volume over the pitch, mm³."""
         return float(self.volumes.max())
 
     @property
     def angle_of_max(self) -> float:
+        """Male angle of the largest intersection volume, rad."""
         return float(self.angles[int(np.argmax(self.volumes))])
 
     @property
     def interferes(self) -> bool:
+        """True when the largest intersection volume exceeds the touching threshold."""
         return bool(self.max_volume > self.threshold)
 
 
@@ -56,6 +75,21 @@ def _rotate_coords(pts: np.ndarray, angles: np.ndarray, centre: tuple[float, flo
 
 
 def touching_threshold(pair: RotorPair, tolerance: float) -> float:
+    """Return the volume V_t below which the rotors only touch (module docstring).
+
+    V_t = (z1 + z2) tol sqrt(2 R tol) L, R the larger tip radius.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts, tip radii and length (mm).
+    tolerance : float, mm
+        Chord tolerance of the sections.
+
+    Returns
+    -------
+    float, mm³
+    """
     r = max(pair.male_tip_radius, pair.female_tip_radius)
     return float((pair.male_teeth + pair.female_teeth) * tolerance * np.sqrt(2.0 * r * tolerance) * pair.length)
 
@@ -63,8 +97,26 @@ def touching_threshold(pair: RotorPair, tolerance: float) -> float:
 def section_overlap_areas(
     pair: RotorPair, male: shapely.Polygon, female: shapely.Polygon, thetas: np.ndarray, female_phase: float = 0.0
 ) -> np.ndarray:
-    """A(theta): intersection area of the male turned by theta and the female (own frame, placed at
-    (a, 0)) turned by -theta z1/z2 + ``female_phase``, for all theta at once."""
+    """Return A(theta), the intersection area of the two sections, for all male angles at once.
+
+    The male is turned by theta, the female (own frame, placed at (a, 0)) by -theta z1/z2 +
+    ``female_phase``.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts and centre distance (mm).
+    male, female : shapely.Polygon
+        The transverse sections in their own frames, mm.
+    thetas : (k,) float array, rad
+        Male angles.
+    female_phase : float, rad
+        Extra turn of the female.
+
+    Returns
+    -------
+    (k,) float array, mm²
+    """
     mp = np.asarray(shapely.geometry.polygon.orient(male, 1.0).exterior.coords)
     fp = np.asarray(shapely.geometry.polygon.orient(female, 1.0).exterior.coords) + np.array([pair.center_distance, 0.0])
     ratio = pair.male_teeth / pair.female_teeth
@@ -83,7 +135,32 @@ def interference_2d(
     female_phase: float = 0.0,
     clearance: float = 0.0,
 ) -> Interference:
-    """Intersection volume at ``steps`` male angles over one lobe pitch by the 2D-section integral."""
+    """Compute the intersection volume at male angles over one lobe pitch by the 2D-section integral.
+
+    V(phi1) = (h1 / 2 pi) integral of A(theta) over [phi1, phi1 + wrap] (module docstring), with A
+    tabulated over one pitch and integrated by the trapezoidal rule.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Dimensions of the pair (lead and length set the wrap).
+    male, female : shapely.Polygon
+        The transverse sections in their own frames, mm.
+    steps : int
+        Male angles over one lobe pitch.
+    tolerance : float, mm
+        Chord tolerance of the sections (for the touching threshold).
+    samples_per_pitch : int
+        Samples of A(theta) over one pitch.
+    female_phase : float, rad
+        Extra turn of the female.
+    clearance : float, mm
+        Radial clearance of the housing bores (tip radius + clearance).
+
+    Returns
+    -------
+    Interference
+    """
     pitch = 2.0 * np.pi / pair.male_teeth
     theta = np.arange(samples_per_pitch) * pitch / samples_per_pitch
     area = section_overlap_areas(pair, male, female, theta, female_phase)
@@ -106,8 +183,24 @@ def interference_2d(
 
 
 def housing_overlap(pair: RotorPair, male: shapely.Polygon, female: shapely.Polygon, clearance: float) -> float:
-    """Volume of the rotors outside the housing bores (tip radius + clearance about each centre);
-    each bore is a circle about its rotor's axis, so turning the rotor does not change it."""
+    """Return the volume of the rotors outside the housing bores.
+
+    Each bore is a circle of tip radius + ``clearance`` about its rotor's axis, so turning the rotor
+    does not change it.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tip radii, centre distance and length (mm).
+    male, female : shapely.Polygon
+        The transverse sections in their own frames, mm.
+    clearance : float, mm
+        Radial clearance of the bores.
+
+    Returns
+    -------
+    float, mm³
+    """
     bores = shapely.union(
         shapely.Point(0, 0).buffer(pair.male_tip_radius + clearance, quad_segs=2048),
         shapely.Point(pair.center_distance, 0).buffer(pair.female_tip_radius + clearance, quad_segs=2048),
@@ -120,8 +213,29 @@ def housing_overlap(pair: RotorPair, male: shapely.Polygon, female: shapely.Poly
 def intersection_3d(
     pair: RotorPair, male: HelicalSolid, female: HelicalSolid, angle: float, threshold: float = 0.0
 ) -> dict[str, object]:
-    """3D boolean of the two solids at male angle ``angle`` (female turned by -angle z1/z2, placed at
-    (a, 0)): total volume, and centroid and bounding box of the parts above ``threshold``."""
+    """Intersect the two solids at a male angle by a 3D boolean (manifold3d).
+
+    The female is turned by -angle z1/z2 and placed at (a, 0).
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts and centre distance (mm).
+    male, female : HelicalSolid
+        The solids in their own frames.
+    angle : float, rad
+        Male angle.
+    threshold : float, mm³
+        Parts of the intersection smaller than threshold / (number of parts) are left out of the
+        box.
+
+    Returns
+    -------
+    dict
+        ``volume`` (mm³, all parts), ``parts`` (their number), ``centroid`` (the centre of the
+        bounding box of the larger parts, [x, y, z] mm, not their mass centroid) and ``bbox``
+        ([lower, upper] corners, mm); the last two None when no part is large enough.
+    """
     m = male.manifold.rotate([0.0, 0.0, float(np.degrees(angle))])
     f = female.manifold.rotate([0.0, 0.0, float(-np.degrees(angle) * pair.male_teeth / pair.female_teeth)]).translate(
         [pair.center_distance, 0.0, 0.0]

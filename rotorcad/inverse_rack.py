@@ -1,10 +1,10 @@
-"""Inverse rack generation: the transverse rack of any profile on a rotating body (Wu & Chi,
-*Meshing clearance evaluation*, sec. 2, eqs. 4-8).
+"""Inverse rack generation: the transverse rack of any profile on a rotating body.
 
-The rack of a rotor or gear is the envelope of its profile in the frame of a rack rolling on its
-pitch circle: a profile point's rack point is where its normal passes the pitch point. The normal
-rack is the transverse rack with lengths along the pitch line multiplied by cos(beta) (beta the
-helix angle at the pitch cylinder: tan(beta) = 2 pi r_w / h for a screw rotor of lead h).
+After Wu & Chi, *Meshing clearance evaluation*, sec. 2, eqs. 4-8. The rack of a rotor or gear is
+the envelope of its profile in the frame of a rack rolling on its pitch circle: a profile point's
+rack point is where its normal passes the pitch point. The normal rack is the transverse rack with
+lengths along the pitch line multiplied by cos(beta) (beta the helix angle at the pitch cylinder:
+tan(beta) = 2 pi r_w / h for a screw rotor of lead h).
 
 A sharp corner of the profile (convex, a left turn of the counter-clockwise boundary) is a point
 with a fan of normals: it generates its own path on the rack, so a zero-radius arc is inserted
@@ -76,16 +76,23 @@ class DerivedRack:
     contract_frame: bool = False
 
     def normal(self) -> np.ndarray:
-        """Normal rack: lengths along the pitch line times cos(beta), (n, 2), mm."""
+        """Return the normal rack: lengths along the pitch line times cos(beta), (n, 2), mm."""
         return self.points * np.array([np.cos(self.helix_angle), 1.0])
 
     def normal_section(self, helix_angle: float | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """The normal rack (Wu & Chi eq. 7) and its unit tangents, each (n, 2).
+        """Return the normal rack (Wu & Chi eq. 7) and its unit tangents.
 
         Parameters
         ----------
-        helix_angle : float, optional
-            beta, rad (default the rack's own).
+        helix_angle : float, rad, optional
+            beta (default the rack's own).
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            Rack points with x times cos(beta).
+        tangents : (n, 2) float array
+            Their unit tangents.
         """
         c = np.cos(self.helix_angle if helix_angle is None else helix_angle)
         t = self.tangents * np.array([c, 1.0])
@@ -98,8 +105,15 @@ class DerivedRack:
         return fan[self.piece_index] if len(fan) else np.zeros(len(self.points), dtype=bool)
 
     def in_contract_frame(self) -> DerivedRack:
-        """The same rack with y > 0 towards the female for either rotor (a female's rack flipped),
-        travelled in +x (CONTRACT.md rack frame)."""
+        """Return the same rack in the CONTRACT.md rack frame.
+
+        y > 0 towards the female for either rotor (a female's rack flipped), the chain travelled in +x.
+
+        Returns
+        -------
+        DerivedRack
+            With ``contract_frame`` set (itself when it already is).
+        """
         if self.contract_frame:
             return self
         flip = np.array([1.0, -1.0 if self.side is Side.FEMALE else 1.0])
@@ -115,8 +129,10 @@ class DerivedRack:
 
 
 def contact_of_rack_points(pitch_radius: float, points: np.ndarray, tangents: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Contact point and male rotation angle of rack points, from the envelope engine
-    (:func:`rotorcad.envelope.conjugate`: the point's normal passes the pitch point C).
+    """Find the contact point and male rotation angle of rack points.
+
+    From the envelope engine (:func:`rotorcad.envelope.conjugate`: the point's normal passes the
+    pitch point C).
 
     Parameters
     ----------
@@ -145,12 +161,30 @@ def contact_of_rack_points(pitch_radius: float, points: np.ndarray, tangents: np
 def with_corner_fans(
     pieces: list[tuple[str, Curve]], centre: np.ndarray | None = None, pitch_angle: float = 0.0, min_turn: float = 1e-6
 ) -> list[tuple[str, Curve]]:
-    """Insert zero-radius arcs at the convex corners between consecutive pieces of a
-    counter-clockwise chain, so that corners generate their paths. With ``centre`` and
-    ``pitch_angle`` (one lobe of a patterned rotor) the corner where the previous lobe's last piece
-    meets this lobe's first piece is found too, by turning that last piece back by one pitch.
-    ``min_turn`` (rad): smaller turns are not corners (measured pieces that meet at a land, where
-    the fits leave a kink of a fraction of a degree, pass :data:`MEASURED_MIN_TURN`)."""
+    """Insert zero-radius arcs at the convex corners of a counter-clockwise chain of pieces.
+
+    The corners then generate their paths. With ``centre`` and ``pitch_angle`` (one lobe of a
+    patterned rotor) the corner where the previous lobe's last piece meets this lobe's first piece is
+    found too, by turning that last piece back by one pitch. Pieces whose ends are more than 2 µm apart
+    are not joined by a corner.
+
+    Parameters
+    ----------
+    pieces : list of (str, Curve)
+        The chain, counter-clockwise, mm.
+    centre : (2,) float array, mm, optional
+        Centre of the rotor.
+    pitch_angle : float, rad
+        Angular pitch 2 pi / z of the rotor (0: do not close the lobe).
+    min_turn : float, rad
+        Smaller turns are not corners (measured pieces that meet at a land, where the fits leave a
+        kink of a fraction of a degree, pass :data:`MEASURED_MIN_TURN`).
+
+    Returns
+    -------
+    list of (str, Curve)
+        The pieces with ``"<name> corner"`` arcs of radius 0 between them.
+    """
 
     def fan(name: str, end: tuple[np.ndarray, np.ndarray], start: tuple[np.ndarray, np.ndarray]) -> tuple[str, Curve] | None:
         (p_end, t_end), (p_next, t_next) = end, start
@@ -192,7 +226,8 @@ def _on_the_corner_path(
     The fan's normals reach every direction between the two pieces meeting at the corner, but the
     path exists only inside the rack's depth, and a corner on the pitch circle cuts a cycloid that
     ends in a cusp on the pitch line when the corner passes the pitch point: the fan's normals
-    beyond that instant belong to the next arch, which the land behind the corner sweeps away."""
+    beyond that instant belong to the next arch, which the land behind the corner sweeps away.
+    """
     centre = np.asarray(body.center, dtype=float)
     pitch = centre + np.array([np.sign(body.rate) * pitch_radius, 0.0])
     extent = p[:, 0] - pitch[0]  # height of the rack point above its pitch line (the limits' sense)
@@ -238,15 +273,43 @@ def derive_rack(
     contact_step: float = 0.0,
     min_turn: float = 1e-6,
 ) -> DerivedRack:
-    """Rack of a counter-clockwise chain of profile pieces on a rotating ``body`` (one lobe of
-    ``pitch_angle``, so that the corner at the junction with the previous lobe is found too),
-    sampled to the chord ``tolerance`` on the rack.
+    """Derive the rack of a counter-clockwise chain of profile pieces on a rotating body.
 
-    ``depth`` = (y_min, y_max) of the rack about its pitch line picks, where the normal line cuts
-    the pitch circle twice, the root that lies on the rack (see :mod:`rotorcad.envelope`).
-    ``min_turn`` is passed to :func:`with_corner_fans`. ``contact_step`` > 0 refines the samples
-    until their contact points (the meshline) are at most that far apart: near roundings the
-    contact runs fast along the rack.
+    Inverse generation piece by piece (corner fans included, :func:`with_corner_fans`), sampled to
+    the chord ``tolerance`` on the rack.
+
+    Parameters
+    ----------
+    pieces : list of (str, Curve)
+        One lobe, counter-clockwise, in the fixed frame about ``body.center``, mm.
+    body : Rotation
+        The rotor or gear the pieces belong to.
+    pitch_radius : float, mm
+        Its pitch radius r_w (the rack's pitch line rolls on it).
+    period : float, mm
+        Rack period (transverse).
+    helix_angle : float, rad
+        beta at the pitch cylinder (stored, for the normal rack).
+    depth : (float, float), mm, optional
+        (y_min, y_max) of the rack about its pitch line: where the normal line cuts the pitch
+        circle twice, picks the root that lies on the rack (see :mod:`rotorcad.envelope`).
+    samples : int
+        Fewest samples of each piece.
+    pitch_angle : float, rad
+        Angular pitch of the lobe, so that the corner at the junction with the previous lobe is
+        found too.
+    tolerance : float, mm
+        Chord tolerance on the rack.
+    contact_step : float, mm
+        If > 0, samples are added until their contact points (the meshline) are at most that far
+        apart: near roundings the contact runs fast along the rack.
+    min_turn : float, rad
+        Passed to :func:`with_corner_fans`.
+
+    Returns
+    -------
+    DerivedRack
+        Rack points (n, 2), mm, in the rack frame with y > 0 away from the body's centre.
     """
     centre = np.asarray(body.center, dtype=float)
     # the rack rolls on the pitch circle at the pitch point C = centre + (r, 0) (or - (r, 0) for a
@@ -291,9 +354,11 @@ def rotor_rack(
     min_turn: float = 1e-6,
     clip_at_tip: bool | None = None,
 ) -> DerivedRack:
-    """The transverse rack of one lobe of the male or the female of a pair: the one function for
-    the rack of a rotor, used by the hob (:mod:`hob.rack`) and the meshing clearance
-    (:mod:`rotorcad.clearance`). Inverse generation by :func:`derive_rack`, corner fans included.
+    """Derive the transverse rack of one lobe of the male or the female of a pair.
+
+    The one function for the rack of a rotor, used by the hob (:mod:`hob.rack`) and the meshing
+    clearance (:mod:`rotorcad.clearance`). Inverse generation by :func:`derive_rack`, corner fans
+    included.
 
     Parameters
     ----------
@@ -359,8 +424,10 @@ def rotor_rack(
 
 
 def _inside_tip(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[str, Curve] | None:
-    """The longest part of a generated piece inside the rotor's tip circle (generated flanks can
-    overshoot it; the rotor is cut off there), or None."""
+    """Return the longest part of a generated piece inside the rotor's tip circle, or None.
+
+    Generated flanks can overshoot the tip circle; the rotor is cut off there.
+    """
     s = np.linspace(curve.s0, curve.s1, 257)  # the ends are refined by root finding below
     p, _ = curve.evaluate(s)
     inside = np.hypot(*(p - centre).T) <= tip + 2e-3  # a measured land may wander by the fit error

@@ -23,31 +23,117 @@ from rotorcad.geometry import Array, as_points, rotate
 
 @dataclass(frozen=True)
 class Rotation:
-    """A body turning about ``center`` by the angle ``rate * t``."""
+    """A body turning about ``center`` by the angle ``rate * t``.
+
+    Parameters
+    ----------
+    center : (float, float), mm
+        Centre of the turn in the fixed frame (O1 = (0, 0), O2 = (a, 0)).
+    rate : float
+        Turn of the body per unit of the motion parameter t (rad per rad of the male): 1 for the
+        male, -z1/z2 for the female (DESIGN.md conventions).
+    """
 
     center: tuple[float, float] = (0.0, 0.0)
     rate: float = 1.0
 
     def angle(self, t: Array | float) -> Array | float:
+        """Return the body's turn at motion parameter ``t``.
+
+        Parameters
+        ----------
+        t : float or array, rad
+            Motion parameter (male rotation angle), any shape.
+
+        Returns
+        -------
+        float array, rad
+            ``rate * t``, of the shape of ``t``.
+        """
         return self.rate * np.asarray(t, dtype=float)
 
     def to_fixed(self, points: Array, t: Array | float) -> Array:
-        """Body-frame points to the fixed frame at motion parameter ``t``."""
+        """Carry body-frame points into the fixed frame at motion parameter ``t``.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Points in the body's own frame.
+        t : float or array, rad
+            Motion parameter: a scalar, one value per point (n,), or a stack broadcasting as in
+            :func:`rotorcad.geometry.rotate`.
+
+        Returns
+        -------
+        (..., n, 2) float array, mm
+            The points turned by ``rate * t`` about ``center``.
+        """
         return rotate(points, self.angle(t), self.center)
 
     def to_body(self, points: Array, t: Array | float) -> Array:
-        """Fixed-frame points to the body frame at ``t``."""
+        """Carry fixed-frame points into the body frame at motion parameter ``t``.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Points in the fixed frame.
+        t : float or array, rad
+            Motion parameter, as in :meth:`to_fixed`.
+
+        Returns
+        -------
+        (..., n, 2) float array, mm
+            The points turned by ``-rate * t`` about ``center``.
+        """
         return rotate(points, -self.angle(t), self.center)
 
     def vectors_to_fixed(self, vectors: Array, t: Array | float) -> Array:
+        """Turn body-frame vectors (tangents, normals) into the fixed frame at ``t``.
+
+        Parameters
+        ----------
+        vectors : (n, 2) float array
+            Vectors in the body's frame.
+        t : float or array, rad
+            Motion parameter, as in :meth:`to_fixed`.
+
+        Returns
+        -------
+        (..., n, 2) float array
+            The vectors turned by ``rate * t`` (about the origin: vectors have no position).
+        """
         return rotate(vectors, self.angle(t))
 
     def vectors_to_body(self, vectors: Array, t: Array | float) -> Array:
+        """Turn fixed-frame vectors into the body frame at ``t``.
+
+        Parameters
+        ----------
+        vectors : (n, 2) float array
+            Vectors in the fixed frame.
+        t : float or array, rad
+            Motion parameter, as in :meth:`to_fixed`.
+
+        Returns
+        -------
+        (..., n, 2) float array
+            The vectors turned by ``-rate * t``.
+        """
         return rotate(vectors, -self.angle(t))
 
     def velocity_at(self, points: Array) -> Array:
-        """Velocity (per unit t) of the body's material at fixed-frame ``points`` (n, 2), mm:
-        rate * (-(y - y_O), x - x_O), shape (n, 2)."""
+        """Return the velocity of the body's material at fixed-frame points, per unit t.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Points in the fixed frame.
+
+        Returns
+        -------
+        (n, 2) float array, mm per rad
+            ``rate * (-(y - y_O), x - x_O)`` with O = ``center``.
+        """
         d = as_points(points) - np.asarray(self.center, dtype=float)
         v = np.empty_like(d)
         v[:, 0] = -d[:, 1]
@@ -57,7 +143,16 @@ class Rotation:
 
 @dataclass(frozen=True)
 class Translation:
-    """A body shifted by ``velocity * t`` (a rack)."""
+    """A body shifted by ``velocity * t`` (a rack).
+
+    Parameters
+    ----------
+    velocity : (float, float), mm per rad
+        Shift of the body per unit of the motion parameter t; a rack meshing with the male moves at
+        (0, r1w).
+    rate : float
+        Turning rate: 0, a translation does not turn (the field mirrors :attr:`Rotation.rate`).
+    """
 
     velocity: tuple[float, float] = (0.0, 1.0)
     rate: float = 0.0
@@ -68,21 +163,88 @@ class Translation:
         return np.asarray(self.velocity, dtype=float)
 
     def to_fixed(self, points: Array, t: Array | float) -> Array:
+        """Carry body-frame points into the fixed frame at motion parameter ``t``.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Points in the rack's own frame.
+        t : float or array, rad
+            Motion parameter: a scalar, or one value per point (n,).
+
+        Returns
+        -------
+        (n, 2) float array, mm
+            ``points + t * velocity``.
+        """
         shift = np.multiply.outer(np.asarray(t, dtype=float), self._velocity)
         return as_points(points) + shift
 
     def to_body(self, points: Array, t: Array | float) -> Array:
+        """Carry fixed-frame points into the body frame at motion parameter ``t``.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Points in the fixed frame.
+        t : float or array, rad
+            Motion parameter: a scalar, or one value per point (n,).
+
+        Returns
+        -------
+        (n, 2) float array, mm
+            ``points - t * velocity``.
+        """
         shift = np.multiply.outer(np.asarray(t, dtype=float), self._velocity)
         return as_points(points) - shift
 
     def vectors_to_fixed(self, vectors: Array, t: Array | float) -> Array:
+        """Return body-frame vectors in the fixed frame (a translation leaves them as they are).
+
+        Parameters
+        ----------
+        vectors : (n, 2) float array
+            Vectors in the rack's frame.
+        t : float or array, rad
+            Motion parameter (unused: kept for the common interface of :class:`Rotation`).
+
+        Returns
+        -------
+        (n, 2) float array
+            ``vectors`` as a float array.
+        """
         return as_points(vectors)
 
     def vectors_to_body(self, vectors: Array, t: Array | float) -> Array:
+        """Return fixed-frame vectors in the body frame (a translation leaves them as they are).
+
+        Parameters
+        ----------
+        vectors : (n, 2) float array
+            Vectors in the fixed frame.
+        t : float or array, rad
+            Motion parameter (unused: kept for the common interface of :class:`Rotation`).
+
+        Returns
+        -------
+        (n, 2) float array
+            ``vectors`` as a float array.
+        """
         return as_points(vectors)
 
     def velocity_at(self, points: Array) -> Array:
-        """The rack's velocity (per unit t) at every one of ``points`` (n, 2): shape (n, 2), mm."""
+        """Return the rack's velocity at every one of ``points``, per unit t.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Points in the fixed frame (only their number matters).
+
+        Returns
+        -------
+        (n, 2) float array, mm per rad
+            ``velocity`` repeated for every point.
+        """
         out = np.empty_like(as_points(points))
         out[...] = self._velocity
         return out
@@ -130,7 +292,17 @@ def _pitch_point(a: Body, b: Body) -> Array:
 
 @dataclass(frozen=True)
 class Mesh:
-    """The three bodies of a mesh sharing the pitch point: male (gear 1), female (gear 2), rack."""
+    """The three bodies of a mesh sharing the pitch point: male (gear 1), female (gear 2), rack.
+
+    Parameters
+    ----------
+    male, female : Rotation
+        The male about O1 = (0, 0) at rate 1 and the female about O2 = (a, 0).
+    rack : Translation
+        The rack whose pitch line x = r1w rolls on both pitch circles.
+    pitch_radius_male, pitch_radius_female : float, mm
+        r1w and r2w.
+    """
 
     male: Rotation
     female: Rotation
@@ -140,15 +312,34 @@ class Mesh:
 
     @property
     def pitch_point(self) -> Array:
+        """The pitch point C = (r1w, 0), mm, shape (2,)."""
         return np.array([self.pitch_radius_male, 0.0])
 
     @property
     def center_distance(self) -> float:
+        """The centre distance a = r1w + r2w, mm."""
         return self.pitch_radius_male + self.pitch_radius_female
 
 
 def rotor_mesh(z1: int, z2: int, center_distance: float) -> Mesh:
-    """Frames of a male/female pair: r1w = a/(1+i), r2w = a*i/(1+i), i = z2/z1."""
+    """Set up the frames of a male/female screw-rotor pair.
+
+    r1w = a/(1+i), r2w = a i/(1+i) with i = z2/z1 (DESIGN.md conventions): the male turns about
+    O1 = (0, 0) at rate 1, the female about O2 = (a, 0) at rate -z1/z2, the rack moves in +y at r1w
+    per radian of the male.
+
+    Parameters
+    ----------
+    z1, z2 : int
+        Lobe counts of the male and the female.
+    center_distance : float, mm
+        Centre distance a.
+
+    Returns
+    -------
+    Mesh
+        The male, female and rack motions and both pitch radii.
+    """
     i = z2 / z1
     r1w = center_distance / (1.0 + i)
     r2w = center_distance * i / (1.0 + i)
@@ -162,7 +353,20 @@ def rotor_mesh(z1: int, z2: int, center_distance: float) -> Mesh:
 
 
 def gear_mesh(pitch_radius: float, mate_pitch_radius: float | None = None) -> Mesh:
-    """Frames of a gear (and optional mate) with its generating rack at pitch radius r."""
+    """Set up the frames of a gear (and an optional mate) with its generating rack.
+
+    Parameters
+    ----------
+    pitch_radius : float, mm
+        Pitch (rolling) radius r of the gear about O1 = (0, 0); the rack moves in +y at r per radian.
+    mate_pitch_radius : float, mm, optional
+        Pitch radius of the mate about (r + r2, 0), turning at -r/r2; default the gear's own.
+
+    Returns
+    -------
+    Mesh
+        The gear, mate and rack motions and both pitch radii.
+    """
     r2 = pitch_radius if mate_pitch_radius is None else mate_pitch_radius
     return Mesh(
         male=Rotation((0.0, 0.0), 1.0),

@@ -36,8 +36,21 @@ def _drop_repeats(points: np.ndarray) -> np.ndarray:
 
 
 def lobe_count(whole: np.ndarray) -> int:
-    """Number of lobes of a closed outline about the origin: the cycles of its radius between the
-    lower and the upper third of its range (a hysteresis that noise cannot trip)."""
+    """Count the lobes of a closed outline about the origin.
+
+    The lobes are the cycles of its radius between the lower and the upper third of its range (a
+    hysteresis that noise cannot trip).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline (without a repeated end point).
+
+    Returns
+    -------
+    int
+        Number of lobes (0 for a circle).
+    """
     r = np.hypot(*whole.T)
     lo, hi = r.min() + (r.max() - r.min()) / 3, r.max() - (r.max() - r.min()) / 3
     state = np.where(r >= hi, 1, np.where(r <= lo, -1, 0))
@@ -49,15 +62,32 @@ def lobe_count(whole: np.ndarray) -> int:
 
 
 def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
-    """The whole outline, counter-clockwise about the rotor's centre (the origin), without repeated
-    or duplicated points, from the points of one lobe (patterned ``teeth`` times) or of the whole
-    outline, in either direction and from any start.
+    """Make the whole outline from the points of one lobe or of the whole outline.
+
+    The result runs counter-clockwise about the rotor's centre (the origin), without repeated or
+    duplicated points; the points may come in either direction and from any start, and one lobe is
+    patterned ``teeth`` times.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        One lobe or the whole outline in the rotor's own frame.
+    teeth : int
+        Lobe count of the rotor.
+    label : str
+        How the points are named in errors.
+
+    Returns
+    -------
+    (m, 2) float array, mm
+        The whole outline, counter-clockwise.
 
     Raises
     ------
     DesignError
-        naming ``label`` when the points wind around the centre but have another number of lobes
-        than ``teeth``, or when points of one lobe span another angle than the lobe pitch.
+        Naming ``label``: fewer than 4 distinct points, points that wind around the centre but
+        have another number of lobes than ``teeth``, or points of one lobe that span another angle
+        than the lobe pitch.
     """
     pts = _drop_repeats(points)
     if len(pts) < 4:
@@ -92,8 +122,20 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
 
 
 def scatter(whole: np.ndarray) -> float:
-    """Estimated standard deviation (mm) of the points' scatter normal to the outline, from the
-    median of the third differences (module docstring); 0 for exact points."""
+    """Estimate the standard deviation of the points' scatter normal to the outline.
+
+    From the median of the third differences (module docstring).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+
+    Returns
+    -------
+    float, mm
+        sigma; 0 for exact points (below :data:`SCATTER_FLOOR`) or fewer than 8 points.
+    """
     p = np.asarray(whole, dtype=float)
     if len(p) < 8:
         return 0.0
@@ -107,8 +149,7 @@ def scatter(whole: np.ndarray) -> float:
 
 
 def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
-    """The sharp corners of a closed outline (n, 2): the edges across which it turns by more than
-    ``angle_deg``, and each corner's point.
+    """Find the sharp corners of a closed outline: the edges across which it turns by more than ``angle_deg``.
 
     The turn across edge i (from point i to point i + 1) is the angle between the chord from point
     i - k to point i and the chord from point i + 1 to point i + 1 + k, so a corner shows in full
@@ -118,11 +159,21 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     other only the one of largest turn is kept, and the corner's point is where the lines of its two
     chords cross (on the points for an exact corner vertex, between them otherwise).
 
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    sigma : float, mm
+        Its scatter (:func:`scatter`); 0 for exact points.
+    angle_deg : float, deg
+        Smallest turn of a corner.
+
     Returns
     -------
-    edges : (m,) int
+    edges : (m,) int array
         Index i of the edge (i, i + 1) of each corner, ascending.
-    points : (m, 2) float, mm
+    points : (m, 2) float array, mm
+        Each corner's point.
     """
     p = np.asarray(whole, dtype=float)
     n = len(p)
@@ -158,14 +209,25 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
 
 
 def lands(run: np.ndarray, sigma: float, min_angle_deg: float = 0.5, min_points: int = 6) -> list[tuple[int, int, float]]:
-    """The lands of a run of outline points: stretches that are arcs about the rotor's own centre
-    (the origin) within the scatter, the images of the rack's flats at the tip and root lines.
+    """Find the lands of a run of outline points: arcs about the rotor's own centre within the scatter.
 
-    A point belongs to a land when the radii of the points within 0.05 mm either side of it differ
-    by at most 2 tol, tol = max(4 sigma, 0.3 um) (the scallops of a boolean cut, the chords of a
-    drawing); runs of such points, trimmed at both ends to the points within max(2 sigma, 0.01 um)
-    of the run's median radius (the window reaches past a land's ends), spanning ``min_angle_deg``
-    and ``min_points`` at least are lands.
+    Lands are the images of the rack's flats at the tip and root lines. A point belongs to a land when
+    the radii of the points within 0.05 mm either side of it differ by at most 2 tol,
+    tol = max(4 sigma, 0.3 µm) (the scallops of a boolean cut, the chords of a drawing); runs of such
+    points, trimmed at both ends to the points within max(2 sigma, 0.01 µm) of the run's median radius
+    (the window reaches past a land's ends), spanning ``min_angle_deg`` and ``min_points`` at least
+    are lands.
+
+    Parameters
+    ----------
+    run : (n, 2) float array, mm
+        Consecutive outline points about the origin.
+    sigma : float, mm
+        Their scatter.
+    min_angle_deg : float, deg
+        Smallest angle a land spans about the origin.
+    min_points : int
+        Fewest points of a land.
 
     Returns
     -------

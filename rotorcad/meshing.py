@@ -1,6 +1,8 @@
-"""Meshing analysis of a screw-rotor pair after Rinder (*Sonderverzahnungen für
-Schraubenverdichterrotoren*): meshline, contact line, the kinematic rules of sec. 2.2.1, tightness
-and blow-hole (2.2.2), flute areas and displacement, sliding velocity and slip (eqs. 2-4).
+"""Meshing analysis of a screw-rotor pair after Rinder (*Sonderverzahnungen für Schraubenverdichterrotoren*).
+
+Meshline, contact line (eq. 1), the kinematic rules of sec. 2.2.1 (cusp, jamming, slipping),
+tightness and blow-hole (sec. 2.2.2), flute areas and displacement, sliding velocity and slip
+(eqs. 2-4).
 
 The meshline is the set of contact points in the fixed transverse frame: for a rack-generated
 pair the rack touches both rotors at the same point, so it is the rack's contact locus. Only
@@ -11,8 +13,8 @@ Blow-hole (projected definition, stated because the paper gives no formula): the
 triangle in the transverse plane between the meshline's end E nearest the housing cusp K and K
 itself, bounded by the arc of the female tip circle from K to the radial projection of E on it, the
 arc of the male tip circle from K to the radial projection of E on it, and the two radial pieces
-to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear) blow-hole is not
-computed.
+to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear) blow-hole is
+:class:`rotorcad.blow_hole.SpatialBlowHole` (:attr:`MeshingAnalysis.spatial_blow_hole`).
 """
 
 from __future__ import annotations
@@ -34,7 +36,27 @@ from rotorcad.screw_rotors import ScrewRotors
 
 @dataclass(frozen=True, eq=False)
 class MeshlinePiece:
-    """Contact points of one rack piece, ordered along the piece."""
+    """Contact points of one rack piece, ordered along the piece.
+
+    Parameters
+    ----------
+    name : str
+        Name of the segment the piece generates on the male.
+    kind : PieceRole
+        What the rack piece does (a curve, or a corner's path).
+    s : (n,) float array
+        Parameter of the rack piece at each contact.
+    t : (n,) float array, rad
+        Male rotation angle at contact.
+    points : (n, 2) float array, mm
+        Contact points in the fixed frame (the meshline).
+    tangents : (n, 2) float array
+        Unit common tangent of the flanks at contact, fixed frame.
+    male_name, female_name : str
+        Names of the segments the piece generates on the male and on the female.
+    roles : (n,) object array of Flank
+        The lobe part of each point, read off the rack (:func:`flank_roles`).
+    """
 
     name: str
     kind: PieceRole
@@ -53,16 +75,16 @@ _FLANKS = np.array(list(Flank), dtype=object)
 
 
 def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
-    """The lobe part of rack points (fixed frame at t = 0, pitch line x = r1w, motion +y).
+    """Return the lobe part of rack points (fixed frame at t = 0, pitch line x = r1w, motion +y).
 
     Parameters
     ----------
-    points, tangents : (n, 2) float
+    points, tangents : (n, 2) float array
         Rack points (mm) and unit tangents along the chain (the direction of motion).
-    pitch_radius : float
-        Male pitch radius r1w (mm): the rack's pitch line.
-    scale : float
-        A length of the pair (mm) for the flatness tolerance.
+    pitch_radius : float, mm
+        Male pitch radius r1w: the rack's pitch line.
+    scale : float, mm
+        A length of the pair for the flatness tolerance.
 
     Returns
     -------
@@ -86,13 +108,21 @@ def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, s
 class FlankReport:
     """How one flank of the lobes meshes (Rinder sec. 1.2 and 2.2.1).
 
-    ``meshline_length`` (mm) of its contacts inside both bores; ``geometric_share`` the part of it
-    where the flanks touch with a common tangent (not a corner against a flank); ``defects`` the
-    cusps and jamming points on it; ``runs_without_timing_gears``: geometric contact everywhere and
-    no cusp or jamming (slipping is allowed: the helix carries the drive past it, Rinder 2.2.1);
-    ``transverse_contact_ratio``: the male rotation over which the flank is in geometric contact,
-    per angular pitch 2 pi / z1 (0 where a circular flank centred on the pitch point touches at one
-    instant only: Lysholm's "nur infinitesimale Stirnüberdeckung").
+    Parameters
+    ----------
+    flank : Flank
+        DRIVING or SEALING.
+    meshline_length : float, mm
+        Length of the flank's meshline inside both bores.
+    geometric_share : float
+        Part of that length (0 to 1) where the flanks touch with a common tangent (not a corner
+        against a flank).
+    defects : tuple of str
+        Kinds of defect on the flank (``"cusp"``, ``"jamming"``); slipping is not counted.
+    transverse_contact_ratio : float
+        Male rotation over which the flank is in geometric contact, per angular pitch 2 pi / z1 (0
+        where a circular flank centred on the pitch point touches at one instant only: Lysholm's
+        "nur infinitesimale Stirnüberdeckung").
     """
 
     flank: Flank
@@ -103,9 +133,22 @@ class FlankReport:
 
     @property
     def runs_without_timing_gears(self) -> bool:
+        """True when the flank has geometric contact everywhere and no cusp or jamming.
+
+        Slipping is allowed: the helix carries the drive past it (Rinder sec. 2.2.1).
+        """
         return self.meshline_length > 0 and self.geometric_share >= 1.0 - 1e-6 and not self.defects
 
     def as_dict(self) -> dict[str, object]:
+        """Return the report as plain values (an entry of ``flanks`` in :meth:`MeshingAnalysis.summary`).
+
+        Returns
+        -------
+        dict
+            ``meshline_length`` (mm), ``geometric_contact`` (bool), ``geometric_share`` (0 to 1),
+            ``defects`` (list of str), ``runs_without_timing_gears`` (bool),
+            ``transverse_contact_ratio``.
+        """
         return {
             "meshline_length": self.meshline_length,
             "geometric_contact": self.geometric_share >= 1.0 - 1e-6,
@@ -117,8 +160,11 @@ class FlankReport:
 
 
 def _covered(intervals: list[np.ndarray]) -> float:
-    """Measure of the union of the ranges of the given sets of angles (rad): the rotation over which
-    at least one of them is in contact. A piece touching at one instant adds nothing."""
+    """Measure the union of the ranges of the given sets of angles (rad).
+
+    The result is the rotation over which at least one of them is in contact. A piece touching at one
+    instant adds nothing.
+    """
     spans = sorted((float(t.min()), float(t.max())) for t in intervals if len(t))
     total, reach = 0.0, -np.inf
     for lo, hi in spans:
@@ -131,6 +177,29 @@ def _covered(intervals: list[np.ndarray]) -> float:
 
 @dataclass(frozen=True)
 class Defect:
+    """A point (or stretch) of the meshline that breaks one of Rinder's rules (sec. 2.2.1).
+
+    Parameters
+    ----------
+    kind : {"cusp", "jamming", "slipping"}
+        Cusp: the meshline normal passes through O1 (male) or O2 (female); jamming: through the pitch
+        point C; slipping: the meshline crosses O1O2 away from C.
+    rotor : {"male", "female"}
+        The rotor the rule names.
+    x, y : float, mm
+        Where it occurs, fixed frame.
+    angle_deg : float, deg
+        Male rotation angle at that contact.
+    flank : str
+        Name of the meshline piece (or, for slipping between pieces, which tip touches which root).
+    point_generated : bool
+        True when the whole piece has its normal through the centre (a point-generated flank).
+    extent : float, mm
+        Meshline length over which it holds (0: a single point).
+    role : Flank, optional
+        The lobe part where it occurs.
+    """
+
     kind: str  # cusp, jamming, slipping
     rotor: str  # male, female
     x: float
@@ -142,6 +211,13 @@ class Defect:
     role: Flank | None = None  # the lobe part where it occurs
 
     def as_dict(self) -> dict[str, object]:
+        """Return the defect as plain values (an entry of ``defects`` in :meth:`MeshingAnalysis.summary`).
+
+        Returns
+        -------
+        dict
+            The fields by name, ``role`` as ``flank_role`` (its text, or None).
+        """
         return {
             "kind": self.kind,
             "rotor": self.rotor,
@@ -157,7 +233,19 @@ class Defect:
 
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
-    """Everything Rinder reads off a toothing, for one pair at a design speed (rpm)."""
+    """Everything Rinder reads off a toothing, for one pair at a design speed.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The generated pair.
+    speed_rpm : float, rpm
+        Male speed, for the sliding velocities (m/s).
+    samples : int
+        Samples along each rack piece.
+    tolerance : float
+        Relative tolerance of the cusp/jamming test of a whole piece (a point-generated flank).
+    """
 
     rotors: ScrewRotors
     speed_rpm: float = 3000.0
@@ -167,6 +255,10 @@ class MeshingAnalysis:
     # ---- meshline ------------------------------------------------------------------------
     @cached_property
     def pieces(self) -> list[MeshlinePiece]:
+        """The meshline, piece by piece: the contacts of every rack piece inside both bores.
+
+        A list of :class:`MeshlinePiece`; pieces with fewer than two contacts are left out.
+        """
         pair = self.rotors.pair
         mesh = pair.mesh
         o2 = np.array([pair.center_distance, 0.0])
@@ -200,15 +292,23 @@ class MeshingAnalysis:
 
     @property
     def meshline(self) -> np.ndarray:
+        """All contact points in the fixed frame, (n, 2) float, mm (piece after piece)."""
         return np.concatenate([p.points for p in self.pieces]) if self.pieces else np.zeros((0, 2))
 
     @property
     def contact_angles(self) -> np.ndarray:
+        """Male rotation angle at every point of :attr:`meshline`, (n,) float, rad."""
         return np.concatenate([p.t for p in self.pieces]) if self.pieces else np.zeros(0)
 
     # ---- the rules of sec. 2.2.1 -----------------------------------------------------------
     @cached_property
     def defects(self) -> list[Defect]:
+        """Cusps, jamming and slipping points on the meshline (Rinder sec. 2.2.1), a list of :class:`Defect`.
+
+        The meshline normal (from a spline over each piece) through O1 or O2 is a cusp, through C
+        jamming (except on a meshline arc about C, Rinder's exception); a crossing of O1O2 away from C
+        is slipping, inside a piece or between two pieces.
+        """
         pair = self.rotors.pair
         o1, o2 = np.zeros(2), np.array([pair.center_distance, 0.0])
         c = np.array([pair.male_pitch_radius, 0.0])
@@ -272,10 +372,12 @@ class MeshingAnalysis:
         return found
 
     def _slipping_between_pieces(self) -> list[Defect]:
-        """Rinder's slipping rule where the meshline crosses O1O2 between two pieces: where a tip
-        touches the mate's root on O1O2 (a tip corner's path or a flank handing over to the next
-        one), e.g. the female tip on the male root. The pieces are the meshline in order, and the
-        next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over."""
+        """Apply Rinder's slipping rule where the meshline crosses O1O2 between two pieces.
+
+        That is where a tip touches the mate's root on O1O2 (a tip corner's path or a flank handing over
+        to the next one), e.g. the female tip on the male root. The pieces are the meshline in order, and
+        the next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over.
+        """
         pair = self.rotors.pair
         scale = pair.center_distance
         c_x = pair.male_pitch_radius
@@ -297,7 +399,10 @@ class MeshingAnalysis:
 
     @property
     def point_generated_flanks(self) -> list[dict[str, str]]:
-        """Flanks traced by a single corner of the mate (punkterzeugt)."""
+        """Flanks traced by a single corner of the mate (punkterzeugt).
+
+        A list of dicts with ``rotor``, ``flank`` (segment name) and ``generated_by``.
+        """
         out = []
         for piece in self.rotors.rack:
             if piece.kind is PieceRole.MALE_CORNER_PATH:
@@ -312,10 +417,10 @@ class MeshingAnalysis:
         """Per flank (driving, sealing): geometric contact, defects, and the transverse contact ratio.
 
         A contact is geometric where a rack curve touches both rotors (a common tangent); a corner
-        path's contacts are a corner against a flank (Rinder 1.2: "eine Berührung ... im
+        path's contacts are a corner against a flank (Rinder sec. 1.2: "eine Berührung ... im
         geometrischen Sinn mit gemeinsamen Tangenten ... ist in keinem Flankenteil gegeben").
         Contact pieces shorter than 1e-6 of the centre distance (a corner touching only at C) do not
-        count.
+        count. A dict Flank -> :class:`FlankReport`.
         """
         pair = self.rotors.pair
         pitch_angle = 2 * np.pi / pair.male_teeth
@@ -367,8 +472,10 @@ class MeshingAnalysis:
     # ---- tightness (2.2.2) -----------------------------------------------------------------
     @cached_property
     def cusp(self) -> np.ndarray:
-        """The housing cusp (intersection of the tip circles) that the meshline comes nearest:
-        the upper one or its mirror image below O1O2."""
+        """The housing cusp that the meshline comes nearest, (2,) float, mm.
+
+        The intersection of the tip circles above O1O2, or its mirror image below.
+        """
         k = self.rotors.pair.housing_cusp
         pts = self.meshline
         lower = k * np.array([1.0, -1.0])
@@ -376,7 +483,7 @@ class MeshingAnalysis:
 
     @cached_property
     def meshline_end(self) -> np.ndarray:
-        """Meshline point nearest the upper housing cusp K."""
+        """Meshline point nearest the housing cusp :attr:`cusp`, (2,) float, mm."""
         pts = self.meshline
         return pts[np.argmin(np.hypot(*(pts - self.cusp).T))]
 
@@ -409,13 +516,16 @@ class MeshingAnalysis:
 
     @property
     def blow_hole_area(self) -> float:
+        """Area of the projected blow-hole :attr:`blow_hole`, mm²."""
         return float(self.blow_hole.area)
 
     @cached_property
     def spatial_blow_hole(self) -> SpatialBlowHole:
-        """The blow-hole triangle in 3D (:mod:`rotorcad.blow_hole`), its apex at the meshline end
-        nearest the cusp, at that point's height on the contact line (z measured as in
-        :attr:`contact_line`, from the contact line's start)."""
+        """The blow-hole triangle in 3D (:mod:`rotorcad.blow_hole`).
+
+        Its apex is the meshline end nearest the cusp, at that point's height on the contact line (z
+        measured as in :attr:`contact_line`, from the contact line's start).
+        """
         pts = self.meshline
         i = int(np.argmin(np.hypot(*(pts - self.cusp).T)))
         z = self.rotors.pair.lead * self.contact_angles / (2 * np.pi)
@@ -424,8 +534,11 @@ class MeshingAnalysis:
     # ---- contact line (eq. 1) ------------------------------------------------------------
     @cached_property
     def contact_line(self) -> np.ndarray:
-        """3D contact (sealing) line: meshline points with z = h1 * alpha / 2 pi (Rinder eq. 1),
-        shifted to start at z = 0 and cut at the rotor length."""
+        """3D contact (sealing) line, (n, 3) float, mm.
+
+        Meshline points with z = h1 alpha / 2 pi (Rinder eq. 1, alpha the male rotation angle), shifted
+        to start at z = 0 and cut at the rotor length.
+        """
         pair = self.rotors.pair
         pts = self.meshline
         z = pair.lead * self.contact_angles / (2 * np.pi)
@@ -434,28 +547,31 @@ class MeshingAnalysis:
 
     @property
     def contact_line_length(self) -> float:
+        """Length of the polyline :attr:`contact_line`, mm."""
         line = self.contact_line
         return float(np.linalg.norm(np.diff(line, axis=0), axis=1).sum())
 
     # ---- areas and displacement ------------------------------------------------------------
     @cached_property
     def sections(self) -> tuple[shapely.Polygon, shapely.Polygon]:
+        """Transverse sections of the male and the female, each in its own frame (shapely polygons, mm)."""
         return self.rotors.section("male"), self.rotors.section("female")
 
     @property
     def male_flute_area(self) -> float:
-        """A1 = (bore area - rotor section) / z1 (bore = male tip circle)."""
+        """Male flute area A1 = (bore area - rotor section) / z1, mm² (bore = male tip circle)."""
         pair = self.rotors.pair
         return float((np.pi * pair.male_tip_radius**2 - self.sections[0].area) / pair.male_teeth)
 
     @property
     def female_flute_area(self) -> float:
+        """Female flute area A2 = (bore area - rotor section) / z2, mm² (bore = female tip circle)."""
         pair = self.rotors.pair
         return float((np.pi * pair.female_tip_radius**2 - self.sections[1].area) / pair.female_teeth)
 
     @property
     def displacement_per_rev(self) -> float:
-        """V = z1 L (A1 + A2) per male revolution (mm^3)."""
+        """Displacement per male revolution V = z1 L (A1 + A2), mm³."""
         pair = self.rotors.pair
         return pair.male_teeth * pair.length * (self.male_flute_area + self.female_flute_area)
 
@@ -469,7 +585,14 @@ class MeshingAnalysis:
     # ---- sliding velocity and slip (eqs. 2-4) ----------------------------------------------
     @cached_property
     def kinematics(self) -> dict[str, np.ndarray]:
-        """Tangential velocities v1t, v2t, sliding velocity v_g (m/s) and slips at every contact."""
+        """Velocities and slips at every contact of :attr:`meshline` (Rinder eqs. 2-4).
+
+        A dict of (n,) float arrays: ``v1t`` and ``v2t``, the rotors' velocities along the common
+        tangent (m/s, eq. 2); ``sliding``, the sliding velocity v_g = v1t - v2t (m/s, eq. 3); ``slip_male`` and
+        ``slip_female``, the slips v_g / v1t and v_g / v2t (eq. 4; infinite where a tangential velocity
+        vanishes); ``angle_deg``, the male angle (deg); ``normal_check``, the cross product of the
+        tangent with the relative velocity (zero: the law of gearing holds).
+        """
         pair = self.rotors.pair
         w1 = self.speed_rpm * 2 * np.pi / 60.0
         w2 = -w1 * pair.male_teeth / pair.female_teeth
@@ -496,6 +619,10 @@ class MeshingAnalysis:
         }
 
     def _max(self, key: str) -> dict[str, float]:
+        """Return the largest magnitude of a :attr:`kinematics` entry and where it occurs.
+
+        A dict with ``value``, ``x``, ``y`` (mm), ``angle_deg``, ``flank`` and both radii (mm).
+        """
         k = self.kinematics
         v = np.abs(k[key])
         v = np.where(np.isfinite(v), v, -1.0)
@@ -514,6 +641,17 @@ class MeshingAnalysis:
         }
 
     def summary(self) -> dict[str, object]:
+        """Return the analysis as plain values (the figures of ``rotorcad rotor --json``).
+
+        Returns
+        -------
+        dict
+            Tooth counts, centre distance (mm), family, ``meshline_closed``, blow-hole areas (mm²)
+            and the spatial blow-hole, contact-line length (mm), flute areas (mm²), displacement per
+            revolution (mm³), area utilisation, the largest sliding velocity (m/s) and slips with where
+            they occur, speed (rpm), defects, point-generated flanks, per-flank reports, whether the pair
+            runs without timing gears and why not, wrap angle (deg).
+        """
         pair = self.rotors.pair
         return {
             "male_teeth": pair.male_teeth,

@@ -81,7 +81,20 @@ def _rc() -> Any:
 
 
 def styled(fn: Callable[..., Figure]) -> Callable[..., Figure]:
-    """Decorator: run a plotting function with rotorcad's style (the artists it creates keep it)."""
+    """Wrap a plotting function so that it runs with rotorcad's style (a decorator).
+
+    The artists it creates keep the style.
+
+    Parameters
+    ----------
+    fn : callable
+        A function that makes and returns a matplotlib Figure.
+
+    Returns
+    -------
+    callable
+        The same function, run inside rotorcad's rc context.
+    """
 
     @functools.wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Figure:
@@ -92,15 +105,26 @@ def styled(fn: Callable[..., Figure]) -> Callable[..., Figure]:
 
 
 def new_figure(width: float, height: float) -> Figure:
-    """A figure of ``width`` x ``height`` inches with constrained layout (legends outside the axes
-    are given room). Call it inside a :func:`styled` function."""
+    """Make a figure with constrained layout (legends outside the axes are given room).
+
+    Call it inside a :func:`styled` function.
+
+    Parameters
+    ----------
+    width, height : float, inch
+        Size of the figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from matplotlib.figure import Figure
 
     return Figure(figsize=(width, height), layout="constrained")
 
 
 def label(name: str, unit: str) -> str:
-    """An axis label: ``name [unit]``; ``unit`` "1" or "" for a pure number gives ``[–]``.
+    """Format an axis label: ``name [unit]``; ``unit`` "1" or "" for a pure number gives ``[–]``.
 
     Parameters
     ----------
@@ -108,16 +132,21 @@ def label(name: str, unit: str) -> str:
         The quantity, e.g. ``"normal clearance δ"``.
     unit : str
         Its unit with proper symbols: ``mm``, ``µm``, ``°``, ``m/s``, ``mm²``, ``L/min`` ...
+
+    Returns
+    -------
+    str
     """
     return f"{name} [{unit if unit not in ('', '1') else '–'}]"
 
 
 def title(fig: Figure, case: str, settings: str = "") -> None:
-    """The figure's title: the case on the first line, its settings on the second.
+    """Set the figure's title: the case on the first line, its settings on the second.
 
     Parameters
     ----------
     fig : Figure
+        The figure.
     case : str
         What is drawn, e.g. ``"rotor pair lysholm 4/6"``.
     settings : str
@@ -127,7 +156,23 @@ def title(fig: Figure, case: str, settings: str = "") -> None:
 
 
 def legend_outside(ax: Axes, handles: Sequence[Any] | None = None, labels: Sequence[str] | None = None, **kwargs: Any) -> Any:
-    """A legend to the right of ``ax``, outside the drawing (constrained layout makes room)."""
+    """Put a legend to the right of ``ax``, outside the drawing (constrained layout makes room).
+
+    Parameters
+    ----------
+    ax : Axes
+        The axes.
+    handles : sequence of artists, optional
+        What to list; default the labelled artists of ``ax``.
+    labels : sequence of str, optional
+        Their labels; default each handle's own.
+    **kwargs
+        Further options of ``Axes.legend`` (they override the placement).
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+    """
     options: dict[str, Any] = {"loc": "upper left", "bbox_to_anchor": (1.02, 1.0), "borderaxespad": 0.0}
     options.update(kwargs)
     if handles is not None:
@@ -136,21 +181,35 @@ def legend_outside(ax: Axes, handles: Sequence[Any] | None = None, labels: Seque
 
 
 def legend_below(ax: Axes, ncol: int = 3, **kwargs: Any) -> Any:
-    """A legend under ``ax``, outside the drawing, in ``ncol`` columns."""
+    """Put a legend under ``ax``, outside the drawing.
+
+    Parameters
+    ----------
+    ax : Axes
+        The axes.
+    ncol : int
+        Number of columns.
+    **kwargs
+        Further options of ``Axes.legend``.
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+    """
     options: dict[str, Any] = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.16), "ncol": ncol, "borderaxespad": 0.0}
     options.update(kwargs)
     return ax.legend(**options)
 
 
 def frame(ax: Axes, points: Iterable[np.ndarray] | np.ndarray, margin: float = 0.04, equal: bool = True) -> None:
-    """Cut the frame to the drawn points plus ``margin`` (share of the larger extent), so that no
-    part of the frame is left empty.
+    """Cut the frame to the drawn points plus a margin, so that no part of the frame is left empty.
 
     Parameters
     ----------
     ax : Axes
-    points : (n, 2) array or iterable of them, mm
-        What must be seen.
+        The axes.
+    points : (n, 2) float array or iterable of them, mm
+        What must be seen (non-finite points are ignored).
     margin : float
         Room around it, as a share of the larger extent.
     equal : bool
@@ -168,13 +227,37 @@ def frame(ax: Axes, points: Iterable[np.ndarray] | np.ndarray, margin: float = 0
 
 
 def circle_points(centre: Sequence[float], radius: float, n: int = 721) -> np.ndarray:
-    """Points (n, 2) of a circle, mm."""
+    """Return the points of a circle, closed (the last point repeats the first).
+
+    Parameters
+    ----------
+    centre : (float, float), mm
+        Centre.
+    radius : float, mm
+        Radius.
+    n : int
+        Number of points.
+
+    Returns
+    -------
+    (n, 2) float array, mm
+    """
     th = np.linspace(0.0, 2.0 * np.pi, n)
     return np.column_stack([centre[0] + radius * np.cos(th), centre[1] + radius * np.sin(th)])
 
 
 def nice(value: float) -> float:
-    """The largest of 1, 2, 5 x 10^k not above ``value`` (> 0)."""
+    """Return the largest of 1, 2, 5 x 10^k not above ``value``.
+
+    Parameters
+    ----------
+    value : float
+        A positive number (anything else gives 1).
+
+    Returns
+    -------
+    float
+    """
     if not (np.isfinite(value) and value > 0):
         return 1.0
     k = np.floor(np.log10(value))
@@ -185,16 +268,45 @@ def nice(value: float) -> float:
 
 
 def magnification(largest: float, extent: float, share: float = 0.08, most: float = 1e4) -> float:
-    """A round factor (1, 2, 5 x 10^k, from 1 to ``most``) that draws the ``largest`` deviation
-    (mm) as about ``share`` of the drawing's ``extent`` (mm); 1 when there is no deviation. The
-    cap keeps numerical noise (nanometres) from being blown up into a shape."""
+    """Choose a round factor that draws the largest deviation as about ``share`` of the drawing.
+
+    The factor is 1, 2 or 5 x 10^k, from 1 to ``most``; the cap keeps numerical noise (nanometres)
+    from being blown up into a shape.
+
+    Parameters
+    ----------
+    largest : float, mm
+        The largest deviation.
+    extent : float, mm
+        Size of the drawing.
+    share : float
+        Share of ``extent`` the largest deviation should take.
+    most : float
+        Largest factor.
+
+    Returns
+    -------
+    float
+        The factor; 1 when there is no deviation.
+    """
     if not (np.isfinite(largest) and largest > 0):
         return 1.0
     return min(max(nice(share * extent / largest), 1.0), most)
 
 
 def micrometres(value_mm: float) -> str:
-    """A length given in mm written in µm with a sign and sensible digits."""
+    """Write a length given in mm in µm with a sign and sensible digits.
+
+    Parameters
+    ----------
+    value_mm : float, mm
+        The length.
+
+    Returns
+    -------
+    str
+        E.g. ``"+12.3 µm"``; three significant digits below 100 µm, whole micrometres above.
+    """
     v = value_mm * 1e3
     return f"{v:+.3g} µm" if abs(v) < 100 else f"{v:+.0f} µm"
 
@@ -208,18 +320,20 @@ def draw_deviation(
     what: str = "deviation",
     every: int = 1,
 ) -> list[Any]:
-    """Draw a deviation from a reference curve along its normals, magnified ``scale`` times:
-    the magnified curve, and needles from the reference to it (blue where the deviation is
+    """Draw a deviation from a reference curve along its normals, magnified ``scale`` times.
+
+    The magnified curve, and needles from the reference to it (blue where the deviation is
     positive, vermillion where negative). The legend entries state the factor.
 
     Parameters
     ----------
     ax : Axes
-    points : (n, 2) float, mm
+        The axes.
+    points : (n, 2) float array, mm
         The reference curve.
-    normals : (n, 2) float
+    normals : (n, 2) float array
         Unit normals of the reference, the direction of a positive deviation.
-    deviation : (n,) float, mm
+    deviation : (n,) float array, mm
         NaN where there is none.
     scale : float
         Magnification of the deviation.
@@ -230,7 +344,8 @@ def draw_deviation(
 
     Returns
     -------
-    list of artists (for a legend)
+    list of artists
+        Handles for a legend.
     """
     from matplotlib.collections import LineCollection
     from matplotlib.lines import Line2D
@@ -254,8 +369,17 @@ def draw_deviation(
 
 
 def scale_bar(ax: Axes, scale: float, largest: float) -> None:
-    """A bar in the lower right corner of ``ax`` that shows a round deviation (µm) at the drawn
-    magnification ``scale`` (the deviation's ``largest`` value in mm sets the bar's size)."""
+    """Add a bar in the lower right corner of ``ax`` that shows a round deviation at the drawn magnification.
+
+    Parameters
+    ----------
+    ax : Axes
+        The axes.
+    scale : float
+        Magnification of the drawn deviation.
+    largest : float, mm
+        The deviation's largest value; sets the bar's size (a round number of µm).
+    """
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
     step = nice(max(largest, 1e-9))
@@ -275,8 +399,10 @@ def scale_bar(ax: Axes, scale: float, largest: float) -> None:
 
 
 def _tag(fig: Figure) -> None:
-    """Ids for the title and the axes' labels in an SVG (``title``, ``axes-N-xlabel`` within the
-    group ``axes-N-xaxis``, ...)."""
+    """Give ids to the title and the axes' labels for an SVG.
+
+    ``title``, ``axes-N-xlabel`` within the group ``axes-N-xaxis``, ...
+    """
     if getattr(fig, "_suptitle", None) is not None:
         fig._suptitle.set_gid("title")
     for i, ax in enumerate(fig.axes):
@@ -290,17 +416,18 @@ def _tag(fig: Figure) -> None:
 
 
 def save(fig: Figure, path: Path, fmt: str | None = None) -> None:
-    """Write ``fig`` as PNG, SVG or PDF (by ``fmt`` or the suffix), cut to what is drawn, with the
-    title and axis labels tagged; SVG and PDF carry no date, so the same picture gives the same
-    file.
+    """Write ``fig`` as PNG, SVG or PDF, cut to what is drawn, with the title and axis labels tagged.
+
+    SVG and PDF carry no date, so the same picture gives the same file.
 
     Parameters
     ----------
     fig : Figure
+        The figure.
     path : Path
         The file (or a temporary name: give ``fmt`` then).
     fmt : str, optional
-        ``png``, ``svg`` or ``pdf``.
+        ``png``, ``svg`` or ``pdf``; default by the suffix of ``path`` (``png`` without one).
     """
     fmt = fmt or (Path(path).suffix.lower().lstrip(".") or "png")
     _tag(fig)
@@ -310,14 +437,20 @@ def save(fig: Figure, path: Path, fmt: str | None = None) -> None:
 
 
 def svg_text(fig: Figure, salt: str = "rotorcad") -> str:
-    """``fig`` as an SVG document (text), for embedding in an HTML page.
+    """Return ``fig`` as an SVG document (text), for embedding in an HTML page.
 
     Parameters
     ----------
     fig : Figure
+        The figure.
     salt : str
         Seeds the SVG's internal ids (clip paths, markers): give each picture of one page its own,
         so that no two pictures share an id.
+
+    Returns
+    -------
+    str
+        The SVG document.
     """
     import io
 

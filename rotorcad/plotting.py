@@ -16,15 +16,39 @@ if TYPE_CHECKING:
 
 
 def mate_in_mesh(pair: GearPair, points: np.ndarray) -> np.ndarray:
-    """Mate outline points placed in mesh: turned so a tooth space faces the gear's tooth 0,
-    centred at (a_w, 0)."""
+    """Place mate outline points in mesh: turned so a tooth space faces the gear's tooth 0, centred at (a_w, 0).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (mate tooth count and working centre distance a_w).
+    points : (n, 2) float array, mm
+        The mate's outline in its own frame.
+
+    Returns
+    -------
+    (n, 2) float array, mm
+    """
     z2 = pair.mate.teeth
     return rotate(points, np.pi + np.pi / z2) + np.array([pair.working_center_distance, 0.0])
 
 
 def line_of_action(pair: GearPair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Tangency points T1, T2 of the line of action on the base circles and the working pitch
-    point C (upper flanks of the gear's tooth 0 in contact)."""
+    """Return the ends of the line of action on the base circles and the working pitch point.
+
+    The upper flanks of the gear's tooth 0 are in contact (ISO 21771: the line of action is tangent
+    to both base circles at the working pressure angle).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+
+    Returns
+    -------
+    t1, t2, c : (2,) float arrays, mm
+        Tangency points T1 (gear) and T2 (mate) and the pitch point C.
+    """
     aw = pair.working_pressure_angle
     a = pair.working_center_distance
     rb1, rb2 = pair.gear.base_radius, pair.mate.base_radius
@@ -35,8 +59,21 @@ def line_of_action(pair: GearPair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def path_of_contact(pair: GearPair) -> np.ndarray:
-    """End points (2, 2) of the path of contact on the line of action (mm): where the flanks
-    meet between the tip circles and the usable involutes (:meth:`GearPair.contact_interval`)."""
+    """Return the end points of the path of contact on the line of action.
+
+    Where the flanks meet between the tip circles and the usable involutes
+    (:meth:`GearPair.contact_interval`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+
+    Returns
+    -------
+    (2, 2) float array, mm
+        Start and end point.
+    """
     t1, t2, _ = line_of_action(pair)
     lo1, hi1, lo2, hi2 = pair.contact_interval()
     u = (t2 - t1) / np.hypot(*(t2 - t1))
@@ -45,8 +82,22 @@ def path_of_contact(pair: GearPair) -> np.ndarray:
 
 @styled
 def plot_gears(gear: InvoluteGear, pair: GearPair | None = None) -> Figure:
-    """The gear (and its mate in mesh) with pitch, base and tip circles, the line of action and
-    the path of contact; the title states the gear data, the legend stands beside the drawing."""
+    """Draw the gear (and its mate in mesh) with pitch, base and tip circles and the line of action.
+
+    With a pair also the path of contact and the pitch point C; the title states the gear data, the
+    legend stands beside the drawing.
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear (z1).
+    pair : GearPair, optional
+        The gear with its mate.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from matplotlib.lines import Line2D
 
     ra1 = gear.tip_radius

@@ -1,6 +1,7 @@
-"""External gear pump of two equal gears: instantaneous delivery, its irregularity and Fourier
-series, trapped volume and pump frequency (Kollek & Osiński, *Innovative gear pump*, eqs. 2-9;
-standard gear-pump theory).
+"""External gear pump of two equal gears (Kollek & Osiński, *Innovative gear pump*, eqs. 2-9).
+
+Instantaneous delivery, its irregularity and Fourier series, trapped volume and pump frequency
+(Kollek & Osiński; standard gear-pump theory).
 
 The flow delivered at the meshing point depends on where the contact that separates suction from
 discharge lies on the line of action: q = b w (r_a^2 - r_w^2 - u^2), u its distance from the pitch
@@ -24,25 +25,54 @@ from rotorcad.gear import GearPair, InvoluteGear
 
 @dataclass(frozen=True, eq=False)
 class GearPump:
+    """A pump of two equal external gears in mesh.
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        Either gear (both are the same).
+    face_width : float, mm
+        Face width b.
+    speed_rpm : float, rpm
+        Speed n of the gears.
+    """
+
     gear: InvoluteGear
     face_width: float  # b, mm
     speed_rpm: float
 
     @property
     def pair(self) -> GearPair:
+        """The two gears in mesh (:class:`rotorcad.gear.GearPair` of the gear with itself)."""
         return GearPair(self.gear, self.gear)
 
     @property
     def omega(self) -> float:
+        """Angular speed w = 2 pi n / 60, rad/s."""
         return self.speed_rpm * 2.0 * np.pi / 60.0
 
     @property
     def contact_ratio(self) -> float:
+        """Transverse contact ratio eps of the pair."""
         return self.pair.contact_ratio
 
     def delivery(self, samples: int = 4096, phi: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Rotation angle within one tooth period (rad; midpoints of ``samples`` equal steps unless
-        ``phi`` is given) and the instantaneous delivery q (mm^3/s)."""
+        """Return the instantaneous delivery over one tooth period (Kollek & Osiński eq. 2).
+
+        Parameters
+        ----------
+        samples : int
+            Equal steps over the tooth period 2 pi / z (their midpoints), unless ``phi`` is given.
+        phi : (k,) float array, rad, optional
+            Rotation angles within the tooth period, from the start of a contact.
+
+        Returns
+        -------
+        phi : (k,) float array, rad
+            Rotation angles.
+        q : (k,) float array, mm³/s
+            Delivery q = b w (r_a^2 - r_w^2 - u^2).
+        """
         g = self.gear
         eps = self.contact_ratio
         pb = g.base_pitch
@@ -61,25 +91,50 @@ class GearPump:
 
     @property
     def irregularity(self) -> float:
-        """delta = (q_max - q_min) / q_mean."""
+        """Delivery irregularity delta = (q_max - q_min) / q_mean (dimensionless)."""
         q = self.delivery()[1]
         return float((q.max() - q.min()) / q.mean())
 
     @property
     def pump_frequency(self) -> float:
-        """f = n z / 60 (Hz), eq. 9."""
+        """Pump (meshing) frequency f = n z / 60, Hz (Kollek & Osiński eq. 9)."""
         return self.speed_rpm * self.gear.teeth / 60.0
 
     def harmonics(self, count: int = 8) -> np.ndarray:
-        """Amplitudes of the first ``count`` harmonics of the delivery over one tooth period,
-        relative to the mean flow (numerical Fourier series)."""
+        """Return the amplitudes of the first harmonics of the delivery over one tooth period.
+
+        A numerical Fourier series of :meth:`delivery`.
+
+        Parameters
+        ----------
+        count : int
+            Number of harmonics.
+
+        Returns
+        -------
+        (count,) float array
+            Amplitudes relative to the mean flow.
+        """
         q = self.delivery()[1]
         c = np.fft.rfft(q) / len(q)
         return 2.0 * np.abs(c[1 : count + 1]) / c[0].real
 
     def cosine_series(self, count: int = 8) -> np.ndarray:
-        """a0 and |a_n| of q - Q_min in the even-extension series of Kollek & Osiński (eq. 3) over
-        one base pitch, by numerical integration (trapezoid, 4096 samples), divided by b w t_z^2."""
+        """Return the even-extension cosine series of q - Q_min (Kollek & Osiński eq. 3).
+
+        Over one base pitch t_z, by numerical integration (trapezoid, 8193 samples), divided by
+        b w t_z^2; compare :func:`kollek_coefficients`.
+
+        Parameters
+        ----------
+        count : int
+            Number of terms a_n.
+
+        Returns
+        -------
+        (count + 1,) float array
+            a0 and |a_1| ... |a_count|, dimensionless.
+        """
         g = self.gear
         phi, q = self.delivery(phi=np.linspace(0.0, 2.0 * np.pi / g.teeth, 8193))
         s = g.base_radius * phi
@@ -91,8 +146,20 @@ class GearPump:
         return np.concatenate([[a0], np.abs(an)]) / tz**2
 
     def trapped_volume(self, samples: int = 1024) -> tuple[np.ndarray, np.ndarray]:
-        """Rotation angle over the double contact and the volume trapped between the two contacts
-        (mm^3, relative to its value when the second contact begins)."""
+        """Return the volume trapped between the two contacts over the double contact.
+
+        Parameters
+        ----------
+        samples : int
+            Angles over the double contact.
+
+        Returns
+        -------
+        phi : (samples,) float array, rad
+            Rotation angle from the moment the second contact begins; empty when eps <= 1.
+        volume : (samples,) float array, mm³
+            Trapped volume relative to its value when the second contact begins.
+        """
         g = self.gear
         eps = self.contact_ratio
         pb = g.base_pitch
@@ -108,11 +175,24 @@ class GearPump:
 
 
 def kollek_coefficients(eps: float, count: int) -> np.ndarray:
-    """Eqs. (4)-(6) of Kollek & Osiński divided by b w t_z^2: the even-extension cosine series
-    q - Q_min = a0 + sum a_n cos(n pi s / t_z) over one base pitch t_z, with a0 = eps/2 - 1/3,
-    a_n = -4/(pi n)^2 for even n and -4 (eps - 1)/(pi n)^2 for odd n (the printed a_2n / a_2n+1
-    are these with the OCR's index garbled; the odd terms vanish as eps -> 1). Returned: a0 and the
-    amplitudes |a_n|, n = 1..count."""
+    """Return the cosine series coefficients of Kollek & Osiński eqs. (4)-(6), divided by b w t_z^2.
+
+    The even-extension cosine series q - Q_min = a0 + sum a_n cos(n pi s / t_z) over one base pitch
+    t_z, with a0 = eps/2 - 1/3, a_n = -4/(pi n)^2 for even n and -4 (eps - 1)/(pi n)^2 for odd n (the
+    printed a_2n / a_2n+1 are these with the OCR's index garbled; the odd terms vanish as eps -> 1).
+
+    Parameters
+    ----------
+    eps : float
+        Transverse contact ratio.
+    count : int
+        Number of terms a_n.
+
+    Returns
+    -------
+    (count + 1,) float array
+        a0 and the amplitudes |a_n|, n = 1..count, dimensionless.
+    """
     n = np.arange(1, count + 1)
     amps = 4.0 / (np.pi * n) ** 2 * np.where(n % 2 == 0, 1.0, abs(eps - 1.0))
     return np.concatenate([[eps / 2.0 - 1.0 / 3.0], amps])

@@ -22,7 +22,18 @@ class Side(StrEnum):
         return Side.FEMALE if self is Side.MALE else Side.MALE
 
     def pick(self, male: object, female: object) -> object:
-        """``male`` for the male, ``female`` for the female (one of a pair of per-rotor values)."""
+        """Return the value of this rotor from a pair of per-rotor values.
+
+        Parameters
+        ----------
+        male, female : object
+            The male's and the female's value.
+
+        Returns
+        -------
+        object
+            ``male`` for :attr:`Side.MALE`, ``female`` for :attr:`Side.FEMALE`.
+        """
         return male if self is Side.MALE else female
 
 
@@ -42,7 +53,18 @@ class PieceRole(Enum):
 
     @staticmethod
     def corner_path_of(side: Side) -> PieceRole:
-        """The corner path of ``side``'s corner."""
+        """Return the corner-path role of ``side``'s corner.
+
+        Parameters
+        ----------
+        side : Side or str
+            The rotor whose sharp corner traces the path (``"male"`` or ``"female"`` are read too).
+
+        Returns
+        -------
+        PieceRole
+            :attr:`MALE_CORNER_PATH` or :attr:`FEMALE_CORNER_PATH`.
+        """
         return PieceRole.MALE_CORNER_PATH if Side(side) is Side.MALE else PieceRole.FEMALE_CORNER_PATH
 
 

@@ -95,7 +95,26 @@ class Beam:
 
     @classmethod
     def round_bar(cls, diameter: float, length: float, young: float, poisson: float, kappa: float = KAPPA_ROUND) -> Beam:
-        """Eq. (4): the equivalent round bar of diameter ``diameter`` (mm), E in N/mm^2."""
+        """Make the equivalent round bar of a diameter (Rinder & Deix eq. 4).
+
+        Parameters
+        ----------
+        diameter : float, mm
+            Diameter d of the bar.
+        length : float, mm
+            Its length.
+        young : float, N/mm²
+            Young's modulus E.
+        poisson : float
+            Poisson's ratio mu (G = E / (2 (1 + mu))).
+        kappa : float
+            Shear correction factor of the round section.
+
+        Returns
+        -------
+        Beam
+            EJ = E pi d^4 / 64 (N mm²), GA / kappa = G pi d^2 / (4 kappa) (N).
+        """
         g = young / (2.0 * (1.0 + poisson))
         return cls(young * np.pi * diameter**4 / 64.0, g * np.pi * diameter**2 / (4.0 * kappa), float(length))
 
@@ -136,8 +155,10 @@ class Beam:
 
 
 def step_load_coefficients(q: float, lead: float, length: float, reach: float, psi0: float, terms: int) -> np.ndarray:
-    """Sine coefficients of the paper's flute load, eq. (6): q_x = -q cos(2 pi z / h + psi0) for
-    0 <= z <= r, 0 beyond, in closed form for every k (k = 1 is eq. 9's bracket).
+    """Return the sine coefficients of the paper's flute load (Rinder & Deix eq. 6).
+
+    q_x = -q cos(2 pi z / h + psi0) for 0 <= z <= r, 0 beyond, in closed form for every k (k = 1 is
+    eq. 9's bracket).
 
     Parameters
     ----------
@@ -148,11 +169,17 @@ def step_load_coefficients(q: float, lead: float, length: float, reach: float, p
     psi0 : float, rad
         Direction of the load's line of action at z = 0.
     terms : int
+        Number of sine terms.
 
     Returns
     -------
-    (terms, 2) float, N/mm
+    (terms, 2) float array, N/mm
         q_k for the x and y components (the y one is -q sin(...)).
+
+    Raises
+    ------
+    DesignError
+        A reach outside [0, length].
     """
     if not (0 <= reach <= length):
         raise DesignError("pressurised length r", f"from 0 to the rotor length {length:g} mm", reach)
@@ -193,8 +220,9 @@ class ShaftSegment:
 def stepped_deflection(
     segments: list[ShaftSegment], loaded: int, load: np.ndarray, cells: int = 2000
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Deflection of a shaft of segments on bearings at its two ends (statically determinate),
-    by integrating w'' = -M/(EJ) and the shear slope kappa V/(GA) along it (the classical beam
+    """Compute the deflection of a shaft of segments on bearings at its two ends (statically determinate).
+
+    By integrating w'' = -M/(EJ) and the shear slope kappa V/(GA) along it (the classical beam
     theory with which Rinder & Deix superpose the journals; the helical part is one segment with
     its equivalent stiffnesses, eq. 4).
 
@@ -204,16 +232,16 @@ def stepped_deflection(
         From the first bearing to the second.
     loaded : int
         Index of the segment that carries the load (the helical part).
-    load : (n, d) float, N/mm
+    load : (n, d) float array, N/mm
         Line load at the midpoints of n equal cells over the loaded segment.
     cells : int
         Integration cells over the whole shaft (at least 20 per segment).
 
     Returns
     -------
-    z : (m,) float, mm
+    z : (m,) float array, mm
         Positions from the first bearing.
-    w : (m, d) float, mm
+    w : (m, d) float array, mm
         Deflection, zero at both bearings.
     """
     ends = np.concatenate([[0.0], np.cumsum([s.length for s in segments])])

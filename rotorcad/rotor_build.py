@@ -1,10 +1,9 @@
-"""A rotor pair from a design, and its analysis as plain numbers: the core that the CLI, a design
-sweep and a notebook share.
+"""A rotor pair from a design, and its analysis as plain numbers.
 
-The design is a mapping as a TOML file holds it (tables ``pair``, ``profile``, ``housing``,
-``operating``, ...; CONTRACT.md "Design files"), checked by :func:`rotorcad.design.rotor_design`.
-A profile given by points arrives already read (the caller reads files): an ``(n, 2)`` array or the
-curves of a drawing.
+The core that the CLI, a design sweep and a notebook share. The design is a mapping as a TOML
+file holds it (tables ``pair``, ``profile``, ``housing``, ``operating``, ...; CONTRACT.md "Design
+files"), checked by :func:`rotorcad.design.rotor_design`. A profile given by points arrives
+already read (the caller reads files): an ``(n, 2)`` array or the curves of a drawing.
 """
 
 from __future__ import annotations
@@ -59,16 +58,28 @@ class PairSpec:
 
 
 def pair_spec(settings: dict[str, Any], points: Any = None, overrides: dict[str, Any] | None = None) -> PairSpec:
-    """The spec of a checked design (:func:`rotorcad.design.rotor_design`).
+    """Make the spec of a checked design (:func:`rotorcad.design.rotor_design`).
 
     Parameters
     ----------
     settings : dict
         The checked design.
-    points : optional
-        The profile of a points family, read by the caller from ``settings["points"]``.
+    points : (n, 2) float array or list of Curve, optional
+        The profile of a points family, read by the caller from ``settings["points"]`` (mm).
     overrides : dict, optional
-        Pair dimensions that replace the design's (``male_teeth``, ..., ``lead``, ``length``).
+        Pair dimensions that replace the design's (``male_teeth``, ..., ``lead``, ``length``);
+        None values are ignored.
+
+    Returns
+    -------
+    PairSpec
+        Lead and length default to 300 mm and 190 mm, the speed to 3000 rpm.
+
+    Raises
+    ------
+    DesignError
+        An incomplete [pair], a pair that cannot be made (:class:`RotorPair`), or a speed that is
+        not positive.
     """
     values = dict(PAIR_DEFAULTS)
     values.update(settings["pair"])
@@ -92,13 +103,25 @@ def pair_spec(settings: dict[str, Any], points: Any = None, overrides: dict[str,
 
 
 def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
-    """The rotor pair of a spec: a family built from its rack, or the pair from points.
+    """Build the rotor pair of a spec: a family from its rack, or the pair from points.
 
     Parameters
     ----------
     spec : PairSpec
+        What to build.
     label : str, optional
         How the points are named in a refusal (e.g. ``--male-points``).
+
+    Returns
+    -------
+    ScrewRotors
+        The generated pair.
+
+    Raises
+    ------
+    DesignError
+        Bad family parameters or points, or a mate generated from measured points that is not a
+        smooth rotor (noise left in by the smoothing).
     """
     if spec.family == "rack-points":
         return pair_from_rack_points(spec.pair, spec.points, spec.smoothing or 0.0)
@@ -120,17 +143,19 @@ sections then took minutes to make valid, and their numbers were those of the no
 
 
 def smooth_lobe_points(tip_radius: float, teeth: int, tolerance: float = DEFAULT_TOLERANCE) -> float:
-    """Points of a smooth lobe, generously: three times the tip circle's arc of one lobe, sampled to
-    the chord ``tolerance`` on a radius of curvature of the tip radius (chord sqrt(8 R t)).
+    """Estimate, generously, the number of points of a smooth lobe.
+
+    Three times the tip circle's arc of one lobe, sampled to the chord ``tolerance`` on a radius of
+    curvature of the tip radius (chord sqrt(8 R t)).
 
     Parameters
     ----------
-    tip_radius : float
-        Tip radius of the rotor, mm.
+    tip_radius : float, mm
+        Tip radius of the rotor.
     teeth : int
         Its lobes.
-    tolerance : float
-        Chord tolerance of the sampled lobe, mm.
+    tolerance : float, mm
+        Chord tolerance of the sampled lobe.
 
     Returns
     -------
@@ -141,9 +166,12 @@ def smooth_lobe_points(tip_radius: float, teeth: int, tolerance: float = DEFAULT
 
 
 def _check_generated(rotors: ScrewRotors, given: str, label: str) -> None:
-    """Refuse a mate generated from measured points that is not a rotor: one that runs far beyond
-    its tip circle or folds into many more points than a smooth lobe has (noise the smoothing left
-    in). Checked before the sections are made: their cost grows with the folds."""
+    """Refuse a mate generated from measured points that is not a rotor.
+
+    That is one that runs far beyond its tip circle (1.5 times) or folds into many more points than
+    a smooth lobe has (noise the smoothing left in). Checked before the sections are made: their
+    cost grows with the folds. Raises :class:`DesignError` naming ``label``.
+    """
     mate = "female" if given == "male" else "male"
     lobe = rotors.female_lobe() if mate == "female" else rotors.male_lobe()
     tip = rotors.pair.female_tip_radius if mate == "female" else rotors.pair.male_tip_radius
@@ -162,7 +190,23 @@ def _check_generated(rotors: ScrewRotors, given: str, label: str) -> None:
 
 
 def analyse_pair(rotors: ScrewRotors, speed_rpm: float) -> tuple[MeshingAnalysis, dict[str, Any]]:
-    """Rinder's analysis of a pair and its summary (the keys of ``rotorcad rotor --json``)."""
+    """Run Rinder's analysis of a pair and summarise it.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair.
+    speed_rpm : float, rpm
+        Male speed, for the sliding velocities.
+
+    Returns
+    -------
+    analysis : MeshingAnalysis
+        The analysis (for pictures).
+    summary : dict
+        :meth:`MeshingAnalysis.summary` with ``rack_loss_percent``: the keys of
+        ``rotorcad rotor --json``.
+    """
     analysis = MeshingAnalysis(rotors, speed_rpm=speed_rpm)
     result = analysis.summary()
     result["rack_loss_percent"] = rotors.rack_loss
@@ -170,7 +214,27 @@ def analyse_pair(rotors: ScrewRotors, speed_rpm: float) -> tuple[MeshingAnalysis
 
 
 def design_summary(mapping: dict[str, Any], folder: Any = None, points: Any = None) -> dict[str, Any]:
-    """Build and analyse the pair of a design mapping in one call: the numbers of ``rotorcad rotor
-    --json`` (``files`` aside). Refuses a bad design with :class:`DesignError`."""
+    """Build and analyse the pair of a design mapping in one call.
+
+    Parameters
+    ----------
+    mapping : dict
+        The design as a TOML file holds it (CONTRACT.md "Design files").
+    folder : path, optional
+        Where a relative points file name is resolved (:func:`rotorcad.design.rotor_design`); the
+        file is not read here.
+    points : (n, 2) float array or list of Curve, optional
+        The profile of a points family, already read (mm).
+
+    Returns
+    -------
+    dict
+        The numbers of ``rotorcad rotor --json`` (``files`` aside).
+
+    Raises
+    ------
+    DesignError
+        A bad design.
+    """
     spec = pair_spec(rotor_design(mapping, folder), points)
     return analyse_pair(build_pair(spec), spec.speed_rpm)[1]

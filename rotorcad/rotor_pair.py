@@ -17,7 +17,37 @@ from rotorcad.kinematics import Mesh, rotor_mesh
 
 @dataclass(frozen=True)
 class RotorPair:
-    """Tooth counts, centre distance, tip and root radii, lead, length and hand of a pair (mm)."""
+    """Tooth counts, centre distance, tip and root radii, lead, length and hand of a screw-rotor pair.
+
+    The values are checked when the pair is made (DESIGN.md conventions: rotor 1 the male about
+    O1 = (0, 0), rotor 2 the female about O2 = (a, 0)).
+
+    Parameters
+    ----------
+    male_teeth, female_teeth : int
+        Lobe counts z1 and z2, whole numbers from 2 to 12.
+    center_distance : float, mm
+        Centre distance a.
+    male_tip_radius, male_root_radius : float, mm
+        Tip radius r1t and root radius r1f of the male.
+    female_tip_radius, female_root_radius : float, mm
+        Tip radius r2t and root radius r2f of the female.
+    lead : float, mm
+        Male lead h1 (axial advance per turn); the female's is h2 = h1 z2/z1.
+    length : float, mm
+        Rotor length L.
+    hand : {"right", "left"}
+        Hand of the male's helix.
+    strict : bool
+        True checks that each rotor's radii straddle its pitch circle and that each tip clears the
+        mate's root; False (measured or hot rotors, assembled pairs) skips those checks, keeping
+        only that the tip circles overlap.
+
+    Raises
+    ------
+    DesignError
+        A count, length or hand out of range, or radii that cannot make a pair (naming the field).
+    """
 
     male_teeth: int
     female_teeth: int
@@ -78,18 +108,22 @@ class RotorPair:
 
     @property
     def ratio(self) -> float:
+        """Ratio i = z2/z1 (dimensionless)."""
         return self.female_teeth / self.male_teeth
 
     @property
     def male_pitch_radius(self) -> float:
+        """Male pitch radius r1w = a/(1+i), mm."""
         return self.center_distance / (1.0 + self.ratio)
 
     @property
     def female_pitch_radius(self) -> float:
+        """Female pitch radius r2w = a i/(1+i), mm."""
         return self.center_distance * self.ratio / (1.0 + self.ratio)
 
     @property
     def female_lead(self) -> float:
+        """Female lead h2 = h1 z2/z1, mm."""
         return self.lead * self.female_teeth / self.male_teeth
 
     @property
@@ -99,26 +133,27 @@ class RotorPair:
 
     @property
     def rack_period(self) -> float:
-        """p = 2 pi r1w / z1 (= 2 pi r2w / z2)."""
+        """Rack period p = 2 pi r1w / z1 (= 2 pi r2w / z2), mm."""
         return 2.0 * np.pi * self.male_pitch_radius / self.male_teeth
 
     @property
     def male_addendum(self) -> float:
-        """h1 = r1t - r1w: how far the rack reaches into the female side."""
+        """Male addendum h1 = r1t - r1w, mm: how far the rack reaches into the female side."""
         return self.male_tip_radius - self.male_pitch_radius
 
     @property
     def male_dedendum(self) -> float:
-        """d1 = r1w - r1f: how far the rack reaches into the male side."""
+        """Male dedendum d1 = r1w - r1f, mm: how far the rack reaches into the male side."""
         return self.male_pitch_radius - self.male_root_radius
 
     @property
     def mesh(self) -> Mesh:
+        """The male, female and rack motions of this pair (:func:`rotorcad.kinematics.rotor_mesh`)."""
         return rotor_mesh(self.male_teeth, self.female_teeth, self.center_distance)
 
     @property
     def housing_cusp(self) -> np.ndarray:
-        """Upper intersection K of the two tip circles (the housing cusp, y > 0)."""
+        """Upper intersection K of the two tip circles (the housing cusp, y > 0): (2,) float, mm."""
         a, r1, r2 = self.center_distance, self.male_tip_radius, self.female_tip_radius
         x = (a * a + r1 * r1 - r2 * r2) / (2.0 * a)
         return np.array([x, np.sqrt(max(r1 * r1 - x * x, 0.0))])

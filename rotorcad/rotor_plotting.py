@@ -1,6 +1,9 @@
-"""Pictures of a screw-rotor pair: the pair in mesh with its meshline, defects and blow-hole, and
-sliding velocity and slip over the rotation angle in the manner of Rinder's Figs. 10-13, one
-labelled branch per pair of flanks in contact. Style: :mod:`rotorcad.plot_style`."""
+"""Pictures of a screw-rotor pair in the manner of Rinder's figures.
+
+The pair in mesh with its meshline, defects and blow-hole, and sliding velocity and slip over the
+rotation angle in the manner of Rinder's Figs. 10-13, one labelled branch per pair of flanks in
+contact. Style: :mod:`rotorcad.plot_style`.
+"""
 
 from __future__ import annotations
 
@@ -18,13 +21,13 @@ MARKERS = {"cusp": ("v", ps.VERMILLION), "jamming": ("s", ps.PURPLE), "slipping"
 
 
 def pair_case(analysis: MeshingAnalysis) -> str:
-    """``family z1/z2`` of the analysed pair, as the titles name it."""
+    """Return ``family z1/z2`` of the analysed pair, as the titles name it."""
     pair = analysis.rotors.pair
     return f"{analysis.rotors.family} {pair.male_teeth}/{pair.female_teeth}"
 
 
 def pair_settings(analysis: MeshingAnalysis) -> str:
-    """The pair's dimensions for a title line (mm)."""
+    """Return the pair's dimensions (mm) for a title line."""
     p = analysis.rotors.pair
     return (
         f"a = {p.center_distance:g} mm, r1a = {p.male_tip_radius:g} mm, r1f = {p.male_root_radius:g} mm, "
@@ -34,14 +37,21 @@ def pair_settings(analysis: MeshingAnalysis) -> str:
 
 @styled
 def plot_pair(analysis: MeshingAnalysis, clearance: float = 0.0) -> Figure:
-    """Male and female in mesh at male angle 0, pitch circles, housing bores, meshline with the
-    flagged points, the housing cusp and the (projected) blow-hole; the legend beside the pair.
+    """Draw the male and the female in mesh at male angle 0 with the meshline and the blow-hole.
+
+    Pitch circles, housing bores, meshline with the flagged points (cusp, jamming, slipping), the
+    housing cusp and the (projected) blow-hole; the legend beside the pair.
 
     Parameters
     ----------
     analysis : MeshingAnalysis
+        The analysed pair.
     clearance : float, mm
         Radial clearance of the housing bores over the tip circles.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     rotors = analysis.rotors
     pair = rotors.pair
@@ -99,9 +109,20 @@ def plot_pair(analysis: MeshingAnalysis, clearance: float = 0.0) -> Figure:
 
 
 def branches(analysis: MeshingAnalysis) -> list[tuple[str, slice, str]]:
-    """The meshline's branches as (label, slice of the kinematics arrays, colour): one per rack
-    piece, labelled by the male and the female flank in contact; the same pair of flanks keeps
-    one colour."""
+    """Return the meshline's branches as (label, slice of the kinematics arrays, colour).
+
+    One per rack piece, labelled by the male and the female flank in contact; the same pair of
+    flanks keeps one colour.
+
+    Parameters
+    ----------
+    analysis : MeshingAnalysis
+        The analysed pair.
+
+    Returns
+    -------
+    list of (str, slice, str)
+    """
     colours: dict[str, str] = {}
     out = []
     start = 0
@@ -117,10 +138,22 @@ def branches(analysis: MeshingAnalysis) -> list[tuple[str, slice, str]]:
 
 @styled
 def plot_sliding(analysis: MeshingAnalysis) -> Figure:
-    """Sliding velocity |v_g| (Rinder eq. 3) and slip of male and female (eq. 4) over the male
-    rotation angle at contact, one line per branch of the meshline (labelled by its flanks). Slip
-    is drawn on a symmetric logarithmic scale, so that its run to infinity where a tangential
-    velocity vanishes stays visible; a slip that is infinite is marked at the frame's edge."""
+    """Draw sliding velocity and slip over the male rotation angle (Rinder eqs. 3-4, Figs. 10-13).
+
+    Sliding velocity |v_g| (eq. 3) and slip of male and female (eq. 4) over the male rotation angle
+    at contact, one line per branch of the meshline (labelled by its flanks). Slip is drawn on a
+    symmetric logarithmic scale, so that its run to infinity where a tangential velocity vanishes
+    stays visible; a slip that is infinite is marked at the frame's edge.
+
+    Parameters
+    ----------
+    analysis : MeshingAnalysis
+        The analysed pair (its speed sets the velocities, m/s).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     k = analysis.kinematics
     ang = k["angle_deg"]
     fig = ps.new_figure(11.0, 7.2)
@@ -212,20 +245,25 @@ def point_deviation(section, points: np.ndarray) -> tuple[np.ndarray, np.ndarray
 
 @styled
 def plot_point_deviation(analysis: MeshingAnalysis, rotor: str, points: np.ndarray, source: str) -> Figure:
-    """Measured points against the profile the pair is built on (the smoothed fit of those points):
-    the deviation of every point along the profile's normal, magnified with the factor stated, and
+    """Draw measured points against the profile the pair is built on (the smoothed fit of those points).
+
+    The deviation of every point along the profile's normal, magnified with the factor stated, and
     the deviation over the point number with its spread.
 
     Parameters
     ----------
     analysis : MeshingAnalysis
         The pair built from the points.
-    rotor : "male" or "female"
+    rotor : {"male", "female"}
         Which rotor the points measure.
-    points : (n, 2) float, mm
+    points : (n, 2) float array, mm
         The measured points in the rotor's own frame.
     source : str
         The file named in the title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     side = 0 if rotor == "male" else 1
     section = analysis.sections[side]

@@ -25,7 +25,28 @@ from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
 
 def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float = 0.0) -> ScrewRotors:
-    """One rack period given in the rack frame (x along the motion, y > 0 towards the female)."""
+    """Generate a pair from points of one rack period.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Dimensions of the pair.
+    points : (n, 2) float array, mm
+        One rack period in the rack frame of CONTRACT.md (x along the motion, y > 0 towards the
+        female), in either direction.
+    smoothing : float, mm²
+        scipy's spline smoothing; 0 interpolates.
+
+    Returns
+    -------
+    ScrewRotors
+        The pair generated from the fitted rack (family ``"rack-points"``).
+
+    Raises
+    ------
+    DesignError
+        Points that do not span one rack period p = 2 pi r1w / z1 in x (within 0.1 %).
+    """
     pts = np.asarray(points, dtype=float)
     if pts[-1, 0] < pts[0, 0]:
         pts = pts[::-1]
@@ -37,8 +58,11 @@ def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float 
 
 
 def _smoothing(run: np.ndarray, sigma: float, smoothing: float | None) -> float:
-    """scipy's smoothing value for a run of points: the user's, or n sigma^2 from the estimated
-    scatter (:mod:`rotorcad.measured_outline`); a run too short for a smoothing cubic interpolates."""
+    """Return scipy's smoothing value for a run of points.
+
+    The user's value, or n sigma^2 from the estimated scatter (:mod:`rotorcad.measured_outline`); a
+    run too short for a smoothing cubic (8 points or fewer) interpolates.
+    """
     if smoothing is not None:
         return smoothing
     return len(run) * sigma**2 if len(run) > 8 else 0.0
@@ -53,9 +77,12 @@ def _facing_root_angle(whole: np.ndarray, teeth: int, facing: float) -> float:
 
 
 def _lobe_spline(whole: np.ndarray, teeth: int, smoothing: float, facing: float) -> tuple[Spline, float, float]:
-    """Periodic spline of the whole outline and the parameters of the lobe between two
-    consecutive roots that contains the polar angle ``facing`` (towards the mate, so that its
-    contacts lie within half a turn of the mesh position)."""
+    """Fit a periodic spline to the whole outline and find the lobe facing the mate.
+
+    Returns the spline and the parameters of the lobe between two consecutive roots that contains
+    the polar angle ``facing`` (towards the mate, so that its contacts lie within half a turn of the
+    mesh position).
+    """
     spline = Spline.fit(whole, smoothing=smoothing, periodic=True)
     s = np.linspace(0.0, spline.s1, 20 * len(whole) + 1)
     p, _ = spline.evaluate(s)
@@ -72,9 +99,29 @@ def _lobe_spline(whole: np.ndarray, teeth: int, smoothing: float, facing: float)
 
 
 def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None) -> Curve:
-    """The spline of one lobe of the male or the female (own frame, counter-clockwise, from root to
-    root), the lobe facing the mate, from points of one lobe or of the whole outline; ``smoothing``
-    None estimates it from the points' scatter."""
+    """Fit the spline of one lobe of the male or the female, the lobe facing the mate.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts and centre distance (mm).
+    points : (n, 2) float array, mm
+        One lobe or the whole outline in the rotor's own frame.
+    rotor : {"male", "female"}
+        Which rotor the points are.
+    smoothing : float, mm², optional
+        scipy's spline smoothing; None estimates it from the points' scatter.
+
+    Returns
+    -------
+    Curve
+        The lobe from root to root, own frame, counter-clockwise.
+
+    Raises
+    ------
+    DesignError
+        An outline that a ray from its centre crosses more than once, or a wrong lobe count.
+    """
     side = Side(rotor)
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     whole = whole_outline(points, teeth, f"{side.value} points")
@@ -88,8 +135,11 @@ def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float
 
 
 def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: float) -> float | None:
-    """Parameter where ``curve`` (through ``points`` at parameters ``u``) crosses the polar ray at
-    ``theta`` counter-clockwise, or None."""
+    """Find the parameter where ``curve`` crosses the polar ray at ``theta`` counter-clockwise.
+
+    ``points`` are the curve's samples at parameters ``u``; the crossing is bracketed between them
+    and refined on the curve. Returns None when the samples do not cross the ray.
+    """
     rel = wrap_angle(np.arctan2(points[:, 1], points[:, 0]) - theta)
     i = np.nonzero((rel[:-1] < 0) & (rel[1:] >= 0) & (np.abs(rel[:-1]) < np.pi / 2) & (np.abs(rel[1:]) < np.pi / 2))[0]
     if len(i) == 0:
@@ -105,9 +155,12 @@ def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: floa
 
 
 def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray) -> list[np.ndarray]:
-    """The outline cut at its corners: for each corner (on edge i, at a point) to the next, the
-    corner's point, the outline's points in between and the next corner's point; points within
-    1e-6 mm of a corner point are left out (the corner is that point)."""
+    """Cut the outline at its corners.
+
+    For each corner (on edge i, at a point) to the next: the corner's point, the outline's points in
+    between and the next corner's point; points within 1e-6 mm of a corner point are left out (the
+    corner is that point).
+    """
     n = len(whole)
     ring = np.vstack([whole, whole])
     out = []
@@ -123,11 +176,13 @@ def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarr
 def _refined_corners(
     whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float, smoothing: float | None
 ) -> np.ndarray:
-    """Corners of scattered points located where the smoothing splines of the two runs beside a
-    corner, extended past their ends, cross (Newton on both parameters): the chords' crossing is
-    off by a sample spacing when the corner falls between scattered points, which moves the
-    corner's path on the rack by as much. A crossing not found within two spacings keeps the
-    chords' one."""
+    """Locate the corners of scattered points where the splines beside each corner cross.
+
+    The smoothing splines of the two runs beside a corner, extended past their ends, are crossed by
+    Newton on both parameters: the chords' crossing is off by a sample spacing when the corner falls
+    between scattered points, which moves the corner's path on the rack by as much. A crossing not
+    found within two spacings keeps the chords' one.
+    """
     n = len(whole)
     ring = np.vstack([whole, whole, whole])
     fits = []
@@ -170,32 +225,43 @@ def lobe_pieces(
     corner_angle_deg: float = 30.0,
     label: str | None = None,
 ) -> list[tuple[str, Curve]]:
-    """One lobe of the male or the female (own frame, counter-clockwise, from root to root, the
-    lobe facing the mate) as spline pieces between the sharp corners of the points.
+    """Fit one lobe of the male or the female as pieces between the sharp corners of its points.
+
+    A measured outline may have sharp corners (a female tip without rounding, a tip land cut by
+    the rack's flat): a spline through one rings. The outline is fitted piecewise between corners
+    (each piece a cubic spline with exact tangents; lands as exact arcs about the centre), and the
+    corners stay corners (their fans of normals are added where racks are derived). An outline
+    without corners is one periodic spline (:func:`lobe_curve`).
 
     Parameters
     ----------
     pair : RotorPair
         Tooth counts and centre distance (mm).
-    points : (n, 2) float, mm, or list of Curve
+    points : (n, 2) float array, mm, or list of Curve
         One lobe or the whole outline in the rotor's own frame, either direction, any start;
-        exact, measured (scatter of a few um) or polygonal (boolean cutting, with scallops). Or
+        exact, measured (scatter of a few µm) or polygonal (boolean cutting, with scallops). Or
         the exact curves of a drawing, chained counter-clockwise (lines, arcs, splines), which are
         used as they are.
-    rotor : "male" or "female"
-    smoothing : float or None
-        scipy's spline smoothing (mm^2) for every piece; None: n sigma^2 from the estimated
-        scatter sigma (:func:`rotorcad.measured_outline.scatter`), 0 for exact points.
-    corner_angle_deg : float
-        Turn (deg) above which a vertex is a sharp corner (:func:`rotorcad.measured_outline.corners`).
-    label : str
+    rotor : {"male", "female"}
+        Which rotor the points are.
+    smoothing : float, mm², optional
+        scipy's spline smoothing for every piece; None: n sigma^2 from the estimated scatter sigma
+        (:func:`rotorcad.measured_outline.scatter`), 0 for exact points.
+    corner_angle_deg : float, deg
+        Turn above which a vertex is a sharp corner (:func:`rotorcad.measured_outline.corners`).
+    label : str, optional
         How the points are named in errors (default "<rotor> points").
 
-    A measured outline may have sharp corners (a female tip without rounding, a tip land cut by
-    the rack's flat): a spline through one rings. The outline is fitted piecewise between corners
-    (each piece a cubic spline with exact tangents), and the corners stay corners (their fans of
-    normals are added where racks are derived). An outline without corners is one periodic spline
-    (:func:`lobe_curve`).
+    Returns
+    -------
+    list of (str, Curve)
+        The lobe facing the mate, root to root, own frame, counter-clockwise, as named pieces
+        (``"lobe part 1"``, ...; ``"flank"`` for one periodic spline).
+
+    Raises
+    ------
+    DesignError
+        An outline that a ray from its centre crosses more than once, or a wrong lobe count.
     """
     side = Side(rotor)
     rotor = side.value
@@ -225,8 +291,11 @@ def lobe_pieces(
 def _cut_lobe(
     fitted: list[tuple[Curve, np.ndarray, np.ndarray]], whole: np.ndarray, teeth: int, rotor: str, label: str
 ) -> list[tuple[str, Curve]]:
-    """The lobe facing the mate, from root to root, out of the whole outline's curves (each with
-    sample points and their parameters), trimmed at the two roots' polar angles."""
+    """Cut the lobe facing the mate, root to root, out of the whole outline's curves.
+
+    Each curve comes with its sample points and their parameters; the lobe is trimmed at the two
+    roots' polar angles and its pieces are named ``"lobe part i"``.
+    """
     theta = _facing_root_angle(whole, teeth, Side(rotor).pick(0.0, np.pi))
 
     def locate(th: float) -> tuple[int, float]:
@@ -251,17 +320,31 @@ def _cut_lobe(
 
 
 def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -> np.ndarray:
-    """Points (n, 2) of a profile given by points (returned as they are) or by exact curves
-    (sampled to the chord ``tolerance``, mm)."""
+    """Return the points of a profile given by points or by exact curves.
+
+    Parameters
+    ----------
+    profile : (n, 2) float array or list of Curve, mm
+        Points (returned as they are) or exact curves.
+    tolerance : float, mm
+        Chord tolerance for sampling curves.
+
+    Returns
+    -------
+    (n, 2) float array, mm
+    """
     if isinstance(profile, list | tuple):
         return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
     return np.asarray(profile, dtype=float)
 
 
 def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -> list[tuple[str, Curve]]:
-    """The lobe facing the mate from exact curves of a drawing (one lobe, patterned, or the whole
-    outline, counter-clockwise: :func:`exports.dxf_profile.read_profile_dxf`): arcs stay arcs,
-    splines stay the drawing's splines, and the lobe is cut from them at the roots."""
+    """Cut the lobe facing the mate from the exact curves of a drawing.
+
+    The curves are one lobe (patterned here), or the whole outline, counter-clockwise
+    (:func:`exports.dxf_profile.read_profile_dxf`): arcs stay arcs, splines stay the drawing's
+    splines, and the lobe is cut from them at the roots.
+    """
     samples = [sample_curve(c, 1e-4) for c in curves]
     pts = np.vstack([p for _, p, _ in samples])
     whole = whole_outline(pts, teeth, label)  # checks the lobe count or the span of one lobe
@@ -275,16 +358,21 @@ def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -
 
 
 def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tuple[Curve, np.ndarray, np.ndarray]]:
-    """A run of outline points between corners as curves: every land (an arc about the rotor's
-    centre within the scatter, :func:`rotorcad.measured_outline.lands`) as that exact arc, whose
-    normals are radial, so that its rack image is the exact flat at the tip or root line; the rest
-    as cubic splines. Each curve comes with sample points and their parameters (for locating polar
-    crossings)."""
+    """Fit a run of outline points between corners as curves.
+
+    Every land (an arc about the rotor's centre within the scatter,
+    :func:`rotorcad.measured_outline.lands`) becomes that exact arc, whose normals are radial, so that
+    its rack image is the exact flat at the tip or root line; the rest cubic splines. Each curve comes
+    with sample points and their parameters (for locating polar crossings).
+    """
     out: list[tuple[Curve, np.ndarray, np.ndarray]] = []
 
     def spline(i0: int, i1: int, lead_in: int, lead_out: int) -> None:
-        """The spline of run[i0 : i1 + 1], fitted with ``lead_in`` / ``lead_out`` points of the
-        neighbouring lands (so that its ends see the land it runs into) and trimmed back."""
+        """Fit the spline of run[i0 : i1 + 1] and append it.
+
+        It is fitted with ``lead_in`` / ``lead_out`` points of the neighbouring lands (so that its ends
+        see the land it runs into) and trimmed back.
+        """
         if i1 - i0 < 1 or np.hypot(*(run[i1] - run[i0])) <= 1e-9:
             return
         j0, j1 = max(i0 - lead_in, 0), min(i1 + lead_out, len(run) - 1)
@@ -309,15 +397,17 @@ def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tup
 def _mate_corner_runs(
     rack_curve: Curve, mate: Generated, threshold: float = 0.02, tolerance: float = 1e-4
 ) -> list[tuple[float, float, bool]]:
-    """Split a rack curve derived from one rotor into the parts that generate a flank on the mate
-    and the parts along which the mate's generated point stands still: those are the path of a
-    sharp corner of the mate (its tip corner sweeping this rotor's point-generated flank), which
-    the mate receives as that corner only. Returns (s0, s1, is_corner_path) along the travel.
+    """Split a rack curve derived from one rotor into flank-generating parts and the mate's corner paths.
+
+    Along a corner path the mate's generated point stands still: it is the path of a sharp corner of
+    the mate (its tip corner sweeping this rotor's point-generated flank), which the mate receives as
+    that corner only. Returns (s0, s1, is_corner_path) along the travel.
 
     Classification (positions only, no tangents): over a stencil of 1/200 of the curve the mate's
     point moves less than ``threshold`` times the rack point; a part stalled so over at least 1/100
     of the curve is a corner path. Its ends are where the mate's point leaves that corner by more
-    than ``tolerance`` (mm), found by bisection."""
+    than ``tolerance`` (mm), found by bisection.
+    """
     span = rack_curve.s1 - rack_curve.s0
     s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
     pr, _ = rack_curve.evaluate(s)
@@ -384,7 +474,7 @@ def _mate_corner_runs(
 def pair_from_rotor_points(
     pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, smoothing: float | None = None, label: str | None = None
 ) -> ScrewRotors:
-    """Points of the male or the female rotor in its own frame (one lobe or the whole outline).
+    """Generate a pair from points (or curves) of the male or the female rotor.
 
     The lobe is fitted piecewise between its sharp corners (:func:`lobe_pieces`); each piece and
     each corner's fan of normals gives its part of the rack by inverse generation (Wu & Chi sec. 2,
@@ -392,6 +482,31 @@ def pair_from_rotor_points(
     every part of the rack along which the mate's generated point stands still (the mate's tip
     corner, whose point-generated flank this rotor carries): the mate receives such parts as its
     corner, exactly as in the profile families.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Dimensions of the pair.
+    points : (n, 2) float array, mm, or list of Curve
+        One lobe or the whole outline in the rotor's own frame (as for :func:`lobe_pieces`).
+    rotor : {"male", "female"}
+        Which rotor the points are.
+    smoothing : float, mm², optional
+        scipy's spline smoothing; None estimates it from the scatter.
+    label : str, optional
+        How the points are named in errors.
+
+    Returns
+    -------
+    ScrewRotors
+        The pair generated from the derived rack (family ``"male-points"`` or
+        ``"female-points"``), with the share of the lobe that has no rack point in ``rack_loss``.
+
+    Raises
+    ------
+    DesignError
+        Points that do not make a lobe, or more than 2 % of the lobe without a rack point (its
+        normal misses the pitch circle).
     """
     mesh = pair.mesh
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these

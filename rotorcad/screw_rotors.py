@@ -32,8 +32,16 @@ from rotorcad.rotor_pair import RotorPair
 class RackPiece:
     """One piece of the rack chain with the names of what it generates on each rotor.
 
-    ``kind`` is :attr:`PieceRole.CURVE`, or the corner path of a rotor (it generates only that
-    corner on its own rotor).
+    Parameters
+    ----------
+    curve : Curve
+        The piece in the fixed frame at t = 0 (pitch line x = r1w), travelled in +y.
+    male_name, female_name : str
+        Names of the segments it generates on the male and on the female (e.g. "tip arc").
+    kind : PieceRole
+        :attr:`PieceRole.CURVE` (it generates a curve on both rotors), or the corner path of a
+        rotor (it generates only that corner on its own rotor, and a point-generated flank on the
+        other).
     """
 
     curve: Curve
@@ -43,23 +51,72 @@ class RackPiece:
 
 
 def rack_line(pair: RotorPair, a: tuple[float, float], b: tuple[float, float]) -> Line:
-    """A straight rack piece between two points given in the rack frame of CONTRACT.md."""
+    """Make a straight rack piece between two points given in the rack frame of CONTRACT.md.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        The pair (its male pitch radius r1w places the pitch line).
+    a, b : (float, float), mm
+        End points in the rack frame: x along the pitch line in the direction of motion, y = 0 on
+        the pitch line, y > 0 towards the female.
+
+    Returns
+    -------
+    Line
+        The piece in the fixed frame (pitch line x = r1w), from ``a`` to ``b``.
+    """
     r = pair.male_pitch_radius
     pa, pb = from_rack_frame(np.array([a, b], dtype=float), r)
     return Line(tuple(pa), tuple(pb))
 
 
 def rack_arc(pair: RotorPair, center: tuple[float, float], radius: float, psi0: float, psi1: float) -> Arc:
-    """A circular rack piece given in the rack frame (centre, radius, polar angles psi0 -> psi1
-    about the centre, measured in the rack frame). The rack frame is the mirror image of the fixed
-    frame, so an angle psi there is pi/2 - psi here."""
+    """Make a circular rack piece given in the rack frame of CONTRACT.md.
+
+    The rack frame is the mirror image of the fixed frame, so a polar angle psi there is pi/2 - psi
+    here; the arc keeps its direction from ``psi0`` to ``psi1`` as seen in the rack frame.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        The pair (its male pitch radius r1w places the pitch line).
+    center : (float, float), mm
+        Centre of the arc in the rack frame.
+    radius : float, mm
+        Radius of the arc.
+    psi0, psi1 : float, rad
+        Polar angles of the start and the end about the centre, measured in the rack frame.
+
+    Returns
+    -------
+    Arc
+        The piece in the fixed frame.
+    """
     c = from_rack_frame(np.array([center], dtype=float), pair.male_pitch_radius)[0]
     return Arc((float(c[0]), float(c[1])), radius, np.pi / 2 - psi0, np.pi / 2 - psi1)
 
 
 @dataclass(frozen=True, eq=False)
 class ScrewRotors:
-    """A rotor pair with its rack chain and the generated male and female profiles."""
+    """A rotor pair with its rack chain and the generated male and female profiles.
+
+    Both rotors are generated from the same rack chain by the envelope engine, so they are conjugate
+    to each other (Rinder sec. 2.1).
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Dimensions of the pair.
+    rack : tuple of RackPiece
+        One rack period p = 2 pi r1w / z1, in order of travel (+y in the fixed frame).
+    family : str
+        Name of the profile family (``"lysholm"``, ``"rack-involute"``, ...) or ``"rack"``.
+    tolerance : float, mm
+        Default chord tolerance of the sampled profiles.
+    rack_loss : float, per cent
+        Share of a measured lobe that has no rack point (its normal misses the pitch circle).
+    """
 
     pair: RotorPair
     rack: tuple[RackPiece, ...]
@@ -69,8 +126,12 @@ class ScrewRotors:
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:
-        """Generated male pieces of one lobe in counter-clockwise order (the male's polar angle
-        grows with the rack position, so the order is the rack's)."""
+        """Generated male pieces of one lobe in counter-clockwise order.
+
+        The male's polar angle grows with the rack position, so the order is the rack's. Each entry is
+        (segment name, generated curve, rack piece); male corner paths are left out (they generate only
+        the corner itself).
+        """
         mesh = self.pair.mesh
         out = []
         for piece in self.rack:
@@ -81,8 +142,11 @@ class ScrewRotors:
 
     @cached_property
     def female_pieces(self) -> list[tuple[str, Curve, RackPiece]]:
-        """Generated female pieces of one lobe in counter-clockwise order, in the female's own frame
-        (the female turns the other way, so the order is the rack's reversed)."""
+        """Generated female pieces of one lobe in counter-clockwise order, in the female's own frame.
+
+        The female turns the other way, so the order is the rack's reversed. Each entry is (segment
+        name, generated curve shifted by (-a, 0), rack piece); female corner paths are left out.
+        """
         mesh = self.pair.mesh
         shift = (-self.pair.center_distance, 0.0)
         out = []
@@ -106,25 +170,98 @@ class ScrewRotors:
         return Profile(tuple(segs), closed=False)
 
     def male_lobe(self, tolerance: float | None = None) -> Profile:
+        """Sample one male lobe (an open profile, counter-clockwise).
+
+        Parameters
+        ----------
+        tolerance : float, mm, optional
+            Chord tolerance; default the pair's ``tolerance``.
+
+        Returns
+        -------
+        Profile
+            The lobe's segments at male angle 0; degenerate (zero-length) pieces are left out.
+        """
         return self._lobe(self.male_pieces, tolerance)
 
     def female_lobe(self, tolerance: float | None = None) -> Profile:
+        """Sample one female lobe (an open profile, counter-clockwise, centre at the origin).
+
+        Parameters
+        ----------
+        tolerance : float, mm, optional
+            Chord tolerance; default the pair's ``tolerance``.
+
+        Returns
+        -------
+        Profile
+            The lobe's segments in the female's own frame; degenerate pieces are left out.
+        """
         return self._lobe(self.female_pieces, tolerance)
 
     def male_outline(self, tolerance: float | None = None) -> Profile:
-        """Whole male outline, closed and counter-clockwise, at male angle 0."""
+        """Sample the whole male outline, closed and counter-clockwise, at male angle 0.
+
+        Parameters
+        ----------
+        tolerance : float, mm, optional
+            Chord tolerance; default the pair's ``tolerance``.
+
+        Returns
+        -------
+        Profile
+            The lobe patterned z1 times about the origin.
+        """
         return self.male_lobe(tolerance).patterned(self.pair.male_teeth)
 
     def female_outline(self, tolerance: float | None = None) -> Profile:
-        """Whole female outline in its own frame (centre at the origin) at the mesh position."""
+        """Sample the whole female outline in its own frame (centre at the origin) at the mesh position.
+
+        Parameters
+        ----------
+        tolerance : float, mm, optional
+            Chord tolerance; default the pair's ``tolerance``.
+
+        Returns
+        -------
+        Profile
+            The lobe patterned z2 times about the origin; shift by (a, 0) with :meth:`female_in_mesh`.
+        """
         return self.female_lobe(tolerance).patterned(self.pair.female_teeth)
 
     def female_in_mesh(self, points: np.ndarray) -> np.ndarray:
+        """Move female points from the female's own frame to the mesh frame.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Points about the female centre at the origin.
+
+        Returns
+        -------
+        (n, 2) float array, mm
+            ``points + (a, 0)``: about O2 = (a, 0).
+        """
         return np.asarray(points) + np.array([self.pair.center_distance, 0.0])
 
     def section(self, rotor: str, tolerance: float | None = None) -> shapely.Polygon:
-        """The rotor's transverse section as a valid polygon in its own frame, clipped to its tip
-        circle (generated curves may overshoot it by the rounding of the rack's corners)."""
+        """Return a rotor's transverse section as a valid polygon in its own frame.
+
+        The outline is clipped to the rotor's tip circle (generated curves may overshoot it by the
+        rounding of the rack's corners); of several pieces the largest is kept.
+
+        Parameters
+        ----------
+        rotor : {"male", "female"} or Side
+            Which rotor.
+        tolerance : float, mm, optional
+            Chord tolerance; default the pair's ``tolerance``.
+
+        Returns
+        -------
+        shapely.Polygon
+            The section, mm, centred at the origin.
+        """
         side = Side(rotor)
         outline = self.male_outline(tolerance) if side is Side.MALE else self.female_outline(tolerance)
         tip = side.pick(self.pair.male_tip_radius, self.pair.female_tip_radius)

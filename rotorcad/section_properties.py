@@ -55,7 +55,7 @@ class SectionValues:
 
 
 def _ccw(points: np.ndarray) -> np.ndarray:
-    """The closed outline as an (n, 2) array without the repeated end, counter-clockwise."""
+    """Return the closed outline as an (n, 2) array without the repeated end, counter-clockwise."""
     p = np.asarray(points, dtype=float)
     if p.ndim != 2 or p.shape[1] != 2 or len(p) < 3:
         raise DesignError("section outline", "at least 3 points (x, y)", p.shape)
@@ -167,7 +167,22 @@ def shear_correction(points: np.ndarray, samples: int = 4001) -> float:
 
 
 def shear_correction_over_turn(points: np.ndarray, turns: np.ndarray, samples: int = 2001) -> np.ndarray:
-    """kappa(gamma) of the section turned by each of ``turns`` (rad), shape (k,)."""
+    """Return the shear correction kappa(gamma) of the section turned by each angle (Rinder & Deix eq. 1).
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The closed section outline.
+    turns : (k,) float array, rad
+        Turns gamma of the section; kappa is taken for bending about the horizontal axis of the
+        turned section (:func:`shear_correction`).
+    samples : int
+        Strips of the integration.
+
+    Returns
+    -------
+    (k,) float array
+    """
     p = _ccw(points)
     out = np.empty(len(turns))
     for i, g in enumerate(np.asarray(turns, dtype=float)):  # a few dozen turns, each vectorised
@@ -176,5 +191,16 @@ def shear_correction_over_turn(points: np.ndarray, turns: np.ndarray, samples: i
 
 
 def circle_values(diameter: float) -> tuple[float, float]:
-    """Area (mm^2) and second moment (mm^4) of a full circle: pi d^2 / 4 and pi d^4 / 64."""
+    """Return the area and second moment of a full circle: pi d^2 / 4 and pi d^4 / 64.
+
+    Parameters
+    ----------
+    diameter : float, mm
+        Diameter d.
+
+    Returns
+    -------
+    area : float, mm²
+    second_moment : float, mm⁴
+    """
     return float(np.pi * diameter**2 / 4), float(np.pi * diameter**4 / 64)

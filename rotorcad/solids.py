@@ -29,7 +29,23 @@ from rotorcad.errors import DesignError
 
 @dataclass(frozen=True, eq=False)
 class HelicalSolid:
-    """A swept solid with what it was made from."""
+    """A swept solid with what it was made from.
+
+    Parameters
+    ----------
+    manifold : manifold3d.Manifold
+        The solid, mm, axis along z from 0 to ``length``.
+    section : shapely.Polygon
+        The swept section at z = 0 in the body's own frame, counter-clockwise, mm.
+    length : float, mm
+        Axial length.
+    lead : float, mm
+        Signed lead: > 0 right hand, < 0 left hand, ``inf`` for a straight extrusion.
+    layers : int
+        Number of ruled layers along z.
+    tolerance : float, mm
+        The surface tolerance the layers were chosen for.
+    """
 
     manifold: m3.Manifold
     section: shapely.Polygon  # at z = 0, in the body's own frame
@@ -40,27 +56,32 @@ class HelicalSolid:
 
     @property
     def volume(self) -> float:
+        """Volume of the triangulated solid, mm³."""
         return float(self.manifold.volume())
 
     @property
     def nominal_volume(self) -> float:
-        """Section area times length: what the exact solid holds."""
+        """Section area times length, mm³: what the exact solid holds."""
         return float(self.section.area * self.length)
 
     @property
     def volume_bound(self) -> float:
-        """|V - A L| <= P L tol (see the module docstring)."""
+        """Bound |V - A L| <= P L tol, mm³ (see the module docstring)."""
         return float(self.section.exterior.length * self.length * self.tolerance)
 
     @property
     def genus(self) -> int:
+        """Topological genus of the solid (0 for a solid without through holes)."""
         return int(self.manifold.genus())
 
     @cached_property
     def mesh(self) -> trimesh.Trimesh:
-        """Float64 triangle mesh (``to_mesh64``: ``to_mesh`` is float32, ~7 um on 100 mm parts),
-        with its face normals computed once here (component arithmetic, a few times faster than the
-        general cross product) so that writers need not."""
+        """Float64 triangle mesh of the solid, mm.
+
+        Made with ``to_mesh64`` (``to_mesh`` is float32, ~7 µm on 100 mm parts), with its face normals
+        computed once here (component arithmetic, a few times faster than the general cross product) so
+        that writers need not.
+        """
         m = self.manifold.to_mesh64()
         v = np.asarray(m.vert_properties)[:, :3]
         f = np.asarray(m.tri_verts)
@@ -74,24 +95,84 @@ class HelicalSolid:
         return trimesh.Trimesh(v, f, face_normals=n, process=False)
 
     def section_at(self, z: float) -> shapely.Geometry:
-        """The solid's slice at height z as shapely geometry."""
+        """Slice the solid at a height.
+
+        Parameters
+        ----------
+        z : float, mm
+            Height along the axis.
+
+        Returns
+        -------
+        shapely.Geometry
+            The slice (the union of its rings, made valid), mm; empty when z misses the solid.
+        """
         polys = self.manifold.slice(z).to_polygons()
         rings = [shapely.Polygon(p) for p in polys if len(p) >= 3]
         return shapely.make_valid(shapely.union_all(rings)) if rings else shapely.Polygon()
 
     def rotation_at(self, z: float) -> float:
-        """Angle (rad) by which the section at height z is turned from the one at z = 0."""
+        """Return the angle by which the section at height z is turned from the one at z = 0.
+
+        Parameters
+        ----------
+        z : float, mm
+            Height along the axis.
+
+        Returns
+        -------
+        float, rad
+            2 pi z / lead (0 for a straight extrusion).
+        """
         return 0.0 if np.isinf(self.lead) else 2.0 * np.pi * z / self.lead
 
 
 def layers_for(tolerance: float, wrap: float, r_max: float) -> int:
-    """Number of layers keeping the ruled-surface sag r_max dtheta^2 / 8 below tolerance / 2."""
+    """Count the layers that keep the ruled-surface sag r_max dtheta^2 / 8 below tolerance / 2.
+
+    Parameters
+    ----------
+    tolerance : float, mm
+        Surface tolerance.
+    wrap : float, rad
+        Total turn of the section over the length (its sign is ignored).
+    r_max : float, mm
+        Largest radius of the section.
+
+    Returns
+    -------
+    int
+        n = ceil(|wrap| sqrt(r_max / (4 tol))), at least 1.
+    """
     return max(1, int(np.ceil(abs(wrap) * np.sqrt(r_max / (4.0 * tolerance)))))
 
 
 def helical_solid(section: shapely.Polygon, lead: float, length: float, tolerance: float, phase: float = 0.0) -> HelicalSolid:
-    """Sweep ``section`` (own frame, counter-clockwise) helically: ``lead`` > 0 right hand, < 0 left
-    hand; ``phase`` turns the section at z = 0 (rad)."""
+    """Sweep a section helically into a solid (module docstring for the tolerance it meets).
+
+    Parameters
+    ----------
+    section : shapely.Polygon
+        Transverse section in its own frame (turned counter-clockwise here if it is not), mm; only
+        its exterior ring is swept.
+    lead : float, mm
+        Signed lead: > 0 right hand, < 0 left hand.
+    length : float, mm
+        Axial length.
+    tolerance : float, mm
+        Surface tolerance: sets the number of layers (:func:`layers_for`).
+    phase : float, rad
+        Turn of the section at z = 0, counter-clockwise.
+
+    Returns
+    -------
+    HelicalSolid
+
+    Raises
+    ------
+    DesignError
+        A tolerance or length that is not positive, or a lead that is zero or not finite.
+    """
     if not (np.isfinite(tolerance) and tolerance > 0):
         raise DesignError("tolerance", "a positive length in mm", tolerance)
     if not (np.isfinite(length) and length > 0):
@@ -121,9 +202,35 @@ def housing_solids(
     wall: float = HOUSING_WALL,
     segments: int = 720,
 ) -> tuple[m3.Manifold, m3.Manifold]:
-    """The housing of a pair: (block minus bores, bores alone). The bores are the two intersecting
-    cylinders of radii ``male_bore`` and ``female_bore`` (tip radius + radial clearance) about O1 and
-    O2; where they cross stand the housing cusps. ``segments`` polygonise a full circle."""
+    """Make the housing of a pair: the block minus the bores, and the bores alone.
+
+    The bores are the two intersecting cylinders of radii ``male_bore`` and ``female_bore`` (tip
+    radius + radial clearance) about O1 = (0, 0) and O2 = (a, 0); where they cross stand the
+    housing cusps. The block stands ``wall`` beyond the bores.
+
+    Parameters
+    ----------
+    center_distance : float, mm
+        Centre distance a.
+    male_bore, female_bore : float, mm
+        Bore radii.
+    length : float, mm
+        Length along z, from 0.
+    wall : float, mm
+        Wall beyond the bores.
+    segments : int
+        Segments that polygonise a full circle.
+
+    Returns
+    -------
+    tuple of (manifold3d.Manifold, manifold3d.Manifold)
+        (block minus bores, bores).
+
+    Raises
+    ------
+    DesignError
+        A bore radius that is not positive, or bores that do not overlap.
+    """
     for name, r in (("male bore", male_bore), ("female bore", female_bore)):
         if not (np.isfinite(r) and r > 0):
             raise DesignError(name, "a positive radius in mm", r)
@@ -141,8 +248,28 @@ def housing_solids(
 def helical_gear_solid(
     outline: np.ndarray, pitch_radius: float, helix_angle: float, face_width: float, tolerance: float
 ) -> HelicalSolid:
-    """A helical (or spur) gear: the transverse outline swept with lead h = 2 pi r / tan(beta)
-    (right hand for beta > 0); a spur gear (beta = 0) is a straight extrusion."""
+    """Sweep a gear's transverse outline into a helical (or spur) gear.
+
+    The lead is h = 2 pi r / tan(beta), right hand for beta > 0; a spur gear (beta = 0) is a
+    straight extrusion.
+
+    Parameters
+    ----------
+    outline : (n, 2) float array, mm
+        Closed transverse outline about the origin.
+    pitch_radius : float, mm
+        Pitch radius r (the lead is taken there).
+    helix_angle : float, rad
+        Helix angle beta at the pitch circle.
+    face_width : float, mm
+        Axial length.
+    tolerance : float, mm
+        Surface tolerance (:func:`helical_solid`).
+
+    Returns
+    -------
+    HelicalSolid
+    """
     section = shapely.Polygon(outline)
     if abs(helix_angle) < 1e-12:
         cs = m3.CrossSection(

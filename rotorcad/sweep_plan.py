@@ -79,7 +79,17 @@ class Parameter:
 
 @dataclass(frozen=True)
 class Variant:
-    """One design of a sweep: its number in the plan, its key and the values that differ from the base."""
+    """One design of a sweep: its number in the plan, its key and the values that differ from the base.
+
+    Parameters
+    ----------
+    index : int
+        Number of the variant in the plan, from 0.
+    key : str
+        Digest that identifies it across runs (:meth:`SweepPlan.variants`).
+    values : dict
+        ``table.key`` -> value of every varied parameter.
+    """
 
     index: int
     key: str
@@ -88,7 +98,25 @@ class Variant:
 
 @dataclass(frozen=True)
 class SweepPlan:
-    """A base design, the varied parameters and how to sample them."""
+    """A base design, the varied parameters and how to sample them.
+
+    Parameters
+    ----------
+    base : dict
+        The base design mapping (tables as a design file holds them).
+    parameters : tuple of Parameter
+        The varied design values.
+    sampling : Sampling
+        Grid, random or Latin hypercube.
+    samples : int
+        Variants drawn by random / Latin hypercube sampling (0 for a grid).
+    seed : int
+        Seed of the random numbers.
+    extras : tuple of Extra
+        Analyses added to the pair and Rinder's analysis.
+    clearance : float, mm
+        Normal clearance designed into the female for the "clearance" analysis.
+    """
 
     base: dict[str, Any]
     parameters: tuple[Parameter, ...]
@@ -100,9 +128,10 @@ class SweepPlan:
 
     @property
     def signature(self) -> str:
-        """A digest of what every variant shares: the base design, the extra analyses and the
-        designed clearance. A variant's key holds it, so that results of a changed base are never
-        taken for this plan's."""
+        """A digest (hex) of what every variant shares: the base design, the extra analyses and the designed clearance.
+
+        A variant's key holds it, so that results of a changed base are never taken for this plan's.
+        """
         shared = [self.base, sorted(e.value for e in self.extras), self.clearance]
         return hashlib.sha1(json.dumps(shared, sort_keys=True, default=str).encode()).hexdigest()
 
@@ -130,7 +159,7 @@ class SweepPlan:
         return out
 
     def _unit(self) -> np.ndarray:
-        """(samples, parameters) numbers in [0, 1): uniform or Latin hypercube."""
+        """Draw (samples, parameters) numbers in [0, 1): uniform or Latin hypercube."""
         d = len(self.parameters)
         if self.sampling is Sampling.LATIN_HYPERCUBE:
             from scipy.stats import qmc
@@ -140,6 +169,7 @@ class SweepPlan:
 
     @staticmethod
     def _draw(p: Parameter, u: np.ndarray) -> list[Any]:
+        """Map numbers ``u`` in [0, 1) to values of parameter ``p``: one of its values, or within its bounds."""
         if p.values is not None:
             return [p.values[i] for i in np.minimum((u * len(p.values)).astype(int), len(p.values) - 1)]
         lo, hi = p.bounds
@@ -156,6 +186,7 @@ class SweepPlan:
 
 
 def _plain(value: Any) -> Any:
+    """Turn numpy scalars into Python ones (for JSON and TOML)."""
     if isinstance(value, (np.integer,)):
         return int(value)
     if isinstance(value, (np.floating,)):
@@ -164,11 +195,12 @@ def _plain(value: Any) -> Any:
 
 
 def _number(value: Any) -> bool:
+    """Tell whether ``value`` is an int or a float (a bool is not)."""
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 def _parameter(name: str, spec: Any) -> Parameter:
-    """A [vary] entry: a list, {from, to, step} or {min, max}."""
+    """Read a [vary] entry: a list, {from, to, step} or {min, max}; raises :class:`DesignError` naming it."""
     table, _, key = name.partition(".")
     if table not in TABLES or not key:
         raise DesignError(f"[vary] '{name}'", "a design value named table.key with a table of " + ", ".join(TABLES), None)
@@ -195,8 +227,11 @@ def _parameter(name: str, spec: Any) -> Parameter:
 
 
 def _check_values(parameter: Parameter, base: dict[str, Any]) -> None:
-    """A varied key must be a key of the design (of its family for [profile]) and every value of the
-    type the design takes there: refused before anything is computed, naming the [vary] entry."""
+    """Check that a varied key is a key of the design and every value is of the type the design takes there.
+
+    For [profile] the key must be one of the base family's parameters. Refused with
+    :class:`DesignError` before anything is computed, naming the [vary] entry.
+    """
     from rotorcad.design import HOUSING_KEYS, OPERATING_KEYS, PAIR_KEYS
     from rotorcad.rotor_families import FAMILIES
 
@@ -232,7 +267,7 @@ def _check_values(parameter: Parameter, base: dict[str, Any]) -> None:
 
 
 def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
-    """The plan of a sweep file's mapping, with its base design already read.
+    """Make the plan of a sweep file's mapping, with its base design already read.
 
     Parameters
     ----------
@@ -240,6 +275,17 @@ def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
         The sweep file as TOML holds it ([sweep], [vary]).
     base : dict
         The base design mapping (its tables as a design file holds them).
+
+    Returns
+    -------
+    SweepPlan
+
+    Raises
+    ------
+    DesignError
+        An unknown table or key, a bad method, analysis, seed, sample count or clearance, a [vary]
+        entry that is not a design value of the right type, bounds with method grid, or more than
+        :data:`MAX_VARIANTS` variants.
     """
     for table in data:
         if table not in ("sweep", "vary", "base"):
@@ -286,7 +332,20 @@ def sweep_plan(data: dict[str, Any], base: dict[str, Any]) -> SweepPlan:
 
 
 def apply(base: dict[str, Any], values: dict[str, Any]) -> dict[str, Any]:
-    """The base design mapping with a variant's values put in (a new mapping; the base is kept)."""
+    """Put a variant's values into the base design mapping.
+
+    Parameters
+    ----------
+    base : dict
+        The base design mapping (kept as it is).
+    values : dict
+        ``table.key`` -> value.
+
+    Returns
+    -------
+    dict
+        A new mapping (each table copied).
+    """
     out = {table: dict(content) if isinstance(content, dict) else content for table, content in base.items()}
     for name, value in values.items():
         table, _, key = name.partition(".")

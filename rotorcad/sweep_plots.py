@@ -1,5 +1,7 @@
-"""Pictures of a design sweep: the Pareto front of two objectives and the effect of each varied
-parameter on an objective (matplotlib figures from plain arrays)."""
+"""Pictures of a design sweep (matplotlib figures from plain arrays).
+
+The Pareto front of two objectives and the effect of each varied parameter on an objective.
+"""
 
 from __future__ import annotations
 
@@ -11,18 +13,18 @@ from rotorcad.plot_style import styled
 
 
 def pareto_mask(x: np.ndarray, y: np.ndarray, smaller_x: bool = True, smaller_y: bool = True) -> np.ndarray:
-    """The variants no other beats in both objectives (the Pareto front).
+    """Select the variants no other beats in both objectives (the Pareto front).
 
     Parameters
     ----------
-    x, y : (n,) float
+    x, y : (n,) float array
         Two objectives (NaN rows are never on the front).
     smaller_x, smaller_y : bool
         Whether smaller is better for each.
 
     Returns
     -------
-    (n,) bool
+    (n,) bool array
     """
     x = np.where(np.isfinite(x), x if smaller_x else -x, np.inf)
     y = np.where(np.isfinite(y), y if smaller_y else -y, np.inf)
@@ -49,9 +51,21 @@ _LENGTH_WORDS = ("distance", "radius", "lead", "length", "clearance", "land", "w
 
 
 def column_label(name: str) -> str:
-    """An axis label with its unit for a sweep column: a result (its unit at the end of its name,
-    ``blow_hole_area_mm2`` -> ``blow hole area [mm²]``) or a varied design value (``pair.lead``
-    -> ``pair.lead [mm]``; counts, shares and factors ``[–]``)."""
+    """Return an axis label with its unit for a sweep column.
+
+    A result has its unit at the end of its name (``blow_hole_area_mm2`` -> ``blow hole area [mm²]``);
+    a varied design value is ``table.key`` (``pair.lead`` -> ``pair.lead [mm]``; counts, shares and
+    factors ``[–]``).
+
+    Parameters
+    ----------
+    name : str
+        The column's name.
+
+    Returns
+    -------
+    str
+    """
     if "." in name:  # a varied value: "table.key" of the design
         key = name.split(".", 1)[1]
         if key.endswith("_deg"):
@@ -84,13 +98,13 @@ def plot_pareto(
     smaller: tuple[bool, bool] = (True, True),
     case: str = "",
 ) -> Figure:
-    """Every variant in the plane of two objectives, coloured by a third, the front drawn.
+    """Draw every variant in the plane of two objectives, coloured by a third, the front drawn.
 
     Parameters
     ----------
-    x, y : (n,) float
+    x, y : (n,) float array
         The two objectives of every variant.
-    colour : (n,) float, optional
+    colour : (n,) float array, optional
         A third column that colours the points.
     names : tuple of str
         The columns' names (their units follow from them, :func:`column_label`).
@@ -98,6 +112,10 @@ def plot_pareto(
         Whether smaller is better for x and y.
     case : str
         The sweep (its file name), for the title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     fig = ps.new_figure(9.0, 6.0)
     ax = fig.subplots()
@@ -118,18 +136,24 @@ def plot_pareto(
 
 @styled
 def plot_effects(parameters: dict[str, np.ndarray], objective: np.ndarray, name: str, case: str = "") -> Figure:
-    """One panel per varied parameter: the objective over the parameter's values (every variant
-    as a point, the mean per value as a line).
+    """Draw one panel per varied parameter: the objective over the parameter's values.
+
+    Every variant as a point, and (for 2 to 50 distinct values) the mean per value as a line.
 
     Parameters
     ----------
-    parameters : dict of (n,) float
+    parameters : dict of (n,) float arrays
         The varied values by column name.
-    objective : (n,) float
+    objective : (n,) float array
+        The objective of every variant.
     name : str
         The objective's column name.
     case : str
         The sweep (its file name), for the title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     n = max(1, len(parameters))
     cols = min(3, n)

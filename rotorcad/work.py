@@ -1,5 +1,7 @@
-"""The work a request implies, estimated before it starts (issue 15: refuse what this machine cannot
-do, with the largest value that would work, instead of growing to gigabytes or crashing).
+"""The work a request implies, estimated before it starts.
+
+Issue 15: refuse what this machine cannot do, with the largest value that would work, instead of
+growing to gigabytes or crashing.
 
 A profile sampled to a chord tolerance t has a number of points that grows like 1/sqrt(t) (the
 sagitta of a chord of length c on radius R is c^2 / (8 R)); a helical solid (:mod:`rotorcad.solids`)

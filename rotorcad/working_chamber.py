@@ -1,5 +1,7 @@
-"""The working chamber of a screw compressor from the rotors themselves: its transverse area and
-the pressure force it puts on each rotor, over one working cycle; its volume curve.
+"""The working chamber of a screw compressor from the rotors themselves.
+
+Its transverse area and the pressure force it puts on each rotor, over one working cycle; its
+volume curve.
 
 Conventions (documented choices; Rinder & Deix do not fix them in the text that survives):
 
@@ -118,9 +120,23 @@ class ChamberTable:
         return self.lead / (2 * np.pi) * (np.interp(hi, nodes, cum) - np.interp(lo, nodes, cum))
 
     def force_at(self, psi: np.ndarray, rotor: str) -> np.ndarray:
-        """Force per unit length and overpressure (mm) at phases ``psi`` (any shape, rad), shape
-        (..., 2), linear between the table's phases; zero outside :attr:`span` (those sections
-        belong to other chambers)."""
+        """Return the force of a unit overpressure per unit length on a rotor at flute phases.
+
+        Linear between the table's phases; zero outside :attr:`span` (those sections belong to other
+        chambers).
+
+        Parameters
+        ----------
+        psi : float array, rad
+            Flute phases, any shape.
+        rotor : {"male", "female"}
+            Which rotor.
+
+        Returns
+        -------
+        (..., 2) float array, mm
+            Force per unit length and unit overpressure (N/mm per N/mm²), x and y.
+        """
         table = Side(rotor).pick(self.male_force, self.female_force)
         psi = np.asarray(psi, dtype=float)
         start, stop = self.span
@@ -132,7 +148,7 @@ class ChamberTable:
 
 
 def _sector(center: tuple[float, float], radius: float, start: float, stop: float, within: shapely.Geometry) -> shapely.Geometry:
-    """The circular sector about ``center`` from angle ``start`` to ``stop`` (rad), cut to ``within``."""
+    """Return the circular sector about ``center`` from angle ``start`` to ``stop`` (rad), cut to ``within``."""
     t = np.linspace(start, stop, 9)
     r = 1.5 * radius / np.cos((stop - start) / 16)  # beyond the tip circle between the 9 rays
     pts = np.vstack([[center], np.c_[center[0] + r * np.cos(t), center[1] + r * np.sin(t)]])
@@ -196,8 +212,11 @@ class _Section:
 
     @staticmethod
     def force(gas: shapely.Geometry, near: shapely.Geometry) -> np.ndarray:
-        """The outward normal times length summed over the edges of ``gas`` that lie in the band
-        ``near`` about a rotor (mm): the force of a unit overpressure on that rotor. (2,) float."""
+        """Sum the outward normal times length over the edges of ``gas`` that lie in the band ``near``.
+
+        The band lies about a rotor, so the sum is the force of a unit overpressure on that rotor: a (2,)
+        float array, mm (N per N/mm² of overpressure, per mm of length).
+        """
         total = np.zeros(2)
         for poly in getattr(gas, "geoms", [gas]):  # a handful of pieces
             if poly.is_empty or not isinstance(poly, shapely.Polygon):

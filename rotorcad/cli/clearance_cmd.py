@@ -73,9 +73,11 @@ INTERFERENCE_THRESHOLD = 2e-3
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def clearance(**opts: Any) -> None:
-    """Meshing clearance of a screw-rotor pair from measured profile points (Wu & Chi): the normal
-    racks of both rotors, brought into contact, the normal clearance along the female's rack, and
-    the clearance band on the 3D contact line (area, equal clearance, wetted perimeter)."""
+    """Meshing clearance of a screw-rotor pair from measured profile points (Wu & Chi).
+
+    The normal racks of both rotors, brought into contact, the normal clearance along the female's
+    rack, and the clearance band on the 3D contact line (area, equal clearance, wetted perimeter).
+    """
     mc = _evaluate(opts)
     try:
         result = {
@@ -187,8 +189,10 @@ def _thermal(opts: dict[str, Any]) -> ThermalState | None:
 
 
 def _plot(mc: MeshingClearance, opts: dict[str, Any]):
-    """The clearance pictures (:func:`rotorcad.clearance_plotting.plot_clearance`), titled with
-    the state (cold or hot, temperatures, contact flank)."""
+    """Draw the clearance pictures (:func:`rotorcad.clearance_plotting.plot_clearance`).
+
+    Titled with the state (cold or hot, temperatures, contact flank).
+    """
     from rotorcad.clearance_plotting import clearance_state, plot_clearance
 
     return plot_clearance(mc, clearance_state(mc, _thermal(opts), opts["reference_temperature"]))

@@ -30,7 +30,7 @@ MAX_DESIGN_BYTES = 2**20
 
 
 def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
-    """The mapping a TOML design (or sweep) file holds: the one place that opens design files.
+    """Read the mapping a TOML design (or sweep) file holds: the one place that opens design files.
 
     Parameters
     ----------
@@ -62,29 +62,87 @@ def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
 
 
 def load_gear_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, dict[str, Any]]:
-    """A gear design file read (unless its mapping ``data`` was read already) and checked by
-    :func:`rotorcad.design.gear_design`; raises :class:`DesignError`."""
+    """Read a gear design file and check it (:func:`rotorcad.design.gear_design`).
+
+    Parameters
+    ----------
+    path : Path
+        The design file.
+    data : dict, optional
+        Its mapping, if the file was read already (it is then not read again).
+
+    Returns
+    -------
+    dict
+        ``{"gear": {...}, "mate": {...}}``.
+
+    Raises
+    ------
+    DesignError
+        A file that cannot be read, or a bad design.
+    """
     from rotorcad.design import gear_design
 
     return gear_design(load_toml(path) if data is None else data)
 
 
 def load_rotor_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, Any]:
-    """A screw-rotor design file read (unless its mapping ``data`` was read already) and checked by
-    :func:`rotorcad.design.rotor_design`; a points file is found beside the design file. Raises
-    :class:`DesignError`."""
+    """Read a screw-rotor design file and check it (:func:`rotorcad.design.rotor_design`).
+
+    A points file named in the design is found beside the design file.
+
+    Parameters
+    ----------
+    path : Path
+        The design file.
+    data : dict, optional
+        Its mapping, if the file was read already (it is then not read again).
+
+    Returns
+    -------
+    dict
+        The checked design (:func:`rotorcad.design.rotor_design`).
+
+    Raises
+    ------
+    DesignError
+        A file that cannot be read, or a bad design.
+    """
     from rotorcad.design import rotor_design
 
     return rotor_design(load_toml(path) if data is None else data, Path(path).parent)
 
 
 def reraise(exc: DesignError, names: dict[str, str]) -> InputError:
-    """A library :class:`DesignError` as a CLI error naming the option the user typed."""
+    """Turn a library :class:`DesignError` into a CLI error naming the option the user typed.
+
+    Parameters
+    ----------
+    exc : DesignError
+        The library's error.
+    names : dict of str to str
+        Library parameter name -> option name (e.g. ``"teeth"`` -> ``"--teeth"``).
+
+    Returns
+    -------
+    InputError
+        To be raised by the caller.
+    """
     return InputError(exc.sentence(names.get(exc.param, exc.param)))
 
 
 def plain(value: Any) -> Any:
-    """numpy scalars and arrays to JSON-ready Python values; non-finite numbers to None."""
+    """Convert numpy scalars and arrays to JSON-ready Python values; non-finite numbers to None.
+
+    Parameters
+    ----------
+    value : object
+        A value, or dicts, lists and tuples of them (converted throughout).
+
+    Returns
+    -------
+    object
+    """
     if isinstance(value, dict):
         return {k: plain(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -102,6 +160,7 @@ def plain(value: Any) -> Any:
 
 
 def emit_json(data: dict[str, Any]) -> None:
+    """Print ``data`` as indented JSON on stdout (numpy values converted by :func:`plain`)."""
     click.echo(json.dumps(plain(data), indent=2))
 
 
@@ -152,15 +211,38 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
 
 
 def unit_of(key: str) -> str:
-    """The unit of a result key as the command prints it (CONTRACT.md: lengths mm, areas mm², volumes
-    mm³, angles deg, speeds m/s, flows L/min); "1" for counts and ratios, "" if not known."""
+    """Return the unit of a result key as the command prints it.
+
+    CONTRACT.md: lengths mm, areas mm², volumes mm³, angles deg, speeds m/s, flows L/min, read off
+    the key's name.
+
+    Parameters
+    ----------
+    key : str
+        A result key, e.g. ``blow_hole_area``.
+
+    Returns
+    -------
+    str
+        The unit; "1" for counts and ratios, "" if not known.
+    """
     if any(word in key for word in DIMENSIONLESS):
         return "1"
     return next((unit for pattern, unit in _UNIT_RULES if pattern in key), "")
 
 
 def print_table(title: str, rows: dict[str, Any]) -> None:
-    """The result as a table of quantity, value and unit (mm unless the unit column says else)."""
+    """Print the result as a table of quantity, value and unit (mm unless the unit column says else).
+
+    Nested values (dicts, lists) are left out.
+
+    Parameters
+    ----------
+    title : str
+        Title of the table.
+    rows : dict
+        Result keys and values.
+    """
     table = Table(title=title, show_header=True, header_style="bold")
     table.add_column("quantity")
     table.add_column("value", justify="right")
@@ -182,8 +264,22 @@ def print_table(title: str, rows: dict[str, Any]) -> None:
 
 
 def print_pair_table(title: str, rows: dict[str, Any], mate: dict[str, Any], names: tuple[str, str] = ("gear", "mate")) -> None:
-    """A table of quantity, the value of each of two bodies (the mate's where it has one) and unit;
-    the quantities of the pair alone (centre distance, contact ratio, ...) in the first column."""
+    """Print a table of quantity, the value of each of two bodies and unit.
+
+    The mate's value stands where it has one; the quantities of the pair alone (centre distance,
+    contact ratio, ...) fill the first column only.
+
+    Parameters
+    ----------
+    title : str
+        Title of the table.
+    rows : dict
+        Result keys and values of the first body and of the pair.
+    mate : dict
+        Result keys and values of the second body.
+    names : (str, str)
+        Headings of the two value columns.
+    """
     table = Table(title=title, show_header=True, header_style="bold")
     table.add_column("quantity")
     table.add_column(names[0], justify="right")
@@ -203,14 +299,32 @@ def print_pair_table(title: str, rows: dict[str, Any], mate: dict[str, Any], nam
 
 
 class Outputs:
-    """Collects the files a command will write, checks their folders up front, writes them all
-    or none (see :mod:`exports.atomic`)."""
+    """Collect the files a command will write, check their folders up front, write them all or none.
+
+    See :mod:`exports.atomic`.
+    """
 
     def __init__(self) -> None:
         self._items: list[tuple[Path, Writer]] = []
         self._options: dict[Path, str] = {}
 
     def add(self, path: Path | None, writer: Writer, option: str) -> None:
+        """Add a file to write, checked at once.
+
+        Parameters
+        ----------
+        path : Path or None
+            The file (None: nothing to add).
+        writer : Writer
+            Writes the file given the (temporary) path.
+        option : str
+            The option that named the file, for error sentences.
+
+        Raises
+        ------
+        InputError
+            A target that cannot be written (:func:`exports.atomic.check_writable`).
+        """
         if path is None:
             return
         try:
@@ -221,9 +335,21 @@ class Outputs:
         self._options[Path(path)] = option
 
     def add_figure(self, path: Path | None, figure: Callable[[], Any], option: str) -> None:
-        """A picture: ``figure()`` makes the matplotlib figure, saved as PNG, SVG or PDF by the
-        suffix of ``path`` (PNG without one; any other suffix is refused naming ``option``), in
-        the style of :mod:`rotorcad.plot_style` (cut to what is drawn, labels tagged in SVG)."""
+        """Add a picture to write.
+
+        ``figure()`` makes the matplotlib figure, saved as PNG, SVG or PDF by the suffix of ``path``
+        (PNG without one; any other suffix is refused naming ``option``), in the style of
+        :mod:`rotorcad.plot_style` (cut to what is drawn, labels tagged in SVG).
+
+        Parameters
+        ----------
+        path : Path or None
+            The file (None: nothing to add).
+        figure : callable
+            Makes the figure when the file is written.
+        option : str
+            The option that named the file.
+        """
         if path is None:
             return
         fmt = plot_format(path, option)
@@ -236,14 +362,30 @@ class Outputs:
         self.add(path, write, option)
 
     def write(self, pool: WorkerPool | None = None) -> list[Path]:
-        """Write every file or none; background writers run in ``pool``'s worker if given."""
+        """Write every file or none; background writers run in ``pool``'s worker if given.
+
+        Parameters
+        ----------
+        pool : WorkerPool, optional
+            Worker for the background writers.
+
+        Returns
+        -------
+        list of Path
+            The files written.
+
+        Raises
+        ------
+        InputError
+            A write that failed, naming the option and its file.
+        """
         try:
             return write_all(self._items, pool)
         except OSError as exc:
             raise InputError(self._failure(exc)) from None
 
     def _failure(self, exc: OSError) -> str:
-        """The sentence for a failed write, naming the option and its file (never the temporary)."""
+        """Return the sentence for a failed write, naming the option and its file (never the temporary)."""
         failed = Path(str(exc.filename)) if exc.filename else None
         for path, option in self._options.items():
             if failed is not None and (
@@ -258,7 +400,25 @@ PLOT_FORMATS = ("png", "svg", "pdf")
 
 
 def plot_format(path: Path, option: str = "--plot") -> str:
-    """The picture format of ``path`` from its suffix (PNG, SVG or PDF; PNG without one)."""
+    """Return the picture format of ``path`` from its suffix (PNG, SVG or PDF; PNG without one).
+
+    Parameters
+    ----------
+    path : Path
+        The picture's file.
+    option : str
+        The option that named it.
+
+    Returns
+    -------
+    str
+        ``"png"``, ``"svg"`` or ``"pdf"``.
+
+    Raises
+    ------
+    InputError
+        Any other suffix.
+    """
     suffix = Path(path).suffix.lower().lstrip(".")
     if not suffix:
         return "png"
@@ -268,7 +428,25 @@ def plot_format(path: Path, option: str = "--plot") -> str:
 
 
 def output_folder(path: Path | None) -> Path | None:
-    """Create ``--out DIR`` if needed; refuse a path that is a file or cannot be created."""
+    """Create the ``--out`` folder if needed; refuse a path that is a file or cannot be created.
+
+    Folders made here are recorded in :data:`CREATED_FOLDERS`, so that a failed run removes them.
+
+    Parameters
+    ----------
+    path : Path or None
+        The folder (None: no folder).
+
+    Returns
+    -------
+    Path or None
+        The folder.
+
+    Raises
+    ------
+    InputError
+        A path that is a file, or a folder that cannot be created.
+    """
     if path is None:
         return None
     path = Path(path)
@@ -288,8 +466,10 @@ CREATED_FOLDERS: list[Path] = []
 
 
 def remove_created_folders() -> None:
-    """Remove the folders this run created that are still empty, deepest first (a failed run
-    leaves no folder behind); forget them all."""
+    """Remove the folders this run created that are still empty, deepest first; forget them all.
+
+    A failed run leaves no folder behind.
+    """
     while CREATED_FOLDERS:
         folder = CREATED_FOLDERS.pop(0)
         try:

@@ -1,5 +1,7 @@
-"""``rotorcad coupling``: lubricant film of a gear coupling with barrel-shaped teeth (CONTRACT.md;
-Belkov, Maksimov & Shitikov)."""
+"""``rotorcad coupling``: lubricant film of a gear coupling with barrel-shaped teeth.
+
+CONTRACT.md; after Belkov, Maksimov & Shitikov (:mod:`rotorcad.coupling`).
+"""
 
 from __future__ import annotations
 
@@ -130,6 +132,10 @@ mean_sliding_velocity, mean_entraining_velocity, max_rolling_velocity, max_axial
 )
 @click.option("--quiet", is_flag=True, help="No progress output (there is none).")
 def coupling(**opts: Any) -> None:
+    """Run ``rotorcad coupling``: check the options, analyse the coupling, print and write the results.
+
+    The help text the user sees is :data:`HELP` (given to click), not this docstring.
+    """
     _check_inputs(opts)
     c = _build(opts)
     r = analyse(c)

@@ -38,8 +38,11 @@ if TYPE_CHECKING:
 @click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the simulated tooth over the analytic one.")
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def cut(design: Path | None, **opts: Any) -> None:
-    """Cut a gear with the ISO 53 basic-rack tool (a trapezoidal hob) by polygon booleans and compare
-    it with the analytic envelope; undercut radius from the simulation and from Kollek's model."""
+    """Cut a gear with the ISO 53 basic-rack tool (a trapezoidal hob) by polygon booleans.
+
+    The simulated gear is compared with the analytic envelope; the undercut radius comes from the
+    simulation and from Kollek & Osiński's model (eq. 1).
+    """
     if opts.get("hob_addendum") is not None:
         if not (np.isfinite(opts["hob_addendum"]) and 0.1 <= opts["hob_addendum"] <= 3.0):
             raise InputError(f"--hob-addendum must be from 0.1 to 3 (factor of the module) (got {opts['hob_addendum']}).")
@@ -97,9 +100,12 @@ def cut(design: Path | None, **opts: Any) -> None:
 
 
 def _undercut_radius(g, res, tol: float) -> float | None:
-    """r'_z of the simulated profile, None without undercut. The point where the simulated flank
-    leaves the involute is searched within 1.5 x the scallop, then within the flank deviation the
-    simulation reached (a budget-limited run); a profile with no involute left is refused."""
+    """Return r'_z of the simulated profile, mm; None without undercut.
+
+    The point where the simulated flank leaves the involute is searched within 1.5 x the scallop,
+    then within the flank deviation the simulation reached (a budget-limited run); a profile with no
+    involute left is refused (:class:`InputError`).
+    """
     if not g.undercut:
         return None
     for within in (1.5 * tol, 1.5 * max(tol, res.flank_deviation), 0.02 * g.module):
@@ -112,8 +118,11 @@ def _undercut_radius(g, res, tol: float) -> float | None:
 
 
 def _work(g, tol: float, positions: int | None) -> tuple[int, int] | None:
-    """:func:`hob.cutting.cutting_work`, or None for a scallop so small that even sampling the tool
-    would not fit (below a billionth of the module: `--tolerance 3e-198` was an internal error)."""
+    """Return :func:`hob.cutting.cutting_work`, or None for a scallop too small to estimate.
+
+    None below a billionth of the module, where even sampling the tool would not fit
+    (`--tolerance 3e-198` was an internal error).
+    """
     if tol < 1e-9 * g.module:
         return None
     try:
@@ -123,8 +132,10 @@ def _work(g, tol: float, positions: int | None) -> tuple[int, int] | None:
 
 
 def _check_work(g, tol: float, positions: int | None) -> None:
-    """Refuse, before it starts, a simulation whose first pass alone would exceed the budget of
-    :data:`hob.cutting.MAX_UNION_VERTICES`, naming the coarsest setting that fits."""
+    """Refuse a simulation whose first pass alone would exceed :data:`hob.cutting.MAX_UNION_VERTICES`.
+
+    Refused before it starts, with an :class:`InputError` naming the coarsest setting that fits.
+    """
     work = _work(g, tol, positions)
     if work is not None and 2 * work[0] * work[1] <= MAX_UNION_VERTICES:
         return
@@ -141,9 +152,11 @@ def _check_work(g, tol: float, positions: int | None) -> None:
 
 
 def _coarsest_needed(g, tol: float) -> float:
-    """The finest scallop height (two significant digits, rounded up) whose first pass fits
-    :data:`hob.cutting.MAX_UNION_VERTICES`, by bisection on the estimate (positions and tool
-    vertices each grow like 1/sqrt(tolerance), but the vertices in steps)."""
+    """Return the finest scallop height (mm, two significant digits, rounded up) whose first pass fits.
+
+    It must fit :data:`hob.cutting.MAX_UNION_VERTICES`; found by bisection on the estimate (positions
+    and tool vertices each grow like 1/sqrt(tolerance), but the vertices in steps).
+    """
 
     def fits(t: float) -> bool:
         work = _work(g, t, None)
@@ -169,10 +182,13 @@ def _half_angle(tooth: shapely.Polygon, radius: float) -> float:
 
 
 def _whole_gear(tooth: shapely.Polygon, z: int, module: float = 1.0) -> shapely.Polygon:
-    """The whole simulated gear from tooth 0's sector, as one closed outline: the sector's outline
-    without its two radii, turned z times and chained. Failing that, a union of the turned sectors,
-    which meet along radial lines only up to rounding, so the slivers between them (which took the
-    outline through the centre) are closed by a mitred closing of a millionth of the module."""
+    """Make the whole simulated gear from tooth 0's sector, as one closed outline.
+
+    The sector's outline without its two radii, turned z times and chained. Failing that, a union of
+    the turned sectors, which meet along radial lines only up to rounding, so the slivers between
+    them (which took the outline through the centre) are closed by a mitred closing of a millionth of
+    the module.
+    """
     ring = np.asarray(shapely.geometry.polygon.orient(tooth, 1.0).exterior.coords)[:-1]
     apex = np.flatnonzero(np.hypot(*ring.T) <= 1e-12 * max(1.0, float(np.abs(ring).max())))
     if len(apex) == 1:  # tooth 0's outline without the two radii to the centre, turned z times and chained
@@ -214,8 +230,10 @@ def _drawing(g, whole: shapely.Polygon) -> Drawing:
 
 
 def _plot(g, res, tolerance: float) -> Figure:
-    """The simulated tooth over the analytic one, the deviation magnified along the normal and
-    over the radius (:func:`hob.plotting.plot_cut`)."""
+    """Draw the simulated tooth over the analytic one (:func:`hob.plotting.plot_cut`).
+
+    The deviation is magnified along the normal and shown over the radius.
+    """
     from hob.plotting import plot_cut
 
     return plot_cut(g, res, tolerance)

@@ -23,7 +23,11 @@ SWEEP_ANGLES = 100  # male angles over one male pitch
 
 
 def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
-    """A shaft end from the design: [[length, diameter], ...] in mm."""
+    """Read a shaft end from the design: [[length, diameter], ...] in mm.
+
+    Returns the pieces as a tuple of (length, diameter) pairs (empty when ``value`` is None); anything
+    else is refused with :class:`InputError` naming ``[deflection] key``.
+    """
     if value is None:
         return ()
     ok = isinstance(value, list) and all(
@@ -57,12 +61,14 @@ def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
 def deflect(
     design: Path, angle: float | None, terms: int | None, indicator: Path | None, as_json: bool, plot: Path | None, quiet: bool
 ) -> None:
-    """Deflection of the male and female under the pressure of the working chambers (Rinder & Deix):
-    section values of the real profiles, the equivalent round bar (eqs. 2-4), the chambers' volume
+    """Deflection of the male and female under the pressure of the working chambers (Rinder & Deix).
+
+    Section values of the real profiles, the equivalent round bar (eqs. 2-4), the chambers' volume
     curve and pressure ([operating]: suction and discharge pressure, polytropic exponent, volume
     ratio or control edge, or an indicator diagram), the line loads (eqs. 5-6) and the deflection
     lines by Ritz-Galerkin (eqs. 7-9), swept over one male pitch for the worst angle (eq. 10); with
-    shaft ends in [deflection] also the whole shafts on their bearings."""
+    shaft ends in [deflection] also the whole shafts on their bearings.
+    """
     try:
         settings = load_rotor_design(design)
     except DesignError as exc:
@@ -200,10 +206,12 @@ def deflect(
 
 @styled
 def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, shafts: bool, case: str = "") -> Figure:
-    """Deflection lines of both rotors at the chosen angle (w_x, w_y in the rotors' frame: x from O1
-    to O2, y turned 90 deg counter-clockwise; |w|), the helical part's end faces marked on a shaft,
-    and the largest deflection over one male pitch with the chosen angle marked (Rinder & Deix
-    Figs. 9 and 10)."""
+    """Draw the deflection lines of both rotors and the largest deflection over one male pitch.
+
+    The lines at the chosen angle (w_x, w_y in the rotors' frame: x from O1 to O2, y turned 90 deg
+    counter-clockwise; |w|), the helical part's end faces marked on a shaft, and the largest
+    deflection over one male pitch with the chosen angle marked (Rinder & Deix Figs. 9 and 10).
+    """
     fig = ps.new_figure(12.0, 7.6)
     axes = fig.subplots(2, 2)
     length = model.pair.length

@@ -47,7 +47,10 @@ def _rotor_options(design: Path) -> dict[str, Any]:
 
 
 def _design_settings(design: Path, data: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The rotor design checked (from its mapping ``data`` if the file was read already)."""
+    """Check the rotor design (from its mapping ``data`` if the file was read already).
+
+    A bad design is refused in one sentence (:class:`InputError`).
+    """
     try:
         return load_rotor_design(design, data)
     except DesignError as exc:
@@ -55,7 +58,7 @@ def _design_settings(design: Path, data: dict[str, Any] | None = None) -> dict[s
 
 
 def _read_design(design: Path) -> dict[str, Any]:
-    """The design file's mapping, read once; a file that cannot be read is refused in one sentence."""
+    """Read the design file's mapping, once; a file that cannot be read is refused in one sentence."""
     try:
         return load_toml(design)
     except DesignError as exc:
@@ -115,10 +118,12 @@ def export(
     as_json: bool,
     quiet: bool,
 ) -> None:
-    """Helical male and female rotor solids of a design, written in each format (one file per body
-    and format; the female is placed in mesh at (a, 0) at the male angle --angle). With a housing,
-    the block minus the two bores and the bores alone are written as meshes and STEP too. A gear
-    design ([gear], optional [mate] and face_width) gives the gear and its mate in mesh."""
+    """Helical male and female rotor solids of a design, written in each format.
+
+    One file per body and format; the female is placed in mesh at (a, 0) at the male angle --angle.
+    With a housing, the block minus the two bores and the bores alone are written as meshes and STEP
+    too. A gear design ([gear], optional [mate] and face_width) gives the gear and its mate in mesh.
+    """
     data = _read_design(design)
     if is_gear_design(data):
         _export_gear(design, formats, out, tolerance, as_json, data)
@@ -160,8 +165,10 @@ def export(
         progress = Steps("sweeping solids", 2, quiet).start()
 
         def body_mesh(body: str) -> _SweptBody:
-            """The body swept and meshed in place when a writer first needs it (while the worker
-            writes STEP and DXF); the manifold is let go once meshed (some 150 MB a rotor)."""
+            """Sweep and mesh the body in place when a writer first needs it (while the worker writes STEP and DXF).
+
+            The manifold is let go once meshed (some 150 MB a rotor).
+            """
             if body not in swept:
                 made = helical_solid(sections[body], leads[body], pair.length, tol)
                 mesh = made.mesh
@@ -334,8 +341,11 @@ class _SweptBody(NamedTuple):
 
 
 def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[list[SectionSegment], np.ndarray]:
-    """The section of one rotor as segments (its exact pieces, sampled with their tangents, turned
-    by ``turn``) and as a fine polyline for the deviation check."""
+    """Return the section of one rotor as segments and as a fine polyline for the deviation check.
+
+    The segments are its exact pieces, sampled to ten times the tolerance with their tangents; the
+    polyline is sampled to a hundredth of it; both turned by ``turn`` (rad).
+    """
     # the B-splines interpolate points and exact tangents (Hermite): points at 10 x the tolerance in
     # chord keep the faces within 0.06 um of the helicoid on the samples (measured), and the face
     # check below refuses any that would not be
@@ -347,7 +357,7 @@ def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[lis
 def _export_gear(
     design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool, data: dict[str, Any] | None = None
 ) -> None:
-    """The gear branch of ``export``: formats default to stl, step and dxf, tolerance to 5 um."""
+    """Run the gear branch of ``export``: formats default to stl, step and dxf, tolerance to 5 µm."""
     fmts = [f.strip().lower() for f in (formats or "stl,step,dxf").split(",")]
     tol = 0.005 if tolerance is None else tolerance
     if not (np.isfinite(tol) and 0 < tol <= 1.0):
@@ -379,9 +389,11 @@ def _export_gear(
 
 
 def _check_solid_work(rotors, tol: float, label: str) -> None:
-    """Refuse, before any solid is swept, a request whose two solids would have more than
-    :data:`rotorcad.work.MAX_TRIANGLES` triangles, naming the smallest tolerance that fits (or the
-    lead or the size when no tolerance up to 1 mm does)."""
+    """Refuse a request whose two solids would have more than :data:`rotorcad.work.MAX_TRIANGLES` triangles.
+
+    Refused before any solid is swept, naming the smallest tolerance that fits (or the lead or the
+    size when no tolerance up to 1 mm does).
+    """
     pair = rotors.pair
     coarse = max(tol / 2, 0.05)
     total = 0.0
@@ -410,8 +422,11 @@ def _check_solid_work(rotors, tol: float, label: str) -> None:
 
 
 def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, clearance: float) -> tuple[RotorPair, float]:
-    """The pair as assembled: the design's rotors at another centre distance (the bores follow)
-    and the female's extra turn (rad); bad values are refused in one sentence."""
+    """Return the pair as assembled and the female's extra turn (rad).
+
+    The design's rotors at another centre distance (the bores follow); bad values are refused in one
+    sentence.
+    """
     if not (np.isfinite(clearance) and clearance >= 0):
         raise InputError(f"[housing] radial_clearance must be a clearance of at least 0 mm (got {clearance}).")
     if not np.isfinite(phase_deg) or abs(phase_deg) > 360:
@@ -429,8 +444,11 @@ def _assembly(pair: RotorPair, center_distance: float | None, phase_deg: float, 
 
 
 def _housing_volumes(pair: RotorPair, clearance: float, wall: float = HOUSING_WALL) -> dict[str, float]:
-    """Closed-form volumes (mm^3) of the bores (two intersecting circles: the union's area from the
-    lens of their overlap) and of the block minus the bores, times the length."""
+    """Return the closed-form volumes (mm³) of the bores and of the block minus the bores.
+
+    The bores are two intersecting circles (the union's area from the lens of their overlap), times
+    the length.
+    """
     a, r1, r2 = pair.center_distance, pair.male_tip_radius + clearance, pair.female_tip_radius + clearance
     lens = r1**2 * np.arccos((a**2 + r1**2 - r2**2) / (2 * a * r1)) + r2**2 * np.arccos((a**2 + r2**2 - r1**2) / (2 * a * r2))
     lens -= 0.5 * np.sqrt((-a + r1 + r2) * (a + r1 - r2) * (a - r1 + r2) * (a + r1 + r2))
@@ -492,14 +510,16 @@ def interfere(
     as_json: bool,
     quiet: bool,
 ) -> None:
-    """Interference of the rotor pair over one lobe pitch (integral of 2D section intersections
-    along the helix) and of the rotors with the housing bores, as assembled: at --center-distance
-    and with the female turned by --phase-deg from its mesh position (the rotors keep their
-    profiles; the bores follow the centre distance).
+    """Interference of the rotor pair over one lobe pitch and of the rotors with the housing bores.
+
+    The pair's interference is the integral of 2D section intersections along the helix. As
+    assembled: at --center-distance and with the female turned by --phase-deg from its mesh position
+    (the rotors keep their profiles; the bores follow the centre distance).
 
     Exit status: 0 when clean, 1 when the rotors interfere with each other or with the housing by
     more than the touching threshold (key touching_threshold, mm³, set by --tolerance), 2 on bad
-    input."""
+    input.
+    """
     if not 1 <= steps <= 100_000:
         raise InputError(f"--steps must be a whole number from 1 to 100000 (got {steps}).")
     if not (np.isfinite(tolerance) and 0 < tolerance <= 1.0):

@@ -73,7 +73,10 @@ GEAR_DECORATORS = [
 
 
 def gear_options(fn):
-    """The options of ``rotorcad gear`` that describe the gear (and mate), for other commands."""
+    """Add the options of ``rotorcad gear`` that describe the gear (and mate) to another command.
+
+    A decorator: ``fn`` comes back with the options applied.
+    """
     for deco in reversed(GEAR_DECORATORS):
         fn = deco(fn)
     return fn
@@ -144,8 +147,28 @@ def gear(design: Path | None, **opts: Any) -> None:
 
 
 def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str, Any] | None = None) -> dict[str, Any]:
-    """Design-file values overridden by the options given; defaults last. ``data`` is the design
-    file's mapping if it was read already (the file is read once)."""
+    """Merge a gear design's values with the options given: options override the file, defaults last.
+
+    Parameters
+    ----------
+    design : Path or None
+        The design file, if any.
+    opts : dict
+        The command's options (None for an option not given); angles in degrees.
+    data : dict, optional
+        The design file's mapping if it was read already (the file is read once).
+
+    Returns
+    -------
+    dict
+        Gear (and mate) parameters by name, with the design keys still in force recorded so that
+        errors name them.
+
+    Raises
+    ------
+    InputError
+        A bad design file, or no teeth or module from either source.
+    """
     params: dict[str, Any] = {}
     if design is not None:
         try:
@@ -188,6 +211,29 @@ def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str,
 
 
 def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearPair | None]:
+    """Build the gear, and its mate when one is described.
+
+    Parameters
+    ----------
+    p : dict
+        Parameters from :func:`merge_gear_params` (angles in degrees, lengths in mm).
+    tolerance : float, mm
+        Chord tolerance of the outlines.
+
+    Returns
+    -------
+    gear : InvoluteGear
+        The gear.
+    pair : GearPair or None
+        The gear with its mate (the mate's shift given, zero, or for zero backlash at the centre
+        distance, ISO 21771), None without a mate.
+
+    Raises
+    ------
+    InputError
+        A gear or mate that cannot be made, a centre distance or mate shift without mate teeth, or
+        flanks that never meet; naming the options (or design keys) given.
+    """
     common = {
         "module": p["module"],
         "pressure_angle": p["pressure_angle"] * DEG,

@@ -30,12 +30,23 @@ STEP_TOLERANCE = 1e-3  # mm
 
 
 def is_gear_design(data: dict[str, Any]) -> bool:
-    """True for the mapping of a TOML design with a ``[gear]`` table."""
+    """Tell whether a design mapping is a gear design (it has a ``[gear]`` table)."""
     return "gear" in data
 
 
 def gear_lead(g: InvoluteGear) -> float:
-    """Lead of the gear's helix, mm (inf for a spur gear): 2 pi r / tan(beta) at the pitch radius."""
+    """Return the lead of the gear's helix: 2 pi r / tan(beta) at the pitch radius.
+
+    Parameters
+    ----------
+    g : InvoluteGear
+        The gear.
+
+    Returns
+    -------
+    float, mm
+        Signed lead (> 0 right hand); inf for a spur gear.
+    """
     beta = g.helix_angle
     return float("inf") if abs(beta) < 1e-12 else float(2 * np.pi * g.pitch_radius / np.tan(beta))
 
@@ -43,8 +54,31 @@ def gear_lead(g: InvoluteGear) -> float:
 def export_gear(
     design: Path, fmts: list[str], folder: Path, tol: float, data: dict[str, Any] | None = None
 ) -> list[dict[str, Any]]:
-    """Write the gear (and mate) solids; return the summary rows (path, format, body, volume,
-    tolerance, triangles or faces)."""
+    """Write the gear (and mate) solids.
+
+    Parameters
+    ----------
+    design : Path
+        The gear design file.
+    fmts : list of str
+        Formats to write (:data:`GEAR_FORMATS`).
+    folder : Path
+        Output folder.
+    tol : float, mm
+        Surface tolerance.
+    data : dict, optional
+        The design's mapping, if read already.
+
+    Returns
+    -------
+    list of dict
+        The summary rows: path, format, body, volume (mm³), tolerance (mm), triangles or faces.
+
+    Raises
+    ------
+    InputError
+        A bad design or face width.
+    """
     params = merge_gear_params(design, {}, data)  # data: the design's mapping, if read already
     width = params.get("face_width")
     if width is None:

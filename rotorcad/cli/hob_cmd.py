@@ -44,8 +44,10 @@ from rotorcad.gear import InvoluteGear
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def hob(design: Path | None, **opts: Any) -> None:
-    """Derive the transverse and normal rack of a gear or of both rotors of a pair, judge whether
-    a hob can make it (with reasons and positions) and give the hob tooth."""
+    """Derive the transverse and normal rack of a gear or of both rotors of a pair, and judge them.
+
+    Judge whether a hob can make the profile (with reasons and positions) and give the hob tooth.
+    """
     for key, flag in (
         ("min_flank_angle", "--min-flank-angle"),
         ("min_tip_radius_mm", "--min-tip-radius-mm"),
@@ -100,8 +102,9 @@ def hob(design: Path | None, **opts: Any) -> None:
 
 
 def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimits) -> tuple[dict[str, Any], dict[str, Any]]:
-    """The verdict on each rack and the keys of ``rotorcad hob --json`` (``files`` aside), for
-    this command and ``rotorcad report``.
+    """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
+
+    For this command and ``rotorcad report``.
 
     Parameters
     ----------
@@ -110,6 +113,15 @@ def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimi
     deviation : float, mm
         The largest distance between the racks (or from the basic rack).
     limits : HobLimits
+        Limits of a producible hob.
+
+    Returns
+    -------
+    verdicts : dict of Verdict
+        The verdict on each rack.
+    result : dict
+        ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg`` and
+        per rack its figures (radii and tip thickness in mm, angles in deg).
     """
     verdicts = {name: judge(rack, limits) for name, rack in racks.items()}
     result: dict[str, Any] = {
@@ -136,8 +148,7 @@ def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimi
 
 
 def _read_design(design: Path | None) -> dict[str, Any] | None:
-    """The design file's mapping (None without a file); a file that cannot be read is refused in
-    one sentence."""
+    """Read the design file's mapping (None without a file); a file that cannot be read is refused in one sentence."""
     if design is None:
         return None
     try:
@@ -147,8 +158,10 @@ def _read_design(design: Path | None) -> dict[str, Any] | None:
 
 
 def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
-    """Largest distance of the derived rack's cutting points from the basic-rack tool the gear
-    was cut with (both flanks of the tool teeth either side of the tooth space)."""
+    """Return the largest distance (mm) of the derived rack's cutting points from the gear's basic-rack tool.
+
+    Measured against both flanks of the tool teeth either side of the tooth space.
+    """
     half = np.vstack([c.evaluate(np.linspace(c.s0, c.s1, 2000))[0] for c in g.tool.values()])
     half = rack_frame(half, g.pitch_radius)
     pt = np.pi * g.transverse_module
@@ -160,7 +173,7 @@ def _basic_rack_deviation(g: InvoluteGear, rack: DerivedRack) -> float:
 
 
 def _plot(racks: dict[str, DerivedRack], verdicts: dict[str, Any], clearance: float, deviation: float, body: Any):
-    """The racks compared (deviation magnified along the normal) and the hob teeth side by side."""
+    """Draw the racks compared (deviation magnified along the normal) and the hob teeth side by side."""
     from hob.plotting import gear_rack_comparison, plot_hob, rotor_rack_comparison
 
     if "male" in racks:
@@ -174,8 +187,10 @@ def _plot(racks: dict[str, DerivedRack], verdicts: dict[str, Any], clearance: fl
 
 
 def _drawing(racks: dict[str, DerivedRack], clearance: float) -> Drawing:
-    """The normal racks and hob teeth side by side (each in its own rack frame, the next one
-    shifted along the pitch line by its width and a gap), labelled on the layer LABELS."""
+    """Draw the normal racks and hob teeth side by side, labelled on the layer LABELS.
+
+    Each is in its own rack frame, the next one shifted along the pitch line by its width and a gap.
+    """
     d = Drawing()
     offset = 0.0
     for name, rack in racks.items():

@@ -1,13 +1,13 @@
-"""Progress of a command's long stages (issue 15: nothing runs longer than a minute without a
-progress bar).
+"""Progress of a command's long stages.
 
-A :class:`Steps` is opened around every stage that can run long on valid input: the cutting
-passes of ``cut``, the solids and files of ``export``, the 2-D sweep and the solids of
-``interfere``, the angle sweep of ``deflect``, the outline and files of ``gear``, the build and
-analysis of ``rotor``, the variants of ``sweep``. It draws a rich bar on stderr only on a terminal
-and without ``--quiet`` (CONTRACT.md: progress bars appear only on a terminal); it is counted in
-:data:`OPENED` either way, so that the fuzz suite can check that a long case reported its
-progress whether or not a terminal was there to show it.
+Issue 15: nothing runs longer than a minute without a progress bar. A :class:`Steps` is opened
+around every stage that can run long on valid input: the cutting passes of ``cut``, the solids and
+files of ``export``, the 2-D sweep and the solids of ``interfere``, the angle sweep of
+``deflect``, the outline and files of ``gear``, the build and analysis of ``rotor``, the variants
+of ``sweep``. It draws a rich bar on stderr only on a terminal and without ``--quiet``
+(CONTRACT.md: progress bars appear only on a terminal); it is counted in :data:`OPENED` either
+way, so that the fuzz suite can check that a long case reported its progress whether or not a
+terminal was there to show it.
 """
 
 from __future__ import annotations
@@ -81,7 +81,15 @@ class Steps:
             self._bar.stop()
 
     def advance(self, steps: int = 1, description: str | None = None) -> None:
-        """One step (or ``steps``) done; ``description`` replaces the text left of the bar."""
+        """Count one step (or ``steps``) done.
+
+        Parameters
+        ----------
+        steps : int
+            Steps done since the last call.
+        description : str, optional
+            Replaces the text left of the bar.
+        """
         self.done += steps
         if self._bar is not None:
             fields: dict[str, Any] = {"advance": steps}
@@ -90,7 +98,15 @@ class Steps:
             self._bar.update(self._task, **fields)
 
     def update(self, completed: int, **fields: Any) -> None:
-        """Set the steps done to ``completed`` and the extra ``fields`` of the columns."""
+        """Set the steps done to ``completed`` and the extra ``fields`` of the columns.
+
+        Parameters
+        ----------
+        completed : int
+            Steps done so far.
+        **fields
+            Values of the columns' fields (e.g. ``failed=3``).
+        """
         self.done = completed
         if self._bar is not None:
             self._bar.update(self._task, completed=completed, **fields)

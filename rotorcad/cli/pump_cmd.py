@@ -39,8 +39,10 @@ PUMP_OPTION = {
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def pump(design: Path | None, **opts: Any) -> None:
-    """Delivery of an external gear pump of two equal gears: mean flow, irregularity, harmonics,
-    pump frequency f = n z / 60 (Kollek & Osinski eqs. 2-9)."""
+    """Delivery of an external gear pump of two equal gears (Kollek & Osinski eqs. 2-9).
+
+    Mean flow, irregularity, harmonics and pump frequency f = n z / 60.
+    """
     for key, flag in (("face_width", "--face-width"), ("speed", "--speed")):
         v = opts.get(key)
         if v is None:

@@ -54,8 +54,11 @@ ROTOR_INPUT_DECORATORS = [
 
 
 def rotor_input_options(fn):
-    """The options that give a rotor pair by points and dimensions (all but the centre distance,
-    which ``rotorcad gear`` names the same way), for ``rotor`` and ``hob``."""
+    """Add the options that give a rotor pair by points and dimensions to a command (a decorator).
+
+    All but the centre distance, which ``rotorcad gear`` names the same way; for ``rotor`` and
+    ``hob``.
+    """
     for deco in reversed(ROTOR_INPUT_DECORATORS):
         fn = deco(fn)
     return fn
@@ -118,9 +121,11 @@ CONTRACT_KEYS = (
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def rotor(design: Path | None, **opts: Any) -> None:
-    """A screw-rotor pair from a design file (profile family) or from measured points, with
-    Rinder's meshing analysis: meshline, cusps / jamming / slipping, tightness and blow-hole,
-    contact-line length, flute areas, displacement, sliding velocity and slip."""
+    """Build a screw-rotor pair from a design file (profile family) or from measured points.
+
+    With Rinder's meshing analysis: meshline, cusps / jamming / slipping, tightness and blow-hole,
+    contact-line length, flute areas, displacement, sliding velocity and slip.
+    """
     rotors, speed, clearance = _build(design, opts)
     if not (1e-6 <= opts["tolerance"] <= 1.0):  # also NaN; finer than 1 um gives millions of points
         raise InputError(f"--tolerance must be a chord tolerance from 1e-06 to 1 mm (got {opts['tolerance']}).")
@@ -194,8 +199,11 @@ def rotor(design: Path | None, **opts: Any) -> None:
 
 
 def _measured_points(opts: dict[str, Any]) -> tuple[str, np.ndarray, str] | None:
-    """The rotor and the points of --male-points / --female-points when they are points (a CSV or a
-    drawing's points), for the picture of their deviation from the profile; None otherwise."""
+    """Return the rotor and the points of --male-points / --female-points when they are points.
+
+    Points of a CSV file or sampled from a drawing, with the file's name, for the picture of their
+    deviation from the profile; None otherwise.
+    """
     for side in ("male", "female"):
         path = opts.get(f"{side}_points")
         if path is None:
@@ -206,7 +214,7 @@ def _measured_points(opts: dict[str, Any]) -> tuple[str, np.ndarray, str] | None
 
 
 def _designed_clearance(opts: dict[str, Any]) -> ClearanceDistribution | None:
-    """The clearance to design from --clearance or --clearance-table (one sentence on bad input)."""
+    """Return the clearance to design from --clearance or --clearance-table (one sentence on bad input)."""
     if opts.get("designed") is not None and opts.get("clearance_table") is not None:
         raise InputError("give only one of --clearance and --clearance-table.")
     try:
@@ -222,7 +230,7 @@ def _designed_clearance(opts: dict[str, Any]) -> ClearanceDistribution | None:
 
 
 def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float) -> np.ndarray:
-    """The female thinned by the designed clearance, clipped to its tip circle, counter-clockwise."""
+    """Return the female thinned by the designed clearance, clipped to its tip circle, counter-clockwise, (n, 2), mm."""
     import shapely
 
     pts = corrected_female(rotors, designed, tol)
@@ -234,10 +242,12 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
 
 
 def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None) -> tuple[ScrewRotors, float, float]:
-    """The rotors of a design file (or of ``settings``, the design already read and checked by
-    :func:`rotorcad.cli.common.load_rotor_design`, so that the file is read once) or of measured
-    points, with the command-line overrides; the speed (rpm) and the housing's radial clearance
-    (mm) too."""
+    """Build the rotors of a design file or of measured points, with the command-line overrides.
+
+    ``settings`` is the design already read and checked by
+    :func:`rotorcad.cli.common.load_rotor_design`, so that the file is read once. Returns the rotors,
+    the speed (rpm) and the housing's radial clearance (mm).
+    """
     sources = [k for k in ("male_points", "female_points", "rack_points") if opts.get(k)]
     if len(sources) > 1:
         raise InputError("give only one of --male-points, --female-points, --rack-points.")

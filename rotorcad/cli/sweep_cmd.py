@@ -66,10 +66,12 @@ def sweep(
     as_json: bool,
     quiet: bool,
 ) -> None:
-    """Build and judge every variant of a sweep file (a base design and the values to vary: lists,
-    ranges, or bounds drawn at random or by Latin hypercube) as tasks on Dask, streaming one row per
-    variant to Parquet; a variant that cannot be built is a row with its reason. Interrupted and run
-    again, the sweep computes only what is missing."""
+    """Build and judge every variant of a sweep file as tasks on Dask, streaming one row per variant to Parquet.
+
+    A sweep file holds a base design and the values to vary: lists, ranges, or bounds drawn at random
+    or by Latin hypercube. A variant that cannot be built is a row with its reason. Interrupted and
+    run again, the sweep computes only what is missing.
+    """
     from exports.atomic import check_writable
     from rotorcad.cli.sweep_run import load_sweep, run_sweep
     from rotorcad.cli.sweep_tasks import OBJECTIVES, result_columns

@@ -38,7 +38,19 @@ from rotorcad.sweep_plan import SweepPlan, Variant
 
 @dataclass(frozen=True)
 class SweepOutcome:
-    """What a sweep run did: its table and the counts."""
+    """What a sweep run did: its table and the counts.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        One row per variant of the plan, in variant order.
+    computed : int
+        Variants computed in this run.
+    resumed : int
+        Variants taken from an earlier, interrupted run.
+    seconds : float, s
+        Wall time of the run.
+    """
 
     table: pd.DataFrame
     computed: int
@@ -47,17 +59,34 @@ class SweepOutcome:
 
     @property
     def failed(self) -> int:
+        """Number of variants that failed (``ok`` false)."""
         return int((~self.table["ok"].astype(bool)).sum()) if len(self.table) else 0
 
     def failures(self) -> dict[str, int]:
-        """Count of failed variants by reason, most frequent first; numbers in a reason stand as
-        '#' so that the same cause with other values counts once."""
+        """Count the failed variants by reason, most frequent first.
+
+        Numbers in a reason stand as '#' so that the same cause with other values counts once.
+
+        Returns
+        -------
+        dict of str to int
+            Reason (with numbers as '#') -> number of variants.
+        """
         bad = self.table.loc[~self.table["ok"].astype(bool), "reason"]
         causes = bad.map(lambda r: re.sub(r"-?\d+(\.\d+)?(e[-+]?\d+)?", "#", str(r)))
         return {str(k): int(v) for k, v in causes.value_counts().items()}
 
     def best(self) -> dict[str, dict[str, Any]]:
-        """Per objective column present: the best variant's number, value and varied values."""
+        """Return the best variant of every objective column present.
+
+        Only variants that succeeded count, and of those only the ones a hob can make and that do not
+        interfere, where those columns exist.
+
+        Returns
+        -------
+        dict
+            Objective column -> ``variant`` (its number), ``value`` and the varied values.
+        """
         ok = self.table[self.table["ok"].astype(bool)]
         if "hobbable" in ok:  # best among the variants a hob can make, and that do not interfere
             ok = ok[ok["hobbable"].astype(bool)]
@@ -81,14 +110,28 @@ EARLIER = "a Parquet file of an earlier sweep (or a new name)"
 
 
 def parts_folder(out: Path) -> Path:
-    """Where the finished batches of a sweep writing ``out`` are kept until it ends."""
+    """Return the folder where the finished batches of a sweep writing ``out`` are kept until it ends.
+
+    Parameters
+    ----------
+    out : Path
+        The sweep's Parquet file.
+
+    Returns
+    -------
+    Path
+        ``OUT.parts`` beside it.
+    """
     return out.with_name(out.name + ".parts")
 
 
 def _done(out: Path | None, keys: dict[str, int]) -> pd.DataFrame:
-    """The rows already computed for this plan, from ``out`` and its parts folder, numbered as the
-    plan numbers them. Rows of another sweep (another base design, other analyses, other values)
-    are refused, not dropped: ``out`` would lose them."""
+    """Read the rows already computed for this plan from ``out`` and its parts folder.
+
+    The rows are numbered as the plan numbers them. Rows of another sweep (another base design, other
+    analyses, other values) are refused with :class:`DesignError`, not dropped: ``out`` would lose
+    them.
+    """
     frames = []
     if out is not None:
         sources = [out] if out.is_file() else []
@@ -132,7 +175,10 @@ def _write_part(folder: Path, rows: list[dict[str, Any]]) -> None:
 
 
 def _client(scheduler: str | None, workers: int | None):
-    """A Dask client: of the cluster at ``scheduler``, or of a local cluster of worker processes."""
+    """Start a Dask client: of the cluster at ``scheduler``, or of a local cluster of worker processes.
+
+    Returns the client and the local cluster (None for a scheduler's).
+    """
     # the worker processes read their log levels from the environment when they start
     os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "error")
     from dask.distributed import Client, LocalCluster
@@ -183,10 +229,11 @@ def run_sweep(
     Parameters
     ----------
     plan : SweepPlan
+        The sweep.
     folder : Path, optional
         The base design's folder (for a relative points file).
-    points : optional
-        The base design's profile points, already read.
+    points : (n, 2) float array or list of Curve, optional
+        The base design's profile points, already read (mm).
     out : Path, optional
         Parquet file to write (resumed if it or its parts folder exists); None keeps all in memory.
     scheduler : str, optional
@@ -197,6 +244,17 @@ def run_sweep(
         Variants per task (default: about eight tasks per worker, at most 50 variants a task).
     progress : callable, optional
         Called with (done, failed, total) after every batch.
+
+    Returns
+    -------
+    SweepOutcome
+        The table of all variants (earlier and new) and the counts.
+
+    Raises
+    ------
+    DesignError
+        An ``out`` that holds something other than this sweep's rows, or a scheduler that cannot be
+        reached.
     """
     start = time.perf_counter()
     variants = plan.variants()
@@ -301,6 +359,12 @@ def sweep(
     pandas.DataFrame
         One row per variant: its number and key, the varied values (``table.key`` columns), ``ok``,
         ``reason``, ``seconds`` and the results with their unit in the column name.
+
+    Raises
+    ------
+    DesignError
+        A bad sweep file or base design, ``workers`` below 1, or ``out`` in a folder that does not
+        exist.
     """
     if workers is not None and not (isinstance(workers, int) and workers >= 1):
         raise DesignError("workers", "a whole number of at least 1", workers)
@@ -311,7 +375,28 @@ def sweep(
 
 
 def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
-    """Read a sweep file, its base design and the base's points (if a points family)."""
+    """Read a sweep file, its base design and the base's points (if a points family).
+
+    Parameters
+    ----------
+    path : Path
+        The sweep file (TOML): a ``[sweep]`` table naming the base design file, or a ``[base]``
+        table holding it.
+
+    Returns
+    -------
+    plan : SweepPlan
+        The checked sweep.
+    folder : Path
+        The base design's folder.
+    points : (n, 2) float array, list of Curve or None
+        The base's profile points (mm), for a points family.
+
+    Raises
+    ------
+    DesignError
+        A bad or missing base, or a bad sweep.
+    """
     from exports.dxf_profile import read_profile, read_profile_points
     from rotorcad.cli.common import load_toml
     from rotorcad.design import rotor_design
@@ -339,7 +424,20 @@ def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
 
 
 def variant_design(plan: SweepPlan, variant: Variant) -> dict[str, Any]:
-    """The design mapping of one variant (to write it as a design file)."""
+    """Return the design mapping of one variant (to write it as a design file).
+
+    Parameters
+    ----------
+    plan : SweepPlan
+        The sweep.
+    variant : Variant
+        One of its variants.
+
+    Returns
+    -------
+    dict
+        The base design with the variant's values put in.
+    """
     from rotorcad.sweep_plan import apply
 
     return apply(plan.base, variant.values)

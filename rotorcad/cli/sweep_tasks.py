@@ -1,7 +1,8 @@
-"""What one worker of a design sweep runs: a batch of variants, each built and judged, each
-giving one row of plain values (numbers with their unit in the column name, or the reason in one
-sentence why the variant could not be built). Nothing here keeps a mesh or a profile: a worker
-ships numbers back.
+"""What one worker of a design sweep runs: a batch of variants, each built and judged.
+
+Each variant gives one row of plain values (numbers with their unit in the column name, or the
+reason in one sentence why the variant could not be built). Nothing here keeps a mesh or a
+profile: a worker ships numbers back.
 """
 
 from __future__ import annotations
@@ -43,7 +44,18 @@ EXTRA_COLUMNS = {
 
 
 def result_columns(extras: tuple[Extra, ...]) -> list[str]:
-    """The numeric result columns of a sweep with these extra analyses (for plots and objectives)."""
+    """List the numeric result columns of a sweep with these extra analyses (for plots and objectives).
+
+    Parameters
+    ----------
+    extras : tuple of Extra
+        The extra analyses of the sweep.
+
+    Returns
+    -------
+    list of str
+        Column names, their unit at the end (``_mm``, ``_mm2``, ...).
+    """
     cols = [*RESULT_COLUMNS.values(), "max_slip_male", "max_slip_female", "defects"]
     cols += [c for e in extras for c in EXTRA_COLUMNS[e] if c not in ("hob_reason", "hobbable", "interferes")]
     return [c for c in cols if c != "meshline_closed"]
@@ -52,13 +64,29 @@ def result_columns(extras: tuple[Extra, ...]) -> list[str]:
 def evaluate(
     base: dict[str, Any], folder: str | None, points: Any, extras: tuple[Extra, ...], variant: Variant, clearance: float = 0.05
 ) -> dict[str, Any]:
-    """One variant: the base design with its values, built and judged.
+    """Build and judge one variant: the base design with its values.
+
+    Parameters
+    ----------
+    base : dict
+        The base design mapping.
+    folder : str, optional
+        The base design's folder (for a relative points file).
+    points : (n, 2) float array or list of Curve, optional
+        The base design's profile points, already read (mm).
+    extras : tuple of Extra
+        Extra analyses to run.
+    variant : Variant
+        The variant.
+    clearance : float, mm
+        Normal clearance designed into the female for the "clearance" analysis.
 
     Returns
     -------
     dict
         ``variant``, ``key``, the varied values, ``ok``, ``reason`` (empty when ok), ``seconds``
-        and the results.
+        and the results. Any failure, a refusal or a bug, becomes the row's reason: a variant never
+        stops the sweep.
     """
     from rotorcad.design import rotor_design
     from rotorcad.rotor_build import analyse_pair, build_pair, pair_spec
@@ -94,10 +122,13 @@ def evaluate(
 
 
 def _extra(extra: Extra, rotors, spec, clearance: float) -> dict[str, Any]:
-    """The optional analyses: hobbability (hob.verdict), interference at the design centre
-    distance (2D sections over one lobe pitch), the solids' volume (section area x length), and the
-    meshing clearance (Wu & Chi) of the pair with ``clearance`` mm of normal clearance designed into
-    the female (what `rotor --clearance` writes and `rotorcad clearance` reads back)."""
+    """Run one optional analysis of a variant and return its columns.
+
+    Hobbability (hob.verdict), interference at the design centre distance (2D sections over one lobe
+    pitch), the solids' volume (section area x length), and the meshing clearance (Wu & Chi) of the
+    pair with ``clearance`` mm of normal clearance designed into the female (what `rotor --clearance`
+    writes and `rotorcad clearance` reads back).
+    """
     if extra is Extra.CLEARANCE:
         from rotorcad.clearance import MeshingClearance
         from rotorcad.clearance_design import ClearanceDistribution, corrected_female
@@ -142,5 +173,18 @@ def evaluate_batch(
     extras: tuple[Extra, ...],
     clearance: float = 0.05,
 ) -> list[dict[str, Any]]:
-    """A batch of variants (one task: enough work to make the scheduler's cost small)."""
+    """Evaluate a batch of variants: one Dask task, enough work to make the scheduler's cost small.
+
+    Parameters
+    ----------
+    variants : list of Variant
+        The batch.
+    base, folder, points, extras, clearance
+        As for :func:`evaluate`.
+
+    Returns
+    -------
+    list of dict
+        One row per variant (:func:`evaluate`).
+    """
     return [evaluate(base, folder, points, extras, v, clearance) for v in variants]
