@@ -185,17 +185,17 @@ class RackTool:
         ----------
         pitch_radius : float, mm
             Pitch radius r of the blank (the tool's pitch line is x = r).
-        shift : float, mm
-            Outward shift of the tool, added to y as it stands (unlike :meth:`TrapezoidalHob.tooth`,
-            whose shift is in modules).
+        shift : float
+            Profile shift x of the gear, in modules of the tool (m = pitch / pi), as for
+            :meth:`TrapezoidalHob.tooth`: the tool stands x m further out.
         top : float, mm
             x at which the tooth is closed, above the blank.
 
         Returns
         -------
         (n + 2, 2) float array, mm
-            The points at X = r + y + shift, Y = x, closed by two corners at X = ``top``.
+            The points at X = r + y + x m, Y = x, closed by two corners at X = ``top``.
         """
         pts = np.asarray(self.points, dtype=float)
-        upper = np.column_stack([pitch_radius + pts[:, 1] + shift, pts[:, 0]])
+        upper = np.column_stack([pitch_radius + pts[:, 1] + shift * self.pitch / np.pi, pts[:, 0]])
         return np.vstack([upper, [[top, upper[-1, 1]], [top, upper[0, 1]]]])

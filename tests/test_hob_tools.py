@@ -37,11 +37,14 @@ def test_protuberance_relieves_the_root_and_chamfer_leaves_material():
     assert ring.intersection(relieved.tooth).length == pytest.approx(ring.intersection(base.tooth).length, abs=5e-3)
 
 
-def test_rack_tool_from_points_cuts_the_same_gear_as_the_hob():
+@pytest.mark.parametrize("shift", [0.0, 0.4])
+def test_rack_tool_from_points_cuts_the_same_gear_as_the_hob(shift):
     # A rack tool given by points (the hob's tooth read off as a rack-frame polyline) cuts the same
-    # gear as the hob itself, and both agree with the analytic envelope of the sharp basic rack.
+    # gear as the hob itself, and both agree with the analytic envelope of the sharp basic rack
+    # (ISO 21771 gear with that shift). With a profile shift x both tools stand x m further out: the
+    # shift is in modules for both (m = 2 mm here, so a shift taken as mm would be off by 0.4 mm).
     hob = TrapezoidalHob(2.0, tip_radius=0.0)
-    g = InvoluteGear(25, 2.0, 20 * DEG, 0.0, 0.0, tip_radius_factor=0.0)
+    g = InvoluteGear(25, 2.0, 20 * DEG, 0.0, shift, tip_radius_factor=0.0)
     polygon = hob.tooth(g.pitch_radius, 0.0, g.nominal_tip_radius + 4.0)
     n = (len(polygon) - 2) // 2  # [half, 2 top corners, mirrored half]
     chain = np.vstack([polygon[:n][::-1], polygon[n + 2 :][::-1]])  # flank top -> tip -> other flank top
