@@ -33,35 +33,94 @@ class Curve:
     s1: float
 
     def frame(self, s: Array) -> tuple[Array, Array]:
-        """Points and unit tangents along increasing ``s``."""
+        """Return points and unit tangents at parameters ``s``, tangents along increasing ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array
+            Curve parameters (their meaning and unit depend on the curve type).
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            Points on the curve.
+        tangents : (n, 2) float array
+            Unit tangents along increasing ``s``.
+        """
         raise NotImplementedError  # pragma: no cover - abstract
 
     @property
     def direction(self) -> float:
+        """Sign of the travel: 1.0 when ``s1 >= s0`` (towards larger ``s``), else -1.0."""
         return 1.0 if self.s1 >= self.s0 else -1.0
 
     def evaluate(self, s: Array | float) -> tuple[Array, Array]:
-        """Points and unit tangents along the direction of travel (``s0`` to ``s1``)."""
+        """Return points and unit tangents at ``s``, tangents along the direction of travel (``s0`` to ``s1``).
+
+        Parameters
+        ----------
+        s : float or (n,) float array
+            Curve parameters (a scalar is read as one parameter).
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            Points on the curve.
+        tangents : (n, 2) float array
+            Unit tangents along the travel: those of :meth:`frame` times :attr:`direction`.
+        """
         s = np.atleast_1d(np.asarray(s, dtype=float))
         p, t = self.frame(s)
         return p, t * self.direction
 
     def point(self, s: float) -> Array:
+        """Return the point at parameter ``s``.
+
+        Parameters
+        ----------
+        s : float
+            Curve parameter.
+
+        Returns
+        -------
+        (2,) float array, mm
+            The point.
+        """
         return self.evaluate(s)[0][0]
 
     @property
     def start(self) -> Array:
+        """Point where the travel starts (at ``s0``), (2,) float array, mm."""
         return self.point(self.s0)
 
     @property
     def end(self) -> Array:
+        """Point where the travel ends (at ``s1``), (2,) float array, mm."""
         return self.point(self.s1)
 
     def trimmed(self, s0: float, s1: float) -> Curve:
-        """The same geometry travelled from ``s0`` to ``s1``."""
+        """Return the same geometry travelled from ``s0`` to ``s1``.
+
+        Parameters
+        ----------
+        s0, s1 : float
+            New start and end parameters; ``s1 < s0`` travels towards smaller ``s``.
+
+        Returns
+        -------
+        Curve
+            A copy of the curve with the new range (all other fields kept).
+        """
         return dataclasses.replace(self, s0=float(s0), s1=float(s1))
 
     def reversed(self) -> Curve:
+        """Return the same geometry travelled backwards, from ``s1`` to ``s0``.
+
+        Returns
+        -------
+        Curve
+            :meth:`trimmed` with the ends swapped.
+        """
         return self.trimmed(self.s1, self.s0)
 
     def arc_center(self) -> Array | None:
@@ -69,7 +128,7 @@ class Curve:
         return None
 
     def is_corner(self) -> bool:
-        """True for a zero-radius arc: a sharp corner, one point with a fan of normals."""
+        """Return True for a zero-radius arc: a sharp corner, one point with a fan of normals."""
         return False
 
 
@@ -92,6 +151,20 @@ class Line(Curve):
         return np.asarray(self.a, dtype=float), normalize(np.subtract(self.b, self.a, dtype=float))
 
     def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points and unit tangents at parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array, mm
+            Length from ``a`` along the line.
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            ``a + s d`` with ``d`` the unit direction from ``a`` to ``b``.
+        tangents : (n, 2) float array
+            ``d`` at every point.
+        """
         a, d = self._start_and_direction
         p = a + np.multiply.outer(s, d)
         t = np.empty_like(p)
@@ -109,6 +182,20 @@ class Arc(Curve):
     s1: float
 
     def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points and unit tangents at parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array, rad
+            Polar angle about ``center``.
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            ``center + radius (cos s, sin s)``.
+        tangents : (n, 2) float array
+            ``(-sin s, cos s)``: counter-clockwise, along increasing ``s``.
+        """
         c, si = np.cos(s), np.sin(s)
         t = np.empty((*np.shape(s), 2))
         t[..., 0] = -si
@@ -119,9 +206,11 @@ class Arc(Curve):
         return np.asarray(self.center, dtype=float) + self.radius * p, t
 
     def arc_center(self) -> Array | None:
+        """Return the centre of the arc, (2,) float array, mm."""
         return np.asarray(self.center, dtype=float)
 
     def is_corner(self) -> bool:
+        """Return True when the radius is zero: a sharp corner, one point with a fan of normals."""
         return self.radius == 0.0
 
 
@@ -156,6 +245,21 @@ class GeneralisedArc(Curve):
     s1: float = np.pi / 2
 
     def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points and unit tangents at parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array, rad
+            Parameter of the generalised arc; values outside [0, pi/2] are clipped to it.
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            ``center + e1 cos^(2/p) s + e2 sin^(2/q) s``.
+        tangents : (n, 2) float array
+            Unit tangents along increasing ``s``, from the derivative times the positive factor
+            ``sin^(1-2/q) s cos^(1-2/p) s`` (finite and non-zero at both ends).
+        """
         s = np.clip(np.asarray(s, dtype=float), 0.0, np.pi / 2)
         c, si = np.cos(s), np.sin(s)
         e1, e2 = np.asarray(self.e1, dtype=float), np.asarray(self.e2, dtype=float)
@@ -183,6 +287,21 @@ class Involute(Curve):
     s1: float
 
     def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points and unit tangents at parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array, rad
+            Roll angle u.
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            ``r_b R(theta0 + h u) (1, -h u)``.
+        tangents : (n, 2) float array
+            Unit tangents along increasing ``s``: ``(cos(theta0 + h u), sin(theta0 + h u))`` for
+            u >= 0, its opposite for u < 0.
+        """
         ang = self.theta0 + self.hand * s
         c, si = np.cos(ang), np.sin(ang)
         hu = self.hand * s
@@ -214,6 +333,22 @@ class PointPath(Curve):
     offset: float = 0.0
 
     def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points and unit tangents at parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array, rad
+            Motion parameter t (male rotation angle).
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            The carried point in the observer's frame, moved by ``offset`` along the tangent turned
+            clockwise.
+        tangents : (n, 2) float array
+            Unit tangents of the path (not of the offset curve) along increasing ``s``: the
+            relative velocity of the carried point, in the observer's frame.
+        """
         a = np.broadcast_to(np.asarray(self.carried, dtype=float), (len(s), 2))
         x = self.carrier.to_fixed(a, s)
         rel = self.carrier.velocity_at(x) - self.observer.velocity_at(x)
@@ -258,6 +393,20 @@ class Mapped(Curve):
         return all(abs(aat[i][j] - eye[i][j]) <= 1e-14 + 1e-5 * abs(eye[i][j]) for i in (0, 1) for j in (0, 1))
 
     def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points and unit tangents at parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array
+            Parameters of the mapped ``curve``.
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            ``A p + b`` for the points p of ``curve``.
+        tangents : (n, 2) float array
+            ``A t`` for the tangents t of ``curve``, normalised: along increasing ``s``.
+        """
         p, t = self.curve.frame(s)
         if self._identity:  # A p = p exactly for finite points: skip the products
             return p + self._map[1], normalize(t)
@@ -270,9 +419,20 @@ class Mapped(Curve):
         return tuple(map(tuple, self.matrix)) == ((1.0, 0.0), (0.0, 1.0))
 
     def is_corner(self) -> bool:
+        """Return whether ``curve`` is a corner (a point stays a point under the map)."""
         return self.curve.is_corner()
 
     def arc_center(self) -> Array | None:
+        """Return the mapped centre of a circular arc, or None.
+
+        None when ``curve`` is no circular arc, or when the map does not keep circles circles
+        (A A^T != |det A| I, e.g. a stretch).
+
+        Returns
+        -------
+        (2,) float array, mm, or None
+            ``A c + b`` for the centre c of ``curve``.
+        """
         c = self.curve.arc_center()
         if c is None:
             return None
@@ -292,8 +452,22 @@ def rotated(curve: Curve, angle: float, center: object = (0.0, 0.0)) -> Mapped:
 
 
 def mirrored(curve: Curve, angle: float = 0.0) -> Curve:
-    """``curve`` mirrored in the line through the origin at ``angle``, travelled backwards
-    so that a boundary stays counter-clockwise."""
+    """Mirror ``curve`` in the line through the origin at ``angle``, travelled backwards.
+
+    Travelled backwards so that a boundary stays counter-clockwise.
+
+    Parameters
+    ----------
+    curve : Curve
+        The curve to mirror.
+    angle : float, rad
+        Direction of the mirror line through the origin.
+
+    Returns
+    -------
+    Curve
+        The mirrored curve, reversed.
+    """
     c, s = np.cos(2 * angle), np.sin(2 * angle)
     return Mapped(curve, ((c, s), (s, -c))).reversed()
 
@@ -314,6 +488,26 @@ class Spline(Curve):
 
     @staticmethod
     def fit(points: Array, smoothing: float = 0.0, periodic: bool = False) -> Spline:
+        """Fit a cubic spline through (or near) measured points.
+
+        Repeated consecutive points are dropped; two or three points give a spline of degree 1 or
+        2 (a line or a parabola). With ``periodic`` a last point equal to the first is dropped and
+        the curve is closed.
+
+        Parameters
+        ----------
+        points : (n, 2) float array, mm
+            Measured points, in order.
+        smoothing : float, mm^2
+            scipy's ``s``: sum of squared residuals allowed (0: through the points).
+        periodic : bool
+            Close the curve with continuous tangent and curvature.
+
+        Returns
+        -------
+        Spline
+            Parameterised by cumulative chord length, from 0 to the total chord length (mm).
+        """
         pts = as_points(points)
         if periodic and np.allclose(pts[0], pts[-1]):
             pts = pts[:-1]
@@ -327,6 +521,20 @@ class Spline(Curve):
         return Spline(knots=(tck[0], tuple(tck[1]), tck[2]), s0=0.0, s1=float(u[-1]), periodic=periodic)
 
     def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points and unit tangents at parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array, mm
+            Cumulative chord length parameter.
+
+        Returns
+        -------
+        points : (n, 2) float array, mm
+            Points of the spline.
+        tangents : (n, 2) float array
+            The spline's exact derivative, normalised: along increasing ``s``.
+        """
         tck = [self.knots[0], list(self.knots[1]), self.knots[2]]
         p = np.stack(interpolate.splev(s, tck), axis=-1)
         d = np.stack(interpolate.splev(s, tck, der=1), axis=-1)
@@ -339,8 +547,10 @@ def turning_angle(t0: Array, t1: Array) -> Array:
 
 
 def sample_curve(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> tuple[Array, Array, Array]:
-    """Parameters, points and unit tangents at which straight chords deviate from ``curve`` by at
-    most ``tolerance``; every parameter is evaluated once.
+    """Sample ``curve`` so that straight chords deviate from it by at most ``tolerance``.
+
+    Returns the parameters, points and unit tangents of the samples; every parameter is evaluated
+    once.
 
     The sagitta of a chord of length L whose end tangents turn by d(psi) is L*|d(psi)|/8 for a
     circular arc; each interval is split uniformly in ``s`` until every estimate is within the
@@ -399,8 +609,11 @@ def _finite(values: Array) -> Array:
 
 
 def _evaluate_with_middles(curve: Curve, s: Array, extra: Array | None = None) -> tuple[Array, Array, Array]:
-    """Points and tangents at ``extra`` (default ``s``), (m, 2) each, and the points at the middles
-    of the intervals of ``s``, (len(s) - 1, 2): one evaluation of the curve."""
+    """Return points and tangents at ``extra`` and the points at the middles of the intervals of ``s``.
+
+    ``extra`` defaults to ``s``. Points and tangents are (m, 2) each, the middles (len(s) - 1, 2):
+    one evaluation of the curve.
+    """
     at = s if extra is None else extra
     p, t = curve.evaluate(np.concatenate([at, 0.5 * (s[:-1] + s[1:])]))
     return p[: len(at)], t[: len(at)], p[len(at) :]
@@ -409,8 +622,11 @@ def _evaluate_with_middles(curve: Curve, s: Array, extra: Array | None = None) -
 def _split(
     curve: Curve, s: Array, p: Array, t: Array, n: Array, middles: bool = True
 ) -> tuple[Array, Array, Array, Array | None]:
-    """:func:`split_intervals`, and with ``middles`` the points at the middles of the new
-    intervals, (len - 1, 2), from the same evaluation (else None)."""
+    """Split intervals as :func:`split_intervals` does, optionally with the middles of the new intervals.
+
+    With ``middles``, the fourth result is the points at the middles of the new intervals,
+    (len - 1, 2), from the same evaluation (else None).
+    """
     parts = np.maximum(np.asarray(n, dtype=int), 1)  # interval i becomes parts[i] intervals
     if (parts == 1).all():
         return s, p, t, (_evaluate_with_middles(curve, s, s[:0])[2] if middles else None)
@@ -434,8 +650,10 @@ def _split(
 
 
 def split_intervals(curve: Curve, s: Array, p: Array, t: Array, n: Array) -> tuple[Array, Array, Array]:
-    """Samples with interval i split into ``n[i]`` equal parts in ``s``; only the new parameters
-    are evaluated, and the order of travel is kept (a generated curve runs to smaller parameters).
+    """Split interval i of the samples into ``n[i]`` equal parts in ``s``.
+
+    Only the new parameters are evaluated, and the order of travel is kept (a generated curve runs
+    to smaller parameters).
 
     Parameters
     ----------
@@ -457,14 +675,48 @@ def split_intervals(curve: Curve, s: Array, p: Array, t: Array, n: Array) -> tup
 
 
 def sample_parameters(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> Array:
-    """Parameters at which straight chords deviate from ``curve`` by at most ``tolerance`` (see
-    :func:`sample_curve`)."""
+    """Return parameters at which straight chords deviate from ``curve`` by at most ``tolerance``.
+
+    See :func:`sample_curve`, whose first result this is.
+
+    Parameters
+    ----------
+    curve : Curve
+        The curve, sampled from ``curve.s0`` to ``curve.s1``.
+    tolerance : float, mm
+        Largest chord error.
+    minimum : int
+        Fewest samples (at least 17 are taken).
+    passes : int
+        Most refinement passes of each kind.
+
+    Returns
+    -------
+    (n,) float array
+        Parameters along the travel.
+    """
     return sample_curve(curve, tolerance, minimum, passes)[0]
 
 
 def chord_error(curve: Curve, s: Array, probes: int = 8) -> float:
-    """Largest distance from the curve to the chords between the samples at ``s`` (measured
-    at ``probes`` points inside every interval) - used to check :func:`sample_parameters`."""
+    """Return the largest distance from the curve to the chords between the samples at ``s``.
+
+    Measured at ``probes`` points inside every interval; used to check :func:`sample_parameters`.
+
+    Parameters
+    ----------
+    curve : Curve
+        The sampled curve.
+    s : (m,) float array
+        Parameters of the samples, in order.
+    probes : int
+        Points measured inside every interval.
+
+    Returns
+    -------
+    float, mm
+        The largest distance (0.0 when there is no interval).
+    """
     p, _ = curve.evaluate(s)
     frac = (np.arange(1, probes + 1) / (probes + 1))[None, :]
     sm = s[:-1, None] + np.diff(s)[:, None] * frac

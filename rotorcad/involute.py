@@ -12,16 +12,37 @@ from rotorcad.geometry import Array
 
 
 def inv(alpha: Array | float) -> Array | float:
-    """Involute function inv(alpha) = tan(alpha) - alpha (ISO 21771 eq. 2.21)."""
+    """Return the involute function inv(alpha) = tan(alpha) - alpha (ISO 21771 eq. 2.21).
+
+    Parameters
+    ----------
+    alpha : float or array, rad
+        Pressure angle(s), any shape.
+
+    Returns
+    -------
+    float or array, rad
+        ``tan(alpha) - alpha``, of the shape of ``alpha``.
+    """
     return np.tan(alpha) - alpha
 
 
 def inv_inverse(value: Array | float) -> Array | float:
-    """alpha with inv(alpha) = value, for 0 <= alpha < pi/2.
+    """Return the angle alpha with inv(alpha) = value, for 0 <= alpha < pi/2.
 
     Newton's method from min((3 v)^(1/3), atan(v + (3 v)^(1/3))): both lie above the root
     (inv(a) > a^3/3, and the root solves a = atan(v + a)); inv is convex and increasing, so the
     iteration descends monotonically onto the root.
+
+    Parameters
+    ----------
+    value : float or array, rad
+        Values v of the involute function, any shape.
+
+    Returns
+    -------
+    float or array, rad
+        alpha of the shape of ``value`` (a float for a scalar); 0 where ``value`` <= 0.
     """
     v = np.asarray(value, dtype=float)
     c = np.cbrt(3.0 * v)
@@ -38,16 +59,64 @@ def inv_inverse(value: Array | float) -> Array | float:
 
 
 def transverse_pressure_angle(pressure_angle: float, helix_angle: float) -> float:
-    """alpha_t = atan(tan(alpha_n) / cos(beta)) (ISO 21771 eq. 2.5)."""
+    """Return the transverse pressure angle alpha_t = atan(tan(alpha_n) / cos(beta)) (ISO 21771 eq. 2.5).
+
+    Parameters
+    ----------
+    pressure_angle : float, rad
+        Normal pressure angle alpha_n.
+    helix_angle : float, rad
+        Helix angle beta.
+
+    Returns
+    -------
+    float, rad
+        alpha_t.
+    """
     return float(np.arctan(np.tan(pressure_angle) / np.cos(helix_angle)))
 
 
 def working_pressure_angle(z1: int, z2: int, x1: float, x2: float, alpha_t: float, alpha_n: float) -> float:
-    """alpha_wt from inv(alpha_wt) = inv(alpha_t) + 2 (x1 + x2) tan(alpha_n) / (z1 + z2)
-    (ISO 21771 eq. 4.14, zero backlash)."""
+    """Return the working transverse pressure angle alpha_wt of a pair (ISO 21771 eq. 4.14, zero backlash).
+
+    Solves inv(alpha_wt) = inv(alpha_t) + 2 (x1 + x2) tan(alpha_n) / (z1 + z2).
+
+    Parameters
+    ----------
+    z1, z2 : int
+        Numbers of teeth.
+    x1, x2 : float
+        Profile shift coefficients.
+    alpha_t : float, rad
+        Transverse pressure angle.
+    alpha_n : float, rad
+        Normal pressure angle.
+
+    Returns
+    -------
+    float, rad
+        alpha_wt.
+    """
     return float(inv_inverse(inv(alpha_t) + 2.0 * (x1 + x2) * np.tan(alpha_n) / (z1 + z2)))
 
 
 def shift_sum(z1: int, z2: int, alpha_wt: float, alpha_t: float, alpha_n: float) -> float:
-    """x1 + x2 for a working pressure angle (ISO 21771 eq. 4.14 solved for the shift sum)."""
+    """Return the shift sum x1 + x2 for a working pressure angle (ISO 21771 eq. 4.14 solved for it).
+
+    Parameters
+    ----------
+    z1, z2 : int
+        Numbers of teeth.
+    alpha_wt : float, rad
+        Working transverse pressure angle.
+    alpha_t : float, rad
+        Transverse pressure angle.
+    alpha_n : float, rad
+        Normal pressure angle.
+
+    Returns
+    -------
+    float
+        x1 + x2 = (inv(alpha_wt) - inv(alpha_t)) (z1 + z2) / (2 tan(alpha_n)).
+    """
     return float((inv(alpha_wt) - inv(alpha_t)) * (z1 + z2) / (2.0 * np.tan(alpha_n)))

@@ -203,7 +203,7 @@ def _rack_xy(pair: RotorPair, p: np.ndarray) -> np.ndarray:
 
 
 def _driving_side(pair: RotorPair, a: float, depth: float, rounding: float, p: float, q: float) -> tuple[GeneralisedArc, Arc]:
-    """The driving flank (generalised arc) and the root rounding that joins it to the rack bottom.
+    """Build the driving flank (generalised arc) and the root rounding that joins it to the rack bottom.
 
     The arc is the quarter (x/a)^p + ((y + e)/b)^q = 1 centred at rack (0, -e), e = ``depth``
     (mm), b = h1 + e, from its foot (-a, -e) to the male tip (0, h1). Its foot stands across the
@@ -211,8 +211,33 @@ def _driving_side(pair: RotorPair, a: float, depth: float, rounding: float, p: f
     circle of radius ``rounding`` (mm) tangent to the arc and to the rack bottom y = -d1 takes
     over before the foot: its centre P(s) + rho n(s) (n the normal into the gap) lies at
     y = -d1 + rho, solved for s. That needs rho > d1 - e. With e = 0 and rho = d1 the rounding
-    is centred on the pitch line and meets the arc at its foot. Returns the trimmed arc (fixed
-    frame, travelled foot -> tip) and the rounding (None when d1 = rho = 0 and e = 0).
+    is centred on the pitch line and meets the arc at its foot (the limit, which the strict check
+    below refuses).
+
+    Parameters
+    ----------
+    pair : RotorPair
+        The pair (male addendum h1, dedendum d1 and pitch radius r1w), mm.
+    a : float, mm
+        Semi-axis of the arc along the rack.
+    depth : float, mm
+        Depth e of the arc's centre below the pitch line.
+    rounding : float, mm
+        Radius rho of the root rounding.
+    p, q : float
+        Exponents of the arc along and across the rack.
+
+    Returns
+    -------
+    arc : GeneralisedArc
+        The trimmed arc, fixed frame, travelled foot -> tip.
+    rounding : Arc
+        The root rounding, fixed frame, from the rack bottom to the arc.
+
+    Raises
+    ------
+    DesignError
+        ``[profile] driving_root_rounding`` unless rho > max(d1 - e, 0).
     """
     h1, d1 = pair.male_addendum, max(pair.male_dedendum, 0.0)
     r = pair.male_pitch_radius
@@ -251,9 +276,39 @@ def _rack_point(pair: RotorPair, path: PointPath, t: float) -> np.ndarray:
 def _envelope(
     pair: RotorPair, centre_body: np.ndarray, body: Rotation, radius: float, t0: float, t1: float, k: np.ndarray, t_k: float
 ) -> PointPath:
-    """Rack image of a rotor circle (centre ``centre_body`` in the rotor's frame at t = 0, mm) over
-    motion t0 -> t1: the path of the circle's centre offset by the radius to the side of the
-    contact K (fixed frame, mm), which it reaches at ``t_k``."""
+    """Build the rack image of a rotor circle over the motion t0 -> t1.
+
+    The image is the path of the circle's centre offset by the radius to the side of the contact
+    K, which it reaches at ``t_k``.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        The pair (its mesh gives the rack's motion).
+    centre_body : (2,) float array, mm
+        Centre of the circle in the rotor's frame at t = 0.
+    body : Rotation
+        The rotor carrying the circle.
+    radius : float, mm
+        Radius of the circle.
+    t0, t1 : float, rad
+        Range of the motion parameter.
+    k : (2,) float array, mm
+        The contact K, fixed frame.
+    t_k : float, rad
+        Motion parameter at which the image passes through K.
+
+    Returns
+    -------
+    PointPath
+        The offset path in the rack's frame, with the offset (+radius or -radius) that passes
+        through K at ``t_k``.
+
+    Raises
+    ------
+    DesignError
+        ``[profile] male_tip_rounding`` when neither offset reaches K (within 1e-6 max(1, radius) mm).
+    """
     mesh = pair.mesh
     for side in (1.0, -1.0):
         path = PointPath(tuple(centre_body), body, mesh.rack, t0, t1, offset=side * radius)

@@ -60,14 +60,21 @@ GEAR_INPUT_UNITS = {
 
 
 def report_unit(key: str) -> str:
-    """The unit of a result's dotted key as the page shows it (° for degrees, – for a pure
-    number; the rules of the command tables, :func:`rotorcad.cli.common.unit_of`).
+    """Return the unit of a result's dotted key as the page shows it.
+
+    ° for degrees, – for a pure number; the rules of the command tables,
+    :func:`rotorcad.cli.common.unit_of`.
 
     Parameters
     ----------
     key : str
         A key of ``rotorcad rotor --json``, ``hob --json`` or ``gear --json``, nested keys joined
         by dots (``max_sliding_at.value``).
+
+    Returns
+    -------
+    str
+        The unit as printed ("mm", "m/s", "°", "–", ...).
     """
     last = key.split(".")[-1]
     if last == "value" and key.startswith("max_sliding"):
@@ -83,7 +90,26 @@ def report_unit(key: str) -> str:
 
 
 def _input_unit(table: str, key: str, family: str | None) -> str:
-    """The unit of a design file's key (``table.key``)."""
+    """Return the unit of a design file's key (``table.key``).
+
+    Keys of the ``[gear]`` and ``[mate]`` tables take :data:`GEAR_INPUT_UNITS`; a ``[profile]`` key
+    of a family takes its unit from the parameter's allowed range (degrees, mm, else a pure
+    number), and ``smoothing`` is in mm²; everything else follows :func:`report_unit`.
+
+    Parameters
+    ----------
+    table : str
+        The design file's table (``gear``, ``mate``, ``profile``, ...).
+    key : str
+        The key within the table.
+    family : str or None
+        The screw-rotor family of the design (None for a gear).
+
+    Returns
+    -------
+    str
+        The unit as printed.
+    """
     if table in ("gear", "mate"):
         return GEAR_INPUT_UNITS.get(key, report_unit(key))
     if table == "profile" and family is not None:
@@ -117,9 +143,12 @@ def _input_unit(table: str, key: str, family: str | None) -> str:
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--quiet", is_flag=True, help="No progress output (there is none).")
 def report(design: Path, out_path: Path, files_dir: Path | None, as_json: bool, quiet: bool) -> None:
-    """One self-contained HTML page for a screw-rotor or gear design file: every number with its
-    unit (those of `rotorcad rotor --json` or `rotorcad gear --json`), the hobbability verdict
-    with its reasons, the defects, the pictures (inline SVG) and the files written."""
+    """Write one self-contained HTML page for a screw-rotor or gear design file.
+
+    Every number with its unit (those of `rotorcad rotor --json` or `rotorcad gear --json`), the
+    hobbability verdict with its reasons, the defects, the pictures (inline SVG) and the files
+    written.
+    """
     from rotorcad.cli.hob_cmd import _read_design
 
     if out_path.suffix.lower() not in (".html", ".htm"):
@@ -164,7 +193,27 @@ def _figure(fig: Any, fid: str) -> str:
 
 
 def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
-    """The numbers, pictures and files of a screw-rotor design, by the code of ``rotor`` and ``hob``."""
+    """Collect the numbers, pictures and files of a screw-rotor design, by the code of ``rotor`` and ``hob``.
+
+    Parameters
+    ----------
+    design : Path
+        The design file.
+    data : dict
+        Its parsed tables.
+
+    Returns
+    -------
+    dict
+        ``kind``, ``case``, ``family``, ``result`` (the numbers), ``hob`` (the hobbability
+        verdict), ``figures`` (id -> (SVG text, caption)), ``files`` (name -> (writer, what it
+        holds)) and ``command`` (the command whose numbers these are).
+
+    Raises
+    ------
+    InputError
+        When the design cannot be built or analysed (the DesignError's sentence).
+    """
     from hob.plotting import plot_hob, rotor_rack_comparison
     from hob.rack import rack_deviation, rotor_rack
     from hob.verdict import HobLimits
@@ -242,7 +291,22 @@ def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
 
 
 def _gear_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
-    """The numbers, pictures and files of a gear design, by the code of ``gear`` and ``hob``."""
+    """Collect the numbers, pictures and files of a gear design, by the code of ``gear`` and ``hob``.
+
+    Parameters
+    ----------
+    design : Path
+        The design file.
+    data : dict
+        Its parsed tables.
+
+    Returns
+    -------
+    dict
+        ``kind``, ``case``, ``family``, ``result`` (the numbers), ``hob`` (the hobbability
+        verdict), ``figures`` (id -> (SVG text, caption)), ``files`` (name -> (writer, what it
+        holds)) and ``command`` (the command whose numbers these are).
+    """
     from hob.plotting import gear_rack_comparison, plot_hob
     from hob.rack import gear_rack
     from hob.verdict import HobLimits
@@ -293,7 +357,24 @@ def _gear_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
 
 
 def _page(design: Path, data: dict[str, Any], content: dict[str, Any], planned: list[tuple[Path, str]]) -> str:
-    """The HTML page of a design's content."""
+    """Return the HTML page of a design's content.
+
+    Parameters
+    ----------
+    design : Path
+        The design file.
+    data : dict
+        Its parsed tables.
+    content : dict
+        From :func:`_rotor_content` or :func:`_gear_content`.
+    planned : list of (Path, str)
+        The files to be written, each with what it holds.
+
+    Returns
+    -------
+    str
+        The page's HTML.
+    """
     result, hob = content["result"], content["hob"]
     text = Path(design).read_bytes() if Path(design).is_file() else b""
     meta = [
