@@ -150,8 +150,12 @@ def n_rack(
             "inside the female pitch circle",
             female_tip_rounding,
         )
-    if rf > pair.female_tip_radius - pair.female_root_radius or rm > pair.male_tip_radius - pair.male_root_radius:
-        raise DesignError("[profile] female_tip_rounding", "smaller than the rotors' tooth depth", female_tip_rounding)
+    for key, radius, depth, value in (
+        ("female_tip_rounding", rf, pair.female_tip_radius - pair.female_root_radius, female_tip_rounding),
+        ("male_tip_rounding", rm, pair.male_tip_radius - pair.male_root_radius, male_tip_rounding),
+    ):
+        if radius > depth:
+            raise DesignError(f"[profile] {key}", f"at most {depth / h1:.4g} (the tooth depth over h1)", value)
 
     # --- sealing side: the male and female tip circles touching at K at male angle t_h ---
     k = sealing_contact(pair, rm, rf)
@@ -315,7 +319,8 @@ def _envelope(
         p_k = mesh.rack.to_fixed(path.frame(np.array([t_k]))[0], t_k)[0]
         if np.hypot(*(p_k - k)) < 1e-6 * max(1.0, radius):
             return path
-    raise DesignError("[profile] male_tip_rounding", "such that the sealing tip circles touch at one point", None)
+    key = "male_tip_rounding" if body is mesh.male else "female_tip_rounding"
+    raise DesignError(f"[profile] {key}", "such that the sealing tip circles touch at one point", radius / pair.male_addendum)
 
 
 __all__ = ["n_rack", "sealing_contact"]
