@@ -174,7 +174,8 @@ def test_plot_format_follows_the_suffix_for_every_command(tmp_path, capsys):
     assert main(["gear", "--teeth", "17", "--module", "2", "--plot", str(svg)]) == 0
     assert ET.parse(svg).getroot().tag.endswith("svg")
     pump = tmp_path / "p.pdf"
-    assert main(["pump", "--teeth", "11", "--module", "4", "--face-width", "20", "--speed", "1500", "--plot", str(pump)]) == 0
+    pump_args = ["--teeth", "11", "--module", "4", "--shift", "0.3", "--face-width", "20", "--speed", "1500"]
+    assert main(["pump", *pump_args, "--plot", str(pump)]) == 0
     assert pump.read_bytes()[:5] == b"%PDF-"
     capsys.readouterr()
     assert main(["gear", "--teeth", "17", "--module", "2", "--plot", str(tmp_path / "g.jpg")]) == 2

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.optimize import brentq
 
 from rotorcad.cli.main import main
 
@@ -251,6 +252,27 @@ def test_shift_1e30_module_1e300_teeth_1e20_hob_module_1e_12(capsys, tmp_path):
 def test_pump_negative_flow(capsys):
     """`pump --teeth 9 --module 1 --shift -1.5 --face-width 5 --speed 100`: negative mean flow."""
     refused(capsys, "--shift", "pump", "--teeth", "9", "--module", "1", "--shift", "-1.5", "--face-width", "5", "--speed", "100")
+
+
+def test_pump_with_a_contact_ratio_below_one_is_refused(capsys):
+    """`pump --teeth 9 --module 3` (x = 0) reported eps = 0.665 and a delivery that jumps at the
+    pitch end as success. A gear pump needs eps >= 1 (Kollek & Osinski Fig. 4, the eps = 1 line).
+    z = 9 unshifted is undercut (below z = 2 / sin^2 alpha = 17), so its usable involute starts
+    above the base circle and the contact ratio is below the tip-to-tip ISO 21771 value."""
+    pump = ("pump", "--teeth", "9", "--module", "3", "--face-width", "20", "--speed", "1500")
+    line = refused(capsys, "contact ratio of at least 1", *pump)
+    assert re.search(r"got 0\.66", line)
+    # with x = 0.5 (no undercut: x >= 1 - z sin^2(alpha) / 2 = 0.47) it delivers, and its contact
+    # ratio is ISO 21771's closed form for two equal shifted gears: inv a_w = inv a + 2 x tan a / z,
+    # a_w = z m cos a / cos a_w, eps = (2 sqrt(ra^2 - rb^2) - a_w sin a_w) / (pi m cos a)
+    z, m, x, alpha = 9, 3.0, 0.5, np.radians(20.0)
+    inv_w = np.tan(alpha) - alpha + 2 * x * np.tan(alpha) / z
+    alpha_w = brentq(lambda a: np.tan(a) - a - inv_w, 0.01, 1.4, xtol=1e-15)
+    a_w = z * m * np.cos(alpha) / np.cos(alpha_w)
+    rb, ra = z * m / 2 * np.cos(alpha), z * m / 2 + m * (1 + x)
+    eps = (2 * np.sqrt(ra**2 - rb**2) - a_w * np.sin(alpha_w)) / (np.pi * m * np.cos(alpha))
+    status, out, _ = run(capsys, *pump, "--shift", "0.5", "--json")
+    assert status == 0 and json.loads(out)["contact_ratio"] == pytest.approx(eps, abs=1e-9)
 
 
 def test_contact_ratio_zero_is_refused(capsys):

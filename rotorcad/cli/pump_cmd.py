@@ -58,6 +58,14 @@ def pump(design: Path | None, **opts: Any) -> None:
     except DesignError as exc:
         raise reraise(exc, PUMP_OPTION) from None
     check_contact(eps, "--teeth, --shift, --addendum and --pressure-angle")
+    if eps < 1.0:
+        # Kollek & Osinski (sec. 2, Fig. 4): the meshing teeth separate the discharge from the
+        # suction side only while a pair is in contact; below eps = 1 no pair is for part of each pitch
+        raise InputError(
+            f"--teeth, --shift, --addendum and --pressure-angle must give a gear pump a contact ratio of at least 1 (got "
+            f"{eps:.4g}): below it no pair of teeth is in mesh for part of each pitch and the discharge opens to the suction; "
+            "raise --shift or --addendum (see --nomogram)."
+        )
     if not (np.isfinite(p.mean_flow) and p.mean_flow > 0 and np.isfinite(p.irregularity) and p.irregularity >= 0):
         raise InputError(
             "--teeth, --shift and --addendum must give a pump that delivers (a positive mean flow; got "
