@@ -27,6 +27,7 @@ C = (r, 0), the rack's pitch line x = r moving +y as the gear turns counter-cloc
 from __future__ import annotations
 
 import cmath
+import functools
 import math
 from dataclasses import dataclass, fields
 from functools import cached_property
@@ -676,15 +677,8 @@ class InvoluteGear:
         parts_w.append(w_up)
         counts.append(lengths)
 
-        def make_segments() -> list[Segment]:
-            curves = dict(self._pieces)
-            upper = [Segment(n, curves[n], s, _pairs(z), _pairs(w)) for n, (s, z, w) in zip(names, samples, strict=True)]
-            lower = [seg.mirrored(0.0) for seg in reversed(upper)]
-            if tip is not None:
-                arc = Arc((0.0, 0.0), self.nominal_tip_radius, -tip, tip)
-                upper.insert(0, Segment("tip arc", arc, s_tip, _pairs(parts_z[1]), _pairs(parts_w[1])))
-            return [*lower, *upper]
-
+        tip_samples = (s_tip, parts_z[1], parts_w[1]) if tip is not None else None
+        make_segments = functools.partial(_tooth_segments, self, tuple(names), tuple(samples), tip_samples)
         return _Sampled(_pairs(np.concatenate(parts_z)), _pairs(np.concatenate(parts_w)), np.concatenate(counts), make_segments)
 
     def outline(self, tolerance: float | None = None) -> Profile:
@@ -752,6 +746,41 @@ class InvoluteGear:
             "undercut": self.undercut,
             "tip_pointed": self.tip_pointed,
         }
+
+
+def _tooth_segments(
+    gear: InvoluteGear,
+    names: tuple[str, ...],
+    samples: tuple[tuple[Array, Array, Array], ...],
+    tip: tuple[Array, Array, Array] | None,
+) -> list[Segment]:
+    """The segments of :meth:`InvoluteGear.tooth_profile`, with their exact curves.
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear (its :attr:`~InvoluteGear._pieces` give the curves).
+    names : tuple of str
+        The upper half's pieces, from the tip towards the space centre.
+    samples : tuple of (s, z, w)
+        Their tool parameters (n,), points (n,) complex x + i y, mm, and unit tangents (n,) complex.
+    tip : (s, z, w) or None
+        The whole tip arc's polar angles (rad), points and tangents; None for a pointed tooth.
+
+    Returns
+    -------
+    list of Segment
+        The lower half (the upper one mirrored, :meth:`~rotorcad.profile.Segment.mirrored`), the
+        tip arc, the upper half: the samples of the tooth profile, in order.
+    """
+    curves = dict(gear._pieces)
+    upper = [Segment(n, curves[n], s, _pairs(z), _pairs(w)) for n, (s, z, w) in zip(names, samples, strict=True)]
+    lower = [seg.mirrored(0.0) for seg in reversed(upper)]
+    if tip is not None:
+        s_tip, z_tip, w_tip = tip
+        arc = Arc((0.0, 0.0), gear.nominal_tip_radius, float(s_tip[0]), float(s_tip[-1]))
+        upper.insert(0, Segment("tip arc", arc, s_tip, _pairs(z_tip), _pairs(w_tip)))
+    return [*lower, *upper]
 
 
 def _pairs(z: Array) -> Array:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pickle
+
 import numpy as np
 import pytest
 import shapely
@@ -282,6 +284,14 @@ def test_every_piece_is_sampled_within_the_chord_tolerance(kwargs):
     for seg in g.tooth_profile().segments:
         np.testing.assert_allclose(seg.points, seg.curve.evaluate(seg.s)[0], rtol=0, atol=1e-12 * g.module)
         assert chord_error(seg.curve, seg.s, probes=24) <= g.tolerance
+
+
+def test_outline_survives_pickling():
+    # the tooth's segment objects are made on first use; the outline still pickles (worker processes)
+    g = InvoluteGear(20, 2.0, 20 * DEG, 0.0, 0.3)
+    outline = pickle.loads(pickle.dumps(g.outline()))
+    np.testing.assert_array_equal(outline.points, g.outline().points)
+    assert [s.name for s in outline.segments[:7]] == [s.name for s in g.tooth_profile().segments]
 
 
 @settings(max_examples=40, deadline=None)
