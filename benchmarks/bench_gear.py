@@ -1,7 +1,8 @@
 """Speed of the foundation (issues 2 and 14): gear outline and envelope-engine throughput.
 
 Run by hand on an idle machine: ``python benchmarks/bench_gear.py``. Single-threaded BLAS is
-forced so that the figures are per core.
+forced so that the figures are per core. The machine's load (1, 5 and 15 minute averages) is
+printed before and after the runs; best and median of the runs, after one warm-up run.
 """
 
 from __future__ import annotations
@@ -21,6 +22,11 @@ from rotorcad.gear import InvoluteGear
 from rotorcad.kinematics import rotor_mesh
 
 
+def load() -> str:
+    """The machine's load averages (1, 5, 15 min) and core count, as printed."""
+    return f"machine load (1, 5, 15 min): {', '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores"
+
+
 def best_of(fn, repeat: int = 15) -> tuple[float, float]:
     """Best and median wall time of ``repeat`` runs of ``fn`` (after one warm-up run), s."""
     fn()
@@ -35,10 +41,11 @@ def best_of(fn, repeat: int = 15) -> tuple[float, float]:
 def main() -> None:
     deg = np.pi / 180
 
-    print(f"machine load (1, 5, 15 min): {', '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores")
+    print(load())
 
     # 1. full gear outline, z = 30, one tooth to 0.1 um chord error (target < 1 ms): a new gear every
-    # run (nothing cached), half a tooth sampled, mirrored and patterned
+    # run (nothing cached); half a tooth evaluated in closed form and sampled in one step from its
+    # curvature, mirrored, and the tooth patterned
     def outline():
         return InvoluteGear(30, 2.0, 20 * deg, tolerance=1e-4).outline().points
 
@@ -65,6 +72,7 @@ def main() -> None:
     p, t = arc.evaluate(np.linspace(-1.2, 1.2, n_pts))
     best, med = best_of(lambda: conjugate(p, t, mesh.male, mesh.female), repeat=5)
     print(f"engine male -> female: {n_pts / best / 1e6:.2f} M points/s (best of 5, median {n_pts / med / 1e6:.2f})")
+    print(load())
 
 
 if __name__ == "__main__":

@@ -12,12 +12,23 @@ closes the tooth. Where the fillet cuts into the involute (undercut, DIN 3960 se
 generated curves are intersected and the outline follows the one nearer the tooth centre. Where
 the two flanks meet below the tip circle the tooth is pointed and the tip circle is dropped.
 
+The outline is evaluated in closed form (:class:`_ToolCut`: the engine's meshing condition
+written out for the rack and the gear, the same points to 1e-14 mm) and sampled to the chord
+tolerance in one step from the curvature of each piece: the involute's from its roll distance
+(ISO 21771), the fillet's from its exact tangent turning rate and speed, the two circles' from
+their radii. Half a tooth is sampled, mirrored, and the tooth patterned
+(:meth:`rotorcad.profile.Profile.patterned`); the segment objects with their exact curves
+(:class:`~rotorcad.envelope.Generated`, for STEP and DXF) are made only when asked for.
+
 Frames (DESIGN.md): gear centre at the origin, tooth 0 centred on the +x axis, pitch point
 C = (r, 0), the rack's pitch line x = r moving +y as the gear turns counter-clockwise.
 """
 
 from __future__ import annotations
 
+import cmath
+import functools
+import math
 from dataclasses import dataclass, fields
 from functools import cached_property
 
@@ -32,12 +43,12 @@ from rotorcad.geometry import Array, polar_angle, radius
 from rotorcad.involute import inv as inv_fn
 from rotorcad.involute import inv_inverse, shift_sum, transverse_pressure_angle, working_pressure_angle
 from rotorcad.kinematics import gear_mesh
-from rotorcad.profile import DEFAULT_TOLERANCE, Profile, Segment
+from rotorcad.profile import DEFAULT_TOLERANCE, Profile, Segment, _Sampled
 from rotorcad.roots import bracket_root
 
 DEG = np.pi / 180.0
 MAX_TEETH = 1000
-"""Most teeth of a gear: its outline (some 250 points a tooth) and cutting stay within seconds."""
+"""Most teeth of a gear: its outline (some 200 points a tooth at 0.1 um) and cutting stay within seconds."""
 MODULE_RANGE = (0.01, 1000.0)
 """Normal module, mm: from watch gears to the largest mill gears."""
 RELATIVE_TOLERANCE = (1e-7, 0.1)
@@ -49,6 +60,173 @@ def tool_tip_radius_limit(pressure_angle: float, dedendum: float) -> float:
     """Largest tool tip radius factor rho_a0* that fits a rack tooth (full-radius tip):
     rho_max = (pi/4 - h_a0* tan(alpha)) cos(alpha) / (1 - sin(alpha))."""
     return (np.pi / 4.0 - dedendum * np.tan(pressure_angle)) * np.cos(pressure_angle) / (1.0 - np.sin(pressure_angle))
+
+
+class _ToolCut:
+    """One piece of the rack tool and the piece of gear outline it cuts, both in closed form.
+
+    The tool piece lies in the fixed frame at t = 0 (gear centre O at the origin, pitch point
+    C = (r, 0), the rack moving with V = (0, r) per radian of the gear) and is stretched by
+    S = diag(1, k), k = 1 / cos(beta), along the pitch line (the transverse section of a helical
+    tool). It is either a straight line, p(s) = S (a + s d) with ``s`` the length along the
+    unstretched line, or an arc, p(s) = S (K + rho (cos s, sin s)) with ``s`` the polar angle about
+    K (rho = 0: a sharp corner, one point with a fan of normals). These are the parameters of the
+    tool curves of :attr:`InvoluteGear.tool`, so that a cut piece is evaluated at the parameters of
+    the matching :class:`~rotorcad.envelope.Generated` curve.
+
+    The law of gearing (Litvin, *Gear Geometry and Applied Theory*, eq. 6.1.7) makes the tool's
+    outward normal n at the contact point pass through C: cross(n, p + V t - C) = 0, linear in the
+    gear's turn t, so t = -cross(n, p - C) / (r n_x). The cut point is R(-t) (p + V t), its tangent
+    R(-t) tau (tau the tool's unit tangent). For the line t is linear in s and the cut curve is an
+    involute of the base circle (ISO 21771 sec. 2.3); for the arc, with n = S^-T (cos s, sin s)
+    normalised, t = -k K_y / r + tan(s) (K_x - r) / (r k) + rho sin(s) (1 / k - k) / r and the cut
+    curve is the trochoidal root fillet (for k = 1 the path of K offset by rho, Litvin ch. 6); the
+    tip line cuts the root circle. This is the envelope engine's evaluation
+    (:func:`rotorcad.envelope.conjugate`) written out for this one motion, in complex numbers
+    (x + i y; R(-t) is a product with exp(-i t)) and with no per-call objects, plus the derivatives
+    that give the cut curve's curvature for sampling.
+    """
+
+    __slots__ = ("arc", "center", "direction", "k", "kind", "length", "r", "radius", "start", "tangent", "turn")
+
+    def __init__(
+        self,
+        kind: str,
+        r: float,
+        k: float,
+        start: tuple[float, float] = (0.0, 0.0),
+        direction: tuple[float, float] = (1.0, 0.0),
+        center: tuple[float, float] = (0.0, 0.0),
+        radius: float = 0.0,
+        length: float = 0.0,
+    ) -> None:
+        """Parameters
+        ----------
+        kind : str
+            "line" or "arc".
+        r : float
+            Pitch radius of the gear, mm.
+        k : float
+            Stretch along the pitch line, 1 / cos(beta).
+        start, direction : (2,) float
+            A line's start a (mm) and unit direction d, unstretched.
+        center, radius : (2,) float and float, mm
+            An arc's centre K (unstretched) and radius rho.
+        length : float
+            A line's length, mm (its parameter at the far end).
+        """
+        self.kind = kind
+        self.r = r = float(r)
+        self.k = k = float(k)
+        self.start = (float(start[0]), float(k * start[1]))  # S a, mm
+        self.direction = dx, dy = (float(direction[0]), float(k * direction[1]))  # S d
+        self.center = kx, ky = (float(center[0]), float(center[1]))
+        self.radius = rho = float(radius)
+        self.length = float(length)
+        speed = math.hypot(dx, dy)
+        self.tangent = complex(dx / speed, dy / speed)  # a line's unit tangent tau
+        # a line's contact turn t = t0 + t1 s; an arc's t = A + B tan(s) + D sin(s)
+        ax, ay = self.start
+        tx, ty = dx / speed, dy / speed
+        self.turn = (-(ty * ay + tx * (ax - r)) / (r * ty), -speed / (r * ty)) if kind == "line" else None
+        self.arc = (-k * ky / r, (kx - r) / (r * k), rho * (1.0 / k - k) / r) if kind == "arc" else None
+
+    def roll(self) -> tuple[float, float]:
+        """A line's roll distance along = a0 + a1 s, mm: where its contact point X(s) lies on the
+        line of action, measured from T1, the foot of the perpendicular from O (the base circle's
+        tangency point), towards C.
+
+        The contact points of a straight tool flank run along the line of action, which passes
+        through C along the tool's normal n: X - T1 = (X . n) n and C - T1 = (C . n) n, so the
+        roll distance is sign(C . n) (X . n), linear in s through X(s) = p(s) + V t(s). It is also
+        the radius of curvature of the involute at the cut point (ISO 21771 sec. 2.3).
+
+        Returns
+        -------
+        (float, float)
+            a0 (mm) and a1 (mm per mm of s).
+        """
+        (ax, ay), (dx, dy) = self.start, self.direction
+        t0, t1 = self.turn
+        tau = self.tangent
+        nx, ny = tau.imag, -tau.real
+        sign = 1.0 if self.r * nx >= 0.0 else -1.0
+        a0 = sign * (nx * ax + ny * (ay + self.r * t0))
+        a1 = sign * (nx * dx + ny * (dy + self.r * t1))
+        return a0, a1
+
+    def point(self, s: float) -> complex:
+        """A line's cut point at the tool parameter ``s`` as x + i y, mm (for a single point)."""
+        (ax, ay), (dx, dy) = self.start, self.direction
+        t0, t1 = self.turn
+        t = t0 + t1 * s
+        return complex(ax + s * dx, ay + s * dy + self.r * t) * cmath.exp(-1j * t)
+
+    def cut(self, s: Array, curvature: bool = False, pairs: bool = True) -> tuple[Array, ...]:
+        """The cut gear curve at tool parameters ``s``.
+
+        Parameters
+        ----------
+        s : (n,) float array
+            Tool parameters (see the class docstring).
+        curvature : bool
+            Also return dphi/ds, the turning rate of the cut curve's tangent (phi = psi - t, psi
+            the tool tangent's angle), and its speed |dP/ds| = |dp/ds + dt/ds (V - J X) . tau|
+            (J X the gear's velocity at the contact point X; the meshing condition makes
+            dP/ds parallel to the tangent); the radius of curvature is |dP/ds| / |dphi/ds|.
+        pairs : bool
+            Points and tangents as (n, 2) float arrays (else as complex x + i y, (n,)).
+
+        Returns
+        -------
+        points : (n, 2) float array, mm (or (n,) complex)
+            Points of the cut curve in the gear frame.
+        tangents : (n, 2) float array (or (n,) complex)
+            Unit tangents along increasing ``s`` (the tool's tangent turned by -t).
+        turning : (n,) float array, rad per unit of s
+            dphi/ds, signed; only with ``curvature``.
+        speed : (n,) float array, mm per unit of s
+            |dP/ds|; only with ``curvature``.
+        """
+        r, k = self.r, self.k
+        if self.kind == "line":
+            (ax, ay), (dx, dy) = self.start, self.direction
+            t0, t1 = self.turn
+            t = t0 + t1 * s
+            z = complex(ax, ay + r * t0) + complex(dx, dy + r * t1) * s  # the contact point X = p + V t
+            tau = self.tangent
+            turn, dt = 0.0, t1
+        else:
+            a, b, d = self.arc
+            e = np.exp(1j * s)
+            c, sn = e.real, e.imag
+            t = a + b * (sn / c)
+            if d:
+                t += d * sn
+            rho, (kx, ky) = self.radius, self.center
+            if k == 1.0:
+                z = rho * e + complex(kx, ky)
+                tau = 1j * e
+            else:
+                z = kx + rho * c + 1j * (k * (ky + rho * sn))
+                norm = np.sqrt(sn * sn + (k * k) * (c * c))
+                tau = (1j * k * c - sn) / norm
+            z.imag += r * t
+        rot = np.exp(-1j * t)
+        pts, tan = z * rot, tau * rot
+        if pairs:
+            pts, tan = _pairs(pts), _pairs(tan)
+        if not curvature:
+            return pts, tan
+        if self.kind == "arc":
+            norm = np.sqrt(sn * sn + (k * k) * (c * c))  # |S (-sin s, cos s)|
+            speed = self.radius * norm
+            turn = k / (norm * norm)
+            dt = b / (c * c) + (d * c if d else 0.0)
+        else:
+            speed = math.hypot(dx, dy)
+        along = (np.conj(tau) * (1j * (r - z))).real  # (V - J X) . tau
+        return pts, tan, turn - dt, np.abs(speed + dt * along)
 
 
 @dataclass(frozen=True, eq=False)
@@ -140,11 +318,18 @@ class InvoluteGear:
 
     # ----- the generating tool -------------------------------------------------------------
     @cached_property
-    def tool(self) -> dict[str, Curve]:
-        """The tool tooth facing the upper flank of tooth 0, in the fixed frame at t = 0.
+    def _tool_geometry(self) -> dict[str, object]:
+        """The tool tooth facing the upper flank of tooth 0 as numbers (ISO 53 rack, shifted by x m).
 
-        Travelled counter-clockwise around the tool material (outward normal towards the gear):
-        ``tip line`` -> ``tip arc`` -> ``flank``.
+        Returns
+        -------
+        dict
+            In the fixed frame at t = 0, unstretched, mm: ``tip_line_start`` (None when the two
+            tip arcs meet) and ``tip_line_end``, (2,) each; ``arc_center`` (2,) and ``arc_radius``
+            rho_a0 of the tip arc, which runs from the polar angle pi to ``arc_end`` =
+            3 pi / 2 - alpha_n (rad); ``flank_start`` (its tangency with the tip arc) and
+            ``flank_end`` (past the rack point that cuts the tip circle), (2,) each; ``stretch``
+            k = 1 / cos(beta), the transverse section's scale along the pitch line.
         """
         m, a = self.module, self.pressure_angle
         r = self.pitch_radius
@@ -158,74 +343,150 @@ class InvoluteGear:
         at = self.transverse_pressure_angle
         v_top = (np.sqrt(self.nominal_tip_radius**2 - self.base_radius**2) - r * np.sin(at)) * np.sin(at) + 0.5 * m
         top = (r + v_top, pn / 4.0 + (self.shift * m - v_top) * np.tan(a))
-        stretch = ((1.0, 0.0), (0.0, 1.0 / np.cos(self.helix_angle)))
+        has_line = bool(pn / 2.0 - k_u > 1e-12 * m)
+        return {
+            "tip_line_start": (r + v_tip, pn / 2.0) if has_line else None,
+            "tip_line_end": (r + v_tip, k_u),
+            "arc_center": (r + v_c, k_u),
+            "arc_radius": rho,
+            "arc_end": 1.5 * np.pi - a,
+            "flank_start": tf,
+            "flank_end": top,
+            "stretch": 1.0 / np.cos(self.helix_angle),
+        }
+
+    @cached_property
+    def tool(self) -> dict[str, Curve]:
+        """The tool tooth facing the upper flank of tooth 0, in the fixed frame at t = 0.
+
+        Travelled counter-clockwise around the tool material (outward normal towards the gear):
+        ``tip line`` -> ``tip arc`` -> ``flank``.
+
+        Returns
+        -------
+        dict of str to Curve
+            The pieces of :attr:`_tool_geometry` as :class:`~rotorcad.curves.Mapped` lines and arc
+            (stretched by 1 / cos(beta) along the pitch line), mm.
+        """
+        geo = self._tool_geometry
+        stretch = ((1.0, 0.0), (0.0, geo["stretch"]))
         curves: dict[str, Curve] = {}
-        if pn / 2.0 - k_u > 1e-12 * m:
-            curves["tip line"] = Mapped(Line((r + v_tip, pn / 2.0), (r + v_tip, k_u)), stretch)
-        curves["tip arc"] = Mapped(Arc((r + v_c, k_u), rho, np.pi, 1.5 * np.pi - a), stretch)
-        curves["flank"] = Mapped(Line(tf, top), stretch)
+        if geo["tip_line_start"] is not None:
+            curves["tip line"] = Mapped(Line(geo["tip_line_start"], geo["tip_line_end"]), stretch)
+        curves["tip arc"] = Mapped(Arc(geo["arc_center"], geo["arc_radius"], np.pi, geo["arc_end"]), stretch)
+        curves["flank"] = Mapped(Line(geo["flank_start"], geo["flank_end"]), stretch)
         return curves
 
     @cached_property
+    def _cuts(self) -> dict[str, _ToolCut]:
+        """The pieces of :attr:`tool` as closed-form cutters.
+
+        Returns
+        -------
+        dict of str to _ToolCut
+            Keyed like :attr:`tool`, with the parameters of its curves (length along a line, mm;
+            polar angle about the arc centre, rad).
+        """
+        geo = self._tool_geometry
+        r, k = self.pitch_radius, geo["stretch"]
+        cuts: dict[str, _ToolCut] = {}
+        for name, a, b in (
+            ("tip line", geo["tip_line_start"], geo["tip_line_end"]),
+            ("flank", geo["flank_start"], geo["flank_end"]),
+        ):
+            if a is not None:
+                dx, dy = float(b[0]) - float(a[0]), float(b[1]) - float(a[1])
+                length = math.hypot(dx, dy)
+                cuts[name] = _ToolCut("line", r, k, a, (dx / length, dy / length), length=length)
+        cuts["tip arc"] = _ToolCut("arc", r, k, center=geo["arc_center"], radius=geo["arc_radius"])
+        return cuts
+
+    @cached_property
     def _generated(self) -> dict[str, Generated]:
+        """The gear curves cut by the pieces of :attr:`tool`, as the envelope engine generates them.
+
+        Returns
+        -------
+        dict of str to Generated
+            Keyed like :attr:`tool`; exact at any tool parameter (the curves of the outline's
+            segments, :func:`rotorcad.envelope.conjugate`).
+        """
         mesh = gear_mesh(self.pitch_radius)
         return {k: Generated(c, mesh.rack, mesh.male) for k, c in self.tool.items()}
 
     # ----- the generated tooth -------------------------------------------------------------
     @cached_property
     def _half_tooth(self) -> dict[str, object]:
-        """Upper half of tooth 0 as curves, from the tip centre line to the space centre."""
-        gen = self._generated
-        flank, fillet = gen["flank"], gen["tip arc"]
-        rb, ra = self.base_radius, self.nominal_tip_radius
+        """Upper half of tooth 0, from the tip centre line to the space centre.
+
+        The roll distance of the flank's contact, L = a0 + a1 s, gives the undercut (a0 < 0: the
+        tool's flank/fillet joint cuts below the interference point T1), the flank's ends on the
+        tip circle and the form circle (R = sqrt(r_b^2 + L^2)); the involute's polar angle
+        theta_c - inv(alpha_R) (ISO 21771 eq. 2.21) gives the pointed tip (inv(alpha) = theta_c on
+        the centre line); the undercut point P' is where the fillet crosses the involute.
+
+        Returns
+        -------
+        dict
+            ``cuts``: the pieces as (name, s_start, s_end, cutter), the tool parameters (the
+            blank's tip arc: polar angles, rad) where the piece starts and ends along the
+            counter-clockwise travel and the :class:`_ToolCut` that cuts it (None for the tip
+            arc); ``roll``: (a0 mm, a1); ``fillet_points``: the fillet at :data:`FILLET_GRID`
+            parameters, (m, 2) mm; ``fillet_counts``: their :func:`_chord_counts`; ``undercut``,
+            ``tip_pointed`` (bool); ``tip_radius``, ``form_radius``, ``undercut_radius`` (mm, the
+            last None without undercut). :attr:`_pieces` gives the pieces as curves.
+        """
+        cuts = self._cuts
+        flank, fillet = cuts["flank"], cuts["tip arc"]
+        rb, ra = float(self.base_radius), float(self.nominal_tip_radius)
         # flank parameter s runs from the tool's fillet tangency (s = 0) up to the top;
         # the interference point (contact at the base tangency T1) is where the roll vanishes.
-        s_end = flank.s0
-        s_grid = np.array([0.0, s_end])  # the roll is linear in s: its two ends give it
-        p_grid = flank.contact(s_grid)
-        c = p_grid.pitch_point
-        normal = p_grid.normal[0]
-        t1 = np.dot(-c, normal) * normal + c  # foot of the perpendicular from O on the line of action
         # a straight flank touches along the line of action, linearly in s: along = a0 + a1 s is the
         # roll distance from T1, and the generated radius is R = sqrt(r_b^2 + along^2)
-        along = (p_grid.meshline - t1) @ (c - t1) / np.hypot(*(c - t1))
-        a0 = along[0]
-        a1 = (along[-1] - along[0]) / (s_grid[-1] - s_grid[0])
+        a0, a1 = flank.roll()
         undercut = bool(a0 < 0.0)
         s_int = -a0 / a1 if undercut else 0.0
-        s_a = (np.sqrt(ra * ra - rb * rb) - a0) / a1
+        s_a = (math.sqrt(ra * ra - rb * rb) - a0) / a1
         # the flank is an involute: polar angle + inv(alpha_R) is constant along it; taken at its top
         # (generated above the tip circle, well clear of the base circle where alpha_R is ill-conditioned)
-        top = p_grid.points[1:]
-        theta_c = float(polar_angle(top)[0]) + inv_fn(np.arccos(rb / float(radius(top)[0])))
+        top = flank.point(flank.length)
+        theta_c = cmath.phase(top) + _inv(math.acos(rb / abs(top)))
 
         def flank_angle(r: Array) -> Array:
             return theta_c - inv_fn(np.arccos(np.clip(rb / r, -1.0, 1.0)))
 
-        tip_pointed = bool(flank_angle(ra) <= 0.0)
+        tip_angle = theta_c - _inv(math.acos(min(rb / ra, 1.0)))  # the flank's polar angle on the tip circle
+        tip_pointed = bool(tip_angle <= 0.0)
         tip_radius = ra
         if tip_pointed:  # the flank meets the tooth centre line below the tip circle
-            r_pt = rb / np.cos(inv_inverse(theta_c))
-            s_a = (np.sqrt(r_pt * r_pt - rb * rb) - a0) / a1
+            r_pt = rb / math.cos(inv_inverse(theta_c))
+            s_a = (math.sqrt(r_pt * r_pt - rb * rb) - a0) / a1
             tip_radius = float(r_pt)
-        fil_s0, fil_s1 = fillet.s0, fillet.s1  # from the fillet/flank joint down to the root
+        fil_s0, fil_s1 = fillet_range = (self._tool_geometry["arc_end"], math.pi)  # fillet/flank joint to root
         s_low = 0.0
         if undercut:
-            r_p, fil_s0 = self._undercut_point(fillet, flank_angle, rb)
+            r_p, fil_s0 = self._undercut_point(fillet, fillet_range, flank_angle, rb)
             if np.isfinite(r_p):
-                s_low = (np.sqrt(max(r_p * r_p - rb * rb, 0.0)) - a0) / a1
+                s_low = (math.sqrt(max(r_p * r_p - rb * rb, 0.0)) - a0) / a1
             else:  # crossing at the base circle, where the polar form is singular: intersect the curves
-                s_low, fil_s0 = self._undercut_point_by_intersection(flank, fillet, s_int, s_a)
-        form_radius = float(np.sqrt(rb * rb + (a0 + a1 * s_low) ** 2))
-        pieces: list[tuple[str, Curve]] = []
+                gen = self._generated
+                s_low, fil_s0 = self._undercut_point_by_intersection(gen["flank"], gen["tip arc"], s_int, s_a)
+        form_radius = math.sqrt(rb * rb + (a0 + a1 * s_low) ** 2)
+        pieces: list[tuple[str, float, float, _ToolCut | None]] = []
         if not tip_pointed:
-            pieces.append(("tip arc", Arc((0.0, 0.0), ra, 0.0, float(flank_angle(ra)))))
-        pieces.append(("involute", flank.trimmed(s_a, s_low)))
-        pieces.append(("fillet", fillet.trimmed(fil_s0, fil_s1)))
-        if "tip line" in gen:
-            pieces.append(("root arc", gen["tip line"]))
+            pieces.append(("tip arc", 0.0, tip_angle, None))
+        pieces.append(("involute", float(s_a), float(s_low), flank))
+        pieces.append(("fillet", float(fil_s0), float(fil_s1), fillet))
+        if "tip line" in cuts:
+            pieces.append(("root arc", cuts["tip line"].length, 0.0, cuts["tip line"]))  # the whole tip line
+        # the fillet on a fine grid: checked for crossing the tooth centre line (_severed), and its
+        # curvature places the samples (_grid_parameters)
+        fillet_points, _, turning, speed = fillet.cut(_span(fil_s0, fil_s1, FILLET_GRID), curvature=True)
         return {
-            "pieces": pieces,
+            "cuts": pieces,
+            "roll": (a0, a1),
+            "fillet_points": fillet_points,
+            "fillet_counts": _chord_counts(turning, speed, abs(fil_s1 - fil_s0) / (FILLET_GRID - 1)),
             "undercut": undercut,
             "tip_pointed": tip_pointed,
             "tip_radius": tip_radius,
@@ -233,30 +494,72 @@ class InvoluteGear:
             "undercut_radius": form_radius if undercut else None,
         }
 
+    @cached_property
+    def _pieces(self) -> list[tuple[str, Curve]]:
+        """The pieces of :attr:`_half_tooth` as exact curves.
+
+        Returns
+        -------
+        list of (str, Curve)
+            The blank's tip arc (:class:`~rotorcad.curves.Arc`, polar angle from 0 to the flank's)
+            and the :class:`~rotorcad.envelope.Generated` involute, fillet and root arc, trimmed to
+            the tooth, with the tool parameters of the cutters.
+        """
+        gen = self._generated
+        source = {"involute": "flank", "fillet": "tip arc"}
+        out: list[tuple[str, Curve]] = []
+        for name, s0, s1, _ in self._half_tooth["cuts"]:
+            if name == "tip arc":
+                out.append((name, Arc((0.0, 0.0), self.nominal_tip_radius, s0, s1)))
+            elif name == "root arc":
+                out.append((name, gen["tip line"]))  # untrimmed, as the whole tip line cuts it
+            else:
+                out.append((name, gen[source[name]].trimmed(s0, s1)))
+        return out
+
     @staticmethod
-    def _undercut_point(fillet: Generated, flank_angle: object, rb: float) -> tuple[float, float]:
+    def _undercut_point(fillet: _ToolCut, s_range: tuple[float, float], flank_angle: object, rb: float) -> tuple[float, float]:
         """Radius and fillet parameter of the undercut point P', where the fillet (trochoid) cuts
         the involute: the outermost sign change of the polar-angle gap between the fillet and the
-        involute at the same radius, bracketed on two vectorised grids and interpolated."""
+        involute at the same radius, bracketed on two vectorised grids and interpolated.
+
+        Parameters
+        ----------
+        fillet : _ToolCut
+            The tool's tip arc, which cuts the fillet.
+        s_range : (float, float)
+            Tool parameters (polar angles about the tip-arc centre, rad) of the fillet's ends, from
+            its joint with the involute to the root.
+        flank_angle : callable
+            Polar angle of the involute at radii R (n,), mm: theta_c - inv(arccos(r_b / R)).
+        rb : float
+            Base radius, mm.
+
+        Returns
+        -------
+        (float, float)
+            Radius of P', mm (NaN where the gap changes sign nowhere above the base circle), and the
+            tool parameter of P' on the fillet.
+        """
 
         def gap(s: Array) -> tuple[Array, Array]:
-            p, _ = fillet.evaluate(s)
+            p = fillet.cut(s)[0]
             r = radius(p)
             return polar_angle(p) - flank_angle(r), r
 
-        lo, hi = fillet.s0, fillet.s1
+        lo, hi = s_range
         for _ in range(3):
-            s = np.linspace(lo, hi, 513)
+            s = _span(lo, hi, 513)
             g, r = gap(s)
             ok = (r > rb) & np.isfinite(g)
             change = np.nonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) != np.sign(g[1:])))[0]
             if len(change) == 0:
-                return float("nan"), fillet.s0
+                return float("nan"), s_range[0]
             i = change[np.argmax(r[change])]
             lo, hi = s[i], s[i + 1]
         w = g[i] / (g[i] - g[i + 1])
         s_star = lo + w * (hi - lo)
-        return float(radius(fillet.evaluate(s_star)[0])[0]), float(s_star)
+        return float(radius(fillet.cut(np.array([s_star]))[0])[0]), float(s_star)
 
     @staticmethod
     def _undercut_point_by_intersection(flank: Generated, fillet: Generated, s_int: float, s_a: float) -> tuple[float, float]:
@@ -305,7 +608,20 @@ class InvoluteGear:
 
         The upper half's flank pieces (involute, fillet, root arc) are sampled once and mirrored
         in the tooth's centre line for the lower half; the tip arc, which the centre line cuts, is
-        sampled whole.
+        sampled whole. Each piece is sampled in one step from its curvature, so that every chord
+        stays within the tolerance of the exact curve (sagitta L^2 / (8 rho)):
+
+        * the involute at equal steps of L^(3/2), L its roll distance and radius of curvature
+          (ISO 21771 sec. 2.3; :func:`_involute_parameters`),
+        * the fillet from the exact turning rate and speed of the cut curve on a grid
+          (:func:`_chord_counts`, :func:`_grid_parameters`; with the cubic term of an inflection),
+        * the root and tip circles at equal angles (:func:`_arc_intervals`),
+
+        each with :data:`SAMPLING_MARGIN` more chords than the estimate asks for. Points and
+        tangents come from the closed form (:meth:`_ToolCut.cut`), never from differences of
+        points. Should a chord's estimate L |d(psi)| / 8 from the exact end tangents still exceed
+        the tolerance (:func:`_chords_beyond`), that piece is sampled by the generic sampler
+        (:meth:`rotorcad.profile.Segment.sample`).
 
         Parameters
         ----------
@@ -316,19 +632,69 @@ class InvoluteGear:
         -------
         Profile
             The open chain lower root arc, fillet, involute, tip arc (unless pointed), upper
-            involute, fillet, root arc; points (n, 2), mm.
+            involute, fillet, root arc; points (n, 2), mm. Its segment objects, with their exact
+            curves, are made when :attr:`~rotorcad.profile.Profile.segments` is first read.
         """
         tol = self.tolerance if tolerance is None else tolerance
-        pieces = self._half_tooth["pieces"]
-        tip = pieces[0][1] if pieces[0][0] == "tip arc" else None
-        upper = [Segment.sample(name, curve, tol) for name, curve in (pieces[1:] if tip is not None else pieces)]
-        lower = [seg.mirrored(0.0) for seg in reversed(upper)]
+        half = self._half_tooth
+        names: list[str] = []
+        samples: list[tuple[Array, Array, Array]] = []  # parameters, points and tangents as x + i y
+        tip = None
+        for name, s0, s1, cut in half["cuts"]:
+            if cut is None:
+                tip = s1
+                continue
+            if name == "involute":
+                s = _involute_parameters(s0, s1, half["roll"], self.base_radius, tol)
+            elif name == "fillet":
+                s = _grid_parameters(half["fillet_counts"], s0, s1, tol)
+            else:  # the root circle, cut by the tool's tip line: its polar angle is the tool's y / r
+                s = _span(s0, s1, _arc_intervals(cut.k * abs(s1 - s0) / cut.r, cut.start[0], tol) + 1)
+            z, w = cut.cut(s, pairs=False)
+            names.append(name)
+            samples.append((s, z, -w if s1 < s0 else w))  # tangents along the travel
+        lengths = np.array([len(s) for s, _, _ in samples])
+        z_up = np.concatenate([z for _, z, _ in samples])
+        w_up = np.concatenate([w for _, _, w in samples])
+        bad = _chords_beyond(z_up, w_up, lengths, tol)
+        if bad is not None:  # the curvature estimate failed somewhere: the generic sampler there
+            curves = dict(self._pieces)
+            for i in np.nonzero(bad)[0]:
+                seg = Segment.sample(names[i], curves[names[i]], tol)
+                samples[i] = (seg.s, _complex(seg.points), _complex(seg.tangents))
+            lengths = np.array([len(s) for s, _, _ in samples])
+            z_up = np.concatenate([z for _, z, _ in samples])
+            w_up = np.concatenate([w for _, _, w in samples])
+        # the lower half: the upper one mirrored in the tooth's centre line (the x axis), travelled back
+        parts_z, parts_w, counts = [np.conj(z_up[::-1])], [-np.conj(w_up[::-1])], [lengths[::-1]]
         if tip is not None:  # the two halves of the tip arc as one segment
-            upper.insert(0, Segment.sample("tip arc", Arc((0.0, 0.0), self.nominal_tip_radius, -tip.s1, tip.s1), tol))
-        return Profile((*lower, *upper), closed=False)
+            s_tip = _span(-tip, tip, _arc_intervals(2.0 * tip, self.nominal_tip_radius, tol) + 1)
+            e = np.exp(1j * s_tip)
+            parts_z.append(self.nominal_tip_radius * e)
+            parts_w.append(1j * e)
+            counts.append([len(s_tip)])
+        parts_z.append(z_up)
+        parts_w.append(w_up)
+        counts.append(lengths)
+
+        tip_samples = (s_tip, parts_z[1], parts_w[1]) if tip is not None else None
+        make_segments = functools.partial(_tooth_segments, self, tuple(names), tuple(samples), tip_samples)
+        return _Sampled(_pairs(np.concatenate(parts_z)), _pairs(np.concatenate(parts_w)), np.concatenate(counts), make_segments)
 
     def outline(self, tolerance: float | None = None) -> Profile:
-        """The whole gear as a closed counter-clockwise profile (``teeth`` teeth)."""
+        """The whole gear as a closed counter-clockwise profile.
+
+        Parameters
+        ----------
+        tolerance : float, optional
+            Chord error of the samples, mm (default: the gear's ``tolerance``).
+
+        Returns
+        -------
+        Profile
+            :meth:`tooth_profile` patterned ``teeth`` times about the gear centre; points (n, 2),
+            mm, with no repeated end point.
+        """
         return self.tooth_profile(tolerance).patterned(self.teeth)
 
     def tooth_thickness(self, at_radius: float) -> float:
@@ -337,12 +703,24 @@ class InvoluteGear:
         return 2.0 * at_radius * psi
 
     def half_angle(self, at_radius: float) -> float:
-        """Polar half-angle psi(R) of the tooth at radius R (0 on the tooth centre line)."""
+        """Polar half-angle psi(R) of the tooth at radius R (0 on the tooth centre line).
+
+        Parameters
+        ----------
+        at_radius : float
+            R, mm, from the root radius to the tip radius.
+
+        Returns
+        -------
+        float
+            psi(R), rad: the polar angle of the involute or fillet (:attr:`_pieces`) at R, found by
+            bracketing on 257 parameters and Brent's method; pi / z on the root circle.
+        """
         if not (self.root_radius - 1e-12 <= at_radius <= self.tip_radius + 1e-12):
             raise DesignError(
                 "radius", f"between the root radius {self.root_radius:.6g} and the tip radius {self.tip_radius:.6g} mm", at_radius
             )
-        for name, curve in self._half_tooth["pieces"]:
+        for name, curve in self._pieces:
             if name not in ("involute", "fillet"):
                 continue
             s = np.linspace(curve.s0, curve.s1, 257)
@@ -370,16 +748,257 @@ class InvoluteGear:
         }
 
 
+def _tooth_segments(
+    gear: InvoluteGear,
+    names: tuple[str, ...],
+    samples: tuple[tuple[Array, Array, Array], ...],
+    tip: tuple[Array, Array, Array] | None,
+) -> list[Segment]:
+    """The segments of :meth:`InvoluteGear.tooth_profile`, with their exact curves.
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear (its :attr:`~InvoluteGear._pieces` give the curves).
+    names : tuple of str
+        The upper half's pieces, from the tip towards the space centre.
+    samples : tuple of (s, z, w)
+        Their tool parameters (n,), points (n,) complex x + i y, mm, and unit tangents (n,) complex.
+    tip : (s, z, w) or None
+        The whole tip arc's polar angles (rad), points and tangents; None for a pointed tooth.
+
+    Returns
+    -------
+    list of Segment
+        The lower half (the upper one mirrored, :meth:`~rotorcad.profile.Segment.mirrored`), the
+        tip arc, the upper half: the samples of the tooth profile, in order.
+    """
+    curves = dict(gear._pieces)
+    upper = [Segment(n, curves[n], s, _pairs(z), _pairs(w)) for n, (s, z, w) in zip(names, samples, strict=True)]
+    lower = [seg.mirrored(0.0) for seg in reversed(upper)]
+    if tip is not None:
+        s_tip, z_tip, w_tip = tip
+        arc = Arc((0.0, 0.0), gear.nominal_tip_radius, float(s_tip[0]), float(s_tip[-1]))
+        upper.insert(0, Segment("tip arc", arc, s_tip, _pairs(z_tip), _pairs(w_tip)))
+    return [*lower, *upper]
+
+
+def _pairs(z: Array) -> Array:
+    """Complex numbers x + i y, (n,), as points (n, 2) float (a view of the same memory)."""
+    return z.view(np.float64).reshape(-1, 2)
+
+
+def _complex(p: Array) -> Array:
+    """Points (n, 2) float as complex numbers x + i y, (n,)."""
+    return np.ascontiguousarray(p, dtype=np.float64).view(np.complex128).reshape(-1)
+
+
+def _inv(alpha: float) -> float:
+    """inv(alpha) = tan(alpha) - alpha for one angle, rad (ISO 21771 eq. 2.21; :func:`rotorcad.involute.inv`)."""
+    return math.tan(alpha) - alpha
+
+
+def _span(a: float, b: float, n: int) -> Array:
+    """``np.linspace(a, b, n)`` (the same numbers, n >= 2) without its checks, which cost more
+    than the few samples of a piece."""
+    out = np.arange(n) * ((b - a) / (n - 1)) + a
+    out[-1] = b
+    return out
+
+
+SAMPLING_MARGIN = 1.05
+"""Extra samples over the count the curvature asks for: the sagitta L^2 / (8 rho) holds for a
+chord over constant curvature, and the curvature of the involute and the fillet changes along a
+chord."""
+FILLET_GRID = 513
+"""Parameters at which the fillet is evaluated when the gear is made: to check that it stays off
+the tooth's centre line and to place its samples from its curvature."""
+
+
+def _arc_intervals(angle: float, radius: float, tolerance: float) -> int:
+    """Fewest equal chords of a circular arc within ``tolerance`` of it.
+
+    Parameters
+    ----------
+    angle : float
+        Angle the arc spans, rad.
+    radius : float
+        Its radius, mm.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    int
+        ceil(angle / d), at least 1, with d = 4 asin(sqrt(tol / (2 R))) the largest angle of a
+        chord whose sagitta R (1 - cos(d / 2)) is the tolerance.
+    """
+    step = 4.0 * math.asin(math.sqrt(min(tolerance / (2.0 * radius), 0.5)))
+    return max(1, math.ceil(abs(angle) / step * (1.0 - 1e-12)))
+
+
+def _involute_parameters(s0: float, s1: float, roll: tuple[float, float], rb: float, tolerance: float) -> Array:
+    """Tool-flank parameters that sample the involute to a chord tolerance, in one step.
+
+    The involute's radius of curvature at a point is its roll distance L from the base circle's
+    tangency point (ISO 21771 sec. 2.3; L = r_b tan(alpha_y)), and its tangent turns by dL / r_b.
+    A chord turning by d(phi) on radius rho has the sagitta rho d(phi)^2 / 8, so the chords of
+    equal sagitta are spaced by d(phi) = sqrt(8 tol / L): the number of chords up to L grows as
+    (2 / 3) L^(3/2) / (r_b sqrt(8 tol)), and equal steps of L^(3/2) give equal sagittas.
+
+    Parameters
+    ----------
+    s0, s1 : float
+        Tool-flank parameters (mm along the tool's flank) of the piece's start and end.
+    roll : (float, float)
+        (a0, a1): L = a0 + a1 s, mm and mm per mm.
+    rb : float
+        Base radius, mm.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    (n,) float array
+        Parameters from ``s0`` to ``s1`` (both exactly), n >= 2.
+    """
+    a0, a1 = roll
+    w0 = max(a0 + a1 * s0, 0.0) ** 1.5
+    w1 = max(a0 + a1 * s1, 0.0) ** 1.5
+    n = max(1, math.ceil(2.0 / 3.0 * abs(w1 - w0) / (rb * math.sqrt(8.0 * tolerance)) * SAMPLING_MARGIN))
+    s = (_span(w0, w1, n + 1) ** (2.0 / 3.0) - a0) / a1
+    s[0], s[-1] = s0, s1
+    return s
+
+
+def _chord_counts(turning: Array, speed: Array, step: float) -> tuple[Array, Array]:
+    """How many chords a cut curve needs up to each parameter of a grid, per unit of tolerance.
+
+    A chord of arc length L over a curve of curvature kappa deviates from it by kappa L^2 / 8 (the
+    sagitta L^2 / (8 rho)); where kappa changes sign (an inflection) by the cubic term
+    |dkappa/dS| L^3 / (72 sqrt 3) instead (the largest gap between y = a x^3 and its chord over
+    an interval centred on the inflection). Chords within a tolerance tol are therefore spaced by
+    at most 1 / n(S), n = sqrt(|kappa| / (8 tol)) + (|dkappa/dS| / (72 sqrt(3) tol))^(1/3) (either
+    term alone keeps its deviation within the tolerance; their sum keeps the two together within
+    it). Over a grid cell of arc length A, turn B = |kappa| A and change C = |dkappa/dS| A of the
+    curvature, n integrates to sqrt(A B / (8 tol)) + (A^2 C / (72 sqrt(3) tol))^(1/3): the two
+    sums returned, times 1 / sqrt(8 tol) and 1 / (72 sqrt(3) tol)^(1/3).
+
+    Parameters
+    ----------
+    turning, speed : (m,) float arrays
+        dphi/ds (rad per unit of s) and |dP/ds| (mm per unit of s) of the cut curve at m equally
+        spaced parameters (:meth:`_ToolCut.cut`).
+    step : float
+        Their spacing, in units of s.
+
+    Returns
+    -------
+    quadratic, cubic : (m,) float arrays
+        Cumulative sums of sqrt(A B) (mm) and (A^2 C)^(1/3) (mm) from the first parameter, 0 there.
+    """
+    arc = (speed[1:] + speed[:-1]) * (0.5 * step)
+    bend = np.abs(turning[1:] + turning[:-1]) * (0.5 * step)
+    m = len(turning)
+    quadratic, cubic = np.zeros(m), np.zeros(m)
+    np.cumsum(np.sqrt(bend * arc), out=quadratic[1:])
+    if speed.min() > 0.0:  # no cusp: the curvature is finite everywhere
+        np.cumsum(np.cbrt(np.abs(np.diff(turning / speed)) * arc * arc), out=cubic[1:])
+    if not (np.isfinite(quadratic[-1]) and np.isfinite(cubic[-1])):
+        quadratic, cubic = np.nan_to_num(quadratic), np.nan_to_num(cubic)
+    return quadratic, cubic
+
+
+def _grid_parameters(counts: tuple[Array, Array], s0: float, s1: float, tolerance: float) -> Array:
+    """Tool parameters that sample a cut curve to a chord tolerance, in one step, from its curvature
+    (:func:`_chord_counts`): the chord count at the grid parameters, N(s), is inverted by linear
+    interpolation at equal steps.
+
+    Parameters
+    ----------
+    counts : two (m,) float arrays
+        :func:`_chord_counts` on m equally spaced parameters from ``s0`` to ``s1``.
+    s0, s1 : float
+        Tool parameters of the piece's start and end.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    (n,) float array
+        Parameters from ``s0`` to ``s1`` (both exactly), n >= 2.
+    """
+    quadratic, cubic = counts
+    total = quadratic * (1.0 / math.sqrt(8.0 * tolerance)) + cubic * (1.0 / math.cbrt(72.0 * math.sqrt(3.0) * tolerance))
+    n = max(1, math.ceil(total[-1] * SAMPLING_MARGIN))
+    s = np.interp(_span(0.0, total[-1], n + 1), total, _span(s0, s1, len(total)))
+    s[0], s[-1] = s0, s1
+    return s
+
+
+def _chords_beyond(z: Array, w: Array, lengths: Array, tolerance: float) -> Array | None:
+    """Which pieces of a chain have a chord whose sagitta estimate exceeds ``tolerance``.
+
+    Parameters
+    ----------
+    z, w : (n,) complex arrays
+        Samples of the pieces end to end as x + i y: points (mm) and unit tangents along the travel.
+    lengths : (k,) int array
+        Samples of each piece.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    (k,) bool array or None
+        True for a piece with a chord of length L whose exact end tangents turn by d(psi) and
+        L |d(psi)| / 8 > tolerance (a circular arc's sagitta; the chords between pieces are not
+        checked); None where every chord is within.
+    """
+    sag = np.abs(z[1:] - z[:-1]) * np.abs(np.angle(w[1:] * np.conj(w[:-1])))
+    ends = np.cumsum(lengths)[:-1] - 1  # the chords from one piece's last sample to the next one's first
+    sag[ends] = 0.0
+    over = ~(sag <= 8.0 * tolerance)
+    if not over.any():
+        return None
+    piece = np.searchsorted(np.cumsum(lengths) - 1, np.nonzero(over)[0], side="right")
+    bad = np.zeros(len(lengths), dtype=bool)
+    bad[piece] = True
+    return bad
+
+
 def _severed(gear: InvoluteGear) -> str:
     """Why the generated flank (involute or root fillet) crosses the tooth's centre line, so that it
     meets its mirror image from the other flank and the outline crosses itself; "" when it does
     not. With few teeth and a negative shift the fillets meet low in the tooth and cut its head off
     (z = 3, x = -0.2); with a large positive shift the tooth is pointed before its involute starts
-    (z = 12, x = 2.8)."""
+    (z = 12, x = 2.8).
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear (possibly made without the check, see :func:`_severed_allowed`).
+
+    Returns
+    -------
+    str
+        The reason, or "": the least product polar angle x radius (mm) over the involute (its
+        ends) and the fillet (:data:`FILLET_GRID` points) is below -1e-9 m.
+    """
     worst, at = 0.0, 0.0
-    for name, curve in gear._half_tooth["pieces"]:
-        if name in ("involute", "fillet"):
-            pts = curve.evaluate(np.linspace(curve.s0, curve.s1, 513))[0]
+    half = gear._half_tooth
+    for name, s0, s1, cut in half["cuts"]:
+        if name == "involute":
+            # along the involute (above the base circle) the polar angle falls as the radius grows:
+            # where it is negative, its product with the radius falls too, so the least product
+            # (on a grid of the piece too, whose ends are grid points) is at an end
+            for s in (s0, s1):
+                p = cut.point(s)
+                d = cmath.phase(p) * abs(p)
+                if d < worst:
+                    worst, at = d, abs(p)
+        elif name == "fillet":
+            pts = half["fillet_points"]
             d = polar_angle(pts) * radius(pts)
             i = int(np.argmin(d))
             if d[i] < worst:

@@ -12,6 +12,7 @@ moments; e.g. Bourke, *Calculating the area and centroid of a polygon*, 1988).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -89,12 +90,18 @@ class Profile:
     closed: bool = True
 
     @cached_property
+    def _samples(self) -> tuple[Array, Array, Array]:
+        """The segments' samples end to end: points (n, 2), mm; unit tangents (n, 2); and the
+        number of samples of each segment (k,) int."""
+        segs = self.segments
+        lengths = np.array([len(s.points) for s in segs])
+        return np.concatenate([s.points for s in segs]), np.concatenate([s.tangents for s in segs]), lengths
+
+    @cached_property
     def _joined(self) -> tuple[Array, Array, Array]:
         """Concatenated samples; a segment's first point is dropped where it repeats the
         previous segment's last point (and the closing point of a closed chain)."""
-        segs = self.segments
-        lengths = np.array([len(s.points) for s in segs])
-        return _join(np.concatenate([s.points for s in segs]), np.concatenate([s.tangents for s in segs]), lengths, self.closed)
+        return _join(*self._samples, self.closed)
 
     @property
     def points(self) -> Array:
@@ -171,6 +178,37 @@ class Profile:
         return {"Ixx": m["Ixx"] - a * cy * cy, "Iyy": m["Iyy"] - a * cx * cx, "Ixy": m["Ixy"] - a * cx * cy}
 
 
+class _Sampled(Profile):
+    """A chain given by its samples, its segment objects made on first use.
+
+    Points, tangents and the segment lengths are arrays from the start (what :attr:`points`, a
+    pattern and a polygon need); :attr:`segments`, each with its exact curve, is made by
+    ``make_segments`` only when it is read, so that a caller who wants the polygon pays for no
+    per-piece objects.
+    """
+
+    def __init__(self, points: Array, tangents: Array, lengths: Array, make_segments: object, closed: bool = False) -> None:
+        """Parameters
+        ----------
+        points, tangents : (n, 2) float arrays
+            The samples of all segments end to end: points (mm) and unit tangents along the travel.
+        lengths : (k,) int array
+            Samples of each segment, in order (summing to n).
+        make_segments : callable
+            Returns the k :class:`Segment` objects holding these samples (in order).
+        closed : bool
+            Whether the chain is closed.
+        """
+        object.__setattr__(self, "closed", closed)
+        object.__setattr__(self, "_make_segments", make_segments)
+        self.__dict__["_samples"] = (points, tangents, lengths)
+
+    @cached_property
+    def segments(self) -> tuple[Segment, ...]:  # type: ignore[override]
+        """The segments, made on first use (see the class docstring)."""
+        return tuple(self._make_segments())
+
+
 class _Patterned(Profile):
     """A closed profile made of ``count`` turned copies of ``unit`` (see :meth:`Profile.patterned`).
 
@@ -186,19 +224,20 @@ class _Patterned(Profile):
         object.__setattr__(self, "center", center)
 
     @cached_property
-    def _turned(self) -> tuple[Array, Array]:
-        """Points and tangents of every copy, each (count, m, 2): the unit's samples turned."""
-        unit = self.unit.segments
-        ang = (2.0 * np.pi * np.arange(self.count) / self.count)[:, None]
-        pts = rotate(np.concatenate([s.points for s in unit]), ang, self.center)
-        tan = rotate(np.concatenate([s.tangents for s in unit]), ang)
-        return pts, tan
+    def _angles(self) -> Array:
+        """The turn of every copy, (count, 1), rad."""
+        return (2.0 * np.pi * np.arange(self.count) / self.count)[:, None]
 
     @cached_property
-    def _joined(self) -> tuple[Array, Array, Array]:
+    def _turned(self) -> tuple[Array, Array]:
+        """Points and tangents of every copy, each (count, m, 2): the unit's samples turned."""
+        pts, tan, _ = self.unit._samples
+        return rotate(pts, self._angles, self.center), rotate(tan, self._angles)
+
+    @cached_property
+    def _samples(self) -> tuple[Array, Array, Array]:
         pts, tan = self._turned
-        lengths = np.tile([len(s.points) for s in self.unit.segments], self.count)
-        return _join(pts.reshape(-1, 2), tan.reshape(-1, 2), lengths, True)
+        return pts.reshape(-1, 2), tan.reshape(-1, 2), np.tile(self.unit._samples[2], self.count)
 
     @property
     def points(self) -> Array:
@@ -209,12 +248,34 @@ class _Patterned(Profile):
 
     @cached_property
     def _points_only(self) -> Array:
-        """The joined points without turning the tangents (what a polygon needs)."""
-        unit = self.unit.segments
-        ang = (2.0 * np.pi * np.arange(self.count) / self.count)[:, None]
-        pts = rotate(np.concatenate([s.points for s in unit]), ang, self.center).reshape(-1, 2)
-        lengths = np.tile([len(s.points) for s in unit], self.count)
-        return _join(pts, None, lengths, True)[0]
+        """The joined points without turning the tangents (what a polygon needs).
+
+        Where every copy ends on the next copy's first point (a gear's teeth), the unit is joined
+        once (:func:`_join`, open), its joined points but the first are turned to every copy in one
+        step and the first point is put in front; the last point, the first one turned by a full
+        turn, is left off. These are the points :func:`_join` keeps from all copies at once.
+        """
+        unit_pts, _, lengths = self.unit._samples
+        ang = self._angles
+        if self.count > 1:
+            joined = _join(unit_pts, None, lengths, False)[0]
+            (x0, y0), (x1, y1), (cx, cy) = joined[0], joined[-1], self.center
+            c, s = math.cos(ang[1, 0]), math.sin(ang[1, 0])
+            gap = math.hypot(cx + c * (x0 - cx) - s * (y0 - cy) - x1, cy + s * (x0 - cx) + c * (y0 - cy) - y1)
+            if len(joined) > 2 and gap < 0.5e-9:  # the unit's last point is the next copy's first one
+                centre = complex(cx, cy)
+                z = np.ascontiguousarray(joined[1:]).view(np.complex128).reshape(-1)
+                if centre:
+                    z = z - centre
+                turned = np.multiply.outer(np.exp(1j * ang[:, 0]), z)  # x + i y turned: a product
+                if centre:
+                    turned += centre
+                out = np.empty(((len(joined) - 1) * self.count, 2))
+                out[0] = joined[0]
+                out[1:] = turned.view(np.float64).reshape(-1, 2)[:-1]
+                return out
+        pts = rotate(unit_pts, ang, self.center).reshape(-1, 2)
+        return _join(pts, None, np.tile(lengths, self.count), True)[0]
 
     @cached_property
     def segments(self) -> tuple[Segment, ...]:  # type: ignore[override]
