@@ -57,8 +57,22 @@ tooth, coarser loses the tooth's shape."""
 
 
 def tool_tip_radius_limit(pressure_angle: float, dedendum: float) -> float:
-    """Largest tool tip radius factor rho_a0* that fits a rack tooth (full-radius tip):
-    rho_max = (pi/4 - h_a0* tan(alpha)) cos(alpha) / (1 - sin(alpha))."""
+    """Return the largest tool tip radius factor rho_a0* that fits a rack tooth (full-radius tip).
+
+    rho_max = (pi/4 - h_a0* tan(alpha)) cos(alpha) / (1 - sin(alpha)).
+
+    Parameters
+    ----------
+    pressure_angle : float
+        Normal pressure angle alpha of the rack, rad.
+    dedendum : float
+        Tool addendum factor h_a0* (the gear's dedendum factor h_fP*), in modules.
+
+    Returns
+    -------
+    float
+        rho_max, the tip radius of a full-radius tool tip as a factor of the module.
+    """
     return (np.pi / 4.0 - dedendum * np.tan(pressure_angle)) * np.cos(pressure_angle) / (1.0 - np.sin(pressure_angle))
 
 
@@ -85,6 +99,21 @@ class _ToolCut:
     (:func:`rotorcad.envelope.conjugate`) written out for this one motion, in complex numbers
     (x + i y; R(-t) is a product with exp(-i t)) and with no per-call objects, plus the derivatives
     that give the cut curve's curvature for sampling.
+
+    Parameters
+    ----------
+    kind : str
+        "line" or "arc".
+    r : float
+        Pitch radius of the gear, mm.
+    k : float
+        Stretch along the pitch line, 1 / cos(beta).
+    start, direction : (2,) float
+        A line's start a (mm) and unit direction d, unstretched.
+    center, radius : (2,) float and float, mm
+        An arc's centre K (unstretched) and radius rho.
+    length : float
+        A line's length, mm (its parameter at the far end).
     """
 
     __slots__ = ("arc", "center", "direction", "k", "kind", "length", "r", "radius", "start", "tangent", "turn")
@@ -100,21 +129,6 @@ class _ToolCut:
         radius: float = 0.0,
         length: float = 0.0,
     ) -> None:
-        """Parameters
-        ----------
-        kind : str
-            "line" or "arc".
-        r : float
-            Pitch radius of the gear, mm.
-        k : float
-            Stretch along the pitch line, 1 / cos(beta).
-        start, direction : (2,) float
-            A line's start a (mm) and unit direction d, unstretched.
-        center, radius : (2,) float and float, mm
-            An arc's centre K (unstretched) and radius rho.
-        length : float
-            A line's length, mm (its parameter at the far end).
-        """
         self.kind = kind
         self.r = r = float(r)
         self.k = k = float(k)
@@ -132,9 +146,11 @@ class _ToolCut:
         self.arc = (-k * ky / r, (kx - r) / (r * k), rho * (1.0 / k - k) / r) if kind == "arc" else None
 
     def roll(self) -> tuple[float, float]:
-        """A line's roll distance along = a0 + a1 s, mm: where its contact point X(s) lies on the
-        line of action, measured from T1, the foot of the perpendicular from O (the base circle's
-        tangency point), towards C.
+        """Return a line's roll distance, along = a0 + a1 s, mm.
+
+        The roll distance is where the line's contact point X(s) lies on the line of action,
+        measured from T1, the foot of the perpendicular from O (the base circle's tangency point),
+        towards C.
 
         The contact points of a straight tool flank run along the line of action, which passes
         through C along the tool's normal n: X - T1 = (X . n) n and C - T1 = (C . n) n, so the
@@ -156,14 +172,25 @@ class _ToolCut:
         return a0, a1
 
     def point(self, s: float) -> complex:
-        """A line's cut point at the tool parameter ``s`` as x + i y, mm (for a single point)."""
+        """Return a line's cut point at one tool parameter.
+
+        Parameters
+        ----------
+        s : float
+            Tool parameter, mm along the unstretched line (a single point).
+
+        Returns
+        -------
+        complex
+            The cut point in the gear frame as x + i y, mm.
+        """
         (ax, ay), (dx, dy) = self.start, self.direction
         t0, t1 = self.turn
         t = t0 + t1 * s
         return complex(ax + s * dx, ay + s * dy + self.r * t) * cmath.exp(-1j * t)
 
     def cut(self, s: Array, curvature: bool = False, pairs: bool = True) -> tuple[Array, ...]:
-        """The cut gear curve at tool parameters ``s``.
+        """Return the cut gear curve at tool parameters ``s``.
 
         Parameters
         ----------
@@ -233,9 +260,37 @@ class _ToolCut:
 class InvoluteGear:
     """An external involute gear cut by the basic-rack tool.
 
-    Lengths in mm, angles in radians. ``shift`` is x (in normal modules), ``addendum`` h_aP*,
-    ``dedendum`` h_fP* (= tool addendum), ``tip_radius_factor`` rho_a0* (tool tip radius / m).
-    ``tolerance`` is the chord error of the sampled outline.
+    Lengths in mm, angles in radians. The defaults are the ISO 53 profile A basic rack.
+
+    Parameters
+    ----------
+    teeth : int
+        Number of teeth z, from 3 to :data:`MAX_TEETH`.
+    module : float
+        Normal module m, mm, within :data:`MODULE_RANGE`.
+    pressure_angle : float
+        Normal pressure angle alpha_n, rad, from 1 to below 45 degrees.
+    helix_angle : float
+        Helix angle beta, rad, between -60 and 60 degrees (exclusive).
+    shift : float
+        Profile shift coefficient x (in normal modules), from -2 to 3.
+    addendum : float
+        Addendum factor h_aP*, from 0.1 to 3.
+    dedendum : float
+        Dedendum factor h_fP* (= tool addendum), from 0.1 to 3.
+    tip_radius_factor : float
+        Tool tip radius factor rho_a0* (tool tip radius / m), from 0 to
+        :func:`tool_tip_radius_limit`.
+    tolerance : float
+        Chord error of the sampled outline, mm, within :data:`RELATIVE_TOLERANCE` times the
+        module.
+
+    Raises
+    ------
+    DesignError
+        A value out of its range; a shift that puts the root circle at or inside the centre or
+        the tip circle at or inside the pitch circle; or a shift for which the generated flank
+        crosses the tooth's centre line (:func:`_severed`), with the shifts allowed instead.
     """
 
     teeth: int
@@ -287,18 +342,22 @@ class InvoluteGear:
     # ----- closed-form dimensions (ISO 21771) ---------------------------------------------
     @property
     def transverse_module(self) -> float:
+        """Transverse module m_t = m / cos(beta), mm (ISO 21771)."""
         return self.module / np.cos(self.helix_angle)
 
     @property
     def transverse_pressure_angle(self) -> float:
+        """Transverse pressure angle alpha_t = atan(tan(alpha_n) / cos(beta)), rad (ISO 21771 eq. 2.5)."""
         return transverse_pressure_angle(self.pressure_angle, self.helix_angle)
 
     @property
     def pitch_radius(self) -> float:
+        """Pitch (reference) radius r = z m_t / 2, mm (ISO 21771)."""
         return self.teeth * self.transverse_module / 2.0
 
     @property
     def base_radius(self) -> float:
+        """Base radius r_b = r cos(alpha_t), mm (ISO 21771)."""
         return self.pitch_radius * np.cos(self.transverse_pressure_angle)
 
     @property
@@ -519,9 +578,12 @@ class InvoluteGear:
 
     @staticmethod
     def _undercut_point(fillet: _ToolCut, s_range: tuple[float, float], flank_angle: object, rb: float) -> tuple[float, float]:
-        """Radius and fillet parameter of the undercut point P', where the fillet (trochoid) cuts
-        the involute: the outermost sign change of the polar-angle gap between the fillet and the
-        involute at the same radius, bracketed on two vectorised grids and interpolated.
+        """Return the radius and fillet parameter of the undercut point P'.
+
+        P' is where the fillet (trochoid) cuts the involute: the outermost sign change of the
+        polar-angle gap between the fillet and the involute at the same radius, bracketed on
+        vectorised grids of 513 parameters (the whole fillet, then twice the bracketing cell) and
+        interpolated linearly.
 
         Parameters
         ----------
@@ -563,8 +625,27 @@ class InvoluteGear:
 
     @staticmethod
     def _undercut_point_by_intersection(flank: Generated, fillet: Generated, s_int: float, s_a: float) -> tuple[float, float]:
-        """Parameters (flank, fillet) of P' by intersecting the two generated curves: shapely on
-        sampled polylines for the bracket, then a 2-D root of the exact curves."""
+        """Return the parameters (flank, fillet) of P' by intersecting the two generated curves.
+
+        Shapely intersects polylines of 1025 samples of each for the bracket (the crossing
+        farthest from the centre), then a 2-D root of the exact curves refines it.
+
+        Parameters
+        ----------
+        flank : Generated
+            The involute, cut by the tool's flank.
+        fillet : Generated
+            The root fillet, cut by the tool's tip arc.
+        s_int, s_a : float
+            Flank parameters of the interference point (contact at T1) and of the tooth tip (tip
+            circle, or the point where a pointed tooth's flanks meet).
+
+        Returns
+        -------
+        (float, float)
+            Tool parameters of P' on the flank and on the fillet; ``s_int`` and the fillet's start
+            where the polylines do not cross (the two are joined at the base circle).
+        """
         sf = np.linspace(fillet.s0, fillet.s1, 1025)
         sl = np.linspace(s_int, s_a, 1025)
         pf, pl = fillet.evaluate(sf)[0], flank.evaluate(sl)[0]
@@ -584,12 +665,18 @@ class InvoluteGear:
 
     @property
     def undercut(self) -> bool:
-        """Whether the tool's fillet cuts into the involute (the flank's lowest contact lies
-        beyond the interference point of the line of action)."""
+        """Whether the tool's fillet cuts into the involute.
+
+        The flank's lowest contact lies beyond the interference point of the line of action.
+        """
         return bool(self._half_tooth["undercut"])
 
     @property
     def tip_pointed(self) -> bool:
+        """Whether the tooth is pointed: its two flanks meet on the centre line below the tip circle.
+
+        The tip circle is then dropped and :attr:`tip_radius` is where the flanks meet.
+        """
         return bool(self._half_tooth["tip_pointed"])
 
     @property
@@ -599,8 +686,11 @@ class InvoluteGear:
 
     @property
     def form_radius(self) -> float:
-        """Radius where the usable involute starts (d_Ff/2): the fillet joint, or the undercut
-        point where the fillet cuts the involute (the active base radius r'_z)."""
+        """Radius where the usable involute starts (d_Ff/2), mm.
+
+        The fillet joint, or the undercut point where the fillet cuts the involute (the active
+        base radius r'_z).
+        """
         return float(self._half_tooth["form_radius"])
 
     def tooth_profile(self, tolerance: float | None = None) -> Profile:
@@ -682,7 +772,7 @@ class InvoluteGear:
         return _Sampled(_pairs(np.concatenate(parts_z)), _pairs(np.concatenate(parts_w)), np.concatenate(counts), make_segments)
 
     def outline(self, tolerance: float | None = None) -> Profile:
-        """The whole gear as a closed counter-clockwise profile.
+        """Return the whole gear as a closed counter-clockwise profile.
 
         Parameters
         ----------
@@ -715,6 +805,11 @@ class InvoluteGear:
         float
             psi(R), rad: the polar angle of the involute or fillet (:attr:`_pieces`) at R, found by
             bracketing on 257 parameters and Brent's method; pi / z on the root circle.
+
+        Raises
+        ------
+        DesignError
+            R outside the root radius to the tip radius.
         """
         if not (self.root_radius - 1e-12 <= at_radius <= self.tip_radius + 1e-12):
             raise DesignError(
@@ -735,7 +830,15 @@ class InvoluteGear:
         return float(np.pi / self.teeth)
 
     def summary(self) -> dict[str, object]:
-        """The CONTRACT.md keys of ``rotorcad gear`` for this gear alone."""
+        """Return the CONTRACT.md keys of ``rotorcad gear`` for this gear alone.
+
+        Returns
+        -------
+        dict of str to object
+            ``pitch_radius``, ``base_radius``, ``tip_radius``, ``root_radius``,
+            ``tooth_thickness_pitch`` (:meth:`tooth_thickness` on the pitch circle) and
+            ``form_radius``, mm; ``undercut`` and ``tip_pointed``, bool.
+        """
         return {
             "pitch_radius": self.pitch_radius,
             "base_radius": self.base_radius,
@@ -754,7 +857,7 @@ def _tooth_segments(
     samples: tuple[tuple[Array, Array, Array], ...],
     tip: tuple[Array, Array, Array] | None,
 ) -> list[Segment]:
-    """The segments of :meth:`InvoluteGear.tooth_profile`, with their exact curves.
+    """Build the segments of :meth:`InvoluteGear.tooth_profile`, with their exact curves.
 
     Parameters
     ----------
@@ -799,8 +902,22 @@ def _inv(alpha: float) -> float:
 
 
 def _span(a: float, b: float, n: int) -> Array:
-    """``np.linspace(a, b, n)`` (the same numbers, n >= 2) without its checks, which cost more
-    than the few samples of a piece."""
+    """Return ``np.linspace(a, b, n)`` (the same numbers, n >= 2) without its checks.
+
+    The checks cost more than the few samples of a piece.
+
+    Parameters
+    ----------
+    a, b : float
+        First and last value (``b`` exactly).
+    n : int
+        Number of values, at least 2.
+
+    Returns
+    -------
+    (n,) float array
+        Equally spaced values from ``a`` to ``b``.
+    """
     out = np.arange(n) * ((b - a) / (n - 1)) + a
     out[-1] = b
     return out
@@ -910,8 +1027,9 @@ def _chord_counts(turning: Array, speed: Array, step: float) -> tuple[Array, Arr
 
 
 def _grid_parameters(counts: tuple[Array, Array], s0: float, s1: float, tolerance: float) -> Array:
-    """Tool parameters that sample a cut curve to a chord tolerance, in one step, from its curvature
-    (:func:`_chord_counts`): the chord count at the grid parameters, N(s), is inverted by linear
+    """Return tool parameters that sample a cut curve to a chord tolerance, in one step, from its curvature.
+
+    The chord count at the grid parameters, N(s) (:func:`_chord_counts`), is inverted by linear
     interpolation at equal steps.
 
     Parameters
@@ -968,9 +1086,10 @@ def _chords_beyond(z: Array, w: Array, lengths: Array, tolerance: float) -> Arra
 
 
 def _severed(gear: InvoluteGear) -> str:
-    """Why the generated flank (involute or root fillet) crosses the tooth's centre line, so that it
-    meets its mirror image from the other flank and the outline crosses itself; "" when it does
-    not. With few teeth and a negative shift the fillets meet low in the tooth and cut its head off
+    """Return why the generated flank (involute or root fillet) crosses the tooth's centre line.
+
+    Crossing it, the flank meets its mirror image from the other flank and the outline crosses
+    itself; "" when it does not. With few teeth and a negative shift the fillets meet low in the tooth and cut its head off
     (z = 3, x = -0.2); with a large positive shift the tooth is pointed before its involute starts
     (z = 12, x = 2.8).
 
@@ -983,7 +1102,7 @@ def _severed(gear: InvoluteGear) -> str:
     -------
     str
         The reason, or "": the least product polar angle x radius (mm) over the involute (its
-        ends) and the fillet (:data:`FILLET_GRID` points) is below -1e-9 m.
+        ends) and the fillet (:data:`FILLET_GRID` points) is below -1e-9 m (m the module).
     """
     worst, at = 0.0, 0.0
     half = gear._half_tooth
@@ -1011,8 +1130,23 @@ def _severed(gear: InvoluteGear) -> str:
 
 
 def _severed_allowed(gear: InvoluteGear) -> str:
-    """The shifts nearest to ``gear.shift`` whose tooth holds together, to 0.001, from a scan of the
-    allowed shift range and bisection of its ends (gears built without the check)."""
+    """Return the shifts nearest to ``gear.shift`` whose tooth holds together, to 0.001.
+
+    They come from a scan of the allowed shift range (101 shifts up to 3) and bisection of its
+    ends, on gears built without the check (:func:`_severed`).
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear whose shift severs the tooth (possibly made without the check).
+
+    Returns
+    -------
+    str
+        The allowed shifts for :class:`~rotorcad.errors.DesignError`, phrased to follow "must be":
+        "from lo to hi", "at least lo" or "at most hi" for these teeth and this tool, the ends
+        rounded inwards to 0.001; or a sentence that no shift from -2 to 3 leaves a tooth.
+    """
 
     def whole(shift: float) -> bool:
         g = object.__new__(InvoluteGear)
@@ -1058,6 +1192,19 @@ class GearPair:
     a_w = a cos(alpha_t) / cos(alpha_wt) (ISO 21771 eqs. 4.14, 4.16). With it, alpha_wt follows
     from cos(alpha_wt) = a cos(alpha_t) / a_w and the difference shows as circumferential
     backlash; a centre distance too small for the teeth is refused.
+
+    Parameters
+    ----------
+    gear, mate : InvoluteGear
+        The two gears, of the same module and pressure angle and helix angles equal in size.
+    center_distance : float, optional
+        Working centre distance a_w, mm (default: the zero-backlash distance of the shifts).
+
+    Raises
+    ------
+    DesignError
+        Gears of different module, pressure angle or size of helix angle; a centre distance not
+        greater than a cos(alpha_t), or smaller than the zero-backlash distance (negative backlash).
     """
 
     gear: InvoluteGear
@@ -1084,7 +1231,7 @@ class GearPair:
 
     @property
     def reference_center_distance(self) -> float:
-        """a = (r1 + r2), the centre distance of unshifted gears."""
+        """Reference centre distance a = r1 + r2, mm: the centre distance of unshifted gears."""
         return self.gear.pitch_radius + self.mate.pitch_radius
 
     @property
@@ -1099,6 +1246,11 @@ class GearPair:
 
     @property
     def working_center_distance(self) -> float:
+        """Working centre distance a_w, mm: ``center_distance``, or without it the zero-backlash one.
+
+        The zero-backlash distance is a cos(alpha_t) / cos(alpha_wt) with alpha_wt from the shifts
+        (ISO 21771 eqs. 4.14, 4.16).
+        """
         return self._zero_backlash_distance if self.center_distance is None else float(self.center_distance)
 
     @property
@@ -1111,9 +1263,12 @@ class GearPair:
 
     @property
     def backlash(self) -> float:
-        """Circumferential backlash j_wt = p_wt - s_w1 - s_w2 on the working pitch circles (the two
-        circles roll on each other, so their arc lengths compare directly; s_w from the generated
-        flanks)."""
+        """Circumferential backlash j_wt = p_wt - s_w1 - s_w2 on the working pitch circles, mm.
+
+        The two circles roll on each other, so their arc lengths compare directly; s_w from the
+        generated flanks (:meth:`InvoluteGear.tooth_thickness`). Infinite where a working pitch
+        circle lies outside its gear's tip circle.
+        """
         aw = self.working_pressure_angle
         g, m = self.gear, self.mate
         rw1 = g.base_radius / np.cos(aw)
@@ -1125,8 +1280,19 @@ class GearPair:
         return float(2.0 * np.pi * rw1 / g.teeth - s1 - s2)
 
     def contact_interval(self) -> tuple[float, float, float, float]:
-        """Roll distances from T1 along the line of action: where contact starts and ends on
-        the usable flanks (form to tip of each gear), and the standard tip-to-tip limits."""
+        """Return the roll distances from T1 along the line of action that bound the contact.
+
+        Where contact starts and ends on the usable flanks (form to tip of each gear), and the
+        standard tip-to-tip limits. T1 is the gear's base tangency point; the mate's, T2, lies at
+        a_w sin(alpha_wt) from it.
+
+        Returns
+        -------
+        lo1, hi1 : float
+            The gear's usable flank, mm: its form circle and its tip circle.
+        lo2, hi2 : float
+            The mate's usable flank, mm: its tip circle and its form circle.
+        """
         g, m = self.gear, self.mate
         aw = self.working_pressure_angle
         length = self.working_center_distance * np.sin(aw)
@@ -1138,10 +1304,13 @@ class GearPair:
 
     @property
     def contact_ratio(self) -> float:
-        """Transverse contact ratio epsilon_alpha = g_alpha / p_bt with the path of contact
-        limited by the tip circles and by the usable involute of each gear (form circle), so
-        that an undercut flank shortens it (Kollek & Osinski; ISO 21771 eq. 5.4 without
-        undercut)."""
+        """Transverse contact ratio epsilon_alpha = g_alpha / p_bt.
+
+        The path of contact g_alpha is limited by the tip circles and by the usable involute of
+        each gear (form circle, :meth:`contact_interval`), so that an undercut flank shortens it
+        (Kollek & Osinski; ISO 21771 eq. 5.4 without undercut); 0 where the flanks' intervals do
+        not overlap.
+        """
         lo1, hi1, lo2, hi2 = self.contact_interval()
         g_alpha = max(0.0, min(hi1, hi2) - max(lo1, lo2))
         return float(g_alpha / self.gear.base_pitch)
@@ -1153,6 +1322,15 @@ class GearPair:
         return bool(lo2 < lo1 - 1e-9 or hi1 > hi2 + 1e-9)
 
     def summary(self) -> dict[str, object]:
+        """Return the CONTRACT.md keys of ``rotorcad gear`` for the pair.
+
+        Returns
+        -------
+        dict of str to object
+            :meth:`InvoluteGear.summary` of ``gear`` and ``center_distance`` (mm),
+            ``working_pressure_angle_deg`` (degrees), ``contact_ratio``, ``backlash`` (mm),
+            ``tip_interference`` (bool) and ``mate`` (the mate's :meth:`InvoluteGear.summary`).
+        """
         out = self.gear.summary()
         out.update(
             {
@@ -1168,7 +1346,27 @@ class GearPair:
 
 
 def mate_shift(gear: InvoluteGear, mate_teeth: int, center_distance: float) -> float:
-    """x2 giving zero backlash with ``gear`` at ``center_distance`` (ISO 21771 eq. 4.14)."""
+    """Return the mate's shift x2 giving zero backlash with ``gear`` at ``center_distance`` (ISO 21771 eq. 4.14).
+
+    Parameters
+    ----------
+    gear : InvoluteGear
+        The gear, with its shift x1.
+    mate_teeth : int
+        Number of teeth z2 of the mate (same module, pressure angle and size of helix angle).
+    center_distance : float
+        Working centre distance a_w, mm.
+
+    Returns
+    -------
+    float
+        x2, in normal modules.
+
+    Raises
+    ------
+    DesignError
+        A centre distance not greater than a cos(alpha_t).
+    """
     at = gear.transverse_pressure_angle
     r2 = mate_teeth * gear.transverse_module / 2.0
     a0 = gear.pitch_radius + r2
