@@ -56,10 +56,35 @@ class Segment:
         return perp_cw(self.tangents)
 
     def resampled(self, tolerance: float) -> Segment:
+        """Return the segment re-evaluated on its exact curve to the chord ``tolerance`` (mm).
+
+        Parameters
+        ----------
+        tolerance : float
+            Largest chord error, mm (:meth:`sample`).
+
+        Returns
+        -------
+        Segment
+            A new segment of the same name and curve.
+        """
         return Segment.sample(self.name, self.curve, tolerance)
 
     def rotated(self, angle: float, center: object = (0.0, 0.0)) -> Segment:
-        """The segment turned by ``angle`` (rad) about ``center`` (mm), its curve too."""
+        """Return the segment turned by ``angle`` (rad) about ``center`` (mm), its curve too.
+
+        Parameters
+        ----------
+        angle : float
+            Counter-clockwise turn, rad.
+        center : (2,) float, mm
+            Centre of the turn.
+
+        Returns
+        -------
+        Segment
+            The same parameters ``s``; points turned about ``center``, tangents turned.
+        """
         return Segment(
             self.name,
             rotated(self.curve, angle, center),
@@ -69,8 +94,21 @@ class Segment:
         )
 
     def mirrored(self, angle: float = 0.0) -> Segment:
-        """Mirror in the line through the origin at ``angle``; travel is reversed so a boundary
-        stays counter-clockwise."""
+        """Return the segment mirrored in the line through the origin at ``angle``, its curve too.
+
+        Travel is reversed so a boundary stays counter-clockwise.
+
+        Parameters
+        ----------
+        angle : float
+            Direction of the mirror line, rad.
+
+        Returns
+        -------
+        Segment
+            Parameters, points and tangents in reverse order; the tangents mirrored and negated
+            so that they point along the reversed travel.
+        """
         c, s = np.cos(2 * angle), np.sin(2 * angle)
         m = np.array([[c, s], [s, -c]])
         return Segment(
@@ -91,16 +129,22 @@ class Profile:
 
     @cached_property
     def _samples(self) -> tuple[Array, Array, Array]:
-        """The segments' samples end to end: points (n, 2), mm; unit tangents (n, 2); and the
-        number of samples of each segment (k,) int."""
+        """The segments' samples end to end, as three arrays.
+
+        Points (n, 2) float, mm; unit tangents (n, 2) float; and the number of samples of each
+        segment, (k,) int.
+        """
         segs = self.segments
         lengths = np.array([len(s.points) for s in segs])
         return np.concatenate([s.points for s in segs]), np.concatenate([s.tangents for s in segs]), lengths
 
     @cached_property
     def _joined(self) -> tuple[Array, Array, Array]:
-        """Concatenated samples; a segment's first point is dropped where it repeats the
-        previous segment's last point (and the closing point of a closed chain)."""
+        """Concatenated samples: points (m, 2), mm; unit tangents (m, 2); segment index (m,).
+
+        A segment's first point is dropped where it repeats the previous segment's last point
+        (and the closing point of a closed chain); see :func:`_join`.
+        """
         return _join(*self._samples, self.closed)
 
     @property
@@ -110,10 +154,12 @@ class Profile:
 
     @property
     def tangents(self) -> Array:
+        """Unit tangents along the travel at :attr:`points`, (n, 2) float."""
         return self._joined[1]
 
     @property
     def normals(self) -> Array:
+        """Outward unit normals at :attr:`points` (tangent turned clockwise), (n, 2) float."""
         return perp_cw(self._joined[1])
 
     @property
@@ -122,12 +168,51 @@ class Profile:
         return self._joined[2]
 
     def segment(self, name: str) -> list[Segment]:
+        """Return the segments called ``name``.
+
+        Parameters
+        ----------
+        name : str
+            Segment name, e.g. "involute".
+
+        Returns
+        -------
+        list of Segment
+            The segments of that name, in order (empty when there is none).
+        """
         return [s for s in self.segments if s.name == name]
 
     def rotated(self, angle: float, center: object = (0.0, 0.0)) -> Profile:
+        """Return the profile turned by ``angle`` about ``center``, every segment with its curve.
+
+        Parameters
+        ----------
+        angle : float
+            Counter-clockwise turn, rad.
+        center : (2,) float, mm
+            Centre of the turn.
+
+        Returns
+        -------
+        Profile
+            The turned segments (:meth:`Segment.rotated`), closed like this profile.
+        """
         return Profile(tuple(s.rotated(angle, center) for s in self.segments), self.closed)
 
     def mirrored(self, angle: float = 0.0) -> Profile:
+        """Return the profile mirrored in the line through the origin at ``angle``.
+
+        Parameters
+        ----------
+        angle : float
+            Direction of the mirror line, rad.
+
+        Returns
+        -------
+        Profile
+            The mirrored segments (:meth:`Segment.mirrored`) in reverse order, so that a closed
+            profile stays counter-clockwise.
+        """
         return Profile(tuple(s.mirrored(angle) for s in reversed(self.segments)), self.closed)
 
     def __add__(self, other: Profile) -> Profile:
@@ -158,14 +243,17 @@ class Profile:
         return Profile(tuple(s.resampled(tolerance) for s in self.segments), self.closed)
 
     def to_polygon(self) -> shapely.Polygon:
+        """Return the profile as a shapely polygon of its :attr:`points`, mm."""
         return shapely.Polygon(self.points)
 
     @property
     def area(self) -> float:
+        """Area of the polygon of :attr:`points`, mm² (positive for a counter-clockwise profile)."""
         return polygon_moments(self.points)["area"]
 
     @property
     def centroid(self) -> Array:
+        """Centroid of the polygon of :attr:`points`, (2,) float, mm."""
         m = polygon_moments(self.points)
         return np.array([m["cx"], m["cy"]])
 
@@ -185,20 +273,20 @@ class _Sampled(Profile):
     pattern and a polygon need); :attr:`segments`, each with its exact curve, is made by
     ``make_segments`` only when it is read, so that a caller who wants the polygon pays for no
     per-piece objects.
+
+    Parameters
+    ----------
+    points, tangents : (n, 2) float arrays
+        The samples of all segments end to end: points (mm) and unit tangents along the travel.
+    lengths : (k,) int array
+        Samples of each segment, in order (summing to n).
+    make_segments : callable
+        Returns the k :class:`Segment` objects holding these samples (in order).
+    closed : bool
+        Whether the chain is closed.
     """
 
     def __init__(self, points: Array, tangents: Array, lengths: Array, make_segments: object, closed: bool = False) -> None:
-        """Parameters
-        ----------
-        points, tangents : (n, 2) float arrays
-            The samples of all segments end to end: points (mm) and unit tangents along the travel.
-        lengths : (k,) int array
-            Samples of each segment, in order (summing to n).
-        make_segments : callable
-            Returns the k :class:`Segment` objects holding these samples (in order).
-        closed : bool
-            Whether the chain is closed.
-        """
         object.__setattr__(self, "closed", closed)
         object.__setattr__(self, "_make_segments", make_segments)
         self.__dict__["_samples"] = (points, tangents, lengths)
@@ -294,8 +382,10 @@ class _Patterned(Profile):
 
 
 def _join(p: Array, t: Array | None, lengths: Array, closed: bool) -> tuple[Array, Array | None, Array]:
-    """A chain's samples joined: the first point of a segment is dropped where it repeats (within
-    1e-9 mm) the previous segment's last point, and a closed chain's repeated end point.
+    """Join a chain's samples.
+
+    The first point of a segment is dropped where it repeats (within 1e-9 mm) the previous
+    segment's last point, and so is a closed chain's repeated end point.
 
     Parameters
     ----------
