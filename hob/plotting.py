@@ -21,6 +21,7 @@ from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import perp_cw
 from rotorcad.inverse_rack import contact_of_rack_points
 from rotorcad.plot_style import styled
+from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -212,9 +213,10 @@ def plot_hob(
     offset = 0.0
     drawn = []
     for (name, rack), colour in zip(racks.items(), (ps.BLUE, ps.ORANGE, ps.GREEN), strict=False):
-        pts = rack.normal() * np.array([1.0, -1.0 if name == "female" else 1.0])
+        female = rack.side is Side.FEMALE
+        pts = rack.normal() * np.array([1.0, -1.0 if female else 1.0])
         pts = pts - [pts[:, 0].min() - offset, 0.0]
-        top = pts[:, 1].max() + clearance if name != "female" else pts[:, 1].min() - clearance
+        top = pts[:, 1].min() - clearance if female else pts[:, 1].max() + clearance
         tooth = np.vstack([pts, [[pts[-1, 0], top], [pts[0, 0], top]]])
         v = verdicts[name]
         state = "hobbable" if v.hobbable else "not hobbable"

@@ -17,6 +17,7 @@ from rotorcad.design import rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.meshing import MeshingAnalysis
 from rotorcad.profile import DEFAULT_TOLERANCE
+from rotorcad.roles import Side
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import pair_from_rack_points, pair_from_rotor_points
@@ -165,17 +166,17 @@ def smooth_lobe_points(tip_radius: float, teeth: int, tolerance: float = DEFAULT
     return 3.0 * 2.0 * np.pi * tip_radius / (teeth * np.sqrt(8.0 * tip_radius * tolerance))
 
 
-def _check_generated(rotors: ScrewRotors, given: str, label: str) -> None:
+def _check_generated(rotors: ScrewRotors, given: Side | str, label: str) -> None:
     """Refuse a mate generated from measured points that is not a rotor.
 
     That is one that runs far beyond its tip circle (1.5 times) or folds into many more points than
     a smooth lobe has (noise the smoothing left in). Checked before the sections are made: their
     cost grows with the folds. Raises :class:`DesignError` naming ``label``.
     """
-    mate = "female" if given == "male" else "male"
-    lobe = rotors.female_lobe() if mate == "female" else rotors.male_lobe()
-    tip = rotors.pair.female_tip_radius if mate == "female" else rotors.pair.male_tip_radius
-    teeth = rotors.pair.female_teeth if mate == "female" else rotors.pair.male_teeth
+    mate = Side(given).other
+    lobe = mate.pick(rotors.male_lobe, rotors.female_lobe)()
+    tip = mate.pick(rotors.pair.male_tip_radius, rotors.pair.female_tip_radius)
+    teeth = mate.pick(rotors.pair.male_teeth, rotors.pair.female_teeth)
     pts = np.vstack([seg.points for seg in lobe.segments if len(seg.points)]) if lobe.segments else np.zeros((0, 2))
     reach = float(np.hypot(*pts.T).max()) if len(pts) else 0.0
     most = int(min(MAX_LOBE_POINTS, LOBE_POINTS_FACTOR * smooth_lobe_points(tip, teeth)))

@@ -16,6 +16,7 @@ from matplotlib.lines import Line2D
 from rotorcad import plot_style as ps
 from rotorcad.meshing import MeshingAnalysis
 from rotorcad.plot_style import styled
+from rotorcad.roles import Side
 
 MARKERS = {"cusp": ("v", ps.VERMILLION), "jamming": ("s", ps.PURPLE), "slipping": ("D", ps.YELLOW)}
 
@@ -265,8 +266,7 @@ def plot_point_deviation(analysis: MeshingAnalysis, rotor: str, points: np.ndarr
     -------
     matplotlib.figure.Figure
     """
-    side = 0 if rotor == "male" else 1
-    section = analysis.sections[side]
+    section = analysis.sections[Side(rotor).pick(0, 1)]
     foot, normal, dev = point_deviation(section, points)
     fig = ps.new_figure(11.0, 5.6)
     ax1, ax2 = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.2, 1.0]})
