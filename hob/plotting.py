@@ -14,14 +14,13 @@ import shapely
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from hob.rack import DerivedRack, rack_in_contract_frame
+from hob.rack import DerivedRack, hob_tooth, rack_in_contract_frame
 from rotorcad import plot_style as ps
 from rotorcad.envelope import rack_frame
 from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import perp_cw
 from rotorcad.inverse_rack import contact_of_rack_points
 from rotorcad.plot_style import styled
-from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -213,11 +212,9 @@ def plot_hob(
     offset = 0.0
     drawn = []
     for (name, rack), colour in zip(racks.items(), (ps.BLUE, ps.ORANGE, ps.GREEN), strict=False):
-        female = rack.side is Side.FEMALE
-        pts = rack.normal() * np.array([1.0, -1.0 if female else 1.0])
-        pts = pts - [pts[:, 0].min() - offset, 0.0]
-        top = pts[:, 1].min() - clearance if female else pts[:, 1].max() + clearance
-        tooth = np.vstack([pts, [[pts[-1, 0], top], [pts[0, 0], top]]])
+        pts, tooth = hob_tooth(rack, clearance)
+        shift = np.array([offset - pts[:, 0].min(), 0.0])
+        pts, tooth = pts + shift, tooth + shift
         v = verdicts[name]
         state = "hobbable" if v.hobbable else "not hobbable"
         bx.fill(*tooth.T, facecolor=colour, alpha=0.25, edgecolor=colour, lw=1.0, label=f"hob tooth from the {name}: {state}")

@@ -112,4 +112,31 @@ def rack_deviation(rotors: ScrewRotors, samples: int = 400) -> float:
     return float(max(d1.max(initial=0.0), d2.max(initial=0.0)))
 
 
-__all__ = ["DerivedRack", "derive_rack", "gear_rack", "rack_deviation", "rotor_rack"]
+def hob_tooth(rack: DerivedRack, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+    """Return the normal rack in the rack frame of CONTRACT.md and the hob tooth it makes.
+
+    The female's rack is flipped so that y > 0 points to the female for every rotor; the hob tooth
+    is the rack closed ``clearance`` beyond its far side (above a male's or a gear's rack, below a
+    female's): the tool material that cuts that rotor.
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        The rack of a rotor or a gear; its ``side`` decides the flip.
+    clearance : float, mm
+        Hob root clearance over the rack.
+
+    Returns
+    -------
+    rack : (n, 2) float array, mm
+        The normal rack, x along the pitch line from the rack's own start.
+    tooth : (n + 2, 2) float array, mm
+        The hob tooth polygon: the rack and two corners at the closing line.
+    """
+    female = rack.side is Side.FEMALE
+    pts = rack.normal() * np.array([1.0, -1.0 if female else 1.0])
+    top = pts[:, 1].min() - clearance if female else pts[:, 1].max() + clearance
+    return pts, np.vstack([pts, [[pts[-1, 0], top], [pts[0, 0], top]]])
+
+
+__all__ = ["DerivedRack", "derive_rack", "gear_rack", "hob_tooth", "rack_deviation", "rotor_rack"]

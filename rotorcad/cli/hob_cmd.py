@@ -11,7 +11,7 @@ import shapely
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
-from hob.rack import DerivedRack, gear_rack, rack_deviation, rotor_rack
+from hob.rack import DerivedRack, gear_rack, hob_tooth, rack_deviation, rotor_rack
 from hob.verdict import HobLimits, judge
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
@@ -195,11 +195,9 @@ def _drawing(racks: dict[str, DerivedRack], clearance: float) -> Drawing:
     offset = 0.0
     for name, rack in racks.items():
         # normal rack; the female's is flipped into the rack frame of CONTRACT.md (y > 0 to the female)
-        pts = rack.normal() * np.array([1.0, -1.0 if name == "female" else 1.0])
-        pts = pts + np.array([offset, 0.0])
+        pts, tooth = hob_tooth(rack, clearance)
+        pts, tooth = pts + np.array([offset, 0.0]), tooth + np.array([offset, 0.0])
         d.polylines.append((f"RACK_{name.upper()}", pts))
-        top = pts[:, 1].max() + clearance if name != "female" else pts[:, 1].min() - clearance
-        tooth = np.vstack([pts, [[pts[-1, 0], top], [pts[0, 0], top]]])
         d.outlines.append((f"HOB_TOOTH_{name.upper()}", tooth))
         width = float(np.ptp(tooth[:, 0]))
         height = max(0.04 * max(width, float(np.ptp(tooth[:, 1]))), 0.05)
