@@ -33,7 +33,8 @@ Screw rotors
 * :class:`ScrewRotors` -- a pair generated from its rack chain: lobes, outlines, sections.
 * :func:`build_family`, :data:`FAMILIES` -- the profile families by name, with checked
   parameters; :func:`krigar`, :func:`lysholm`, :func:`srm_symmetric`, :func:`srm_asymmetric`,
-  :func:`srm_b`, :func:`narrow_tip`, :func:`rack_involute` -- Rinder's Figs. 1-6.
+  :func:`srm_b`, :func:`narrow_tip`, :func:`rack_involute` -- Rinder's Figs. 1-6;
+  :func:`n_rack` -- Stosic's rack-generated N profile.
 * :class:`SpatialBlowHole` -- the blow-hole triangle in 3D (Rinder sec. 2.2.2).
 * :class:`Flank`, :class:`PieceRole`, :class:`Side` -- roles of lobe parts, rack pieces, rotors.
 * :func:`helical_solid` -- a transverse section swept into a helical solid (manifold3d).
@@ -93,6 +94,7 @@ _API = {
     "srm_b": "rotorcad.rotor_families",
     "narrow_tip": "rotorcad.rotor_families",
     "rack_involute": "rotorcad.rotor_families",
+    "n_rack": "rotorcad.n_rack",
     "SpatialBlowHole": "rotorcad.blow_hole",
     "Flank": "rotorcad.roles",
     "PieceRole": "rotorcad.roles",
@@ -159,6 +161,7 @@ __all__ = [  # noqa: RUF022 - grouped as the docstring reads
     "srm_b",
     "narrow_tip",
     "rack_involute",
+    "n_rack",
     "SpatialBlowHole",
     "Flank",
     "PieceRole",
