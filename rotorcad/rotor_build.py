@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorcad.design import rotor_design
+from rotorcad.design import POINT_FAMILIES, rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.meshing import MeshingAnalysis
 from rotorcad.profile import DEFAULT_TOLERANCE
@@ -79,9 +79,13 @@ def pair_spec(settings: dict[str, Any], points: Any = None, overrides: dict[str,
     Raises
     ------
     DesignError
-        An incomplete [pair], a pair that cannot be made (:class:`RotorPair`), or a speed that is
-        not positive.
+        An incomplete [pair], a pair that cannot be made (:class:`RotorPair`), a speed that is
+        not positive, or a points family whose ``points`` were not given.
     """
+    if settings["family"] in POINT_FAMILIES and points is None:
+        raise DesignError(
+            "[profile] points", f"read by the caller and passed as the points argument for the {settings['family']} family (the file names it)", None
+        )
     values = dict(PAIR_DEFAULTS)
     values.update(settings["pair"])
     values.update({k: v for k, v in (overrides or {}).items() if v is not None})

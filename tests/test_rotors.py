@@ -369,3 +369,15 @@ def test_written_outline_reads_back_as_a_valid_polygon(tmp_path):
     back = read_points(tmp_path / "m.csv")
     assert shapely.Polygon(back).is_valid
     np.testing.assert_allclose(back, pts, atol=1e-9)
+
+
+def test_design_summary_of_a_points_family_without_its_points_is_refused():
+    # the core never opens files: a points family's design with no points given is refused in one
+    # sentence naming the key, not passed on as None into the points builder
+    from rotorcad.errors import DesignError
+    from rotorcad.rotor_build import design_summary
+
+    pair = {"male_teeth": 4, "female_teeth": 6, "center_distance": 100.0, "male_tip_radius": 54.0}
+    pair.update({"male_root_radius": 40.0, "female_tip_radius": 60.0, "female_root_radius": 46.0})
+    with pytest.raises(DesignError, match=r"\[profile\] points"):
+        design_summary({"pair": pair, "profile": {"family": "male-points", "points": "m.csv"}})
