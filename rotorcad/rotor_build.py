@@ -84,7 +84,9 @@ def pair_spec(settings: dict[str, Any], points: Any = None, overrides: dict[str,
     """
     if settings["family"] in POINT_FAMILIES and points is None:
         raise DesignError(
-            "[profile] points", f"read by the caller and passed as the points argument for the {settings['family']} family (the file names it)", None
+            "[profile] points",
+            f"read by the caller and passed as the points argument for the {settings['family']} family (the file names it)",
+            None,
         )
     values = dict(PAIR_DEFAULTS)
     values.update(settings["pair"])
