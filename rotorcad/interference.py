@@ -232,8 +232,8 @@ def intersection_3d(
     Returns
     -------
     dict
-        ``volume`` (mm³, all parts), ``parts`` (their number), ``centroid`` (the centre of the
-        bounding box of the larger parts, [x, y, z] mm, not their mass centroid) and ``bbox``
+        ``volume`` (mm³, all parts), ``parts`` (their number), ``centroid`` (the mass centroid of
+        the larger parts, [x, y, z] mm) and ``bbox``
         ([lower, upper] corners, mm); the last two None when no part is large enough.
     """
     m = male.manifold.rotate([0.0, 0.0, float(np.degrees(angle))])
@@ -246,7 +246,11 @@ def intersection_3d(
     big = [p for p in parts if p.volume() > threshold / max(len(parts), 1)]
     if not big:
         return {"volume": volume, "parts": len(parts), "centroid": None, "bbox": None}
+    import trimesh
+
     mesh = m3.Manifold.batch_boolean(big, m3.OpType.Add).to_mesh64()
     verts = np.asarray(mesh.vert_properties)[:, :3]
     lo, hi = verts.min(axis=0), verts.max(axis=0)
-    return {"volume": volume, "parts": len(parts), "centroid": ((lo + hi) / 2).tolist(), "bbox": [lo.tolist(), hi.tolist()]}
+    # the mass centroid of the closed mesh (trimesh: divergence theorem over its triangles)
+    centroid = trimesh.Trimesh(verts, np.asarray(mesh.tri_verts), process=False).center_mass
+    return {"volume": volume, "parts": len(parts), "centroid": np.asarray(centroid).tolist(), "bbox": [lo.tolist(), hi.tolist()]}
