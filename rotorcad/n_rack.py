@@ -178,11 +178,12 @@ def n_rack(
     )
     x_start = float(rounding.center[1])  # rack x of the rounding's bottom
     if not x_g < x_start + p_rack - 1e-9:
-        raise DesignError(
-            "[profile] driving_width",
-            "small enough that the lobe fits the rack period",
+        _refuse_overfull_lobe(
+            pair,
+            x_g,
             driving_width,
-            f"the sealing side ends at rack x = {x_g:.4g} mm, past the next lobe's driving foot at {x_start + p_rack:.4g} mm",
+            (driving_center_depth, driving_root_rounding),
+            (driving_exponent_along, driving_exponent_across),
         )
     rack: tuple[RackPiece, ...] = (
         RackPiece(rounding, "driving root fillet", "driving tip rounding"),
@@ -199,6 +200,49 @@ def n_rack(
         RackPiece(rack_line(pair, (x_g, -d1), (x_start + p_rack, -d1)), "root arc", "tip arc"),
     )
     return ScrewRotors(pair, rack, "n-rack")
+
+
+def _refuse_overfull_lobe(
+    pair: RotorPair, x_g: float, width: float, depth_rounding: tuple[float, float], exponents: tuple[float, float]
+) -> None:
+    """Refuse a lobe that does not fit the rack period, naming the widest driving arc that fits.
+
+    The sealing side ends at rack x = ``x_g`` (mm); the next lobe's driving foot must lie beyond
+    it. The foot moves back as the driving arc widens, so the widest ``driving_width`` that fits
+    with the other parameters as given is found by bisection (none from 0.3 up: the sealing side
+    itself is too long, set by ``tip_land`` and the tip roundings).
+
+    Raises
+    ------
+    DesignError
+        Always: naming ``[profile] driving_width`` and its largest value that fits, or the keys
+        that lengthen the sealing side.
+    """
+    h1, p_rack = pair.male_addendum, pair.rack_period
+
+    def fits(w: float) -> bool:
+        try:
+            _, rounding = _driving_side(pair, w * h1, depth_rounding[0] * h1, depth_rounding[1] * h1, *exponents)
+        except DesignError:
+            return False
+        return x_g < float(rounding.center[1]) + p_rack - 1e-9
+
+    low, high = 0.3, width
+    if not fits(low):
+        raise DesignError(
+            "[profile] tip_land",
+            "small enough, with male_tip_rounding and female_tip_rounding, that the lobe fits the rack period",
+            None,
+            f"the sealing side alone ends at rack x = {x_g:.4g} mm, so no driving_width from 0.3 leaves room for the next lobe",
+        )
+    for _ in range(40):
+        mid = 0.5 * (low + high)
+        low, high = (mid, high) if fits(mid) else (low, mid)
+    raise DesignError(
+        "[profile] driving_width",
+        f"at most {low:.4g} with the other [profile] values as given, so that the lobe fits the rack period",
+        width,
+    )
 
 
 def _rack_xy(pair: RotorPair, p: np.ndarray) -> np.ndarray:

@@ -419,7 +419,7 @@ def lysholm(pair: RotorPair, tip_land: float = 0.0) -> ScrewRotors:
 
 
 LYSHOLM_PARAMS = {
-    "tip_land": Param(0.0, "at least 0 mm", _nonneg),
+    "tip_land": Param(0.0, "a finite length of at least 0 mm", _nonneg),
 }
 
 
@@ -553,7 +553,7 @@ def krigar(pair: RotorPair, tip_land: float = 0.0) -> ScrewRotors:
 
 
 KRIGAR_PARAMS = {
-    "tip_land": Param(0.0, "at least 0 mm", _nonneg),
+    "tip_land": Param(0.0, "a finite length of at least 0 mm", _nonneg),
 }
 
 
@@ -813,7 +813,7 @@ NARROW_TIP_PARAMS = {
         "between 0.1 and 0.99 (share of the tip corner's sweep to the cusp)",
         lambda v: bool(np.isfinite(v) and 0.1 <= v <= 0.99),
     ),
-    "tip_land": Param(0.0, "at least 0 mm", _nonneg),
+    "tip_land": Param(0.0, "a finite length of at least 0 mm", _nonneg),
 }
 
 SRM_ASYMMETRIC_PARAMS = {
@@ -826,7 +826,7 @@ SRM_ASYMMETRIC_PARAMS = {
     "driving_rounding": Param(
         0.0, "between 0 and 1 (fraction of the male addendum)", lambda v: bool(np.isfinite(v) and 0 <= v <= 1)
     ),
-    "tip_land": Param(0.0, "at least 0 mm", _nonneg),
+    "tip_land": Param(0.0, "a finite length of at least 0 mm", _nonneg),
     "driving_foot_angle_deg": Param(30.0, "between 5 and 60 degrees", _angle),
 }
 SRM_B_PARAMS = dict(SRM_ASYMMETRIC_PARAMS)
@@ -845,9 +845,11 @@ N_RACK_PARAMS = {
     "driving_exponent_across": Param(2.0, "between 1.5 and 6", _exponent),
     "driving_center_depth": Param(0.5, "between 0 and 1 (fraction of the male addendum)", _within(0, 1)),
     "driving_root_rounding": Param(0.3, "between 0.01 and 1 (fraction of the male addendum)", _within(0.01, 1)),
-    "tip_land": Param(0.0, "at least 0 mm", _nonneg),
+    "tip_land": Param(0.0, "a finite length of at least 0 mm", _nonneg),
     "male_tip_rounding": Param(0.05, "between 0 and 0.5 (fraction of the male addendum)", _within(0, 0.5)),
-    "female_tip_rounding": Param(0.1, "between 0 and 0.5 (fraction of the male addendum)", _within(0, 0.5)),
+    "female_tip_rounding": Param(
+        0.1, "between 0 and 0.5 (fraction of the male addendum) and above the female addendum over h1", _within(0, 0.5)
+    ),
 }
 
 FAMILIES: dict[str, tuple[Callable[..., ScrewRotors], dict[str, Param]]] = {

@@ -159,6 +159,14 @@ class ScrewRotors:
 
     def _lobe(self, pieces: list[tuple[str, Curve, RackPiece]], tolerance: float | None) -> Profile:
         tol = self.tolerance if tolerance is None else tolerance
+        cache = self.__dict__.setdefault("_lobes", {})  # one sampling per rotor and tolerance
+        key = (id(pieces), tol)
+        if key not in cache:
+            cache[key] = self._sample_lobe(pieces, tol)
+        return cache[key]
+
+    @staticmethod
+    def _sample_lobe(pieces: list[tuple[str, Curve, RackPiece]], tol: float) -> Profile:
         segs = []
         for name, curve, _ in pieces:
             if abs(curve.s1 - curve.s0) < 1e-15:

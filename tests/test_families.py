@@ -386,3 +386,20 @@ def test_rinder_comparison_in_the_readme_is_what_rotorcad_computes():
     narrow = compare.extremes("narrow_tip_5_6")["largest sliding velocity"]
     assert narrow["flank"] == "sealing" and narrow["place"].startswith("male tip")
     assert abs(narrow["angle_deg"] - 25.0) < 5.0
+
+
+def test_a_rack_that_undercuts_its_rotor_is_refused(capsys, tmp_path):
+    # A driving arc three tenths of h1 wide curves more sharply than the male can follow: the
+    # generated flank loops, and the male made valid (shapely) stops 3.7 mm short of its 57.99 mm
+    # tip radius (found by a new user: exit 0 and a blow-hole drawn from the nominal tip circle).
+    from rotorcad.cli.main import main
+
+    narrow = build_family(PAIR_N4, "n-rack", {"driving_width": 0.3})
+    reach = np.hypot(*np.asarray(narrow.section("male").exterior.coords).T).max()
+    assert reach < PAIR_N4.male_tip_radius - 3.0
+    design = tmp_path / "narrow.toml"
+    design.write_text((SAMPLES / "n_rack_5_6.toml").read_text().replace("driving_width = 1.25", "driving_width = 0.3"))
+    capsys.readouterr()
+    assert main(["rotor", str(design), "--json"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "[profile]" in err and "57.99" in err and f"{reach:.4g}" in err
