@@ -562,6 +562,7 @@ def interfere(
         "housing_intersection_volume": result_2d.housing_volume,
         "steps": steps,
         "touching_threshold": result_2d.threshold,
+        "max_penetration": result_2d.max_penetration,
         "interferes": result_2d.interferes or result_2d.housing_volume > result_2d.threshold,
     }
     if check_3d:
