@@ -29,9 +29,11 @@ y = h1, the rack bottom at y = -d1) is made of:
    to the female tip circle, and their rack images are the envelopes of those circles (each an
    offset trochoid, :class:`rotorcad.curves.PointPath`). Chosen: the two circles touch each other at
    one instant, at a point K whose common normal runs through the pitch point C, so that both rack
-   images pass through K's rack point H with one tangent (no rack corner). With r_m = r_f = 0 the
-   circles are the sharp tip corners and K is the housing cusp: Lysholm's point-generated sealing
-   flank and a closed meshline; rounded tips open a small blow-hole.
+   images pass through K's rack point H with one tangent (no rack corner). In the limit r_m = r_f = 0
+   the circles are the sharp tip corners and K is the housing cusp: Lysholm's point-generated
+   sealing flank and a closed meshline; rounded tips open a small blow-hole. The male circle may be
+   0 (a sharp male tip); the female's must be centred inside the female pitch circle (r_f > d1),
+   or part of it has no generating position.
 6. **Root land** again, closing the period.
 
 Male tip and female tip land, roundings and the driving arc are rack pieces; each generates both
@@ -191,12 +193,12 @@ def n_rack(
     )
     if tip_land > 0:
         rack += (RackPiece(rack_line(pair, (0.0, h1), (x_b, h1)), "tip arc", "root arc"),)
-    # a circle of radius 0 is a sharp tip corner: its rack image is the corner's path (Lysholm)
+    # a male circle of radius 0 is a sharp tip corner: its rack image is the corner's path (Lysholm);
+    # the female's is always a circle (r_f > d1 >= 0, checked above)
     male_role = PieceRole.MALE_CORNER_PATH if rm == 0 else PieceRole.CURVE
-    female_role = PieceRole.FEMALE_CORNER_PATH if rf == 0 else PieceRole.CURVE
     rack += (
         RackPiece(male_circle, "sealing tip circle", "sealing flank (envelope of the male tip circle)", kind=male_role),
-        RackPiece(female_circle, "sealing flank (envelope of the female tip circle)", "sealing tip circle", kind=female_role),
+        RackPiece(female_circle, "sealing flank (envelope of the female tip circle)", "sealing tip circle"),
         RackPiece(rack_line(pair, (x_g, -d1), (x_start + p_rack, -d1)), "root arc", "tip arc"),
     )
     return ScrewRotors(pair, rack, "n-rack")
