@@ -154,7 +154,8 @@ def report(design: Path, out_path: Path, files_dir: Path | None, as_json: bool, 
     if out_path.suffix.lower() not in (".html", ".htm"):
         raise InputError(f"--out must name a .html file (got {out_path}).")
     data = _read_design(design)
-    assert data is not None
+    if data is None:  # click makes DESIGN required; kept for a call from Python
+        raise InputError("DESIGN must name a design file (a .toml with [pair] or [gear]).")
     content = _rotor_content(design, data) if "pair" in data else _gear_content(design, data)
     folder = output_folder(files_dir)
     outputs = Outputs()
