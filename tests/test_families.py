@@ -343,6 +343,30 @@ def test_n4_sample_has_the_published_dimensions_and_reports_its_blow_hole_and_co
     ma = MeshingAnalysis(build_family(pair, d["family"], d["params"]))
     assert 0 < summary["blow_hole_area"] < 5.0
     assert summary["blow_hole_spatial"]["area"] > summary["blow_hole_area"]
+    # the meshline ends where the two sealing tip circles touch: K with |K - r_m u| = R1 - r_m,
+    # |K + r_f u - O2| = R2 - r_f, u = (K - C)/|K - C| (solved here by scipy from the cusp); the
+    # blow-hole is the curved triangle between K, the two tip circles and their cusp (Rinder
+    # 2.2.2), built here with shapely as the bores' lens corner beyond the radial lines through K
+    from scipy import optimize
+
+    h1, o2 = pair.male_addendum, np.array([pair.center_distance, 0.0])
+    rm, rf = d["params"]["male_tip_rounding"] * h1, d["params"]["female_tip_rounding"] * h1
+    c = np.array([pair.male_pitch_radius, 0.0])
+
+    def tangency(k):
+        u = (k - c) / np.linalg.norm(k - c)
+        male_gap = np.linalg.norm(k - rm * u) - (pair.male_tip_radius - rm)
+        return [male_gap, np.linalg.norm(k + rf * u - o2) - (pair.female_tip_radius - rf)]
+
+    k = optimize.fsolve(tangency, pair.housing_cusp, xtol=1e-13)
+    np.testing.assert_allclose(summary["blow_hole_spatial"]["apex"][:2], k, atol=1e-6)
+    cusp = pair.housing_cusp
+    a1, a2 = np.arctan2(k[1], k[0]), np.arctan2(cusp[1], cusp[0])  # male tip arc from K's radial line to the cusp
+    b1, b2 = np.arctan2(cusp[1], cusp[0] - o2[0]), np.arctan2(k[1], k[0] - o2[0])  # female tip arc
+    male_arc = pair.male_tip_radius * np.column_stack([np.cos(t := np.linspace(a1, a2, 2000)), np.sin(t)])
+    female_arc = o2 + pair.female_tip_radius * np.column_stack([np.cos(t := np.linspace(b1, b2, 2000)), np.sin(t)])
+    triangle = shapely.Polygon(np.vstack([[k], male_arc, female_arc, [k]]))
+    assert summary["blow_hole_area"] == pytest.approx(triangle.area, rel=1e-4)
     assert summary["contact_line_length"] == pytest.approx(ma.contact_line_length)
     # the contact line is the meshline lifted along the rotors: longer than its projection
     planar = np.linalg.norm(np.diff(ma.meshline, axis=0), axis=1).sum()
@@ -393,10 +417,13 @@ def test_a_rack_that_undercuts_its_rotor_is_refused(capsys, tmp_path):
     # generated flank loops, and the male made valid (shapely) stops 3.7 mm short of its 57.99 mm
     # tip radius (found by a new user: exit 0 and a blow-hole drawn from the nominal tip circle).
     from rotorcad.cli.main import main
+    from rotorcad.n_rack import n_rack
 
-    narrow = build_family(PAIR_N4, "n-rack", {"driving_width": 0.3})
+    narrow = n_rack(PAIR_N4, driving_width=0.3)  # the builder itself, unchecked
     reach = np.hypot(*np.asarray(narrow.section("male").exterior.coords).T).max()
     assert reach < PAIR_N4.male_tip_radius - 3.0
+    with pytest.raises(DesignError, match=r"\[profile\] parameters of the n-rack family"):
+        build_family(PAIR_N4, "n-rack", {"driving_width": 0.3})  # the Python API refuses it too
     design = tmp_path / "narrow.toml"
     design.write_text((SAMPLES / "n_rack_5_6.toml").read_text().replace("driving_width = 1.25", "driving_width = 0.3"))
     capsys.readouterr()
