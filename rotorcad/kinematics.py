@@ -1,7 +1,7 @@
 """Plane motions of the meshing bodies: rotors and gears turn, racks translate.
 
 Every motion is driven by one parameter ``t``, the male (or driving gear) rotation angle in
-radians (DESIGN.md conventions). A :class:`Rotation` turns its body about ``center`` by
+radians (ARCHITECTURE.md, conventions). A :class:`Rotation` turns its body about ``center`` by
 ``rate * t``; a :class:`Translation` shifts its body by ``velocity * t``. For two bodies the
 instantaneous centre of their relative motion is the pitch point C (Wälzpunkt), through which
 every contact normal must pass (law of gearing).
@@ -31,7 +31,7 @@ class Rotation:
         Centre of the turn in the fixed frame (O1 = (0, 0), O2 = (a, 0)).
     rate : float
         Turn of the body per unit of the motion parameter t (rad per rad of the male): 1 for the
-        male, -z1/z2 for the female (DESIGN.md conventions).
+        male, -z1/z2 for the female (ARCHITECTURE.md, conventions).
     """
 
     center: tuple[float, float] = (0.0, 0.0)
@@ -324,7 +324,7 @@ class Mesh:
 def rotor_mesh(z1: int, z2: int, center_distance: float) -> Mesh:
     """Set up the frames of a male/female screw-rotor pair.
 
-    r1w = a/(1+i), r2w = a i/(1+i) with i = z2/z1 (DESIGN.md conventions): the male turns about
+    r1w = a/(1+i), r2w = a i/(1+i) with i = z2/z1 (ARCHITECTURE.md, conventions): the male turns about
     O1 = (0, 0) at rate 1, the female about O2 = (a, 0) at rate -z1/z2, the rack moves in +y at r1w
     per radian of the male.
 

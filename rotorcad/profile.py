@@ -3,7 +3,7 @@
 A :class:`Segment` is a named piece of a curve ("involute", "tip arc", "trochoid", ...) sampled
 with exact unit tangents; a :class:`Profile` is a chain of segments travelled counter-clockwise
 around the body (outward normal = tangent turned clockwise). Profiles leave the library as
-closed counter-clockwise polygons without a repeated end point (DESIGN.md conventions).
+closed counter-clockwise polygons without a repeated end point (ARCHITECTURE.md, conventions).
 
 Area and second moments of area follow from Green's theorem over the polygon
 (A = 1/2 sum x_i y_{i+1} - x_{i+1} y_i, and the matching closed forms for the first and second

@@ -2,7 +2,7 @@
 
 Rotor 1 is the male (Hauptläufer), rotor 2 the female (Nebenläufer); O1 = (0, 0), O2 = (a, 0),
 ratio i = z2/z1, pitch radii r1w = a/(1+i), r2w = a i/(1+i), pitch point C = (r1w, 0); male lead
-h1, female lead h2 = h1 z2/z1, wrap angle 2 pi L / h1 (DESIGN.md conventions).
+h1, female lead h2 = h1 z2/z1, wrap angle 2 pi L / h1 (ARCHITECTURE.md, conventions).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from rotorcad.kinematics import Mesh, rotor_mesh
 class RotorPair:
     """Tooth counts, centre distance, tip and root radii, lead, length and hand of a screw-rotor pair.
 
-    The values are checked when the pair is made (DESIGN.md conventions: rotor 1 the male about
+    The values are checked when the pair is made (ARCHITECTURE.md, conventions: rotor 1 the male about
     O1 = (0, 0), rotor 2 the female about O2 = (a, 0)).
 
     Parameters

@@ -3,14 +3,14 @@
 The surface between two consecutive layers is ruled (straight lines between corresponding section
 vertices); a point at radius R of a section turned by d(theta) per layer sags from the true helicoid
 by about R d(theta)^2 / 8, the sagitta of a chord of the helix seen along the axis (measured here:
-300 deg wrap, R = 48 mm: 50 layers 63 um, 200 layers 4 um; STACK-NOTES). With a surface tolerance
+300 deg wrap, R = 48 mm: 50 layers 63 um, 200 layers 4 um). With a surface tolerance
 ``tol`` the section is sampled to chords of tol/2 and the layers are chosen so that the sag stays
 below tol/2: n = ceil(wrap sqrt(R_max / (4 tol))). The bound that holds: every point of the
 triangulated surface lies within ``tol`` of the exact helical surface, hence
 |V - A L| <= P L tol (A, P area and perimeter of the sampled section, L the length).
 
 Right hand turns the section counter-clockwise going up (positive ``twist_degrees`` in manifold3d);
-a contour is passed counter-clockwise with the positive fill rule (STACK-NOTES: a clockwise contour
+a contour is passed counter-clockwise with the positive fill rule (measured: a clockwise contour
 gives an empty section without error).
 """
 

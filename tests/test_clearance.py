@@ -1,5 +1,5 @@
 """Meshing clearance from profile points (Wu & Chi 2013): round trips through a designed clearance
-(DESIGN.md: design a clearance, measure it back), the paper's normal-rack projection (eq. 7) and the
+(design a clearance, measure it back), the paper's normal-rack projection (eq. 7) and the
 contact line of Rinder's eq. 1 from the meshing analysis (a second, independent computation)."""
 
 from __future__ import annotations

@@ -45,7 +45,7 @@ def test_solid_volume_watertight_genus_and_twist(rotors, hand):
 
 
 def test_layer_count_follows_the_sag_formula():
-    # STACK-NOTES measured 63 um at 50 layers and 4 um at 200 for R = 48 mm, 300 deg:
+    # measured 63 um at 50 layers and 4 um at 200 for R = 48 mm, 300 deg:
     # R dtheta^2 / 8 gives 66 um and 4.1 um; layers_for keeps it at tol / 2.
     wrap = np.radians(300.0)
     for tol in (0.1, 0.005):

@@ -1,6 +1,6 @@
 """Exact STEP of helical rotors (exports.step_exact), read back by OpenCASCADE's STEP reader (a
 third-party reader): one valid solid, one side face per profile segment, the volume of section
-area x length (Gauss-Kronrod integration, STACK-NOTES), and points sampled on every face, turned
+area x length (Gauss-Kronrod integration, measured), and points sampled on every face, turned
 back by -2 pi z / h, on the exact section within the tolerance, at the sharp corners too (the
 tip radius is not exceeded: a single B-spline through the section overshot it by 44 um)."""
 

