@@ -179,6 +179,7 @@ DIMENSIONLESS = (
     "terms",
     "exponent",
     "anisotropy",
+    "_to_",  # a ratio of two methods' values, e.g. male_max_deflection_paper_to_rotorcad
 )
 _UNIT_RULES = (  # (pattern in the key, unit), first match wins
     ("_deg", "deg"),
