@@ -355,6 +355,7 @@ class GasDeflection:
         }
         if load is not LoadModel.CHAMBER:
             self.table = self.with_load(load).table
+            self.load = load
 
     def with_load(self, load: LoadModel) -> GasDeflection:
         """Return the same pair, pressures and beams with another flute load (no chamber recomputed).

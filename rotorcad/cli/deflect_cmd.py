@@ -21,6 +21,9 @@ from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
 
 SWEEP_ANGLES = 100  # male angles over one male pitch
+# Rinder & Deix sec. 3.5 (text under Figs. 9 and 10): the largest deflections of their 5/6 pair at 12 bar,
+# mm: (helical part, with the journals of their Fig. 8); the curves of Figs. 9/10 are not in the text
+PAPER_MAX = {"male": (0.0005, 0.0022), "female": (0.002, 0.0075)}
 
 
 def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
@@ -241,7 +244,9 @@ def deflect(
     result["defaults"] = _defaults(op, de, model, exponent, terms_label, terms, male_shaft, female_shaft)
     out = Outputs()
     out.add_figure(
-        plot, lambda: _plot(model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}"), "--plot"
+        plot,
+        lambda: _plot(model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}", other_lines, other_swept),
+        "--plot",
     )
     result["files"] = [str(x) for x in out.write()]
     if as_json:
@@ -291,12 +296,23 @@ def _defaults(
 
 
 @styled
-def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, shafts: bool, case: str = "") -> Figure:
+def _plot(
+    model: GasDeflection,
+    lines,
+    angles: np.ndarray,
+    swept: np.ndarray,
+    shafts: bool,
+    case: str = "",
+    other_lines=None,
+    other_swept: np.ndarray | None = None,
+) -> Figure:
     """Draw the deflection lines of both rotors and the largest deflection over one male pitch.
 
     The lines at the chosen angle (w_x, w_y in the rotors' frame: x from O1 to O2, y turned 90 deg
-    counter-clockwise; |w|), the helical part's end faces marked on a shaft, and the largest
-    deflection over one male pitch with the chosen angle marked (Rinder & Deix Figs. 9 and 10).
+    counter-clockwise; |w|), the other flute load's |w| dashed, the helical part's end faces marked on
+    a shaft, and the largest deflection over one male pitch with the chosen angle marked (Rinder &
+    Deix Figs. 9 and 10). Rinder & Deix's largest deflections of their 5/6 example (sec. 3.5, the
+    values in the text; the curves of Figs. 9/10 are not) are drawn as dotted levels on the same axes.
     """
     fig = ps.new_figure(12.0, 7.6)
     axes = fig.subplots(2, 2)
@@ -316,13 +332,22 @@ def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, sh
             ax.set_xlabel(ps.label("z from the discharge end face", "mm"))
         ax.plot(z, w[:, 0] * 1e3, color=ps.BLUE, label="w_x (x from O1 to O2)")
         ax.plot(z, w[:, 1] * 1e3, color=ps.ORANGE, label="w_y (x turned 90° ccw)")
-        ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, color=ps.BLACK, lw=1.6, label="|w|")
+        ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, color=ps.BLACK, lw=1.6, label=f"|w| ({model.load.value} load)")
+        if other_lines is not None:
+            oz = getattr(other_lines, f"{rotor}_shaft_z") if shafts and len(shaft_z) else other_lines.z
+            ow = getattr(other_lines, f"{rotor}_shaft") if shafts and len(shaft_z) else getattr(other_lines, rotor)
+            other_name = "paper" if model.load.value == "rotorcad" else "rotorcad"
+            ax.plot(oz, np.hypot(ow[:, 0], ow[:, 1]) * 1e3, "--", color=ps.GREY, lw=1.2, label=f"|w| ({other_name} load)")
+        paper = PAPER_MAX[rotor][1 if shafts else 0] * 1e3
+        ax.axhline(paper, color=ps.VERMILLION, lw=1.0, ls=":", label=f"Rinder & Deix 5/6 at 12 bar: {paper:g} µm")
         ax.axhline(0.0, color=ps.GREY, lw=0.5)
         ax.set_ylabel(ps.label("deflection w", "µm"))
         ax.set_title(f"{rotor} deflection line at male angle {np.degrees(lines.angle):.2f}°")
         ps.legend_below(ax, ncol=2, bbox_to_anchor=(0.5, -0.2))
         ax2 = axes[1, col]
-        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color=ps.BLACK, label="largest |w| over the rotor")
+        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color=ps.BLACK, label=f"largest |w| ({model.load.value} load)")
+        if other_swept is not None:
+            ax2.plot(np.degrees(angles), other_swept[:, col] * 1e3, "--", color=ps.GREY, label="the other flute load")
         ax2.axvline(
             np.degrees(lines.angle) % np.degrees(angles[-1] + angles[1] - angles[0]),
             color=ps.VERMILLION,
