@@ -15,8 +15,8 @@ Line loads (eq. 6): a chamber at overpressure p - p_s loads each rotor, per unit
 (p - p_s) times the chamber table's force of a unit overpressure at the section's phase, which
 turns with the helix. That force is the real chamber's boundary
 (:func:`rotorcad.working_chamber.chamber_table`) or eq. 5's tip-to-tip chord
-(:func:`rotorcad.working_chamber.chord_table`), whichever table is given. The sections beyond the contact line belong to the next chamber; beyond
-the chamber at the suction end the gas is at suction pressure and adds nothing.
+(:func:`rotorcad.working_chamber.chord_table`), whichever table is given. The sections beyond the contact line belong to the
+next chamber; beyond the chamber at the suction end the gas is at suction pressure and adds nothing.
 """
 
 from __future__ import annotations

@@ -198,7 +198,9 @@ def female_flute_angle(male_teeth: int, female_teeth: int, psi: np.ndarray) -> n
     return np.pi + (male_teeth + 0.5) * pitch2 - np.asarray(psi, dtype=float) * male_teeth / female_teeth
 
 
-def chord_table(table: ChamberTable, male_teeth: int, female_teeth: int, male_tip_radius: float, female_tip_radius: float) -> ChamberTable:
+def chord_table(
+    table: ChamberTable, male_teeth: int, female_teeth: int, male_tip_radius: float, female_tip_radius: float
+) -> ChamberTable:
     """Return the chamber table with the forces of Rinder & Deix eq. (5): the flute's chord instead of its boundary.
 
     Rinder & Deix sec. 3.1, eq. (5): the resultant of the overpressure p in a flute is

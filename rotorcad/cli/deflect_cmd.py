@@ -12,10 +12,10 @@ from matplotlib.figure import Figure
 from exports.csv_points import read_points
 from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
+from rotorcad.cli.defaults import print_defaults, taken
 from rotorcad.cli.export_cmd import _rotor_options
 from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import _build as build_rotors
-from rotorcad.cli.defaults import print_defaults, taken
 from rotorcad.deflection import AIR_EXPONENT, STEEL, GasDeflection, LoadModel, Shaft
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
@@ -241,11 +241,13 @@ def deflect(
     for rotor in ("male", "female"):
         for key in (f"{rotor}_max_deflection_helical", f"{rotor}_max_deflection", f"{rotor}_gas_force_n"):
             result[f"{key}_paper_to_rotorcad"] = result[f"{key}_paper"] / result[f"{key}_rotorcad"]
-    result["defaults"] = _defaults(op, de, model, exponent, terms_label, terms, male_shaft, female_shaft)
+    result["defaults"] = _defaults(op, de, model, exponent, terms_label, terms)
     out = Outputs()
     out.add_figure(
         plot,
-        lambda: _plot(model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}", other_lines, other_swept),
+        lambda: _plot(
+            model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}", other_lines, other_swept
+        ),
         "--plot",
     )
     result["files"] = [str(x) for x in out.write()]
@@ -253,7 +255,8 @@ def deflect(
         emit_json(result)
     else:
         print_table(
-            f"deflection under gas load, {Path(design).name}, flute load '{model.load.value}', male angle {np.degrees(at):.2f} deg",
+            f"deflection under gas load, {Path(design).name}, flute load '{model.load.value}', "
+            f"male angle {np.degrees(at):.2f} deg",
             result,
         )
         print_defaults(result["defaults"])
@@ -266,8 +269,6 @@ def _defaults(
     exponent: float,
     terms_label: str,
     terms: int,
-    male_shaft: Shaft,
-    female_shaft: Shaft,
 ) -> dict[str, str]:
     """Return the inputs that changed the result and were not given, each as "value (default: how)"."""
     out: dict[str, str] = {}
@@ -285,7 +286,7 @@ def _defaults(
         out["[deflection] young_modulus"] = taken(f"{STEEL[0]:g} N/mm^2", "steel")
     if "poisson_ratio" not in de:
         out["[deflection] poisson_ratio"] = taken(f"{STEEL[1]:g}", "steel")
-    for rotor, shaft in (("male", male_shaft), ("female", female_shaft)):
+    for rotor in ("male", "female"):
         for end in ("discharge", "suction"):
             key = f"{rotor}_shaft_{end}"
             if key not in de:
