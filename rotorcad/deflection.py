@@ -35,6 +35,7 @@ from rotorcad.section_properties import circle_values, section_values, shear_cor
 from rotorcad.working_chamber import ChamberTable, chamber_table, chord_table
 
 STEEL = (210_000.0, 0.3)  # E in N/mm^2, Poisson's ratio
+MAX_WRAP_DEG = 720.0  # screw rotors wrap 200-360 deg; beyond two turns the model is not meant
 AIR_EXPONENT = 1.4  # the polytropic exponent taken when the design gives none: isentropic air
 
 
@@ -50,7 +51,6 @@ class LoadModel(Enum):
 
     CHAMBER = "rotorcad"
     CHORD = "paper"
-MAX_WRAP_DEG = 720.0  # screw rotors wrap 200-360 deg; beyond two turns the model is not meant
 
 
 @dataclass(frozen=True)
