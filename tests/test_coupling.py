@@ -226,7 +226,10 @@ def test_cli_plot_writes_a_picture_that_reads_at_a_glance(capsys, tmp_path):
     path = tmp_path / "c.svg"
     rc, _, err = run(capsys, "coupling", *ARGS, "--plot", path)
     assert rc == 0, err
-    check_picture(path, ["gear coupling z = ", " rpm", " kW"])
+    drawn = check_picture(path, ["gear coupling z = ", " rpm", " kW"])
+    # the paper's words beside rotorcad's curves (issue 23): Fig. 4's trend and p_max ~ 0.5 sigma_H
+    assert "paper, Fig. 4: h_min falls slightly as z grows" in drawn["text"]
+    assert "module and tooth load kept (the paper's trend)" in drawn["text"] and "p_max ≈ 0.5 σ_H" in drawn["text"]
 
 
 @pytest.mark.parametrize(

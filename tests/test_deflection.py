@@ -448,7 +448,11 @@ def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys
     assert ET.parse(svg).getroot().tag.endswith("svg")
     from test_pictures import check_picture  # units on every axis, the case in the title (issue 16)
 
-    check_picture(svg, ["rack_involute_5_6.toml", "rack-involute 5/6", "1 → 8 bar"])
+    drawn = check_picture(svg, ["rack_involute_5_6.toml", "rack-involute 5/6", "1 → 8 bar"])
+    # the paper's figure beside rotorcad's: Rinder & Deix's largest deflections (sec. 3.5) on the same
+    # axes, and the other flute load's line (issue 23)
+    assert "Rinder & Deix 5/6 at 12 bar: 0.5 µm" in drawn["text"] and "Rinder & Deix 5/6 at 12 bar: 2 µm" in drawn["text"]
+    assert "|w| (paper load)" in drawn["text"] and "|w| (rotorcad load)" in drawn["text"]
     fifo = tmp_path / "fifo"
     os.mkfifo(fifo)
     assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(fifo)]) == 2
