@@ -110,3 +110,13 @@ def test_film_pressure_below_the_contact_stress_as_the_paper_says(capsys):
     # (dimensions not printed); the base case of these tests, a 4 MW coupling at 8000 rpm: 40 % below
     _, r, _ = _json(capsys, *ARGS)
     assert r["pressure_to_hertz_ratio"] == pytest.approx(0.5, abs=0.15)
+
+
+def test_no_film_is_a_verdict_with_its_reason():
+    # a Reynolds-elastic problem without a converged film (the solver's NO_FILM): the regime says so
+    from rotorcad.coupling import CouplingResult, Regime, Verdict
+
+    r = CouplingResult(GearCoupling(**BASE), Verdict.NO_FILM, None)
+    assert r.regime is Regime.NO_SOLUTION and not r.hydrodynamic
+    assert r.regime_reason.startswith("no film: the Reynolds-elastic problem has no converged solution")
+    assert math.isnan(r.film_parameter)
