@@ -92,3 +92,24 @@ def test_defaults_taken_are_reported_with_how_they_were_chosen(capsys):
     assert d["[operating] polytropic_exponent"] == "1.4 (default: isentropic air)"
     assert d["[deflection] young_modulus"].startswith("210000 N/mm^2 (default: steel")
     assert "[deflection] male_shaft_discharge" in d and "[deflection] poisson_ratio" in d
+
+
+def test_rinder_deix_worst_angle_is_eq_10_and_each_line_lies_in_a_plane(rinder_deix):
+    # sec. 3.5 under Fig. 10: the largest deflection comes when eq. (10) holds (a chamber at end pressure
+    # has just passed the control edge); under Fig. 9: each rotor's bending line lies practically in one
+    # plane (the paper's 220 deg male, 225 deg female, in axes the text does not define)
+    assert rinder_deix["angle_deg"] == pytest.approx(rinder_deix["angle_eq10_deg"], abs=0.5)
+    from rotorcad.cli.common import load_rotor_design
+    from rotorcad.cli.export_cmd import _rotor_options
+    from rotorcad.cli.rotor import _build
+    from rotorcad.deflection import GasDeflection, LoadModel
+
+    design = ROOT / "samples" / "rinder_deix_5_6.toml"
+    rotors, _, _ = _build(design, _rotor_options(design), load_rotor_design(design))
+    model = GasDeflection(rotors, 1.0, 12.0, volume_ratio=5.0, load=LoadModel.CHORD, terms=10, step_deg=2.0, cells=400)
+    lines = model.at(np.radians(rinder_deix["angle_deg"]))
+    for rotor in ("male", "female"):
+        w = getattr(lines, rotor)
+        mag = np.hypot(*w.T)
+        direction = np.degrees(np.arctan2(w[:, 1], w[:, 0]))[mag > 0.5 * mag.max()]
+        assert np.ptp(direction) < 5.0  # one plane along the whole loaded part of the line
