@@ -39,10 +39,29 @@ about a pitch radius from the flank), is kept as printed; sin(gamma) replaces ga
 1e-5 for gamma < 0.5 deg). When R_b <= r (1 + sin alpha) the formula gives no entrainment: the
 paper's "error in the input data".
 
+The OCR admits a second reading: the printed "V_Sigma" as the sum of the two surfaces' speeds, so
+that the mean entraining speed is half of eq. 7 (``Eq7Reading.SUM``, ``coupling --method paper``; the
+film then falls by 2^-0.7: Dowson-Higginson 3.08 against 5.00 um at a case where rotorcad's reading
+gives 5.00). rotorcad keeps u = eq. 7 (``Eq7Reading.MEAN``, the default) because it is the kinematics of
+the contact: a flank of crown radius R_b tilting at a rate Omega about a pivot at a distance d from
+the contact moves the contact along the face at Omega (R_b - d); the surfaces then pass the contact
+at Omega R_b (hub) and Omega (R_b - d) (sleeve), whose mean is Omega (R_b - d / 2) -- eq. 7's form,
+with the quarter-turn mean (2 / pi) omega gamma of Omega. Reading it as the sum would make the
+surfaces pass the contact at half the speed at which the contact itself travels.
+
 Tooth load. Torque T = P / omega, tangential force F_t = T / r shared by the z_c teeth in contact
 (z_c = z by default: the paper's program has no separate input for it, the load distribution
 factor K_H carries the unequal sharing), normal tooth load F_n = K_H F_t / (z_c cos alpha), and
 w' = F_n / l per unit length of the contact line.
+
+Regime (issue 23: one word from a stated rule, :attr:`CouplingResult.regime`), checked in this
+order: ``no_solution`` when no film was found or the line-contact model does not hold (the Hertz
+strip 2 b_H is wider than the contact line l is long: side leakage the model lacks);
+``edge_contact`` when the strip runs off the face width; ``boundary`` / ``mixed`` when the film
+parameter lambda = h_min / sigma (sigma the composite roughness of the two flanks, an input) is below
+1 / below 3 (the usual limits, e.g. Hamrock, *Fundamentals of Fluid Film Lubrication*, ch. 1);
+``starved`` when the inlet zone the film needs is longer than the face leaves beyond the
+contact's farthest position (the film is then thinner than computed); else ``full_film``.
 
 Verdict (paper: "the coupling does not work: error in the input data, or edge contact" / "the
 hydrodynamic regime is ensured"): the regime is hydrodynamic when eq. 7 gives entrainment, the
@@ -67,6 +86,39 @@ from rotorcad.roots import bracket_root
 Array = np.ndarray
 
 MPA = 1e6
+
+
+DEFAULT_ROUGHNESS = 1.0e-3  # mm: composite Rq of two hobbed or shaped coupling flanks (0.7 um each, sqrt(2) 0.7)
+STEEL_YOUNG = 2.0e5  # N/mm^2: the paper's steel (its b_0 = 0.34e-5 sqrt(w R))
+STEEL_POISSON = 0.3
+MIXED_LAMBDA = 3.0  # film parameter below which asperities carry part of the load
+BOUNDARY_LAMBDA = 1.0  # and below which they carry most of it
+
+
+class Eq7Reading(Enum):
+    """How the speed of eq. 7 enters the film (module notes): ``coupling --method``."""
+
+    MEAN = "rotorcad"  # eq. 7 is the mean entraining speed u = (u_1 + u_2) / 2
+    SUM = "paper"  # eq. 7 is V_Sigma = u_1 + u_2 as printed, u = V_Sigma / 2
+
+
+class Regime(Enum):
+    """The lubrication regime of the coupling's most loaded tooth (module notes: the rule)."""
+
+    FULL_FILM = "full_film"
+    STARVED = "starved"
+    MIXED = "mixed"
+    BOUNDARY = "boundary"
+    EDGE_CONTACT = "edge_contact"
+    NO_SOLUTION = "no_solution"
+
+
+class Hold(Enum):
+    """What :func:`sweep_teeth` keeps while the number of teeth changes (paper, Fig. 4)."""
+
+    MODULE = "module"  # m, b, R0, power: the tooth load falls as 1 / z^2
+    DIAMETER = "diameter"  # m z, b, R0, power: the load per unit length of the contact line is kept
+    TOOTH_LOAD = "tooth_load"  # m, b, R0 and the tooth load (power as z^2): only eq. 7's arm changes
 
 
 class Flank(Enum):
@@ -158,7 +210,11 @@ class GearCoupling:
     teeth_in_contact : float, optional
         Teeth z_c sharing the load; default z.
     modulus : float, Pa
-        Reduced modulus E' (default steel on steel).
+        Reduced modulus E' (default steel on steel, E = 200 GPa, nu = 0.3).
+    roughness : float, mm
+        Composite roughness sigma = sqrt(Rq1^2 + Rq2^2) of the two flanks, for the film parameter.
+    reading : Eq7Reading
+        How eq. 7's speed enters the film.
 
     Raises
     ------
@@ -180,6 +236,8 @@ class GearCoupling:
     load_factor: float = 1.0
     teeth_in_contact: float | None = None
     modulus: float = reduced_modulus()
+    roughness: float = DEFAULT_ROUGHNESS
+    reading: Eq7Reading = Eq7Reading.MEAN
 
     def __post_init__(self) -> None:
         if not (isinstance(self.teeth, (int, np.integer)) and 6 <= self.teeth <= 1000):
@@ -200,6 +258,9 @@ class GearCoupling:
             raise DesignError("misalignment", "above 0 when no barrel radius is given (R0 = b sin(alpha) / (4 tan(gamma)))", 0.0)
         if self.barrel_radius is not None:
             _check("barrel_radius", self.barrel_radius, 0.0, 1e7, "a positive number (mm)")
+        _check("roughness", self.roughness, 0.0, 1.0, "a positive composite roughness up to 1 mm")
+        if not self.modulus > 0:  # math.inf: rigid bodies
+            raise DesignError("modulus", "a positive reduced modulus in Pa", self.modulus)
         if self.teeth_in_contact is not None:
             _check("teeth_in_contact", self.teeth_in_contact, 0.0, float(self.teeth), f"above 0 and at most z = {self.teeth}")
 
@@ -272,10 +333,15 @@ class GearCoupling:
         return 2.0 / math.pi * self.pitch_radius * 1e-3 * self.omega * math.sin(self.misalignment)
 
     @property
-    def entraining_speed(self) -> float:
-        """Mean entraining speed u = V_Sigma / 2 = (2 omega sin(gamma) / pi) [R_b - r (1 + sin alpha)] [m/s] (eq. 7)."""
+    def eq7_speed(self) -> float:
+        """Eq. 7 as printed, (2 omega sin(gamma) / pi) [R_b - r (1 + sin alpha)] [m/s]."""
         arm = self.flank_radius - self.pitch_radius * (1.0 + math.sin(self.pressure_angle))
         return 2.0 / math.pi * self.omega * math.sin(self.misalignment) * arm * 1e-3
+
+    @property
+    def entraining_speed(self) -> float:
+        """Mean entraining speed u [m/s]: eq. 7 (:attr:`reading` MEAN) or half of it (SUM)."""
+        return self.eq7_speed * (1.0 if self.reading is Eq7Reading.MEAN else 0.5)
 
     # load
     @property
@@ -307,6 +373,30 @@ class GearCoupling:
             pressure_viscosity=self.pressure_viscosity,
             modulus=self.modulus,
         )
+
+
+def reduced_modulus_of(young: float, poisson: float) -> float:
+    """Return E' [Pa] of two equal bodies from E [N/mm^2] and nu (Hamrock: E' = E / (1 - nu^2)).
+
+    Parameters
+    ----------
+    young : float, N/mm^2
+        Young's modulus E of hub and sleeve, above 0.
+    poisson : float
+        Poisson's ratio nu, 0 to below 0.5.
+
+    Returns
+    -------
+    float, Pa
+
+    Raises
+    ------
+    DesignError
+        E or nu out of range.
+    """
+    _check("young_modulus", young, 0.0, 1e7, "a positive modulus up to 1e7 N/mm^2")
+    _check("poisson_ratio", poisson, 0.0, 0.4999, "from 0 to below 0.5", open_lo=False)
+    return reduced_modulus(young * 1e6, poisson, young * 1e6, poisson)
 
 
 def dowson_higginson_film(contact: LineContact) -> float:
@@ -357,8 +447,8 @@ class CouplingResult:
 
     @property
     def hydrodynamic(self) -> bool:
-        """True when the verdict is the hydrodynamic regime."""
-        return self.verdict is Verdict.HYDRODYNAMIC
+        """True when the verdict is the hydrodynamic regime and the regime a full film (not starved, mixed, ...)."""
+        return self.verdict is Verdict.HYDRODYNAMIC and self.regime is Regime.FULL_FILM
 
     @property
     def edge_contact(self) -> bool:
@@ -441,9 +531,70 @@ class CouplingResult:
         return self.min_film_thickness / self.ehl_film_thickness
 
     @property
+    def film_parameter(self) -> float:
+        """Film parameter lambda = h_min / sigma, the film over the composite roughness (NaN without a film)."""
+        return self.min_film_thickness / self.coupling.roughness
+
+    @property
+    def line_contact_holds(self) -> bool:
+        """True when the Hertz strip 2 b_H is no wider than the contact line l is long (the model's premise)."""
+        return 2.0 * self.hertz_half_width <= self.coupling.contact_length
+
+    @property
+    def regime(self) -> Regime:
+        """The regime word by the rule of the module notes."""
+        return self._regime()[0]
+
+    @property
+    def regime_reason(self) -> str:
+        """The rule's reason for :attr:`regime`, with its numbers (mm shown in um)."""
+        return self._regime()[1]
+
+    def _regime(self) -> tuple[Regime, str]:
+        c = self.coupling
+        um = 1e3
+        if self.film is None or not self.film.converged:
+            return Regime.NO_SOLUTION, (
+                "no film: the Reynolds-elastic problem has no converged solution for this load"
+                if c.entraining_speed > 0
+                else "no film: eq. 7 gives no entrainment"
+            )
+        if not self.line_contact_holds:
+            return Regime.NO_SOLUTION, (
+                f"the line-contact model does not hold: the Hertz strip 2 b_H = {2 * self.hertz_half_width:.3g} mm is wider "
+                f"than the contact line l = {c.contact_length:.3g} mm is long (side leakage the model lacks)"
+            )
+        if self.edge_contact:
+            return Regime.EDGE_CONTACT, (
+                f"the Hertz strip runs off the face: x_c + b_H = {c.contact_excursion + self.hertz_half_width:.3g} mm "
+                f"> b / 2 = {c.face_width / 2:.3g} mm"
+            )
+        lam = self.film_parameter
+        film = f"h_min = {self.min_film_thickness * um:.3g} um is {lam:.3g} times the composite roughness "
+        film += f"{c.roughness * um:.3g} um"
+        if lam < BOUNDARY_LAMBDA:
+            return Regime.BOUNDARY, f"{film} (< {BOUNDARY_LAMBDA:g}: the asperities carry most of the load)"
+        if lam < MIXED_LAMBDA:
+            return Regime.MIXED, f"{film} (< {MIXED_LAMBDA:g}: the asperities carry part of the load)"
+        if self.inlet_off_face:
+            return Regime.STARVED, (
+                f"the inlet zone needs {self.inlet_length:.3g} mm, the face leaves {self.inlet_room:.3g} mm beyond the "
+                f"contact's farthest position: the film is thinner than the computed {self.min_film_thickness * um:.3g} um"
+            )
+        return Regime.FULL_FILM, (
+            f"{film} (>= {MIXED_LAMBDA:g}); the inlet zone {self.inlet_length:.3g} mm fits the face room "
+            f"{self.inlet_room:.3g} mm; the strip stays on the face"
+        )
+
+    @property
     def message(self) -> str:
-        """The verdict's message, one sentence."""
-        return self.verdict.value
+        """The verdict's message, one sentence: the regime and its reason for a film the paper calls hydrodynamic."""
+        if self.verdict is not Verdict.HYDRODYNAMIC:
+            return self.verdict.value
+        regime, reason = self._regime()
+        if regime is Regime.FULL_FILM:
+            return f"{self.verdict.value} ({reason})"
+        return f"{regime.value.replace('_', ' ')}: {reason}"
 
 
 def analyse(coupling: GearCoupling, nodes: int = 401) -> CouplingResult:
@@ -508,8 +659,15 @@ def load_capacity_at(contact: LineContact, min_film: float, nodes: int = 201) ->
     return math.nan if root is None else math.exp(root)
 
 
-def sweep_teeth(coupling: GearCoupling, teeth: Array, *, keep_diameter: bool = False, nodes: int = 201) -> Array:
+def sweep_teeth(
+    coupling: GearCoupling, teeth: Array, *, keep_diameter: bool = False, nodes: int = 201, hold: Hold | None = None
+) -> Array:
     """Return h_min over the number of teeth, everything else as given (paper, Fig. 4).
+
+    The paper (text under Fig. 4): "with the number of teeth z growing, the other operating conditions
+    and the geometry kept, h_min falls slightly". It does so when the tooth load is among what is kept
+    (:attr:`Hold.TOOTH_LOAD`: only the arm R_b - r (1 + sin alpha) of eq. 7 changes with r = m z / 2);
+    with the power kept instead it rises (module kept) or stays (diameter kept). README, "Belkov's Fig. 4".
 
     Parameters
     ----------
@@ -521,6 +679,8 @@ def sweep_teeth(coupling: GearCoupling, teeth: Array, *, keep_diameter: bool = F
         Keep the pitch diameter m z (the module changes as m z / z_i) instead of the module.
     nodes : int
         Grid nodes of each film solution.
+    hold : Hold, optional
+        What is kept (overrides ``keep_diameter``); the crowning radius R0 is always kept.
 
     Returns
     -------
@@ -528,11 +688,15 @@ def sweep_teeth(coupling: GearCoupling, teeth: Array, *, keep_diameter: bool = F
         h_min; NaN where no film was found (no entrainment, or no converged film). Cases judged
         edge contact or too thick a film keep their h_min.
     """
+    hold = hold if hold is not None else (Hold.DIAMETER if keep_diameter else Hold.MODULE)
     diameter = coupling.module * coupling.teeth
     out = np.full(len(teeth), np.nan)
     for k, z in enumerate(np.asarray(teeth, dtype=int)):
-        m = diameter / z if keep_diameter else coupling.module
-        r = analyse(replace(coupling, teeth=int(z), module=m), nodes)
+        m = diameter / z if hold is Hold.DIAMETER else coupling.module
+        # the tooth load K_H T / (r z cos alpha) with T = P / omega and r = m z / 2 is kept when P grows as z^2
+        power = coupling.power_kw * (z / coupling.teeth) ** 2 if hold is Hold.TOOTH_LOAD else coupling.power_kw
+        case = replace(coupling, teeth=int(z), module=m, power_kw=power, barrel_radius=coupling.crown_radius)
+        r = analyse(case, nodes)
         if r.film is not None:
             out[k] = r.min_film_thickness
     return out

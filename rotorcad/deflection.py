@@ -15,7 +15,9 @@ the rotors' frame (male at the origin, female at (a, 0)).
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
+from enum import Enum
 
 import numpy as np
 
@@ -30,10 +32,25 @@ from rotorcad.rotor_beam import (
     stepped_deflection,
 )
 from rotorcad.section_properties import circle_values, section_values, shear_correction_over_turn
-from rotorcad.working_chamber import ChamberTable, chamber_table
+from rotorcad.working_chamber import ChamberTable, chamber_table, chord_table
 
 STEEL = (210_000.0, 0.3)  # E in N/mm^2, Poisson's ratio
 MAX_WRAP_DEG = 720.0  # screw rotors wrap 200-360 deg; beyond two turns the model is not meant
+AIR_EXPONENT = 1.4  # the polytropic exponent taken when the design gives none: isentropic air
+
+
+class LoadModel(Enum):
+    """Which pressure load a flute puts on its rotor (``rotorcad deflect --method``).
+
+    CHAMBER ("rotorcad"): the overpressure on the real chamber's boundary on the rotor, section by
+    section (:func:`rotorcad.working_chamber.chamber_table`): the chord between the points where the
+    chamber leaves the rotor, shorter than tip to tip where the contact line or the mate's lobe bounds it.
+    CHORD ("paper"): Rinder & Deix eq. (5) as printed, the full tip-to-tip chord l_s = d_K sin(pi/z_L) in
+    every section of the flute's cycle (:func:`rotorcad.working_chamber.chord_table`).
+    """
+
+    CHAMBER = "rotorcad"
+    CHORD = "paper"
 
 
 @dataclass(frozen=True)
@@ -258,6 +275,8 @@ class GasDeflection:
         Built-in volume ratio V_i fixing the discharge port's control edge.
     discharge_edge : float, rad, optional
         Or the control edge as a chamber angle (male rotation since the chamber opened).
+    load : LoadModel
+        The flute's load: the real chamber's boundary (default) or Rinder & Deix's eq. (5) chord.
     indicator : (k, 2) float array, optional
         Or an indicator diagram: rows (chamber angle in rad, absolute pressure in bar); see
         :func:`rotorcad.gas_load.pressure_cycle`.
@@ -285,7 +304,7 @@ class GasDeflection:
         rotors,
         suction_bar: float,
         discharge_bar: float,
-        exponent: float = 1.4,
+        exponent: float = AIR_EXPONENT,
         volume_ratio: float | None = None,
         discharge_edge: float | None = None,
         indicator: np.ndarray | None = None,
@@ -296,6 +315,7 @@ class GasDeflection:
         terms: int = 40,
         cells: int = 1000,
         step_deg: float = 1.0,
+        load: LoadModel = LoadModel.CHAMBER,
     ) -> None:
         if not 1 <= int(terms) <= 400:
             raise DesignError("terms", "a whole number from 1 to 400", terms)
@@ -316,6 +336,8 @@ class GasDeflection:
         self.table: ChamberTable = chamber_table(
             male, female, pair.male_teeth, pair.female_teeth, pair.center_distance, pair.lead, pair.length, step_deg
         )
+        self.load = LoadModel.CHAMBER
+        self.chamber_table = self.table
         self.cycle: PressureCycle = pressure_cycle(
             self.table, suction_bar, discharge_bar, exponent, volume_ratio, discharge_edge, indicator
         )
@@ -331,6 +353,32 @@ class GasDeflection:
             "male": male_shaft.segments(self.male.beam, young, poisson) if male_shaft.given else None,
             "female": female_shaft.segments(self.female.beam, young, poisson) if female_shaft.given else None,
         }
+        if load is not LoadModel.CHAMBER:
+            self.table = self.with_load(load).table
+            self.load = load
+
+    def with_load(self, load: LoadModel) -> GasDeflection:
+        """Return the same pair, pressures and beams with another flute load (no chamber recomputed).
+
+        Parameters
+        ----------
+        load : LoadModel
+            The load model of the copy.
+
+        Returns
+        -------
+        GasDeflection
+            A shallow copy whose line loads follow ``load``; the pressure cycle (from the real chamber's
+            volume curve) is shared.
+        """
+        other = copy.copy(self)
+        other.load = load
+        if load is LoadModel.CHAMBER:
+            other.table = self.chamber_table
+        else:
+            p = self.pair
+            other.table = chord_table(self.chamber_table, p.male_teeth, p.female_teeth, p.male_tip_radius, p.female_tip_radius)
+        return other
 
     def journal_length(self, rotor: str) -> float:
         """Return the length from the discharge bearing to the discharge end face of a rotor.
@@ -418,7 +466,7 @@ class GasDeflection:
         return out
 
     def loads(self, angle: float) -> tuple[np.ndarray, np.ndarray]:
-        """Return the line loads on the male and the female (Rinder & Deix eqs. 5-6).
+        """Return the line loads on the male and the female (:attr:`load`: the real chamber's or eq. 5's; eq. 6).
 
         Parameters
         ----------

@@ -11,10 +11,12 @@ from a built-in volume ratio V_i (the edge is where V = V_max / V_i; by default 
 pressure ratio, (p_d / p_s)^(1/n)); from there discharge pressure. Or the pressure from an indicator
 diagram the user gives (chamber angle, pressure).
 
-Line loads (eq. 5 and 6): a chamber at overpressure p - p_s loads each rotor, per unit length, with
+Line loads (eq. 6): a chamber at overpressure p - p_s loads each rotor, per unit length, with
 (p - p_s) times the chamber table's force of a unit overpressure at the section's phase, which
-turns with the helix. The sections beyond the contact line belong to the next chamber; beyond
-the chamber at the suction end the gas is at suction pressure and adds nothing.
+turns with the helix. That force is the real chamber's boundary
+(:func:`rotorcad.working_chamber.chamber_table`) or eq. 5's tip-to-tip chord
+(:func:`rotorcad.working_chamber.chord_table`), whichever table is given. The sections beyond the contact line belong to the
+next chamber; beyond the chamber at the suction end the gas is at suction pressure and adds nothing.
 """
 
 from __future__ import annotations
@@ -179,7 +181,7 @@ def pressure_cycle(
 def line_loads(
     table: ChamberTable, cycle: PressureCycle, male_teeth: int, male_angle: float, z: np.ndarray, rotor: str
 ) -> np.ndarray:
-    """Line load on a rotor along its length at one male angle (Rinder & Deix eqs. 5-6).
+    """Line load on a rotor along its length at one male angle (Rinder & Deix eq. 6 with the table's flute load).
 
     Parameters
     ----------

@@ -90,6 +90,23 @@ class GearPump:
         return float(self.delivery()[1].mean())
 
     @property
+    def swept_volume_flow(self) -> float:
+        """Mean delivery by the textbook displacement of two equal gears, 2 pi b m_t^2 z n / 60 (mm^3/s).
+
+        Per revolution each gear carries the annulus between its tip and pitch circles,
+        pi b (r_a^2 - r^2), from suction to discharge; for a standard gear (ISO 21771: r = z m_t / 2,
+        r_a = r + m_t) the pair's is 2 pi b m_t^2 (z + 1), and the textbook drops the "+ 1" for the oil
+        carried back by the meshing teeth: V = 2 pi b m_t^2 z. It ignores the shift, the addendum and the
+        contact ratio; :attr:`mean_flow` (Kollek & Osinski eq. 2) does not.
+
+        Returns
+        -------
+        float, mm^3/s
+        """
+        g = self.gear
+        return float(2.0 * np.pi * self.face_width * g.transverse_module**2 * g.teeth * self.speed_rpm / 60.0)
+
+    @property
     def irregularity(self) -> float:
         """Delivery irregularity delta = (q_max - q_min) / q_mean (dimensionless)."""
         q = self.delivery()[1]

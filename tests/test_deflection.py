@@ -401,7 +401,12 @@ def test_indicator_diagram_gives_the_built_in_result_when_it_is_the_same_curve(t
 @pytest.mark.parametrize(
     ("extra", "args", "words"),
     [
-        ("volume_ratio = 3.0\ndischarge_edge_deg = 600.0\n", [], "give only one of volume_ratio, discharge_edge_deg"),
+        (
+            "volume_ratio = 3.0\ndischarge_edge_deg = 600.0\n",
+            [],
+            "give only one of [operating] volume_ratio, [operating] discharge_edge_deg",
+        ),
+        ("polytropic_exponent = 3.0\n", [], "[operating] polytropic_exponent must be a number from 1 to 2"),
         ("volume_ratio = 60.0\n", [], "[operating] volume_ratio must be above 1 and up to 50"),
         ("", ["--angle", "1e300"], "--angle"),
     ],
@@ -413,6 +418,16 @@ def test_deflect_refuses_conflicting_or_out_of_range_operating_values(tmp_path, 
     design.write_text(text)
     assert main(["deflect", str(design), *args]) == 2
     assert words in capsys.readouterr().err
+
+
+def test_deflect_names_the_design_key_of_a_bad_speed(tmp_path, capsys):
+    # deflect has no --speed: a NaN speed in the design is refused by its [operating] key
+    text = (ROOT / "samples" / "rack_involute_5_6.toml").read_text().replace("speed_rpm = 3000", "speed_rpm = nan")
+    design = tmp_path / "p.toml"
+    design.write_text(text)
+    assert main(["deflect", str(design)]) == 2
+    err = capsys.readouterr().err
+    assert "[operating] speed_rpm must be a positive speed" in err and "--speed" not in err
 
 
 def test_indicator_must_cover_the_cycle(tmp_path, capsys):
@@ -433,7 +448,11 @@ def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys
     assert ET.parse(svg).getroot().tag.endswith("svg")
     from test_pictures import check_picture  # units on every axis, the case in the title (issue 16)
 
-    check_picture(svg, ["rack_involute_5_6.toml", "rack-involute 5/6", "1 → 8 bar"])
+    drawn = check_picture(svg, ["rack_involute_5_6.toml", "rack-involute 5/6", "1 → 8 bar"])
+    # the paper's figure beside rotorcad's: Rinder & Deix's largest deflections (sec. 3.5) on the same
+    # axes, and the other flute load's line (issue 23)
+    assert "Rinder & Deix 5/6 at 12 bar: 0.5 µm" in drawn["text"] and "Rinder & Deix 5/6 at 12 bar: 2 µm" in drawn["text"]
+    assert "|w| (paper load)" in drawn["text"] and "|w| (rotorcad load)" in drawn["text"]
     fifo = tmp_path / "fifo"
     os.mkfifo(fifo)
     assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(fifo)]) == 2

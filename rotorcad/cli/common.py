@@ -179,8 +179,10 @@ DIMENSIONLESS = (
     "terms",
     "exponent",
     "anisotropy",
+    "_to_",  # a ratio of two methods' values, e.g. male_max_deflection_paper_to_rotorcad
 )
 _UNIT_RULES = (  # (pattern in the key, unit), first match wins
+    ("mean_flow", "L/min"),  # before "volume": mean_flow_swept_volume is a flow
     ("_deg", "deg"),
     ("_hz", "Hz"),
     ("_rpm", "rpm"),
@@ -194,7 +196,6 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
     ("volume", "mm³"),
     ("displacement", "mm³"),
     ("velocity", "m/s"),
-    ("mean_flow", "L/min"),
     ("module", "mm"),
     ("shift", "mm"),
     ("clearance", "mm"),

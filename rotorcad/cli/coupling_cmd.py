@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import sys
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -18,7 +19,21 @@ from rich.table import Table
 
 from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, plain, reraise
-from rotorcad.coupling import CouplingResult, GearCoupling, Verdict, analyse, sweep_teeth
+from rotorcad.cli.defaults import print_defaults, taken
+from rotorcad.coupling import (
+    DEFAULT_ROUGHNESS,
+    STEEL_POISSON,
+    STEEL_YOUNG,
+    CouplingResult,
+    Eq7Reading,
+    GearCoupling,
+    Hold,
+    Regime,
+    Verdict,
+    analyse,
+    reduced_modulus_of,
+    sweep_teeth,
+)
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
 
@@ -35,6 +50,9 @@ OPTION_OF = {
     "pressure_viscosity": "--pressure-viscosity",
     "misalignment": "--misalignment-deg",
     "load_factor": "--load-factor",
+    "young_modulus": "--young-modulus",
+    "poisson_ratio": "--poisson-ratio",
+    "roughness": "--roughness",
 }
 
 # option key -> (flag, low, high, low included, the allowed range as words); None = required option absent.
@@ -53,8 +71,12 @@ RANGES: dict[str, tuple[str, float, float, bool, str]] = {
     "addendum": ("--addendum", 0.0, 2.0, False, "a positive number up to 2"),
     "load_factor": ("--load-factor", 1.0, 10.0, True, "a number from 1 to 10"),
     "barrel_radius": ("--barrel-radius", 0.0, 1e7, False, "a positive number up to 1e7 (mm)"),
+    "young_modulus": ("--young-modulus", 1e3, 1e7, True, "a number from 1000 to 1e7 (N/mm^2)"),
+    "poisson_ratio": ("--poisson-ratio", 0.0, 0.499, True, "a number from 0 to 0.499"),
+    "roughness": ("--roughness", 0.0, 100.0, False, "a positive number up to 100 (um)"),
 }
-OPTIONAL = {"pressure_angle", "addendum", "load_factor", "barrel_radius"}
+OPTIONAL = {"pressure_angle", "addendum", "load_factor", "barrel_radius", "young_modulus", "poisson_ratio", "roughness"}
+PAPER_PRESSURE_SHARE = 0.5  # Belkov et al., text under Fig. 4: p_max about 50 % below the Hertz stress
 MIN_DERIVED_MISALIGNMENT = 0.01  # deg: below it the derived crowning radius exceeds ~100 b
 
 # result key -> unit in the text table (JSON: the same units)
@@ -86,13 +108,30 @@ UNITS = {
     "mean_entraining_velocity": "m/s",
     "max_rolling_velocity": "m/s",
     "max_axial_sliding_velocity": "m/s",
+    "regime": "",
+    "regime_reason": "",
+    "film_parameter": "1",
+    "roughness": "mm",
+    "line_contact_holds": "",
+    "method": "",
+    "eq7_velocity": "m/s",
+    "min_film_thickness_rotorcad": "mm",
+    "min_film_thickness_paper": "mm",
+    "min_film_thickness_paper_to_rotorcad": "1",
+    "ehl_film_thickness_rotorcad": "mm",
+    "ehl_film_thickness_paper": "mm",
+    "ehl_film_thickness_paper_to_rotorcad": "1",
 }
 
 HELP = """Lubricant film of a gear coupling with barrel-shaped (crowned) hub teeth: the contact-hydrodynamic
 calculation of Belkov, Maksimov & Shitikov (Reynolds equation with Barus viscosity and the elastic gap of a
 cylinder of the flank crown radius on a plane, minimum film where the film carries the tooth load). Steel
-teeth, E = 200 GPa and nu = 0.3 (the paper's values). Inputs that make no sense for a coupling (no rolling of
-the contact, a film thicker than a tenth of the module) exit 2 with the paper's message.
+teeth by default, E = 200 GPa and nu = 0.3 (the paper's values; --young-modulus, --poisson-ratio). Inputs that
+make no sense for a coupling (no rolling of the contact, a film thicker than a tenth of the module) exit 2 with
+the paper's message. The regime is one word by a stated rule (no_solution, edge_contact, boundary, mixed,
+starved, full_film: README); no_solution exits 1 with its reason. Both readings of eq. 7 are computed
+(--method rotorcad: eq. 7 is the mean entraining speed; paper: it is the sum of the surface speeds, u half of
+it). Every default taken is printed.
 
 \b
 Keys (JSON and table): hydrodynamic (bool), min_film_thickness [mm], load_capacity [N, one tooth],
@@ -102,7 +141,10 @@ pressure_to_hertz_ratio [1], tooth_load [N, normal], load_per_length [N/mm], pit
 flank_crown_radius (R_b = R0 / sin alpha), crowning_depth, contact_length, hertz_half_width, contact_excursion [mm],
 edge_contact (bool), inlet_length [mm, where the gap is within ten central films], inlet_room [mm, from the
 contact's farthest position to the face edge], inlet_off_face (bool: the film may be starved),
-mean_sliding_velocity, mean_entraining_velocity, max_rolling_velocity, max_axial_sliding_velocity [m/s], files.
+mean_sliding_velocity, mean_entraining_velocity, max_rolling_velocity, max_axial_sliding_velocity [m/s], regime,
+regime_reason, film_parameter [1, h_min / roughness], roughness [mm], line_contact_holds (bool), method,
+eq7_velocity [m/s, eq. 7 as printed], min_film_thickness_rotorcad / _paper [mm] and _paper_to_rotorcad [1],
+ehl_film_thickness_rotorcad / _paper [mm] and _paper_to_rotorcad [1], defaults, files.
 """
 
 
@@ -123,6 +165,21 @@ mean_sliding_velocity, mean_entraining_velocity, max_rolling_velocity, max_axial
 @click.option("--pressure-viscosity", type=float, help="Barus pressure-viscosity coefficient alpha_0 [1/Pa], e.g. 2e-8.")
 @click.option("--misalignment-deg", type=float, help="Shaft misalignment gamma [deg] (the paper: 0.17...0.4).")
 @click.option("--load-factor", type=float, default=1.0, show_default=True, help="Load distribution factor K_H.")
+@click.option("--young-modulus", type=float, help="Young's modulus E of hub and sleeve [N/mm^2]. Default 200000 (steel).")
+@click.option("--poisson-ratio", type=float, help="Poisson's ratio nu of hub and sleeve. Default 0.3 (steel).")
+@click.option(
+    "--roughness",
+    type=float,
+    help="Composite roughness sigma = sqrt(Rq1^2 + Rq2^2) of the flanks [um], for the film parameter. Default 1.0.",
+)
+@click.option(
+    "--method",
+    type=click.Choice([r.value for r in Eq7Reading]),
+    default=Eq7Reading.MEAN.value,
+    show_default=True,
+    help="Reading of eq. 7 for the reported film: 'rotorcad' eq. 7 is the mean entraining speed u, 'paper' it is "
+    "the sum of the surface speeds (u half of it). Both are computed and compared.",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option(
     "--plot",
@@ -143,7 +200,15 @@ def coupling(**opts: Any) -> None:
         raise InputError(f"--barrel-radius, --face-width and --misalignment-deg make no sense for a coupling: {r.message}.")
     if r.verdict is Verdict.THICK_FILM:
         raise InputError(f"--power, --speed and --viscosity make no sense for a coupling: {r.message}.")
+    other_reading = Eq7Reading.SUM if c.reading is Eq7Reading.MEAN else Eq7Reading.MEAN
+    other = analyse(replace(c, reading=other_reading))
     result = _result(r)
+    films = {c.reading.value: r, other_reading.value: other}
+    for key in ("min_film_thickness", "ehl_film_thickness"):
+        for name in ("rotorcad", "paper"):
+            result[f"{key}_{name}"] = getattr(films[name], key)
+        result[f"{key}_paper_to_rotorcad"] = result[f"{key}_paper"] / result[f"{key}_rotorcad"]
+    result["defaults"] = _defaults(opts, c)
     out = Outputs()
     out.add_figure(opts["plot"], lambda: _plot(r), "--plot")
     result["files"] = [str(x) for x in out.write()]
@@ -151,6 +216,39 @@ def coupling(**opts: Any) -> None:
         emit_json(result)
     else:
         _print_table(f"gear coupling z={c.teeth}, m={c.module:g} mm, n={c.speed_rpm:g} rpm, P={c.power_kw:g} kW", result)
+        print_defaults(result["defaults"])
+    if r.regime is Regime.NO_SOLUTION:  # a finding, not an error: the coupling has no film to report (CONTRACT.md)
+        click.get_current_context().exit(1)
+
+
+def _defaults(opts: dict[str, Any], c: GearCoupling) -> dict[str, str]:
+    """Return the inputs that changed the result and were not given, each as "value (default: how)"."""
+    out: dict[str, str] = {}
+    if opts["barrel_radius"] is None:
+        out["--barrel-radius"] = taken(
+            f"{c.crown_radius:.6g} mm", "the paper's crowning for the misalignment, R0 = b sin(alpha) / (4 tan(gamma))"
+        )
+    src = click.get_current_context()
+    for key, flag, how in (
+        ("pressure_angle", "--pressure-angle", "the paper's alpha"),
+        ("addendum", "--addendum", "the paper's h_a*"),
+        ("load_factor", "--load-factor", "equal sharing by all z teeth"),
+    ):
+        if src.get_parameter_source(key) is click.core.ParameterSource.DEFAULT:
+            out[flag] = taken(f"{opts[key]:g}" + (" deg" if key == "pressure_angle" else ""), how)
+    if opts["young_modulus"] is None:
+        out["--young-modulus"] = taken(f"{STEEL_YOUNG:g} N/mm^2", "steel, the paper's")
+    if opts["poisson_ratio"] is None:
+        out["--poisson-ratio"] = taken(f"{STEEL_POISSON:g}", "steel, the paper's")
+    if opts["roughness"] is None:
+        out["--roughness"] = taken(
+            f"{DEFAULT_ROUGHNESS * 1e3:g} um", "hobbed or shaped coupling flanks, Rq 0.7 um each, composite sqrt(2) 0.7"
+        )
+    out["viscosity model"] = taken(
+        "Barus mu_0 exp(alpha_0 p), isothermal", "the paper's eq. 6; mu_0 the inlet viscosity, no thermal correction"
+    )
+    out["teeth in contact"] = taken("z", "all teeth share the load; --load-factor carries the unequal sharing")
+    return out
 
 
 def _check_inputs(opts: dict[str, Any]) -> None:
@@ -187,6 +285,12 @@ def _build(opts: dict[str, Any]) -> GearCoupling:
             addendum=opts["addendum"],
             barrel_radius=opts["barrel_radius"],
             load_factor=opts["load_factor"],
+            modulus=reduced_modulus_of(
+                STEEL_YOUNG if opts["young_modulus"] is None else opts["young_modulus"],
+                STEEL_POISSON if opts["poisson_ratio"] is None else opts["poisson_ratio"],
+            ),
+            roughness=(DEFAULT_ROUGHNESS * 1e3 if opts["roughness"] is None else opts["roughness"]) * 1e-3,
+            reading=Eq7Reading(opts["method"]),
         )
     except DesignError as exc:
         raise reraise(exc, OPTION_OF) from None
@@ -223,6 +327,13 @@ def _result(r: CouplingResult) -> dict[str, Any]:
         "mean_entraining_velocity": c.entraining_speed,
         "max_rolling_velocity": float(np.abs(rolling).max()),
         "max_axial_sliding_velocity": float(np.abs(axial).max()),
+        "regime": r.regime.value,
+        "regime_reason": r.regime_reason,
+        "film_parameter": r.film_parameter,
+        "roughness": c.roughness,
+        "line_contact_holds": r.line_contact_holds,
+        "method": c.reading.value,
+        "eq7_velocity": c.eq7_speed,
     }
 
 
@@ -232,7 +343,7 @@ def _print_table(title: str, rows: dict[str, Any]) -> None:
     for name, justify in (("quantity", "left"), ("value", "right"), ("unit", "left")):
         table.add_column(name, justify=justify)
     for key, value in plain(rows).items():
-        if isinstance(value, list):
+        if isinstance(value, (list, dict)):
             continue
         if isinstance(value, bool) or value is None or isinstance(value, str):
             table.add_row(key, "-" if value is None else str(value), "")
@@ -262,6 +373,8 @@ def _plot(r: CouplingResult) -> Figure:
         b = r.hertz_half_width
         xs = np.linspace(-b, b, 201)
         ax2.plot(xs, r.hertz_stress * np.sqrt(1.0 - (xs / b) ** 2), "--", color=ps.GREY, label="Hertz pressure (dry)")
+        # Belkov et al., text under Fig. 4: "the largest film pressure is about 50 % below the contact stress"
+        ax2.axhline(PAPER_PRESSURE_SHARE * r.hertz_stress, color=ps.VERMILLION, ls=":", lw=1.0, label="paper: p_max ≈ 0.5 σ_H")
         ax2.set_xlim(-3.0 * b, 2.0 * b)
         ax2.set_xlabel(ps.label("x along the face width", "mm"))
         ax2.set_ylabel(ps.label("pressure p", "MPa"))
@@ -276,8 +389,22 @@ def _plot(r: CouplingResult) -> Figure:
         ax2.set_axis_off()
     ax2.set_title("pressure and film shape in the contact (Fig. 3)")
     teeth = np.unique(np.round(np.linspace(max(6, c.teeth // 2), 2 * c.teeth, 12)).astype(int))
-    ax4.plot(teeth, sweep_teeth(c, teeth) * 1e3, "o-", color=ps.BLUE, label=f"module {c.module:g} mm kept")
-    ax4.plot(teeth, sweep_teeth(c, teeth, keep_diameter=True) * 1e3, "s--", color=ps.ORANGE, label="pitch diameter kept")
+    ax4.plot(teeth, sweep_teeth(c, teeth) * 1e3, "o-", color=ps.BLUE, label=f"module {c.module:g} mm and power kept")
+    ax4.plot(
+        teeth, sweep_teeth(c, teeth, hold=Hold.DIAMETER) * 1e3, "s--", color=ps.ORANGE, label="pitch diameter and power kept"
+    )
+    shown = sweep_teeth(c, teeth, hold=Hold.TOOTH_LOAD) * 1e3
+    ax4.plot(teeth, shown, "^-", color=ps.GREEN, label="module and tooth load kept (the paper's trend)")
+    # Belkov et al. give Fig. 4's trend in words only ("h_min falls slightly as z grows"): drawn as that
+    # trend through this coupling's h_min, the curve's values are not in the text
+    ax4.annotate(
+        "paper, Fig. 4: h_min falls slightly as z grows\n(other conditions and geometry kept; values not printed)",
+        xy=(0.02, 0.95),
+        xycoords="axes fraction",
+        va="top",
+        fontsize=8,
+        color=ps.VERMILLION,
+    )
     ax4.axvline(c.teeth, color=ps.GREY, lw=0.8, label=f"this coupling, z = {c.teeth}")
     ax4.set_xlabel(ps.label("number of teeth z", "1"))
     ax4.set_ylabel(ps.label("minimum film thickness h_min", "µm"))
@@ -285,7 +412,7 @@ def _plot(r: CouplingResult) -> Figure:
     ps.legend_outside(ax4)
     ps.title(
         fig,
-        f"gear coupling z = {c.teeth}, m = {c.module:g} mm, b = {c.face_width:g} mm: {r.message}",
+        f"gear coupling z = {c.teeth}, m = {c.module:g} mm, b = {c.face_width:g} mm: {r.regime.value.replace('_', ' ')}",
         f"n = {c.speed_rpm:g} rpm, P = {c.power_kw:g} kW, misalignment γ = {math.degrees(c.misalignment):g}°, "
         f"η0 = {c.viscosity:g} Pa·s, α0 = {c.pressure_viscosity:g} 1/Pa; h_min = {r.min_film_thickness * 1e3:.3g} µm",
     )

@@ -12,14 +12,18 @@ from matplotlib.figure import Figure
 from exports.csv_points import read_points
 from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
+from rotorcad.cli.defaults import print_defaults, taken
 from rotorcad.cli.export_cmd import _rotor_options
 from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import _build as build_rotors
-from rotorcad.deflection import STEEL, GasDeflection, Shaft
+from rotorcad.deflection import AIR_EXPONENT, STEEL, GasDeflection, LoadModel, Shaft
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
 
 SWEEP_ANGLES = 100  # male angles over one male pitch
+# Rinder & Deix sec. 3.5 (text under Figs. 9 and 10): the largest deflections of their 5/6 pair at 12 bar,
+# mm: (helical part, with the journals of their Fig. 8); the curves of Figs. 9/10 are not in the text
+PAPER_MAX = {"male": (0.0005, 0.0022), "female": (0.002, 0.0075)}
 
 
 def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
@@ -51,6 +55,14 @@ def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
     type=click.Path(path_type=Path, dir_okay=False),
     help="Indicator diagram: CSV 'angle_deg,pressure_bar' (chamber angle since it opened at the suction end, absolute bar).",
 )
+@click.option(
+    "--method",
+    type=click.Choice([m.value for m in LoadModel]),
+    default=LoadModel.CHAMBER.value,
+    show_default=True,
+    help="Flute load of the reported keys: 'rotorcad' the overpressure on the real chamber's boundary, 'paper' "
+    "Rinder & Deix eq. (5), the tip-to-tip chord d_K sin(pi/z) in every section. Both are computed and compared.",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option(
     "--plot",
@@ -59,7 +71,14 @@ def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def deflect(
-    design: Path, angle: float | None, terms: int | None, indicator: Path | None, as_json: bool, plot: Path | None, quiet: bool
+    design: Path,
+    angle: float | None,
+    terms: int | None,
+    indicator: Path | None,
+    method: str,
+    as_json: bool,
+    plot: Path | None,
+    quiet: bool,
 ) -> None:
     """Deflection of the male and female under the pressure of the working chambers (Rinder & Deix).
 
@@ -67,7 +86,9 @@ def deflect(
     curve and pressure ([operating]: suction and discharge pressure, polytropic exponent, volume
     ratio or control edge, or an indicator diagram), the line loads (eqs. 5-6) and the deflection
     lines by Ritz-Galerkin (eqs. 7-9), swept over one male pitch for the worst angle (eq. 10); with
-    shaft ends in [deflection] also the whole shafts on their bearings.
+    shaft ends in [deflection] also the whole shafts on their bearings. The flute load is the real
+    chamber's (--method rotorcad) or eq. (5)'s chord (--method paper); the other method's largest
+    deflections and their ratio are reported beside. Every default taken is printed.
     """
     try:
         settings = load_rotor_design(design)
@@ -88,9 +109,13 @@ def deflect(
             raise InputError(f"[operating] {key} must be an absolute pressure above 0 and up to 1000 bar (got {op[key]}).")
     if "volume_ratio" in op and not (np.isfinite(op["volume_ratio"]) and 1 < op["volume_ratio"] <= 50):
         raise InputError(f"[operating] volume_ratio must be above 1 and up to 50 (got {op['volume_ratio']}).")
-    given = [k for k in ("volume_ratio", "discharge_edge_deg", "indicator") if k in op] + (["--indicator"] if indicator else [])
+    given = [f"[operating] {k}" for k in ("volume_ratio", "discharge_edge_deg", "indicator") if k in op]
+    given += ["--indicator"] if indicator else []
     if len(given) > 1:
         raise InputError(f"give only one of {', '.join(given)}: each sets where the discharge opens (got {len(given)}).")
+    for key, lo, hi in (("polytropic_exponent", 1.0, 2.0), ("discharge_edge_deg", 0.0, 3600.0)):
+        if key in op and not (np.isfinite(op[key]) and lo <= op[key] <= hi):
+            raise InputError(f"[operating] {key} must be a number from {lo:g} to {hi:g} (got {op[key]}).")
     curve = None
     source = indicator or (Path(design).parent / op["indicator"] if "indicator" in op else None)
     if source is not None:
@@ -116,13 +141,17 @@ def deflect(
         _shaft(de.get("female_shaft_discharge"), "female_shaft_discharge"),
         _shaft(de.get("female_shaft_suction"), "female_shaft_suction"),
     )
+    if "speed_rpm" in op and not (np.isfinite(op["speed_rpm"]) and op["speed_rpm"] > 0):
+        # deflect has no --speed: the speed only reaches the shared rotor build, which would name --speed
+        raise InputError(f"[operating] speed_rpm must be a positive speed in rpm (got {op['speed_rpm']}).")
     rotors, _, _ = build_rotors(design, _rotor_options(design), settings)  # the design as read above
+    exponent = float(op.get("polytropic_exponent", AIR_EXPONENT))
     try:
         model = GasDeflection(
             rotors,
             float(op["suction_pressure_bar"]),
             float(op["discharge_pressure_bar"]),
-            exponent=float(op.get("polytropic_exponent", 1.4)),
+            exponent=exponent,
             volume_ratio=op.get("volume_ratio"),
             discharge_edge=None if edge is None else float(np.radians(edge)),
             indicator=curve,
@@ -131,6 +160,7 @@ def deflect(
             male_shaft=male_shaft,
             female_shaft=female_shaft,
             terms=terms,
+            load=LoadModel(method),
         )
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
@@ -145,7 +175,8 @@ def deflect(
     pitch = 2 * np.pi / rotors.pair.male_teeth
     shafts = male_shaft.given or female_shaft.given
     sweep_angles = np.linspace(0.0, pitch, SWEEP_ANGLES, endpoint=False)
-    with Steps("deflection: angle sweep", 3, quiet) as progress:
+    other = model.with_load(LoadModel.CHORD if model.load is LoadModel.CHAMBER else LoadModel.CHAMBER)
+    with Steps("deflection: angle sweep", 4, quiet) as progress:
         swept = model.sweep(sweep_angles, shaft=shafts)
         progress.advance(description="deflection: worst angle")
         if angle is None:
@@ -155,6 +186,10 @@ def deflect(
         progress.advance(description="deflection: lines")
         lines = model.at(at)
         two = model.at(at, terms=2)
+        progress.advance(description="deflection: the other flute load")
+        other_swept = other.sweep(sweep_angles, shaft=shafts)
+        other_at = at if angle is not None else other.refine_worst(sweep_angles, other_swept.max(axis=1), shaft=shafts)
+        other_lines = other.at(other_at)
         progress.advance()
     result: dict[str, Any] = {}
     for column, (rotor, beam) in enumerate((("male", model.male), ("female", model.female))):
@@ -193,24 +228,92 @@ def deflect(
             result[f"{rotor}_{end}_bearing_load_max_n"] = max(p[rotor][f"{end}_bearing"] for p in peak)
     result["terms"] = terms
     result["shaft_ends"] = bool(shafts)
+    result["method"] = model.load.value
+    both = {model.load.value: (lines, at, model), other.load.value: (other_lines, other_at, other)}
+    for name in ("rotorcad", "paper"):
+        ls, a, m = both[name]
+        forces = m.bearing_loads(a)
+        for rotor in ("male", "female"):
+            result[f"{rotor}_max_deflection_helical_{name}"] = ls.largest(rotor)[0]
+            result[f"{rotor}_max_deflection_{name}"] = ls.largest(rotor, shaft=True)[0]
+            result[f"{rotor}_gas_force_n_{name}"] = forces[rotor]["force"]
+        result[f"angle_deg_{name}"] = float(np.degrees(a))
+    for rotor in ("male", "female"):
+        for key in (f"{rotor}_max_deflection_helical", f"{rotor}_max_deflection", f"{rotor}_gas_force_n"):
+            result[f"{key}_paper_to_rotorcad"] = result[f"{key}_paper"] / result[f"{key}_rotorcad"]
+    result["defaults"] = _defaults(op, de, model, exponent, terms_label, terms)
     out = Outputs()
     out.add_figure(
-        plot, lambda: _plot(model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}"), "--plot"
+        plot,
+        lambda: _plot(
+            model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}", other_lines, other_swept
+        ),
+        "--plot",
     )
     result["files"] = [str(x) for x in out.write()]
     if as_json:
         emit_json(result)
     else:
-        print_table(f"deflection under gas load, {Path(design).name}, male angle {np.degrees(at):.2f} deg", result)
+        print_table(
+            f"deflection under gas load, {Path(design).name}, flute load '{model.load.value}', "
+            f"male angle {np.degrees(at):.2f} deg",
+            result,
+        )
+        print_defaults(result["defaults"])
+
+
+def _defaults(
+    op: dict[str, Any],
+    de: dict[str, Any],
+    model: GasDeflection,
+    exponent: float,
+    terms_label: str,
+    terms: int,
+) -> dict[str, str]:
+    """Return the inputs that changed the result and were not given, each as "value (default: how)"."""
+    out: dict[str, str] = {}
+    ratio = op["discharge_pressure_bar"] / op["suction_pressure_bar"]
+    port = any(k in op for k in ("volume_ratio", "discharge_edge_deg", "indicator"))
+    if "polytropic_exponent" not in op and np.isfinite(model.cycle.opening):
+        out["[operating] polytropic_exponent"] = taken(f"{exponent:g}", "isentropic air")
+    if not port and np.isfinite(model.cycle.opening):
+        out["[operating] volume_ratio"] = taken(
+            f"{model.cycle.volume_ratio:.4g}",
+            f"matched to the pressure ratio, (p_d/p_s)^(1/n) = {ratio:.4g}^(1/{exponent:g}); it fixes the control edge, "
+            "the worst angle (eq. 10) and the loads: give the machine's built-in volume ratio",
+        )
+    if "young_modulus" not in de:
+        out["[deflection] young_modulus"] = taken(f"{STEEL[0]:g} N/mm^2", "steel")
+    if "poisson_ratio" not in de:
+        out["[deflection] poisson_ratio"] = taken(f"{STEEL[1]:g}", "steel")
+    for rotor in ("male", "female"):
+        for end in ("discharge", "suction"):
+            key = f"{rotor}_shaft_{end}"
+            if key not in de:
+                out[f"[deflection] {key}"] = taken("none", "the bearing at the end face: the helical part alone")
+    if terms_label != "--terms" and "terms" not in de:
+        out["[deflection] terms"] = taken(f"{terms}", "sine terms of the Ritz-Galerkin series, converged to < 0.1 %")
+    return out
 
 
 @styled
-def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, shafts: bool, case: str = "") -> Figure:
+def _plot(
+    model: GasDeflection,
+    lines,
+    angles: np.ndarray,
+    swept: np.ndarray,
+    shafts: bool,
+    case: str = "",
+    other_lines=None,
+    other_swept: np.ndarray | None = None,
+) -> Figure:
     """Draw the deflection lines of both rotors and the largest deflection over one male pitch.
 
     The lines at the chosen angle (w_x, w_y in the rotors' frame: x from O1 to O2, y turned 90 deg
-    counter-clockwise; |w|), the helical part's end faces marked on a shaft, and the largest
-    deflection over one male pitch with the chosen angle marked (Rinder & Deix Figs. 9 and 10).
+    counter-clockwise; |w|), the other flute load's |w| dashed, the helical part's end faces marked on
+    a shaft, and the largest deflection over one male pitch with the chosen angle marked (Rinder &
+    Deix Figs. 9 and 10). Rinder & Deix's largest deflections of their 5/6 example (sec. 3.5, the
+    values in the text; the curves of Figs. 9/10 are not) are drawn as dotted levels on the same axes.
     """
     fig = ps.new_figure(12.0, 7.6)
     axes = fig.subplots(2, 2)
@@ -230,13 +333,22 @@ def _plot(model: GasDeflection, lines, angles: np.ndarray, swept: np.ndarray, sh
             ax.set_xlabel(ps.label("z from the discharge end face", "mm"))
         ax.plot(z, w[:, 0] * 1e3, color=ps.BLUE, label="w_x (x from O1 to O2)")
         ax.plot(z, w[:, 1] * 1e3, color=ps.ORANGE, label="w_y (x turned 90° ccw)")
-        ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, color=ps.BLACK, lw=1.6, label="|w|")
+        ax.plot(z, np.hypot(w[:, 0], w[:, 1]) * 1e3, color=ps.BLACK, lw=1.6, label=f"|w| ({model.load.value} load)")
+        if other_lines is not None:
+            oz = getattr(other_lines, f"{rotor}_shaft_z") if shafts and len(shaft_z) else other_lines.z
+            ow = getattr(other_lines, f"{rotor}_shaft") if shafts and len(shaft_z) else getattr(other_lines, rotor)
+            other_name = "paper" if model.load.value == "rotorcad" else "rotorcad"
+            ax.plot(oz, np.hypot(ow[:, 0], ow[:, 1]) * 1e3, "--", color=ps.GREY, lw=1.2, label=f"|w| ({other_name} load)")
+        paper = PAPER_MAX[rotor][1 if shafts else 0] * 1e3
+        ax.axhline(paper, color=ps.VERMILLION, lw=1.0, ls=":", label=f"Rinder & Deix 5/6 at 12 bar: {paper:g} µm")
         ax.axhline(0.0, color=ps.GREY, lw=0.5)
         ax.set_ylabel(ps.label("deflection w", "µm"))
         ax.set_title(f"{rotor} deflection line at male angle {np.degrees(lines.angle):.2f}°")
         ps.legend_below(ax, ncol=2, bbox_to_anchor=(0.5, -0.2))
         ax2 = axes[1, col]
-        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color=ps.BLACK, label="largest |w| over the rotor")
+        ax2.plot(np.degrees(angles), swept[:, col] * 1e3, "-", color=ps.BLACK, label=f"largest |w| ({model.load.value} load)")
+        if other_swept is not None:
+            ax2.plot(np.degrees(angles), other_swept[:, col] * 1e3, "--", color=ps.GREY, label="the other flute load")
         ax2.axvline(
             np.degrees(lines.angle) % np.degrees(angles[-1] + angles[1] - angles[0]),
             color=ps.VERMILLION,

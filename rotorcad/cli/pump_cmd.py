@@ -12,7 +12,8 @@ from matplotlib.figure import Figure
 from hob.nomogram import plot_nomogram
 from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
-from rotorcad.cli.gear import build_gear, check_contact, gear_options, merge_gear_params
+from rotorcad.cli.defaults import print_defaults, taken
+from rotorcad.cli.gear import DEFAULTS, DESIGN_PARAM, FROM_DESIGN, build_gear, check_contact, gear_options, merge_gear_params
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
 from rotorcad.pump import GearPump, kollek_coefficients
@@ -30,6 +31,14 @@ PUMP_OPTION = {
 @click.option("--face-width", type=float, help="Face width b [mm].")
 @click.option("--speed", type=float, help="Speed n [rpm].")
 @click.option("--harmonics", "count", type=int, default=8, show_default=True, help="Number of harmonics listed.")
+@click.option(
+    "--method",
+    type=click.Choice(["paper", "swept-volume"]),
+    default="paper",
+    show_default=True,
+    help="Mean flow of 'mean_flow': 'paper' Kollek & Osinski eq. 2 (the delivery of these gears), 'swept-volume' the "
+    "textbook 2 pi b m^2 z n. Both are reported with their ratio.",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the delivery and its spectrum.")
 @click.option(
@@ -41,7 +50,8 @@ PUMP_OPTION = {
 def pump(design: Path | None, **opts: Any) -> None:
     """Delivery of an external gear pump of two equal gears (Kollek & Osinski eqs. 2-9).
 
-    Mean flow, irregularity, harmonics and pump frequency f = n z / 60.
+    Mean flow (eq. 2, and the textbook swept volume 2 pi b m^2 z n beside it), irregularity,
+    harmonics and pump frequency f = n z / 60. Every default taken is printed.
     """
     for key, flag in (("face_width", "--face-width"), ("speed", "--speed")):
         v = opts.get(key)
@@ -51,7 +61,14 @@ def pump(design: Path | None, **opts: Any) -> None:
             raise InputError(f"{flag} must be a positive number (got {v}).")
     if not 1 <= opts["count"] <= 64:
         raise InputError(f"--harmonics must be a whole number from 1 to 64 (got {opts['count']}).")
-    g, _ = build_gear(merge_gear_params(design, opts), 1e-4)
+    params = merge_gear_params(design, opts)
+    named = params.get(FROM_DESIGN, {})
+    defaulted = [
+        k
+        for k in ("pressure_angle", "helix_angle", "shift", "addendum")
+        if opts.get(k) is None and DESIGN_PARAM.get(k, k) not in named
+    ]
+    g, _ = build_gear(params, 1e-4)
     p = GearPump(g, opts["face_width"], opts["speed"])
     try:
         eps = p.contact_ratio
@@ -71,8 +88,20 @@ def pump(design: Path | None, **opts: Any) -> None:
             "--teeth, --shift and --addendum must give a pump that delivers (a positive mean flow; got "
             f"{p.mean_flow * MM3_PER_S_TO_L_PER_MIN:.4g} L/min): the tips reach too little beyond the working pitch circle."
         )
+    paper, swept = p.mean_flow * MM3_PER_S_TO_L_PER_MIN, p.swept_volume_flow * MM3_PER_S_TO_L_PER_MIN
+    unit = {"pressure_angle": " deg", "helix_angle": " deg", "shift": "", "addendum": ""}
+    how = {
+        "pressure_angle": "ISO 53 basic rack",
+        "helix_angle": "spur gears",
+        "shift": "no profile shift",
+        "addendum": "ISO 53 basic rack; it sets the tip radius, hence the flow",
+    }
     result = {
-        "mean_flow": p.mean_flow * MM3_PER_S_TO_L_PER_MIN,
+        "mean_flow": paper if opts["method"] == "paper" else swept,
+        "method": opts["method"],
+        "mean_flow_paper": paper,
+        "mean_flow_swept_volume": swept,
+        "mean_flow_paper_to_swept_volume": paper / swept,
         "flow_irregularity": p.irregularity,
         "pump_frequency_hz": p.pump_frequency,
         "contact_ratio": eps,
@@ -85,11 +114,13 @@ def pump(design: Path | None, **opts: Any) -> None:
     out = Outputs()
     out.add_figure(opts["plot"], lambda: _plot(p), "--plot")
     out.add_figure(opts["nomogram"], lambda: plot_nomogram(g.teeth, g.pressure_angle), "--nomogram")
+    result["defaults"] = {f"--{k.replace('_', '-')}": taken(f"{DEFAULTS[k]:g}{unit[k]}", how[k]) for k in defaulted}
     result["files"] = [str(x) for x in out.write()]
     if opts["as_json"]:
         emit_json(result)
     else:
         print_table(f"gear pump z={g.teeth}, b={opts['face_width']:g} mm, n={opts['speed']:g} rpm", result)
+        print_defaults(result["defaults"])
 
 
 @styled
