@@ -26,7 +26,12 @@ from rotorcad.errors import DesignError
 )
 @click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Also write the table as CSV.")
 @click.option("--scheduler", help="Address of a running dask.distributed scheduler (default: a local cluster).")
-@click.option("--workers", type=int, help="Worker processes of the local cluster (default: one per core).")
+@click.option(
+    "--workers",
+    type=int,
+    help="Worker processes of the local cluster (default: one per core); 0 runs every variant in this process, "
+    "without a cluster (the quickest start for a small sweep).",
+)
 @click.option(
     "--batch",
     type=int,
@@ -36,9 +41,20 @@ from rotorcad.errors import DesignError
 @click.option("--pareto", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the Pareto front of two objectives.")
 @click.option(
     "--objectives",
-    default="blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3",
+    help="Columns of the Pareto plot: x,y[,colour] (smaller is better, displacement larger). Default: the first two "
+    "[objectives] of the sweep file, else blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3.",
+)
+@click.option(
+    "--top",
+    type=int,
+    default=10,
     show_default=True,
-    help="Columns of the Pareto plot: x,y[,colour] (smaller is better, displacement larger).",
+    help="Feasible variants listed by rank (0..10000; [constraints] and [objectives] of the sweep file).",
+)
+@click.option(
+    "--pareto-csv",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="CSV of the variants on the Pareto front of the [objectives] (needs [objectives]).",
 )
 @click.option(
     "--effects", type=click.Path(path_type=Path, dir_okay=False), help="PNG of each varied value's effect on an objective."
@@ -59,7 +75,9 @@ def sweep(
     workers: int | None,
     batch: int | None,
     pareto: Path | None,
-    objectives: str,
+    objectives: str | None,
+    top: int,
+    pareto_csv: Path | None,
     effects: Path | None,
     objective: str,
     best_designs: Path | None,
@@ -70,21 +88,27 @@ def sweep(
 
     A sweep file holds a base design and the values to vary: lists, ranges, or bounds drawn at random
     or by Latin hypercube. A variant that cannot be built is a row with its reason. Interrupted and
-    run again, the sweep computes only what is missing.
+    run again, the sweep computes only what is missing. [constraints] and [objectives] of the file
+    mark the feasible variants, the Pareto front and a ranking (columns feasible, pareto, rank).
     """
     from exports.atomic import check_writable
-    from rotorcad.cli.sweep_run import load_sweep, run_sweep
-    from rotorcad.cli.sweep_tasks import OBJECTIVES, result_columns
+    from rotorcad.cli.sweep_run import load_steering, load_sweep, run_sweep, sweep_columns
+    from rotorcad.sweep.run import SweepOutcome
+    from rotorcad.sweep.tasks import OBJECTIVES
 
-    if workers is not None and not 1 <= workers <= 256:
-        raise InputError(f"--workers must be a whole number from 1 to 256 (got {workers}).")
+    if workers is not None and not 0 <= workers <= 256:
+        raise InputError(f"--workers must be a whole number from 0 to 256 (got {workers}; 0 runs in this process).")
+    if workers == 0 and scheduler:
+        raise InputError("--workers 0 runs in this process: give it or --scheduler, not both.")
     if batch is not None and not 1 <= batch <= 10_000:
         raise InputError(f"--batch must be a whole number from 1 to 10000 (got {batch}).")
+    if not 0 <= top <= 10_000:
+        raise InputError(f"--top must be a whole number from 0 to 10000 (got {top}).")
     if out.exists() and out.is_dir():
         raise InputError(f"--out must be a file name, but {out} is a folder.")
     if out.suffix.lower() != ".parquet":
         raise InputError(f"--out must name a .parquet file (got {out}); --csv writes CSV beside it.")
-    targets = {"--out": out, "--csv": csv, "--pareto": pareto, "--effects": effects}
+    targets = {"--out": out, "--csv": csv, "--pareto": pareto, "--effects": effects, "--pareto-csv": pareto_csv}
     for option, path in targets.items():  # every output checked before hours of work
         if path is not None:
             try:
@@ -93,15 +117,21 @@ def sweep(
                 raise InputError(exc.sentence()) from None
     named = [Path(p).resolve() for p in targets.values() if p is not None]
     if len(set(named)) < len(named):
-        raise InputError("--out, --csv, --pareto and --effects must name different files.")
+        raise InputError("--out, --csv, --pareto, --effects and --pareto-csv must name different files.")
+    try:
+        plan, folder, points = load_sweep(sweep_file)
+        steer = load_steering(sweep_file, plan)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    if pareto_csv is not None and not steer.objectives:
+        raise InputError("--pareto-csv needs [objectives] in the sweep file (the front of what?).")
+    named_objectives = [o.name if o.expression == o.name else f"objective.{o.name}" for o in steer.objectives]
+    if objectives is None:
+        objectives = ",".join(named_objectives[:2]) if len(named_objectives) >= 2 else DEFAULT_AXES
     axes = [c.strip() for c in objectives.split(",") if c.strip()]
     if pareto is not None and len(axes) not in (2, 3):
         raise InputError(f"--objectives must name 2 or 3 columns (got {objectives!r}).")
-    try:
-        plan, folder, points = load_sweep(sweep_file)
-    except DesignError as exc:
-        raise InputError(exc.sentence()) from None
-    columns = result_columns(plan.extras)
+    columns = sweep_columns(plan)[0] + [f"objective.{o.name}" for o in steer.objectives if o.expression != o.name]
     for option, wanted in (("--objectives", axes if pareto else []), ("--objective", [objective] if effects else [])):
         unknown = [c for c in wanted if c not in columns]
         if unknown:
@@ -120,6 +150,12 @@ def sweep(
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     table = outcome.table
+    steered = bool(steer.constraints or steer.objectives)
+    if steered and len(table):
+        table = steer.apply(table)
+        from rotorcad.sweep.run import _replace
+
+        _replace(out, table)  # the Parquet file holds feasible, pareto and rank too
     files = [str(out)]
     writers = Outputs()
     if csv is not None:
@@ -127,30 +163,33 @@ def sweep(
     ok = table[table["ok"].astype(bool)] if len(table) else table
     params = [c for c in table.columns if "." in c]
     if pareto is not None:
-        from rotorcad.sweep_plots import plot_pareto
+        from rotorcad.sweep.plots import plot_pareto
 
         x, y = (ok[c].to_numpy(float) for c in axes[:2])
         colour = ok[axes[2]].to_numpy(float) if len(axes) == 3 else None
-        smaller = (OBJECTIVES.get(axes[0], True), OBJECTIVES.get(axes[1], True))
+        directions = {**OBJECTIVES, **{n: o.smaller for n, o in zip(named_objectives, steer.objectives, strict=True)}}
+        smaller = (directions.get(axes[0], True), directions.get(axes[1], True))
         names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
         writers.add_figure(pareto, lambda: plot_pareto(x, y, colour, names, smaller, case=Path(sweep_file).name), "--pareto")
     if effects is not None:
-        from rotorcad.sweep_plots import plot_effects
+        from rotorcad.sweep.plots import plot_effects
 
         values = {p: _numeric(ok[p]) for p in params}
         target = ok[objective].to_numpy(float)
         writers.add_figure(effects, lambda: plot_effects(values, target, objective, case=Path(sweep_file).name), "--effects")
-    best = outcome.best()
+    if pareto_csv is not None:
+        front = table[table["pareto"].astype(bool)].sort_values("rank")
+        writers.add(pareto_csv, lambda p: front.to_csv(p, index=False), "--pareto-csv")
+    best = SweepOutcome(table, outcome.computed, outcome.resumed, outcome.seconds).best()
     if best_designs is not None:
         import tomli_w
 
         from rotorcad.cli.common import output_folder
-        from rotorcad.sweep_plan import apply
-
         output_folder(best_designs)
-        by_index = {v.index: v for v in plan.variants()}
+        wanted = {chosen["variant"] for chosen in best.values()}
+        by_index = {v.index: v for v in plan.variants() if v.index in wanted}  # one pass over the stream
         for column, chosen in best.items():
-            design = apply(plan.base, by_index[chosen["variant"]].values)
+            design = plan.design(by_index[chosen["variant"]])
             if isinstance(design.get("profile", {}).get("points"), str):  # the points file from anywhere
                 design["profile"]["points"] = str((folder / design["profile"]["points"]).resolve())
             writers.add(
@@ -164,22 +203,46 @@ def sweep(
         "failed": outcome.failed,
         "seconds": outcome.seconds,
         "variants_per_second": outcome.computed / outcome.seconds if outcome.computed else 0.0,
+        "cpu_seconds": outcome.cpu_seconds,
         "failures": outcome.failures(),
         "best": best,
         "files": files,
     }
+    if steered:
+        result["feasible"] = int(table["feasible"].sum())
+        result["pareto_front"] = int(table["pareto"].sum())
+        result["top"] = _top(table, top, [f"objective.{o.name}" if o.expression != o.name else o.name for o in steer.objectives])
     if as_json:
         emit_json(result)
         return
-    print_table(f"sweep of {len(table)} variants ({outcome.computed} computed, {outcome.resumed} resumed)", result)
+    shown = {k: v for k, v in result.items() if k != "top"}
+    print_table(f"sweep of {len(table)} variants ({outcome.computed} computed, {outcome.resumed} resumed)", shown)
     console = Console(file=sys.stdout, highlight=False)
     for column, best in result["best"].items():
         values = ", ".join(f"{k} = {v}" for k, v in best.items() if k not in ("variant", "value"))
         console.print(f"best {column}: {best['value']:.6g} (variant {best['variant']}: {values})")
+    for row in result.get("top", []):
+        values = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}" for k, v in row.items() if k != "rank")
+        console.print(f"rank {row['rank']}: {values}")
     for reason, count in result["failures"].items():
         console.print(f"{count} failed: {reason}")
     for p in files:
         console.print(f"wrote {p}")
+
+
+DEFAULT_AXES = "blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3"
+
+
+def _top(table, count: int, objective_columns: list[str]) -> list[dict[str, Any]]:
+    """Return the ``count`` best feasible variants: rank, variant, on the front, varied values, objectives."""
+    ranked = table[table["rank"] > 0].sort_values("rank").head(count)
+    params = [c for c in table.columns if "." in c and not c.startswith("objective.")]
+    keep = ["rank", "variant", "pareto", *params, *objective_columns]
+    return [{k: _plain(row[k]) for k in keep if k in row} for _, row in ranked.iterrows()]
+
+
+def _plain(value: Any) -> Any:
+    return value.item() if hasattr(value, "item") else value
 
 
 def _numeric(column) -> np.ndarray:
