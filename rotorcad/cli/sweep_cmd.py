@@ -187,7 +187,7 @@ def sweep(
         from rotorcad.cli.common import output_folder
         output_folder(best_designs)
         wanted = {chosen["variant"] for chosen in best.values()}
-        by_index = {v.index: v for v in plan.variants() if v.index in wanted}  # one pass over the stream
+        by_index = {v.index: v for v in plan.iter_variants() if v.index in wanted}  # one pass over the stream
         for column, chosen in best.items():
             design = plan.design(by_index[chosen["variant"]])
             if isinstance(design.get("profile", {}).get("points"), str):  # the points file from anywhere

@@ -27,8 +27,8 @@ matched across parameters by a random permutation each). A range whose end is of
 ends at that end (the last step shorter), never short of it. The same file and seed give the same
 variants in the same order.
 
-The variants are never held all at once: :meth:`SweepPlan.variants` yields them in blocks, so
-planning a million variants costs the memory of a thousand. What does have to fit is the results
+The variants are never held all at once: :meth:`SweepPlan.iter_variants` yields them in blocks, so
+planning a million variants costs the memory of a few thousand. What does have to fit is the results
 table of the whole sweep (one row per variant): a plan whose table would need more than
 :data:`MAX_TABLE_BYTES` is refused before any work, naming the largest count that fits.
 """
@@ -180,7 +180,16 @@ class SweepPlan:
             shared.append(self.families)
         return hashlib.sha1(json.dumps(shared, sort_keys=True, default=str).encode()).hexdigest()
 
-    def variants(self) -> Iterator[Variant]:
+    def variants(self) -> list[Variant]:
+        """Return every variant in a list (for a small plan; a sweep reads :meth:`iter_variants`).
+
+        Returns
+        -------
+        list of Variant
+        """
+        return list(self.iter_variants())
+
+    def iter_variants(self) -> Iterator[Variant]:
         """Yield every variant in a fixed order (deterministic for the plan), a block at a time.
 
         A variant's key is a digest of :attr:`signature`, its values and which occurrence of these

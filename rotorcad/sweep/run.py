@@ -176,7 +176,7 @@ def _number_earlier(plan: SweepPlan, earlier: pd.DataFrame) -> pd.DataFrame:
         return earlier
     wanted = set(earlier["key"])
     index: dict[str, int] = {}
-    for v in plan.variants():
+    for v in plan.iter_variants():
         if v.key in wanted:
             index[v.key] = v.index
             if len(index) == len(wanted):
@@ -290,7 +290,7 @@ def _client(scheduler: str | None, workers: int | None):
 
 def _batches(plan: SweepPlan, done: set[str], size: int) -> Iterator[list[Variant]]:
     """Yield the variants not in ``done``, ``size`` at a time, reading the plan as a stream."""
-    todo = (v for v in plan.variants() if v.key not in done)
+    todo = (v for v in plan.iter_variants() if v.key not in done)
     while batch := list(itertools.islice(todo, size)):
         yield batch
 
