@@ -29,6 +29,7 @@ import socket
 import tempfile
 import threading
 import time
+import warnings
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -273,15 +274,20 @@ def _client(scheduler: str | None, workers: int | None):
     main = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
     try:
-        cluster = LocalCluster(
-            n_workers=n,
-            threads_per_worker=1,
-            processes=True,
-            dashboard_address=None,  # no dashboard: no port to take, no "port in use" warning
-            worker_dashboard_address=None,
-            silence_logs=logging.CRITICAL,
-            memory_limit=0,
-        )
+        with warnings.catch_warnings():
+            # without a dashboard the scheduler still serves its health check over HTTP, on port 8787
+            # or, when another dashboard holds it, any free port: its 4-line warning about the port
+            # is not the user's business (nothing of the sweep listens there)
+            warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
+            cluster = LocalCluster(
+                n_workers=n,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,  # no dashboard
+                worker_dashboard_address=None,
+                silence_logs=logging.CRITICAL,
+                memory_limit=0,
+            )
     finally:
         if main:
             signal.signal(signal.SIGINT, previous)
