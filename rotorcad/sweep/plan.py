@@ -18,6 +18,7 @@ A sweep file (TOML) reads::
 
     [families.n-rack]                 # parameters of a family on the axis other than the base's
     driving_width = 1.2
+    "pair.male_tip_radius" = "r1w + 1.39*m"   # and [pair] / [housing] values for that family
 
 ``grid`` takes every combination of the lists and ranges (bounds are refused there). ``random`` and
 ``latin-hypercube`` draw ``samples`` variants: bounds uniformly (integers when both bounds are
@@ -57,9 +58,10 @@ MAX_TABLE_BYTES = 2_000_000_000
 than about 2 GB is refused before it starts)."""
 
 ROW_BYTES = 1_000
-"""Memory of one row of the results table, bytes, rounded up: measured 560-700 bytes a row with
-pandas for the pair and Rinder's analysis and all four optional analyses (the text columns, key,
-reason, defect kinds, hob reason, are Python strings), plus the Parquet parts read back on resume."""
+"""Memory of one row of the results table at its peak, bytes: a row takes 260-360 bytes in pandas
+(measured on sweeps with and without hobbability and interference: 29-33 columns, the key, reason,
+defect kinds and hob reason as Python strings), and the table is held about three times over while
+the Parquet parts are joined, sorted and ranked."""
 
 
 class Sampling(Enum):
@@ -415,6 +417,13 @@ def _family_tables(data: dict[str, Any], families: list[str]) -> dict[str, dict[
             raise DesignError(f"[families.{name}]", "a table of the family's parameters", repr(params))
         schema = FAMILIES[name][1]
         for key, value in params.items():
+            if "." in key:  # a design value of another table for this family: "pair.male_tip_radius"
+                table, _, sub = key.partition(".")
+                if table not in ("pair", "housing") or not sub:
+                    raise DesignError(f"[families.{name}] '{key}'", "a family parameter, or pair.KEY / housing.KEY", None)
+                if not isinstance(value, str):  # an expression is checked when the variant's design is
+                    _check_values(Parameter(f"{table}.{sub}", values=(value,)), {}, [name])
+                continue
             if key not in schema:
                 allowed = f"one of the {name} family's parameters: " + ", ".join(sorted(schema))
                 raise DesignError(f"[families.{name}] {key}", allowed, None)
@@ -520,7 +529,9 @@ def apply(base: dict[str, Any], values: dict[str, Any], families: dict[str, dict
     families : dict, optional
         Family name -> its [profile] parameters (``[families.NAME]``), for a ``profile.family``
         value other than the base's: the [profile] table is then that family's parameters (the
-        base's parameters that the family also has, then these; the family's defaults for the rest).
+        base's parameters that the family also has, then these; the family's defaults for the rest);
+        keys ``pair.KEY`` / ``housing.KEY`` there set those design values for that family.
+        Varied values come last.
 
     Returns
     -------
@@ -534,9 +545,10 @@ def apply(base: dict[str, Any], values: dict[str, Any], families: dict[str, dict
 
         schema = FAMILIES[family][1]
         kept = {k: v for k, v in out.get("profile", {}).items() if k in schema}
-        out["profile"] = {"family": family, **kept, **(families or {}).get(family, {})}
-    elif family is not None and families and family in families:
-        out["profile"] = {**out["profile"], **families[family]}
+        out["profile"] = {"family": family, **kept}
+    for key, value in (families or {}).get(family, {}).items():
+        table, _, sub = key.rpartition(".")
+        out.setdefault(table or "profile", {})[sub] = value
     for name, value in values.items():
         table, _, key = name.partition(".")
         out.setdefault(table, {})[key] = value
