@@ -220,14 +220,14 @@ def sweep(
     console = Console(file=sys.stdout, highlight=False)
     for column, best in result["best"].items():
         values = ", ".join(f"{k} = {v}" for k, v in best.items() if k not in ("variant", "value"))
-        console.print(f"best {column}: {best['value']:.6g} (variant {best['variant']}: {values})")
+        console.print(f"best {column}: {best['value']:.6g} (variant {best['variant']}: {values})", markup=False)
     for row in result.get("top", []):
         values = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}" for k, v in row.items() if k != "rank")
-        console.print(f"rank {row['rank']}: {values}")
+        console.print(f"rank {row['rank']}: {values}", markup=False)
     for reason, count in result["failures"].items():
-        console.print(f"{count} failed: {reason}")
+        console.print(f"{count} failed: {reason}", markup=False)
     for p in files:
-        console.print(f"wrote {p}")
+        console.print(f"wrote {p}", markup=False)
 
 
 DEFAULT_AXES = "blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3"

@@ -19,7 +19,7 @@ ones, the *Pareto front* is the set no other feasible variant dominates (at leas
 objective and better in one; Deb 2001, sec. 2.4). The *rank* orders the feasible variants: the
 front first, then the rest, each group by the objectives in the order the file gives them
 (lexicographically); infeasible variants have no rank. An objective's expression is parsed with
-:mod:`ast` (numbers, result columns, ``+ - * / **``, parentheses and ``sqrt``, ``abs``, ``log``,
+:mod:`ast` (numbers, result columns and varied values such as ``pair.center_distance``, ``+ - * / **``, parentheses and ``sqrt``, ``abs``, ``log``,
 ``exp``, ``minimum``, ``maximum``), never given to ``eval``.
 """
 
@@ -123,6 +123,8 @@ def _evaluate(node: ast.AST, column: Callable[[str], np.ndarray]) -> Any:
         return float(node.value)
     if isinstance(node, ast.Name):
         return column(node.id)
+    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):  # a varied value: pair.center_distance
+        return column(f"{node.value.id}.{node.attr}")
     if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
         return _OPERATORS[type(node.op)](_evaluate(node.left, column), _evaluate(node.right, column))
     if isinstance(node, ast.UnaryOp) and type(node.op) in _OPERATORS:
@@ -133,7 +135,10 @@ def _evaluate(node: ast.AST, column: Callable[[str], np.ndarray]) -> Any:
 
 
 def _names(node: ast.AST) -> list[str]:
-    return [n.id for n in ast.walk(node) if isinstance(n, ast.Name) and not _is_function(node, n)]
+    attributes = [n for n in ast.walk(node) if isinstance(n, ast.Attribute) and isinstance(n.value, ast.Name)]
+    dotted = {id(n.value) for n in attributes}
+    names = [n.id for n in ast.walk(node) if isinstance(n, ast.Name) and id(n) not in dotted and not _is_function(node, n)]
+    return names + [f"{n.value.id}.{n.attr}" for n in attributes]
 
 
 def _is_function(tree: ast.AST, name: ast.Name) -> bool:
