@@ -19,8 +19,9 @@ ones, the *Pareto front* is the set no other feasible variant dominates (at leas
 objective and better in one; Deb 2001, sec. 2.4). The *rank* orders the feasible variants: the
 front first, then the rest, each group by the objectives in the order the file gives them
 (lexicographically); infeasible variants have no rank. An objective's expression is parsed with
-:mod:`ast` (numbers, result columns and varied values such as ``pair.center_distance``, ``+ - * / **``, parentheses and ``sqrt``, ``abs``, ``log``,
-``exp``, ``minimum``, ``maximum``), never given to ``eval``.
+:mod:`ast` (numbers, result columns and varied values such as ``pair.center_distance``,
+``+ - * / **``, parentheses and ``sqrt``, ``abs``, ``log``, ``exp``, ``minimum``, ``maximum``),
+never given to ``eval``.
 """
 
 from __future__ import annotations
