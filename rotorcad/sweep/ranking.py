@@ -301,7 +301,8 @@ def steering(data: dict[str, Any], numeric: list[str], boolean: list[str]) -> St
             raise DesignError(label, '"min" or "max" of a column, or {min = "EXPRESSION"} / {max = "EXPRESSION"}', repr(spec))
         try:
             tree = ast.parse(expression, mode="eval")
-            _evaluate(tree.body, lambda c: np.zeros(1))
+            with np.errstate(all="ignore"):
+                _evaluate(tree.body, lambda c: np.ones(1))
         except (SyntaxError, ValueError, TypeError) as exc:
             allowed = "a column or an expression of columns with numbers, + - * / ** ( ) and " + ", ".join(_FUNCTIONS)
             raise DesignError(label, allowed, repr(expression), str(exc)) from None
