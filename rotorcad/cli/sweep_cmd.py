@@ -29,8 +29,9 @@ from rotorcad.errors import DesignError
 @click.option(
     "--workers",
     type=int,
-    help="Worker processes of the local cluster (default: one per core); 0 runs every variant in this process, "
-    "without a cluster (the quickest start for a small sweep).",
+    help="Worker processes of the local cluster; 0 runs every variant in this process, without a cluster. "
+    "Default: in this process for fewer than 200 variants to compute (a cluster costs about 5 CPU-s to start), "
+    "else one worker per core.",
 )
 @click.option(
     "--batch",

@@ -73,7 +73,8 @@ def sweep(
     scheduler : str, optional
         Address of a running ``dask.distributed`` scheduler (default: a local cluster).
     workers : int, optional
-        Local worker processes (default: one per core); 0 runs the variants in this process.
+        Local worker processes; 0 runs the variants in this process. Default: in this process for
+        fewer than 200 variants to compute, else one worker per core.
 
     Returns
     -------

@@ -127,6 +127,10 @@ def _plain(value: Any) -> Any:
 
 EARLIER = "a Parquet file of an earlier sweep (or a new name)"
 
+IN_PROCESS_BELOW = 200
+"""Fewer variants to compute than this run in this process when no worker count is given: starting
+a local cluster costs about 5 CPU-seconds, the time of some 200 variants."""
+
 
 def parts_folder(out: Path) -> Path:
     """Return the folder where the finished batches of a sweep writing ``out`` are kept until it ends.
@@ -327,8 +331,9 @@ def run_sweep(
     scheduler : str, optional
         Address of a running ``dask.distributed`` scheduler; default a local cluster.
     workers : int, optional
-        Worker processes of the local cluster (default: one per core); 0 runs every variant in
-        this process, without Dask.
+        Worker processes of the local cluster; 0 runs every variant in this process, without Dask.
+        Default: in this process for fewer than :data:`IN_PROCESS_BELOW` variants to compute, else
+        one worker per core.
     batch : int, optional
         Variants per task (default: about eight tasks per worker, at most 50 variants a task).
     progress : callable, optional
@@ -363,7 +368,7 @@ def run_sweep(
     rows: list[dict[str, Any]] = []
     failed = int((~earlier["ok"].astype(bool)).sum()) if len(earlier) else 0
     worker_seconds = 0.0
-    in_process = workers == 0 and not scheduler
+    in_process = not scheduler and (workers == 0 or (workers is None and todo_count < IN_PROCESS_BELOW))
     if todo_count:
         parts = parts_folder(out) if out is not None else None
         submit = dict(
