@@ -162,6 +162,8 @@ def sweep(
     if csv is not None:
         writers.add(csv, lambda p: table.to_csv(p, index=False), "--csv")
     ok = table[table["ok"].astype(bool)] if len(table) else table
+    if steered and len(table):
+        ok = table[table["feasible"].astype(bool)]  # the pictures show the feasible variants
     params = [c for c in table.columns if "." in c]
     if pareto is not None:
         from rotorcad.sweep.plots import plot_pareto
