@@ -314,7 +314,7 @@ SAMPLES = ROOT / "samples"
 
 
 def _dominated(cost: np.ndarray, i: int) -> bool:
-    """Brute force (the definition, Deb 2001 sec. 2.4): some row at most as large in every column, smaller in one."""
+    """Brute force (the definition of dominance, Deb 2001, ch. 2): some row at most as large in every column, smaller in one."""
     return bool(np.any(np.all(cost <= cost[i], axis=1) & np.any(cost < cost[i], axis=1)))
 
 

@@ -16,9 +16,10 @@ A sweep file may add::
 
 A variant is *feasible* when it was built (``ok``) and meets every constraint. Among the feasible
 ones, the *Pareto front* is the set no other feasible variant dominates (at least as good in every
-objective and better in one; Deb 2001, sec. 2.4). The *rank* orders the feasible variants: the
-front first, then the rest, each group by the objectives in the order the file gives them
-(lexicographically); infeasible variants have no rank. An objective's expression is parsed with
+objective and better in one; Deb, Multi-Objective Optimization using Evolutionary Algorithms,
+2001, ch. 2). The *rank* orders the feasible variants: the front first, then the rest, each group
+by the objectives in the order the file gives them (lexicographically); infeasible variants have
+no rank. An objective's expression is parsed with
 :mod:`ast` (numbers, result columns and varied values such as ``pair.center_distance``,
 ``+ - * / **``, parentheses and ``sqrt``, ``abs``, ``log``, ``exp``, ``minimum``, ``maximum``),
 never given to ``eval``.
