@@ -436,7 +436,10 @@ def run_sweep(
             if cluster is not None:
                 cluster.close()
     if out is not None:
-        table = _number_earlier(plan, _read_earlier(out))
+        table = _read_earlier(out)  # this run's rows carry their number; earlier rows are renumbered
+        if len(earlier) and len(table):
+            renumbered = table["key"].map(dict(zip(earlier["key"], earlier["variant"], strict=True)))
+            table["variant"] = renumbered.fillna(table["variant"]).astype("int64")
     else:
         table = pd.concat([earlier, pd.DataFrame(rows)], ignore_index=True) if len(earlier) else pd.DataFrame(rows)
     if len(table):
