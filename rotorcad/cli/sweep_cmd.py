@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -92,33 +93,11 @@ def sweep(
     run again, the sweep computes only what is missing. [constraints] and [objectives] of the file
     mark the feasible variants, the Pareto front and a ranking (columns feasible, pareto, rank).
     """
-    from exports.atomic import check_writable
     from rotorcad.cli.sweep_run import load_steering, load_sweep, run_sweep, sweep_columns
-    from rotorcad.sweep.run import SweepOutcome
-    from rotorcad.sweep.tasks import OBJECTIVES
+    from rotorcad.sweep.run import write_table
 
-    if workers is not None and not 0 <= workers <= 256:
-        raise InputError(f"--workers must be a whole number from 0 to 256 (got {workers}; 0 runs in this process).")
-    if workers == 0 and scheduler:
-        raise InputError("--workers 0 runs in this process: give it or --scheduler, not both.")
-    if batch is not None and not 1 <= batch <= 10_000:
-        raise InputError(f"--batch must be a whole number from 1 to 10000 (got {batch}).")
-    if not 0 <= top <= 10_000:
-        raise InputError(f"--top must be a whole number from 0 to 10000 (got {top}).")
-    if out.exists() and out.is_dir():
-        raise InputError(f"--out must be a file name, but {out} is a folder.")
-    if out.suffix.lower() != ".parquet":
-        raise InputError(f"--out must name a .parquet file (got {out}); --csv writes CSV beside it.")
     targets = {"--out": out, "--csv": csv, "--pareto": pareto, "--effects": effects, "--pareto-csv": pareto_csv}
-    for option, path in targets.items():  # every output checked before hours of work
-        if path is not None:
-            try:
-                check_writable(Path(path), option)
-            except DesignError as exc:
-                raise InputError(exc.sentence()) from None
-    named = [Path(p).resolve() for p in targets.values() if p is not None]
-    if len(set(named)) < len(named):
-        raise InputError("--out, --csv, --pareto, --effects and --pareto-csv must name different files.")
+    _check_options(workers, scheduler, batch, top, out, targets)
     try:
         plan, folder, points = load_sweep(sweep_file)
         steer = load_steering(sweep_file, plan)
@@ -137,8 +116,7 @@ def sweep(
         unknown = [c for c in wanted if c not in columns]
         if unknown:
             raise InputError(f"{option} must name result columns: {', '.join(columns)} (got {unknown[0]!r}).")
-    total = plan.count
-    bar = Steps("sweep", total, quiet, ("{task.fields[failed]} failed, {task.fields[rate]}/s",), failed=0, rate="-")
+    bar = Steps("sweep", plan.count, quiet, ("{task.fields[failed]} failed, {task.fields[rate]}/s",), failed=0, rate="-")
     started = time.perf_counter()
 
     def report(done: int, failed: int, _total: int) -> None:
@@ -150,57 +128,16 @@ def sweep(
             outcome = run_sweep(plan, folder, points, out, scheduler, workers, batch, progress=report)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    table = outcome.table
     steered = bool(steer.constraints or steer.objectives)
-    if steered and len(table):
-        table = steer.apply(table)
-        from rotorcad.sweep.run import _replace
-
-        _replace(out, table)  # the Parquet file holds feasible, pareto and rank too
-    files = [str(out)]
-    writers = Outputs()
-    if csv is not None:
-        writers.add(csv, lambda p: table.to_csv(p, index=False), "--csv")
-    ok = table[table["ok"].astype(bool)] if len(table) else table
-    if steered and len(table):
-        ok = table[table["feasible"].astype(bool)]  # the pictures show the feasible variants
-    params = [c for c in table.columns if "." in c]
-    if pareto is not None:
-        from rotorcad.sweep.plots import plot_pareto
-
-        x, y = (ok[c].to_numpy(float) for c in axes[:2])
-        colour = ok[axes[2]].to_numpy(float) if len(axes) == 3 else None
-        directions = {**OBJECTIVES, **{n: o.smaller for n, o in zip(named_objectives, steer.objectives, strict=True)}}
-        smaller = (directions.get(axes[0], True), directions.get(axes[1], True))
-        names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
-        writers.add_figure(pareto, lambda: plot_pareto(x, y, colour, names, smaller, case=Path(sweep_file).name), "--pareto")
-    if effects is not None:
-        from rotorcad.sweep.plots import plot_effects
-
-        values = {p: _numeric(ok[p]) for p in params}
-        target = ok[objective].to_numpy(float)
-        writers.add_figure(effects, lambda: plot_effects(values, target, objective, case=Path(sweep_file).name), "--effects")
-    if pareto_csv is not None:
-        front = table[table["pareto"].astype(bool)].sort_values("rank")
-        writers.add(pareto_csv, lambda p: front.to_csv(p, index=False), "--pareto-csv")
-    best = SweepOutcome(table, outcome.computed, outcome.resumed, outcome.seconds).best()
-    if best_designs is not None:
-        import tomli_w
-
-        from rotorcad.cli.common import output_folder
-        output_folder(best_designs)
-        wanted = {chosen["variant"] for chosen in best.values()}
-        by_index = {v.index: v for v in plan.iter_variants() if v.index in wanted}  # one pass over the stream
-        for column, chosen in best.items():
-            design = plan.design(by_index[chosen["variant"]])
-            if isinstance(design.get("profile", {}).get("points"), str):  # the points file from anywhere
-                design["profile"]["points"] = str((folder / design["profile"]["points"]).resolve())
-            writers.add(
-                best_designs / f"best_{column}.toml", lambda p, d=design: Path(p).write_text(tomli_w.dumps(d)), "--best-designs"
-            )
-    files += [str(p) for p in writers.write()]
+    if steered:
+        outcome = replace(outcome, table=steer.apply(outcome.table))
+        write_table(out, outcome.table)  # the Parquet file holds feasible, pareto and rank too
+    directions = {n: o.smaller for n, o in zip(named_objectives, steer.objectives, strict=True)}
+    pictures = {"--pareto": pareto, "--effects": effects, "axes": axes, "objective": objective, "directions": directions}
+    best = outcome.best()
+    files = [str(out), *_write_outputs(sweep_file, plan, folder, outcome.table, best, csv, pareto_csv, best_designs, pictures)]
     result: dict[str, Any] = {
-        "variants": len(table),
+        "variants": len(outcome.table),
         "computed": outcome.computed,
         "resumed": outcome.resumed,
         "failed": outcome.failed,
@@ -212,14 +149,94 @@ def sweep(
         "files": files,
     }
     if steered:
-        result["feasible"] = int(table["feasible"].sum())
-        result["pareto_front"] = int(table["pareto"].sum())
-        result["top"] = _top(table, top, [f"objective.{o.name}" if o.expression != o.name else o.name for o in steer.objectives])
+        result["feasible"] = int(outcome.table["feasible"].sum())
+        result["pareto_front"] = int(outcome.table["pareto"].sum())
+        result["top"] = _top(outcome.table, top, named_objectives)
     if as_json:
         emit_json(result)
-        return
+    else:
+        _print_result(result, outcome)
+
+
+def _check_options(workers: int | None, scheduler: str | None, batch: int | None, top: int, out: Path, targets: dict) -> None:
+    """Refuse bad options and unwritable outputs before any work, naming the option."""
+    from exports.atomic import check_writable
+
+    if workers is not None and not 0 <= workers <= 256:
+        raise InputError(f"--workers must be a whole number from 0 to 256 (got {workers}; 0 runs in this process).")
+    if workers == 0 and scheduler:
+        raise InputError("--workers 0 runs in this process: give it or --scheduler, not both.")
+    if batch is not None and not 1 <= batch <= 10_000:
+        raise InputError(f"--batch must be a whole number from 1 to 10000 (got {batch}).")
+    if not 0 <= top <= 10_000:
+        raise InputError(f"--top must be a whole number from 0 to 10000 (got {top}).")
+    if out.exists() and out.is_dir():
+        raise InputError(f"--out must be a file name, but {out} is a folder.")
+    if out.suffix.lower() != ".parquet":
+        raise InputError(f"--out must name a .parquet file (got {out}); --csv writes CSV beside it.")
+    for option, path in targets.items():  # every output checked before hours of work
+        if path is not None:
+            try:
+                check_writable(Path(path), option)
+            except DesignError as exc:
+                raise InputError(exc.sentence()) from None
+    named = [Path(p).resolve() for p in targets.values() if p is not None]
+    if len(set(named)) < len(named):
+        raise InputError("--out, --csv, --pareto, --effects and --pareto-csv must name different files.")
+
+
+def _write_outputs(
+    sweep_file: Path, plan, folder: Path, table, best: dict, csv, pareto_csv, best_designs, pictures: dict
+) -> list[str]:
+    """Write the CSV, the pictures, the Pareto CSV and the best designs; return the files written."""
+    from rotorcad.sweep.tasks import OBJECTIVES
+
+    writers = Outputs()
+    if csv is not None:
+        writers.add(csv, lambda p: table.to_csv(p, index=False), "--csv")
+    shown = table[table["feasible" if "feasible" in table else "ok"].astype(bool)]  # the feasible variants, or those built
+    params = [c for c in table.columns if "." in c and not c.startswith("objective.")]
+    axes, case = pictures["axes"], Path(sweep_file).name
+    if pictures["--pareto"] is not None:
+        from rotorcad.sweep.plots import plot_pareto
+
+        x, y = (shown[c].to_numpy(float) for c in axes[:2])
+        colour = shown[axes[2]].to_numpy(float) if len(axes) == 3 else None
+        directions = {**OBJECTIVES, **pictures["directions"]}
+        smaller = (directions.get(axes[0], True), directions.get(axes[1], True))
+        names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
+        writers.add_figure(pictures["--pareto"], lambda: plot_pareto(x, y, colour, names, smaller, case=case), "--pareto")
+    if pictures["--effects"] is not None:
+        from rotorcad.sweep.plots import plot_effects
+
+        values = {p: _numeric(shown[p]) for p in params}
+        name = pictures["objective"]
+        target = shown[name].to_numpy(float)
+        writers.add_figure(pictures["--effects"], lambda: plot_effects(values, target, name, case=case), "--effects")
+    if pareto_csv is not None:
+        front = table[table["pareto"].astype(bool)].sort_values("rank")
+        writers.add(pareto_csv, lambda p: front.to_csv(p, index=False), "--pareto-csv")
+    if best_designs is not None:
+        import tomli_w
+
+        from rotorcad.cli.common import output_folder
+
+        output_folder(best_designs)
+        wanted = {chosen["variant"] for chosen in best.values()}
+        by_index = {v.index: v for v in plan.iter_variants() if v.index in wanted}  # one pass over the stream
+        for column, chosen in best.items():
+            design = plan.design(by_index[chosen["variant"]])
+            if isinstance(design.get("profile", {}).get("points"), str):  # the points file from anywhere
+                design["profile"]["points"] = str((folder / design["profile"]["points"]).resolve())
+            path = best_designs / f"best_{column}.toml"
+            writers.add(path, lambda p, d=design: Path(p).write_text(tomli_w.dumps(d)), "--best-designs")
+    return [str(p) for p in writers.write()]
+
+
+def _print_result(result: dict[str, Any], outcome) -> None:
+    """Print the summary table, the best variants, the top ranks, the failures and the files."""
     shown = {k: v for k, v in result.items() if k != "top"}
-    print_table(f"sweep of {len(table)} variants ({outcome.computed} computed, {outcome.resumed} resumed)", shown)
+    print_table(f"sweep of {result['variants']} variants ({outcome.computed} computed, {outcome.resumed} resumed)", shown)
     console = Console(file=sys.stdout, highlight=False)
     for column, best in result["best"].items():
         values = ", ".join(f"{k} = {v}" for k, v in best.items() if k not in ("variant", "value"))
@@ -229,7 +246,7 @@ def sweep(
         console.print(f"rank {row['rank']}: {values}", markup=False)
     for reason, count in result["failures"].items():
         console.print(f"{count} failed: {reason}", markup=False)
-    for p in files:
+    for p in result["files"]:
         console.print(f"wrote {p}", markup=False)
 
 

@@ -445,14 +445,22 @@ def run_sweep(
     if len(table):
         table = table.sort_values("variant", kind="stable").reset_index(drop=True)
     if out is not None:
-        _replace(out, table)
+        write_table(out, table)
         shutil.rmtree(parts_folder(out), ignore_errors=True)
     cpu = time.process_time() - cpu_start if in_process else worker_seconds
     return SweepOutcome(table, todo_count, len(done_keys), time.perf_counter() - start, cpu)
 
 
-def _replace(out: Path, table: pd.DataFrame) -> None:
-    """Write ``out`` whole (a temporary name renamed over it)."""
+def write_table(out: Path, table: pd.DataFrame) -> None:
+    """Write a sweep's table to the Parquet file ``out`` whole (a temporary name renamed over it).
+
+    Parameters
+    ----------
+    out : Path
+        The Parquet file.
+    table : pandas.DataFrame
+        The table.
+    """
     fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
     os.close(fd)
     try:
