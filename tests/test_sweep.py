@@ -354,7 +354,7 @@ def test_sample_sweeps_rank_the_feasible_and_mark_the_pareto_front(tmp_path, cap
             a = table["pair.center_distance"].to_numpy(float)
             by_hand = {
                 "displacement_per_rev_mm3 / pair.center_distance ** 3": table["displacement_per_rev_mm3"].to_numpy(float) / a**3,
-                "blow_hole_area_mm2 / pair.center_distance ** 2": table["blow_hole_area_mm2"].to_numpy(float) / a**2,
+                "contact_line_length_mm / pair.center_distance": table["contact_line_length_mm"].to_numpy(float) / a,
             }
             (direction, expression), = spec.items()
             values = by_hand[expression]
