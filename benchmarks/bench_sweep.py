@@ -1,13 +1,20 @@
-"""Speed and scale of ``rotorcad sweep`` (issue "design sweeps"): variants per second per core
-for the pair and Rinder's analysis in a plain loop; the same work through Dask with one worker
-(the scheduler's overhead); a 10 000-variant sweep on every core with the peak memory of the
-process tree (benchmarks/peak_tree.py). Targets: >= 40 variants/s per core, overhead < 10 %,
-10 000 variants < 3 min, < 1 GB. Run by hand: ``python benchmarks/bench_sweep.py [variants]``.
+"""Speed and scale of ``rotorcad sweep`` (issue 27): variants per CPU-second per core for the pair
+and Rinder's analysis, the memory of the plan from 1 k to 1 M variants, and a whole sweep on every
+core with the peak memory of its process tree.
+
+CPU time (``time.process_time``), not wall time: the machine is shared. Two workloads in this
+process (``--workers 0``): a Latin hypercube over the profile and the lead (every variant a new
+transverse section: nothing to reuse), and a designer's grid over the profile, lead and length
+(few sections, many leads and lengths: a worker reuses the section of a pair it built). Target:
+>= 100 variants per CPU-second per core; the plan's memory flat in the number of variants.
+Run by hand: ``python benchmarks/bench_sweep.py [variants of the whole sweep]``.
 """
 
 from __future__ import annotations
 
+import json
 import os
+import subprocess
 import sys
 import tempfile
 import time
@@ -16,73 +23,108 @@ from pathlib import Path
 from peak_tree import run_with_peak
 
 from rotorcad.cli.common import load_toml
-from rotorcad.cli.sweep_run import run_sweep
-from rotorcad.cli.sweep_tasks import evaluate
-from rotorcad.sweep_plan import sweep_plan
+from rotorcad.sweep.plan import sweep_plan
+from rotorcad.sweep.run import run_sweep
+from rotorcad.sweep.tasks import clear_cache
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE = ROOT / "samples" / "rack_involute_5_6.toml"
-VARY = """
-[vary]
-"profile.lobe_width" = {min = 0.62, max = 0.75}
-"profile.driving_angle_deg" = {min = 25.0, max = 35.0}
-"pair.lead" = {min = 220.0, max = 380.0}
+LHS = {
+    "sweep": {"method": "latin-hypercube", "samples": 200, "seed": 1},
+    "vary": {
+        "profile.lobe_width": {"min": 0.62, "max": 0.75},
+        "profile.driving_angle_deg": {"min": 25.0, "max": 35.0},
+        "pair.lead": {"min": 220.0, "max": 380.0},
+    },
+}
+GRID = {
+    "vary": {
+        "profile.lobe_width": [0.62, 0.66, 0.7, 0.74],
+        "pair.lead": {"from": 200.0, "to": 390.0, "step": 10.0},
+        "pair.length": [150.0, 170.0, 190.0],
+    }
+}
+
+
+def rate(data: dict) -> tuple[float, int, int]:
+    """Variants per CPU-second of a sweep run in this process; the count and how many were built."""
+    plan = sweep_plan(data, load_toml(BASE))
+    clear_cache()
+    start = time.process_time()
+    outcome = run_sweep(plan, None, workers=0)
+    cpu = time.process_time() - start
+    return plan.count / cpu, plan.count, int(outcome.table["ok"].sum())
+
+
+PLAN_CHILD = """
+import json, resource, sys, time
+from rotorcad.cli.common import load_toml
+from rotorcad.sweep.plan import sweep_plan
+data, base = json.loads(sys.argv[1]), load_toml(sys.argv[2])
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+start = time.perf_counter()
+plan = sweep_plan(data, base)
+n = sum(1 for _ in plan.iter_variants())
+assert n == plan.count
+after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print(after - before, after, time.perf_counter() - start)
 """
 
 
+def plan_memory(count: int, method: str) -> tuple[float, float, float]:
+    """Plan ``count`` variants and read them all in a fresh process.
+
+    Returns the growth of its peak resident memory over the peak after its imports (MB), that peak
+    (MB), and the seconds it takes.
+    """
+    if method == "grid":
+        side = round(count ** (1 / 3))
+        data = {
+            "vary": {
+                "pair.lead": [float(v) for v in range(200, 200 + side)],
+                "pair.length": [float(v) for v in range(100, 100 + side)],
+                "profile.lobe_width": [0.6 + i * 1e-4 for i in range(count // side**2)],
+            }
+        }
+    else:
+        data = {"sweep": {"method": method, "samples": count, "seed": 1}, "vary": LHS["vary"]}
+    out = subprocess.run(
+        [sys.executable, "-c", PLAN_CHILD, json.dumps(data), str(BASE)], capture_output=True, text=True, check=True
+    ).stdout.split()
+    return float(out[0]) / 1024, float(out[1]) / 1024, float(out[2])
+
+
 def main() -> None:
-    big = int(sys.argv[1]) if len(sys.argv) > 1 else 10_000
+    big = int(sys.argv[1]) if len(sys.argv) > 1 else 2_000
     print(f"load average {os.getloadavg()[0]:.2f}, {os.cpu_count()} cores")
-    data = {
-        "sweep": {"method": "latin-hypercube", "samples": 300, "seed": 1},
-        "vary": {
-            "profile.lobe_width": {"min": 0.62, "max": 0.75},
-            "profile.driving_angle_deg": {"min": 25.0, "max": 35.0},
-            "pair.lead": {"min": 220.0, "max": 380.0},
-        },
-    }
-    plan = sweep_plan(data, load_toml(BASE))
-    variants = plan.variants()
-    evaluate(plan.base, None, None, (), variants[0])  # imports
-    start = time.perf_counter()
-    rows = [evaluate(plan.base, None, None, (), v) for v in variants]
-    loop = time.perf_counter() - start
-    print(f"plain loop, one core: {len(rows) / loop:.1f} variants/s ({loop / len(rows) * 1e3:.1f} ms each, target >= 40/s)")
-    # the scheduler's overhead: Dask with one worker on n and on 2n variants; the difference of the
-    # two runs is the marginal cost of n variants (cluster start, imports in the worker and stop cancel)
-    walls = []
-    for count in (len(variants), 2 * len(variants)):
-        data["sweep"]["samples"] = count
-        start = time.perf_counter()
-        run_sweep(sweep_plan(data, load_toml(BASE)), None, workers=1)
-        walls.append(time.perf_counter() - start)
-    marginal = walls[1] - walls[0]
-    overhead = (marginal - loop) / loop * 100
-    print(
-        f"Dask, one worker: {walls[0]:.2f} s for {len(variants)}, {walls[1]:.2f} s for {2 * len(variants)} variants; "
-        f"{marginal:.2f} s for {len(variants)} more against {loop:.2f} s in the loop: overhead {overhead:.1f} % "
-        f"(target < 10 %); fixed cost (cluster start, worker imports, stop) {walls[0] - marginal:.2f} s"
-    )
+    rate(GRID | {"vary": {"profile.lobe_width": [0.62], "pair.lead": [300.0]}})  # imports
+    for name, data in (("Latin hypercube, every section new", LHS), ("grid: 4 sections x 20 leads x 3 lengths", GRID)):
+        per_cpu_s, count, ok = rate(data)
+        print(f"{name}: {count} variants ({ok} built), {per_cpu_s:.1f} variants per CPU-second "
+              f"({1e3 / per_cpu_s:.1f} ms each; target >= 100)")
+    for method in ("latin-hypercube", "random", "grid"):
+        for count in (1_000, 10_000, 100_000, 1_000_000):
+            growth, peak, seconds = plan_memory(count, method)
+            print(f"plan only, {method}, {count} variants: peak memory +{growth:.1f} MB (to {peak:.0f} MB), {seconds:.1f} s")
     with tempfile.TemporaryDirectory() as tmp:
         sweep_file = Path(tmp) / "big.toml"
+        leads = max(1, big // 12)
         sweep_file.write_text(
-            f'[sweep]\nbase = "{BASE.as_posix()}"\nmethod = "latin-hypercube"\nsamples = {big}\nseed = 2\n' + VARY
+            f'[sweep]\nbase = "{BASE.as_posix()}"\n[vary]\n"profile.lobe_width" = [0.62, 0.66, 0.7, 0.74]\n'
+            '"pair.length" = [150.0, 170.0, 190.0]\n'
+            f'"pair.lead" = {{from = 200.0, to = {200.0 + 0.01 * (leads - 1):.2f}, step = 0.01}}\n'
         )
+        cpu0 = os.times()
         wall, peak, status = run_with_peak(
-            [
-                sys.executable,
-                "-m",
-                "rotorcad.cli.main",
-                "sweep",
-                str(sweep_file),
-                "--out",
-                str(Path(tmp) / "big.parquet"),
-                "--quiet",
-            ]
+            [sys.executable, "-m", "rotorcad.cli.main", "sweep", str(sweep_file), "--out", str(Path(tmp) / "b.parquet")]
+            + ["--quiet"]
         )
+        cpu1 = os.times()
+        cpu = (cpu1.children_user + cpu1.children_system) - (cpu0.children_user + cpu0.children_system)
+    n = 12 * leads
     print(
-        f"{big} variants on {os.cpu_count()} workers: {wall:.1f} s ({big / wall:.1f} variants/s; target < 180 s), "
-        f"peak memory of the process tree {peak:.0f} MB (target < 1 GB), exit {status}"
+        f"{n} variants (grid) on {os.cpu_count()} workers: {wall:.1f} s wall, {cpu:.1f} CPU-s of the process tree "
+        f"({n / cpu:.1f} variants per CPU-second, cluster start included), peak memory {peak:.0f} MB, exit {status}"
     )
 
 

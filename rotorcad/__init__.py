@@ -108,8 +108,11 @@ _API = {
     "design_summary": "rotorcad.rotor_build",
     "GasDeflection": "rotorcad.deflection",
     "GearCoupling": "rotorcad.coupling",
-    "sweep": "rotorcad.cli.sweep_run",
+    "sweep": "rotorcad.sweep",
 }
+_ENTRY = {"sweep": "rotorcad.cli.sweep_run"}
+"""Public functions whose body is the application's (reading files, the ``hob`` verdict): the
+package :mod:`rotorcad.sweep` is callable and forwards here."""
 
 
 def __getattr__(name: str) -> object:
@@ -131,7 +134,8 @@ def __getattr__(name: str) -> object:
         A name that is not part of the API.
     """
     if name in _API:
-        value = getattr(importlib.import_module(_API[name]), name)
+        module = importlib.import_module(_API[name])
+        value = module if module.__name__ == f"{__name__}.{name}" else getattr(module, name)
         globals()[name] = value
         return value
     raise AttributeError(f"module 'rotorcad' has no attribute {name!r}")

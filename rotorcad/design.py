@@ -141,7 +141,8 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
     """Check a screw-rotor design mapping (CONTRACT.md "Design files").
 
     Tables: [pair], [profile] (family and its parameters, or a points file), optional [housing],
-    [operating], [deflection], [export].
+    [operating], [deflection], [export]. Numbers of [pair], [profile] and [housing] may be stated
+    as expressions of the centre distance and tooth counts (:mod:`rotorcad.linked_values`).
 
     Parameters
     ----------
@@ -164,6 +165,9 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
         Naming the table or key that is wrong (unknown, of the wrong type, missing or out of
         range).
     """
+    from rotorcad.linked_values import resolve_expressions
+
+    data = resolve_expressions(data)  # values stated as expressions of a, z1, z2 (rotorcad.linked_values)
     for table in data:
         if table not in ("pair", "profile", "housing", "operating", "deflection", "export"):
             allowed = "one of [pair], [profile], [housing], [operating], [deflection], [export]"

@@ -178,8 +178,8 @@ def test_sweep_pictures_label_columns_with_units(tmp_path):
     from rotorcad.cli.common import Outputs
     from rotorcad.sweep_plots import column_label, plot_effects, plot_pareto
 
-    assert column_label("blow_hole_area_mm2") == "blow hole area [mm²]"
-    assert column_label("pair.lead") == "pair.lead [mm]" and column_label("profile.driving_angle_deg").endswith("[°]")
+    assert column_label("blow_hole_area_mm2") == "blow-hole area [mm²]"
+    assert column_label("pair.lead") == "male lead [mm]" and column_label("profile.driving_angle_deg") == "driving angle [°]"
     rng = np.random.default_rng(1)
     x, y, c = rng.random(20), rng.random(20), rng.random(20)
     lead = np.repeat([260.0, 320.0], 10)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -128,7 +129,7 @@ def test_sweep_rows_equal_rotor_json_of_each_variants_design(tmp_path, capsys):
 def test_failing_variants_are_rows_with_their_reason(tmp_path, capsys):
     sweep_file = _write(tmp_path, '[vary]\n"pair.male_teeth" = [5, 13]\n"pair.male_root_radius" = [45.0, 64.0]\n')
     out = tmp_path / "r.parquet"
-    assert main(["sweep", str(sweep_file), "--out", str(out), "--workers", "1"]) == 0
+    assert main(["sweep", str(sweep_file), "--out", str(out), "--workers", "0"]) == 0
     text = capsys.readouterr().out
     table = pd.read_parquet(out)
     assert len(table) == 4 and table["ok"].sum() == 1
@@ -143,7 +144,8 @@ def test_a_running_dask_cluster_gives_the_same_table(tmp_path, capsys):
     from dask.distributed import LocalCluster
 
     sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.62, 0.66, 0.7, 0.74]\n"pair.lead" = [250.0, 300.0]\n')
-    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "local.parquet"), "--quiet"]) == 0
+    # in this process (--workers 0, no cluster) and on a running cluster: the same table
+    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "local.parquet"), "--quiet", "--workers", "0"]) == 0
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         code = main(
             ["sweep", str(sweep_file), "--out", str(tmp_path / "cluster.parquet"), "--scheduler", cluster.scheduler_address]
@@ -163,8 +165,13 @@ def test_killed_sweep_resumes_without_repeating_or_losing_a_variant(tmp_path):
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and len(list(parts_folder(out).glob("part-*.parquet"))) < 3:
         time.sleep(0.05)
-    os.killpg(first.pid, signal.SIGKILL)  # the sweep and its workers, half-way
-    first.wait()
+    os.kill(first.pid, signal.SIGKILL)  # the sweep alone, half-way: its workers and helpers must go with it
+    try:
+        _, killed_err = first.communicate(timeout=90)  # returns once no process of the sweep holds its stderr
+    except subprocess.TimeoutExpired:
+        os.killpg(first.pid, signal.SIGKILL)
+        raise AssertionError("a process of the killed sweep outlived it by 90 s") from None
+    assert "leaked" not in killed_err.decode() and "Traceback" not in killed_err.decode()  # issue 24
     parts = sorted(parts_folder(out).glob("part-*.parquet"))
     done = pd.concat([pd.read_parquet(p) for p in parts])
     assert 0 < len(done) < 400 and not out.exists()
@@ -184,7 +191,7 @@ def test_python_api_returns_the_table(tmp_path, capsys):
     import rotorcad
 
     sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.66, 0.7]\n')
-    table = rotorcad.sweep(sweep_file, workers=1)
+    table = rotorcad.sweep(sweep_file, workers=0)
     assert list(table["profile.lobe_width"]) == [0.66, 0.7] and table["ok"].all()
     # the base design (lobe width 0.6 -> 0.7 written by hand into a copy) through `rotorcad rotor --json`
     design = tmp_path / "w07.toml"
@@ -212,7 +219,7 @@ def test_optional_analyses_hobbability_interference_volume_clearance(tmp_path, c
 
     compute = 'compute = ["hobbability", "interference", "volume", "clearance"]\nclearance = 0.05\n'
     sweep_file = _write(tmp_path, compute + '\n[vary]\n"profile.lobe_width" = [0.7]\n')
-    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "1", "--quiet"]) == 0
+    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "0", "--quiet"]) == 0
     capsys.readouterr()
     row = pd.read_parquet(tmp_path / "r.parquet").iloc[0]
     assert row["ok"], row["reason"]
@@ -236,7 +243,7 @@ def test_pareto_front_equals_brute_force_and_pictures_are_written(tmp_path, caps
     assert np.array_equal(pareto_mask(x, y), front)
     assert np.array_equal(pareto_mask(x, -y, True, False), front)  # larger is better for the second
     sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.64, 0.68, 0.72]\n"pair.lead" = [260.0, 320.0]\n')
-    args = ["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "1", "--quiet"]
+    args = ["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "0", "--quiet"]
     args += ["--pareto", str(tmp_path / "p.png"), "--effects", str(tmp_path / "e.png")]
     assert main(args) == 0
     capsys.readouterr()
@@ -265,7 +272,7 @@ def test_vary_typos_and_wrong_types_are_refused_before_anything_is_computed(tmp_
 def test_results_of_another_sweep_are_never_taken_nor_lost_and_a_longer_list_computes_only_the_new(tmp_path, capsys):
     out = tmp_path / "r.parquet"
     first = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.66, 0.7]\n')
-    assert main(["sweep", str(first), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    assert main(["sweep", str(first), "--out", str(out), "--workers", "0", "--quiet"]) == 0
     before = out.read_bytes()
     # the same values on another base design (length changed): refused, the file kept
     changed = tmp_path / "changed.toml"
@@ -277,7 +284,7 @@ def test_results_of_another_sweep_are_never_taken_nor_lost_and_a_longer_list_com
     assert "rows are of another sweep" in capsys.readouterr().err and out.read_bytes() == before
     # one more value in the list: only that variant is computed
     longer = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.64, 0.66, 0.7]\n', "longer.toml")
-    assert main(["sweep", str(longer), "--out", str(out), "--workers", "1", "--json"]) == 0
+    assert main(["sweep", str(longer), "--out", str(out), "--workers", "0", "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert (summary["computed"], summary["resumed"]) == (1, 2)
     assert list(pd.read_parquet(out)["profile.lobe_width"]) == [0.64, 0.66, 0.7]
@@ -296,6 +303,232 @@ def test_outputs_and_objectives_are_checked_before_the_work(tmp_path, capsys):
 
 def test_failures_are_counted_by_cause_not_by_value(tmp_path, capsys):
     sweep_file = _write(tmp_path, '[vary]\n"pair.male_root_radius" = [64.0, 65.0, 66.0]\n')
-    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "1", "--json"]) == 0
+    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "0", "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["failed"] == 3 and list(summary["failures"].values()) == [3]
+
+
+# --- issue 27: linked values, family axis, steering, streaming, the commands' analyses -----------
+
+SAMPLES = ROOT / "samples"
+
+
+def _dominated(cost: np.ndarray, i: int) -> bool:
+    """Brute force (the definition of dominance, Deb 2001, ch. 2): some row at most as large in every column, smaller in one."""
+    return bool(np.any(np.all(cost <= cost[i], axis=1) & np.any(cost < cost[i], axis=1)))
+
+
+@pytest.mark.parametrize(("sample", "samples"), [("sweep_rack_involute.toml", 12), ("sweep_tooth_counts.toml", None)])
+def test_sample_sweeps_rank_the_feasible_and_mark_the_pareto_front(tmp_path, capsys, sample, samples):
+    # the samples as they are (the Latin hypercube one with fewer draws, to stay fast); no verdict of
+    # theirs is pinned: the test checks the columns against their definitions, computed here
+    text = (SAMPLES / sample).read_text()
+    if samples is not None:
+        text = text.replace("samples = 60", f"samples = {samples}")
+    sweep_file = tmp_path / sample
+    sweep_file.write_text(text)
+    out, front_csv = tmp_path / "r.parquet", tmp_path / "front.csv"
+    args = ["sweep", str(sweep_file), "--out", str(out), "--workers", "0", "--json", "--top", "3", "--pareto-csv", str(front_csv)]
+    assert main(args) == 0
+    summary = json.loads(capsys.readouterr().out)
+    table = pd.read_parquet(out)
+    steer_data = load_toml(sweep_file)
+    # feasible: built and every constraint of the file, evaluated here from its text
+    feasible = table["ok"].to_numpy(bool).copy()
+    for column, condition in steer_data["constraints"].items():
+        values = table[column]
+        if isinstance(condition, bool):
+            feasible &= (values.fillna(not condition).astype(bool) == condition).to_numpy()
+        else:
+            op, number = condition.split()
+            x = values.to_numpy(float)
+            feasible &= {"<": x < float(number), "==": x == float(number), "<=": x <= float(number)}[op]
+    assert np.array_equal(table["feasible"].to_numpy(bool), feasible)
+    # the objectives as costs (smaller better), evaluated here
+    costs = []
+    for name, spec in steer_data["objectives"].items():
+        if spec in ("min", "max"):
+            values = table[name].to_numpy(float)
+            costs.append(values if spec == "min" else -values)
+        else:  # the samples' expressions, computed here
+            a = table["pair.center_distance"].to_numpy(float)
+            by_hand = {
+                "displacement_per_rev_mm3 / pair.center_distance ** 3": table["displacement_per_rev_mm3"].to_numpy(float) / a**3,
+                "contact_line_length_mm / pair.center_distance": table["contact_line_length_mm"].to_numpy(float) / a,
+            }
+            (direction, expression), = spec.items()
+            values = by_hand[expression]
+            assert np.allclose(table[f"objective.{name}"], values, equal_nan=True)
+            costs.append(values if direction == "min" else -values)
+    cost = np.column_stack(costs)
+    usable = feasible & np.all(np.isfinite(cost), axis=1)
+    rows = np.flatnonzero(usable)
+    front = np.zeros(len(table), bool)
+    front[rows] = [not _dominated(cost[rows], k) for k in range(len(rows))]
+    assert np.array_equal(table["pareto"].to_numpy(bool), front)
+    assert summary["pareto_front"] == front.sum() and summary["feasible"] == feasible.sum()
+    # rank: 1..feasible, the front first; the infeasible unranked
+    rank = table["rank"].to_numpy()
+    assert sorted(rank[usable]) == list(range(1, usable.sum() + 1)) and np.all(rank[~usable] == 0)
+    if front.any():
+        assert rank[front].max() == front.sum()
+    assert [r["rank"] for r in summary["top"]] == list(range(1, min(3, usable.sum()) + 1))
+    # the CSV holds the front's members
+    members = pd.read_csv(front_csv)
+    assert sorted(members["variant"]) == sorted(table.loc[front, "variant"])
+
+
+def test_tooth_count_sweep_keeps_proportions_and_the_family_is_an_axis():
+    # the sample's linked radii, resolved by hand for z1/z2 = 3/7 at a = 160 (m = 2a/(z1+z2) = 32,
+    # r1w = a z1/(z1+z2) = 48): the female follows the male, so every pair closes at the centre distance
+    from rotorcad.design import rotor_design
+
+    plan, folder, _ = load_sweep(SAMPLES / "sweep_tooth_counts.toml")
+    values = {"pair.male_teeth": 3, "pair.female_teeth": 7, "pair.center_distance": 160.0, "profile.family": "n-rack"}
+    settings = rotor_design(plan.design(next(v for v in plan.iter_variants() if v.values == values)), folder)
+    pair = settings["pair"]
+    assert settings["family"] == "n-rack" and "lobe_width" not in settings["params"]  # the N rack's own parameters
+    assert pair["male_tip_radius"] == pytest.approx(48 + 1.39 * 32) and pair["male_root_radius"] == pytest.approx(48 - 0.107 * 32)
+    assert pair["female_tip_radius"] == pytest.approx(160 - (48 - 0.107 * 32))
+    assert pair["lead"] == pytest.approx(2.586 * 160)
+
+
+def test_linked_values_are_evaluated_safely_and_refused_by_key(tmp_path, capsys):
+    from rotorcad.design import rotor_design
+
+    base = load_toml(BASE)
+    linked = apply(base, {"pair.female_tip_radius": "a - male_root_radius", "pair.lead": "sqrt(a**2) * 300 / 116"})
+    settings = rotor_design(linked)
+    assert settings["pair"]["female_tip_radius"] == 116.0 - 45.0 and settings["pair"]["lead"] == pytest.approx(300.0)
+    # the same design typed as numbers gives the same `rotor --json`
+    (tmp_path / "linked.toml").write_text(tomli_w.dumps(linked))
+    assert main(["rotor", str(tmp_path / "linked.toml"), "--json"]) == 0
+    a = json.loads(capsys.readouterr().out)
+    assert main(["rotor", str(BASE), "--json"]) == 0
+    b = json.loads(capsys.readouterr().out)
+    assert a["contact_line_length"] == b["contact_line_length"] and a["blow_hole_area"] == b["blow_hole_area"]
+    for text, words in [
+        ("__import__('os').getpid()", "[pair] lead must be a number or an expression"),
+        ("a.__class__", "[pair] lead must be"),
+        ("2 * b", "unknown name 'b'"),
+        ("lead + 1", "a cycle"),
+        ("1 / (a - a)", "division by zero"),
+        ("10 ** 400", "exponent above 64"),
+    ]:
+        with pytest.raises(DesignError, match=re.escape(words)):
+            rotor_design(apply(base, {"pair.lead": text}))
+    with pytest.raises(DesignError, match=r"\[pair\] center_distance must be a number"):
+        rotor_design(apply(base, {"pair.center_distance": "100 + 16"}))
+
+
+def test_range_end_off_the_step_grid_is_kept():
+    plan = sweep_plan({"vary": {"pair.lead": {"from": 250.0, "to": 330.0, "step": 50.0}}}, load_toml(BASE))
+    assert [v.values["pair.lead"] for v in plan.variants()] == [250.0, 300.0, 330.0]
+    plan = sweep_plan({"vary": {"pair.male_teeth": {"from": 3, "to": 8, "step": 2}}}, load_toml(BASE))
+    assert [v.values["pair.male_teeth"] for v in plan.variants()] == [3, 5, 7, 8]
+
+
+def test_the_plan_is_streamed_its_memory_flat_and_a_table_too_large_is_refused():
+    import tracemalloc
+
+    base = load_toml(BASE)
+
+    def peak(count: int, whole: bool = False) -> float:
+        data = {"sweep": {"method": "latin-hypercube", "samples": count, "seed": 3}}
+        data["vary"] = {"pair.lead": {"min": 1.0, "max": 2.0}}
+        tracemalloc.start()
+        plan = sweep_plan(data, base)
+        n = len(plan.variants()) if whole else sum(1 for _ in plan.iter_variants())
+        top = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        assert n == count
+        return top
+
+    small, large, held = peak(5_000), peak(40_000), peak(40_000, whole=True)
+    assert large < 2 * small  # eight times the variants, about the same memory (blocks of 4096)
+    assert large < held / 10  # the list of the same 40 000 variants, for scale
+    # Latin hypercube of the streamed plan: one sample in each of n strata (McKay et al. 1979)
+    data = {"sweep": {"method": "latin-hypercube", "samples": 9_000, "seed": 5}, "vary": {"pair.lead": {"min": 0.0, "max": 1.0}}}
+    lead = np.array([v.values["pair.lead"] for v in sweep_plan(data, base).iter_variants()])
+    assert sorted(np.floor(lead * 9_000).astype(int)) == list(range(9_000))
+    # 5 M variants would need a results table of ~5 GB: refused before anything, naming the count that fits
+    data = {"sweep": {"method": "random", "samples": 5_000_000}, "vary": {"pair.lead": {"min": 1.0, "max": 2.0}}}
+    with pytest.raises(DesignError, match=r"\[sweep\] samples must be at most 2000000 variants"):
+        sweep_plan(data, base)
+
+
+def test_reusing_a_built_section_gives_the_numbers_of_a_fresh_build():
+    # variants that differ in lead, length and speed only share their transverse section; the
+    # reference is a fresh build of each (the cache cleared before every variant)
+    from rotorcad.sweep.tasks import clear_cache, evaluate
+
+    base = load_toml(BASE)
+    data = {"vary": {"pair.lead": [250.0, 320.0], "pair.length": [150.0, 190.0], "operating.speed_rpm": [3000.0, 4500.0]}}
+    plan = sweep_plan(data, base)
+    clear_cache()
+    reused = [evaluate(plan.base, None, None, (), v) for v in plan.variants()]
+    fresh = []
+    for v in plan.variants():
+        clear_cache()
+        fresh.append(evaluate(plan.base, None, None, (), v))
+    for a, b in zip(reused, fresh, strict=True):
+        a.pop("seconds"), b.pop("seconds")
+        assert a == b
+    assert len({r["contact_line_length_mm"] for r in reused}) > 1  # the lead and length do change results
+
+
+def test_interference_column_is_that_of_rotorcad_interfere(tmp_path, capsys):
+    # the same angles (72), tolerance (0.005 mm) and housing as the command: the same numbers
+    sweep_file = _write(tmp_path, 'compute = ["interference"]\n[vary]\n"profile.lobe_width" = [0.7]\n')
+    assert main(["sweep", str(sweep_file), "--out", str(tmp_path / "r.parquet"), "--workers", "0", "--quiet"]) == 0
+    capsys.readouterr()
+    row = pd.read_parquet(tmp_path / "r.parquet").iloc[0]
+    design = tmp_path / "v.toml"
+    design.write_text(tomli_w.dumps(apply(load_toml(BASE), {"profile.lobe_width": 0.7})))
+    code = main(["interfere", str(design), "--json", "--quiet"])
+    reference = json.loads(capsys.readouterr().out)
+    assert code == (1 if reference["interferes"] else 0)
+    assert row["interference_volume_mm3"] == pytest.approx(reference["max_intersection_volume_raw"], rel=1e-12, abs=1e-15)
+    assert row["housing_intersection_volume_mm3"] == pytest.approx(reference["housing_intersection_volume"], rel=1e-12, abs=1e-15)
+    assert bool(row["interferes"]) == reference["interferes"]
+
+
+def test_steering_refusals_name_the_key(tmp_path):
+    from rotorcad.cli.sweep_run import load_steering
+
+    for extra, words in [
+        ('[constraints]\nblow_hole = "< 1"\n', "[constraints] blow_hole must be a column of this sweep"),
+        ('[constraints]\nblow_hole_area_mm2 = "about 1"\n', "[constraints] blow_hole_area_mm2 must be true, false, or a"),
+        ("[constraints]\nmeshline_closed = 1\n", "[constraints] meshline_closed must be true or false"),
+        ('[objectives]\nblow_hole_area_mm2 = "least"\n', '[objectives] blow_hole_area_mm2 must be "min" or "max"'),
+        ('[objectives]\nx = {min = "__import__(1)"}\n', "[objectives] x must be a column or an expression"),
+        ('[objectives]\nx = {min = "wrap_angle_deg / colour"}\n', "unknown column"),
+    ]:
+        sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.7]\n' + extra)
+        plan, _, _ = load_sweep(sweep_file)
+        with pytest.raises(DesignError, match=re.escape(words)):
+            load_steering(sweep_file, plan)
+
+
+def test_bad_scheduler_is_refused_at_once_and_no_dashboard_warning(tmp_path, capsys):
+    import socket
+
+    sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.66, 0.7]\n')
+    out = tmp_path / "r.parquet"
+    start = time.monotonic()
+    assert main(["sweep", str(sweep_file), "--out", str(out), "--scheduler", "tcp://127.0.0.1:1"]) == 2
+    assert "--scheduler must be" in capsys.readouterr().err
+    assert time.monotonic() - start < 8 and not parts_folder(out).exists() and not out.exists()
+    # another dashboard on port 8787: not a word of it on stderr (issue 24)
+    holder = socket.socket()
+    try:
+        holder.bind(("", 8787))
+        holder.listen()
+    except OSError:
+        pass  # something holds it already: the case to test
+    try:
+        command = [sys.executable, "-m", "rotorcad.cli.main", "sweep", str(sweep_file), "--out", str(out), "--workers", "1"]
+        run = subprocess.run([*command, "--json", "--quiet"], capture_output=True, text=True, timeout=300)
+    finally:
+        holder.close()
+    assert run.returncode == 0 and run.stderr == ""

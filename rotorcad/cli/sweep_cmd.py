@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -26,7 +27,13 @@ from rotorcad.errors import DesignError
 )
 @click.option("--csv", type=click.Path(path_type=Path, dir_okay=False), help="Also write the table as CSV.")
 @click.option("--scheduler", help="Address of a running dask.distributed scheduler (default: a local cluster).")
-@click.option("--workers", type=int, help="Worker processes of the local cluster (default: one per core).")
+@click.option(
+    "--workers",
+    type=int,
+    help="Worker processes of the local cluster; 0 runs every variant in this process, without a cluster. "
+    "Default: in this process for fewer than 200 variants to compute (a cluster costs about 5 CPU-s to start), "
+    "else one worker per core.",
+)
 @click.option(
     "--batch",
     type=int,
@@ -36,9 +43,20 @@ from rotorcad.errors import DesignError
 @click.option("--pareto", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the Pareto front of two objectives.")
 @click.option(
     "--objectives",
-    default="blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3",
+    help="Columns of the Pareto plot: x,y[,colour] (smaller is better, displacement larger). Default: the first two "
+    "[objectives] of the sweep file, else blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3.",
+)
+@click.option(
+    "--top",
+    type=int,
+    default=10,
     show_default=True,
-    help="Columns of the Pareto plot: x,y[,colour] (smaller is better, displacement larger).",
+    help="Feasible variants listed by rank (0..10000; [constraints] and [objectives] of the sweep file).",
+)
+@click.option(
+    "--pareto-csv",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="CSV of the variants on the Pareto front of the [objectives] (needs [objectives]).",
 )
 @click.option(
     "--effects", type=click.Path(path_type=Path, dir_okay=False), help="PNG of each varied value's effect on an objective."
@@ -59,7 +77,9 @@ def sweep(
     workers: int | None,
     batch: int | None,
     pareto: Path | None,
-    objectives: str,
+    objectives: str | None,
+    top: int,
+    pareto_csv: Path | None,
     effects: Path | None,
     objective: str,
     best_designs: Path | None,
@@ -70,44 +90,33 @@ def sweep(
 
     A sweep file holds a base design and the values to vary: lists, ranges, or bounds drawn at random
     or by Latin hypercube. A variant that cannot be built is a row with its reason. Interrupted and
-    run again, the sweep computes only what is missing.
+    run again, the sweep computes only what is missing. [constraints] and [objectives] of the file
+    mark the feasible variants, the Pareto front and a ranking (columns feasible, pareto, rank).
     """
-    from exports.atomic import check_writable
-    from rotorcad.cli.sweep_run import load_sweep, run_sweep
-    from rotorcad.cli.sweep_tasks import OBJECTIVES, result_columns
+    from rotorcad.cli.sweep_run import load_steering, load_sweep, run_sweep, sweep_columns
+    from rotorcad.sweep.run import write_table
 
-    if workers is not None and not 1 <= workers <= 256:
-        raise InputError(f"--workers must be a whole number from 1 to 256 (got {workers}).")
-    if batch is not None and not 1 <= batch <= 10_000:
-        raise InputError(f"--batch must be a whole number from 1 to 10000 (got {batch}).")
-    if out.exists() and out.is_dir():
-        raise InputError(f"--out must be a file name, but {out} is a folder.")
-    if out.suffix.lower() != ".parquet":
-        raise InputError(f"--out must name a .parquet file (got {out}); --csv writes CSV beside it.")
-    targets = {"--out": out, "--csv": csv, "--pareto": pareto, "--effects": effects}
-    for option, path in targets.items():  # every output checked before hours of work
-        if path is not None:
-            try:
-                check_writable(Path(path), option)
-            except DesignError as exc:
-                raise InputError(exc.sentence()) from None
-    named = [Path(p).resolve() for p in targets.values() if p is not None]
-    if len(set(named)) < len(named):
-        raise InputError("--out, --csv, --pareto and --effects must name different files.")
+    targets = {"--out": out, "--csv": csv, "--pareto": pareto, "--effects": effects, "--pareto-csv": pareto_csv}
+    _check_options(workers, scheduler, batch, top, out, targets)
+    try:
+        plan, folder, points = load_sweep(sweep_file)
+        steer = load_steering(sweep_file, plan)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    if pareto_csv is not None and not steer.objectives:
+        raise InputError("--pareto-csv needs [objectives] in the sweep file (the front of what?).")
+    named_objectives = [o.name if o.expression == o.name else f"objective.{o.name}" for o in steer.objectives]
+    if objectives is None:
+        objectives = ",".join(named_objectives[:2]) if len(named_objectives) >= 2 else DEFAULT_AXES
     axes = [c.strip() for c in objectives.split(",") if c.strip()]
     if pareto is not None and len(axes) not in (2, 3):
         raise InputError(f"--objectives must name 2 or 3 columns (got {objectives!r}).")
-    try:
-        plan, folder, points = load_sweep(sweep_file)
-    except DesignError as exc:
-        raise InputError(exc.sentence()) from None
-    columns = result_columns(plan.extras)
+    columns = sweep_columns(plan)[0] + [f"objective.{o.name}" for o in steer.objectives if o.expression != o.name]
     for option, wanted in (("--objectives", axes if pareto else []), ("--objective", [objective] if effects else [])):
         unknown = [c for c in wanted if c not in columns]
         if unknown:
             raise InputError(f"{option} must name result columns: {', '.join(columns)} (got {unknown[0]!r}).")
-    total = plan.count
-    bar = Steps("sweep", total, quiet, ("{task.fields[failed]} failed, {task.fields[rate]}/s",), failed=0, rate="-")
+    bar = Steps("sweep", plan.count, quiet, ("{task.fields[failed]} failed, {task.fields[rate]}/s",), failed=0, rate="-")
     started = time.perf_counter()
 
     def report(done: int, failed: int, _total: int) -> None:
@@ -119,67 +128,141 @@ def sweep(
             outcome = run_sweep(plan, folder, points, out, scheduler, workers, batch, progress=report)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    table = outcome.table
-    files = [str(out)]
-    writers = Outputs()
-    if csv is not None:
-        writers.add(csv, lambda p: table.to_csv(p, index=False), "--csv")
-    ok = table[table["ok"].astype(bool)] if len(table) else table
-    params = [c for c in table.columns if "." in c]
-    if pareto is not None:
-        from rotorcad.sweep_plots import plot_pareto
-
-        x, y = (ok[c].to_numpy(float) for c in axes[:2])
-        colour = ok[axes[2]].to_numpy(float) if len(axes) == 3 else None
-        smaller = (OBJECTIVES.get(axes[0], True), OBJECTIVES.get(axes[1], True))
-        names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
-        writers.add_figure(pareto, lambda: plot_pareto(x, y, colour, names, smaller, case=Path(sweep_file).name), "--pareto")
-    if effects is not None:
-        from rotorcad.sweep_plots import plot_effects
-
-        values = {p: _numeric(ok[p]) for p in params}
-        target = ok[objective].to_numpy(float)
-        writers.add_figure(effects, lambda: plot_effects(values, target, objective, case=Path(sweep_file).name), "--effects")
+    steered = bool(steer.constraints or steer.objectives)
+    if steered:
+        outcome = replace(outcome, table=steer.apply(outcome.table))
+        write_table(out, outcome.table)  # the Parquet file holds feasible, pareto and rank too
+    directions = {n: o.smaller for n, o in zip(named_objectives, steer.objectives, strict=True)}
+    pictures = {"--pareto": pareto, "--effects": effects, "axes": axes, "objective": objective, "directions": directions}
     best = outcome.best()
-    if best_designs is not None:
-        import tomli_w
-
-        from rotorcad.cli.common import output_folder
-        from rotorcad.sweep_plan import apply
-
-        output_folder(best_designs)
-        by_index = {v.index: v for v in plan.variants()}
-        for column, chosen in best.items():
-            design = apply(plan.base, by_index[chosen["variant"]].values)
-            if isinstance(design.get("profile", {}).get("points"), str):  # the points file from anywhere
-                design["profile"]["points"] = str((folder / design["profile"]["points"]).resolve())
-            writers.add(
-                best_designs / f"best_{column}.toml", lambda p, d=design: Path(p).write_text(tomli_w.dumps(d)), "--best-designs"
-            )
-    files += [str(p) for p in writers.write()]
+    files = [str(out), *_write_outputs(sweep_file, plan, folder, outcome.table, best, csv, pareto_csv, best_designs, pictures)]
     result: dict[str, Any] = {
-        "variants": len(table),
+        "variants": len(outcome.table),
         "computed": outcome.computed,
         "resumed": outcome.resumed,
         "failed": outcome.failed,
         "seconds": outcome.seconds,
         "variants_per_second": outcome.computed / outcome.seconds if outcome.computed else 0.0,
+        "cpu_seconds": outcome.cpu_seconds,
         "failures": outcome.failures(),
         "best": best,
         "files": files,
     }
+    if steered:
+        result["feasible"] = int(outcome.table["feasible"].sum())
+        result["pareto_front"] = int(outcome.table["pareto"].sum())
+        result["top"] = _top(outcome.table, top, named_objectives)
     if as_json:
         emit_json(result)
-        return
-    print_table(f"sweep of {len(table)} variants ({outcome.computed} computed, {outcome.resumed} resumed)", result)
+    else:
+        _print_result(result, outcome)
+
+
+def _check_options(workers: int | None, scheduler: str | None, batch: int | None, top: int, out: Path, targets: dict) -> None:
+    """Refuse bad options and unwritable outputs before any work, naming the option."""
+    from exports.atomic import check_writable
+
+    if workers is not None and not 0 <= workers <= 256:
+        raise InputError(f"--workers must be a whole number from 0 to 256 (got {workers}; 0 runs in this process).")
+    if workers == 0 and scheduler:
+        raise InputError("--workers 0 runs in this process: give it or --scheduler, not both.")
+    if batch is not None and not 1 <= batch <= 10_000:
+        raise InputError(f"--batch must be a whole number from 1 to 10000 (got {batch}).")
+    if not 0 <= top <= 10_000:
+        raise InputError(f"--top must be a whole number from 0 to 10000 (got {top}).")
+    if out.exists() and out.is_dir():
+        raise InputError(f"--out must be a file name, but {out} is a folder.")
+    if out.suffix.lower() != ".parquet":
+        raise InputError(f"--out must name a .parquet file (got {out}); --csv writes CSV beside it.")
+    for option, path in targets.items():  # every output checked before hours of work
+        if path is not None:
+            try:
+                check_writable(Path(path), option)
+            except DesignError as exc:
+                raise InputError(exc.sentence()) from None
+    named = [Path(p).resolve() for p in targets.values() if p is not None]
+    if len(set(named)) < len(named):
+        raise InputError("--out, --csv, --pareto, --effects and --pareto-csv must name different files.")
+
+
+def _write_outputs(
+    sweep_file: Path, plan, folder: Path, table, best: dict, csv, pareto_csv, best_designs, pictures: dict
+) -> list[str]:
+    """Write the CSV, the pictures, the Pareto CSV and the best designs; return the files written."""
+    from rotorcad.sweep.tasks import OBJECTIVES
+
+    writers = Outputs()
+    if csv is not None:
+        writers.add(csv, lambda p: table.to_csv(p, index=False), "--csv")
+    shown = table[table["feasible" if "feasible" in table else "ok"].astype(bool)]  # the feasible variants, or those built
+    params = [c for c in table.columns if "." in c and not c.startswith("objective.")]
+    axes, case = pictures["axes"], Path(sweep_file).name
+    if pictures["--pareto"] is not None:
+        from rotorcad.sweep.plots import plot_pareto
+
+        x, y = (shown[c].to_numpy(float) for c in axes[:2])
+        colour = shown[axes[2]].to_numpy(float) if len(axes) == 3 else None
+        directions = {**OBJECTIVES, **pictures["directions"]}
+        smaller = (directions.get(axes[0], True), directions.get(axes[1], True))
+        names = (axes[0], axes[1], axes[2] if len(axes) == 3 else None)
+        writers.add_figure(pictures["--pareto"], lambda: plot_pareto(x, y, colour, names, smaller, case=case), "--pareto")
+    if pictures["--effects"] is not None:
+        from rotorcad.sweep.plots import plot_effects
+
+        values = {p: _numeric(shown[p]) for p in params}
+        name = pictures["objective"]
+        target = shown[name].to_numpy(float)
+        writers.add_figure(pictures["--effects"], lambda: plot_effects(values, target, name, case=case), "--effects")
+    if pareto_csv is not None:
+        front = table[table["pareto"].astype(bool)].sort_values("rank")
+        writers.add(pareto_csv, lambda p: front.to_csv(p, index=False), "--pareto-csv")
+    if best_designs is not None:
+        import tomli_w
+
+        from rotorcad.cli.common import output_folder
+
+        output_folder(best_designs)
+        wanted = {chosen["variant"] for chosen in best.values()}
+        by_index = {v.index: v for v in plan.iter_variants() if v.index in wanted}  # one pass over the stream
+        for column, chosen in best.items():
+            design = plan.design(by_index[chosen["variant"]])
+            if isinstance(design.get("profile", {}).get("points"), str):  # the points file from anywhere
+                design["profile"]["points"] = str((folder / design["profile"]["points"]).resolve())
+            path = best_designs / f"best_{column}.toml"
+            writers.add(path, lambda p, d=design: Path(p).write_text(tomli_w.dumps(d)), "--best-designs")
+    return [str(p) for p in writers.write()]
+
+
+def _print_result(result: dict[str, Any], outcome) -> None:
+    """Print the summary table, the best variants, the top ranks, the failures and the files."""
+    shown = {k: v for k, v in result.items() if k != "top"}
+    print_table(f"sweep of {result['variants']} variants ({outcome.computed} computed, {outcome.resumed} resumed)", shown)
     console = Console(file=sys.stdout, highlight=False)
     for column, best in result["best"].items():
         values = ", ".join(f"{k} = {v}" for k, v in best.items() if k not in ("variant", "value"))
-        console.print(f"best {column}: {best['value']:.6g} (variant {best['variant']}: {values})")
+        console.print(f"best {column}: {best['value']:.6g} (variant {best['variant']}: {values})", markup=False)
+    for row in result.get("top", []):
+        values = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}" for k, v in row.items() if k != "rank")
+        console.print(f"rank {row['rank']}: {values}", markup=False)
     for reason, count in result["failures"].items():
-        console.print(f"{count} failed: {reason}")
-    for p in files:
-        console.print(f"wrote {p}")
+        console.print(f"{count} failed: {reason}", markup=False)
+    for p in result["files"]:
+        console.print(f"wrote {p}", markup=False)
+
+
+DEFAULT_AXES = "blow_hole_area_mm2,contact_line_length_mm,displacement_per_rev_mm3"
+
+
+def _top(table, count: int, objective_columns: list[str]) -> list[dict[str, Any]]:
+    """Return the ``count`` best feasible variants: rank, variant, on the front, varied values, objectives."""
+    ranked = table[table["rank"] > 0].sort_values("rank").head(count)
+    params = [c for c in table.columns if "." in c and not c.startswith("objective.")]
+    keep = ["rank", "variant", "pareto", *params, *objective_columns]
+    return [{k: _plain(row[k]) for k in keep if k in row} for _, row in ranked.iterrows()]
+
+
+def _plain(value: Any) -> Any:
+    return value.item() if hasattr(value, "item") else value
 
 
 def _numeric(column) -> np.ndarray:

@@ -1,217 +1,32 @@
-"""Running a design sweep on Dask and streaming its rows to Parquet, resumably.
+"""A sweep file from disk to its table: the application's edge of :mod:`rotorcad.sweep`.
 
-Every batch of variants is one Dask task (:func:`rotorcad.cli.sweep_tasks.evaluate_batch`). By
-default a ``dask.distributed.LocalCluster`` of worker processes sized to the machine runs them;
-given a scheduler address, the same tasks go to that cluster. Each finished batch is written at
-once as a Parquet part file (complete or absent: written to a temporary name and renamed) in the
-folder ``OUT.parts`` beside the output; at the end the parts are joined into ``OUT`` in variant
-order and the folder is removed. Run again after an interruption, a sweep reads what the parts (and
-an earlier ``OUT``) hold and computes only the variants missing, so none is computed twice and none
-is lost.
-
-Like any Dask program, a script that starts a sweep with the local cluster needs the
-``if __name__ == "__main__":`` guard (the worker processes are spawned and import the script).
+Reading the sweep file, its base design and the base's points file (``exports``), and the
+hobbability verdict (``hob``), are the command line's: the core package :mod:`rotorcad.sweep`
+imports neither. :func:`sweep` is the public ``rotorcad.sweep(...)``. The names of the core that
+lived here before (``run_sweep``, ``parts_folder``, ``SweepOutcome``, ``variant_design``) are
+re-exported.
 """
 
 from __future__ import annotations
 
-import itertools
-import logging
 import os
-import re
-import shutil
-import signal
-import tempfile
-import threading
-import time
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
-from rotorcad.cli.sweep_tasks import OBJECTIVES, evaluate_batch
 from rotorcad.errors import DesignError
-from rotorcad.sweep_plan import SweepPlan, Variant
+from rotorcad.sweep.plan import Extra, SweepPlan
+from rotorcad.sweep.run import SweepOutcome, parts_folder, variant_design  # noqa: F401 - re-exported
+from rotorcad.sweep.run import run_sweep as _run_sweep
 
 
-@dataclass(frozen=True)
-class SweepOutcome:
-    """What a sweep run did: its table and the counts.
+def edge_analyses() -> dict[Extra, Callable[..., dict[str, Any]]]:
+    """Return the sweep analyses of the packages beside the core: the hobbability verdict of ``hob``."""
+    from hob.sweep_check import ANALYSES
 
-    Parameters
-    ----------
-    table : pandas.DataFrame
-        One row per variant of the plan, in variant order.
-    computed : int
-        Variants computed in this run.
-    resumed : int
-        Variants taken from an earlier, interrupted run.
-    seconds : float, s
-        Wall time of the run.
-    """
-
-    table: pd.DataFrame
-    computed: int
-    resumed: int
-    seconds: float
-
-    @property
-    def failed(self) -> int:
-        """Number of variants that failed (``ok`` false)."""
-        return int((~self.table["ok"].astype(bool)).sum()) if len(self.table) else 0
-
-    def failures(self) -> dict[str, int]:
-        """Count the failed variants by reason, most frequent first.
-
-        Numbers in a reason stand as '#' so that the same cause with other values counts once.
-
-        Returns
-        -------
-        dict of str to int
-            Reason (with numbers as '#') -> number of variants.
-        """
-        bad = self.table.loc[~self.table["ok"].astype(bool), "reason"]
-        causes = bad.map(lambda r: re.sub(r"-?\d+(\.\d+)?(e[-+]?\d+)?", "#", str(r)))
-        return {str(k): int(v) for k, v in causes.value_counts().items()}
-
-    def best(self) -> dict[str, dict[str, Any]]:
-        """Return the best variant of every objective column present.
-
-        Only variants that succeeded count, and of those only the ones a hob can make and that do not
-        interfere, where those columns exist.
-
-        Returns
-        -------
-        dict
-            Objective column -> ``variant`` (its number), ``value`` and the varied values.
-        """
-        ok = self.table[self.table["ok"].astype(bool)]
-        if "hobbable" in ok:  # best among the variants a hob can make, and that do not interfere
-            ok = ok[ok["hobbable"].astype(bool)]
-        if "interferes" in ok:
-            ok = ok[~ok["interferes"].astype(bool)]
-        params = [c for c in self.table.columns if "." in c]
-        out = {}
-        for column, smaller in OBJECTIVES.items():
-            if column not in ok or ok[column].isna().all():
-                continue
-            row = ok.loc[ok[column].idxmin() if smaller else ok[column].idxmax()]
-            out[column] = {"variant": int(row["variant"]), "value": float(row[column]), **{p: _plain(row[p]) for p in params}}
-        return out
-
-
-def _plain(value: Any) -> Any:
-    return value.item() if hasattr(value, "item") else value
-
-
-EARLIER = "a Parquet file of an earlier sweep (or a new name)"
-
-
-def parts_folder(out: Path) -> Path:
-    """Return the folder where the finished batches of a sweep writing ``out`` are kept until it ends.
-
-    Parameters
-    ----------
-    out : Path
-        The sweep's Parquet file.
-
-    Returns
-    -------
-    Path
-        ``OUT.parts`` beside it.
-    """
-    return out.with_name(out.name + ".parts")
-
-
-def _done(out: Path | None, keys: dict[str, int]) -> pd.DataFrame:
-    """Read the rows already computed for this plan from ``out`` and its parts folder.
-
-    The rows are numbered as the plan numbers them. Rows of another sweep (another base design, other
-    analyses, other values) are refused with :class:`DesignError`, not dropped: ``out`` would lose
-    them.
-    """
-    frames = []
-    if out is not None:
-        sources = [out] if out.is_file() else []
-        folder = parts_folder(out)
-        if folder.is_dir():
-            sources += sorted(folder.glob("part-*.parquet"))
-        for path in sources:
-            try:
-                frame = pd.read_parquet(path)
-            except Exception as exc:  # not a Parquet table we wrote: refuse rather than overwrite it
-                reason = " ".join(str(exc).split())[:160]
-                raise DesignError("--out", EARLIER, str(path), reason) from None
-            if "key" not in frame:
-                raise DesignError("--out", EARLIER, str(path), "it has no key column")
-            foreign = int((~frame["key"].isin(keys)).sum())
-            if foreign:
-                raise DesignError(
-                    "--out",
-                    "a new file name, or the results of this same sweep",
-                    str(path),
-                    f"{foreign} of its rows are of another sweep (its base design, analyses or values differ)",
-                )
-            frames.append(frame)
-    if not frames:
-        return pd.DataFrame()
-    done = pd.concat(frames, ignore_index=True).drop_duplicates("key")
-    done["variant"] = done["key"].map(keys)
-    return done
-
-
-def _write_part(folder: Path, rows: list[dict[str, Any]]) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=".part-", suffix=".tmp", dir=folder)
-    os.close(fd)
-    try:
-        pd.DataFrame(rows).to_parquet(tmp, index=False)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, folder / f"part-{rows[0]['variant']:09d}.parquet")
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def _client(scheduler: str | None, workers: int | None):
-    """Start a Dask client: of the cluster at ``scheduler``, or of a local cluster of worker processes.
-
-    Returns the client and the local cluster (None for a scheduler's).
-    """
-    # the worker processes read their log levels from the environment when they start
-    os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "error")
-    from dask.distributed import Client, LocalCluster
-
-    # distributed logs INFO lines (connections closed, workers retired) on stderr: only errors are the user's business
-    for name in ["distributed", *(n for n in logging.root.manager.loggerDict if n.startswith("distributed."))]:
-        logging.getLogger(name).setLevel(logging.ERROR)
-
-    if scheduler:
-        try:
-            return Client(scheduler, timeout="10s"), None
-        except (OSError, TimeoutError) as exc:
-            raise DesignError(
-                "--scheduler", "the address of a running dask.distributed scheduler", scheduler, str(exc)[:80]
-            ) from None
-    n = workers or os.cpu_count() or 1
-    # the workers start with Ctrl-C ignored (they inherit it): the sweep stops them itself, and
-    # their tracebacks would bury the one line a user is owed
-    main = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
-    try:
-        cluster = LocalCluster(
-            n_workers=n,
-            threads_per_worker=1,
-            processes=True,
-            dashboard_address=None,
-            silence_logs=logging.CRITICAL,
-            memory_limit=0,
-        )
-    finally:
-        if main:
-            signal.signal(signal.SIGINT, previous)
-    return Client(cluster), cluster
+    return dict(ANALYSES)
 
 
 def run_sweep(
@@ -223,116 +38,22 @@ def run_sweep(
     workers: int | None = None,
     batch: int | None = None,
     progress: Callable[[int, int, int], None] | None = None,
+    analyses: Mapping[Extra, Callable[..., dict[str, Any]]] | None = None,
 ) -> SweepOutcome:
-    """Compute every variant of ``plan`` not yet in ``out``; return the whole table.
+    """Run a plan with every analysis, the hobbability verdict included (:func:`rotorcad.sweep.run.run_sweep`).
 
     Parameters
     ----------
-    plan : SweepPlan
-        The sweep.
-    folder : Path, optional
-        The base design's folder (for a relative points file).
-    points : (n, 2) float array or list of Curve, optional
-        The base design's profile points, already read (mm).
-    out : Path, optional
-        Parquet file to write (resumed if it or its parts folder exists); None keeps all in memory.
-    scheduler : str, optional
-        Address of a running ``dask.distributed`` scheduler; default a local cluster.
-    workers : int, optional
-        Worker processes of the local cluster (default: one per core).
-    batch : int, optional
-        Variants per task (default: about eight tasks per worker, at most 50 variants a task).
-    progress : callable, optional
-        Called with (done, failed, total) after every batch.
+    plan, folder, points, out, scheduler, workers, batch, progress
+        As for :func:`rotorcad.sweep.run.run_sweep`.
+    analyses : mapping, optional
+        Default :func:`edge_analyses`.
 
     Returns
     -------
     SweepOutcome
-        The table of all variants (earlier and new) and the counts.
-
-    Raises
-    ------
-    DesignError
-        An ``out`` that holds something other than this sweep's rows, or a scheduler that cannot be
-        reached.
     """
-    start = time.perf_counter()
-    variants = plan.variants()
-    keys = {v.key: v.index for v in variants}
-    earlier = _done(out, keys)
-    done_keys = set(earlier["key"]) if len(earlier) else set()
-    todo = [v for v in variants if v.key not in done_keys]
-    rows: list[dict[str, Any]] = []
-    failed = int((~earlier["ok"].astype(bool)).sum()) if len(earlier) else 0
-    if todo:
-        parts = parts_folder(out) if out is not None else None
-        if parts is not None:
-            parts.mkdir(exist_ok=True)
-        client, cluster = _client(scheduler, workers)
-        try:
-            n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or os.cpu_count() or 1))
-            size = batch or max(1, min(50, len(todo) // (8 * n_workers)))
-            batches = [todo[i : i + size] for i in range(0, len(todo), size)]
-            from dask.distributed import as_completed
-
-            # at most four tasks a worker in flight: a small graph however large the sweep
-            pending = iter(batches)
-            submit = dict(
-                base=plan.base,
-                folder=None if folder is None else str(folder),
-                points=points,
-                extras=plan.extras,
-                clearance=plan.clearance,
-                pure=False,
-            )
-            queue = as_completed([client.submit(evaluate_batch, b, **submit) for b in itertools.islice(pending, 4 * n_workers)])
-            done = len(earlier)
-            for future in queue:
-                batch_rows = future.result()
-                future.release()
-                following = next(pending, None)
-                if following is not None:
-                    queue.add(client.submit(evaluate_batch, following, **submit))
-                if parts is not None:
-                    _write_part(parts, batch_rows)
-                else:
-                    rows.extend(batch_rows)
-                done += len(batch_rows)
-                failed += sum(not r["ok"] for r in batch_rows)
-                if progress:
-                    progress(done, failed, len(variants))
-        finally:
-            if cluster is not None:
-                client.retire_workers(close_workers=True)  # workers first: no heartbeat to a closed scheduler
-            client.close()
-            if cluster is not None:
-                cluster.close()
-    table = _done(out, keys) if out is not None else pd.concat([earlier, pd.DataFrame(rows)], ignore_index=True)
-    if len(table):
-        table = table.sort_values("variant", kind="stable").reset_index(drop=True)
-    if out is not None:
-        _replace(out, table)
-        shutil.rmtree(parts_folder(out), ignore_errors=True)
-    return SweepOutcome(table, len(todo), len(variants) - len(todo), time.perf_counter() - start)
-
-
-def _replace(out: Path, table: pd.DataFrame) -> None:
-    """Write ``out`` whole (a temporary name renamed over it)."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
-    os.close(fd)
-    try:
-        table.to_parquet(tmp, index=False)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, out)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
+    return _run_sweep(plan, folder, points, out, scheduler, workers, batch, progress, analyses or edge_analyses())
 
 
 def sweep(
@@ -341,7 +62,7 @@ def sweep(
     scheduler: str | None = None,
     workers: int | None = None,
 ) -> pd.DataFrame:
-    """Run a design sweep file (see :mod:`rotorcad.sweep_plan`) and return its table.
+    """Run a design sweep file (see :mod:`rotorcad.sweep.plan`) and return its table.
 
     Parameters
     ----------
@@ -352,26 +73,69 @@ def sweep(
     scheduler : str, optional
         Address of a running ``dask.distributed`` scheduler (default: a local cluster).
     workers : int, optional
-        Local worker processes (default: one per core).
+        Local worker processes; 0 runs the variants in this process. Default: in this process for
+        fewer than 200 variants to compute, else one worker per core.
 
     Returns
     -------
     pandas.DataFrame
         One row per variant: its number and key, the varied values (``table.key`` columns), ``ok``,
-        ``reason``, ``seconds`` and the results with their unit in the column name.
+        ``reason``, ``seconds`` and the results with their unit in the column name; with
+        ``[constraints]`` or ``[objectives]`` also ``feasible``, ``pareto`` and ``rank``
+        (:mod:`rotorcad.sweep.ranking`).
 
     Raises
     ------
     DesignError
-        A bad sweep file or base design, ``workers`` below 1, or ``out`` in a folder that does not
+        A bad sweep file or base design, ``workers`` below 0, or ``out`` in a folder that does not
         exist.
     """
-    if workers is not None and not (isinstance(workers, int) and workers >= 1):
-        raise DesignError("workers", "a whole number of at least 1", workers)
+    if workers is not None and not (isinstance(workers, int) and not isinstance(workers, bool) and workers >= 0):
+        raise DesignError("workers", "a whole number of at least 0 (0: in this process)", workers)
     if out is not None and not Path(out).parent.is_dir():
         raise DesignError("out", "a file in an existing folder", str(out))
     plan, folder, points = load_sweep(Path(sweep_file))
-    return run_sweep(plan, folder, points, None if out is None else Path(out), scheduler, workers).table
+    steer = load_steering(Path(sweep_file), plan)
+    table = run_sweep(plan, folder, points, None if out is None else Path(out), scheduler, workers).table
+    return steer.apply(table) if steer.constraints or steer.objectives else table
+
+
+def sweep_columns(plan: SweepPlan) -> tuple[list[str], list[str]]:
+    """Return the number and true/false columns of a plan's table (for constraints, objectives, plots).
+
+    Parameters
+    ----------
+    plan : SweepPlan
+
+    Returns
+    -------
+    numeric, boolean : list of str
+    """
+    from rotorcad.sweep.tasks import boolean_columns, result_columns
+
+    varied = [p.name for p in plan.parameters if p.name != "profile.family"]
+    return [*result_columns(plan.extras), *varied], boolean_columns(plan.extras)
+
+
+def load_steering(path: Path, plan: SweepPlan):
+    """Read the ``[constraints]`` and ``[objectives]`` of a sweep file (:func:`rotorcad.sweep.ranking.steering`).
+
+    Parameters
+    ----------
+    path : Path
+        The sweep file.
+    plan : SweepPlan
+        Its plan (for the columns it makes).
+
+    Returns
+    -------
+    rotorcad.sweep.ranking.Steering
+    """
+    from rotorcad.cli.common import load_toml
+    from rotorcad.sweep.ranking import steering
+
+    numeric, boolean = sweep_columns(plan)
+    return steering(load_toml(path, "sweep file"), numeric, boolean)
 
 
 def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
@@ -400,7 +164,7 @@ def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
     from exports.dxf_profile import read_profile, read_profile_points
     from rotorcad.cli.common import load_toml
     from rotorcad.design import rotor_design
-    from rotorcad.sweep_plan import sweep_plan
+    from rotorcad.sweep.plan import sweep_plan
 
     data = load_toml(path, "sweep file")
     section = data.get("sweep", {})
@@ -421,23 +185,3 @@ def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
     elif settings["family"] in ("male-points", "female-points"):
         points = read_profile(settings["points"], "[profile] points")
     return plan, folder, points
-
-
-def variant_design(plan: SweepPlan, variant: Variant) -> dict[str, Any]:
-    """Return the design mapping of one variant (to write it as a design file).
-
-    Parameters
-    ----------
-    plan : SweepPlan
-        The sweep.
-    variant : Variant
-        One of its variants.
-
-    Returns
-    -------
-    dict
-        The base design with the variant's values put in.
-    """
-    from rotorcad.sweep_plan import apply
-
-    return apply(plan.base, variant.values)
