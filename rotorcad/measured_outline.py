@@ -148,6 +148,35 @@ def scatter(whole: np.ndarray) -> float:
     return float(sigma) if sigma > SCATTER_FLOOR else 0.0
 
 
+def accuracy(whole: np.ndarray, sigma: float) -> float:
+    """Estimate how far the outline the points give may lie from the true one.
+
+    The larger of two scatters (2 sigma) and the chords' sagitta: between points spaced h on a
+    curve of curvature k the curve leaves the chord by h^2 k / 8, which is a quarter of the distance
+    of a point from the chord of its two neighbours; the 90th percentile of that over the outline
+    (the corners, a few points, stay above it).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    sigma : float, mm
+        Its scatter (:func:`scatter`).
+
+    Returns
+    -------
+    float, mm
+    """
+    p = np.asarray(whole, dtype=float)
+    before, after = np.roll(p, 1, axis=0), np.roll(p, -1, axis=0)
+    chord = after - before
+    length = np.hypot(*chord.T)
+    ok = length > 0
+    off = np.abs(cross(chord[ok], (p - before)[ok])) / length[ok]
+    sagitta = float(np.quantile(off, 0.9)) / 4.0 if ok.any() else 0.0
+    return max(2.0 * sigma, sagitta)
+
+
 def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
     """Find the sharp corners of a closed outline: the edges across which it turns by more than ``angle_deg``.
 
@@ -259,4 +288,4 @@ def lands(run: np.ndarray, sigma: float, min_angle_deg: float = 0.5, min_points:
     return out
 
 
-__all__ = ["SCATTER_FLOOR", "corners", "lands", "lobe_count", "scatter", "whole_outline"]
+__all__ = ["SCATTER_FLOOR", "accuracy", "corners", "lands", "lobe_count", "scatter", "whole_outline"]

@@ -19,8 +19,7 @@ to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear)
 
 from __future__ import annotations
 
-import itertools
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -30,6 +29,7 @@ from scipy import interpolate
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, wrap_angle
+from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -231,6 +231,115 @@ class Defect:
         }
 
 
+def resolution(accuracy: float, scale: float) -> float:
+    """Return the shortest meshline stretch (mm) that the defect tests resolve.
+
+    A profile known to an accuracy e has its tangent direction resolved over a chord no shorter than
+    the one along which a circle of the pair's size (the centre distance a) leaves its tangent by e,
+    sqrt(8 a e), nor than 0.5 % of a. A stretch along which the normal passes through a centre within
+    the accuracy is an arc about that centre only when it is longer than this; sign changes nearer
+    each other than this cancel; defects of one kind nearer each other than this are one.
+
+    Parameters
+    ----------
+    accuracy : float, mm
+        Accuracy of the profile (:attr:`MeshingAnalysis.judged_accuracy`).
+    scale : float, mm
+        The centre distance.
+
+    Returns
+    -------
+    float, mm
+    """
+    return max(5e-3 * scale, float(np.sqrt(8.0 * scale * accuracy)))
+
+
+def robust_zeros(
+    f: np.ndarray, band: np.ndarray, arclen: np.ndarray, longest: float, whole: bool = False
+) -> tuple[list[float], list[tuple[int, int]]]:
+    """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
+
+    A sign change counts only where ``f`` leaves the band |f| <= ``band`` on both sides with opposite
+    signs (noise within the band makes none): between two samples outside the band, or across a run of
+    samples inside it (then at the sign change nearest the run's middle). A run inside the band that
+    is ``longest`` long or more (or all of ``f`` when ``whole``) is a stretch, not a sign change.
+
+    Parameters
+    ----------
+    f : (n,) float array
+        The function at the samples.
+    band : (n,) float array
+        Its uncertainty at each sample (same unit).
+    arclen : (n,) float array, mm
+        Arc length of the samples along the meshline.
+    longest : float, mm
+        Length from which a run inside the band is a stretch.
+    whole : bool
+        Take all samples as one stretch.
+
+    Returns
+    -------
+    crossings : list of float
+        Fractional sample indices i + w (0 <= w < 1) of the sign changes.
+    stretches : list of (int, int)
+        First and last sample index of each stretch.
+    """
+    n = len(f)
+    if whole:
+        return [], [(0, n - 1)]
+    inside = np.abs(f) <= band
+    sign = np.sign(f)
+    flip = sign[:-1] * sign[1:] < 0
+    crossings = [float(i + f[i] / (f[i] - f[i + 1])) for i in np.flatnonzero(flip & ~inside[:-1] & ~inside[1:])]
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(int), [0]])))
+    stretches = []
+    for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
+        if arclen[b] - arclen[a] >= longest:
+            stretches.append((int(a), int(b)))
+        elif a > 0 and b < n - 1 and sign[a - 1] * sign[b + 1] < 0:
+            k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
+            i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
+            crossings.append(float(i + f[i] / (f[i] - f[i + 1])))
+    return _persistent(sorted(crossings), stretches, arclen, longest), stretches
+
+
+def _persistent(crossings: list[float], stretches: list[tuple[int, int]], arclen: np.ndarray, longest: float) -> list[float]:
+    """Keep the sign changes whose new sign persists over ``longest`` (mm of meshline).
+
+    Two sign changes nearer each other than that are an excursion and cancel; a sign change nearer
+    than that to a stretch is where the stretch ends.
+    """
+    at = np.interp(crossings, np.arange(len(arclen)), arclen) if crossings else np.zeros(0)
+    near_stretch = np.zeros(len(at), dtype=bool)
+    for a, b in stretches:
+        near_stretch |= (at > arclen[a] - longest) & (at < arclen[b] + longest)
+    kept: list[tuple[float, float]] = []
+    for x, s in zip(crossings, at, strict=True):
+        if kept and s - kept[-1][1] < longest:
+            kept.pop()  # f went back to its sign within the resolution: no crossing
+        else:
+            kept.append((x, s))
+    return [x for x, s in kept if not near_stretch[crossings.index(x)]]
+
+
+def _merged(defects: list[Defect], distance: float) -> list[Defect]:
+    """Return the defects with those of one kind, rotor and flank part nearer than ``distance`` (mm) made one.
+
+    The first of a group stands for it (a point-generated one before a point); extents add up.
+    """
+    out: list[Defect] = []
+    for d in sorted(defects, key=lambda d: not d.point_generated):
+        for k, e in enumerate(out):
+            if (e.kind, e.rotor, e.role) == (d.kind, d.rotor, d.role) and np.hypot(e.x - d.x, e.y - d.y) < max(
+                distance, 0.5 * (e.extent + d.extent)
+            ):
+                out[k] = replace(e, extent=e.extent + d.extent if d.point_generated else e.extent)
+                break
+        else:
+            out.append(d)
+    return out
+
+
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
     """Everything Rinder reads off a toothing, for one pair at a design speed.
@@ -243,14 +352,19 @@ class MeshingAnalysis:
         Male speed, for the sliding velocities (m/s).
     samples : int
         Samples along each rack piece.
-    tolerance : float
-        Relative tolerance of the cusp/jamming test of a whole piece (a point-generated flank).
+    tolerance : float, rad
+        Relative tolerance of the cusp/jamming test: the uncertainty of the meshline's tangent
+        direction (a whole piece within it is a point-generated flank).
+    accuracy : float, mm, optional
+        Accuracy of the profile to which the defects are judged; None: that of the rotors
+        (:attr:`judged_accuracy`).
     """
 
     rotors: ScrewRotors
     speed_rpm: float = 3000.0
     samples: int = 600
     tolerance: float = 1e-3
+    accuracy: float | None = None
 
     # ---- meshline ------------------------------------------------------------------------
     @cached_property
@@ -301,6 +415,18 @@ class MeshingAnalysis:
         return np.concatenate([p.t for p in self.pieces]) if self.pieces else np.zeros(0)
 
     # ---- the rules of sec. 2.2.1 -----------------------------------------------------------
+    @property
+    def judged_accuracy(self) -> float:
+        """The accuracy (mm) to which the defects are judged (``defect_accuracy`` of the summary).
+
+        :attr:`accuracy` when given, else that of the profile the pair was generated from
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), at least the design's chord tolerance
+        :data:`rotorcad.profile.DEFAULT_TOLERANCE`.
+        """
+        if self.accuracy is not None:
+            return float(self.accuracy)
+        return max(float(getattr(self.rotors, "accuracy", 0.0)), DEFAULT_TOLERANCE)
+
     @cached_property
     def defects(self) -> list[Defect]:
         """Cusps, jamming and slipping points on the meshline (Rinder sec. 2.2.1), a list of :class:`Defect`.
@@ -308,16 +434,29 @@ class MeshingAnalysis:
         The meshline normal (from a spline over each piece) through O1 or O2 is a cusp, through C
         jamming (except on a meshline arc about C, Rinder's exception); a crossing of O1O2 away from C
         is slipping, inside a piece or between two pieces.
+
+        Each test is judged to the accuracy e of the profile (:attr:`judged_accuracy`): the normal's
+        miss f = (q - p) . tau of a centre q is uncertain by e + max(tolerance, e / L) |q - p| (a
+        position error e, and a tangent error of ``tolerance`` rad or of e over the resolution L,
+        :func:`resolution`), so a sign change of f counts only where f leaves that
+        band on both sides (:func:`robust_zeros`), and a stretch of the meshline longer than
+        :func:`resolution` along which f stays in the band is an arc about q (Rinder's exception at C,
+        a point-generated flank at O1 or O2), whichever pieces it spans; sign changes closer than L
+        to each other or to such a stretch are not robust and count for nothing. Defects of one kind, rotor and
+        flank part nearer each other than that resolution are one defect.
         """
         pair = self.rotors.pair
         o1, o2 = np.zeros(2), np.array([pair.center_distance, 0.0])
         c = np.array([pair.male_pitch_radius, 0.0])
-        tol = self.tolerance
-        found: list[Defect] = []
+        tol, acc = self.tolerance, self.judged_accuracy
         scale = pair.center_distance
+        longest = resolution(acc, scale)
+        found: list[Defect] = []
         for piece in self.pieces:
             pts = piece.points
-            length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
+            steps = np.hypot(*np.diff(pts, axis=0).T)
+            arclen = np.concatenate([[0.0], np.cumsum(steps)])
+            length = float(arclen[-1])
             if len(pts) < 4 or length < 1e-6 * scale:
                 continue  # the piece touches at a single point (a tip or root land): no meshline
             order = np.argsort(piece.s)
@@ -329,10 +468,16 @@ class MeshingAnalysis:
             judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
             for q, kind, rotor in ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male")):
                 f = np.einsum("ij,ij->i", q - pts, tau)  # zero: the meshline normal passes through q
-                if np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()):
+                band = acc + max(tol, acc / longest) * np.hypot(*(q - pts).T)
+                whole = np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max())
+                crossings, stretches = robust_zeros(f, band, arclen, longest, whole)
+                for i, j in stretches:
                     if kind == "jamming":
                         continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
-                    mid = len(pts) // 2
+                    ramp = np.median(np.abs(f[i : j + 1]) / band[i : j + 1]) > 0.3  # |f| runs through the band: no arc
+                    if not whole and ramp and np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale:
+                        continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once
+                    mid = (i + j + 1) // 2
                     found.append(
                         Defect(
                             kind,
@@ -341,13 +486,14 @@ class MeshingAnalysis:
                             float(np.degrees(piece.t[mid])),
                             piece.name,
                             True,
-                            length,
+                            float(arclen[j] - arclen[i]),
                             piece.roles[mid],
                         )
                     )
-                    continue
-                for i in np.nonzero((np.sign(f[:-1]) * np.sign(f[1:]) < 0) & judged[:-1] & judged[1:])[0]:
-                    w = f[i] / (f[i] - f[i + 1])
+                for x in crossings:
+                    i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
+                    if not (judged[i] and judged[i + 1]):
+                        continue
                     p = pts[i] + w * (pts[i + 1] - pts[i])
                     if np.hypot(*(p - q)) < 1e-3 * scale or abs(p[1]) < 1e-3 * scale:
                         continue  # through q itself (C lies on every meshline), or on O1O2 (slipping rule)
@@ -357,19 +503,17 @@ class MeshingAnalysis:
             # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
             # with its neighbour (_slipping_between_pieces)
             y = pts[:, 1]
-            side = np.nonzero(np.abs(y) > 1e-9 * scale)[0]
-            for i, j in itertools.pairwise(side):
-                if y[i] * y[j] < 0:
-                    w = y[i] / (y[i] - y[j])
-                    p = pts[i] + w * (pts[j] - pts[i])
-                    if abs(p[0] - c[0]) > 1e-6 * scale:
-                        ang = piece.t[i] + w * (piece.t[j] - piece.t[i])
-                        role = piece.roles[i] if piece.roles[i] == piece.roles[j] else (Flank.TIP if p[0] > c[0] else Flank.ROOT)
-                        found.append(
-                            Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name, role=role)
-                        )
+            crossings, _ = robust_zeros(y, np.full(len(y), max(acc, 1e-9 * scale)), arclen, np.inf, False)
+            for x in crossings:
+                i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
+                p = pts[i] + w * (pts[i + 1] - pts[i])
+                if abs(p[0] - c[0]) > 1e-6 * scale:
+                    ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
+                    role = piece.roles[i] if piece.roles[i] == piece.roles[i + 1] else (Flank.TIP if p[0] > c[0] else Flank.ROOT)
+                    at = (float(p[0]), float(p[1]), float(np.degrees(ang)))
+                    found.append(Defect("slipping", "male", *at, piece.name, role=role))
         found.extend(self._slipping_between_pieces())
-        return found
+        return _merged(found, longest)
 
     def _slipping_between_pieces(self) -> list[Defect]:
         """Apply Rinder's slipping rule where the meshline crosses O1O2 between two pieces.
@@ -672,6 +816,7 @@ class MeshingAnalysis:
             "max_slip_female": self._max("slip_female"),
             "speed_rpm": self.speed_rpm,
             "defects": [d.as_dict() for d in self.defects],
+            "defect_accuracy": self.judged_accuracy,
             "point_generated_flanks": self.point_generated_flanks,
             "flanks": {str(f): r.as_dict() for f, r in self.flanks.items()},
             "runs_without_timing_gears": all(r.runs_without_timing_gears for r in self.flanks.values()),

@@ -17,7 +17,7 @@ from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.geometry import wrap_angle
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
-from rotorcad.measured_outline import corners, lands, scatter, whole_outline
+from rotorcad.measured_outline import accuracy, corners, lands, scatter, whole_outline
 from rotorcad.roles import PieceRole, Side
 from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
@@ -512,6 +512,7 @@ def pair_from_rotor_points(
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
     pieces = lobe_pieces(pair, points, rotor, smoothing, label=label)
     side = Side(rotor)
+    acc = points_accuracy(pair, points, rotor, label)
     rotor = side.value
     if side is Side.MALE:
         body, mate_body, centre, teeth = mesh.male, mesh.female, np.zeros(2), pair.male_teeth
@@ -531,7 +532,7 @@ def pair_from_rotor_points(
             parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
-        runs = _mate_corner_runs(rack_curve, mate)
+        runs = _mate_corner_runs(rack_curve, mate, tolerance=max(1e-4, 3.0 * acc))
         parts.append(
             [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
         )
@@ -545,4 +546,17 @@ def pair_from_rotor_points(
             None,
             f"{lost_share:.1f} % of the lobe has no rack point",
         )
-    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share)
+    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share, accuracy=acc)
+
+
+def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, label: str | None = None) -> float:
+    """Estimate the accuracy of a rotor profile given by points (mm); 0 for exact curves.
+
+    :func:`rotorcad.measured_outline.accuracy` of the whole outline: twice the estimated scatter, or
+    the sagitta of the chords between the points, whichever is larger.
+    """
+    if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
+        return 0.0
+    side = Side(rotor)
+    whole = whole_outline(points, side.pick(pair.male_teeth, pair.female_teeth), label or f"{side.value} points")
+    return accuracy(whole, scatter(whole))
