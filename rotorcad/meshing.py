@@ -231,6 +231,13 @@ class Defect:
         }
 
 
+MATE_CORNER_SPREAD = 20.0
+"""How many accuracies of the given profile the mate's tip corner generated from it may lie off
+(the envelope of a corner's path is singular there, and amplifies the profile's error): measured
+10-50 on the rack-involute male given by its own CSV. Used by
+:func:`rotorcad.rotor_points.pair_from_rotor_points` for the extent of the mate's corner paths."""
+
+
 def resolution(accuracy: float, scale: float) -> float:
     """Return the shortest meshline stretch (mm) that the defect tests resolve.
 
@@ -459,8 +466,11 @@ class MeshingAnalysis:
             length = float(arclen[-1])
             if len(pts) < 4 or length < 1e-6 * scale:
                 continue  # the piece touches at a single point (a tip or root land): no meshline
+            # the meshline's tangent from a shape-preserving (modified Akima) cubic over the piece's
+            # parameter: an interpolating cubic rings where the meshline turns sharply (a rack
+            # rounding about C meeting a straight flank), and its tangent flips from sample to sample
             order = np.argsort(piece.s)
-            spline = interpolate.make_interp_spline(piece.s[order], pts[order], k=3)
+            spline = interpolate.Akima1DInterpolator(piece.s[order], pts[order], axis=0, method="makima")
             tau = spline.derivative()(piece.s)
             tau /= np.linalg.norm(tau, axis=1, keepdims=True)
             # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
