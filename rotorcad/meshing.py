@@ -262,7 +262,12 @@ def resolution(accuracy: float, scale: float) -> float:
 
 
 def robust_zeros(
-    f: np.ndarray, band: np.ndarray, arclen: np.ndarray, longest: float, whole: bool = False
+    f: np.ndarray,
+    band: np.ndarray,
+    arclen: np.ndarray,
+    longest: float,
+    whole: bool = False,
+    reversals: np.ndarray | None = None,
 ) -> tuple[list[float], list[tuple[int, int]]]:
     """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
 
@@ -283,6 +288,10 @@ def robust_zeros(
         Length from which a run inside the band is a stretch.
     whole : bool
         Take all samples as one stretch.
+    reversals : (m,) float array, mm, optional
+        Arc lengths where the meshline turns back (:func:`reversals`): the tangent's half turn there
+        changes the sign of every miss at once, which is no normal through a centre; sign changes
+        within ``longest`` of them do not count.
 
     Returns
     -------
@@ -307,17 +316,36 @@ def robust_zeros(
             k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
             i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
             crossings.append(float(i + f[i] / (f[i] - f[i + 1])))
-    return _persistent(sorted(crossings), stretches, arclen, longest), stretches
+    return _persistent(sorted(crossings), stretches, arclen, longest, reversals), stretches
 
 
-def _persistent(crossings: list[float], stretches: list[tuple[int, int]], arclen: np.ndarray, longest: float) -> list[float]:
+def reversals(points: np.ndarray, arclen: np.ndarray) -> np.ndarray:
+    """Return the arc lengths (mm) where a sampled meshline turns back on itself.
+
+    There two consecutive chords point against each other (positions only, no tangents).
+    """
+    d = np.diff(points, axis=0)
+    back = np.flatnonzero(np.einsum("ij,ij->i", d[:-1], d[1:]) < 0) + 1
+    return arclen[back]
+
+
+def _persistent(
+    crossings: list[float],
+    stretches: list[tuple[int, int]],
+    arclen: np.ndarray,
+    longest: float,
+    turns: np.ndarray | None = None,
+) -> list[float]:
     """Keep the sign changes whose new sign persists over ``longest`` (mm of meshline).
 
     Two sign changes nearer each other than that are an excursion and cancel; a sign change nearer
-    than that to a stretch is where the stretch ends.
+    than that to a stretch is where the stretch ends; one nearer than that to a reversal of the
+    meshline (``turns``, arc lengths) is the reversal.
     """
     at = np.interp(crossings, np.arange(len(arclen)), arclen) if crossings else np.zeros(0)
     near_stretch = np.zeros(len(at), dtype=bool)
+    for r in turns if turns is not None else ():
+        near_stretch |= np.abs(at - r) < longest
     for a, b in stretches:
         near_stretch |= (at > arclen[a] - longest) & (at < arclen[b] + longest)
     kept: list[tuple[float, float]] = []
@@ -449,8 +477,10 @@ class MeshingAnalysis:
         band on both sides (:func:`robust_zeros`), and a stretch of the meshline longer than
         :func:`resolution` along which f stays in the band is an arc about q (Rinder's exception at C,
         a point-generated flank at O1 or O2), whichever pieces it spans; sign changes closer than L
-        to each other or to such a stretch are not robust and count for nothing. Defects of one kind, rotor and
-        flank part nearer each other than that resolution are one defect.
+        to each other, to such a stretch, to a reversal of the meshline or to a sign change of another
+        centre's miss (both flip when the tangent turns over; two centres' normals meet only on O1O2)
+        are not robust and count for nothing. Defects of one kind, rotor and flank part nearer each
+        other than that resolution are one defect.
         """
         pair = self.rotors.pair
         o1, o2 = np.zeros(2), np.array([pair.center_distance, 0.0])
@@ -476,18 +506,23 @@ class MeshingAnalysis:
             # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
             # through O1, O2 and C at once), and C itself lies on every meshline
             judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
-            for q, kind, rotor in ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male")):
+            turns = reversals(pts, arclen)
+            tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
+            misses = []
+            for q, _kind, _ in tests:
                 f = np.einsum("ij,ij->i", q - pts, tau)  # zero: the meshline normal passes through q
                 band = acc + max(tol, acc / longest) * np.hypot(*(q - pts).T)
-                whole = np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max())
-                crossings, stretches = robust_zeros(f, band, arclen, longest, whole)
+                whole = bool(np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()))
+                misses.append((f, band, whole, *robust_zeros(f, band, arclen, longest, whole, turns)))
+            at = [np.interp(m[3], np.arange(len(arclen)), arclen) for m in misses]
+            for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
                 for i, j in stretches:
                     if kind == "jamming":
                         continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
                     ramp = np.median(np.abs(f[i : j + 1]) / band[i : j + 1]) > 0.3  # |f| runs through the band: no arc
                     if not whole and ramp and np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale:
                         continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once
-                    mid = (i + j + 1) // 2
+                    mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
                     found.append(
                         Defect(
                             kind,
@@ -500,7 +535,10 @@ class MeshingAnalysis:
                             piece.roles[mid],
                         )
                     )
-                for x in crossings:
+                others = np.concatenate([at[m] for m in range(len(tests)) if m != k])
+                for x, s_x in zip(crossings, at[k], strict=True):
+                    if np.any(np.abs(others - s_x) < longest):
+                        continue  # the misses of two centres change sign together: the tangent turned over
                     i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
                     if not (judged[i] and judged[i + 1]):
                         continue
@@ -530,7 +568,9 @@ class MeshingAnalysis:
 
         That is where a tip touches the mate's root on O1O2 (a tip corner's path or a flank handing over
         to the next one), e.g. the female tip on the male root. The pieces are the meshline in order, and
-        the next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over.
+        the next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over. A
+        piece of a profile given by points or a drawing (not the design's exact curves) may end short
+        of O1O2 by up to the resolution (:func:`resolution`).
         """
         pair = self.rotors.pair
         scale = pair.center_distance
@@ -543,8 +583,10 @@ class MeshingAnalysis:
                 continue
             ends.append((np.sign(y[side[0]]), np.sign(y[side[-1]]), piece.points[-1], float(piece.t[-1])))
         found = []
+        given = getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None  # not the design's exact curves
+        near = max(1e-6 * scale, resolution(self.judged_accuracy, scale) if given else 0.0)
         for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
-            if abs(p[1]) <= 1e-6 * scale and out_sign * in_sign < 0 and abs(p[0] - c_x) > 1e-6 * scale:
+            if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > 1e-6 * scale:
                 tip = p[0] > c_x
                 land = "male tip on the female root" if tip else "female tip on the male root"
                 role = Flank.TIP if tip else Flank.ROOT

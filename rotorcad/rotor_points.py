@@ -551,13 +551,18 @@ def pair_from_rotor_points(
 
 
 def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, label: str | None = None) -> float:
-    """Estimate the accuracy of a rotor profile given by points (mm); 0 for exact curves.
+    """Estimate the accuracy of a rotor profile given by points or by a drawing's curves (mm).
 
     :func:`rotorcad.measured_outline.accuracy` of the whole outline: twice the estimated scatter, or
-    the sagitta of the chords between the points, whichever is larger.
+    the sagitta of the chords between the points, whichever is larger. A drawing's splines are
+    judged by the points at their knots (what they were drawn through); lines and arcs are exact
+    (1e-9 mm: given, not designed).
     """
     if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
-        return 0.0
+        # a drawing's splines are as accurate as the points they were drawn through: their knots
+        knots = [c.evaluate(np.unique(np.clip(c.knots[0], *sorted((c.s0, c.s1)))))[0] for c in points if isinstance(c, Spline)]
+        pts = np.vstack(knots) if knots else np.zeros((0, 2))
+        return max(accuracy(pts, 0.0), 1e-9) if len(pts) >= 8 else 1e-9
     side = Side(rotor)
     whole = whole_outline(points, side.pick(pair.male_teeth, pair.female_teeth), label or f"{side.value} points")
     return accuracy(whole, scatter(whole))
