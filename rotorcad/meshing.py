@@ -365,8 +365,8 @@ def _merged(defects: list[Defect], distance: float) -> list[Defect]:
     out: list[Defect] = []
     for d in sorted(defects, key=lambda d: not d.point_generated):
         for k, e in enumerate(out):
-            if (e.kind, e.rotor, e.role) == (d.kind, d.rotor, d.role) and np.hypot(e.x - d.x, e.y - d.y) < max(
-                distance, 0.5 * (e.extent + d.extent)
+            if (e.kind, e.rotor, e.role) == (d.kind, d.rotor, d.role) and np.hypot(e.x - d.x, e.y - d.y) < (
+                distance + 0.5 * (e.extent + d.extent)
             ):
                 out[k] = replace(e, extent=e.extent + d.extent if d.point_generated else e.extent)
                 break

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.curves import Arc, Curve, Mapped, Spline, rotated, sample_curve
+from rotorcad.curves import Arc, Curve, Line, Mapped, Spline, rotated, sample_curve
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.geometry import wrap_angle
@@ -269,7 +269,10 @@ def lobe_pieces(
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     label = label or f"{rotor} points"
     if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
-        return _lobe_from_curves(list(points), teeth, rotor, label)
+        drawn = drawing_points(list(points), corner_angle_deg)
+        if drawn is None:
+            return _lobe_from_curves(list(points), teeth, rotor, label)
+        points = drawn
     whole = whole_outline(points, teeth, label)
     sigma = scatter(whole) if smoothing is None else 0.0
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
@@ -337,6 +340,68 @@ def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -
     if isinstance(profile, list | tuple):
         return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
     return np.asarray(profile, dtype=float)
+
+
+SMOOTH_JOINT = 1e-3
+"""rad: consecutive curves of a drawing whose tangents differ by more than this (and less than a
+corner's angle) meet at a kink: the drawing approximates the outline (a polyline, a chain of arcs
+fitted to points) and is read as its points."""
+
+
+def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.ndarray | None:
+    """Return the points of a drawing that approximates an outline, or None for an exact drawing.
+
+    A drawing is read as the points it was drawn through when its curves meet at kinks (tangents
+    turning by more than :data:`SMOOTH_JOINT` and less than ``corner_angle_deg``: a polyline, arcs
+    fitted to points), or when it holds a spline of more than :data:`DRAWN_SPANS` polynomial pieces
+    (a spline through points, as CAD and rotorcad's own export draw an outline): the rack of a
+    straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
+    rings. The points are each curve's start, the middle of each arc (the bulge's point) and a
+    spline's points at its knots; they are then fitted, smoothed and cut at corners as measured
+    points are, to the accuracy they carry (:func:`points_accuracy`).
+
+    Parameters
+    ----------
+    curves : list of Curve
+        The drawing's curves, chained (:func:`exports.dxf_profile.read_profile_dxf`).
+    corner_angle_deg : float, deg
+        Turn above which a joint is a sharp corner (kept as a corner by the points' fit).
+
+    Returns
+    -------
+    (n, 2) float array, mm, or None
+    """
+    ends = np.array([c.evaluate(np.array([c.s1]))[1][0] for c in curves])
+    starts = np.array([c.evaluate(np.array([c.s0]))[1][0] for c in curves])
+    following = np.roll(starts, -1, axis=0)
+    turn = np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
+    kinks = (turn > SMOOTH_JOINT) & (turn < np.radians(corner_angle_deg))
+    drawn = [c for c in curves if isinstance(c, Spline) and _knot_parameters(c).size > DRAWN_SPANS + 1]
+    if not kinks[:-1].any() and not drawn:  # the last joint closes a lobe (a corner or nothing)
+        return None
+    pts = []
+    for c in curves:
+        if isinstance(c, Spline):
+            u = _knot_parameters(c)
+            pts.append(c.evaluate(u[:-1])[0])
+        else:
+            pts.append(c.start[None, :])
+            if not isinstance(c, Line):
+                pts.append(c.evaluate(np.array([0.5 * (c.s0 + c.s1)]))[0])
+    return np.vstack(pts)
+
+
+DRAWN_SPANS = 16
+"""A drawing's spline of more polynomial pieces than this was drawn through points (a designed curve
+needs a few)."""
+
+
+def _knot_parameters(spline: Spline) -> np.ndarray:
+    """Return the spline's distinct knots within its range, in the direction of travel (both ends included)."""
+    lo, hi = sorted((spline.s0, spline.s1))
+    knots = np.unique(spline.knots[0])
+    u = np.concatenate([[lo], knots[(knots > lo) & (knots < hi)], [hi]])
+    return u if spline.s1 >= spline.s0 else u[::-1]
 
 
 def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -> list[tuple[str, Curve]]:
@@ -558,6 +623,8 @@ def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: st
     judged by the points at their knots (what they were drawn through); lines and arcs are exact
     (1e-9 mm: given, not designed).
     """
+    if isinstance(points, list | tuple) and points and isinstance(points[0], Curve) and drawing_points(list(points)) is not None:
+        points = drawing_points(list(points))
     if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
         # a drawing's splines are as accurate as the points they were drawn through: their knots
         knots = [c.evaluate(np.unique(np.clip(c.knots[0], *sorted((c.s0, c.s1)))))[0] for c in points if isinstance(c, Spline)]
