@@ -575,16 +575,17 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         scale = pair.center_distance
         c_x = pair.male_pitch_radius
+        given = getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None  # not the design's exact curves
+        near = max(1e-6 * scale, resolution(self.judged_accuracy, scale) if given else 0.0)
+        off = self.judged_accuracy if given else 1e-9 * scale  # a side of O1O2 beyond the accuracy
         ends = []  # per piece: sign of y leaving its start, reaching its end, its end point, its angle
         for piece in self.pieces:
             y = piece.points[:, 1]
-            side = np.nonzero(np.abs(y) > 1e-9 * scale)[0]
+            side = np.nonzero(np.abs(y) > off)[0]
             if len(side) == 0:
                 continue
             ends.append((np.sign(y[side[0]]), np.sign(y[side[-1]]), piece.points[-1], float(piece.t[-1])))
         found = []
-        given = getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None  # not the design's exact curves
-        near = max(1e-6 * scale, resolution(self.judged_accuracy, scale) if given else 0.0)
         for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
             if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > 1e-6 * scale:
                 tip = p[0] > c_x
