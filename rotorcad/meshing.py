@@ -357,6 +357,34 @@ def _persistent(
     return [x for x, s in kept if not near_stretch[crossings.index(x)]]
 
 
+def _meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float) -> np.ndarray:
+    """Return the unit tangents of a meshline piece at its samples, (n, 2).
+
+    Of the design's exact meshline, from a shape-preserving (modified Akima) cubic over the piece's
+    parameter: an interpolating cubic rings where the meshline turns sharply (a rack rounding about
+    C meeting a straight flank), and its tangent flips from sample to sample. Of a meshline
+    generated from a profile known to ``accuracy`` (mm, > 0), from a smoothing cubic over its arc
+    length that stays within that accuracy of the samples (scipy's s = n e^2, Dierckx sec. 5.2):
+    the samples wobble by the profile's error, far more than their spacing resolves.
+    """
+    order = np.argsort(piece.s)
+    pts = piece.points
+    if accuracy > 0:
+        keep = np.concatenate([[True], np.diff(arclen) > 1e-12])
+        if keep.sum() > 8:
+            try:
+                tck, _ = interpolate.splprep(pts[keep].T, u=arclen[keep], s=keep.sum() * accuracy**2, k=3, quiet=2)
+                tau = np.column_stack(interpolate.splev(arclen, tck, der=1))
+                norm = np.linalg.norm(tau, axis=1, keepdims=True)
+                if np.all(norm > 0):
+                    return tau / norm
+            except (ValueError, TypeError):
+                pass  # too few distinct samples for a smoothing cubic: the interpolating one below
+    spline = interpolate.Akima1DInterpolator(piece.s[order], pts[order], axis=0, method="makima")
+    tau = spline.derivative()(piece.s)
+    return tau / np.linalg.norm(tau, axis=1, keepdims=True)
+
+
 def _merged(defects: list[Defect], distance: float) -> list[Defect]:
     """Return the defects with those of one kind, rotor and flank part nearer than ``distance`` (mm) made one.
 
@@ -488,6 +516,7 @@ class MeshingAnalysis:
         tol, acc = self.tolerance, self.judged_accuracy
         scale = pair.center_distance
         longest = resolution(acc, scale)
+        given = getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None  # not the design's exact curves
         found: list[Defect] = []
         for piece in self.pieces:
             pts = piece.points
@@ -496,13 +525,7 @@ class MeshingAnalysis:
             length = float(arclen[-1])
             if len(pts) < 4 or length < 1e-6 * scale:
                 continue  # the piece touches at a single point (a tip or root land): no meshline
-            # the meshline's tangent from a shape-preserving (modified Akima) cubic over the piece's
-            # parameter: an interpolating cubic rings where the meshline turns sharply (a rack
-            # rounding about C meeting a straight flank), and its tangent flips from sample to sample
-            order = np.argsort(piece.s)
-            spline = interpolate.Akima1DInterpolator(piece.s[order], pts[order], axis=0, method="makima")
-            tau = spline.derivative()(piece.s)
-            tau /= np.linalg.norm(tau, axis=1, keepdims=True)
+            tau = _meshline_tangents(piece, arclen, acc if given else 0.0)
             # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
             # through O1, O2 and C at once), and C itself lies on every meshline
             judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
