@@ -268,11 +268,9 @@ def lobe_pieces(
     rotor = side.value
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     label = label or f"{rotor} points"
-    if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
-        drawn = drawing_points(list(points), corner_angle_deg)
-        if drawn is None:
-            return _lobe_from_curves(list(points), teeth, rotor, label)
-        points = drawn
+    points = as_given(points, teeth, corner_angle_deg)
+    if isinstance(points, list):
+        return _lobe_from_curves(points, teeth, rotor, label)
     whole = whole_outline(points, teeth, label)
     sigma = scatter(whole) if smoothing is None else 0.0
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
@@ -340,6 +338,40 @@ def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -
     if isinstance(profile, list | tuple):
         return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
     return np.asarray(profile, dtype=float)
+
+
+def as_given(points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: float = 30.0) -> np.ndarray | list[Curve]:
+    """Return a profile as it is to be fitted: a drawing's exact curves, or points.
+
+    A drawing stays its curves when they are the outline's own (:func:`drawing_points` finds no
+    approximation) and span one lobe or more; a drawing that approximates the outline is read as
+    its points, and one of a single groove or tooth (less than the lobe pitch) as points sampled
+    at 0.1 µm chord, which :func:`rotorcad.measured_outline.whole_outline` patterns.
+
+    Parameters
+    ----------
+    points : (n, 2) float array or list of Curve, mm
+        The profile.
+    teeth : int
+        Lobe count of the rotor.
+    corner_angle_deg : float, deg
+        Turn above which a joint is a sharp corner.
+
+    Returns
+    -------
+    (n, 2) float array or list of Curve
+    """
+    if not (isinstance(points, list | tuple) and points and isinstance(points[0], Curve)):
+        return np.asarray(points, dtype=float)
+    curves = list(points)
+    drawn = drawing_points(curves, corner_angle_deg)
+    if drawn is not None:
+        return drawn
+    pts = np.vstack([sample_curve(c, 1e-4)[1] for c in curves])
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    if abs(ang[-1] - ang[0]) < 0.98 * 2 * np.pi / teeth:  # one groove or tooth: patterned as points
+        return pts
+    return curves
 
 
 SMOOTH_JOINT = 1e-3
@@ -623,13 +655,12 @@ def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: st
     judged by the points at their knots (what they were drawn through); lines and arcs are exact
     (1e-9 mm: given, not designed).
     """
-    if isinstance(points, list | tuple) and points and isinstance(points[0], Curve) and drawing_points(list(points)) is not None:
-        points = drawing_points(list(points))
-    if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
+    side = Side(rotor)
+    points = as_given(points, side.pick(pair.male_teeth, pair.female_teeth))
+    if isinstance(points, list):
         # a drawing's splines are as accurate as the points they were drawn through: their knots
         knots = [c.evaluate(np.unique(np.clip(c.knots[0], *sorted((c.s0, c.s1)))))[0] for c in points if isinstance(c, Spline)]
         pts = np.vstack(knots) if knots else np.zeros((0, 2))
         return max(accuracy(pts, 0.0), 1e-9) if len(pts) >= 8 else 1e-9
-    side = Side(rotor)
     whole = whole_outline(points, side.pick(pair.male_teeth, pair.female_teeth), label or f"{side.value} points")
     return accuracy(whole, scatter(whole))
