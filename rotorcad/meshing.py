@@ -268,7 +268,7 @@ def robust_zeros(
     longest: float,
     whole: bool = False,
     reversals: np.ndarray | None = None,
-) -> tuple[list[float], list[tuple[int, int]]]:
+) -> tuple[list[tuple[float, int, int]], list[tuple[int, int]]]:
     """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
 
     A sign change counts only where ``f`` leaves the band |f| <= ``band`` on both sides with opposite
@@ -295,8 +295,9 @@ def robust_zeros(
 
     Returns
     -------
-    crossings : list of float
-        Fractional sample indices i + w (0 <= w < 1) of the sign changes.
+    crossings : list of (float, int, int)
+        Fractional sample index i + w (0 <= w < 1) of each sign change, and the first and last
+        sample of the stretch within which it is uncertain (the band's run around it).
     stretches : list of (int, int)
         First and last sample index of each stretch.
     """
@@ -306,7 +307,8 @@ def robust_zeros(
     inside = np.abs(f) <= band
     sign = np.sign(f)
     flip = sign[:-1] * sign[1:] < 0
-    crossings = [float(i + f[i] / (f[i] - f[i + 1])) for i in np.flatnonzero(flip & ~inside[:-1] & ~inside[1:])]
+    direct = np.flatnonzero(flip & ~inside[:-1] & ~inside[1:])
+    crossings = [(float(i + f[i] / (f[i] - f[i + 1])), int(i), int(i) + 1) for i in direct]
     edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(int), [0]])))
     stretches = []
     for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
@@ -315,7 +317,7 @@ def robust_zeros(
         elif a > 0 and b < n - 1 and sign[a - 1] * sign[b + 1] < 0:
             k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
             i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
-            crossings.append(float(i + f[i] / (f[i] - f[i + 1])))
+            crossings.append((float(i + f[i] / (f[i] - f[i + 1])), int(a) - 1, int(b) + 1))
     return _persistent(sorted(crossings), stretches, arclen, longest, reversals), stretches
 
 
@@ -330,31 +332,31 @@ def reversals(points: np.ndarray, arclen: np.ndarray) -> np.ndarray:
 
 
 def _persistent(
-    crossings: list[float],
+    crossings: list[tuple[float, int, int]],
     stretches: list[tuple[int, int]],
     arclen: np.ndarray,
     longest: float,
     turns: np.ndarray | None = None,
-) -> list[float]:
+) -> list[tuple[float, int, int]]:
     """Keep the sign changes whose new sign persists over ``longest`` (mm of meshline).
 
     Two sign changes nearer each other than that are an excursion and cancel; a sign change nearer
     than that to a stretch is where the stretch ends; one nearer than that to a reversal of the
     meshline (``turns``, arc lengths) is the reversal.
     """
-    at = np.interp(crossings, np.arange(len(arclen)), arclen) if crossings else np.zeros(0)
+    at = np.interp([c[0] for c in crossings], np.arange(len(arclen)), arclen) if crossings else np.zeros(0)
     near_stretch = np.zeros(len(at), dtype=bool)
     for r in turns if turns is not None else ():
         near_stretch |= np.abs(at - r) < longest
     for a, b in stretches:
         near_stretch |= (at > arclen[a] - longest) & (at < arclen[b] + longest)
-    kept: list[tuple[float, float]] = []
-    for x, s in zip(crossings, at, strict=True):
+    kept: list[tuple[int, float]] = []
+    for k, s in enumerate(at):
         if kept and s - kept[-1][1] < longest:
             kept.pop()  # f went back to its sign within the resolution: no crossing
         else:
-            kept.append((x, s))
-    return [x for x, s in kept if not near_stretch[crossings.index(x)]]
+            kept.append((k, s))
+    return [crossings[k] for k, _ in kept if not near_stretch[k]]
 
 
 def _meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float) -> np.ndarray:
@@ -537,7 +539,7 @@ class MeshingAnalysis:
                 band = acc + max(tol, acc / longest) * np.hypot(*(q - pts).T)
                 whole = bool(np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()))
                 misses.append((f, band, whole, *robust_zeros(f, band, arclen, longest, whole, turns)))
-            at = [np.interp(m[3], np.arange(len(arclen)), arclen) for m in misses]
+            at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) for m in misses]
             for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
                 for i, j in stretches:
                     if kind == "jamming":
@@ -559,14 +561,15 @@ class MeshingAnalysis:
                         )
                     )
                 others = np.concatenate([at[m] for m in range(len(tests)) if m != k])
-                for x, s_x in zip(crossings, at[k], strict=True):
+                for (x, lo, hi), s_x in zip(crossings, at[k], strict=True):
                     if np.any(np.abs(others - s_x) < longest):
                         continue  # the misses of two centres change sign together: the tangent turned over
                     i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
                     if not (judged[i] and judged[i + 1]):
                         continue
                     p = pts[i] + w * (pts[i + 1] - pts[i])
-                    if np.hypot(*(p - q)) < 1e-3 * scale or abs(p[1]) < 1e-3 * scale:
+                    near = pts[max(lo, 0) : hi + 1]  # where the crossing may lie
+                    if np.hypot(*(near - q).T).min() < 1e-3 * scale or np.abs(near[:, 1]).min() < 1e-3 * scale:
                         continue  # through q itself (C lies on every meshline), or on O1O2 (slipping rule)
                     ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
                     role = piece.roles[i if w < 0.5 else i + 1]
@@ -574,8 +577,8 @@ class MeshingAnalysis:
             # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
             # with its neighbour (_slipping_between_pieces)
             y = pts[:, 1]
-            crossings, _ = robust_zeros(y, np.full(len(y), max(acc, 1e-9 * scale)), arclen, np.inf, False)
-            for x in crossings:
+            crossings, _ = robust_zeros(y, np.full(len(y), max(acc, 1e-9 * scale)), arclen, longest, False)
+            for x, _, _ in crossings:
                 i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
                 p = pts[i] + w * (pts[i + 1] - pts[i])
                 if abs(p[0] - c[0]) > 1e-6 * scale:
