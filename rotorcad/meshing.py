@@ -387,21 +387,29 @@ def _meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float
     return tau / np.linalg.norm(tau, axis=1, keepdims=True)
 
 
-def _merged(defects: list[Defect], distance: float) -> list[Defect]:
+def _merged(defects: list[Defect], distance: float, spans: dict[int, np.ndarray] | None = None) -> list[Defect]:
     """Return the defects with those of one kind, rotor and flank part nearer than ``distance`` (mm) made one.
 
-    The first of a group stands for it (a point-generated one before a point); extents add up.
+    Nearness is between the meshline points each defect holds (a stretch's, given in ``spans`` by
+    the defect's ``id``; a point's own). The first of a group stands for it (a point-generated one
+    before a point); extents add up.
     """
+    spans = spans or {}
+    held: list[np.ndarray] = []
     out: list[Defect] = []
     for d in sorted(defects, key=lambda d: not d.point_generated):
+        mine = spans.get(id(d), np.array([[d.x, d.y]]))
         for k, e in enumerate(out):
-            if (e.kind, e.rotor, e.role) == (d.kind, d.rotor, d.role) and np.hypot(e.x - d.x, e.y - d.y) < (
-                distance + 0.5 * (e.extent + d.extent)
-            ):
+            if (e.kind, e.rotor, e.role) != (d.kind, d.rotor, d.role):
+                continue
+            gap = np.hypot(*(held[k][:, None, :] - mine[None, :, :]).transpose(2, 0, 1)).min()
+            if gap < distance:
                 out[k] = replace(e, extent=e.extent + d.extent if d.point_generated else e.extent)
+                held[k] = np.vstack([held[k], mine])
                 break
         else:
             out.append(d)
+            held.append(mine)
     return out
 
 
@@ -503,14 +511,18 @@ class MeshingAnalysis:
         Each test is judged to the accuracy e of the profile (:attr:`judged_accuracy`): the normal's
         miss f = (q - p) . tau of a centre q is uncertain by e + max(tolerance, e / L) |q - p| (a
         position error e, and a tangent error of ``tolerance`` rad or of e over the resolution L,
-        :func:`resolution`), so a sign change of f counts only where f leaves that
-        band on both sides (:func:`robust_zeros`), and a stretch of the meshline longer than
-        :func:`resolution` along which f stays in the band is an arc about q (Rinder's exception at C,
-        a point-generated flank at O1 or O2), whichever pieces it spans; sign changes closer than L
-        to each other, to such a stretch, to a reversal of the meshline or to a sign change of another
-        centre's miss (both flip when the tangent turns over; two centres' normals meet only on O1O2)
-        are not robust and count for nothing. Defects of one kind, rotor and flank part nearer each
-        other than that resolution are one defect.
+        :func:`resolution`), so a sign change of f counts only where f leaves that band on both
+        sides (:func:`robust_zeros`), and a stretch of the meshline longer than L along which f
+        stays in the band is an arc about q (Rinder's exception at C, a point-generated flank at O1
+        or O2), whichever pieces it spans. A sign change within L (of a given profile; 0.1 % of the
+        centre distance for the design) of a centre or of O1O2 is judged by the slipping rule; one
+        within L of another, of such a stretch, of a reversal of the meshline or of a sign change
+        of another centre's miss (both flip when the tangent turns over; the normals through two
+        centres meet only on O1O2) is not robust and counts for nothing. Defects of one kind, rotor
+        and flank part whose meshline points come nearer each other than L are one defect; a
+        profile given by points or a drawing carries its accuracy
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), the design is judged to its chord
+        tolerance.
         """
         pair = self.rotors.pair
         o1, o2 = np.zeros(2), np.array([pair.center_distance, 0.0])
@@ -520,6 +532,8 @@ class MeshingAnalysis:
         longest = resolution(acc, scale)
         given = getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None  # not the design's exact curves
         found: list[Defect] = []
+        spans: dict[int, np.ndarray] = {}  # the meshline points of each stretch, by the defect's id
+        on_line = max(1e-3 * scale, longest if given else 0.0)  # through a centre or on O1O2 within the resolution
         for piece in self.pieces:
             pts = piece.points
             steps = np.hypot(*np.diff(pts, axis=0).T)
@@ -560,6 +574,7 @@ class MeshingAnalysis:
                             piece.roles[mid],
                         )
                     )
+                    spans[id(found[-1])] = pts[i : j + 1 : max(1, (j - i) // 200)]
                 others = np.concatenate([at[m] for m in range(len(tests)) if m != k])
                 for (x, lo, hi), s_x in zip(crossings, at[k], strict=True):
                     if np.any(np.abs(others - s_x) < longest):
@@ -569,7 +584,7 @@ class MeshingAnalysis:
                         continue
                     p = pts[i] + w * (pts[i + 1] - pts[i])
                     near = pts[max(lo, 0) : hi + 1]  # where the crossing may lie
-                    if np.hypot(*(near - q).T).min() < 1e-3 * scale or np.abs(near[:, 1]).min() < 1e-3 * scale:
+                    if np.hypot(*(near - q).T).min() < on_line or np.abs(near[:, 1]).min() < on_line:
                         continue  # through q itself (C lies on every meshline), or on O1O2 (slipping rule)
                     ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
                     role = piece.roles[i if w < 0.5 else i + 1]
@@ -587,7 +602,7 @@ class MeshingAnalysis:
                     at = (float(p[0]), float(p[1]), float(np.degrees(ang)))
                     found.append(Defect("slipping", "male", *at, piece.name, role=role))
         found.extend(self._slipping_between_pieces())
-        return _merged(found, longest)
+        return _merged(found, longest, spans)
 
     def _slipping_between_pieces(self) -> list[Defect]:
         """Apply Rinder's slipping rule where the meshline crosses O1O2 between two pieces.
