@@ -231,13 +231,6 @@ class Defect:
         }
 
 
-MATE_CORNER_SPREAD = 20.0
-"""How many accuracies of the given profile the mate's tip corner generated from it may lie off
-(the envelope of a corner's path is singular there, and amplifies the profile's error): measured
-10-50 on the rack-involute male given by its own CSV. Used by
-:func:`rotorcad.rotor_points.pair_from_rotor_points` for the extent of the mate's corner paths."""
-
-
 def resolution(accuracy: float, scale: float) -> float:
     """Return the shortest meshline stretch (mm) that the defect tests resolve.
 
@@ -321,14 +314,30 @@ def robust_zeros(
     return _persistent(sorted(crossings), stretches, arclen, longest, reversals), stretches
 
 
-def reversals(points: np.ndarray, arclen: np.ndarray) -> np.ndarray:
-    """Return the arc lengths (mm) where a sampled meshline turns back on itself.
+SHARP_TURN = np.pi / 4
+"""rad: a meshline whose tangent turns by more than this within the resolution has a corner there
+(as where a rack rounding about C meets a straight flank), at which its normal sweeps through
+every direction in between."""
 
-    There two consecutive chords point against each other (positions only, no tangents).
+
+def reversals(points: np.ndarray, arclen: np.ndarray, longest: float = 0.0) -> np.ndarray:
+    """Return the arc lengths (mm) where a sampled meshline turns back or turns sharply.
+
+    It turns back where two consecutive chords point against each other, and sharply where its
+    chords' direction changes by more than :data:`SHARP_TURN` within ``longest`` (mm); positions
+    only, no tangents. A sign change of a normal's miss there is the turn, not a normal through a
+    centre.
     """
     d = np.diff(points, axis=0)
     back = np.flatnonzero(np.einsum("ij,ij->i", d[:-1], d[1:]) < 0) + 1
-    return arclen[back]
+    if longest <= 0 or len(d) < 2:
+        return arclen[back]
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    mid = 0.5 * (arclen[:-1] + arclen[1:])
+    ahead = np.interp(mid + 0.5 * longest, mid, heading)
+    behind = np.interp(mid - 0.5 * longest, mid, heading)
+    sharp = np.flatnonzero(np.abs(ahead - behind) > SHARP_TURN)
+    return np.concatenate([arclen[back], mid[sharp]])
 
 
 def _persistent(
@@ -545,7 +554,7 @@ class MeshingAnalysis:
             # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
             # through O1, O2 and C at once), and C itself lies on every meshline
             judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
-            turns = reversals(pts, arclen)
+            turns = reversals(pts, arclen, longest if given else 0.0)
             tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
             misses = []
             for q, _kind, _ in tests:

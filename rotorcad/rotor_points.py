@@ -18,7 +18,6 @@ from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
 from rotorcad.measured_outline import accuracy, corners, lands, scatter, whole_outline
-from rotorcad.meshing import MATE_CORNER_SPREAD
 from rotorcad.roles import PieceRole, Side
 from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
@@ -630,7 +629,7 @@ def pair_from_rotor_points(
             parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
-        runs = _mate_corner_runs(rack_curve, mate, tolerance=max(1e-4, MATE_CORNER_SPREAD * acc))
+        runs = _mate_corner_runs(rack_curve, mate, tolerance=1e-4)
         parts.append(
             [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
         )
