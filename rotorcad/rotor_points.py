@@ -387,9 +387,10 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
     fitted to points), or when it holds a spline of more than :data:`DRAWN_SPANS` polynomial pieces
     (a spline through points, as CAD and rotorcad's own export draw an outline): the rack of a
     straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
-    rings. The points are each curve's start, the middle of each arc (the bulge's point) and a
-    spline's points at its knots; they are then fitted, smoothed and cut at corners as measured
-    points are, to the accuracy they carry (:func:`points_accuracy`).
+    rings. The points are each line's start, each arc sampled to 0.1 µm chord (at least its
+    start and middle, the bulge's point) and a spline's points at its knots; they are then
+    fitted, smoothed and cut at corners as measured points are, to the accuracy they carry
+    (:func:`points_accuracy`).
 
     Parameters
     ----------
@@ -415,10 +416,10 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
         if isinstance(c, Spline):
             u = _knot_parameters(c)
             pts.append(c.evaluate(u[:-1])[0])
-        else:
+        elif isinstance(c, Line):
             pts.append(c.start[None, :])
-            if not isinstance(c, Line):
-                pts.append(c.evaluate(np.array([0.5 * (c.s0 + c.s1)]))[0])
+        else:  # an arc to 0.1 um chord, at least its middle (a land stays a land of many points)
+            pts.append(sample_curve(c, 1e-4, minimum=3)[1][:-1])
     return np.vstack(pts)
 
 
