@@ -224,6 +224,7 @@ def lobe_pieces(
     smoothing: float | None = None,
     corner_angle_deg: float = 30.0,
     label: str | None = None,
+    drawn_as_points: bool = False,
 ) -> list[tuple[str, Curve]]:
     """Fit one lobe of the male or the female as pieces between the sharp corners of its points.
 
@@ -251,6 +252,10 @@ def lobe_pieces(
         Turn above which a vertex is a sharp corner (:func:`rotorcad.measured_outline.corners`).
     label : str, optional
         How the points are named in errors (default "<rotor> points").
+    drawn_as_points : bool
+        Read a drawing that approximates the outline as the points it was drawn through
+        (:func:`drawing_points`), as the rack generation needs; False (the clearance) uses its
+        curves as drawn. A drawing of one groove or tooth is read as points either way.
 
     Returns
     -------
@@ -267,7 +272,7 @@ def lobe_pieces(
     rotor = side.value
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     label = label or f"{rotor} points"
-    points = as_given(points, teeth, corner_angle_deg)
+    points = as_given(points, teeth, corner_angle_deg, drawn_as_points)
     if isinstance(points, list):
         return _lobe_from_curves(points, teeth, rotor, label)
     whole = whole_outline(points, teeth, label)
@@ -339,13 +344,16 @@ def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -
     return np.asarray(profile, dtype=float)
 
 
-def as_given(points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: float = 30.0) -> np.ndarray | list[Curve]:
+def as_given(
+    points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: float = 30.0, drawn_as_points: bool = True
+) -> np.ndarray | list[Curve]:
     """Return a profile as it is to be fitted: a drawing's exact curves, or points.
 
     A drawing stays its curves when they are the outline's own (:func:`drawing_points` finds no
     approximation) and span one lobe or more; a drawing that approximates the outline is read as
-    its points, and one of a single groove or tooth (less than the lobe pitch) as points sampled
-    at 0.1 µm chord, which :func:`rotorcad.measured_outline.whole_outline` patterns.
+    its points (with ``drawn_as_points``: the rack generation needs them), and one of a single
+    groove or tooth (less than the lobe pitch) as points sampled at 0.1 µm chord, which
+    :func:`rotorcad.measured_outline.whole_outline` patterns.
 
     Parameters
     ----------
@@ -355,6 +363,9 @@ def as_given(points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: flo
         Lobe count of the rotor.
     corner_angle_deg : float, deg
         Turn above which a joint is a sharp corner.
+    drawn_as_points : bool
+        Read a drawing that approximates the outline as its points (:func:`drawing_points`);
+        False keeps its curves (the clearance measures distances between them as drawn).
 
     Returns
     -------
@@ -363,7 +374,7 @@ def as_given(points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: flo
     if not (isinstance(points, list | tuple) and points and isinstance(points[0], Curve)):
         return np.asarray(points, dtype=float)
     curves = list(points)
-    drawn = drawing_points(curves, corner_angle_deg)
+    drawn = drawing_points(curves, corner_angle_deg) if drawn_as_points else None
     if drawn is not None:
         return drawn
     pts = np.vstack([sample_curve(c, 1e-4)[1] for c in curves])
@@ -608,7 +619,7 @@ def pair_from_rotor_points(
     """
     mesh = pair.mesh
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
-    pieces = lobe_pieces(pair, points, rotor, smoothing, label=label)
+    pieces = lobe_pieces(pair, points, rotor, smoothing, label=label, drawn_as_points=True)
     side = Side(rotor)
     acc = max(points_accuracy(pair, points, rotor, label), fit_residual(pair, points, pieces, rotor))
     rotor = side.value
