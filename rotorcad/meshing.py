@@ -605,7 +605,7 @@ class MeshingAnalysis:
             for x, _, _ in crossings:
                 i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
                 p = pts[i] + w * (pts[i + 1] - pts[i])
-                if abs(p[0] - c[0]) > 1e-6 * scale:
+                if abs(p[0] - c[0]) > max(1e-6 * scale, on_line if given else 0.0):  # away from C
                     ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
                     role = piece.roles[i] if piece.roles[i] == piece.roles[i + 1] else (Flank.TIP if p[0] > c[0] else Flank.ROOT)
                     at = (float(p[0]), float(p[1]), float(np.degrees(ang)))
@@ -637,7 +637,7 @@ class MeshingAnalysis:
             ends.append((np.sign(y[side[0]]), np.sign(y[side[-1]]), piece.points[-1], float(piece.t[-1])))
         found = []
         for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
-            if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > 1e-6 * scale:
+            if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > near:  # not at C
                 tip = p[0] > c_x
                 land = "male tip on the female root" if tip else "female tip on the male root"
                 role = Flank.TIP if tip else Flank.ROOT
