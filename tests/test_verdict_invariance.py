@@ -15,6 +15,7 @@ before), a female given as one groove (refused before) and the ``----male-points
 
 from __future__ import annotations
 
+import functools
 import json
 import tomllib
 from collections import Counter
@@ -167,16 +168,10 @@ def written(tmp_path_factory) -> dict[str, Path]:
     return files
 
 
-def _design_json(capsys) -> dict:
-    rc, out, err = run(capsys, "rotor", SAMPLES / "rack_involute_5_6.toml", "--json", "--quiet")
-    assert rc == 0, err
-    return json.loads(out)
-
-
-def test_own_dxf_polyline_accepted_and_smoothing_acts(written, capsys):
+def test_own_dxf_polyline_accepted_and_smoothing_acts(verdicts, written, capsys):
     # the finding: rotorcad's own DXF polyline was refused ("noise in the points? raise --smoothing"),
     # and --smoothing 0, 0.1 and 10 gave that one refusal
-    design = _design_json(capsys)
+    design = verdicts[("rack_involute_5_6", "design")]
     results = {}
     for smoothing in (None, 0.0, 0.1, 10.0):
         extra = [] if smoothing is None else ["--smoothing", smoothing]
@@ -207,7 +202,7 @@ def _bulged_polyline(points: np.ndarray, every: int) -> np.ndarray:
     return np.column_stack([p0, np.tan(included / 4.0)])
 
 
-def test_bulged_polyline_accepted_by_rotor_as_by_clearance(written, tmp_path, capsys):
+def test_bulged_polyline_accepted_by_rotor_as_by_clearance(verdicts, written, tmp_path, capsys):
     # the finding: an LWPOLYLINE of arcs within 1.1 um of the outline, accepted by clearance, refused by rotor
     lobe = np.vstack([seg.resampled(2e-4).points for seg in _rack_involute().male_lobe().segments])
     lobe = lobe[np.concatenate([[True], np.hypot(*np.diff(lobe, axis=0).T) > 1e-9])][:-1]
@@ -225,11 +220,12 @@ def test_bulged_polyline_accepted_by_rotor_as_by_clearance(written, tmp_path, ca
     assert float(shapely.distance(shapely.points(flat), whole).max()) < 1.1e-3
     rc, out, err = run(capsys, "rotor", "--male-points", path, *DIMS_56, *RADII_56, "--json")
     assert rc == 0, err
-    assert_same_verdicts(_design_json(capsys), json.loads(out))
+    assert_same_verdicts(verdicts[("rack_involute_5_6", "design")], json.loads(out))
     rc, _, err = run(capsys, "clearance", "--male-points", path, "--female-points", written["female"], *DIMS_56, "--json")
     assert rc == 0, err
 
 
+@functools.cache
 def _rack_involute():
     spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text()), SAMPLES))
     return build_pair(spec)
@@ -243,7 +239,7 @@ def _one_groove(female: np.ndarray) -> np.ndarray:
     return female[tip[k] : tip[k + 1] + 1]
 
 
-def test_one_groove_is_enough(written, tmp_path, capsys):
+def test_one_groove_is_enough(verdicts, written, tmp_path, capsys):
     # the finding: a female given as one groove was refused; rotor, clearance and hob take it
     groove = _one_groove(read_points(written["female"], "f"))
     span = np.degrees(np.ptp(np.unwrap(np.arctan2(groove[:, 1], groove[:, 0]))))
@@ -252,7 +248,7 @@ def test_one_groove_is_enough(written, tmp_path, capsys):
     write_points(path, groove)
     rc, out, err = run(capsys, "rotor", "--female-points", path, *DIMS_56, *RADII_56, "--json")
     assert rc == 0, err
-    got, design = json.loads(out), _design_json(capsys)
+    got, design = json.loads(out), verdicts[("rack_involute_5_6", "design")]
     assert_same_verdicts(design, got)
     assert got["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01)
     rc, _, err = run(capsys, "clearance", "--male-points", written["male"], "--female-points", path, *DIMS_56, "--json")
