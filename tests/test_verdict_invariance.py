@@ -204,7 +204,7 @@ def _bulged_polyline(points: np.ndarray, every: int) -> np.ndarray:
 
 def test_bulged_polyline_accepted_by_rotor_as_by_clearance(verdicts, written, tmp_path, capsys):
     # the finding: an LWPOLYLINE of arcs within 1.1 um of the outline, accepted by clearance, refused by rotor
-    lobe = np.vstack([seg.resampled(2e-4).points for seg in _rack_involute().male_lobe().segments])
+    lobe = np.vstack([seg.resampled(1e-3).points for seg in _rack_involute().male_lobe().segments])
     lobe = lobe[np.concatenate([[True], np.hypot(*np.diff(lobe, axis=0).T) > 1e-9])][:-1]
     male = np.vstack([lobe @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]]) for a in np.radians(72) * np.arange(5)])
     rows = _bulged_polyline(male, 2)
