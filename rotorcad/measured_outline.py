@@ -62,11 +62,13 @@ def lobe_count(whole: np.ndarray) -> int:
 
 
 def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
-    """Make the whole outline from the points of one lobe or of the whole outline.
+    """Make the whole outline from the points of one lobe, one groove or tooth, or of the whole outline.
 
     The result runs counter-clockwise about the rotor's centre (the origin), without repeated or
     duplicated points; the points may come in either direction and from any start, and one lobe is
-    patterned ``teeth`` times.
+    patterned ``teeth`` times. One groove (tip to tip) or one tooth (root to root), which holds
+    both flanks but spans less than the lobe pitch, is patterned too, the unmeasured tip or root
+    between the copies filled (:func:`_patterned_groove`).
 
     Parameters
     ----------
@@ -106,11 +108,14 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
     if span < 0:
         pts, span = pts[::-1], -span
     spacing = np.median(np.abs(np.diff(ang)))
+    if span < pitch - max(3 * spacing, 0.02 * pitch) and _one_groove(pts, span, pitch):
+        return _patterned_groove(pts, teeth)
     if abs(span - pitch) > max(3 * spacing, 0.02 * pitch):
         fits = 2 * np.pi / span if span > 0 else float("inf")
         raise DesignError(
             label,
-            f"one lobe spanning the lobe pitch 360/{teeth} = {np.degrees(pitch):.4g} deg, or the whole outline",
+            f"one lobe spanning the lobe pitch 360/{teeth} = {np.degrees(pitch):.4g} deg (or one groove or tooth from tip "
+            "to tip or root to root), or the whole outline",
             None,
             f"the points span {np.degrees(span):.4g} deg, which fits {fits:.3g} lobes",
         )
@@ -118,6 +123,48 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
     ang = ang - ang[0]
     keep = ang < pitch - 1e-9 * pitch
     lobe = pts[keep]
+    return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
+
+
+GROOVE_ENDS = 0.1
+"""Share of the radial range within which both ends of a span shorter than the pitch lie at the
+same extreme radius (tip or root) for the span to be one groove or one tooth."""
+
+
+def _one_groove(pts: np.ndarray, span: float, pitch: float) -> bool:
+    """Tell whether points spanning less than the pitch are one groove or one tooth of a rotor.
+
+    That is a span from tip to tip (a groove, as a CMM measures a female) or from root to root (a
+    tooth), which holds both flanks: both ends within :data:`GROOVE_ENDS` of the radial range from
+    the same extreme radius, and a span of at least a quarter of the pitch.
+    """
+    r = np.hypot(*pts.T)
+    lo, hi = float(r.min()), float(r.max())
+    near = GROOVE_ENDS * (hi - lo)
+    ends = r[[0, -1]]
+    at_tip, at_root = np.all(ends >= hi - near), np.all(ends <= lo + near)
+    return bool(span >= 0.25 * pitch and hi - lo > 0 and (at_tip or at_root))
+
+
+def _patterned_groove(pts: np.ndarray, teeth: int) -> np.ndarray:
+    """Make the whole outline from one groove or tooth, counter-clockwise.
+
+    The span is patterned ``teeth`` times; the part between the end of one copy and the start of
+    the next, which was not measured (the tip or the root between two grooves), is filled with
+    points at the polar angle's own spacing whose radius runs linearly in angle from the one end to
+    the other: an arc about the centre (a land) when both ends lie on one radius.
+    """
+    pitch = 2 * np.pi / teeth
+    theta = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    r = np.hypot(*pts.T)
+    gap = theta[0] + pitch - theta[-1]
+    step = float(np.median(np.abs(np.diff(theta))))
+    n = max(int(np.ceil(gap / max(step, 1e-6))), 2)
+    u = np.linspace(0.0, 1.0, n + 1)[1:-1]
+    fill_t = theta[-1] + gap * u
+    fill_r = r[-1] + (r[0] - r[-1]) * u
+    fill = np.column_stack([fill_r * np.cos(fill_t), fill_r * np.sin(fill_t)])
+    lobe = np.vstack([pts, fill])
     return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
 
 
@@ -146,6 +193,35 @@ def scatter(whole: np.ndarray) -> float:
     normal = np.abs(cross(chord[ok], d3[ok])) / length[ok]
     sigma = 1.4826 * np.median(normal) / np.sqrt(20.0)  # MAD of a zero-mean normal, sqrt(20): the difference's gain
     return float(sigma) if sigma > SCATTER_FLOOR else 0.0
+
+
+def accuracy(whole: np.ndarray, sigma: float) -> float:
+    """Estimate how far the outline the points give may lie from the true one.
+
+    The larger of two scatters (2 sigma) and the chords' sagitta: between points spaced h on a
+    curve of curvature k the curve leaves the chord by h^2 k / 8, which is a quarter of the distance
+    of a point from the chord of its two neighbours; the 90th percentile of that over the outline
+    (the corners, a few points, stay above it).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    sigma : float, mm
+        Its scatter (:func:`scatter`).
+
+    Returns
+    -------
+    float, mm
+    """
+    p = np.asarray(whole, dtype=float)
+    before, after = np.roll(p, 1, axis=0), np.roll(p, -1, axis=0)
+    chord = after - before
+    length = np.hypot(*chord.T)
+    ok = length > 0
+    off = np.abs(cross(chord[ok], (p - before)[ok])) / length[ok]
+    sagitta = float(np.quantile(off, 0.9)) / 4.0 if ok.any() else 0.0
+    return max(2.0 * sigma, sagitta)
 
 
 def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
@@ -259,4 +335,4 @@ def lands(run: np.ndarray, sigma: float, min_angle_deg: float = 0.5, min_points:
     return out
 
 
-__all__ = ["SCATTER_FLOOR", "corners", "lands", "lobe_count", "scatter", "whole_outline"]
+__all__ = ["SCATTER_FLOOR", "accuracy", "corners", "lands", "lobe_count", "scatter", "whole_outline"]

@@ -19,8 +19,7 @@ to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear)
 
 from __future__ import annotations
 
-import itertools
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -30,6 +29,7 @@ from scipy import interpolate
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, wrap_angle
+from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -231,6 +231,197 @@ class Defect:
         }
 
 
+def resolution(accuracy: float, scale: float) -> float:
+    """Return the shortest meshline stretch (mm) that the defect tests resolve.
+
+    A profile known to an accuracy e has its tangent direction resolved over a chord no shorter than
+    the one along which a circle of the pair's size (the centre distance a) leaves its tangent by e,
+    sqrt(8 a e), nor than 0.5 % of a. A stretch along which the normal passes through a centre within
+    the accuracy is an arc about that centre only when it is longer than this; sign changes nearer
+    each other than this cancel; defects of one kind nearer each other than this are one.
+
+    Parameters
+    ----------
+    accuracy : float, mm
+        Accuracy of the profile (:attr:`MeshingAnalysis.judged_accuracy`).
+    scale : float, mm
+        The centre distance.
+
+    Returns
+    -------
+    float, mm
+    """
+    return max(5e-3 * scale, float(np.sqrt(8.0 * scale * accuracy)))
+
+
+def robust_zeros(
+    f: np.ndarray,
+    band: np.ndarray,
+    arclen: np.ndarray,
+    longest: float,
+    whole: bool = False,
+    reversals: np.ndarray | None = None,
+) -> tuple[list[tuple[float, int, int]], list[tuple[int, int]]]:
+    """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
+
+    A sign change counts only where ``f`` leaves the band |f| <= ``band`` on both sides with opposite
+    signs (noise within the band makes none): between two samples outside the band, or across a run of
+    samples inside it (then at the sign change nearest the run's middle). A run inside the band that
+    is ``longest`` long or more (or all of ``f`` when ``whole``) is a stretch, not a sign change.
+
+    Parameters
+    ----------
+    f : (n,) float array
+        The function at the samples.
+    band : (n,) float array
+        Its uncertainty at each sample (same unit).
+    arclen : (n,) float array, mm
+        Arc length of the samples along the meshline.
+    longest : float, mm
+        Length from which a run inside the band is a stretch.
+    whole : bool
+        Take all samples as one stretch.
+    reversals : (m,) float array, mm, optional
+        Arc lengths where the meshline turns back (:func:`reversals`): the tangent's half turn there
+        changes the sign of every miss at once, which is no normal through a centre; sign changes
+        within ``longest`` of them do not count.
+
+    Returns
+    -------
+    crossings : list of (float, int, int)
+        Fractional sample index i + w (0 <= w < 1) of each sign change, and the first and last
+        sample of the stretch within which it is uncertain (the band's run around it).
+    stretches : list of (int, int)
+        First and last sample index of each stretch.
+    """
+    n = len(f)
+    if whole:
+        return [], [(0, n - 1)]
+    inside = np.abs(f) <= band
+    sign = np.sign(f)
+    flip = sign[:-1] * sign[1:] < 0
+    direct = np.flatnonzero(flip & ~inside[:-1] & ~inside[1:])
+    crossings = [(float(i + f[i] / (f[i] - f[i + 1])), int(i), int(i) + 1) for i in direct]
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(int), [0]])))
+    stretches = []
+    for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
+        if arclen[b] - arclen[a] >= longest:
+            stretches.append((int(a), int(b)))
+        elif a > 0 and b < n - 1 and sign[a - 1] * sign[b + 1] < 0:
+            k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
+            i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
+            crossings.append((float(i + f[i] / (f[i] - f[i + 1])), int(a) - 1, int(b) + 1))
+    return _persistent(sorted(crossings), stretches, arclen, longest, reversals), stretches
+
+
+SHARP_TURN = np.pi / 4
+"""rad: a meshline whose tangent turns by more than this within the resolution has a corner there
+(as where a rack rounding about C meets a straight flank), at which its normal sweeps through
+every direction in between."""
+
+
+def reversals(points: np.ndarray, arclen: np.ndarray, longest: float = 0.0) -> np.ndarray:
+    """Return the arc lengths (mm) where a sampled meshline turns back or turns sharply.
+
+    It turns back where two consecutive chords point against each other, and sharply where its
+    chords' direction changes by more than :data:`SHARP_TURN` within ``longest`` (mm); positions
+    only, no tangents. A sign change of a normal's miss there is the turn, not a normal through a
+    centre.
+    """
+    d = np.diff(points, axis=0)
+    back = np.flatnonzero(np.einsum("ij,ij->i", d[:-1], d[1:]) < 0) + 1
+    if longest <= 0 or len(d) < 2:
+        return arclen[back]
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    mid = 0.5 * (arclen[:-1] + arclen[1:])
+    ahead = np.interp(mid + 0.5 * longest, mid, heading)
+    behind = np.interp(mid - 0.5 * longest, mid, heading)
+    sharp = np.flatnonzero(np.abs(ahead - behind) > SHARP_TURN)
+    return np.concatenate([arclen[back], mid[sharp]])
+
+
+def _persistent(
+    crossings: list[tuple[float, int, int]],
+    stretches: list[tuple[int, int]],
+    arclen: np.ndarray,
+    longest: float,
+    turns: np.ndarray | None = None,
+) -> list[tuple[float, int, int]]:
+    """Keep the sign changes whose new sign persists over ``longest`` (mm of meshline).
+
+    Two sign changes nearer each other than that are an excursion and cancel; a sign change nearer
+    than that to a stretch is where the stretch ends; one nearer than that to a reversal of the
+    meshline (``turns``, arc lengths) is the reversal.
+    """
+    at = np.interp([c[0] for c in crossings], np.arange(len(arclen)), arclen) if crossings else np.zeros(0)
+    near_stretch = np.zeros(len(at), dtype=bool)
+    for r in turns if turns is not None else ():
+        near_stretch |= np.abs(at - r) < longest
+    for a, b in stretches:
+        near_stretch |= (at > arclen[a] - longest) & (at < arclen[b] + longest)
+    kept: list[tuple[int, float]] = []
+    for k, s in enumerate(at):
+        if kept and s - kept[-1][1] < longest:
+            kept.pop()  # f went back to its sign within the resolution: no crossing
+        else:
+            kept.append((k, s))
+    return [crossings[k] for k, _ in kept if not near_stretch[k]]
+
+
+def _meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float) -> np.ndarray:
+    """Return the unit tangents of a meshline piece at its samples, (n, 2).
+
+    Of the design's exact meshline, from a shape-preserving (modified Akima) cubic over the piece's
+    parameter: an interpolating cubic rings where the meshline turns sharply (a rack rounding about
+    C meeting a straight flank), and its tangent flips from sample to sample. Of a meshline
+    generated from a profile known to ``accuracy`` (mm, > 0), from a smoothing cubic over its arc
+    length that stays within that accuracy of the samples (scipy's s = n e^2, Dierckx sec. 5.2):
+    the samples wobble by the profile's error, far more than their spacing resolves.
+    """
+    order = np.argsort(piece.s)
+    pts = piece.points
+    if accuracy > 0:
+        keep = np.concatenate([[True], np.diff(arclen) > 1e-12])
+        if keep.sum() > 8:
+            try:
+                tck, _ = interpolate.splprep(pts[keep].T, u=arclen[keep], s=keep.sum() * accuracy**2, k=3, quiet=2)
+                tau = np.column_stack(interpolate.splev(arclen, tck, der=1))
+                norm = np.linalg.norm(tau, axis=1, keepdims=True)
+                if np.all(norm > 0):
+                    return tau / norm
+            except (ValueError, TypeError):
+                pass  # too few distinct samples for a smoothing cubic: the interpolating one below
+    spline = interpolate.Akima1DInterpolator(piece.s[order], pts[order], axis=0, method="makima")
+    tau = spline.derivative()(piece.s)
+    return tau / np.linalg.norm(tau, axis=1, keepdims=True)
+
+
+def _merged(defects: list[Defect], distance: float, spans: dict[int, np.ndarray] | None = None) -> list[Defect]:
+    """Return the defects with those of one kind, rotor and flank part nearer than ``distance`` (mm) made one.
+
+    Nearness is between the meshline points each defect holds (a stretch's, given in ``spans`` by
+    the defect's ``id``; a point's own). The first of a group stands for it (a point-generated one
+    before a point); extents add up.
+    """
+    spans = spans or {}
+    held: list[np.ndarray] = []
+    out: list[Defect] = []
+    for d in sorted(defects, key=lambda d: not d.point_generated):
+        mine = spans.get(id(d), np.array([[d.x, d.y]]))
+        for k, e in enumerate(out):
+            if (e.kind, e.rotor, e.role) != (d.kind, d.rotor, d.role):
+                continue
+            gap = np.hypot(*(held[k][:, None, :] - mine[None, :, :]).transpose(2, 0, 1)).min()
+            if gap < distance:
+                out[k] = replace(e, extent=e.extent + d.extent if d.point_generated else e.extent)
+                held[k] = np.vstack([held[k], mine])
+                break
+        else:
+            out.append(d)
+            held.append(mine)
+    return out
+
+
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
     """Everything Rinder reads off a toothing, for one pair at a design speed.
@@ -243,14 +434,19 @@ class MeshingAnalysis:
         Male speed, for the sliding velocities (m/s).
     samples : int
         Samples along each rack piece.
-    tolerance : float
-        Relative tolerance of the cusp/jamming test of a whole piece (a point-generated flank).
+    tolerance : float, rad
+        Relative tolerance of the cusp/jamming test: the uncertainty of the meshline's tangent
+        direction (a whole piece within it is a point-generated flank).
+    accuracy : float, mm, optional
+        Accuracy of the profile to which the defects are judged; None: that of the rotors
+        (:attr:`judged_accuracy`).
     """
 
     rotors: ScrewRotors
     speed_rpm: float = 3000.0
     samples: int = 600
     tolerance: float = 1e-3
+    accuracy: float | None = None
 
     # ---- meshline ------------------------------------------------------------------------
     @cached_property
@@ -301,6 +497,18 @@ class MeshingAnalysis:
         return np.concatenate([p.t for p in self.pieces]) if self.pieces else np.zeros(0)
 
     # ---- the rules of sec. 2.2.1 -----------------------------------------------------------
+    @property
+    def judged_accuracy(self) -> float:
+        """The accuracy (mm) to which the defects are judged (``defect_accuracy`` of the summary).
+
+        :attr:`accuracy` when given, else that of the profile the pair was generated from
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), at least the design's chord tolerance
+        :data:`rotorcad.profile.DEFAULT_TOLERANCE`.
+        """
+        if self.accuracy is not None:
+            return float(self.accuracy)
+        return max(float(getattr(self.rotors, "accuracy", 0.0)), DEFAULT_TOLERANCE)
+
     @cached_property
     def defects(self) -> list[Defect]:
         """Cusps, jamming and slipping points on the meshline (Rinder sec. 2.2.1), a list of :class:`Defect`.
@@ -308,31 +516,61 @@ class MeshingAnalysis:
         The meshline normal (from a spline over each piece) through O1 or O2 is a cusp, through C
         jamming (except on a meshline arc about C, Rinder's exception); a crossing of O1O2 away from C
         is slipping, inside a piece or between two pieces.
+
+        Each test is judged to the accuracy e of the profile (:attr:`judged_accuracy`): the normal's
+        miss f = (q - p) . tau of a centre q is uncertain by e + max(tolerance, e / L) |q - p| (a
+        position error e, and a tangent error of ``tolerance`` rad or of e over the resolution L,
+        :func:`resolution`), so a sign change of f counts only where f leaves that band on both
+        sides (:func:`robust_zeros`), and a stretch of the meshline longer than L along which f
+        stays in the band is an arc about q (Rinder's exception at C, a point-generated flank at O1
+        or O2), whichever pieces it spans. A sign change within L (of a given profile; 0.1 % of the
+        centre distance for the design) of a centre or of O1O2 is judged by the slipping rule; one
+        within L of another, of such a stretch, of a reversal of the meshline or of a sign change
+        of another centre's miss (both flip when the tangent turns over; the normals through two
+        centres meet only on O1O2) is not robust and counts for nothing. Defects of one kind, rotor
+        and flank part whose meshline points come nearer each other than L are one defect; a
+        profile given by points or a drawing carries its accuracy
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), the design is judged to its chord
+        tolerance.
         """
         pair = self.rotors.pair
         o1, o2 = np.zeros(2), np.array([pair.center_distance, 0.0])
         c = np.array([pair.male_pitch_radius, 0.0])
-        tol = self.tolerance
-        found: list[Defect] = []
+        tol, acc = self.tolerance, self.judged_accuracy
         scale = pair.center_distance
+        longest = resolution(acc, scale)
+        given = getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None  # not the design's exact curves
+        found: list[Defect] = []
+        spans: dict[int, np.ndarray] = {}  # the meshline points of each stretch, by the defect's id
+        on_line = max(1e-3 * scale, longest if given else 0.0)  # through a centre or on O1O2 within the resolution
         for piece in self.pieces:
             pts = piece.points
-            length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
+            steps = np.hypot(*np.diff(pts, axis=0).T)
+            arclen = np.concatenate([[0.0], np.cumsum(steps)])
+            length = float(arclen[-1])
             if len(pts) < 4 or length < 1e-6 * scale:
                 continue  # the piece touches at a single point (a tip or root land): no meshline
-            order = np.argsort(piece.s)
-            spline = interpolate.make_interp_spline(piece.s[order], pts[order], k=3)
-            tau = spline.derivative()(piece.s)
-            tau /= np.linalg.norm(tau, axis=1, keepdims=True)
+            tau = _meshline_tangents(piece, arclen, acc if given else 0.0)
             # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
             # through O1, O2 and C at once), and C itself lies on every meshline
             judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
-            for q, kind, rotor in ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male")):
+            turns = reversals(pts, arclen, longest if given else 0.0)
+            tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
+            misses = []
+            for q, _kind, _ in tests:
                 f = np.einsum("ij,ij->i", q - pts, tau)  # zero: the meshline normal passes through q
-                if np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()):
+                band = acc + max(tol, acc / longest) * np.hypot(*(q - pts).T)
+                whole = bool(np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()))
+                misses.append((f, band, whole, *robust_zeros(f, band, arclen, longest, whole, turns)))
+            at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) for m in misses]
+            for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
+                for i, j in stretches:
                     if kind == "jamming":
                         continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
-                    mid = len(pts) // 2
+                    ramp = np.median(np.abs(f[i : j + 1]) / band[i : j + 1]) > 0.3  # |f| runs through the band: no arc
+                    if not whole and ramp and np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale:
+                        continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once
+                    mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
                     found.append(
                         Defect(
                             kind,
@@ -341,15 +579,21 @@ class MeshingAnalysis:
                             float(np.degrees(piece.t[mid])),
                             piece.name,
                             True,
-                            length,
+                            float(arclen[j] - arclen[i]),
                             piece.roles[mid],
                         )
                     )
-                    continue
-                for i in np.nonzero((np.sign(f[:-1]) * np.sign(f[1:]) < 0) & judged[:-1] & judged[1:])[0]:
-                    w = f[i] / (f[i] - f[i + 1])
+                    spans[id(found[-1])] = pts[i : j + 1 : max(1, (j - i) // 200)]
+                others = np.concatenate([at[m] for m in range(len(tests)) if m != k])
+                for (x, lo, hi), s_x in zip(crossings, at[k], strict=True):
+                    if np.any(np.abs(others - s_x) < longest):
+                        continue  # the misses of two centres change sign together: the tangent turned over
+                    i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
+                    if not (judged[i] and judged[i + 1]):
+                        continue
                     p = pts[i] + w * (pts[i + 1] - pts[i])
-                    if np.hypot(*(p - q)) < 1e-3 * scale or abs(p[1]) < 1e-3 * scale:
+                    near = pts[max(lo, 0) : hi + 1]  # where the crossing may lie
+                    if np.hypot(*(near - q).T).min() < on_line or np.abs(near[:, 1]).min() < on_line:
                         continue  # through q itself (C lies on every meshline), or on O1O2 (slipping rule)
                     ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
                     role = piece.roles[i if w < 0.5 else i + 1]
@@ -357,40 +601,43 @@ class MeshingAnalysis:
             # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
             # with its neighbour (_slipping_between_pieces)
             y = pts[:, 1]
-            side = np.nonzero(np.abs(y) > 1e-9 * scale)[0]
-            for i, j in itertools.pairwise(side):
-                if y[i] * y[j] < 0:
-                    w = y[i] / (y[i] - y[j])
-                    p = pts[i] + w * (pts[j] - pts[i])
-                    if abs(p[0] - c[0]) > 1e-6 * scale:
-                        ang = piece.t[i] + w * (piece.t[j] - piece.t[i])
-                        role = piece.roles[i] if piece.roles[i] == piece.roles[j] else (Flank.TIP if p[0] > c[0] else Flank.ROOT)
-                        found.append(
-                            Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name, role=role)
-                        )
+            crossings, _ = robust_zeros(y, np.full(len(y), max(acc, 1e-9 * scale)), arclen, longest, False)
+            for x, _, _ in crossings:
+                i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
+                p = pts[i] + w * (pts[i + 1] - pts[i])
+                if abs(p[0] - c[0]) > max(1e-6 * scale, on_line if given else 0.0):  # away from C
+                    ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
+                    role = piece.roles[i] if piece.roles[i] == piece.roles[i + 1] else (Flank.TIP if p[0] > c[0] else Flank.ROOT)
+                    at = (float(p[0]), float(p[1]), float(np.degrees(ang)))
+                    found.append(Defect("slipping", "male", *at, piece.name, role=role))
         found.extend(self._slipping_between_pieces())
-        return found
+        return _merged(found, longest, spans)
 
     def _slipping_between_pieces(self) -> list[Defect]:
         """Apply Rinder's slipping rule where the meshline crosses O1O2 between two pieces.
 
         That is where a tip touches the mate's root on O1O2 (a tip corner's path or a flank handing over
         to the next one), e.g. the female tip on the male root. The pieces are the meshline in order, and
-        the next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over.
+        the next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over. A
+        piece of a profile given by points or a drawing (not the design's exact curves) may end short
+        of O1O2 by up to the resolution (:func:`resolution`).
         """
         pair = self.rotors.pair
         scale = pair.center_distance
         c_x = pair.male_pitch_radius
+        given = getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None  # not the design's exact curves
+        near = max(1e-6 * scale, resolution(self.judged_accuracy, scale) if given else 0.0)
+        off = self.judged_accuracy if given else 1e-9 * scale  # a side of O1O2 beyond the accuracy
         ends = []  # per piece: sign of y leaving its start, reaching its end, its end point, its angle
         for piece in self.pieces:
             y = piece.points[:, 1]
-            side = np.nonzero(np.abs(y) > 1e-9 * scale)[0]
+            side = np.nonzero(np.abs(y) > off)[0]
             if len(side) == 0:
                 continue
             ends.append((np.sign(y[side[0]]), np.sign(y[side[-1]]), piece.points[-1], float(piece.t[-1])))
         found = []
         for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
-            if abs(p[1]) <= 1e-6 * scale and out_sign * in_sign < 0 and abs(p[0] - c_x) > 1e-6 * scale:
+            if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > near:  # not at C
                 tip = p[0] > c_x
                 land = "male tip on the female root" if tip else "female tip on the male root"
                 role = Flank.TIP if tip else Flank.ROOT
@@ -672,6 +919,7 @@ class MeshingAnalysis:
             "max_slip_female": self._max("slip_female"),
             "speed_rpm": self.speed_rpm,
             "defects": [d.as_dict() for d in self.defects],
+            "defect_accuracy": self.judged_accuracy,
             "point_generated_flanks": self.point_generated_flanks,
             "flanks": {str(f): r.as_dict() for f, r in self.flanks.items()},
             "runs_without_timing_gears": all(r.runs_without_timing_gears for r in self.flanks.values()),

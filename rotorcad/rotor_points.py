@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.curves import Arc, Curve, Mapped, Spline, rotated, sample_curve
+from rotorcad.curves import Arc, Curve, Line, Mapped, Spline, rotated, sample_curve
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
-from rotorcad.geometry import wrap_angle
+from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
-from rotorcad.measured_outline import corners, lands, scatter, whole_outline
+from rotorcad.measured_outline import accuracy, corners, lands, scatter, whole_outline
 from rotorcad.roles import PieceRole, Side
 from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
@@ -224,6 +224,7 @@ def lobe_pieces(
     smoothing: float | None = None,
     corner_angle_deg: float = 30.0,
     label: str | None = None,
+    drawn_as_points: bool = False,
 ) -> list[tuple[str, Curve]]:
     """Fit one lobe of the male or the female as pieces between the sharp corners of its points.
 
@@ -251,6 +252,10 @@ def lobe_pieces(
         Turn above which a vertex is a sharp corner (:func:`rotorcad.measured_outline.corners`).
     label : str, optional
         How the points are named in errors (default "<rotor> points").
+    drawn_as_points : bool
+        Read a drawing that approximates the outline as the points it was drawn through
+        (:func:`drawing_points`), as the rack generation needs; False (the clearance) uses its
+        curves as drawn. A drawing of one groove or tooth is read as points either way.
 
     Returns
     -------
@@ -267,8 +272,9 @@ def lobe_pieces(
     rotor = side.value
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     label = label or f"{rotor} points"
-    if isinstance(points, list | tuple) and points and isinstance(points[0], Curve):
-        return _lobe_from_curves(list(points), teeth, rotor, label)
+    points = as_given(points, teeth, corner_angle_deg, drawn_as_points)
+    if isinstance(points, list):
+        return _lobe_from_curves(points, teeth, rotor, label)
     whole = whole_outline(points, teeth, label)
     sigma = scatter(whole) if smoothing is None else 0.0
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
@@ -336,6 +342,109 @@ def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -
     if isinstance(profile, list | tuple):
         return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
     return np.asarray(profile, dtype=float)
+
+
+def as_given(
+    points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: float = 30.0, drawn_as_points: bool = True
+) -> np.ndarray | list[Curve]:
+    """Return a profile as it is to be fitted: a drawing's exact curves, or points.
+
+    A drawing stays its curves when they are the outline's own (:func:`drawing_points` finds no
+    approximation) and span one lobe or more; a drawing that approximates the outline is read as
+    its points (with ``drawn_as_points``: the rack generation needs them), and one of a single
+    groove or tooth (less than the lobe pitch) as points sampled at 0.1 µm chord, which
+    :func:`rotorcad.measured_outline.whole_outline` patterns.
+
+    Parameters
+    ----------
+    points : (n, 2) float array or list of Curve, mm
+        The profile.
+    teeth : int
+        Lobe count of the rotor.
+    corner_angle_deg : float, deg
+        Turn above which a joint is a sharp corner.
+    drawn_as_points : bool
+        Read a drawing that approximates the outline as its points (:func:`drawing_points`);
+        False keeps its curves (the clearance measures distances between them as drawn).
+
+    Returns
+    -------
+    (n, 2) float array or list of Curve
+    """
+    if not (isinstance(points, list | tuple) and points and isinstance(points[0], Curve)):
+        return np.asarray(points, dtype=float)
+    curves = list(points)
+    drawn = drawing_points(curves, corner_angle_deg) if drawn_as_points else None
+    if drawn is not None:
+        return drawn
+    pts = np.vstack([sample_curve(c, 1e-4)[1] for c in curves])
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    if abs(ang[-1] - ang[0]) < 0.98 * 2 * np.pi / teeth:  # one groove or tooth: patterned as points
+        return pts
+    return curves
+
+
+SMOOTH_JOINT = 1e-3
+"""rad: consecutive curves of a drawing whose tangents differ by more than this (and less than a
+corner's angle) meet at a kink: the drawing approximates the outline (a polyline, a chain of arcs
+fitted to points) and is read as its points."""
+
+
+def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.ndarray | None:
+    """Return the points of a drawing that approximates an outline, or None for an exact drawing.
+
+    A drawing is read as the points it was drawn through when its curves meet at kinks (tangents
+    turning by more than :data:`SMOOTH_JOINT` and less than ``corner_angle_deg``: a polyline, arcs
+    fitted to points), or when it holds a spline of more than :data:`DRAWN_SPANS` polynomial pieces
+    (a spline through points, as CAD and rotorcad's own export draw an outline): the rack of a
+    straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
+    rings. The points are each line's start, each arc sampled to 0.1 µm chord (at least its
+    start and middle, the bulge's point) and a spline's points at its knots; they are then
+    fitted, smoothed and cut at corners as measured points are, to the accuracy they carry
+    (:func:`points_accuracy`).
+
+    Parameters
+    ----------
+    curves : list of Curve
+        The drawing's curves, chained (:func:`exports.dxf_profile.read_profile_dxf`).
+    corner_angle_deg : float, deg
+        Turn above which a joint is a sharp corner (kept as a corner by the points' fit).
+
+    Returns
+    -------
+    (n, 2) float array, mm, or None
+    """
+    ends = np.array([c.evaluate(np.array([c.s1]))[1][0] for c in curves])
+    starts = np.array([c.evaluate(np.array([c.s0]))[1][0] for c in curves])
+    following = np.roll(starts, -1, axis=0)
+    turn = np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
+    kinks = (turn > SMOOTH_JOINT) & (turn < np.radians(corner_angle_deg))
+    drawn = [c for c in curves if isinstance(c, Spline) and _knot_parameters(c).size > DRAWN_SPANS + 1]
+    if not kinks[:-1].any() and not drawn:  # the last joint closes a lobe (a corner or nothing)
+        return None
+    pts = []
+    for c in curves:
+        if isinstance(c, Spline):
+            u = _knot_parameters(c)
+            pts.append(c.evaluate(u[:-1])[0])
+        elif isinstance(c, Line):
+            pts.append(c.start[None, :])
+        else:  # an arc to 0.1 um chord, at least its middle (a land stays a land of many points)
+            pts.append(sample_curve(c, 1e-4, minimum=3)[1][:-1])
+    return np.vstack(pts)
+
+
+DRAWN_SPANS = 16
+"""A drawing's spline of more polynomial pieces than this was drawn through points (a designed curve
+needs a few)."""
+
+
+def _knot_parameters(spline: Spline) -> np.ndarray:
+    """Return the spline's distinct knots within its range, in the direction of travel (both ends included)."""
+    lo, hi = sorted((spline.s0, spline.s1))
+    knots = np.unique(spline.knots[0])
+    u = np.concatenate([[lo], knots[(knots > lo) & (knots < hi)], [hi]])
+    return u if spline.s1 >= spline.s0 else u[::-1]
 
 
 def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -> list[tuple[str, Curve]]:
@@ -510,8 +619,9 @@ def pair_from_rotor_points(
     """
     mesh = pair.mesh
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
-    pieces = lobe_pieces(pair, points, rotor, smoothing, label=label)
+    pieces = lobe_pieces(pair, points, rotor, smoothing, label=label, drawn_as_points=True)
     side = Side(rotor)
+    acc = max(points_accuracy(pair, points, rotor, label), fit_residual(pair, points, pieces, rotor))
     rotor = side.value
     if side is Side.MALE:
         body, mate_body, centre, teeth = mesh.male, mesh.female, np.zeros(2), pair.male_teeth
@@ -531,7 +641,7 @@ def pair_from_rotor_points(
             parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
-        runs = _mate_corner_runs(rack_curve, mate)
+        runs = _mate_corner_runs(rack_curve, mate, tolerance=1e-4)
         parts.append(
             [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
         )
@@ -545,4 +655,55 @@ def pair_from_rotor_points(
             None,
             f"{lost_share:.1f} % of the lobe has no rack point",
         )
-    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share)
+    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share, accuracy=acc)
+
+
+def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, label: str | None = None) -> float:
+    """Estimate the accuracy of a rotor profile given by points or by a drawing's curves (mm).
+
+    :func:`rotorcad.measured_outline.accuracy` of the whole outline: twice the estimated scatter, or
+    the sagitta of the chords between the points, whichever is larger. A drawing's splines are
+    judged by the points at their knots (what they were drawn through); lines and arcs are exact
+    (1e-9 mm: given, not designed).
+    """
+    side = Side(rotor)
+    points = as_given(points, side.pick(pair.male_teeth, pair.female_teeth))
+    if isinstance(points, list):
+        # a drawing's splines are as accurate as the points they were drawn through: their knots
+        knots = [c.evaluate(np.unique(np.clip(c.knots[0], *sorted((c.s0, c.s1)))))[0] for c in points if isinstance(c, Spline)]
+        pts = np.vstack(knots) if knots else np.zeros((0, 2))
+        return max(accuracy(pts, 0.0), 1e-9) if len(pts) >= 8 else 1e-9
+    whole = whole_outline(points, side.pick(pair.male_teeth, pair.female_teeth), label or f"{side.value} points")
+    return accuracy(whole, scatter(whole))
+
+
+def fit_residual(pair: RotorPair, points: np.ndarray | list[Curve], pieces: list[tuple[str, Curve]], rotor: str) -> float:
+    """Return how far the fitted lobe leaves the given points, mm (90th percentile; 0 for exact curves).
+
+    The distance of every point of the whole outline from the fitted lobe patterned around the
+    rotor (sampled to 0.1 µm chord): the smoothing the user chose (``--smoothing``) or the one
+    estimated from the scatter lets the fit leave the points, and the verdicts are judged to that.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts.
+    points : (n, 2) float array or list of Curve, mm
+        The profile as given.
+    pieces : list of (str, Curve)
+        The fitted lobe (:func:`lobe_pieces`), own frame.
+    rotor : {"male", "female"}
+        Which rotor.
+    """
+    side = Side(rotor)
+    teeth = side.pick(pair.male_teeth, pair.female_teeth)
+    given = as_given(points, teeth)
+    if isinstance(given, list):
+        return 0.0
+    import shapely  # here: the points path only
+
+    whole = whole_outline(given, teeth, f"{side.value} points")
+    lobe = np.vstack([sample_curve(c, 1e-4)[1] for _, c in pieces])
+    line = shapely.MultiLineString([rotate(lobe, k * 2 * np.pi / teeth) for k in range(teeth)])
+    gaps = shapely.distance(shapely.points(whole), line)
+    return float(np.quantile(gaps, 0.9))

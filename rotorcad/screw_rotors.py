@@ -116,6 +116,11 @@ class ScrewRotors:
         Default chord tolerance of the sampled profiles.
     rack_loss : float, per cent
         Share of a measured lobe that has no rack point (its normal misses the pitch circle).
+    accuracy : float, mm
+        How far the profile the pair was generated from may lie from the true one: 0 for a design
+        (exact curves), the estimated scatter and fit error for a profile given by points
+        (:func:`rotorcad.rotor_points.pair_from_rotor_points`). The meshing analysis judges its
+        defects to this accuracy (:attr:`rotorcad.meshing.MeshingAnalysis.accuracy`).
     """
 
     pair: RotorPair
@@ -123,6 +128,7 @@ class ScrewRotors:
     family: str = "rack"
     tolerance: float = 1e-3
     rack_loss: float = 0.0  # per cent of a measured lobe without a rack point (normal misses the pitch circle)
+    accuracy: float = 0.0  # mm: of the given profile (0 for a design's exact curves)
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:

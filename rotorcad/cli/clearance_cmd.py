@@ -165,7 +165,8 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         )
         mc.clearance  # noqa: B018 - evaluate here so that its errors are reported as bad input
     except DesignError as exc:
-        label = names.get(exc.param, f"--{exc.param.replace('_', '-')}" if " " not in exc.param else exc.param)
+        bare = " " not in exc.param and not exc.param.startswith("--")  # an option's name, not already "--male-points"
+        label = names.get(exc.param, f"--{exc.param.replace('_', '-')}" if bare else exc.param)
         raise InputError(exc.sentence(label)) from None
     return mc
 

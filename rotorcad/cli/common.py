@@ -208,6 +208,7 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
     ("backlash", "mm"),
     ("lead", "mm"),
     ("tolerance", "mm"),
+    ("accuracy", "mm"),
 )
 
 

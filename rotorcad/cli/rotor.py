@@ -175,6 +175,7 @@ def rotor(design: Path | None, **opts: Any) -> None:
         emit_json(result)
     else:
         print_table(f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair", result)
+        click.echo(f"  defects judged to an accuracy of {1e3 * result['defect_accuracy']:.2g} µm of the profile")
         for d in result["defects"]:
             click.echo(
                 f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, flank '{d['flank']}'"

@@ -1,0 +1,275 @@
+"""Rinder's verdicts do not depend on how the profile is given (issue 21 item 3, issue 22 item 4).
+
+Reference: the design's own verdict, from its exact curves. The same male, given as the CSV and
+the DXF drawings rotorcad writes of it (read back by the readers a user's file goes through) and
+as dense exact points, must give the same defects (kind, rotor, flank part, point-generated; each
+within the resolution of the input, :func:`rotorcad.meshing.resolution`, of the design's), the same
+"runs without timing gears" per flank, and the blow-hole within 1 %. The test is of equality between
+the forms, not of any sample's particular verdict (the samples and the criteria may change).
+
+Plus the findings of the issues, with their exact inputs: the rack-involute male's own CSV (94
+defects, 78 jamming, before), its own DXF polyline (refused before, whatever ``--smoothing``), an
+LWPOLYLINE of arcs within 1.1 µm of the outline (accepted by ``clearance``, refused by ``rotor``
+before), a female given as one groove (refused before) and the ``----male-points`` message.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import tomllib
+from collections import Counter
+from pathlib import Path
+
+import ezdxf
+import ezdxf.path
+import numpy as np
+import pytest
+import shapely
+import shapely.affinity
+
+from exports.csv_points import read_points, write_points
+from exports.dxf import Drawing, write_dxf
+from exports.dxf_profile import read_profile
+from rotorcad.cli.main import main
+from rotorcad.design import rotor_design
+from rotorcad.meshing import resolution
+from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
+from rotorcad.rotor_points import pair_from_rotor_points
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+ROTOR_SAMPLES = [p.stem for p in sorted(SAMPLES.glob("*.toml")) if "profile" in tomllib.loads(p.read_text())]
+FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense")
+
+# Known departures, each named with its cause (strict: a fix makes them fail until removed here).
+KNOWN = {
+    **{
+        ("n_rack_5_6", form): "n_rack from points: cusps (male, sealing) where the sealing tip circle's meshline "
+        "runs 7-9 mrad off an arc about O1, slipping where the root fillet's meshline comes back to O1O2; "
+        "blow-hole +20 % (CSV), -2.5 % (dense)"
+        for form in FORMS
+    },
+}
+KNOWN_BLOW_HOLE = {
+    ("rack_involute_5_6", form): "the female's sharp tip generated from the male's points lies 11 µm outside its tip "
+    "circle (the envelope of a corner path amplifies the fit error): the meshline end moves 0.16 mm, +1.8 %"
+    for form in ("csv", "dxf-polyline", "dxf-spline")
+}
+
+
+def _exterior(polygon: shapely.Polygon) -> np.ndarray:
+    pts = np.asarray(polygon.exterior.coords)[:-1]
+    area = 0.5 * np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1])
+    return pts if area > 0 else pts[::-1]
+
+
+def _given(spec: PairSpec, data, label: str) -> dict:
+    rotors = build_pair(PairSpec(spec.pair, "male-points", {}, data, None, spec.speed_rpm, 0.0), label=label)
+    return analyse_pair(rotors, spec.speed_rpm)[1]
+
+
+@pytest.fixture(scope="module")
+def verdicts(tmp_path_factory) -> dict[tuple[str, str], dict]:
+    """The summaries of every sample's design and of its male in every form (built once)."""
+    folder = tmp_path_factory.mktemp("forms")
+    out: dict[tuple[str, str], dict] = {}
+    for name in ROTOR_SAMPLES:
+        spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
+        rotors = build_pair(spec)
+        analysis, out[(name, "design")] = analyse_pair(rotors, spec.speed_rpm)
+        male = _exterior(analysis.sections[0])  # what `rotor --male-csv` and `--dxf` write
+        csv = folder / f"{name}.csv"
+        write_points(csv, male)
+        out[(name, "csv")] = _given(spec, read_points(csv, "--male-points"), "--male-points")
+        drawings = {"dxf-polyline": Drawing(outlines=[("MALE", male)]), "dxf-spline": Drawing(splines=[("MALE", male)])}
+        for form, drawing in drawings.items():
+            path = folder / f"{name}_{form}.dxf"
+            write_dxf(path, drawing)
+            out[(name, form)] = _given(spec, read_profile(path, "--male-points", "MALE"), "--male-points")
+        dense = np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments])  # exact, 0.01 um chord
+        out[(name, "dense")] = _given(spec, dense, "--male-points")
+    return out
+
+
+def _key(d: dict) -> tuple:
+    return d["kind"], d["rotor"], d["flank_role"], d["point_generated"]
+
+
+def assert_same_verdicts(design: dict, given: dict) -> None:
+    """The defects, their places and the running verdicts of ``given`` are those of ``design``."""
+    assert Counter(map(_key, given["defects"])) == Counter(map(_key, design["defects"]))
+    reach = resolution(given["defect_accuracy"], design["center_distance"])
+    for d in design["defects"]:
+        near = [
+            np.hypot(g["x"] - d["x"], g["y"] - d["y"]) - 0.5 * (g["extent"] + d["extent"])
+            for g in given["defects"]
+            if _key(g) == _key(d)
+        ]
+        assert min(near) <= reach, (d, given["defects"])
+    for flank, report in design["flanks"].items():
+        assert given["flanks"][flank]["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
+
+
+def _case(name: str, form: str, known: dict):
+    reason = known.get((name, form))
+    return pytest.param(name, form, marks=pytest.mark.xfail(strict=True, reason=reason)) if reason else (name, form)
+
+
+@pytest.mark.parametrize(("name", "form"), [_case(n, f, KNOWN) for n in ROTOR_SAMPLES for f in FORMS])
+def test_same_defects_and_running(verdicts, name, form):
+    assert_same_verdicts(verdicts[(name, "design")], verdicts[(name, form)])
+
+
+@pytest.mark.parametrize(
+    ("name", "form"), [_case(n, f, {**KNOWN, **KNOWN_BLOW_HOLE}) for n in ROTOR_SAMPLES for f in FORMS]
+)
+def test_same_blow_hole(verdicts, name, form):
+    design, given = verdicts[(name, "design")]["blow_hole_area"], verdicts[(name, form)]["blow_hole_area"]
+    assert given == pytest.approx(design, rel=0.01, abs=1e-3)  # 1 % (1e-3 mm² where the meshline closes)
+
+
+def test_accuracy_is_reported(verdicts):
+    # the design is judged to its chord tolerance, points to their chords' sagitta: the CSV's points
+    # are 0.25 mm apart on radii of 7.7 mm and more, h^2 / (8 rho) <= 1 um (an independent bound)
+    design, csv = verdicts[("rack_involute_5_6", "design")], verdicts[("rack_involute_5_6", "csv")]
+    assert design["defect_accuracy"] == pytest.approx(1e-4)
+    assert 1e-4 < csv["defect_accuracy"] < 1e-3
+
+
+def test_own_csv_has_no_jamming(verdicts):
+    # the finding: 94 defects, 78 of them jamming, from the rack-involute male's own CSV
+    csv = verdicts[("rack_involute_5_6", "csv")]
+    assert not [d for d in csv["defects"] if d["kind"] == "jamming"]
+    assert len(csv["defects"]) == len(verdicts[("rack_involute_5_6", "design")]["defects"])
+
+
+# ---- the drawings and the spans of the findings, through the command line ------------------------
+
+DIMS_56 = ["--male-teeth", "5", "--female-teeth", "6", "--center-distance", "116"]
+RADII_56 = ["--male-tip-radius", "63", "--male-root-radius", "45", "--female-tip-radius", "71", "--female-root-radius", "53"]
+
+
+def run(capsys, *args) -> tuple[int, str, str]:
+    rc = main([str(a) for a in args])
+    out = capsys.readouterr()
+    return rc, out.out, out.err
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory) -> dict[str, Path]:
+    """The rack-involute pair as ``rotor`` writes it: JSON, male and female CSV, the pair's DXF."""
+    folder = tmp_path_factory.mktemp("written")
+    files = {"male": folder / "m.csv", "female": folder / "f.csv", "dxf": folder / "pair.dxf", "json": folder / "design.json"}
+    rc = main(
+        ["rotor", str(SAMPLES / "rack_involute_5_6.toml"), "--json", "--quiet"]
+        + ["--male-csv", str(files["male"]), "--female-csv", str(files["female"]), "--dxf", str(files["dxf"])]
+    )
+    assert rc == 0
+    return files
+
+
+def test_own_dxf_polyline_accepted_and_smoothing_acts(verdicts, written, capsys):
+    # the finding: rotorcad's own DXF polyline was refused ("noise in the points? raise --smoothing"),
+    # and --smoothing 0, 0.1 and 10 gave that one refusal
+    design = verdicts[("rack_involute_5_6", "design")]
+    results = {}
+    for smoothing in (None, 0.0, 0.1, 10.0):
+        extra = [] if smoothing is None else ["--smoothing", smoothing]
+        args = ["--male-points", written["dxf"], "--layer", "MALE", *DIMS_56, *RADII_56, *extra]
+        rc, out, err = run(capsys, "rotor", *args, "--json")
+        assert rc == 0, err
+        results[smoothing] = json.loads(out)
+    assert_same_verdicts(design, results[None])
+    assert_same_verdicts(design, results[0.0])
+    # a smoothing lets the fit leave the points by sqrt(s / n) in the mean (Dierckx sec. 5.2): the
+    # accuracy judged to grows with it, and the pair built changes
+    accuracies = [results[s]["defect_accuracy"] for s in (0.0, 0.1, 10.0)]
+    assert accuracies[0] < accuracies[1] < accuracies[2]
+    areas = [results[s]["female_flute_area"] for s in (0.0, 0.1, 10.0)]
+    assert len({round(a, 6) for a in areas}) == 3
+
+
+def _bulged_polyline(points: np.ndarray, every: int) -> np.ndarray:
+    """Rows (x, y, bulge) of a closed LWPOLYLINE of arcs, each through three consecutive points."""
+    n = len(points)
+    start = np.linspace(0, n, n // every, endpoint=False).astype(int)
+    end = np.append(start[1:], n)
+    p0, pm, p1 = points[start], points[(start + end) // 2 % n], points[end % n]
+    # the arc through p0, pm, p1: included angle 2 * (angle at pm between the chords), signed
+    a, b = p0 - pm, p1 - pm
+    inscribed = np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.einsum("ij,ij->i", a, b))
+    included = 2.0 * (inscribed - np.sign(inscribed) * np.pi)
+    return np.column_stack([p0, np.tan(included / 4.0)])
+
+
+def test_bulged_polyline_accepted_by_rotor_as_by_clearance(verdicts, written, tmp_path, capsys):
+    # the finding: an LWPOLYLINE of arcs within 1.1 um of the outline, accepted by clearance, refused by rotor
+    lobe = np.vstack([seg.resampled(1e-3).points for seg in _rack_involute().male_lobe().segments])
+    lobe = lobe[np.concatenate([[True], np.hypot(*np.diff(lobe, axis=0).T) > 1e-9])][:-1]
+    male = np.vstack([lobe @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]]) for a in np.radians(72) * np.arange(5)])
+    rows = _bulged_polyline(male, 2)
+    doc = ezdxf.new("R2000")
+    doc.modelspace().add_lwpolyline(rows.tolist(), format="xyb", close=True)
+    path = tmp_path / "bulged.dxf"
+    doc.saveas(path)
+    # independent check of the drawing: its arcs, sampled by ezdxf, lie within 1.1 um of the outline
+    entity = next(iter(ezdxf.readfile(path).modelspace()))
+    flat = np.array([(v.x, v.y) for v in ezdxf.path.make_path(entity).flattening(1e-5)])
+    exact = shapely.LineString(np.vstack([seg.resampled(1e-5).points for seg in _rack_involute().male_lobe().segments]))
+    whole = shapely.MultiLineString([shapely.affinity.rotate(exact, 72 * k, origin=(0, 0)) for k in range(5)])
+    assert float(shapely.distance(shapely.points(flat), whole).max()) < 1.1e-3
+    rc, out, err = run(capsys, "rotor", "--male-points", path, *DIMS_56, *RADII_56, "--json")
+    assert rc == 0, err
+    assert_same_verdicts(verdicts[("rack_involute_5_6", "design")], json.loads(out))
+    rc, _, err = run(capsys, "clearance", "--male-points", path, "--female-points", written["female"], *DIMS_56, "--json")
+    assert rc == 0, err
+
+
+@functools.cache
+def _rack_involute():
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text()), SAMPLES))
+    return build_pair(spec)
+
+
+def _one_groove(female: np.ndarray) -> np.ndarray:
+    """Return the female's points from one tip land to the next (a groove, as a CMM measures it)."""
+    r = np.hypot(*female.T)
+    tip = np.flatnonzero(r >= r.max() - 1e-4)  # the tip land
+    k = int(np.argmax(np.diff(tip)))
+    return female[tip[k] : tip[k + 1] + 1]
+
+
+def test_one_groove_is_enough(verdicts, written, tmp_path, capsys):
+    # the finding: a female given as one groove was refused; rotor, clearance and hob take it
+    groove = _one_groove(read_points(written["female"], "f"))
+    span = np.degrees(np.ptp(np.unwrap(np.arctan2(groove[:, 1], groove[:, 0]))))
+    assert 30 < span < 55  # less than the pitch of 60 deg: not one lobe
+    path = tmp_path / "groove.csv"
+    write_points(path, groove)
+    rc, out, err = run(capsys, "rotor", "--female-points", path, *DIMS_56, *RADII_56, "--json")
+    assert rc == 0, err
+    got, design = json.loads(out), verdicts[("rack_involute_5_6", "design")]
+    assert_same_verdicts(design, got)
+    assert got["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01)
+    rc, _, err = run(capsys, "clearance", "--male-points", written["male"], "--female-points", path, *DIMS_56, "--json")
+    assert rc == 0, err
+    rc, out, err = run(capsys, "hob", "--female-points", path, *DIMS_56, *RADII_56, "--json")
+    assert rc == 0, err
+    assert "hobbable" in json.loads(out)
+
+
+def test_wrong_lobe_count_names_the_option_once(written, capsys):
+    # the finding: the lobe-count refusal of clearance printed "----male-points"
+    dims = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "116"]
+    rc, _, err = run(capsys, "clearance", "--male-points", written["male"], "--female-points", written["female"], *dims)
+    assert rc == 2
+    assert "--male-points" in err and "----" not in err
+
+
+def test_api_outline_at_one_nanometre_chord():
+    # the finding: the API outline at a 1 nm chord gave 107 defects
+    rotors = _rack_involute()
+    design = analyse_pair(rotors, 3000.0)[1]
+    pts = np.vstack([seg.resampled(1e-6).points for seg in rotors.male_lobe().segments])
+    given = analyse_pair(pair_from_rotor_points(rotors.pair, pts, "male"), 3000.0)[1]
+    assert_same_verdicts(design, given)
