@@ -9,6 +9,64 @@ pair the rack touches both rotors at the same point, so it is the rack's contact
 contacts inside both bores (tip circles) count. Its tangent comes from an interpolating spline of
 each piece over the generating parameter (never from point differences).
 
+Rinder's criteria, as this module applies them
+----------------------------------------------
+*Geometric contact* (sec. 1.2, of Krigar's profile: "Eine Berührung der Flanken ... im
+geometrischen Sinn mit gemeinsamen Tangenten im Eingriffspunkt, wie sie für eine lauffähige
+Verzahnung gefordert werden muß"): the two flanks touch with a common tangent. A rack curve
+touching both rotors gives it; the path of a tip corner (a *point-generated* flank part, "Radlinien
+der Punkte P_H und P_N") does not: it is a corner against a flank.
+
+*Working part* of a flank: its meshline with geometric contact. Point-generated parts seal (they
+carry the meshline to the housing cusp, sec. 2.2.2) but do not drive; Rinder's narrow-tip profile
+has "lange, punkterzeugte Flankenteile an der Dichtflanke" and still "gute Laufeigenschaften an
+beiden Flankenteilen", and the asymmetric SRM profile's sealing flank runs properly "zumindest in
+einem kleinen Flankenbereich" (a short straight female flank): a working part of any length makes
+the flank run, with the helix.
+
+*Cusp* (Spitze, sec. 2.2.1): a meshline point whose normal passes through O1 (a cusp on the male
+flank) or O2 (on the female). Rinder names these in the profiles he calls runnable ("vgl. Bild 1,
+2, 3 und 4") and says of the tips "Am Haupt- bzw. Nebenläuferkopf ist demnach nur eine Spitze oder
+Ecke als Flanke denkbar" (sec. 2.2.2). So a cusp that is a rotor's tip corner is no defect: a
+point-generated piece (the corner's path, its normal through the centre all along) and a cusp on
+either tip circle, where the working flank hands over to a tip corner's path (a smooth flank touches
+its tip circle only on O1O2), end the working part (:func:`is_tip_corner`; the JSON says
+``tip_corner``). A cusp inside a working part, off the tip circles, is a defect: the flank reverses
+(an undercut). The rack-involute pair shows it: its female sealing involute is used down to its
+base circle, where its cusp meets the male tip corner.
+
+*Jamming* (Klemmen): the meshline normal passes through the pitch point C, except where "beide
+Flankenkrümmungsmittelpunkte mit dem Wälzpunkt zusammenfallen" (Lysholm's circular driving flank and
+the symmetric SRM flanks, circles about C: their meshline is an arc about C).
+
+*Slipping* (Durchrutschen): the meshline crosses O1O2 away from C; no flank drives the other there,
+but "durch die verschraubten Zähne stellt diese Bedingung aber keine Einschränkung ... dar": it
+does not count against running.
+
+*Contact ratios* per flank (helical-gear sense): the transverse ratio is the male rotation over
+which the working part is in contact, per angular pitch 2 pi / z1 (0 for a circle about C, which
+touches at one instant: Lysholm's "nur infinitesimale Stirnüberdeckung"); the overlap ratio
+(Sprungüberdeckung) is the male rotation over which one lobe's contact line lasts along the rotor,
+the wrap angle 2 pi L / h1, per angular pitch: z1 L / h1; the total ratio is their sum. The helix
+carries only a working contact along the rotor, so a flank without a working part has overlap 0.
+
+*Runs* (a flank runs, i.e. carries the drive in the sense of rotation that loads it): it has a
+working part, no cusp or jamming inside it, and a total contact ratio of at least 1 ("Die nur
+infinitesimale Stirnüberdeckung wird durch ... hohe Sprungüberdeckung kompensiert"; the symmetric
+SRM profile runs "bei ausreichender Verschraubung der Zähne in beiden Drehrichtungen").
+*Runs without timing gears*: both flanks run (Rinder: "Lauffähigkeit in beiden Drehrichtungen",
+sec. 2.1); Lysholm's profile, whose sealing flank has no working part, needs them ("ohne
+Koppelgetriebe nicht einwandfrei verwendbar").
+
+Angle convention
+----------------
+Every angle a user reads (JSON ``angle_deg`` keys, tables, pictures, report, README) is
+:meth:`MeshingAnalysis.rinder_angle`: the male rotation still to go until the middle of a male tip
+reaches the line of centres O1O2 (the lobe pointing at O2), positive before and negative after that
+instant. In it the male tip reaches the housing cusp on the sealing side at a negative angle, as in
+Rinder's Figs. 10-13 ("ca. -25°", sec. 3.2). The figures themselves are not legible in the source;
+this zero and sign are read from the text of sec. 3.2.
+
 Blow-hole (projected definition, stated because the paper gives no formula): the curvilinear
 triangle in the transverse plane between the meshline's end E nearest the housing cusp K and K
 itself, bounded by the arc of the female tip circle from K to the radial projection of E on it, the
@@ -765,6 +823,64 @@ class MeshingAnalysis:
             "normal_check": cross(tau, v1 - v2),
         }
 
+    @cached_property
+    def slip_singularities(self) -> list[dict[str, object]]:
+        """Points of infinite slip: where a rotor's tangential velocity vanishes (Rinder eq. 4, sec. 3.2).
+
+        Rinder: "nur in einem einzigen Punkt unendliche Schlupfwerte ... daß die Evolventenflanke bis
+        zum Grundkreis benutzt wurde". Found on each meshline piece where v1t (male slip infinite)
+        or v2t (female slip infinite) changes sign between neighbouring contacts (located by linear
+        interpolation), or, at a piece's end, falls below 1 % of the rotor's largest tangential
+        velocity while falling towards that end (a zero where the piece leaves a bore: the sampled
+        meshline stops within one step of it). The pitch point C is left out (both velocities
+        vanish there with the sliding: pure rolling, not infinite slip). Points closer than 1 % of
+        the centre distance are one.
+
+        Returns
+        -------
+        list of dict
+            ``rotor`` (whose slip is infinite), ``x``, ``y`` (mm), ``angle_deg`` (:meth:`rinder_angle`),
+            ``flank`` (lobe part), ``male_radius``, ``female_radius`` (mm).
+        """
+        pair = self.rotors.pair
+        k = self.kinematics
+        found: list[dict[str, object]] = []
+        start = 0
+        for piece in self.pieces:
+            n = len(piece.t)
+            sl = slice(start, start + n)
+            start += n
+            for key, rotor in (("v1t", "male"), ("v2t", "female")):
+                v = k[key][sl]
+                mag = np.abs(v)
+                big = float(np.abs(k[key]).max()) if len(k[key]) else 0.0
+                ends = [i for i, j in ((0, 1), (n - 1, n - 2)) if n > 1 and mag[i] <= 1e-2 * big and mag[i] < mag[j]]
+                cross_ = np.nonzero(v[:-1] * v[1:] < 0)[0]
+                hits = [(i, 0.0) for i in ends] + [(int(i), float(v[i] / (v[i] - v[i + 1]))) for i in cross_]
+                for i, w in hits:
+                    j = min(i + 1, n - 1)
+                    p = piece.points[i] + w * (piece.points[j] - piece.points[i])
+                    t = piece.t[i] + w * (piece.t[j] - piece.t[i])
+                    if np.hypot(p[0] - pair.male_pitch_radius, p[1]) < 1e-3 * pair.center_distance:
+                        continue  # the pitch point: pure rolling
+                    if any(
+                        f["rotor"] == rotor and np.hypot(f["x"] - p[0], f["y"] - p[1]) < 1e-2 * pair.center_distance
+                        for f in found
+                    ):
+                        continue
+                    found.append(
+                        {
+                            "rotor": rotor,
+                            "x": float(p[0]),
+                            "y": float(p[1]),
+                            "angle_deg": float(self.rinder_angle(t)),
+                            "flank": str(piece.roles[i]),
+                            "male_radius": float(np.hypot(*p)),
+                            "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
+                        }
+                    )
+        return found
+
     def _max(self, key: str) -> dict[str, float]:
         """Return the largest magnitude of a :attr:`kinematics` entry and where it occurs.
 
@@ -836,6 +952,7 @@ class MeshingAnalysis:
             "max_sliding_at": self._max("sliding"),
             "max_slip_male": self._max("slip_male"),
             "max_slip_female": self._max("slip_female"),
+            "slip_singularities": self.slip_singularities,
             "speed_rpm": self.speed_rpm,
             "angle_convention": ANGLE_CONVENTION,
             "defects": self.defect_dicts(),
