@@ -52,7 +52,9 @@ def _draw_defects(ax, analysis: MeshingAnalysis, where) -> None:
         if not found:
             continue
         pts = np.array([where(d) for d in found])
-        ax.plot(*pts.T, marker, color=colour, mec=ps.BLACK, mew=0.6, ms=7, ls="none", label=f"{kind} ({len(found)})")
+        corners = sum(is_tip_corner(d, analysis.rotors.pair, analysis.tip_corner_tolerance) for d in found)
+        text = f"{kind} ({len(found)}" + (f", {corners} of them tip corners)" if corners else ")")
+        ax.plot(*pts.T, marker, color=colour, mec=ps.BLACK, mew=0.6, ms=7, ls="none", label=text)
         for n, (d, p) in enumerate(zip(found, pts, strict=True)):
             ax.annotate(
                 defect_label(analysis, d),

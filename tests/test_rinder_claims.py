@@ -288,3 +288,15 @@ def test_largest_sliding_velocity_at_the_male_tip_near_minus_25_degrees():
         assert at["flank"] == "sealing", name
         assert at["male_radius"] == pytest.approx(tip, abs=0.02 * tip), name
         assert at["angle_deg"] == pytest.approx(-25.0, abs=8.0), name
+
+
+def test_the_readme_shows_rotorcads_numbers_beside_rinders_words():
+    # The README's table "Rinder says | rotorcad now" is the samples' current `rotor --json` numbers
+    # (samples/rinder_comparison/compare.py formats them), not a stale copy.
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("compare", SAMPLES / "rinder_comparison" / "compare.py")
+    compare = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(compare)
+    readme = (SAMPLES.parent / "README.md").read_text()
+    assert compare.verdict_table({name: summary(name) for name in compare.VERDICT_SAMPLES}) in readme

@@ -93,7 +93,8 @@ def table() -> str:
             d = data[label][quantity]
             if "flank" in d:
                 unit = " m/s" if "sliding" in quantity else ""
-                cells.append(f"{d['value']:.2f}{unit}, {d['flank']} flank, {d['place']}, {d['angle_deg']:+.1f}°")
+                value = "infinite" if d["value"] > 1e9 else f"{d['value']:.2f}{unit}"  # v_t = 0 to rounding
+                cells.append(f"{value}, {d['flank']} flank, {d['place']}, {d['angle_deg']:+.1f}°")
             elif isinstance(d["value"], list):
                 cells.append(f"{d['value'][0]:+.1f}° to {d['value'][1]:+.1f}°")
             else:
