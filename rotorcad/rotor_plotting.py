@@ -28,8 +28,12 @@ def defect_label(analysis: MeshingAnalysis, defect) -> str:
     not as a defect of the flank (Rinder sec. 2.2.2).
     """
     role = "" if defect.role is None else f", {defect.role} flank"
-    if defect.kind == "cusp" and is_tip_corner(defect, analysis.rotors.pair, analysis.tip_corner_tolerance):
-        return f"{defect.rotor} tip corner{role}"
+    pair = analysis.rotors.pair
+    if defect.kind == "cusp" and is_tip_corner(defect, pair, analysis.tip_corner_tolerance):
+        if defect.point_generated:
+            return f"{defect.rotor} tip corner{role}"
+        on_male_tip = abs(np.hypot(defect.x, defect.y) - pair.male_tip_radius) <= analysis.tip_corner_tolerance
+        return f"{defect.rotor} cusp at the {'male' if on_male_tip else 'female'} tip corner{role}"
     if defect.kind == "slipping":
         return f"slipping ({defect.flank})"
     return f"{defect.kind} on the {defect.rotor}{role}"
