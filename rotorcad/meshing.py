@@ -931,8 +931,10 @@ class MeshingAnalysis:
             Tooth counts, centre distance (mm), family, ``meshline_closed``, blow-hole areas (mm²)
             and the spatial blow-hole, contact-line length (mm), flute areas (mm²), displacement per
             revolution (mm³), area utilisation, the largest sliding velocity (m/s) and slips with where
-            they occur, speed (rpm), defects, point-generated flanks, per-flank reports, whether the pair
-            runs without timing gears and why not, wrap angle (deg).
+            they occur, the points of infinite slip, speed (rpm), the angle convention, defects (with
+            ``tip_corner``), point-generated flanks, per-flank reports (working part, transverse,
+            overlap and total contact ratio), the pair's overlap ratio, whether the pair runs without
+            timing gears and why not, wrap angle (deg). Angles in Rinder's count (:meth:`rinder_angle`).
         """
         pair = self.rotors.pair
         return {
