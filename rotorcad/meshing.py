@@ -9,6 +9,64 @@ pair the rack touches both rotors at the same point, so it is the rack's contact
 contacts inside both bores (tip circles) count. Its tangent comes from an interpolating spline of
 each piece over the generating parameter (never from point differences).
 
+Rinder's criteria, as this module applies them
+----------------------------------------------
+*Geometric contact* (sec. 1.2, of Krigar's profile: "Eine Berührung der Flanken ... im
+geometrischen Sinn mit gemeinsamen Tangenten im Eingriffspunkt, wie sie für eine lauffähige
+Verzahnung gefordert werden muß"): the two flanks touch with a common tangent. A rack curve
+touching both rotors gives it; the path of a tip corner (a *point-generated* flank part, "Radlinien
+der Punkte P_H und P_N") does not: it is a corner against a flank.
+
+*Working part* of a flank: its meshline with geometric contact. Point-generated parts seal (they
+carry the meshline to the housing cusp, sec. 2.2.2) but do not drive; Rinder's narrow-tip profile
+has "lange, punkterzeugte Flankenteile an der Dichtflanke" and still "gute Laufeigenschaften an
+beiden Flankenteilen", and the asymmetric SRM profile's sealing flank runs properly "zumindest in
+einem kleinen Flankenbereich" (a short straight female flank): a working part of any length makes
+the flank run, with the helix.
+
+*Cusp* (Spitze, sec. 2.2.1): a meshline point whose normal passes through O1 (a cusp on the male
+flank) or O2 (on the female). Rinder names these in the profiles he calls runnable ("vgl. Bild 1,
+2, 3 und 4") and says of the tips "Am Haupt- bzw. Nebenläuferkopf ist demnach nur eine Spitze oder
+Ecke als Flanke denkbar" (sec. 2.2.2). So a cusp that is a rotor's tip corner is no defect: a
+point-generated piece (the corner's path, its normal through the centre all along) and a cusp on
+either tip circle, where the working flank hands over to a tip corner's path (a smooth flank touches
+its tip circle only on O1O2), end the working part (:func:`is_tip_corner`; the JSON says
+``tip_corner``). A cusp inside a working part, off the tip circles, is a defect: the flank reverses
+(an undercut). The rack-involute pair shows it: its female sealing involute is used down to its
+base circle, where its cusp meets the male tip corner.
+
+*Jamming* (Klemmen): the meshline normal passes through the pitch point C, except where "beide
+Flankenkrümmungsmittelpunkte mit dem Wälzpunkt zusammenfallen" (Lysholm's circular driving flank and
+the symmetric SRM flanks, circles about C: their meshline is an arc about C).
+
+*Slipping* (Durchrutschen): the meshline crosses O1O2 away from C; no flank drives the other there,
+but "durch die verschraubten Zähne stellt diese Bedingung aber keine Einschränkung ... dar": it
+does not count against running.
+
+*Contact ratios* per flank (helical-gear sense): the transverse ratio is the male rotation over
+which the working part is in contact, per angular pitch 2 pi / z1 (0 for a circle about C, which
+touches at one instant: Lysholm's "nur infinitesimale Stirnüberdeckung"); the overlap ratio
+(Sprungüberdeckung) is the male rotation over which one lobe's contact line lasts along the rotor,
+the wrap angle 2 pi L / h1, per angular pitch: z1 L / h1; the total ratio is their sum. The helix
+carries only a working contact along the rotor, so a flank without a working part has overlap 0.
+
+*Runs* (a flank runs, i.e. carries the drive in the sense of rotation that loads it): it has a
+working part, no cusp or jamming inside it, and a total contact ratio of at least 1 ("Die nur
+infinitesimale Stirnüberdeckung wird durch ... hohe Sprungüberdeckung kompensiert"; the symmetric
+SRM profile runs "bei ausreichender Verschraubung der Zähne in beiden Drehrichtungen").
+*Runs without timing gears*: both flanks run (Rinder: "Lauffähigkeit in beiden Drehrichtungen",
+sec. 2.1); Lysholm's profile, whose sealing flank has no working part, needs them ("ohne
+Koppelgetriebe nicht einwandfrei verwendbar").
+
+Angle convention
+----------------
+Every angle a user reads (JSON ``angle_deg`` keys, tables, pictures, report, README) is
+:meth:`MeshingAnalysis.rinder_angle`: the male rotation still to go until the middle of a male tip
+reaches the line of centres O1O2 (the lobe pointing at O2), positive before and negative after that
+instant. In it the male tip reaches the housing cusp on the sealing side at a negative angle, as in
+Rinder's Figs. 10-13 ("ca. -25°", sec. 3.2). The figures themselves are not legible in the source;
+this zero and sign are read from the text of sec. 3.2.
+
 Blow-hole (projected definition, stated because the paper gives no formula): the curvilinear
 triangle in the transverse plane between the meshline's end E nearest the housing cusp K and K
 itself, bounded by the arc of the female tip circle from K to the radial projection of E on it, the
@@ -31,6 +89,7 @@ from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, wrap_angle
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
+from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -73,6 +132,11 @@ class MeshlinePiece:
 
 _FLANKS = np.array(list(Flank), dtype=object)
 
+ANGLE_CONVENTION = (
+    "male rotation still to go until the middle of a male tip reaches the line of centres O1O2 "
+    "(positive before, negative after; Rinder Figs. 10-13)"
+)
+
 
 def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
     """Return the lobe part of rack points (fixed frame at t = 0, pitch line x = r1w, motion +y).
@@ -106,7 +170,7 @@ def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, s
 
 @dataclass(frozen=True)
 class FlankReport:
-    """How one flank of the lobes meshes (Rinder sec. 1.2 and 2.2.1).
+    """How one flank of the lobes meshes, judged by Rinder's rules (sec. 1.2, 2.2.1; see the module docstring).
 
     Parameters
     ----------
@@ -118,11 +182,23 @@ class FlankReport:
         Part of that length (0 to 1) where the flanks touch with a common tangent (not a corner
         against a flank).
     defects : tuple of str
-        Kinds of defect on the flank (``"cusp"``, ``"jamming"``); slipping is not counted.
+        Kinds of defect inside the flank's working part (``"cusp"``, ``"jamming"``); slipping is not
+        counted, nor the tip corners that end the working part (:func:`is_tip_corner`).
     transverse_contact_ratio : float
-        Male rotation over which the flank is in geometric contact, per angular pitch 2 pi / z1 (0
+        Male rotation over which the working part is in contact, per angular pitch 2 pi / z1 (0
         where a circular flank centred on the pitch point touches at one instant only: Lysholm's
         "nur infinitesimale Stirnüberdeckung").
+    working_length : float, mm
+        Meshline length of the working part: geometric contact (a common tangent), no point-generated
+        part. 0: the flank has no working part.
+    overlap_contact_ratio : float
+        Rinder's "Sprungüberdeckung": the male rotation over which one lobe's contact line lasts
+        along the rotor (the wrap angle 2 pi L / h1) per angular pitch 2 pi / z1, the overlap ratio
+        of a helical gear; 0 where the flank has no working part (the helix carries a working
+        contact along the rotor; a corner against a flank is none).
+    tip_corners : tuple of str
+        The rotors ("male", "female") whose tip corner ends the working part or generates the
+        flank's point-generated part (a cusp on a tip circle, Rinder sec. 2.2.2).
     """
 
     flank: Flank
@@ -130,14 +206,24 @@ class FlankReport:
     geometric_share: float
     defects: tuple[str, ...]
     transverse_contact_ratio: float
+    working_length: float = 0.0
+    overlap_contact_ratio: float = 0.0
+    tip_corners: tuple[str, ...] = ()
+
+    @property
+    def total_contact_ratio(self) -> float:
+        """Transverse plus overlap contact ratio (as for a helical gear), 0 without a working part."""
+        return self.transverse_contact_ratio + self.overlap_contact_ratio if self.working_length > 0 else 0.0
 
     @property
     def runs_without_timing_gears(self) -> bool:
-        """True when the flank has geometric contact everywhere and no cusp or jamming.
+        """True when the flank carries the drive by itself (Rinder sec. 1.2, 2.2.1).
 
-        Slipping is allowed: the helix carries the drive past it (Rinder sec. 2.2.1).
+        It has a working part (geometric contact with a common tangent), no cusp or jamming inside
+        it, and a total contact ratio of at least 1: a small transverse contact ratio is made up by
+        the helix (Lysholm's driving flank). Slipping is allowed: the helix carries the drive past it.
         """
-        return self.meshline_length > 0 and self.geometric_share >= 1.0 - 1e-6 and not self.defects
+        return self.working_length > 0 and not self.defects and self.total_contact_ratio >= 1.0 - 1e-9
 
     def as_dict(self) -> dict[str, object]:
         """Return the report as plain values (an entry of ``flanks`` in :meth:`MeshingAnalysis.summary`).
@@ -145,17 +231,22 @@ class FlankReport:
         Returns
         -------
         dict
-            ``meshline_length`` (mm), ``geometric_contact`` (bool), ``geometric_share`` (0 to 1),
-            ``defects`` (list of str), ``runs_without_timing_gears`` (bool),
-            ``transverse_contact_ratio``.
+            ``meshline_length`` and ``working_length`` (mm), ``geometric_contact`` (bool),
+            ``geometric_share`` (0 to 1), ``defects`` (list of str), ``tip_corners`` (list of str),
+            ``runs_without_timing_gears`` (bool), ``transverse_contact_ratio``,
+            ``overlap_contact_ratio``, ``total_contact_ratio``.
         """
         return {
             "meshline_length": self.meshline_length,
+            "working_length": self.working_length,
             "geometric_contact": self.geometric_share >= 1.0 - 1e-6,
             "geometric_share": self.geometric_share,
             "defects": list(self.defects),
+            "tip_corners": list(self.tip_corners),
             "runs_without_timing_gears": self.runs_without_timing_gears,
             "transverse_contact_ratio": self.transverse_contact_ratio,
+            "overlap_contact_ratio": self.overlap_contact_ratio,
+            "total_contact_ratio": self.total_contact_ratio,
         }
 
 
@@ -422,6 +513,41 @@ def _merged(defects: list[Defect], distance: float, spans: dict[int, np.ndarray]
     return out
 
 
+def is_tip_corner(defect: Defect, pair: RotorPair, tolerance: float) -> bool:
+    """Tell whether a cusp is a rotor's tip corner rather than a defect of a working flank.
+
+    Rinder (sec. 2.2.2): "Am Haupt- bzw. Nebenläuferkopf ist demnach nur eine Spitze oder Ecke als
+    Flanke denkbar": at a rotor's tip only a corner is possible, and his cusp rule (sec. 2.2.1)
+    names these corners in the profiles he calls runnable ("vgl. Bild 1, 2, 3 und 4"). A smooth
+    flank touches its rotor's tip circle only on O1O2, so a cusp on a tip circle away from O1O2 is
+    where the working flank hands over to that tip corner's path: the corner itself, which ends the
+    working part. A point-generated piece (the corner's path, its normal through the centre all
+    along) is that corner too.
+
+    Parameters
+    ----------
+    defect : Defect
+        A defect of :attr:`MeshingAnalysis.defects`.
+    pair : RotorPair
+        The pair (tip radii, centre distance; mm).
+    tolerance : float, mm
+        How near a tip circle the point must lie.
+
+    Returns
+    -------
+    bool
+        True for a cusp that is point-generated or lies on either rotor's tip circle.
+    """
+    if defect.kind != "cusp":
+        return False
+    if defect.point_generated:
+        return True
+    p = np.array([defect.x, defect.y])
+    r1 = float(np.hypot(*p))
+    r2 = float(np.hypot(p[0] - pair.center_distance, p[1]))
+    return min(abs(r1 - pair.male_tip_radius), abs(r2 - pair.female_tip_radius)) <= tolerance
+
+
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
     """Everything Rinder reads off a toothing, for one pair at a design speed.
@@ -659,18 +785,32 @@ class MeshingAnalysis:
         return out
 
     # ---- running without timing gears (1.2, 2.2.1) -----------------------------------------
+    @property
+    def tip_corner_tolerance(self) -> float:
+        """How near a tip circle a cusp must lie to be that tip's corner (:func:`is_tip_corner`), mm.
+
+        1e-4 of the centre distance (12 µm at a = 116 mm): far below any flank's extent, far above
+        the meshline's sampling error at a corner's end; for a profile given to a coarser accuracy
+        (:attr:`judged_accuracy`, measured points) 20 times that accuracy, the distance by which a
+        corner found from points may sit off its tip circle.
+        """
+        return max(1e-4 * self.rotors.pair.center_distance, 20.0 * self.judged_accuracy)
+
     @cached_property
     def flanks(self) -> dict[Flank, FlankReport]:
-        """Per flank (driving, sealing): geometric contact, defects, and the transverse contact ratio.
+        """Per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
         A contact is geometric where a rack curve touches both rotors (a common tangent); a corner
         path's contacts are a corner against a flank (Rinder sec. 1.2: "eine Berührung ... im
-        geometrischen Sinn mit gemeinsamen Tangenten ... ist in keinem Flankenteil gegeben").
+        geometrischen Sinn mit gemeinsamen Tangenten ... ist in keinem Flankenteil gegeben"). The
+        working part is the geometric contact; the point-generated parts seal but do not drive.
         Contact pieces shorter than 1e-6 of the centre distance (a corner touching only at C) do not
         count. A dict Flank -> :class:`FlankReport`.
         """
         pair = self.rotors.pair
         pitch_angle = 2 * np.pi / pair.male_teeth
+        overlap = float(pair.wrap_angle / pitch_angle)  # Sprungüberdeckung: wrap angle per angular pitch
+        tol = self.tip_corner_tolerance
         out = {}
         for flank in (Flank.DRIVING, Flank.SEALING):
             total = geometric = 0.0
@@ -687,15 +827,27 @@ class MeshingAnalysis:
                 if piece.kind is PieceRole.CURVE:
                     geometric += length
                     t_geo.append(piece.t[mask])
-            defects = tuple(sorted({d.kind for d in self.defects if d.role is flank and d.kind != "slipping"}))
+            mine = [d for d in self.defects if d.role is flank and d.kind != "slipping"]
+            corners = tuple(sorted({d.rotor for d in mine if is_tip_corner(d, pair, tol)}))
+            defects = tuple(sorted({d.kind for d in mine if not is_tip_corner(d, pair, tol)}))
             ratio = _covered(t_geo) / pitch_angle
-            out[flank] = FlankReport(flank, total, geometric / total if total > 0 else 0.0, defects, ratio)
+            out[flank] = FlankReport(
+                flank,
+                total,
+                geometric / total if total > 0 else 0.0,
+                defects,
+                ratio,
+                geometric,
+                overlap if geometric > 0 else 0.0,
+                corners,
+            )
         return out
 
     @property
     def running_reasons(self) -> list[str]:
         """Why the pair does not run without timing gears, one sentence per flank (empty: it runs)."""
         out = []
+        pair = self.rotors.pair
         for flank, report in self.flanks.items():
             if report.runs_without_timing_gears:
                 continue
@@ -703,18 +855,72 @@ class MeshingAnalysis:
                 out.append(f"the {flank} flank has no contact inside the bores.")
                 continue
             parts = []
-            if report.geometric_share < 1e-6:
-                parts.append("no geometric contact anywhere (a tip corner against the mate's flank, no common tangent)")
-            elif report.geometric_share < 1.0 - 1e-6:
+            if report.working_length == 0:
                 parts.append(
-                    f"geometric contact on {100 * report.geometric_share:.0f} % of its meshline only, the rest a tip "
-                    "corner against the mate's flank"
+                    "no geometric contact anywhere (a tip corner against the mate's flank, no common tangent): no working "
+                    "part for the helix to carry"
                 )
             for kind in report.defects:
-                rotors = sorted({d.rotor for d in self.defects if d.role is flank and d.kind == kind})
-                parts.append(f"{kind} on the {' and '.join(rotors)}")
+                rotors = sorted(
+                    {
+                        d.rotor
+                        for d in self.defects
+                        if d.role is flank and d.kind == kind and not is_tip_corner(d, pair, self.tip_corner_tolerance)
+                    }
+                )
+                parts.append(f"{kind} on the {' and '.join(rotors)} inside its working part")
+            if report.working_length > 0 and report.total_contact_ratio < 1.0 - 1e-9:
+                parts.append(
+                    f"total contact ratio {report.total_contact_ratio:.2f} below 1 (transverse "
+                    f"{report.transverse_contact_ratio:.2f} + overlap {report.overlap_contact_ratio:.2f}): too little wrap"
+                )
             out.append(f"the {flank} flank: " + "; ".join(parts) + ".")
         return out
+
+    # ---- one angle convention (Rinder Figs. 10-13) -------------------------------------------
+    @cached_property
+    def angle_reference(self) -> float:
+        """Male rotation (rad) at which the middle of a male tip lies on O1O2, the zero of :meth:`rinder_angle`.
+
+        Read off the male section (its points on the tip circle, to 1e-4 of the addendum), so it
+        does not depend on how the profile was given; of the passages one pitch apart, the one
+        nearest the middle of the meshline's range of angles.
+        """
+        pair = self.rotors.pair
+        ring = np.asarray(self.sections[0].exterior.coords)
+        r = np.hypot(*ring.T)
+        top = ring[r >= pair.male_tip_radius - 1e-4 * max(pair.male_addendum, 1e-3)]
+        if len(top) == 0:
+            top = ring[[int(np.argmax(r))]]
+        z1 = pair.male_teeth
+        pitch = 2 * np.pi / z1
+        beta = np.arctan2(top[:, 1], top[:, 0])
+        b0 = float(np.angle(np.exp(1j * z1 * beta).mean())) / z1  # one tip, folded over the lobes
+        near = wrap_angle(beta, b0, pitch)  # the tip points of every lobe, folded onto that one
+        b_mid = 0.5 * (float(near.min()) + float(near.max()))
+        t_ref = -b_mid  # the male turns counter-clockwise: a point at polar angle b is on O1O2 at t = -b
+        t = self.contact_angles
+        mid = 0.5 * (float(t.min()) + float(t.max())) if len(t) else 0.0
+        return t_ref + pitch * round((mid - t_ref) / pitch)
+
+    def rinder_angle(self, t: np.ndarray | float) -> np.ndarray | float:
+        """Male rotation angle in the convention of every angle rotorcad shows (deg).
+
+        phi = male rotation still to go until the middle of a male tip reaches the line of centres
+        O1O2 (the lobe pointing at O2): positive before, negative after that instant. In this count
+        the male tip reaches the housing cusp on the sealing side at a negative angle, as in
+        Rinder's Figs. 10-13 and sec. 3.2 ("Drehwinkelstellung von ca. -25°").
+
+        Parameters
+        ----------
+        t : float or (n,) float array, rad
+            Male rotation angle of the meshing engine (:attr:`contact_angles`).
+
+        Returns
+        -------
+        float or (n,) float array, deg
+        """
+        return np.degrees(self.angle_reference - np.asarray(t, dtype=float))
 
     # ---- tightness (2.2.2) -----------------------------------------------------------------
     @cached_property
@@ -837,8 +1043,9 @@ class MeshingAnalysis:
         A dict of (n,) float arrays: ``v1t`` and ``v2t``, the rotors' velocities along the common
         tangent (m/s, eq. 2); ``sliding``, the sliding velocity v_g = v1t - v2t (m/s, eq. 3); ``slip_male`` and
         ``slip_female``, the slips v_g / v1t and v_g / v2t (eq. 4; infinite where a tangential velocity
-        vanishes); ``angle_deg``, the male angle (deg); ``normal_check``, the cross product of the
-        tangent with the relative velocity (zero: the law of gearing holds).
+        vanishes); ``angle_deg``, the male angle in Rinder's count (deg, :meth:`rinder_angle`);
+        ``normal_check``, the cross product of the tangent with the relative velocity (zero: the law
+        of gearing holds).
         """
         pair = self.rotors.pair
         w1 = self.speed_rpm * 2 * np.pi / 60.0
@@ -861,9 +1068,67 @@ class MeshingAnalysis:
             "sliding": vg,
             "slip_male": z1,
             "slip_female": z2,
-            "angle_deg": np.degrees(self.contact_angles),
+            "angle_deg": self.rinder_angle(self.contact_angles),
             "normal_check": cross(tau, v1 - v2),
         }
+
+    @cached_property
+    def slip_singularities(self) -> list[dict[str, object]]:
+        """Points of infinite slip: where a rotor's tangential velocity vanishes (Rinder eq. 4, sec. 3.2).
+
+        Rinder: "nur in einem einzigen Punkt unendliche Schlupfwerte ... daß die Evolventenflanke bis
+        zum Grundkreis benutzt wurde". Found on each meshline piece where v1t (male slip infinite)
+        or v2t (female slip infinite) changes sign between neighbouring contacts (located by linear
+        interpolation), or, at a piece's end, falls below 1 % of the rotor's largest tangential
+        velocity while falling towards that end (a zero where the piece leaves a bore: the sampled
+        meshline stops within one step of it). The pitch point C is left out (both velocities
+        vanish there with the sliding: pure rolling, not infinite slip). Points closer than 1 % of
+        the centre distance are one.
+
+        Returns
+        -------
+        list of dict
+            ``rotor`` (whose slip is infinite), ``x``, ``y`` (mm), ``angle_deg`` (:meth:`rinder_angle`),
+            ``flank`` (lobe part), ``male_radius``, ``female_radius`` (mm).
+        """
+        pair = self.rotors.pair
+        k = self.kinematics
+        found: list[dict[str, object]] = []
+        start = 0
+        for piece in self.pieces:
+            n = len(piece.t)
+            sl = slice(start, start + n)
+            start += n
+            for key, rotor in (("v1t", "male"), ("v2t", "female")):
+                v = k[key][sl]
+                mag = np.abs(v)
+                big = float(np.abs(k[key]).max()) if len(k[key]) else 0.0
+                ends = [i for i, j in ((0, 1), (n - 1, n - 2)) if n > 1 and mag[i] <= 1e-2 * big and mag[i] < mag[j]]
+                cross_ = np.nonzero(v[:-1] * v[1:] < 0)[0]
+                hits = [(i, 0.0) for i in ends] + [(int(i), float(v[i] / (v[i] - v[i + 1]))) for i in cross_]
+                for i, w in hits:
+                    j = min(i + 1, n - 1)
+                    p = piece.points[i] + w * (piece.points[j] - piece.points[i])
+                    t = piece.t[i] + w * (piece.t[j] - piece.t[i])
+                    if np.hypot(p[0] - pair.male_pitch_radius, p[1]) < 1e-3 * pair.center_distance:
+                        continue  # the pitch point: pure rolling
+                    if any(
+                        f["rotor"] == rotor and np.hypot(f["x"] - p[0], f["y"] - p[1]) < 1e-2 * pair.center_distance
+                        for f in found
+                    ):
+                        continue
+                    found.append(
+                        {
+                            "rotor": rotor,
+                            "x": float(p[0]),
+                            "y": float(p[1]),
+                            "angle_deg": float(self.rinder_angle(t)),
+                            "flank": str(piece.roles[i]),
+                            "male_radius": float(np.hypot(*p)),
+                            "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
+                        }
+                    )
+        return found
 
     def _max(self, key: str) -> dict[str, float]:
         """Return the largest magnitude of a :attr:`kinematics` entry and where it occurs.
@@ -887,6 +1152,25 @@ class MeshingAnalysis:
             "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
         }
 
+    def defect_dicts(self) -> list[dict[str, object]]:
+        """Return :attr:`defects` as plain values, angles in Rinder's count and each cusp's reading.
+
+        Returns
+        -------
+        list of dict
+            :meth:`Defect.as_dict` with ``angle_deg`` converted by :meth:`rinder_angle` and
+            ``tip_corner`` (bool): the cusp is a rotor's tip corner or its point-generated path
+            (:func:`is_tip_corner`), not a defect of a working flank.
+        """
+        out = []
+        pair = self.rotors.pair
+        for d in self.defects:
+            row = d.as_dict()
+            row["angle_deg"] = float(self.rinder_angle(np.radians(d.angle_deg)))
+            row["tip_corner"] = is_tip_corner(d, pair, self.tip_corner_tolerance)
+            out.append(row)
+        return out
+
     def summary(self) -> dict[str, object]:
         """Return the analysis as plain values (the figures of ``rotorcad rotor --json``).
 
@@ -896,8 +1180,10 @@ class MeshingAnalysis:
             Tooth counts, centre distance (mm), family, ``meshline_closed``, blow-hole areas (mm²)
             and the spatial blow-hole, contact-line length (mm), flute areas (mm²), displacement per
             revolution (mm³), area utilisation, the largest sliding velocity (m/s) and slips with where
-            they occur, speed (rpm), defects, point-generated flanks, per-flank reports, whether the pair
-            runs without timing gears and why not, wrap angle (deg).
+            they occur, the points of infinite slip, speed (rpm), the angle convention, defects (with
+            ``tip_corner``), point-generated flanks, per-flank reports (working part, transverse,
+            overlap and total contact ratio), the pair's overlap ratio, whether the pair runs without
+            timing gears and why not, wrap angle (deg). Angles in Rinder's count (:meth:`rinder_angle`).
         """
         pair = self.rotors.pair
         return {
@@ -917,11 +1203,14 @@ class MeshingAnalysis:
             "max_sliding_at": self._max("sliding"),
             "max_slip_male": self._max("slip_male"),
             "max_slip_female": self._max("slip_female"),
+            "slip_singularities": self.slip_singularities,
             "speed_rpm": self.speed_rpm,
-            "defects": [d.as_dict() for d in self.defects],
+            "angle_convention": ANGLE_CONVENTION,
+            "defects": self.defect_dicts(),
             "defect_accuracy": self.judged_accuracy,
             "point_generated_flanks": self.point_generated_flanks,
             "flanks": {str(f): r.as_dict() for f, r in self.flanks.items()},
+            "overlap_contact_ratio": float(pair.wrap_angle * pair.male_teeth / (2 * np.pi)),
             "runs_without_timing_gears": all(r.runs_without_timing_gears for r in self.flanks.values()),
             "running_reasons": self.running_reasons,
             "wrap_angle_deg": float(np.degrees(pair.wrap_angle)),

@@ -14,11 +14,79 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from rotorcad import plot_style as ps
-from rotorcad.meshing import MeshingAnalysis
+from rotorcad.meshing import MeshingAnalysis, is_tip_corner
 from rotorcad.plot_style import styled
-from rotorcad.roles import Side
+from rotorcad.roles import Flank, PieceRole, Side
 
 MARKERS = {"cusp": ("v", ps.VERMILLION), "jamming": ("s", ps.PURPLE), "slipping": ("D", ps.YELLOW)}
+
+
+def defect_label(analysis: MeshingAnalysis, defect) -> str:
+    """Return the label a picture writes beside a defect: its kind, the rotor, its reading and flank.
+
+    A cusp that is a tip corner (:func:`rotorcad.meshing.is_tip_corner`) is labelled as that corner,
+    not as a defect of the flank (Rinder sec. 2.2.2).
+    """
+    role = "" if defect.role is None else f", {defect.role} flank"
+    pair = analysis.rotors.pair
+    if defect.kind == "cusp" and is_tip_corner(defect, pair, analysis.tip_corner_tolerance):
+        if defect.point_generated:
+            return f"{defect.rotor} tip corner{role}"
+        on_male_tip = abs(np.hypot(defect.x, defect.y) - pair.male_tip_radius) <= analysis.tip_corner_tolerance
+        return f"{defect.rotor} cusp at the {'male' if on_male_tip else 'female'} tip corner{role}"
+    if defect.kind == "slipping":
+        return f"slipping ({defect.flank})"
+    return f"{defect.kind} on the {defect.rotor}{role}"
+
+
+def flank_verdict(analysis: MeshingAnalysis, flank: Flank) -> str:
+    """Return one line of Rinder's verdict on a flank: runs or not, with its contact ratios."""
+    r = analysis.flanks[flank]
+    verdict = "runs without timing gears" if r.runs_without_timing_gears else "does not run without timing gears"
+    return (
+        f"{flank} flank: {verdict}; ε_α {r.transverse_contact_ratio:.2f} + ε_β {r.overlap_contact_ratio:.2f} "
+        f"= {r.total_contact_ratio:.2f}"
+    )
+
+
+def _draw_defects(ax, analysis: MeshingAnalysis, where) -> None:
+    """Mark every defect at ``where(defect)`` (x, y) with its marker and its label (kind, rotor, flank)."""
+    for kind, (marker, colour) in MARKERS.items():
+        found = [d for d in analysis.defects if d.kind == kind]
+        if not found:
+            continue
+        pts = np.array([where(d) for d in found])
+        corners = sum(is_tip_corner(d, analysis.rotors.pair, analysis.tip_corner_tolerance) for d in found)
+        text = f"{kind} ({len(found)}" + (f", {corners} of them tip corners)" if corners else ")")
+        ax.plot(*pts.T, marker, color=colour, mec=ps.BLACK, mew=0.6, ms=7, ls="none", label=text)
+        for n, (d, p) in enumerate(zip(found, pts, strict=True)):
+            ax.annotate(
+                defect_label(analysis, d),
+                p,
+                textcoords="offset points",
+                xytext=(8, 6 - 11 * (n % 3)) if kind != "slipping" else (8, -14 - 11 * (n % 2)),
+                fontsize=6.5,
+                color=ps.GREY,
+                arrowprops={"arrowstyle": "-", "color": ps.LIGHT_GREY, "lw": 0.5},
+            )
+
+
+def _draw_singularities(ax, analysis: MeshingAnalysis, where) -> None:
+    """Mark the points of infinite slip (:attr:`MeshingAnalysis.slip_singularities`) with their rotor and flank."""
+    found = analysis.slip_singularities
+    if not found:
+        return
+    pts = np.array([where(f) for f in found])
+    ax.plot(*pts.T, "o", mfc="none", mec=ps.VERMILLION, mew=1.4, ms=9, ls="none", label=f"infinite slip ({len(found)})")
+    for f, p in zip(found, pts, strict=True):
+        ax.annotate(
+            f"infinite {f['rotor']} slip, {f['flank']} flank",
+            p,
+            textcoords="offset points",
+            xytext=(8, 10),
+            fontsize=6.5,
+            color=ps.VERMILLION,
+        )
 
 
 def pair_case(analysis: MeshingAnalysis) -> str:
@@ -79,12 +147,29 @@ def plot_pair(analysis: MeshingAnalysis, clearance: float = 0.0) -> Figure:
         ax.plot(*pts.T, "-", color=ps.BORE, lw=1.0)
     ax.plot([], [], "--", color=ps.PITCH, lw=0.8, label="pitch circles")
     ax.plot([], [], "-", color=ps.BORE, lw=1.0, label=f"housing bores (tip + {clearance:g} mm)")
-    for k, piece in enumerate(analysis.pieces):
-        ax.plot(*piece.points.T, "-", color=ps.BLACK, lw=1.6, label="meshline" if k == 0 else None)
-    for kind, (marker, colour) in MARKERS.items():
-        pts = [(d.x, d.y) for d in analysis.defects if d.kind == kind]
+    labelled: set[bool] = set()
+    for piece in analysis.pieces:
+        working = piece.kind is PieceRole.CURVE
+        text = "meshline, working part (common tangent)" if working else "meshline, point-generated part (tip corner)"
+        ax.plot(*piece.points.T, "-" if working else ":", color=ps.BLACK, lw=1.6, label=None if working in labelled else text)
+        labelled.add(working)
+    _draw_defects(ax, analysis, lambda d: (d.x, d.y))
+    _draw_singularities(ax, analysis, lambda f: (f["x"], f["y"]))
+    for flank in (Flank.DRIVING, Flank.SEALING):  # Rinder's verdict written at the flank's meshline
+        pts = [p.points[p.roles == flank] for p in analysis.pieces if p.kind is PieceRole.CURVE]
+        pts = [q for q in pts if len(q)]
+        if not pts:
+            pts = [p.points[p.roles == flank] for p in analysis.pieces if (p.roles == flank).any()]
         if pts:
-            ax.plot(*np.array(pts).T, marker, color=colour, mec=ps.BLACK, mew=0.6, ms=7, ls="none", label=f"{kind} ({len(pts)})")
+            longest = max(pts, key=len)
+            ax.annotate(
+                flank_verdict(analysis, flank).replace("; ", "\n"),
+                longest[len(longest) // 2],
+                textcoords="offset points",
+                xytext=(-150, 10 if flank is Flank.SEALING else -24),
+                fontsize=6.5,
+                arrowprops={"arrowstyle": "-", "color": ps.GREY, "lw": 0.5},
+            )
     bh = analysis.blow_hole
     first = True
     for g in getattr(bh, "geoms", [bh]):
@@ -101,9 +186,10 @@ def plot_pair(analysis: MeshingAnalysis, clearance: float = 0.0) -> Figure:
     ax.set_ylabel(ps.label("y", "mm"))
     ps.legend_outside(ax)
     closed = "closed" if analysis.meshline_closed else "open"
+    runs = "runs" if all(r.runs_without_timing_gears for r in analysis.flanks.values()) else "needs timing gears"
     ps.title(
         fig,
-        f"screw-rotor pair {pair_case(analysis)} in mesh at male angle 0°: meshline {closed}, {len(analysis.defects)} defects",
+        f"screw-rotor pair {pair_case(analysis)} in mesh: meshline {closed}, {runs} (Rinder 2.2.1)",
         pair_settings(analysis),
     )
     return fig
@@ -175,17 +261,27 @@ def plot_sliding(analysis: MeshingAnalysis) -> Figure:
             if bad.any():
                 infinite = True
                 ax2.plot(ang[sl][bad], np.full(bad.sum(), 1e4), "^", color=colour, ms=5, clip_on=False)
+    mags = np.abs(k["sliding"])
+    where_vg = {}
+    for d in analysis.defects:  # the defect's angle, at the sliding velocity of the nearest contact
+        phi = float(analysis.rinder_angle(np.radians(d.angle_deg)))
+        i = int(np.argmin(np.hypot(*(analysis.meshline - (d.x, d.y)).T)))
+        where_vg[id(d)] = (phi, float(mags[i]) if np.isfinite(mags[i]) else 0.0)
+    _draw_defects(ax1, analysis, lambda d: where_vg[id(d)])
+    for flank, y in ((Flank.DRIVING, 0.97), (Flank.SEALING, 0.90)):
+        ax1.text(0.01, y, flank_verdict(analysis, flank), transform=ax1.transAxes, fontsize=7, va="top")
     ax1.set_ylabel(ps.label("sliding velocity |v_g|", "m/s"))
     ax1.set_title("sliding velocity along each branch of the meshline (Rinder eq. 3)")
     ps.legend_outside(ax1, handles, title="branch: flanks in contact", alignment="left")
     ax2.set_yscale("symlog", linthresh=1.0, linscale=1.0)
+    _draw_singularities(ax2, analysis, lambda f: (f["angle_deg"], 1e3))
     ax2.axhline(0.0, color=ps.GREY, lw=0.6)
     finite = np.abs(np.concatenate([k["slip_male"], k["slip_female"]]))
     finite = finite[np.isfinite(finite)]
     top = max(10.0, 10 ** np.ceil(np.log10(max(float(finite.max()) if len(finite) else 1.0, 1.0))))
     ax2.set_ylim(-top, top)
     ax2.set_ylabel(ps.label("slip ζ (symmetric log scale)", "1"))
-    ax2.set_xlabel(ps.label("male rotation angle at contact φ1", "°"))
+    ax2.set_xlabel(ps.label("male angle φ1 to go until a male tip's middle is on O1O2", "°"))
     ax2.set_title("slip ζ1 = v_g / v1t and ζ2 = v_g / v2t (Rinder eq. 4), colours as above")
     styles = [
         Line2D([], [], color=ps.GREY, ls="-", label="male slip ζ1"),
@@ -193,6 +289,10 @@ def plot_sliding(analysis: MeshingAnalysis) -> Figure:
     ]
     if infinite:
         styles.append(Line2D([], [], color=ps.GREY, marker="^", ls="none", label="|ζ| infinite (v_t = 0)"))
+    if analysis.slip_singularities:
+        styles.append(
+            Line2D([], [], marker="o", mfc="none", mec=ps.VERMILLION, ls="none", label="point of infinite slip (v_t → 0)")
+        )
     ps.legend_outside(ax2, styles)
     pair = analysis.rotors.pair
     n2 = analysis.speed_rpm * pair.male_teeth / pair.female_teeth

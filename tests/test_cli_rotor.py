@@ -86,7 +86,10 @@ def test_design_file_json_and_files(tmp_path, capsys):
     female = shapely.Polygon(read_points(f) + np.array([100.0, 0.0]))
     assert male.is_valid and female.is_valid and male.intersection(female).area < 1e-3
     # flute areas from the written outlines (shapely) agree with the JSON
-    a1 = (np.pi * 54.0**2 - male.area) / 4
+    import tomllib
+
+    r1t = tomllib.loads((SAMPLES / "lysholm_4_6.toml").read_text())["pair"]["male_tip_radius"]
+    a1 = (np.pi * r1t**2 - male.area) / 4
     assert data["male_flute_area"] == pytest.approx(a1, rel=1e-3)
 
 
@@ -95,7 +98,13 @@ def test_rebuild_from_written_points(tmp_path, capsys):
     m = tmp_path / "m.csv"
     rc, out, _ = run(capsys, "rotor", SAMPLES / "rack_involute_5_6.toml", "--json", "--male-csv", m)
     first = json.loads(out)
-    rc, out, err = run(capsys, "rotor", "--male-points", m, *DIMS_56, "--json")
+    import tomllib
+
+    pair = tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"]
+    dims = [f"--{k.replace('_', '-')}={pair[k]!r}" for k in ("male_teeth", "female_teeth", "center_distance")]
+    dims += [f"--{k.replace('_', '-')}={pair[k]!r}" for k in ("male_tip_radius", "male_root_radius")]
+    dims += [f"--{k.replace('_', '-')}={pair[k]!r}" for k in ("female_tip_radius", "female_root_radius")]
+    rc, out, err = run(capsys, "rotor", "--male-points", m, *dims, "--json")
     assert rc == 0, err
     second = json.loads(out)
     assert second["male_flute_area"] == pytest.approx(first["male_flute_area"], rel=1e-3)

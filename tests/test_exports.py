@@ -111,7 +111,9 @@ def test_export_command(tmp_path, capsys):
         assert {"path", "format", "body", "triangles", "volume"} <= set(f) and Path(f["path"]).exists()
     stl = next(f for f in files if f["format"] == "stl" and f["body"] == "female")
     back = read_mesh(Path(stl["path"]), "stl")
-    assert back.volume == pytest.approx(stl["volume"], rel=1e-9)
+    # STL stores float32 coordinates (relative rounding 6e-8 per coordinate): the volume read back
+    # agrees with the float64 mesh's to that rounding, not to 1e-9 (2.7e-9 on the rack-involute sample)
+    assert back.volume == pytest.approx(stl["volume"], rel=1e-7)
     step = next(f for f in files if f["format"] == "step" and f["body"] == "male")
     info = read_step(Path(step["path"]))
     assert info["valid"] and info["volume"] == pytest.approx(step["volume"], rel=1e-3)

@@ -113,7 +113,8 @@ def test_slow_noisy_female_points_refused_before_the_sections(capsys, tmp_path, 
 
 def test_smooth_lobe_points_leave_room_for_every_sample():
     """The limit on a generated lobe's points is three times a generous estimate; the samples' lobes
-    (built from their racks) have at most a third of the estimate."""
+    (built from their racks) have at most 40 % of the estimate (an eighth of the limit: the
+    rack-involute female, with two tip-corner paths and two tip circles, has 36 %)."""
     from rotorcad.cli.rotor import _build
     from rotorcad.rotor_build import smooth_lobe_points
 
@@ -125,7 +126,7 @@ def test_smooth_lobe_points_leave_room_for_every_sample():
             (rotors.male_lobe(), p.male_tip_radius, p.male_teeth),
             (rotors.female_lobe(), p.female_tip_radius, p.female_teeth),
         ):
-            assert sum(len(s.points) for s in lobe.segments) < 0.35 * smooth_lobe_points(tip, teeth), sample.name
+            assert sum(len(s.points) for s in lobe.segments) < 0.4 * smooth_lobe_points(tip, teeth), sample.name
 
 
 def test_hang_cut_module_50_helical_pointed(capsys):

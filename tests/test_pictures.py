@@ -99,6 +99,27 @@ def test_rotor_pictures_label_every_branch_and_state_the_case(tmp_path, capsys):
     assert "male driving flank ↔ female driving flank" in " ".join(sliding["text"].split())
     assert "male slip ζ1" in sliding["text"] and "female slip ζ2" in sliding["text"]
     assert "clipped" not in sliding["text"] and "symmetric log scale" in sliding["text"]
+    # Rinder's verdicts at the flank where they are (sec. 1.2: Lysholm's driving flank runs, his
+    # sealing flank needs timing gears; sec. 2.2.2: the cusps at the tips are the tip corners)
+    for picture in (pair, sliding):
+        text = " ".join(picture["text"].split())
+        assert "driving flank: runs without timing gears" in text
+        assert "sealing flank: does not run without timing gears" in text
+        assert "female tip corner, sealing flank" in text and "male tip corner, sealing flank" in text
+        assert "slipping (male tip on the female root)" in text
+
+
+def test_rotor_pictures_mark_the_point_of_infinite_slip(tmp_path, capsys):
+    # Rinder sec. 3.2: the rack profile has infinite slip "nur in einem einzigen Punkt": both
+    # pictures mark it, with its rotor and flank
+    code, _, _ = run(capsys, "rotor", ROOT / "samples" / "rack_involute_5_6.toml", "--plot", tmp_path / "r.svg")
+    assert code == 0
+    texts = {
+        name: " ".join(check_picture(tmp_path / name, ["rack-involute 5/6"])["text"].split())
+        for name in ("r.svg", "r_sliding.svg")
+    }
+    assert all("infinite female slip, sealing flank" in text for text in texts.values())
+    assert "infinite slip (1)" in texts["r.svg"] and "point of infinite slip" in texts["r_sliding.svg"]
 
 
 def test_cut_picture_states_the_magnified_deviation(tmp_path, capsys):

@@ -231,7 +231,13 @@ def test_pairs_from_measured_points_of_every_family(sample, rotor):
     assert rack_deviation(rebuilt) < 2e-3
     ma, ma_ref = MeshingAnalysis(rebuilt), MeshingAnalysis(ref)
     assert ma.contact_line_length == pytest.approx(ma_ref.contact_line_length, rel=1e-2)
-    assert {f["rotor"] for f in ma.point_generated_flanks} == {f["rotor"] for f in ma_ref.point_generated_flanks}
+    found = {f["rotor"] for f in ma.point_generated_flanks}
+    assert {f["rotor"] for f in ma_ref.point_generated_flanks} <= found
+    # the pair from points may find one more: where the rack-involute's female sealing involute ends
+    # in its cusp on the base circle (Rinder's "Spitze", met by the male tip corner), the female's
+    # corner traces 0.3 mm of the male; the rack chain, built from the rack, has no piece for it
+    extra = found - {f["rotor"] for f in ma_ref.point_generated_flanks}
+    assert not extra or (sample == "rack_involute_5_6" and extra == {"male"})
 
 
 def test_rack_points_reproduce_the_pair():

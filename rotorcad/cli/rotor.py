@@ -174,12 +174,17 @@ def rotor(design: Path | None, **opts: Any) -> None:
     if opts["as_json"]:
         emit_json(result)
     else:
-        print_table(f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair", result)
+        print_table(
+            f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair",
+            {k: v for k, v in result.items() if k != "angle_convention"},  # a sentence, printed below
+        )
         click.echo(f"  defects judged to an accuracy of {1e3 * result['defect_accuracy']:.2g} µm of the profile")
         for d in result["defects"]:
             click.echo(
-                f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, flank '{d['flank']}'"
+                f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['angle_deg']:+.1f}°, "
+                f"flank '{d['flank']}'"
                 + (" (point-generated)" if d["point_generated"] else "")
+                + (": the tip corner itself, not a defect of the flank" if d.get("tip_corner") else "")
             )
         spatial = result["blow_hole_spatial"]
         if spatial["area"] > 0:
@@ -188,11 +193,18 @@ def rotor(design: Path | None, **opts: Any) -> None:
                 f"between z = {spatial['z_min']:.2f} and {spatial['z_max']:.2f} mm of the contact line"
             )
         for flank, report in result["flanks"].items():
+            verdict = "runs" if report["runs_without_timing_gears"] else "does not run"
             click.echo(
-                f"  {flank} flank: geometric contact on {100 * report['geometric_share']:.0f} % of "
+                f"  {flank} flank: {verdict}; geometric contact on {100 * report['geometric_share']:.0f} % of "
                 f"{report['meshline_length']:.2f} mm of meshline, "
-                f"transverse contact ratio {report['transverse_contact_ratio']:.3f}"
+                f"transverse contact ratio {report['transverse_contact_ratio']:.3f} + overlap "
+                f"{report['overlap_contact_ratio']:.3f} = {report['total_contact_ratio']:.3f}"
             )
+        for f in result["slip_singularities"]:
+            click.echo(
+                f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank"
+            )
+        click.echo(f"  angles: {result['angle_convention']}")
         for reason in result["running_reasons"]:
             click.echo(f"  does not run without timing gears: {reason}")
         for p in result["files"]:
