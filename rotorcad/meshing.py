@@ -25,7 +25,6 @@ from functools import cached_property
 
 import numpy as np
 import shapely
-from scipy import interpolate
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
@@ -321,6 +320,8 @@ class MeshingAnalysis:
             if len(pts) < 4 or length < 1e-6 * scale:
                 continue  # the piece touches at a single point (a tip or root land): no meshline
             order = np.argsort(piece.s)
+            from scipy import interpolate  # 0.4 s to import: only where a meshline is judged
+
             spline = interpolate.make_interp_spline(piece.s[order], pts[order], k=3)
             tau = spline.derivative()(piece.s)
             tau /= np.linalg.norm(tau, axis=1, keepdims=True)
