@@ -80,14 +80,18 @@ def test_export_of_numpy_mesh_formats_imports_no_trimesh_meshio_or_ocp(short_des
 @pytest.mark.skipif(not worker_count(), reason="STEP and DXF are written in this process without a worker (one core)")
 def test_readme_export_leaves_opencascade_to_the_writer_process(short_design, tmp_path):
     # the README's main job: the design's formats stl, step and dxf
-    modules = loaded_modules(["export", str(short_design), "--out", str(tmp_path / "o"), "--tolerance", "0.1", "--quiet"], tmp_path)
+    modules = loaded_modules(
+        ["export", str(short_design), "--out", str(tmp_path / "o"), "--tolerance", "0.1", "--quiet"], tmp_path
+    )
     assert (tmp_path / "o" / "short_male.step").exists() and (tmp_path / "o" / "short_female.dxf").exists()
     assert heavy_in(modules) == set()
     assert "ezdxf" not in modules  # the DXF is written in the worker too
 
 
 def test_3mf_still_uses_trimesh(short_design, tmp_path):
-    modules = loaded_modules(["export", str(short_design), "--format", "3mf", "--tolerance", "0.1", "--out", str(tmp_path / "o")], tmp_path)
+    modules = loaded_modules(
+        ["export", str(short_design), "--format", "3mf", "--tolerance", "0.1", "--out", str(tmp_path / "o")], tmp_path
+    )
     assert (tmp_path / "o" / "short_male.3mf").exists() and "trimesh" in modules
 
 
