@@ -31,6 +31,7 @@ from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, wrap_angle
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
+from rotorcad.spline_slopes import spline_slopes
 
 
 @dataclass(frozen=True, eq=False)
@@ -320,10 +321,8 @@ class MeshingAnalysis:
             if len(pts) < 4 or length < 1e-6 * scale:
                 continue  # the piece touches at a single point (a tip or root land): no meshline
             order = np.argsort(piece.s)
-            from scipy import interpolate  # 0.4 s to import: only where a meshline is judged
-
-            spline = interpolate.make_interp_spline(piece.s[order], pts[order], k=3)
-            tau = spline.derivative()(piece.s)
+            tau = np.empty_like(pts)
+            tau[order] = spline_slopes(piece.s[order], pts[order])  # the not-a-knot cubic spline's derivative
             tau /= np.linalg.norm(tau, axis=1, keepdims=True)
             # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
             # through O1, O2 and C at once), and C itself lies on every meshline
