@@ -1,4 +1,4 @@
-"""Write tests/reference_data: the brute-force cuts of tests/independent_pairs.py the tests use.
+"""Write tests/reference_data: the brute-force cuts the tests use (tests/independent_pairs.stored).
 
 Runs the test files that use them with ROTORCAD_WRITE_REFERENCES=1, so that every result they
 compute and do not find stored is written (tests/independent_pairs.stored); delete the folder
@@ -13,7 +13,7 @@ import sys
 from pathlib import Path
 
 TESTS = Path(__file__).resolve().parent
-USERS = ("test_inverse_independent.py", "test_deflection.py")  # the test files that use independent_pairs' cuts
+USERS = ("test_inverse_independent.py", "test_deflection.py", "test_n_rack_cut.py")  # the files that use stored cuts
 
 
 def main() -> int:
