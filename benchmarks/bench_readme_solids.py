@@ -23,8 +23,12 @@ def both_solids(tol: float = 0.005) -> float:
     pair = rotors.pair
     t = time.perf_counter()
     male_s, female_s = rotors.section("male", tol / 2), rotors.section("female", tol / 2)
-    helical_solid(male_s, pair.lead, pair.length, tol)
-    helical_solid(female_s, -pair.female_lead, pair.length, tol)
+    # the triangles the export writes (the manifold is made only for booleans: bench_solids.py)
+    meshes = [
+        helical_solid(male_s, pair.lead, pair.length, tol).triangle_mesh,
+        helical_solid(female_s, -pair.female_lead, pair.length, tol).triangle_mesh,
+    ]
+    assert all(len(m.faces) for m in meshes)
     return time.perf_counter() - t
 
 

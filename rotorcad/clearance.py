@@ -34,7 +34,6 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from rotorcad.curves import Curve, Mapped
 from rotorcad.errors import DesignError
@@ -86,6 +85,8 @@ def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tan
         Signed distance delta with datum + delta normal on the compared rack (positive a gap,
         negative an interference); NaN where the normal line does not cut it nearby.
     """
+    from scipy.spatial import cKDTree
+
     k = cKDTree(compared).query(datum)[1]
     n_seg = len(compared) - 1
     offsets = np.arange(-window, window)

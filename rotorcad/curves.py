@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
-from scipy import interpolate
 
 from rotorcad.geometry import Array, as_points, cross, normalize, perp_cw
 from rotorcad.kinematics import Body
@@ -517,6 +516,8 @@ class Spline(Curve):
         pts = pts[keep]
         u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
         k = 3 if periodic else min(3, len(pts) - 1)  # a run of two or three points: a line or a parabola
+        from scipy import interpolate  # scipy.interpolate only for a spline (0.4 s to import)
+
         tck, _ = interpolate.splprep(pts.T, u=u, s=smoothing, k=k, per=int(periodic), quiet=2)
         return Spline(knots=(tck[0], tuple(tck[1]), tck[2]), s0=0.0, s1=float(u[-1]), periodic=periodic)
 
@@ -535,6 +536,8 @@ class Spline(Curve):
         tangents : (n, 2) float array
             The spline's exact derivative, normalised: along increasing ``s``.
         """
+        from scipy import interpolate
+
         tck = [self.knots[0], list(self.knots[1]), self.knots[2]]
         p = np.stack(interpolate.splev(s, tck), axis=-1)
         d = np.stack(interpolate.splev(s, tck, der=1), axis=-1)

@@ -33,8 +33,6 @@ from dataclasses import dataclass, fields
 from functools import cached_property
 
 import numpy as np
-import shapely
-from scipy import optimize
 
 from rotorcad.curves import Arc, Curve, Line, Mapped
 from rotorcad.envelope import Generated
@@ -504,7 +502,6 @@ class InvoluteGear:
         # roll distance from T1, and the generated radius is R = sqrt(r_b^2 + along^2)
         a0, a1 = flank.roll()
         undercut = bool(a0 < 0.0)
-        s_int = -a0 / a1 if undercut else 0.0
         s_a = (math.sqrt(ra * ra - rb * rb) - a0) / a1
         # the flank is an involute: polar angle + inv(alpha_R) is constant along it; taken at its top
         # (generated above the tip circle, well clear of the base circle where alpha_R is ill-conditioned)
@@ -525,11 +522,7 @@ class InvoluteGear:
         s_low = 0.0
         if undercut:
             r_p, fil_s0 = self._undercut_point(fillet, fillet_range, flank_angle, rb)
-            if np.isfinite(r_p):
-                s_low = (math.sqrt(max(r_p * r_p - rb * rb, 0.0)) - a0) / a1
-            else:  # crossing at the base circle, where the polar form is singular: intersect the curves
-                gen = self._generated
-                s_low, fil_s0 = self._undercut_point_by_intersection(gen["flank"], gen["tip arc"], s_int, s_a)
+            s_low = (math.sqrt(max(r_p * r_p - rb * rb, 0.0)) - a0) / a1
         form_radius = math.sqrt(rb * rb + (a0 + a1 * s_low) ** 2)
         pieces: list[tuple[str, float, float, _ToolCut | None]] = []
         if not tip_pointed:
@@ -583,7 +576,12 @@ class InvoluteGear:
         P' is where the fillet (trochoid) cuts the involute: the outermost sign change of the
         polar-angle gap between the fillet and the involute at the same radius, bracketed on
         vectorised grids of 513 parameters (the whole fillet, then twice the bracketing cell) and
-        interpolated linearly.
+        interpolated linearly. Near the undercut limit P' lies just outside the base circle, in a
+        grid cell with one end inside it, micro-radians from the fillet's start; a second pass,
+        on a first grid crowded towards that start (spacing growing like the square of the
+        distance), takes the involute's polar angle inside the base circle as its start's, so that
+        the gap stays continuous and the cell is bracketed. Where the fillet
+        crosses the involute nowhere, the two are joined at the base circle.
 
         Parameters
         ----------
@@ -600,8 +598,8 @@ class InvoluteGear:
         Returns
         -------
         (float, float)
-            Radius of P', mm (NaN where the gap changes sign nowhere above the base circle), and the
-            tool parameter of P' on the fillet.
+            Radius of P', mm, and the tool parameter of P' on the fillet; ``rb`` and the fillet's
+            start where the fillet does not cross the involute (joined at the base circle).
         """
 
         def gap(s: Array) -> tuple[Array, Array]:
@@ -609,59 +607,29 @@ class InvoluteGear:
             r = radius(p)
             return polar_angle(p) - flank_angle(r), r
 
-        lo, hi = s_range
-        for _ in range(3):
-            s = _span(lo, hi, 513)
-            g, r = gap(s)
-            ok = (r > rb) & np.isfinite(g)
-            change = np.nonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) != np.sign(g[1:])))[0]
-            if len(change) == 0:
-                return float("nan"), s_range[0]
-            i = change[np.argmax(r[change])]
-            lo, hi = s[i], s[i + 1]
-        w = g[i] / (g[i] - g[i + 1])
-        s_star = lo + w * (hi - lo)
-        return float(radius(fillet.cut(np.array([s_star]))[0])[0]), float(s_star)
-
-    @staticmethod
-    def _undercut_point_by_intersection(flank: Generated, fillet: Generated, s_int: float, s_a: float) -> tuple[float, float]:
-        """Return the parameters (flank, fillet) of P' by intersecting the two generated curves.
-
-        Shapely intersects polylines of 1025 samples of each for the bracket (the crossing
-        farthest from the centre), then a 2-D root of the exact curves refines it.
-
-        Parameters
-        ----------
-        flank : Generated
-            The involute, cut by the tool's flank.
-        fillet : Generated
-            The root fillet, cut by the tool's tip arc.
-        s_int, s_a : float
-            Flank parameters of the interference point (contact at T1) and of the tooth tip (tip
-            circle, or the point where a pointed tooth's flanks meet).
-
-        Returns
-        -------
-        (float, float)
-            Tool parameters of P' on the flank and on the fillet; ``s_int`` and the fillet's start
-            where the polylines do not cross (the two are joined at the base circle).
-        """
-        sf = np.linspace(fillet.s0, fillet.s1, 1025)
-        sl = np.linspace(s_int, s_a, 1025)
-        pf, pl = fillet.evaluate(sf)[0], flank.evaluate(sl)[0]
-        hit = shapely.LineString(pf).intersection(shapely.LineString(pl))
-        pts = shapely.get_coordinates(hit)
-        if len(pts) == 0:  # the fillet never reaches the involute: join at the base circle
-            return s_int, fillet.s0
-        x = pts[np.argmax(np.hypot(*pts.T))]
-        i = int(np.argmin(np.hypot(*(pl - x).T)))
-        j = int(np.argmin(np.hypot(*(pf - x).T)))
-
-        def gap(v: Array) -> Array:
-            return flank.evaluate(v[0])[0][0] - fillet.evaluate(v[1])[0][0]
-
-        sol = optimize.root(gap, [sl[i], sf[j]], method="hybr", options={"xtol": 1e-14})
-        return float(sol.x[0]), float(sol.x[1])
+        for near_base in (False, True):
+            lo, hi = s_range
+            for level in range(3):
+                # near the limit P' lies within micro-radians of the fillet's start (the tool's
+                # flank/tip joint cuts next to T1): the second pass's first grid crowds there
+                s = lo + (hi - lo) * _CROWDED if near_base and level == 0 else _span(lo, hi, 513)
+                g, r = gap(s)
+                # near the undercut limit P' lies so close to the base circle that the grid cell
+                # holding it has an end inside it: there the gap is taken to the involute's start
+                # (flank_angle is constant below r_b), continuous across the base circle
+                ok = np.isfinite(g) & ((r > rb) | near_base)
+                change = np.nonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) != np.sign(g[1:])))[0]
+                if len(change) == 0:
+                    break
+                i = change[np.argmax(r[change])]
+                lo, hi = s[i], s[i + 1]
+            else:
+                w = g[i] / (g[i] - g[i + 1])
+                s_star = lo + w * (hi - lo)
+                r_star = float(radius(fillet.cut(np.array([s_star]))[0])[0])
+                if r_star >= rb:  # else the fillet passed below the involute's start: no crossing
+                    return r_star, float(s_star)
+        return rb, s_range[0]
 
     @property
     def undercut(self) -> bool:
@@ -899,6 +867,9 @@ def _complex(p: Array) -> Array:
 def _inv(alpha: float) -> float:
     """inv(alpha) = tan(alpha) - alpha for one angle, rad (ISO 21771 eq. 2.21; :func:`rotorcad.involute.inv`)."""
     return math.tan(alpha) - alpha
+
+
+_CROWDED = np.linspace(0.0, 1.0, 513) ** 3  # grid crowded towards its start, a share of the interval
 
 
 def _span(a: float, b: float, n: int) -> Array:

@@ -17,7 +17,6 @@ Dierckx, *Curve and Surface Fitting with Splines*, sec. 5.2).
 from __future__ import annotations
 
 import numpy as np
-from scipy.ndimage import maximum_filter1d, minimum_filter1d
 
 from rotorcad.errors import DesignError
 from rotorcad.geometry import cross, rotate, wrap_angle
@@ -259,6 +258,8 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
     back, ahead = a1 - a0, b1 - b0
     turn = np.abs(np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead)))
+    from scipy.ndimage import maximum_filter1d
+
     peak = maximum_filter1d(turn, size=2 * k + 1, mode="wrap")
     idx = np.flatnonzero((turn > np.radians(angle_deg)) & (turn >= peak))
     if len(idx) > 1:  # a plateau of equal turns: its first edge (also across the ring's seam)
@@ -318,6 +319,8 @@ def lands(run: np.ndarray, sigma: float, min_angle_deg: float = 0.5, min_points:
     h = float(np.median(np.hypot(*np.diff(p, axis=0).T)))
     w = int(np.clip(np.ceil(0.05 / max(h, 1e-9)), 1, 50))
     tol = max(4 * sigma, 3e-4)
+    from scipy.ndimage import maximum_filter1d, minimum_filter1d
+
     spread = maximum_filter1d(r, size=2 * w + 1, mode="nearest") - minimum_filter1d(r, size=2 * w + 1, mode="nearest")
     flat = spread <= 2 * tol
     edges = np.flatnonzero(np.diff(np.concatenate([[0], flat.astype(int), [0]])))

@@ -82,7 +82,6 @@ from functools import cached_property
 
 import numpy as np
 import shapely
-from scipy import interpolate
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
@@ -91,6 +90,7 @@ from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import ScrewRotors
+from rotorcad.spline_slopes import makima_slopes
 
 
 @dataclass(frozen=True, eq=False)
@@ -472,6 +472,8 @@ def _meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float
     order = np.argsort(piece.s)
     pts = piece.points
     if accuracy > 0:
+        from scipy import interpolate  # a given profile only: points come through scipy's fits anyway
+
         keep = np.concatenate([[True], np.diff(arclen) > 1e-12])
         if keep.sum() > 8:
             try:
@@ -482,8 +484,8 @@ def _meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float
                     return tau / norm
             except (ValueError, TypeError):
                 pass  # too few distinct samples for a smoothing cubic: the interpolating one below
-    spline = interpolate.Akima1DInterpolator(piece.s[order], pts[order], axis=0, method="makima")
-    tau = spline.derivative()(piece.s)
+    tau = np.empty_like(pts)
+    tau[order] = makima_slopes(piece.s[order], pts[order])
     return tau / np.linalg.norm(tau, axis=1, keepdims=True)
 
 

@@ -45,7 +45,6 @@ are this rack).
 from __future__ import annotations
 
 import numpy as np
-from scipy import optimize
 
 from rotorcad.curves import Arc, GeneralisedArc, PointPath
 from rotorcad.envelope import from_rack_frame
@@ -53,6 +52,7 @@ from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.kinematics import Rotation
 from rotorcad.roles import PieceRole
+from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_arc, rack_line
 
@@ -78,6 +78,8 @@ def sealing_contact(pair: RotorPair, male_radius: float, female_radius: float) -
     def residual(k: np.ndarray, rm: float, rf: float) -> np.ndarray:
         u = (k - c) / np.hypot(*(k - c))
         return np.array([np.hypot(*(k - rm * u)) - (r1 - rm), np.hypot(*(k + rf * u - o2)) - (r2 - rf)])
+
+    from scipy import optimize  # only here: 0.3 s to import
 
     k = np.asarray(pair.housing_cusp, dtype=float)
     for share in np.linspace(0.1, 1.0, 10):
@@ -309,7 +311,7 @@ def _driving_side(pair: RotorPair, a: float, depth: float, rounding: float, p: f
         n = np.array([-tr[1], tr[0]])  # into the gap: the tangent turned counter-clockwise in the rack frame
         return float(xy[1] + rounding * n[1] - (-d1 + rounding))
 
-    s_t = 0.0 if centre_height(0.0) >= -1e-12 else optimize.brentq(centre_height, 0.0, np.pi / 2, xtol=1e-15)
+    s_t = 0.0 if centre_height(0.0) >= -1e-12 else bracket_root(centre_height, (0.0, np.pi / 2), xtol=1e-15)
     pt, t = arc.evaluate(np.array([s_t]))
     xy, tr = _rack_xy(pair, pt[0]), np.array([t[0, 1], t[0, 0]])
     c_round = xy + rounding * np.array([-tr[1], tr[0]])

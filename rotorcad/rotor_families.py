@@ -39,7 +39,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy import optimize
 
 from rotorcad.curves import Curve, Line, PointPath
 from rotorcad.envelope import Generated
@@ -47,6 +46,7 @@ from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.n_rack import n_rack
 from rotorcad.roles import PieceRole, Side
+from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_arc, rack_line
 
@@ -124,8 +124,8 @@ def _female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Cur
     if len(k) == 0:
         return None
     i = k[-1] if at_end else k[0]
-    s_n = optimize.brentq(
-        lambda v: np.hypot(*(gen.contact(v).meshline[0] - o2)) - pair.female_tip_radius, s[i], s[i + 1], xtol=1e-14
+    s_n = bracket_root(
+        lambda v: np.hypot(*(gen.contact(v).meshline[0] - o2)) - pair.female_tip_radius, (s[i], s[i + 1]), xtol=1e-14
     )
     c_n = gen.contact(s_n)
     path, x_foot = _female_corner_path(pair, c_n.meshline[0], float(c_n.t[0]), at_end)

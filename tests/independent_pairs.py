@@ -20,8 +20,12 @@ above it.
 from __future__ import annotations
 
 import functools
+import hashlib
 import itertools
+import os
+from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import shapely
@@ -177,8 +181,32 @@ def _rot(p: np.ndarray, angle: np.ndarray) -> np.ndarray:
     return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]])
 
 
+REFERENCE_DATA = Path(__file__).resolve().parent / "reference_data"
+
+
+def stored(kind: str, key: str, compute: Callable[[], np.ndarray]) -> np.ndarray:
+    """The brute-force result named by ``kind`` and ``key`` (the repr of every input), from its
+    file in tests/reference_data when there is one, else computed. With the environment variable
+    ROTORCAD_WRITE_REFERENCES=1 (tests/make_reference_data.py sets it) a computed result is
+    written there. The files hold what the functions below compute (a test regenerates one and
+    compares); they save seconds to minutes of shapely booleans per run of the suite."""
+    path = REFERENCE_DATA / f"{kind}_{hashlib.sha256(key.encode()).hexdigest()[:16]}.npy"
+    if path.exists():
+        return np.load(path)
+    result = compute()
+    if os.environ.get("ROTORCAD_WRITE_REFERENCES") == "1":
+        REFERENCE_DATA.mkdir(exist_ok=True)
+        np.save(path, result)
+    return result
+
+
 @functools.lru_cache(maxsize=8)
 def cut_rotor(pair: Pair, rotor: str, positions: int = 3000) -> np.ndarray:
+    """:func:`cut_rotor_brute_force`, read from tests/reference_data when stored there."""
+    return stored("cut_rotor", repr((pair, rotor, positions)), lambda: cut_rotor_brute_force(pair, rotor, positions))
+
+
+def cut_rotor_brute_force(pair: Pair, rotor: str, positions: int = 3000) -> np.ndarray:
     """The rotor cut by brute force: its tip disc minus the rack (the other rotor's side of the
     rack curve) at ``positions`` rolling positions over one full turn (shapely union, then
     difference). Returns the outer ring, counter-clockwise, without a repeated end point."""
@@ -246,6 +274,12 @@ def one_lobe(ring: np.ndarray, teeth: int, start_deg: float = 0.0) -> np.ndarray
 
 
 def female_cut_by_male(pair: Pair, male: np.ndarray, positions: int = 6000) -> np.ndarray:
+    """:func:`female_cut_by_male_brute_force`, read from tests/reference_data when stored there."""
+    key = repr((pair, positions, hashlib.sha256(np.ascontiguousarray(male, dtype=float).tobytes()).hexdigest()))
+    return stored("female_cut_by_male", key, lambda: female_cut_by_male_brute_force(pair, male, positions))
+
+
+def female_cut_by_male_brute_force(pair: Pair, male: np.ndarray, positions: int = 6000) -> np.ndarray:
     """The female cut by brute force with the given male outline as the tool (the envelope of the
     male, as a rotor-rotor generating cut makes it): the female's tip disc minus the male at
     ``positions`` mesh positions over one female turn. Returns the outer ring, counter-clockwise,

@@ -10,9 +10,12 @@ rounding, and the sealing tip circles that come back from their rack images.
 
 from __future__ import annotations
 
+import hashlib
+
 import numpy as np
 import pytest
 import shapely
+from independent_pairs import stored
 
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
@@ -39,11 +42,20 @@ def rack_period_points(rotors, spacing: float = 0.03) -> np.ndarray:
 
 
 def brute_force_cut(rotors, rotor: str, positions: int) -> shapely.Polygon:
-    """The rotor's tip disc minus the rack rolled over the part of a turn that cuts lobe 0 and its
-    neighbours (shapely booleans only)."""
+    """:func:`brute_force_cut_of_rack`, read from tests/reference_data when stored there for this
+    very rack chain (its points are part of the key)."""
     pair = rotors.pair
-    r1, r2, a, period = pair.male_pitch_radius, pair.female_pitch_radius, pair.center_distance, pair.rack_period
     pts = rack_period_points(rotors)
+    key = repr((pair, rotor, positions, hashlib.sha256(pts.tobytes()).hexdigest()))
+    return shapely.Polygon(
+        stored("n_rack_cut", key, lambda: np.asarray(brute_force_cut_of_rack(pair, pts, rotor, positions).exterior.coords))
+    )
+
+
+def brute_force_cut_of_rack(pair: RotorPair, pts: np.ndarray, rotor: str, positions: int) -> shapely.Polygon:
+    """The rotor's tip disc minus the rack (one period ``pts``) rolled over the part of a turn that
+    cuts lobe 0 and its neighbours (shapely booleans only)."""
+    r1, r2, a, period = pair.male_pitch_radius, pair.female_pitch_radius, pair.center_distance, pair.rack_period
     strip = np.vstack([pts + np.array([k * period, 0.0]) for k in range(-2, 3)])
     strip = strip[np.abs(strip[:, 0]) < 2.2 * period]
     far = 3 * (pair.male_addendum + pair.male_dedendum)

@@ -10,7 +10,6 @@ from typing import Any, NamedTuple
 import click
 import numpy as np
 import shapely
-import trimesh
 from rich.console import Console
 from rich.table import Table
 
@@ -32,6 +31,7 @@ from rotorcad.interference import interference_2d, intersection_3d
 from rotorcad.measured_outline import whole_outline
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.solids import HOUSING_WALL, helical_solid, housing_solids
+from rotorcad.triangle_mesh import TriangleMesh
 from rotorcad.work import MAX_SECTION_POINTS, MAX_TRIANGLES, points_at, solid_triangles
 
 FORMATS = (*MESH_FORMATS, "dxf", "dxf-r12", "dxf-mesh", "dxf-mesh-r12", "step", "step-faceted", "csv")
@@ -171,7 +171,7 @@ def export(
             """
             if body not in swept:
                 made = helical_solid(sections[body], leads[body], pair.length, tol)
-                mesh = made.mesh
+                mesh = made.triangle_mesh
                 mesh.apply_translation([*shift[body], 0.0])  # the mesh is the solid's own: moved, not copied
                 swept[body] = _SweptBody(mesh, made.volume, made.tolerance)
                 progress.advance()
@@ -189,7 +189,7 @@ def export(
                 for _ in range(12):  # find the tolerance that would do (triangles fall slower than 1/tolerance)
                     needed *= 1.5
                     coarse = helical_solid(rotors.section(body, needed / 2), leads[body], pair.length, needed)
-                    if len(coarse.mesh.faces) <= DXF_MESH_MAX:
+                    if len(coarse.triangle_mesh.faces) <= DXF_MESH_MAX:
                         break
                 raise InputError(
                     f"--tolerance must be coarser for a DXF mesh ({len(made.mesh.faces)} triangles; at most {DXF_MESH_MAX}): "
@@ -205,7 +205,7 @@ def export(
             while faces > FACETED_STEP_MAX:  # facets go like 1/tol: coarsen until readable
                 coarse_tol *= 1.5 * faces / FACETED_STEP_MAX
                 coarse = helical_solid(rotors.section(body, coarse_tol / 2), leads[body], pair.length, coarse_tol)
-                mesh = coarse.mesh.copy()
+                mesh = coarse.triangle_mesh.copy()
                 mesh.apply_translation([*shift[body], 0.0])
                 made = _SweptBody(mesh, coarse.volume, coarse.tolerance)
                 faces = len(mesh.faces)
@@ -277,7 +277,7 @@ def export(
             exact_volume = _housing_volumes(pair, clearance)
             for body, manifold in (("housing", block), ("bores", bores)):
                 m = manifold.to_mesh64()
-                mesh = trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts), process=False)
+                mesh = TriangleMesh(np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts))
                 for fmt in fmts:
                     if fmt in MESH_FORMATS or fmt in ("step", "step-faceted"):
                         ext = _extension(fmt) if fmt in MESH_FORMATS else ("_faceted.step" if fmt == "step-faceted" else ".step")
@@ -335,7 +335,7 @@ STEP_TOLERANCE = 1e-3  # mm: the exact STEP is checked against the helicoid to 1
 class _SweptBody(NamedTuple):
     """What the mesh writers need of a swept rotor: its mesh in place and what it was made to."""
 
-    mesh: trimesh.Trimesh  # float64, placed (the female at the centre distance)
+    mesh: TriangleMesh  # float64, placed (the female at the centre distance)
     volume: float  # mm^3, of the mesh
     tolerance: float  # mm, surface tolerance it was made to
 

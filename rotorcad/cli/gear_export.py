@@ -101,7 +101,7 @@ def export_gear(
             row: dict[str, Any] = {"path": str(path), "format": fmt, "body": body, "volume": float(section.area * width)}
             if fmt in MESH_FORMATS:
                 solid = helical_solid(section, lead if np.isfinite(lead) else 1e12 * width, width, tol)
-                mesh = solid.mesh.copy()
+                mesh = solid.triangle_mesh.copy()
                 mesh.apply_translation([*shift, 0.0])
                 row.update(triangles=len(mesh.faces), volume=solid.volume, tolerance=solid.tolerance)
                 outputs.add(path, lambda p, m=mesh, f=fmt: write_mesh(p, m, f), "--out")
