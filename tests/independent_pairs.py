@@ -307,3 +307,36 @@ def write_drawing(path: str, ring: np.ndarray, radii: tuple[float, float], flank
             msp.add_lwpolyline([(float(x), float(y)) for x, y in pts], dxfattribs={"layer": "PROFILE"})
         lo = hi
     doc.saveas(path)
+
+
+def closest_approach(pair: Pair, female: np.ndarray, male: np.ndarray, positions: int = 2000, window_deg: float = 40.0) -> np.ndarray:
+    """Brute force: for each female point (own frame, (n, 2)), the smallest distance to the male
+    outline (closed ring, own frame) over ``positions`` mesh positions, those where the female has
+    turned the point to within ``window_deg`` of the line of centres (the mesh; male turned
+    counter-clockwise by phi1, female clockwise by phi1 z1 / z2 as in ``cut_rotor``). The distance
+    to the ring is exact: the nearest vertex of the ring densified to 5 um (cKDTree), then the two
+    segments at it."""
+    from scipy.spatial import cKDTree
+
+    a, z1, z2 = pair.center_distance, pair.male_teeth, pair.female_teeth
+    ring = np.asarray(shapely.segmentize(shapely.LinearRing(male), 0.005).coords)[:-1]
+    tree = cKDTree(ring)
+    theta = np.arctan2(female[:, 1], female[:, 0])
+    u = np.linspace(-1.0, 1.0, positions)
+    out = np.full(len(female), np.inf)
+    for chunk in np.array_split(np.arange(len(female)), max(1, len(female) // 64)):
+        # the female turned clockwise by phi2 brings the point's polar angle to pi +- window
+        phi2 = (theta[chunk] - np.pi)[:, None] + np.radians(window_deg) * u[None, :]
+        phi1 = phi2 * z2 / z1
+        f = np.repeat(female[chunk], positions, axis=0)
+        fixed = _rot(f, -phi2.ravel()) + np.array([a, 0.0])
+        p = _rot(fixed, -phi1.ravel())
+        _, k = tree.query(p)
+        best = np.full(len(p), np.inf)
+        for j in (k - 1, k):  # the segments before and after the nearest vertex
+            s0, s1 = ring[np.mod(j, len(ring))], ring[np.mod(j + 1, len(ring))]
+            d = s1 - s0
+            t = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
+            best = np.minimum(best, np.hypot(*(s0 + t[:, None] * d - p).T))
+        out[chunk] = best.reshape(len(chunk), positions).min(axis=1)
+    return out
