@@ -97,30 +97,27 @@ def points_quality(points: Array) -> tuple[float, float]:
     return scatter(p), float(np.median(np.hypot(*np.diff(p, axis=0).T)))
 
 
-def estimated_accuracy(sigma: float, spacing: float, curvature: float) -> float:
+def estimated_accuracy(sigma: float, spacing: float) -> float:
     """Return the estimated accuracy of the contact-zone clearance from the points' scatter and spacing.
 
-    The bound measured on independent pairs (``benchmarks/bench_clearance_accuracy.py``, README):
-    the fits' error grows with the scatter (a smoothing spline keeps about a third of sigma of it
-    per rotor, both rotors and the alignment adding) and with the spacing h at the curvature jumps
-    of the outline (a cubic through points h apart misses a jump dk of the curvature by about
-    h^2 dk / 8 there).
+    The bound measured on independent pairs cut by brute force (``benchmarks/bench_clearance_accuracy.py``,
+    README): 1 µm for exact points (fits and racks' sampling), plus 2.5 sigma (the smoothing fits
+    of both rotors and the alignment), plus 0.004 h^2 / mm (a cubic through points h apart misses
+    the outline's curvature jumps, where a rounding meets a flank, by about h^2 dk / 8).
 
     Parameters
     ----------
     sigma : float, mm
-        The larger scatter of the two rotors' points.
+        The larger scatter of the two rotors' points (0 for exact curves).
     spacing : float, mm
-        The larger point spacing of the two rotors.
-    curvature : float, 1/mm
-        The largest curvature of the outlines' roundings (the jump where a rounding meets a flank).
+        The larger point spacing of the two rotors (0 for exact curves).
 
     Returns
     -------
     float, mm
-        The stated accuracy (never below :data:`ACCURACY_FLOOR`).
+        The stated accuracy.
     """
-    return float(max(ACCURACY_FLOOR, ACCURACY_FLOOR + 2.0 * sigma + 0.5 * spacing**2 * curvature))
+    return float(ACCURACY_FLOOR + 2.5 * sigma + 0.004 * spacing**2)
 
 
 def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Array, Array]:
@@ -587,6 +584,9 @@ class MeshingClearance:
         corner = self._near_corner(self.female_rack)
         faces = self._faces_male_corner(self.shift)
         zone = np.where(corner, ClearanceZone.CORNER, np.where(faces, ClearanceZone.GAP, ClearanceZone.CONTACT))
+        # the last point of a contact run beside a corner's zone is judged with that zone
+        edge = (zone == ClearanceZone.CONTACT) & ((np.roll(zone, 1) > 1) | (np.roll(zone, -1) > 1))
+        zone = np.where(edge, ClearanceZone.GAP, zone)
         return np.where(self._use, zone, ClearanceZone.OUTSIDE).astype(int)
 
     @property
@@ -663,24 +663,7 @@ class MeshingClearance:
     @property
     def accuracy(self) -> float:
         """The stated accuracy of the contact-zone clearance, mm (:func:`estimated_accuracy`)."""
-        return estimated_accuracy(self.scatter, self.spacing, self._largest_curvature)
-
-    @cached_property
-    def _largest_curvature(self) -> float:
-        """The largest curvature of the two lobes' smooth pieces (1/mm), a sharp corner aside."""
-        k = 0.0
-        for _, c in (*self.male_pieces, *self.female_pieces):
-            if c.is_corner():
-                continue
-            _, p, t = sample_curve(c, 1e-3)
-            if len(p) < 3:
-                continue
-            turn = np.abs(np.arctan2(cross(t[:-1], t[1:]), np.einsum("ij,ij->i", t[:-1], t[1:])))
-            ds = np.hypot(*np.diff(p, axis=0).T)
-            ok = ds > 1e-9
-            if ok.any():
-                k = max(k, float(np.max(turn[ok] / ds[ok])))
-        return k
+        return estimated_accuracy(self.scatter, self.spacing)
 
     @cached_property
     def _band(self) -> dict[str, float | None]:

@@ -309,7 +309,9 @@ def write_drawing(path: str, ring: np.ndarray, radii: tuple[float, float], flank
     doc.saveas(path)
 
 
-def closest_approach(pair: Pair, female: np.ndarray, male: np.ndarray, positions: int = 2000, window_deg: float = 40.0) -> np.ndarray:
+def closest_approach(
+    pair: Pair, female: np.ndarray, male: np.ndarray, positions: int = 2000, window_deg: float = 40.0
+) -> np.ndarray:
     """Brute force: for each female point (own frame, (n, 2)), the smallest distance to the male
     outline (closed ring, own frame) over ``positions`` mesh positions, those where the female has
     turned the point to within ``window_deg`` of the line of centres (the mesh; male turned
