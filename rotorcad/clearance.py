@@ -556,10 +556,10 @@ class MeshingClearance:
     def alignment_window(self) -> float:
         """Width of the running mean (mm along the datum rack) whose smallest value the contact alignment zeroes.
 
-        Ten point spacings (none for exact curves): the scatter left by the fits is averaged out
+        Twenty point spacings (none for exact curves): the scatter left by the fits is averaged out
         of the alignment, a designed clearance's minimum is not (it varies over millimetres).
         """
-        return 10.0 * self.spacing
+        return 20.0 * self.spacing
 
     @cached_property
     def clearance(self) -> Array:
@@ -709,7 +709,8 @@ class MeshingClearance:
         area = float((tri1 + tri2)[seg].sum())
         if not on.any():
             raise DesignError("contact", "a pair whose flanks touch somewhere inside both bores", self.contact)
-        gap, corner = zone == ClearanceZone.GAP, zone == ClearanceZone.CORNER
+        gap = zone == ClearanceZone.GAP
+        corner = (zone == ClearanceZone.CORNER) & self.female_rack.corner_path  # the corners' own paths
 
         def figure(values: Array, sel: Array, pick) -> float | None:
             return float(pick(values[sel])) if sel.any() else None
