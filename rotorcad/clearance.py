@@ -584,10 +584,19 @@ class MeshingClearance:
         corner = self._near_corner(self.female_rack)
         faces = self._faces_male_corner(self.shift)
         zone = np.where(corner, ClearanceZone.CORNER, np.where(faces, ClearanceZone.GAP, ClearanceZone.CONTACT))
+        zone = np.where(self._use, zone, ClearanceZone.OUTSIDE)
         # the last point of a contact run beside a corner's zone is judged with that zone
         edge = (zone == ClearanceZone.CONTACT) & ((np.roll(zone, 1) > 1) | (np.roll(zone, -1) > 1))
         zone = np.where(edge, ClearanceZone.GAP, zone)
-        return np.where(self._use, zone, ClearanceZone.OUTSIDE).astype(int)
+        # a contact run of a few points between gaps is the racks' junction, not a flank
+        on = np.concatenate([[0], (zone == ClearanceZone.CONTACT).astype(int), [0]])
+        starts, ends = np.flatnonzero(np.diff(on) == 1), np.flatnonzero(np.diff(on) == -1)
+        short = np.zeros(len(zone) + 1, dtype=int)
+        few = ends - starts < 5
+        np.add.at(short, starts[few], 1)
+        np.add.at(short, ends[few], -1)
+        zone = np.where(np.cumsum(short)[:-1] > 0, ClearanceZone.GAP, zone)
+        return zone.astype(int)
 
     @property
     def contact_zone(self) -> Array:
