@@ -67,9 +67,9 @@ def evaluate(name: str, male: np.ndarray, female: np.ndarray, lead: float = 1e6,
 
 @functools.cache
 def exact(name: str) -> tuple[MeshingClearance, np.ndarray, np.ndarray, np.ndarray]:
-    """The clearance of the cut outlines (straight rotors); about 40 datum points of each zone with
-    the brute-force closest approach at their female points (40 of each zone); the brute-force closest approach of
-    each sharp female corner (the generating point of a corner's fan)."""
+    """The clearance of the cut outlines (straight rotors); about 40 datum points of each zone (and
+    each zone's largest value) with the brute-force closest approach at their female points; the
+    brute-force closest approach of each sharp female corner (the generating point of its fan)."""
     rack_pair, male, female = outlines(name)
     mc = evaluate(name, male, female)
     d = mc.distribution()
