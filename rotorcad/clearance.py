@@ -159,13 +159,23 @@ def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tan
         Signed distance delta with datum + delta normal on the compared rack (positive a gap,
         negative an interference); NaN where the normal line does not cut it nearby.
     """
-    return _normal_crossing(datum, normals, compared, compared_tangents, window)[0]
+    return normal_crossing(datum, normals, compared, compared_tangents, window)[0]
 
 
-def _normal_crossing(
+def normal_crossing(
     datum: Array, normals: Array, compared: Array, compared_tangents: Array, window: int = 8
 ) -> tuple[Array, Array]:
-    """Return :func:`normal_clearance` and the compared segment each normal cuts ((n,) int, -1: none)."""
+    """Return :func:`normal_clearance` and the compared segment each normal cuts.
+
+    Parameters as :func:`normal_clearance`.
+
+    Returns
+    -------
+    delta : (n,) float array, mm
+        As :func:`normal_clearance`.
+    segment : (n,) int array
+        The compared polyline's segment (joining points i, i + 1) that the normal cuts, -1 for none.
+    """
     k = cKDTree(compared).query(datum)[1]
     n_seg = len(compared) - 1
     offsets = np.arange(-window, window)
@@ -431,7 +441,7 @@ class MeshingClearance:
         moved = rack.points + np.array([shift, 0.0])
         normals = np.stack([rack.tangents[:, 1], -rack.tangents[:, 0]], axis=1)
         compared, compared_tan, corner = self._transverse_compared
-        _, seg = _normal_crossing(moved, normals, compared, compared_tan)
+        _, seg = normal_crossing(moved, normals, compared, compared_tan)
         ok = seg >= 0
         s = np.where(ok, seg, 0)
         return ok & (corner[s] | corner[s + 1])
@@ -829,5 +839,6 @@ __all__ = [
     "ThermalState",
     "estimated_accuracy",
     "normal_clearance",
+    "normal_crossing",
     "points_quality",
 ]
