@@ -153,3 +153,31 @@ def test_cmm_density_and_scatter_on_a_conjugate_pair(points, noise):
     assert worst <= s["accuracy"]
     assert abs(s["female_rack_shift"]) < 2e-3
     assert s["min_normal_clearance"] > -s["accuracy"]  # the CLI's interference flag stays off
+
+
+def test_cli_states_the_accuracy_and_the_zones(tmp_path, capsys):
+    # `rotorcad clearance` on the 4/6 pair at 300 points a lobe with 2 um scatter (CMM-like): the
+    # contact zone reads zero within the stated accuracy (both rotors cut by one rack), no false
+    # interference, the gap under the sharp male tip (0.1 mm, brute force above) under its own key,
+    # and the CSV gives each row's zone and gap.
+    import json
+
+    from exports.csv_points import write_points
+    from rotorcad.cli.main import main
+
+    rack_pair = trapezoid_4_6()
+    male, female = cut_rotor(rack_pair, "male"), cut_rotor(rack_pair, "female")
+    write_points(tmp_path / "m.csv", resample(male, per_lobe(male, 4, 300), 2e-3, seed=5))
+    write_points(tmp_path / "f.csv", resample(female, per_lobe(female, 6, 300), 2e-3, seed=6))
+    args = ["clearance", "--male-points", str(tmp_path / "m.csv"), "--female-points", str(tmp_path / "f.csv")]
+    args += ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--json", "--csv", str(tmp_path / "c.csv")]
+    capsys.readouterr()
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert 2e-3 < data["accuracy"] < 10e-3  # 1 um + 2.5 sigma + 0.004 h^2 with sigma about 2 um
+    assert abs(data["max_normal_clearance"]) <= data["accuracy"] and abs(data["min_normal_clearance"]) <= data["accuracy"]
+    assert data["interference"] is False
+    assert data["max_gap"] == pytest.approx(0.1, abs=0.01)
+    lines = (tmp_path / "c.csv").read_text().splitlines()
+    header = next(line for line in lines if line.startswith("x,y,clearance"))
+    assert header.endswith(",in_contact,zone,gap")
