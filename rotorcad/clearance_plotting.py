@@ -13,7 +13,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from rotorcad import plot_style as ps
-from rotorcad.clearance import MeshingClearance, ThermalState
+from rotorcad.clearance import ClearanceZone, MeshingClearance, ThermalState
 from rotorcad.plot_style import styled
 
 
@@ -85,7 +85,8 @@ def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
     ok = np.isfinite(delta)
     dist = mc.distribution()
     inside = dist["in_contact"] > 0
-    worst = float(np.nanmin(delta[inside])) if inside.any() else float(np.nanmin(delta))
+    contact_zone = mc.contact_zone
+    worst = float(np.nanmin(delta[contact_zone])) if contact_zone.any() else float(np.nanmin(delta))
     largest = float(np.nanmax(np.abs(delta))) if ok.any() else 0.0
     fig = ps.new_figure(13.0, 9.0)
     grid = fig.add_gridspec(2, 2)
@@ -144,7 +145,16 @@ def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
     bx = fig.add_subplot(grid[1, 0])
     length = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
     um = 1e3 * delta
-    bx.plot(length[ok], um[ok], "-", color=ps.BLUE, lw=1.1, label="normal clearance δ")
+    zone = mc.zones
+    on = zone == ClearanceZone.CONTACT
+    gap_um = 1e3 * mc.gap
+    bx.plot(length, np.where(on, um, np.nan), "-", color=ps.BLUE, lw=1.1, label="normal clearance δ (contact zone)")
+    for code, colour, text in (
+        (ClearanceZone.GAP, ps.ORANGE, "gap where the male never touches (root below a sharp tip)"),
+        (ClearanceZone.CORNER, ps.GREEN, "gap of a sharp female corner's path"),
+    ):
+        if (zone == code).any():
+            bx.plot(length, np.where(zone == code, gap_um, np.nan), "-", color=colour, lw=1.1, label=text)
     bx.fill_between(length, um, 0.0, where=ok & (um < 0), color=ps.VERMILLION, alpha=0.35, lw=0, label="interference (δ < 0)")
     bx.axhline(0.0, color=ps.BLACK, lw=0.6)
     bx.set_xlabel(ps.label("arc length along the datum rack", "mm"))
@@ -155,8 +165,14 @@ def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
     dx = fig.add_subplot(grid[1, 1])
     angle = dist["male_angle_deg"]
     c_um = 1e3 * dist["clearance"]
-    dx.plot(angle[inside], c_um[inside], ".", color=ps.BLUE, ms=1.8, label="normal clearance δ at the contact")
-    neg = inside & (c_um < 0)
+    dx.plot(angle[on], c_um[on], ".", color=ps.BLUE, ms=1.8, label="normal clearance δ (contact zone)")
+    for code, colour, text in (
+        (ClearanceZone.GAP, ps.ORANGE, "gap, never touched"),
+        (ClearanceZone.CORNER, ps.GREEN, "corner path gap"),
+    ):
+        if (zone == code).any():
+            dx.plot(angle[zone == code], gap_um[zone == code], ".", color=colour, ms=1.8, label=text)
+    neg = on & (c_um < 0)
     if neg.any():
         dx.plot(angle[neg], c_um[neg], ".", color=ps.VERMILLION, ms=2.2, label="interference (δ < 0)")
         dx.axhspan(min(float(c_um[neg].min()) * 1.05, 0.0), 0.0, color=ps.VERMILLION, alpha=0.12, lw=0)
@@ -165,7 +181,7 @@ def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
     dx.set_ylabel(ps.label("normal clearance δ", "µm"))
     dx.set_title("clearance over the rotation (Wu & Chi Fig. 9)")
     ps.legend_below(dx, ncol=2, markerscale=4)
-    if worst < -2e-3:  # below the fit's accuracy (rotorcad clearance: INTERFERENCE_THRESHOLD)
+    if worst < -max(2e-3, mc.accuracy):  # beyond the stated accuracy (rotorcad clearance: interference)
         for axis in (bx, dx):
             axis.annotate(
                 f"INTERFERENCE: δ down to {worst * 1e3:.1f} µm",
@@ -182,7 +198,8 @@ def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
         f"meshing clearance of the {pair.male_teeth}/{pair.female_teeth} pair from points, {state}",
         f"a = {pair.center_distance:.6g} mm, h1 = {pair.lead:.6g} mm, L = {pair.length:.6g} mm, "
         f"helix angle {s['helix_angle_deg']:.3f}°; "
-        f"δ from {s['min_normal_clearance'] * 1e3:.1f} to {s['max_normal_clearance'] * 1e3:.1f} µm, "
+        f"δ on the contact zone from {s['min_normal_clearance'] * 1e3:.1f} to {s['max_normal_clearance'] * 1e3:.1f} µm "
+        f"(accuracy ±{s['accuracy'] * 1e3:.1f} µm), "
         f"equal clearance {s['equal_clearance'] * 1e3:.1f} µm",
     )
     return fig

@@ -29,6 +29,7 @@ from rotorcad.roles import PieceRole, Side
 from rotorcad.roots import bracket_root
 
 MEASURED_MIN_TURN = np.radians(0.5)  # rad: the smallest corner between measured pieces
+MEASURED_JOIN_GAP = 0.02  # mm: measured pieces' fits (2 µm scatter) leave their ends this far apart at a corner
 
 
 @dataclass(frozen=True, eq=False)
@@ -61,6 +62,9 @@ class DerivedRack:
         The rotor the rack was derived from (None for a gear).
     contract_frame : bool
         Whether y > 0 points to the female for either rotor, the chain travelled in +x.
+    profile : (n, 2) float array or None, mm
+        The profile point that generates each rack point, in the rotor's own frame (its centre at
+        the origin): a sharp corner for every point of its fan.
     """
 
     points: np.ndarray
@@ -74,6 +78,7 @@ class DerivedRack:
     roles: tuple[PieceRole, ...] = ()
     side: Side | None = None
     contract_frame: bool = False
+    profile: np.ndarray | None = None
 
     def normal(self) -> np.ndarray:
         """Return the normal rack: lengths along the pitch line times cos(beta), (n, 2), mm."""
@@ -117,10 +122,11 @@ class DerivedRack:
         if self.contract_frame:
             return self
         flip = np.array([1.0, -1.0 if self.side is Side.FEMALE else 1.0])
-        pts, tan, idx = self.points * flip, self.tangents * flip, self.piece_index
+        pts, tan, idx, prof = self.points * flip, self.tangents * flip, self.piece_index, self.profile
         if pts[-1, 0] < pts[0, 0]:  # travel the chain in +x
             pts, tan, idx = pts[::-1], -tan[::-1], idx[::-1]
-        return replace(self, points=pts, tangents=tan, piece_index=idx, contract_frame=True)
+            prof = None if prof is None else prof[::-1]
+        return replace(self, points=pts, tangents=tan, piece_index=idx, profile=prof, contract_frame=True)
 
     @property
     def normal_period(self) -> float:
@@ -159,14 +165,18 @@ def contact_of_rack_points(pitch_radius: float, points: np.ndarray, tangents: np
 
 
 def with_corner_fans(
-    pieces: list[tuple[str, Curve]], centre: np.ndarray | None = None, pitch_angle: float = 0.0, min_turn: float = 1e-6
+    pieces: list[tuple[str, Curve]],
+    centre: np.ndarray | None = None,
+    pitch_angle: float = 0.0,
+    min_turn: float = 1e-6,
+    join_gap: float = 2e-3,
 ) -> list[tuple[str, Curve]]:
     """Insert zero-radius arcs at the convex corners of a counter-clockwise chain of pieces.
 
     The corners then generate their paths. With ``centre`` and ``pitch_angle`` (one lobe of a
     patterned rotor) the corner where the previous lobe's last piece meets this lobe's first piece is
-    found too, by turning that last piece back by one pitch. Pieces whose ends are more than 2 µm apart
-    are not joined by a corner.
+    found too, by turning that last piece back by one pitch. Pieces whose ends are more than
+    ``join_gap`` apart are not joined by a corner.
 
     Parameters
     ----------
@@ -179,6 +189,9 @@ def with_corner_fans(
     min_turn : float, rad
         Smaller turns are not corners (measured pieces that meet at a land, where the fits leave a
         kink of a fraction of a degree, pass :data:`MEASURED_MIN_TURN`).
+    join_gap : float, mm
+        Largest distance between the ends of two pieces that meet at a corner (2 µm; the fits of
+        scattered points leave their ends up to :data:`MEASURED_JOIN_GAP` apart).
 
     Returns
     -------
@@ -188,7 +201,7 @@ def with_corner_fans(
 
     def fan(name: str, end: tuple[np.ndarray, np.ndarray], start: tuple[np.ndarray, np.ndarray]) -> tuple[str, Curve] | None:
         (p_end, t_end), (p_next, t_next) = end, start
-        if np.hypot(*(p_end - p_next)) > 2e-3:  # measured pieces meet within the fit error
+        if np.hypot(*(p_end - p_next)) > join_gap:  # measured pieces meet within the fit error
             return None
         turn = float(np.arctan2(cross(t_end, t_next), np.dot(t_end, t_next)))
         if turn <= min_turn:  # only a left turn is a convex corner of a counter-clockwise boundary
@@ -272,6 +285,7 @@ def derive_rack(
     tolerance: float = 1e-4,
     contact_step: float = 0.0,
     min_turn: float = 1e-6,
+    join_gap: float = 2e-3,
 ) -> DerivedRack:
     """Derive the rack of a counter-clockwise chain of profile pieces on a rotating body.
 
@@ -305,6 +319,8 @@ def derive_rack(
         apart: near roundings the contact runs fast along the rack.
     min_turn : float, rad
         Passed to :func:`with_corner_fans`.
+    join_gap : float, mm
+        Passed to :func:`with_corner_fans`.
 
     Returns
     -------
@@ -316,10 +332,10 @@ def derive_rack(
     # body turning clockwise), moving +y per rad of the male / driving gear
     sign = 1.0 if body.rate > 0 else -1.0
     rack = Translation((0.0, abs(body.rate) * pitch_radius))
-    pts, tans, idx, names, roles = [], [], [], [], []
+    pts, tans, idx, names, roles, parents = [], [], [], [], [], []
     lost, total = 0, 0
     # each generated piece runs against its parent, so the rack chain runs the pieces backwards
-    for k, (name, curve) in enumerate(reversed(with_corner_fans(pieces, centre, pitch_angle, min_turn))):
+    for k, (name, curve) in enumerate(reversed(with_corner_fans(pieces, centre, pitch_angle, min_turn, join_gap))):
         gen = Generated(curve, body, rack, limits=depth)
         s, p, t = sample_curve(gen, tolerance, minimum=samples)  # refined where the rack turns fast (corner paths)
         if contact_step > 0:
@@ -331,6 +347,7 @@ def derive_rack(
             ok &= _on_the_corner_path(gen, s, body, pitch_radius, depth, p)
         pts.append(p[ok])
         tans.append(t[ok])
+        parents.append(curve.evaluate(s[ok])[0] - centre)
         idx.append(np.full(int(ok.sum()), k))
         names.append(name)
         roles.append(PieceRole.CORNER_FAN if curve.is_corner() else PieceRole.CURVE)
@@ -339,7 +356,16 @@ def derive_rack(
     r = np.stack([p[:, 1], sign * (p[:, 0] - c[0])], axis=1)  # rack frame, y away from the centre
     rt = np.stack([t[:, 1], sign * t[:, 0]], axis=1)
     return DerivedRack(
-        r, rt, tuple(names), np.concatenate(idx), period, lost / max(total, 1), pitch_radius, helix_angle, tuple(roles)
+        r,
+        rt,
+        tuple(names),
+        np.concatenate(idx),
+        period,
+        lost / max(total, 1),
+        pitch_radius,
+        helix_angle,
+        tuple(roles),
+        profile=np.vstack(parents),
     )
 
 
@@ -353,6 +379,7 @@ def rotor_rack(
     contact_step: float = 0.0,
     min_turn: float = 1e-6,
     clip_at_tip: bool | None = None,
+    join_gap: float = 2e-3,
 ) -> DerivedRack:
     """Derive the transverse rack of one lobe of the male or the female of a pair.
 
@@ -382,6 +409,9 @@ def rotor_rack(
     clip_at_tip : bool, optional
         Cut the pieces at the rotor's tip circle (generated flanks can overshoot it); default
         for the lobe of ``rotors`` only.
+    join_gap : float, mm
+        Largest distance between pieces' ends at a corner (:func:`with_corner_fans`;
+        :data:`MEASURED_JOIN_GAP` for measured pieces).
 
     Returns
     -------
@@ -419,6 +449,7 @@ def rotor_rack(
         tolerance=tolerance,
         contact_step=contact_step,
         min_turn=min_turn,
+        join_gap=join_gap,
     )
     return replace(rack, side=side)
 
@@ -454,4 +485,12 @@ def _inside_tip(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tupl
     return name, curve.trimmed(a, b)
 
 
-__all__ = ["MEASURED_MIN_TURN", "DerivedRack", "contact_of_rack_points", "derive_rack", "rotor_rack", "with_corner_fans"]
+__all__ = [
+    "MEASURED_JOIN_GAP",
+    "MEASURED_MIN_TURN",
+    "DerivedRack",
+    "contact_of_rack_points",
+    "derive_rack",
+    "rotor_rack",
+    "with_corner_fans",
+]

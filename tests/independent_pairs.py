@@ -143,6 +143,83 @@ class TrapezoidRack:
 
 
 @dataclass(frozen=True)
+class ArcFlankRack(TrapezoidRack):
+    """A rack whose rising flank is straight (``flank_angle``) and whose falling flank is a circular
+    arc of radius ``arc_radius`` crossing the pitch line at ``arc_angle`` from its normal, its centre
+    on the male side (a convex flank whose pressure angle grows from the bottom to the top flat);
+    the four corners rounded with ``corner_radius`` (the roundings at the arc tangent to it: their
+    centres at R - r, or R + r, from the arc's centre). The flats cut the rotors' tips back to sharp
+    corners as in :class:`TrapezoidRack`."""
+
+    arc_radius: float = 40.0
+    arc_angle: float = np.radians(30.0)
+
+    def _arc(self) -> tuple[np.ndarray, float, float]:
+        """The flank circle's centre relative to its pitch-line point, and its unrounded x extent
+        relative to that point at the top and the bottom flat."""
+        h, big, a = self.height, self.arc_radius, self.arc_angle
+        c = big * np.array([-np.cos(a), -np.sin(a)])
+        x_top = c[0] + np.sqrt(big**2 - (h - c[1]) ** 2)
+        x_bottom = c[0] + np.sqrt(big**2 - (-h - c[1]) ** 2)
+        return c, x_top, x_bottom
+
+    @property
+    def flat(self) -> float:
+        _, x_top, x_bottom = self._arc()
+        return (self.period - self.run - (x_bottom - x_top)) / 2 if self.top_flat is None else self.top_flat
+
+    def pieces(self) -> list[tuple[str, object]]:
+        h, a, r, big = self.height, self.flank_angle, self.corner_radius, self.arc_radius
+        c_rel, x_top, x_bottom = self._arc()
+        top = self.flat
+        bottom = self.period - self.run - top - (x_bottom - x_top)
+        x1 = bottom / 2
+        x_t = x1 + self.run + top  # the unrounded top corner of the arc flank
+        centre = np.array([x_t - x_top, 0.0]) + c_rel
+        up = np.array([np.sin(a), np.cos(a)])
+        ex = np.array([1.0, 0.0])
+        back = r * np.tan((np.pi / 2 - a) / 2)
+
+        def line_arc(corner, d_in, d_out, convex_up):  # the rounding between two lines
+            p_in = np.asarray(corner) - back * d_in
+            p_out = np.asarray(corner) + back * d_out
+            n_in = np.array([-d_in[1], d_in[0]]) * (1 if convex_up else -1)
+            cc = p_in + r * n_in
+            return p_in, p_out, ("arc", (tuple(cc), r, np.arctan2(*(p_in - cc)[::-1]), np.arctan2(*(p_out - cc)[::-1])))
+
+        p1i, p1o, a1 = line_arc((x1, -h), ex, up, True)
+        p2i, p2o, a2 = line_arc((x1 + self.run, h), up, ex, False)
+        # top rounding: centre on y = h - r, inside the flank circle (R - r from its centre)
+        y = h - r
+        fx = centre[0] + np.sqrt((big - r) ** 2 - (y - centre[1]) ** 2)
+        f_top = np.array([fx, y])
+        t_flat = np.array([fx, h])
+        t_arc = centre + big * (f_top - centre) / np.hypot(*(f_top - centre))
+        a3 = ("arc", (tuple(f_top), r, np.pi / 2, np.arctan2(*(t_arc - f_top)[::-1])))
+        # bottom rounding: centre on y = -h + r, outside the flank circle (R + r from its centre)
+        y = -h + r
+        fx = centre[0] + np.sqrt((big + r) ** 2 - (y - centre[1]) ** 2)
+        f_bot = np.array([fx, y])
+        b_arc = centre + big * (f_bot - centre) / np.hypot(*(f_bot - centre))
+        b_flat = np.array([fx, -h])
+        a4 = ("arc", (tuple(f_bot), r, np.arctan2(*(b_arc - f_bot)[::-1]), -np.pi / 2))
+        psi_top = np.arctan2(*(t_arc - centre)[::-1])
+        psi_bottom = np.arctan2(*(b_arc - centre)[::-1])
+        flank = ("arc", (tuple(centre), big, psi_top, psi_bottom))
+        return [
+            ("line", ((0.0, -h), tuple(p1i))),
+            a1,
+            ("line", (tuple(p1o), tuple(p2i))),
+            a2,
+            ("line", (tuple(p2o), tuple(t_flat))),
+            a3,
+            flank,
+            a4,
+            ("line", (tuple(b_flat), (self.period, -h))),
+        ]
+
+
+@dataclass(frozen=True)
 class Pair:
     """Tooth counts, centre distance and the rack of an independent pair."""
 
@@ -174,6 +251,24 @@ def trapezoid_4_6(**rack: float) -> Pair:
     corners rounded with 1.5 mm, tip radii 48 / 68, root radii 32 / 52."""
     period = 2 * np.pi * 40.0 / 4
     return Pair(4, 6, 100.0, TrapezoidRack(period, **rack))
+
+
+def arc_flank_5_6() -> Pair:
+    """Another rack and other lobe counts: 5/6, a = 100 mm, the rising flank straight at 25 deg,
+    the falling flank a circular arc of radius 40 mm crossing the pitch line at 30 deg (44 deg at
+    the top flat, 17 deg at the bottom), 7 mm above and below the pitch line, corners rounded with
+    1.2 mm; both rotors' tips cut back to sharp corners by the flats."""
+    period = 2 * np.pi * (100.0 * 5 / 11) / 5
+    rack = ArcFlankRack(period, height=7.0, flank_angle=np.radians(25.0), corner_radius=1.2)
+    return Pair(5, 6, 100.0, rack)
+
+
+def rounded_male(ring: np.ndarray, radius: float) -> np.ndarray:
+    """The male outline with its convex (tip) corners rounded by ``radius`` (a morphological opening
+    with shapely: shrunk by the radius and grown back), counter-clockwise, without a repeated end."""
+    poly = shapely.Polygon(ring).buffer(-radius, quad_segs=256).buffer(radius, quad_segs=256)
+    out = np.asarray(poly.exterior.coords)[:-1]
+    return out if shapely.LinearRing(out).is_ccw else out[::-1]
 
 
 def _rot(p: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -341,3 +436,38 @@ def write_drawing(path: str, ring: np.ndarray, radii: tuple[float, float], flank
             msp.add_lwpolyline([(float(x), float(y)) for x, y in pts], dxfattribs={"layer": "PROFILE"})
         lo = hi
     doc.saveas(path)
+
+
+def closest_approach(
+    pair: Pair, female: np.ndarray, male: np.ndarray, positions: int = 2000, window_deg: float = 40.0
+) -> np.ndarray:
+    """Brute force: for each female point (own frame, (n, 2)), the smallest distance to the male
+    outline (closed ring, own frame) over ``positions`` mesh positions, those where the female has
+    turned the point to within ``window_deg`` of the line of centres (the mesh; male turned
+    counter-clockwise by phi1, female clockwise by phi1 z1 / z2 as in ``cut_rotor``). The distance
+    to the ring is exact: the nearest vertex of the ring densified to 5 um (cKDTree), then the two
+    segments at it."""
+    from scipy.spatial import cKDTree
+
+    a, z1, z2 = pair.center_distance, pair.male_teeth, pair.female_teeth
+    ring = np.asarray(shapely.segmentize(shapely.LinearRing(male), 0.005).coords)[:-1]
+    tree = cKDTree(ring)
+    theta = np.arctan2(female[:, 1], female[:, 0])
+    u = np.linspace(-1.0, 1.0, positions)
+    out = np.full(len(female), np.inf)
+    for chunk in np.array_split(np.arange(len(female)), max(1, len(female) // 64)):
+        # the female turned clockwise by phi2 brings the point's polar angle to pi +- window
+        phi2 = (theta[chunk] - np.pi)[:, None] + np.radians(window_deg) * u[None, :]
+        phi1 = phi2 * z2 / z1
+        f = np.repeat(female[chunk], positions, axis=0)
+        fixed = _rot(f, -phi2.ravel()) + np.array([a, 0.0])
+        p = _rot(fixed, -phi1.ravel())
+        _, k = tree.query(p)
+        best = np.full(len(p), np.inf)
+        for j in (k - 1, k):  # the segments before and after the nearest vertex
+            s0, s1 = ring[np.mod(j, len(ring))], ring[np.mod(j + 1, len(ring))]
+            d = s1 - s0
+            t = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
+            best = np.minimum(best, np.hypot(*(s0 + t[:, None] * d - p).T))
+        out[chunk] = best.reshape(len(chunk), positions).min(axis=1)
+    return out

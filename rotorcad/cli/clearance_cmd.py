@@ -10,15 +10,15 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf_profile import read_profile
-from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState
+from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, points_quality
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.errors import DesignError
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import lobe_pieces, profile_points
 
 INTERFERENCE_THRESHOLD = 2e-3
-"""mm: a clearance below minus this is an interference. A conjugate pair given by points measures
-0 within 2 µm (the spline fit of the points, README), so less is no finding."""
+"""mm: a clearance below minus this (or minus the stated accuracy, the larger) is an interference.
+A conjugate pair given by exact points measures 0 within 1 µm (README), so less is no finding."""
 
 
 @click.command()
@@ -88,11 +88,13 @@ def clearance(**opts: Any) -> None:
         }
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    result["interference"] = bool(result["min_normal_clearance"] < -INTERFERENCE_THRESHOLD)
+    # only a contact zone negative beyond what the points can tell is a finding
+    result["interference"] = bool(result["min_normal_clearance"] < -max(INTERFERENCE_THRESHOLD, result["accuracy"]))
     if result["interference"]:  # never silent: a hot pair can run into interference
         click.echo(
             f"rotorcad: warning: the rotors interfere: the normal clearance goes down to "
-            f"{result['min_normal_clearance'] * 1e3:.1f} µm (negative) on the contact line.",
+            f"{result['min_normal_clearance'] * 1e3:.1f} µm (negative) on the contact zone, "
+            f"beyond the accuracy of {result['accuracy'] * 1e3:.1f} µm.",
             err=True,
         )
     out = Outputs()
@@ -101,12 +103,12 @@ def clearance(**opts: Any) -> None:
     if opts["csv_path"]:
         dist = mc.distribution()
         rows = np.column_stack(list(dist.values()))
-        ok = np.isfinite(rows).all(axis=1)
+        ok = np.isfinite(np.column_stack([v for k, v in dist.items() if k != "gap"])).all(axis=1)
         notes = [
-            "meshing clearance (Wu & Chi) per point of the female normal rack (the datum): x, y [mm] on it, clearance along",
-            "its normal [mm], male rotation angle [deg] and axial position z [mm] of the contact (0: first contact inside both",
-            "bores), contact point in the fixed transverse frame [mm], female and male profile points there [mm, own frames],",
-            "in_contact 1 where the contact lies inside both bores and the rotor length",
+            "meshing clearance (Wu & Chi) per female normal rack point (datum): x, y [mm], clearance along its normal [mm],",
+            "male angle [deg] and z [mm] of the contact (0: first inside both bores), contact point (fixed frame), female and",
+            "male profile points there [mm, own frames], in_contact 1 inside both bores and length, zone 1 contact zone, 2 never",
+            "touches (root below a sharp tip), 3 a sharp female corner's path, 0 outside; gap [mm] transverse, of zones 2 and 3",
         ]
         out.add(opts["csv_path"], lambda p: write_points(p, rows[ok], notes, header=",".join(dist)), "--csv")
     result["files"] = [str(p) for p in out.write()]
@@ -157,11 +159,14 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         thermal = _thermal(opts)
         if thermal is not None:
             pair, male, female = thermal.apply(pair, male, female)
+        quality = [points_quality(p) if not isinstance(p, list | tuple) else (0.0, 0.0) for p in (male, female)]
         mc = MeshingClearance(
             pair,
             lobe_pieces(pair, male, "male", opts["smoothing"], label="--male-points"),
             lobe_pieces(pair, female, "female", opts["smoothing"], label="--female-points"),
             contact=opts["contact"],
+            scatter=max(q[0] for q in quality),
+            spacing=max(q[1] for q in quality),
         )
         mc.clearance  # noqa: B018 - evaluate here so that its errors are reported as bad input
     except DesignError as exc:

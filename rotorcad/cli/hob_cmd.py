@@ -20,6 +20,7 @@ from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.gear import InvoluteGear
+from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN
 
 
 @click.command()
@@ -71,8 +72,11 @@ def hob(design: Path | None, **opts: Any) -> None:
                 raise InputError(exc.sentence()) from None
         rotors, _, _ = build_rotors(design, rotor_opts, settings)
         try:
-            racks = {"male": rotor_rack(rotors, "male"), "female": rotor_rack(rotors, "female")}
-            deviation = rack_deviation(rotors)
+            # measured pieces: their fits leave kinks of a fraction of a degree and gaps of a few µm
+            # at the lands, which are no corners (the meshing clearance judges them alike)
+            measured = {"min_turn": MEASURED_MIN_TURN, "join_gap": MEASURED_JOIN_GAP} if _measured(rotors) else {}
+            racks = {"male": rotor_rack(rotors, "male", **measured), "female": rotor_rack(rotors, "female", **measured)}
+            deviation = rack_deviation(rotors, **measured)
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
         scale = rotors.pair.male_addendum
@@ -145,6 +149,11 @@ def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimi
         },
     }
     return verdicts, result
+
+
+def _measured(rotors: Any) -> bool:
+    """Whether the pair was derived from a rotor's measured points (family ``male-points``/``female-points``)."""
+    return str(getattr(rotors, "family", "")) in ("male-points", "female-points")
 
 
 def _read_design(design: Path | None) -> dict[str, Any] | None:
