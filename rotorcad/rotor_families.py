@@ -259,7 +259,9 @@ def _male_tip_corner(pair: RotorPair, flank: Curve, rising: bool = False) -> tup
     if len(k) == 0:
         return None
     i = k[0] if rising else k[-1]
-    s_m = optimize.brentq(lambda v: np.hypot(*gen.contact(v).meshline[0]) - r1t, s[i], s[i + 1], xtol=1e-14)
+    s_m = bracket_root(lambda v: float(np.hypot(*gen.contact(v).meshline[0]) - r1t), (float(s[i]), float(s[i + 1])), xtol=1e-14)
+    if s_m is None:  # the sample before lies within 1e-9 r1t outside the tip circle: it is the root
+        s_m = float(s[i] if rising else s[i + 1])
     c_m = gen.contact(s_m)
     p, t_m = c_m.meshline[0], float(c_m.t[0])
     t_q = t_m - float(np.arctan2(p[1], p[0]))  # the corner on O1O2 (polar angle 0) at t_q

@@ -402,7 +402,9 @@ def test_linked_values_are_evaluated_safely_and_refused_by_key(tmp_path, capsys)
     base = load_toml(BASE)
     linked = apply(base, {"pair.female_tip_radius": "a - male_root_radius", "pair.lead": "sqrt(a**2) * 300 / 116"})
     settings = rotor_design(linked)
-    assert settings["pair"]["female_tip_radius"] == 116.0 - 45.0 and settings["pair"]["lead"] == pytest.approx(300.0)
+    # the expression's value by hand, from the base design's own numbers
+    by_hand = base["pair"]["center_distance"] - base["pair"]["male_root_radius"]
+    assert settings["pair"]["female_tip_radius"] == by_hand and settings["pair"]["lead"] == pytest.approx(300.0)
     # the same design typed as numbers gives the same `rotor --json`
     (tmp_path / "linked.toml").write_text(tomli_w.dumps(linked))
     assert main(["rotor", str(tmp_path / "linked.toml"), "--json"]) == 0
