@@ -65,3 +65,13 @@ def test_the_gear_table_shows_the_mate(capsys):
     row = next(r for r in capsys.readouterr().out.splitlines() if "pitch_radius" in r)
     cells = [c.strip() for c in row.strip("│").split("│")]
     assert cells == ["pitch_radius", "25.500000", "43.500000", "mm"]
+
+
+def test_keys_the_name_rules_misread_have_their_contract_units():
+    # issue 25: max_normal_clearance printed in N ("_n"), max_penetration as a ratio ("penetRATIOn"),
+    # touching_threshold without mm³; CONTRACT.md gives clearances and penetrations in mm, volumes in mm³
+    from rotorcad.cli.common import unit_of
+
+    expected = {"max_normal_clearance": "mm", "min_normal_clearance": "mm", "max_penetration": "mm",
+                "touching_threshold": "mm³", "max_gap": "mm", "male_gas_force_n": "N", "male_gas_force_n_paper": "N"}
+    assert {key: unit_of(key) for key in expected} == expected

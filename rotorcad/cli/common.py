@@ -188,7 +188,9 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
     ("_rpm", "rpm"),
     ("_percent", "%"),
     ("_bar", "bar"),
-    ("_n", "N"),
+    ("_n_", "N"),  # a force in newtons inside a key (gas_force_n_paper); a key ending in _n: unit_of
+    ("clearance", "mm"),  # before "_n" could match max_normal_clearance
+    ("_gap", "mm"),
     ("second_moment", "mm⁴"),
     ("deflection", "mm"),
     ("diameter", "mm"),
@@ -212,6 +214,13 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
 )
 
 
+_EXACT_UNITS = {  # keys whose names the rules would misread ("penetRATIOn" is no ratio)
+    "max_penetration": "mm",
+    "touching_threshold": "mm³",
+    "contact_zone_share": "1",
+}
+
+
 def unit_of(key: str) -> str:
     """Return the unit of a result key as the command prints it.
 
@@ -228,8 +237,12 @@ def unit_of(key: str) -> str:
     str
         The unit; "1" for counts and ratios, "" if not known.
     """
+    if key in _EXACT_UNITS:
+        return _EXACT_UNITS[key]
     if any(word in key for word in DIMENSIONLESS):
         return "1"
+    if key.endswith("_n"):
+        return "N"
     return next((unit for pattern, unit in _UNIT_RULES if pattern in key), "")
 
 
