@@ -88,11 +88,42 @@ def worker_count() -> int:
     return 1 if (os.cpu_count() or 1) >= 2 else 0
 
 
-def _start_worker(preload: tuple[str, ...]) -> None:
-    """Prepare the worker: leave Ctrl-C to the parent, then import ``preload`` while the parent goes on.
+PR_SET_PDEATHSIG = 1  # prctl(2) option: the signal this process gets when its parent dies
 
-    The parent stops the worker and removes what it wrote.
+
+def _die_with_parent(parent: int) -> None:
+    """Make this process end when its parent does, however the parent ends (SIGKILL included).
+
+    On Linux the kernel sends SIGKILL to this process when the thread that forked it exits
+    (``prctl(PR_SET_PDEATHSIG)``, prctl(2)); a parent that died before the call is seen by the
+    parent id having changed. Elsewhere nothing is done (the pool runs here there).
+
+    Parameters
+    ----------
+    parent : int
+        The parent's process id, taken before the fork.
     """
+    if sys.platform != "linux":
+        return
+    import ctypes
+
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):  # no prctl: the parent's check below still holds at start
+        pass
+    if os.getppid() != parent:  # the parent died before the call
+        os._exit(1)
+
+
+def _start_worker(preload: tuple[str, ...], parent: int | None = None) -> None:
+    """Prepare the worker: end with the parent, leave Ctrl-C to it, import ``preload`` meanwhile.
+
+    The parent stops the worker and removes what it wrote; a parent killed outright (SIGKILL, a
+    time limit) takes the worker with it (:func:`_die_with_parent`), so no worker outlives it.
+    """
+    if parent is not None:
+        _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for module in preload:
         importlib.import_module(module)
@@ -121,7 +152,7 @@ class WorkerPool:
                     max_workers=1,
                     mp_context=multiprocessing.get_context("fork"),
                     initializer=_start_worker,
-                    initargs=(preload,),
+                    initargs=(preload, os.getpid()),
                 )
                 self._executor.submit(int)  # forks now, while this is the only thread
             except (OSError, NotImplementedError, ValueError, BrokenProcessPool):  # e.g. no /dev/shm: run here

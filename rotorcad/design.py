@@ -66,10 +66,19 @@ def check_table(
         if isinstance(value, bool) or not isinstance(value, expected):
             kind = {int: "a whole number", list: "a list", str: "a text in quotes"}.get(expected, "a number")
             raise DesignError(f"[{table}] {key}", kind, repr(value))
+    section = dict(section)
+    for key, value in section.items():  # a number as a float: an integer beyond float range is refused
+        if keys[key] == NUMBER and isinstance(value, int):
+            try:
+                section[key] = float(value)
+            except OverflowError:
+                raise DesignError(
+                    f"[{table}] {key}", "a number within the range of a float (below 1.8e308)", f"an integer of {int(value.bit_length() * 0.30103) + 1} digits"
+                ) from None
     for key in required:
         if key not in section:
             raise DesignError(f"[{table}] {key}", "given", None, "missing key")
-    return dict(section)
+    return section
 
 
 def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
