@@ -285,6 +285,13 @@ class MeshingClearance:
             contact_step=contact_step,
             min_turn=MEASURED_MIN_TURN,
         )
+        if len(rack.points) < 2:  # e.g. a drawing in metres or scaled x1e9: no normal meets the pitch circle
+            raise DesignError(
+                f"{side.value} points",
+                "a profile whose every normal meets its pitch circle (it has a rack)",
+                None,
+                f"{100.0 * rack.lost_fraction:.1f} % of the lobe has no rack point",
+            )
         return rack.in_contract_frame()
 
     @cached_property
@@ -415,6 +422,16 @@ class MeshingClearance:
         z = pair.lead * angle / (2 * np.pi)
         use = self._in_both_bores(self.clearance) & np.isfinite(self.clearance) & np.isfinite(z)
         z = z - z[use].min()
+        pairs = use[:-1] & use[1:]
+        reach = np.maximum(z[:-1], z[1:])[pairs]  # the rotor length that holds a segment of the contact line
+        if reach.size and reach.min() > pair.length + 1e-9:  # not one segment within the length: no band
+            longest = abs(pair.lead) * pair.length / float(reach.min())
+            raise DesignError(
+                "lead",
+                f"at most {longest:.6g} mm for a rotor length of {pair.length:g} mm",
+                pair.lead,
+                "a longer lead leaves less than one segment of the contact line within the rotors",
+            )
         use &= z <= pair.length + 1e-9
         delta = self.clearance
         line = np.column_stack([contact, z])

@@ -73,7 +73,9 @@ def check_table(
                 section[key] = float(value)
             except OverflowError:
                 raise DesignError(
-                    f"[{table}] {key}", "a number within the range of a float (below 1.8e308)", f"an integer of {int(value.bit_length() * 0.30103) + 1} digits"
+                    f"[{table}] {key}",
+                    "a number within the range of a float (below 1.8e308)",
+                    f"an integer of {int(value.bit_length() * 0.30103) + 1} digits",
                 ) from None
     for key in required:
         if key not in section:

@@ -130,7 +130,16 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     rm, rf = np.hypot(*profile_points(male).T), np.hypot(*profile_points(female).T)
+    a = opts["center_distance"]
+    for option, radii in (("--male-points", rm), ("--female-points", rf)):
+        if np.isfinite(a) and a > 0 and not radii.max() < a:  # e.g. a drawing in other units
+            raise InputError(
+                f"{option} must be a lobe within the --center-distance of {a:g} mm, but its largest radius is "
+                f"{radii.max():.6g} mm (a drawing in other units?)."
+            )
     names = {
+        "male points": "--male-points",
+        "female points": "--female-points",
         "male_tip_radius": "--male-points (its largest radius)",
         "male_root_radius": "--male-points (its smallest radius)",
         "female_tip_radius": "--female-points (its largest radius)",
@@ -163,7 +172,7 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
             lobe_pieces(pair, female, "female", opts["smoothing"], label="--female-points"),
             contact=opts["contact"],
         )
-        mc.clearance  # noqa: B018 - evaluate here so that its errors are reported as bad input
+        mc.summary()  # evaluate here (the clearance and its band) so that its errors are reported as bad input
     except DesignError as exc:
         label = names.get(exc.param, f"--{exc.param.replace('_', '-')}" if " " not in exc.param else exc.param)
         raise InputError(exc.sentence(label)) from None

@@ -27,7 +27,7 @@ import importlib  # noqa: E402
 import click  # noqa: E402
 
 from rotorcad import __version__  # noqa: E402
-from rotorcad.errors import DesignError  # noqa: E402
+from rotorcad.errors import DesignError, InputNote  # noqa: E402
 
 # name -> (module:attribute, one-line summary): a command's module (and the heavy libraries it
 # needs) is imported only when that command runs, so `rotorcad --help` starts at once
@@ -94,9 +94,16 @@ def main(argv: list[str] | None = None) -> int:
         2 bad input, 130 interrupted (Ctrl-C), 70 an internal error (a bug: please report it).
     """
     args = sys.argv[1:] if argv is None else list(argv)
-    with warnings.catch_warnings():  # numpy's RuntimeWarnings are no message for a user: results are checked
+    with warnings.catch_warnings(record=True) as caught:  # numpy's RuntimeWarnings are no message for a user
         warnings.simplefilter("ignore", RuntimeWarning)
+        warnings.simplefilter("always", InputNote)
         status = _run(args)
+    for w in caught:  # other warnings as before
+        if not issubclass(w.category, InputNote):
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    if status in (0, 1):  # a refusal stays one sentence; after a result, what was done to the input
+        for note in dict.fromkeys(str(w.message) for w in caught if issubclass(w.category, InputNote)):
+            click.echo(f"rotorcad: note: {note}.", err=True)
     common = sys.modules.get("rotorcad.cli.common")  # imported by any command that makes a folder
     if common is not None:
         if status not in (0, 1):
