@@ -134,6 +134,7 @@ def export(
         if formats
         else [str(f).lower() for f in settings["export"].get("formats", ["stl"])]
     )
+    fmts = list(dict.fromkeys(fmts))  # a format given twice is one file, one row
     for f in fmts:
         if f not in FORMATS:
             raise InputError(f"--format must be a comma-separated list of {', '.join(FORMATS)} (got {f!r}).")
@@ -185,30 +186,45 @@ def export(
         def write_mesh_dxf(p: Path, body: str, fmt: str, row: dict[str, Any]) -> None:
             made = body_mesh(body)
             if len(made.mesh.faces) > DXF_MESH_MAX:
-                needed = tol
-                for _ in range(12):  # find the tolerance that would do (triangles fall slower than 1/tolerance)
-                    needed *= 1.5
-                    coarse = helical_solid(rotors.section(body, needed / 2), leads[body], pair.length, needed)
-                    if len(coarse.mesh.faces) <= DXF_MESH_MAX:
-                        break
                 raise InputError(
                     f"--tolerance must be coarser for a DXF mesh ({len(made.mesh.faces)} triangles; at most {DXF_MESH_MAX}): "
-                    f"{needed:.3g} mm or coarser would do."
+                    f"{coarser_tolerance(body, DXF_MESH_MAX):.3g} mm or coarser would do."
                 )
             row.update(triangles=len(made.mesh.faces), volume=made.volume, tolerance=made.tolerance)
             write_dxf_mesh(p, made.mesh.vertices, made.mesh.faces, body.upper(), "R12" if fmt.endswith("r12") else "R2000")
 
+        def coarser_tolerance(body: str, limit: int) -> float:
+            """Return the tolerance, mm, whose mesh of ``body`` has at most ``limit`` triangles.
+
+            Coarsened by the square root of the excess until it fits, then bisected (geometrically,
+            five times: within 1.15 x the coarsest that does not fit).
+            """
+
+            def fits(t: float) -> bool:
+                return len(helical_solid(rotors.section(body, t / 2), leads[body], pair.length, t).mesh.faces) <= limit
+
+            lo, hi = tol, tol * max(1.5, np.sqrt(len(body_mesh(body).mesh.faces) / limit))
+            while not fits(hi):
+                lo, hi = hi, hi * 2.0
+            for _ in range(5):
+                mid = float(np.sqrt(lo * hi))
+                lo, hi = (lo, mid) if fits(mid) else (mid, hi)
+            return hi
+
         def write_faceted(p: Path, body: str, row: dict[str, Any]) -> None:
             made = body_mesh(body)
-            coarse_tol = tol
             faces = len(made.mesh.faces)
-            while faces > FACETED_STEP_MAX:  # facets go like 1/tol: coarsen until readable
-                coarse_tol *= 1.5 * faces / FACETED_STEP_MAX
-                coarse = helical_solid(rotors.section(body, coarse_tol / 2), leads[body], pair.length, coarse_tol)
-                mesh = coarse.mesh.copy()
-                mesh.apply_translation([*shift[body], 0.0])
-                made = _SweptBody(mesh, coarse.volume, coarse.tolerance)
-                faces = len(mesh.faces)
+            if faces > FACETED_STEP_MAX:  # a file coarser than asked is never written: the tolerance that can be met
+                needed = coarser_tolerance(body, FACETED_STEP_MAX)
+                what = (
+                    f"{needed:.3g} mm or coarser would do"
+                    if needed <= 1.0
+                    else f"only {needed:.3g} mm would, above the 1 mm allowed"
+                )
+                raise InputError(
+                    f"--tolerance must be coarser for a faceted STEP of the {body} ({faces} facets; at most {FACETED_STEP_MAX}, "
+                    f"which OpenCASCADE reads in seconds): {what}; --format step writes the exact solid."
+                )
             row.update(triangles=faces, volume=made.volume, tolerance=made.tolerance)
             write_faceted_step(p, made.mesh.vertices, made.mesh.faces, body)
 
@@ -358,7 +374,7 @@ def _export_gear(
     design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool, data: dict[str, Any] | None = None
 ) -> None:
     """Run the gear branch of ``export``: formats default to stl, step and dxf, tolerance to 5 µm."""
-    fmts = [f.strip().lower() for f in (formats or "stl,step,dxf").split(",")]
+    fmts = list(dict.fromkeys(f.strip().lower() for f in (formats or "stl,step,dxf").split(",")))  # each once
     tol = 0.005 if tolerance is None else tolerance
     if not (np.isfinite(tol) and 0 < tol <= 1.0):
         raise InputError(f"--tolerance must be a surface tolerance between 0 and 1 mm (got {tol}).")
