@@ -257,3 +257,36 @@ def test_faceted_step_coarser_than_asked_is_refused(capsys, tmp_path):
         )
         assert re.search(r"only [0-9.]+ mm would, above the 1 mm allowed", line), line
         assert not (tmp_path / "o").exists()
+
+
+# ----- files already there ----------------------------------------------------------------------
+def test_report_files_names_what_it_replaces(capsys, tmp_path):
+    """`report --files` silently replaced male.csv, pair.dxf, hob.dxf already in that folder. One
+    policy for all commands (CONTRACT.md): replaced whole and named, on stderr and in the JSON;
+    a folder of the user's other files keeps them. The gear sample (its files gear.csv, gear.dxf,
+    hob.dxf; the same writer as a rotor pair's, in a third of the time)."""
+    folder = tmp_path / "files"
+    folder.mkdir()
+    for name in ("gear.csv", "gear.dxf", "hob.dxf", "male.csv", "notes.txt"):
+        (folder / name).write_text("the user's own file\n")
+    argv = ["report", SAMPLES / "gear_pair.toml", "--out", tmp_path / "r.html", "--files", folder, "--json"]
+    status, out, err = run(capsys, *argv)
+    replaced = json.loads(out)["replaced"]
+    assert status == 0 and sorted(Path(p).name for p in replaced) == ["gear.csv", "gear.dxf", "hob.dxf"]
+    (note,) = [ln for ln in err.splitlines() if ln.strip()]
+    assert note.startswith("rotorcad: note: replaced the existing files") and "(--files)" in note
+    assert all(str(folder / n) in note for n in ("gear.csv", "gear.dxf", "hob.dxf")) and "r.html" not in note
+    assert (folder / "male.csv").read_text() == "the user's own file\n"
+    assert (folder / "notes.txt").read_text() == "the user's own file\n"
+    assert (folder / "gear.csv").read_text() != "the user's own file\n"
+
+
+def test_export_rows_say_which_file_was_replaced(capsys, tmp_path):
+    """The same policy for `export`: each file row says whether it replaced a file."""
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "gear_pair_gear.stl").write_text("the user's own file\n")
+    status, text, err = run(capsys, "export", SAMPLES / "gear_pair.toml", "--out", out, "--format", "stl", "--json", "--quiet")
+    rows = {Path(r["path"]).name: r["replaced"] for r in json.loads(text)["files"]}
+    assert status == 0 and rows == {"gear_pair_gear.stl": True, "gear_pair_mate.stl": False}
+    assert "replaced the existing file " in err and "gear_pair_gear.stl (--out)" in err

@@ -324,6 +324,7 @@ def export(
     progress.stop()
     for row in rows:
         row["size"] = Path(row["path"]).stat().st_size if Path(row["path"]).exists() else 0
+        row["replaced"] = Path(row["path"]) in outputs.replaced  # a file that was there, replaced whole
     result = {"files": rows, "tolerance": tol, "clearance": clearance}
     if as_json:
         emit_json(result)

@@ -140,6 +140,7 @@ def export_gear(
     outputs.write()
     for row in rows:
         row["size"] = Path(row["path"]).stat().st_size
+        row["replaced"] = Path(row["path"]) in outputs.replaced  # a file that was there, replaced whole
     return rows
 
 
