@@ -125,6 +125,7 @@ def _start_worker(preload: tuple[str, ...], parent: int | None = None) -> None:
     if parent is not None:
         _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the command's handler, inherited by the fork
     for module in preload:
         importlib.import_module(module)
 

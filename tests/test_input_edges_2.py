@@ -290,3 +290,28 @@ def test_export_rows_say_which_file_was_replaced(capsys, tmp_path):
     rows = {Path(r["path"]).name: r["replaced"] for r in json.loads(text)["files"]}
     assert status == 0 and rows == {"gear_pair_gear.stl": True, "gear_pair_mate.stl": False}
     assert "replaced the existing file " in err and "gear_pair_gear.stl (--out)" in err
+
+
+def test_dxf_mesh_r12_refused_before_any_sweep(capsys, tmp_path, monkeypatch):
+    """`export --format dxf-mesh-r12` took 18 s to refuse: refused now on the estimate before the
+    fine solids are swept (the sweep at the asked tolerance, 5 um, is never made)."""
+    import rotorcad.cli.export_cmd as export_cmd
+
+    tolerances = []
+    real = export_cmd.helical_solid
+    monkeypatch.setattr(export_cmd, "helical_solid", lambda s, h, length, t: tolerances.append(t) or real(s, h, length, t))
+    design = SAMPLES / "srm_symmetric_4_6.toml"
+    line = refused(
+        capsys,
+        "--tolerance must be coarser for a DXF mesh",
+        "export",
+        design,
+        "--format",
+        "dxf-mesh-r12",
+        "--quiet",
+        "--out",
+        tmp_path / "a",
+    )
+    needed = float(re.search(r"([0-9.]+) mm or coarser would do", line).group(1))
+    assert tolerances and min(tolerances) >= needed > 0.005  # only the checks of the coarse tolerance named
+    assert not (tmp_path / "a").exists()

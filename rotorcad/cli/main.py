@@ -7,8 +7,11 @@ Every input problem ends as one sentence on stderr and exit status 2, without a 
 from __future__ import annotations
 
 import os
+import signal
 import sys
+import threading
 import warnings
+from typing import Any
 
 
 def _interrupted_hook(kind, value, tb):  # pragma: no cover - exercised by a real Ctrl-C at start-up
@@ -94,10 +97,15 @@ def main(argv: list[str] | None = None) -> int:
         2 bad input, 130 interrupted (Ctrl-C), 70 an internal error (a bug: please report it).
     """
     args = sys.argv[1:] if argv is None else list(argv)
-    with warnings.catch_warnings(record=True) as caught:  # numpy's RuntimeWarnings are no message for a user
-        warnings.simplefilter("ignore", RuntimeWarning)
-        warnings.simplefilter("always", InputNote)
-        status = _run(args)
+    previous = _on_sigterm()
+    try:
+        with warnings.catch_warnings(record=True) as caught:  # numpy's RuntimeWarnings are no message for a user
+            warnings.simplefilter("ignore", RuntimeWarning)
+            warnings.simplefilter("always", InputNote)
+            status = _run(args)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
     for w in caught:  # other warnings as before
         if not issubclass(w.category, InputNote):
             warnings.showwarning(w.message, w.category, w.filename, w.lineno)
@@ -112,6 +120,24 @@ def main(argv: list[str] | None = None) -> int:
     return status
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM (a time limit, ``kill``): unwound like Ctrl-C, so that temporaries and the worker go."""
+
+
+def _terminate(signum: int, frame: object) -> None:
+    raise Terminated
+
+
+def _on_sigterm() -> Any:
+    """Turn SIGTERM into :class:`Terminated` while a command runs; return the handler it replaced.
+
+    None (nothing changed) outside the main thread, where Python cannot set a handler.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.signal(signal.SIGTERM, _terminate)
+
+
 def _run(args: list[str]) -> int:
     """:func:`main` without the clean-up: the exit status of one command line."""
     try:
@@ -122,6 +148,9 @@ def _run(args: list[str]) -> int:
         status = cli.main(args=args, prog_name="rotorcad", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
+    except Terminated:
+        click.echo("rotorcad: terminated.", err=True)
+        return 143
     except (click.exceptions.Abort, KeyboardInterrupt):
         click.echo("rotorcad: interrupted.", err=True)
         return 130

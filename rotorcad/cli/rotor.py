@@ -298,9 +298,11 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
     except DesignError as exc:
         # a family's parameter is the design's key with its table (the family names it bare)
         bare = exc.param == "family" or exc.param in params or exc.param in ("points", "smoothing")
-        raise InputError(
-            exc.sentence(f"[profile] {exc.param}" if design is not None and not sources and bare else None)
-        ) from None
+        if exc.param in ("male points", "female points", "rack points"):  # the library's name of the points
+            named = "[profile] points" if design is not None and not sources else f"--{family}"
+        else:
+            named = f"[profile] {exc.param}" if design is not None and not sources and bare else None
+        raise InputError(exc.sentence(named)) from None
     return rotors, float(speed), clearance
 
 
