@@ -418,7 +418,8 @@ PARAMETER = re.compile(
 
 
 CLICK_WORDS = re.compile(
-    r"No such option|No such command|Missing argument|Missing option|Invalid value|unexpected extra argument|requires an argument"
+    r"No such option|No such command|Missing argument|Missing option|Missing command|Invalid value|unexpected extra argument"
+    r"|requires an argument"
 )
 """click's own refusals: they quote the option or argument the user typed."""
 FILE_WORDS = re.compile(r"\bDESIGN\b|SWEEP_FILE|design file|sweep file|points file")
@@ -1067,14 +1068,23 @@ def test_fuzz_kills(work, command, sig, delay):
     if left:
         problems.append(f"processes left: {left}")
     data = user.read_bytes() if user.exists() else None
-    if data is None:
-        problems.append("the user's file is gone")
+    if not data:
+        problems.append("the user's file is gone or empty")
     names = sorted(str(p.relative_to(folder)) for p in folder.rglob("*") if p.is_file())
     temporaries = [n for n in names if Path(n).name.startswith(".") and n.endswith(".tmp")]
     record["temporaries"] = len(temporaries)
+    if sig == signal.SIGKILL:  # nothing runs on SIGKILL: the next run writing the file removes them
+        from exports.atomic import remove_stale_temporaries
+
+        for name in temporaries:
+            tmp = folder / name
+            remove_stale_temporaries(tmp.parent / tmp.name[1:].rsplit(".", 3)[0])
+        kept = [n for n in temporaries if (folder / n).exists()]
+        if kept:
+            problems.append(f"temporaries of a killed run not removed by the next: {kept}")
+    elif temporaries:
+        problems.append(f"temporaries left: {temporaries}")
     if sig != signal.SIGKILL:
-        if temporaries:
-            problems.append(f"temporaries left: {temporaries}")
         if proc.returncode not in (0, 1, 130, 143):
             problems.append(f"exit {proc.returncode}: {err.decode(errors='replace')[-500:]}")
         if proc.returncode in (130, 143):

@@ -315,3 +315,36 @@ def test_dxf_mesh_r12_refused_before_any_sweep(capsys, tmp_path, monkeypatch):
     needed = float(re.search(r"([0-9.]+) mm or coarser would do", line).group(1))
     assert tolerances and min(tolerances) >= needed > 0.005  # only the checks of the coarse tolerance named
     assert not (tmp_path / "a").exists()
+
+
+# ----- kills ----------------------------------------------------------------------------------
+def test_temporaries_of_a_killed_run_are_removed_by_the_next(tmp_path):
+    """SIGKILL leaves a writer's hidden temporary (nothing runs on SIGKILL); the next run writing
+    the same file removes it, but never the temporary of a process still running."""
+    from exports.atomic import staging_prefix, write_all
+
+    target = tmp_path / "male.csv"
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()  # a process id that no longer runs
+    stale = tmp_path / f"{staging_prefix(target)}{dead.pid}.abc123.tmp"
+    live = tmp_path / f"{staging_prefix(target)}{os.getppid()}.def456.tmp"
+    for p in (stale, live):
+        p.write_text("half")
+    write_all([(target, lambda p: Path(p).write_text("x,y\n"))])
+    assert target.read_text() == "x,y\n" and not stale.exists() and live.exists()
+
+
+def test_sigterm_leaves_no_temporary_and_says_so(tmp_path):
+    """A command stopped by SIGTERM (a time limit) unwinds like Ctrl-C: one line, exit 143, no
+    temporary and the user's file unchanged."""
+    user = tmp_path / "user.csv"
+    user.write_text("the user's own file\n")
+    code = "import sys; from rotorcad.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    # issue 24's slow cut: some 5 s of work alone (18 s under load), stopped after 2.5 s
+    argv = ["cut", "--teeth", "150", "--module", "100", "--tip-radius", "0", "--mate-teeth", "150", "--csv", str(user)]
+    proc = subprocess.Popen([sys.executable, "-c", code, *argv], stderr=subprocess.PIPE, text=True)
+    time.sleep(2.5)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 143 and err.strip().splitlines()[-1] == "rotorcad: terminated.", err
+    assert user.read_text() == "the user's own file\n" and [p.name for p in tmp_path.iterdir()] == ["user.csv"]

@@ -7,6 +7,7 @@ Every input problem ends as one sentence on stderr and exit status 2, without a 
 from __future__ import annotations
 
 import os
+import re
 import signal
 import sys
 import threading
@@ -124,7 +125,12 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM (a time limit, ``kill``): unwound like Ctrl-C, so that temporaries and the worker go."""
 
 
+TERMINATED: list[int] = []
+"""SIGTERMs received while a command ran (click turns any KeyboardInterrupt into its Abort)."""
+
+
 def _terminate(signum: int, frame: object) -> None:
+    TERMINATED.append(signum)
     raise Terminated
 
 
@@ -148,15 +154,20 @@ def _run(args: list[str]) -> int:
         status = cli.main(args=args, prog_name="rotorcad", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
-    except Terminated:
-        click.echo("rotorcad: terminated.", err=True)
-        return 143
     except (click.exceptions.Abort, KeyboardInterrupt):
+        if TERMINATED:
+            TERMINATED.clear()
+            click.echo("rotorcad: terminated.", err=True)
+            return 143
         click.echo("rotorcad: interrupted.", err=True)
         return 130
     except click.ClickException as exc:
         message = " ".join(exc.format_message().split())
-        if not message.endswith((".", "?", "!")):
+        # click's "No such option '--x'. Did you mean '--y'?" as one sentence: "... '--x' (did you mean '--y'?)."
+        message = re.sub(r"\. \(?Did you mean (.*?)\??\)?$", r" (did you mean \1?)", message)
+        if not message.endswith((".", "?", "!", ")")):
+            message += "."
+        elif message.endswith(")"):
             message += "."
         click.echo(f"rotorcad: error: {message}", err=True)
         return 2 if exc.exit_code in (1, 2) else int(exc.exit_code)
