@@ -9,10 +9,17 @@ resident memory under 2 GB, and a progress bar opened by any case that runs past
 generators draw about half their cases from the valid ranges, so that the success path is
 exercised too (a third or more of ``cut``, ``rotor --*-points`` and ``clearance`` cases succeed).
 
-The default run is some 350 cases (some 20 s); ``ROTORCAD_FUZZ_EXAMPLES=N`` multiplies each
-command's count by N / 40 and draws new cases (N = 2300: about 20 000 cases), and
-``ROTORCAD_FUZZ_LOG=FILE`` appends one JSON line a case (test, exit status, seconds, peak memory,
-progress) for the long run's figures.
+The default run is some 400 cases; ``ROTORCAD_FUZZ_EXAMPLES=N`` multiplies each command's count
+by N / 40 and draws new cases (N = 2300: about 22 000 cases), ``ROTORCAD_FUZZ_LOG=FILE`` appends
+one JSON line a case (test, exit status, seconds, peak memory, progress) for the long run's
+figures, and logs a broken rule (``failure``), a refusal that does not name what was typed
+(``unclear``) or a kill's leftovers instead of stopping at the first, and
+``ROTORCAD_FUZZ_BUDGET=SECONDS`` stops each test after that long, so that a timed run reaches every
+command. DXF drawings are made with ezdxf and then spoilt (NaN/inf coordinates, x1e9 and x1e-9,
+open and self-crossing outlines, duplicate entities, an empty layer, binary garbage); points files
+come with a BOM, semicolons, decimal commas, NaN or one point; designs hold integers beyond float
+range; commands are killed at random moments (SIGINT, SIGTERM, SIGKILL) and checked for processes
+and files left behind.
 """
 
 from __future__ import annotations
@@ -42,6 +49,20 @@ CASE_SECONDS = 120  # a case running longer is a hang
 PROGRESS_SECONDS = 60  # a case running longer must have opened a progress bar
 MEMORY_LIMIT = 2 * 1024**3  # bytes of peak resident memory a case may reach
 LOG = os.environ.get("ROTORCAD_FUZZ_LOG")
+BUDGET = float(os.environ.get("ROTORCAD_FUZZ_BUDGET", "0"))
+"""Seconds each test of a long run may take (0: no limit): past it the test stops drawing cases,
+so that a timed run covers every command."""
+_STARTED: dict[str, float] = {}
+
+
+def _within_budget() -> None:
+    """Stop the current test (skipped, its cases so far logged) once it has used :data:`BUDGET`."""
+    if not BUDGET:
+        return
+    test = os.environ.get("PYTEST_CURRENT_TEST", "?").split(" ")[0]
+    started = _STARTED.setdefault(test, time.monotonic())
+    if time.monotonic() - started > BUDGET:
+        pytest.skip(f"time budget of {BUDGET:g} s used")
 
 
 def examples(default: int) -> int:
@@ -564,6 +585,7 @@ def run_case(capsys, folder: Path, argv: list[str], allow_finding: bool = False)
     (hypothesis would stop the command's test at its first failure); status -1 then stands for a
     case stopped at :data:`CASE_SECONDS`.
     """
+    _within_budget()
     before = snapshot(folder)
     capsys.readouterr()
     old = signal.signal(signal.SIGALRM, _alarm)
@@ -1034,6 +1056,7 @@ def test_fuzz_kills(work, command, sig, delay):
     import sys
     import uuid
 
+    _within_budget()
     folder = work()
     marker = f"ROTORCAD_FUZZ_MARK={uuid.uuid4().hex}"
     argv = list(KILL_COMMANDS[command])
@@ -1099,3 +1122,58 @@ def test_fuzz_kills(work, command, sig, delay):
                 f.write(json.dumps({"test": test, "failure": "; ".join(problems), "argv": argv}) + "\n")
     else:
         assert not problems, f"{shown}: {problems}"
+
+
+# ----- every option of every command ------------------------------------------------------------
+BASE_ARGV = {
+    "gear": ["gear", "--teeth", "17", "--module", "2"],
+    "cut": ["cut", "--teeth", "17", "--module", "2", "--tolerance", "0.02"],
+    "pump": ["pump", "--teeth", "11", "--module", "2", "--face-width", "10", "--speed", "1500"],
+    "hob": ["hob", "--teeth", "17", "--module", "2"],
+    "rotor": ["rotor", str(SAMPLES / "srm_symmetric_4_6.toml")],
+    "interfere": ["interfere", str(SAMPLES / "srm_symmetric_4_6.toml"), "--steps", "2"],
+    "deflect": ["deflect", str(SAMPLES / "srm_asymmetric_5_6.toml"), "--quiet"],
+    "coupling": ["coupling", "--teeth", "40", "--module", "3", "--face-width", "20", "--speed", "1500", "--viscosity", "0.05"]
+    + ["--power", "50", "--misalignment-deg", "0.1", "--pressure-viscosity", "2e-8"],
+    "export": ["export", str(SAMPLES / "gear_pair.toml"), "--format", "stl", "--tolerance", "0.2", "--quiet"],
+    "clearance": ["clearance", "--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100"],
+}
+OPTION_VALUES = ["0", "-1", "-0.0", "1e-12", "1e30", "-1e30", "nan", "inf", "-inf", "1" + "0" * 400, "2", "x", "", "é"]
+SKIP_OPTIONS = {"--help", "--version", "--json", "--quiet", "--out", "--csv", "--dxf", "--plot", "--files", "--male-csv"}
+
+
+def _valued_options(command: str) -> list[str]:
+    """The options of ``command`` that take a value (not flags, not output files)."""
+    import click
+
+    from rotorcad.cli.main import cli
+
+    params = cli.get_command(click.Context(cli), command).params
+    return sorted(
+        p.opts[0]
+        for p in params
+        if isinstance(p, click.Option)
+        and not p.is_flag
+        and p.opts[0] not in SKIP_OPTIONS
+        and not p.opts[0].endswith(("-csv", "-plot", "-dxf", "-svg", "-png"))
+    )
+
+
+@fuzz_settings(20)
+@given(data=st.data(), command=st.sampled_from(sorted(BASE_ARGV)), value=st.sampled_from(OPTION_VALUES), extra=number(-10, 1e4))
+def test_fuzz_every_option(capsys, work, data, command, value, extra):
+    """Each command's options one at a time at and beyond their bounds: the refusal names it."""
+    folder = work()
+    option = data.draw(st.sampled_from(_valued_options(command)))
+    argv = list(BASE_ARGV[command])
+    if command == "clearance":
+        argv += ["--male-points", str(points_file(folder, "m.csv", "male", "clean", 0.0, 0))]
+        argv += ["--female-points", str(points_file(folder, "f.csv", "female", "clean", 0.0, 1))]
+    if command == "export":
+        argv += ["--out", str(folder / "out")]
+    chosen = value if value != "2" else text_of(extra)
+    if option in argv:
+        argv[argv.index(option) + 1] = chosen
+    else:
+        argv += [option, chosen]
+    run_case(capsys, folder, [*argv, "--json"], allow_finding=command == "interfere")
