@@ -348,3 +348,20 @@ def test_sigterm_leaves_no_temporary_and_says_so(tmp_path):
     _, err = proc.communicate(timeout=30)
     assert proc.returncode == 143 and err.strip().splitlines()[-1] == "rotorcad: terminated.", err
     assert user.read_text() == "the user's own file\n" and [p.name for p in tmp_path.iterdir()] == ["user.csv"]
+
+
+# ----- slow answers ---------------------------------------------------------------------------
+def test_a_command_working_past_the_wait_shows_a_bar(capsys, monkeypatch):
+    """Anything over 2 s shows a progress bar on a terminal (issue 24: `interfere` with a DXF male
+    and `--steps 1`, `coupling`, `hob` ran seconds with none before their own stage began). The wait
+    is cut to 10 ms here; `hob` has no bar of its own, so the command's "working" bar is drawn."""
+    from rotorcad.cli import progress
+
+    monkeypatch.setattr(progress, "on_terminal", lambda: True)
+    monkeypatch.setattr(progress, "WAIT_SECONDS", 0.01)
+    opened = len(progress.OPENED)
+    status, _, err = run(capsys, "hob", "--teeth", "17", "--module", "2")
+    assert status == 0 and progress.OPENED[opened:] == ["working"] and "━" in err
+    opened = len(progress.OPENED)
+    status, _, err = run(capsys, "hob", "--teeth", "17", "--module", "2", "--quiet")
+    assert status == 0 and progress.OPENED[opened:] == [] and "━" not in err

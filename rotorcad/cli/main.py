@@ -98,13 +98,17 @@ def main(argv: list[str] | None = None) -> int:
         2 bad input, 130 interrupted (Ctrl-C), 70 an internal error (a bug: please report it).
     """
     args = sys.argv[1:] if argv is None else list(argv)
+    from rotorcad.cli import progress
+
     previous = _on_sigterm()
+    progress.start_waiting("--quiet" in args or not args or {"-h", "--help", "--version"} & set(args))
     try:
         with warnings.catch_warnings(record=True) as caught:  # numpy's RuntimeWarnings are no message for a user
             warnings.simplefilter("ignore", RuntimeWarning)
             warnings.simplefilter("always", InputNote)
             status = _run(args)
     finally:
+        progress.stop_waiting()
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
     for w in caught:  # other warnings as before
