@@ -33,6 +33,9 @@ from exports.reading import check_regular_file
 from rotorcad.curves import Arc, Curve, Line, Spline, sample_curve
 from rotorcad.errors import DesignError
 
+MAX_EXTENT = 1e5
+"""Largest distance of a profile's point from the origin, mm (100 m: no rotor or gear is larger)."""
+
 GAP_TOLERANCE = 1e-3
 """Largest gap between the ends of two entities that are joined, mm."""
 
@@ -464,6 +467,11 @@ def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]
         where = "in modelspace" if layer is None else f"on the layer {layer!r}"
         raise DesignError(label, f"a DXF drawing with a profile {where}", value, "its entities all have zero length")
     chain, closed = _chain(pieces, names, label, value)
+    far = max(float(np.hypot(*point)) for c in chain for point in (c.start, c.end))
+    if far > MAX_EXTENT:  # e.g. a drawing scaled x1e9: its arcs would be sampled to 0.1 um for hours
+        raise DesignError(
+            label, f"a profile within {MAX_EXTENT:g} mm of the origin", value, f"a point lies {far:.3g} mm from it (other units?)"
+        )
     return _orient(chain, closed), closed
 
 

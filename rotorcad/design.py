@@ -68,13 +68,17 @@ def check_table(
             raise DesignError(f"[{table}] {key}", kind, repr(value))
     section = dict(section)
     for key, value in section.items():  # a number as a float: an integer beyond float range is refused
-        if keys[key] == NUMBER and isinstance(value, int):
+        if isinstance(value, int) and not isinstance(value, bool) and keys[key] in (NUMBER, int):
             try:
-                section[key] = float(value)
+                number = float(value)
+                if keys[key] == NUMBER:
+                    section[key] = number
             except OverflowError:
                 raise DesignError(
                     f"[{table}] {key}",
-                    "a number within the range of a float (below 1.8e308)",
+                    "a number within the range of a float (below 1.8e308)"
+                    if keys[key] == NUMBER
+                    else "a whole number below 1.8e308",
                     f"an integer of {int(value.bit_length() * 0.30103) + 1} digits",
                 ) from None
     for key in required:

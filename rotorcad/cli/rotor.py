@@ -276,7 +276,8 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
     if smoothing is not None and not (np.isfinite(smoothing) and smoothing >= 0):
         raise InputError(f"--smoothing must be a number of at least 0 mm^2 (got {smoothing}).")
     if not (np.isfinite(speed) and speed > 0):
-        raise InputError(f"--speed must be a positive speed in rpm (got {speed}).")
+        named = "--speed" if opts.get("speed") is not None else "[operating] speed_rpm"  # interfere, export: no --speed
+        raise InputError(f"{named} must be a positive speed in rpm (got {speed}).")
     missing = [k for k in PAIR_OPTIONS if k not in values]
     if missing:
         raise InputError(f"--{missing[0].replace('_', '-')} is required (or a design file with [pair] {missing[0]}).")
