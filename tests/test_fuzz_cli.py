@@ -799,7 +799,7 @@ SYM_SAMPLE = {"male_teeth": 4, "female_teeth": 6, "center_distance": 100, "male_
 SYM_SAMPLE.update({"female_tip_radius": 60, "female_root_radius": 46, "lead": 260, "length": 150})
 
 
-@fuzz_settings(40)
+@fuzz_settings(32)
 @given(
     rotor=st.sampled_from(["male", "female"]),
     kind=POINT_KINDS,
@@ -892,7 +892,7 @@ def test_fuzz_export(capsys, work, design, key, value, tolerance, fmt, out):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(10)
+@fuzz_settings(6)
 @given(
     design=DESIGN_KINDS,
     key=st.integers(0, 20),
@@ -905,7 +905,7 @@ def test_fuzz_deflect(capsys, work, design, key, value, opts):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(15)
+@fuzz_settings(10)
 @given(
     opts=st.one_of(
         options(
@@ -962,7 +962,7 @@ def test_fuzz_command_lines(capsys, work, argv):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(12)
+@fuzz_settings(10)
 @given(
     command=st.sampled_from(["rotor", "rotor", "clearance", "interfere"]),
     rotor=st.sampled_from(["male", "female"]),
@@ -1042,7 +1042,7 @@ def _marked(marker: str) -> list[int]:
 
 
 @pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs /proc (Linux)")
-@fuzz_settings(4)
+@fuzz_settings(3)
 @given(
     command=st.sampled_from(sorted(KILL_COMMANDS)),
     sig=st.sampled_from([signal.SIGINT, signal.SIGTERM, signal.SIGKILL]),
@@ -1135,7 +1135,7 @@ BASE_ARGV = {
     "hob": ["hob", "--teeth", "17", "--module", "2"],
     "rotor": ["rotor", str(SAMPLES / "srm_symmetric_4_6.toml")],
     "interfere": ["interfere", str(SAMPLES / "srm_symmetric_4_6.toml"), "--steps", "2"],
-    "deflect": ["deflect", str(SAMPLES / "srm_asymmetric_5_6.toml"), "--quiet"],
+    "deflect": ["deflect", str(SAMPLES / "srm_asymmetric_5_6.toml"), "--quiet", "--terms", "4"],
     "coupling": ["coupling", "--teeth", "40", "--module", "3", "--face-width", "20", "--speed", "1500", "--viscosity", "0.05"]
     + ["--power", "50", "--misalignment-deg", "0.1", "--pressure-viscosity", "2e-8"],
     "export": ["export", str(SAMPLES / "gear_pair.toml"), "--format", "stl", "--tolerance", "0.2", "--quiet"],
@@ -1162,7 +1162,7 @@ def _valued_options(command: str) -> list[str]:
     )
 
 
-@fuzz_settings(20)
+@fuzz_settings(14)
 @given(data=st.data(), command=st.sampled_from(sorted(BASE_ARGV)), value=st.sampled_from(OPTION_VALUES), extra=number(-10, 1e4))
 def test_fuzz_every_option(capsys, work, data, command, value, extra):
     """Each command's options one at a time at and beyond their bounds: the refusal names it."""
