@@ -365,3 +365,45 @@ def test_a_command_working_past_the_wait_shows_a_bar(capsys, monkeypatch):
     opened = len(progress.OPENED)
     status, _, err = run(capsys, "hob", "--teeth", "17", "--module", "2", "--quiet")
     assert status == 0 and progress.OPENED[opened:] == [] and "━" not in err
+
+
+# ----- found by the long fuzz run (seeds 240101-240104) ----------------------------------------
+def test_rotor_design_integer_key_beyond_float_range(capsys, tmp_path):
+    """`[pair] male_teeth = 10**400`: OverflowError in `rotor` (an integer key, not converted)."""
+    text = re.sub(
+        r"^male_teeth = .*$", "male_teeth = 1" + "0" * 400, (SAMPLES / "srm_asymmetric_5_6.toml").read_text(), flags=re.M
+    )
+    path = tmp_path / "d.toml"
+    path.write_text(text)
+    refused(capsys, "[pair] male_teeth must be a whole number below 1.8e308", "rotor", path)
+
+
+def test_interfere_names_the_design_key_of_the_speed(capsys, tmp_path):
+    """`interfere` refused `[operating] speed_rpm = -2147432697499774` naming `--speed`, an option
+    it does not have."""
+    text = (SAMPLES / "srm_asymmetric_5_6.toml").read_text()
+    text = re.sub(r"^speed_rpm = .*$", "speed_rpm = -2147432697499774.0", text, flags=re.M)
+    if "speed_rpm" not in text:
+        text = text.replace("[operating]\n", "[operating]\nspeed_rpm = -2147432697499774.0\n")
+    path = tmp_path / "d.toml"
+    path.write_text(text)
+    line = refused(capsys, "[operating] speed_rpm must be a positive speed", "interfere", path, "--steps", "2")
+    assert "--speed" not in line
+
+
+def test_dxf_of_arcs_scaled_1e9_refused_at_once(capsys, tmp_path, outlines):
+    """A drawing of arcs (bulges) scaled x1e9 hung `rotor --male-points` for minutes (its arcs
+    sampled to 0.1 um): refused naming the farthest point, 54 mm x 1e9 (the tip radius)."""
+    import ezdxf
+
+    pts = outlines["male"][::2] * 1e9
+    doc = ezdxf.new()
+    doc.modelspace().add_lwpolyline([(x, y, 0, 0, 0.01) for x, y in pts], format="xyseb", close=True)
+    doc.saveas(tmp_path / "male.dxf")
+    pair = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--male-tip-radius", "54"]
+    pair += ["--male-root-radius", "40", "--female-tip-radius", "60", "--female-root-radius", "46", "--lead", "260"]
+    started = time.monotonic()
+    line = refused(
+        capsys, "--male-points must be a profile within 100000 mm", "rotor", "--male-points", tmp_path / "male.dxf", *pair
+    )
+    assert "5.4e+10 mm" in line and time.monotonic() - started < 30
