@@ -892,7 +892,7 @@ def test_fuzz_export(capsys, work, design, key, value, tolerance, fmt, out):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(6)
+@fuzz_settings(4)
 @given(
     design=DESIGN_KINDS,
     key=st.integers(0, 20),
@@ -905,7 +905,7 @@ def test_fuzz_deflect(capsys, work, design, key, value, opts):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(10)
+@fuzz_settings(8)
 @given(
     opts=st.one_of(
         options(
@@ -962,7 +962,7 @@ def test_fuzz_command_lines(capsys, work, argv):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(10)
+@fuzz_settings(6)
 @given(
     command=st.sampled_from(["rotor", "rotor", "clearance", "interfere"]),
     rotor=st.sampled_from(["male", "female"]),
