@@ -87,6 +87,26 @@ def check_table(
     return section
 
 
+def refuse_huge_integers(data: dict[str, Any]) -> None:
+    """Refuse any integer of a design beyond float range, in any table (a family's ``[profile]`` too).
+
+    Parameters
+    ----------
+    data : dict
+        The design as a TOML file holds it.
+
+    Raises
+    ------
+    DesignError
+        Naming the ``[table] key`` of the first such integer.
+    """
+    for table, section in data.items():
+        for key, value in section.items() if isinstance(section, dict) else ():
+            if isinstance(value, int) and not isinstance(value, bool) and abs(value).bit_length() > 1023:
+                digits = int(value.bit_length() * 0.30103) + 1
+                raise DesignError(f"[{table}] {key}", "a number below 1.8e308", f"an integer of {digits} digits")
+
+
 def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
     """Check a gear design mapping (CONTRACT.md "Design files").
 
@@ -107,6 +127,7 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
     DesignError
         Naming the table or key that is wrong.
     """
+    refuse_huge_integers(data)
     for table in data:
         if table not in ("gear", "mate"):
             raise DesignError(f"table [{table}]", "one of [gear], [mate] in a gear design", None, "unknown table")
@@ -179,6 +200,7 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
         Naming the table or key that is wrong (unknown, of the wrong type, missing or out of
         range).
     """
+    refuse_huge_integers(data)
     for table in data:
         if table not in ("pair", "profile", "housing", "operating", "deflection", "export"):
             allowed = "one of [pair], [profile], [housing], [operating], [deflection], [export]"

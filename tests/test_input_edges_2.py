@@ -407,3 +407,12 @@ def test_dxf_of_arcs_scaled_1e9_refused_at_once(capsys, tmp_path, outlines):
         capsys, "--male-points must be a profile within 100000 mm", "rotor", "--male-points", tmp_path / "male.dxf", *pair
     )
     assert "5.4e+10 mm" in line and time.monotonic() - started < 30
+
+
+def test_profile_key_beyond_float_range(capsys, tmp_path):
+    """`[profile] seal_stop = 10**400`: OverflowError in `rotor` (a family's key, read apart from
+    the tables of fixed keys)."""
+    text = (SAMPLES / "srm_asymmetric_5_6.toml").read_text()
+    path = tmp_path / "d.toml"
+    path.write_text(re.sub(r"^seal_stop = .*$", "seal_stop = 1" + "0" * 400, text, count=1, flags=re.M))
+    refused(capsys, "[profile] seal_stop must be a number below 1.8e308", "rotor", path)
