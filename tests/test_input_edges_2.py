@@ -375,7 +375,7 @@ def test_rotor_design_integer_key_beyond_float_range(capsys, tmp_path):
     )
     path = tmp_path / "d.toml"
     path.write_text(text)
-    refused(capsys, "[pair] male_teeth must be a whole number below 1.8e308", "rotor", path)
+    refused(capsys, "[pair] male_teeth must be a number below 1.8e308", "rotor", path)
 
 
 def test_interfere_names_the_design_key_of_the_speed(capsys, tmp_path):
