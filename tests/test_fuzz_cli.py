@@ -892,7 +892,7 @@ def test_fuzz_export(capsys, work, design, key, value, tolerance, fmt, out):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(4)
+@fuzz_settings(3)
 @given(
     design=DESIGN_KINDS,
     key=st.integers(0, 20),
@@ -962,7 +962,7 @@ def test_fuzz_command_lines(capsys, work, argv):
     run_case(capsys, folder, argv)
 
 
-@fuzz_settings(6)
+@fuzz_settings(5)
 @given(
     command=st.sampled_from(["rotor", "rotor", "clearance", "interfere"]),
     rotor=st.sampled_from(["male", "female"]),
@@ -1042,7 +1042,7 @@ def _marked(marker: str) -> list[int]:
 
 
 @pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs /proc (Linux)")
-@fuzz_settings(3)
+@fuzz_settings(2)
 @given(
     command=st.sampled_from(sorted(KILL_COMMANDS)),
     sig=st.sampled_from([signal.SIGINT, signal.SIGTERM, signal.SIGKILL]),
