@@ -113,8 +113,8 @@ def write_all(outputs: Iterable[tuple[Path, Writer]], pool: WorkerPool | None = 
             os.chmod(tmp, mode)
         for tmp, target, _ in staged:
             os.replace(tmp, target)
-    except BaseException:
-        workers.stop()  # no job may write after its temporary is removed
+    except BaseException as exc:
+        workers.stop(kill=isinstance(exc, KeyboardInterrupt))  # no job may write after its temporary is removed
         for tmp, *_ in staged:
             tmp.unlink(missing_ok=True)
         raise

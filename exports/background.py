@@ -162,13 +162,30 @@ class WorkerPool:
     def __enter__(self) -> WorkerPool:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.stop()
+    def __exit__(self, kind: type[BaseException] | None, *exc: object) -> None:
+        self.stop(kill=kind is not None and issubclass(kind, KeyboardInterrupt))
 
-    def stop(self) -> None:
-        """Cancel what has not started, wait for the running job, stop the worker (idempotent)."""
+    def stop(self, kill: bool = False) -> None:
+        """Cancel what has not started, wait for the running job, stop the worker (idempotent).
+
+        Parameters
+        ----------
+        kill : bool
+            End the worker at once instead of waiting for its job (Ctrl-C, SIGTERM): what it was
+            writing is a temporary the caller removes, and a dead worker writes nothing more.
+        """
         if self._executor is not None:
-            self._executor.shutdown(wait=True, cancel_futures=True)
+            if kill:
+                for process in list(getattr(self._executor, "_processes", {}).values()):
+                    try:
+                        process.kill()
+                        process.join(5.0)
+                    except (OSError, ValueError, AttributeError):
+                        pass
+            try:
+                self._executor.shutdown(wait=True, cancel_futures=True)
+            except BrokenProcessPool:  # the worker was just ended
+                pass
             self._executor = None
 
     def submit(self, job: BackgroundWriter, path: Path) -> Callable[[], None]:

@@ -1071,14 +1071,17 @@ def test_fuzz_kills(work, command, sig, delay):
     env = {**os.environ, marker.split("=")[0]: marker.split("=")[1], "COLUMNS": "100"}
     code = "import sys; from rotorcad.cli.main import main; sys.exit(main(sys.argv[1:]))"
     proc = subprocess.Popen([sys.executable, "-c", code, *argv], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    late = False
     try:
         time.sleep(delay)
         proc.send_signal(sig)
         _, err = proc.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        late = True
     finally:
         if proc.poll() is None:
             proc.kill()
-            proc.communicate()
+            _, err = proc.communicate()
     deadline = time.monotonic() + 5.0
     while _marked(marker.split("=")[1]) and time.monotonic() < deadline:
         time.sleep(0.1)
@@ -1087,7 +1090,7 @@ def test_fuzz_kills(work, command, sig, delay):
         os.kill(pid, signal.SIGKILL)
     shown = f"{signal.Signals(sig).name} after {delay:.2f} s: {' '.join(argv)}"
     record = {"exit": proc.returncode, "orphans": len(left)}
-    problems = []
+    problems = [f"still running 30 s after {signal.Signals(sig).name}"] if late else []
     if left:
         problems.append(f"processes left: {left}")
     data = user.read_bytes() if user.exists() else None
