@@ -416,3 +416,22 @@ def test_profile_key_beyond_float_range(capsys, tmp_path):
     path = tmp_path / "d.toml"
     path.write_text(re.sub(r"^seal_stop = .*$", "seal_stop = 1" + "0" * 400, text, count=1, flags=re.M))
     refused(capsys, "[profile] seal_stop must be a number below 1.8e308", "rotor", path)
+
+
+def test_interrupt_swallowed_by_a_library_still_stops_the_command(capsys, monkeypatch):
+    """Ctrl-C during `interfere` gave "internal error (TypeError: unsupported operand type(s) for |:
+    'ExceptionWrapper' and 'NoneType')", exit 70: trimesh wraps any exception of its imports, the
+    KeyboardInterrupt included, and fails later. The signal is remembered: one line, exit 130."""
+    import rotorcad.cli.gear as gear_cli
+
+    def swallowing(*args, **kwargs):
+        try:  # as trimesh's soft imports do
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(1.0)
+        except BaseException:
+            pass
+        raise TypeError("unsupported operand type(s) for |: 'ExceptionWrapper' and 'NoneType'")
+
+    monkeypatch.setattr(gear_cli, "build_gear", swallowing)
+    status, _, err = run(capsys, "gear", "--teeth", "17", "--module", "2")
+    assert status == 130 and err.strip() == "rotorcad: interrupted."

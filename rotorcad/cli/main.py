@@ -100,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else list(argv)
     from rotorcad.cli import progress
 
-    previous = _on_sigterm()
+    previous = _on_signals()
     progress.start_waiting("--quiet" in args or not args or {"-h", "--help", "--version"} & set(args))
     try:
         with warnings.catch_warnings(record=True) as caught:  # numpy's RuntimeWarnings are no message for a user
@@ -109,8 +109,9 @@ def main(argv: list[str] | None = None) -> int:
             status = _run(args)
     finally:
         progress.stop_waiting()
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+        progress.SIGNALLED.clear()
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
     for w in caught:  # other warnings as before
         if not issubclass(w.category, InputNote):
             warnings.showwarning(w.message, w.category, w.filename, w.lineno)
@@ -129,23 +130,37 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM (a time limit, ``kill``): unwound like Ctrl-C, so that temporaries and the worker go."""
 
 
-TERMINATED: list[int] = []
-"""SIGTERMs received while a command ran (click turns any KeyboardInterrupt into its Abort)."""
+def _signalled(signum: int, frame: object) -> None:
+    """Record Ctrl-C or SIGTERM and unwind.
+
+    A library that swallows the exception (trimesh wraps any exception of its imports) is caught
+    again at the next progress step (:data:`rotorcad.cli.progress.SIGNALLED`).
+    """
+    from rotorcad.cli import progress
+
+    progress.SIGNALLED.append(signum)
+    raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
 
 
-def _terminate(signum: int, frame: object) -> None:
-    TERMINATED.append(signum)
-    raise Terminated
+def _on_signals() -> dict[int, Any]:
+    """Route SIGINT and SIGTERM to :func:`_signalled` while a command runs; return the handlers replaced.
 
-
-def _on_sigterm() -> Any:
-    """Turn SIGTERM into :class:`Terminated` while a command runs; return the handler it replaced.
-
-    None (nothing changed) outside the main thread, where Python cannot set a handler.
+    Nothing is changed outside the main thread, where Python cannot set a handler.
     """
     if threading.current_thread() is not threading.main_thread():
-        return None
-    return signal.signal(signal.SIGTERM, _terminate)
+        return {}
+    return {signum: signal.signal(signum, _signalled) for signum in (signal.SIGINT, signal.SIGTERM)}
+
+
+def _stopped() -> int:
+    """Say why the command was stopped (one line) and return its status: 143 SIGTERM, else 130."""
+    from rotorcad.cli import progress
+
+    if signal.SIGTERM in progress.SIGNALLED:
+        click.echo("rotorcad: terminated.", err=True)
+        return 143
+    click.echo("rotorcad: interrupted.", err=True)
+    return 130
 
 
 def _run(args: list[str]) -> int:
@@ -159,12 +174,7 @@ def _run(args: list[str]) -> int:
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
     except (click.exceptions.Abort, KeyboardInterrupt):
-        if TERMINATED:
-            TERMINATED.clear()
-            click.echo("rotorcad: terminated.", err=True)
-            return 143
-        click.echo("rotorcad: interrupted.", err=True)
-        return 130
+        return _stopped()
     except click.ClickException as exc:
         message = " ".join(exc.format_message().split())
         # click's "No such option '--x'. Did you mean '--y'?" as one sentence: "... '--x' (did you mean '--y'?)."
@@ -182,6 +192,8 @@ def _run(args: list[str]) -> int:
         click.echo("rotorcad: error: the request needs more memory than this machine has; ask for less detail.", err=True)
         return 2
     except Exception as exc:  # a bug: one line (set ROTORCAD_DEBUG=1 for the traceback), never a silent pass
+        if sys.modules["rotorcad.cli.progress"].SIGNALLED:  # the signal's exception was swallowed and this followed
+            return _stopped()
         if os.environ.get("ROTORCAD_DEBUG"):
             raise
         text = " ".join(str(exc).split())[:300]

@@ -16,6 +16,10 @@ import sys
 from types import TracebackType
 from typing import Any
 
+SIGNALLED: list[int] = []
+"""Ctrl-C or SIGTERM received while the command runs (set by the command line's handlers): the
+next progress step raises again, in case a library swallowed the first exception."""
+
 OPENED: list[str] = []
 """The descriptions of every :class:`Steps` opened in this process, in order (for the tests)."""
 
@@ -95,6 +99,8 @@ class Steps:
         description : str, optional
             Replaces the text left of the bar.
         """
+        if SIGNALLED:
+            raise KeyboardInterrupt
         self.done += steps
         if self._bar is not None:
             fields: dict[str, Any] = {"advance": steps}
@@ -112,6 +118,8 @@ class Steps:
         **fields
             Values of the columns' fields (e.g. ``failed=3``).
         """
+        if SIGNALLED:
+            raise KeyboardInterrupt
         self.done = completed
         if self._bar is not None:
             self._bar.update(self._task, completed=completed, **fields)
