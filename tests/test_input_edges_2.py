@@ -435,3 +435,24 @@ def test_interrupt_swallowed_by_a_library_still_stops_the_command(capsys, monkey
     monkeypatch.setattr(gear_cli, "build_gear", swallowing)
     status, _, err = run(capsys, "gear", "--teeth", "17", "--module", "2")
     assert status == 130 and err.strip() == "rotorcad: interrupted."
+
+
+def test_export_of_a_gear_design_names_its_keys_when_flanks_never_meet(capsys, tmp_path):
+    """`export` of a gear design with `[mate] center_distance = 1e30` was refused naming --teeth,
+    --mate-teeth, ... options `export` does not have: the design's keys are named."""
+    text = (SAMPLES / "gear_pair.toml").read_text().replace("[mate]\n", "[mate]\ncenter_distance = 1e30\n")
+    path = tmp_path / "g.toml"
+    path.write_text(text)
+    line = refused(capsys, "[mate] center_distance", "export", path, "--out", tmp_path / "o", "--format", "stl")
+    assert "--" not in line.split(" must ")[0] and "[gear] teeth" in line
+
+
+def test_clearance_opens_a_progress_stage(capsys, tmp_path, outlines):
+    """`clearance` ran 68 s (under load) without a progress bar: its work is a stage of its own."""
+    from rotorcad.cli import progress
+
+    m = polyline_dxf(tmp_path / "male.dxf", outlines["male"])
+    f = polyline_dxf(tmp_path / "female.dxf", outlines["female"])
+    opened = len(progress.OPENED)
+    run(capsys, "clearance", "--male-points", m, "--female-points", f, *CLEARANCE, "--lead", "1e9")
+    assert progress.OPENED[opened:] == ["clearance: racks, contact and band"]

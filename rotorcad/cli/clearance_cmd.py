@@ -78,7 +78,10 @@ def clearance(**opts: Any) -> None:
     The normal racks of both rotors, brought into contact, the normal clearance along the female's
     rack, and the clearance band on the 3D contact line (area, equal clearance, wetted perimeter).
     """
-    mc = _evaluate(opts)
+    from rotorcad.cli.progress import Steps
+
+    with Steps("clearance: racks, contact and band", None, opts["quiet"]):  # seconds of work: a bar on a terminal
+        mc = _evaluate(opts)
     try:
         result = {
             **mc.summary(),
