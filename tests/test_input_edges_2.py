@@ -117,12 +117,17 @@ def test_dxf_points_with_one_nan_coordinate(capsys, tmp_path, outlines):
 
 
 def test_male_dxf_scaled_1e9(capsys, tmp_path, outlines):
-    """A male DXF scaled x1e9: IndexError in `in_contract_frame`. Its largest radius (54 mm x 1e9,
-    the sample's [pair] male_tip_radius) is named against the centre distance."""
+    """A male DXF scaled x1e9: IndexError in `in_contract_frame`. Refused naming its farthest point,
+    54 mm x 1e9 (the sample's [pair] male_tip_radius); points x1e3 (within 100 m) are refused against
+    the centre distance instead."""
     m = polyline_dxf(tmp_path / "male.dxf", outlines["male"] * 1e9)
     f = polyline_dxf(tmp_path / "female.dxf", outlines["female"])
     line = refused(capsys, "--male-points", "clearance", "--male-points", m, "--female-points", f, *CLEARANCE)
-    assert "5.4e+10 mm" in line and "--center-distance" in line
+    assert "5.4e+10 mm" in line
+    csv = tmp_path / "male.csv"
+    csv.write_text("x,y\n" + "\n".join(f"{float(x)!r},{float(y)!r}" for x, y in outlines["male"] * 1e3) + "\n")
+    line = refused(capsys, "--male-points", "clearance", "--male-points", csv, "--female-points", f, *CLEARANCE)
+    assert "54000 mm" in line and "--center-distance" in line
 
 
 def test_clearance_lead_1e9_refused_with_the_longest_lead(capsys, tmp_path, outlines):
