@@ -461,3 +461,41 @@ def test_clearance_opens_a_progress_stage(capsys, tmp_path, outlines):
     opened = len(progress.OPENED)
     run(capsys, "clearance", "--male-points", m, "--female-points", f, *CLEARANCE, "--lead", "1e9")
     assert progress.OPENED[opened:] == ["clearance: racks, contact and band"]
+
+
+def test_coupling_teeth_beyond_float_range(capsys):
+    """`coupling --teeth 10**400`: OverflowError (exit 70) in the long run."""
+    argv = ["coupling", "--teeth", "1" + "0" * 400, "--module", "3", "--face-width", "20", "--speed", "1500"]
+    argv += ["--viscosity", "0.05", "--power", "50", "--misalignment-deg", "0.1"]
+    refused(capsys, "--teeth must be a whole number from 6 to 1000 (got an integer of 401 digits)", *argv)
+
+
+def test_rotor_family_check_names_the_option_typed(capsys):
+    """`rotor srm_symmetric_4_6.toml --male-root-radius 1e-12` named `male_root_radius`."""
+    refused(
+        capsys,
+        "--male-root-radius must be equal to the male pitch radius",
+        "rotor",
+        SAMPLES / "srm_symmetric_4_6.toml",
+        "--male-root-radius",
+        "1e-12",
+    )
+
+
+def test_interfere_self_crossing_dxf_refused(capsys, tmp_path, outlines):
+    """`interfere --male-points` of a self-crossing DXF outline: GEOSException (exit 70) in the
+    long run. Two points swapped make the crossing; shapely (GEOS) names where."""
+    pts = outlines["male"].copy()
+    pts[[100, 107]] = pts[[107, 100]]
+    m = polyline_dxf(tmp_path / "male.dxf", pts)
+    line = refused(
+        capsys,
+        "--male-points must be an outline that does not cross itself",
+        "interfere",
+        SAMPLES / "srm_symmetric_4_6.toml",
+        "--male-points",
+        m,
+        "--steps",
+        "2",
+    )
+    assert "Self-intersection" in line

@@ -10,6 +10,7 @@ from typing import Any, NamedTuple
 import click
 import numpy as np
 import shapely
+import shapely.validation
 import trimesh
 from rich.console import Console
 from rich.table import Table
@@ -578,6 +579,9 @@ def interfere(
                 outline = shapely.Polygon(whole_outline(read_profile_points(path, option, layer), teeth, option))
             except DesignError as exc:
                 raise InputError(exc.sentence()) from None
+            if not outline.is_valid:  # a self-crossing outline: GEOS fails on it in the sweep (exit 70)
+                why = shapely.validation.explain_validity(outline)
+                raise InputError(f"{option} must be an outline that does not cross itself (got {path}): {why}.")
             if option == "--male-points":
                 male = outline
             else:

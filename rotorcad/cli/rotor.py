@@ -301,6 +301,10 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
         bare = exc.param == "family" or exc.param in params or exc.param in ("points", "smoothing")
         if exc.param in ("male points", "female points", "rack points"):  # the library's name of the points
             named = "[profile] points" if design is not None and not sources else f"--{family}"
+        elif exc.param in PAIR_OPTIONS:  # a pair value the family checks: the option if given, else the design key
+            named = (
+                f"--{exc.param.replace('_', '-')}" if opts.get(exc.param) is not None or design is None else f"[pair] {exc.param}"
+            )
         else:
             named = f"[profile] {exc.param}" if design is not None and not sources and bare else None
         raise InputError(exc.sentence(named)) from None
