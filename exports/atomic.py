@@ -98,7 +98,8 @@ def write_all(outputs: Iterable[tuple[Path, Writer]], pool: WorkerPool | None = 
             target = Path(target)
             if target.is_symlink():  # write the file the link points to; the link stays
                 target = Path(os.path.realpath(target))
-            fd, tmp = tempfile.mkstemp(prefix=staging_prefix(target), suffix=".tmp", dir=target.parent or ".")
+            remove_stale_temporaries(target)
+            fd, tmp = tempfile.mkstemp(prefix=f"{staging_prefix(target)}{os.getpid()}.", suffix=".tmp", dir=target.parent or ".")
             os.close(fd)
             staged.append((Path(tmp), target, writer))
         waiting = [workers.submit(w, tmp) for tmp, _, w in staged if isinstance(w, BackgroundWriter)]
@@ -112,12 +113,58 @@ def write_all(outputs: Iterable[tuple[Path, Writer]], pool: WorkerPool | None = 
             os.chmod(tmp, mode)
         for tmp, target, _ in staged:
             os.replace(tmp, target)
-    except BaseException:
-        workers.stop()  # no job may write after its temporary is removed
+    except BaseException as exc:
+        workers.stop(kill=isinstance(exc, KeyboardInterrupt))  # no job may write after its temporary is removed
         for tmp, *_ in staged:
             tmp.unlink(missing_ok=True)
         raise
     return [target for _, target, _ in staged]
+
+
+def remove_stale_temporaries(target: Path) -> list[Path]:
+    """Remove the temporaries of ``target`` left by a run that was killed outright (SIGKILL).
+
+    A temporary is named ``staging_prefix(target) + PID + "." + random + ".tmp"``; one whose
+    process no longer runs can never be finished, and is removed. Those of live processes (another
+    run writing the same file) are left alone.
+
+    Parameters
+    ----------
+    target : Path
+        The file about to be written.
+
+    Returns
+    -------
+    list of Path
+        The temporaries removed.
+    """
+    folder = target.parent if str(target.parent) else Path(".")
+    prefix = staging_prefix(target)
+    removed = []
+    try:
+        names = [n for n in os.listdir(folder) if n.startswith(prefix) and n.endswith(".tmp")]
+    except OSError:
+        return removed
+    for name in names:
+        pid = name[len(prefix) :].split(".", 1)[0]
+        if not pid.isdigit() or int(pid) == os.getpid() or _running(int(pid)):
+            continue
+        try:
+            (folder / name).unlink()
+            removed.append(folder / name)
+        except OSError:
+            pass
+    return removed
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # another user's process: it runs
+        return True
+    return True
 
 
 def _umask() -> int:

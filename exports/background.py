@@ -88,12 +88,44 @@ def worker_count() -> int:
     return 1 if (os.cpu_count() or 1) >= 2 else 0
 
 
-def _start_worker(preload: tuple[str, ...]) -> None:
-    """Prepare the worker: leave Ctrl-C to the parent, then import ``preload`` while the parent goes on.
+PR_SET_PDEATHSIG = 1  # prctl(2) option: the signal this process gets when its parent dies
 
-    The parent stops the worker and removes what it wrote.
+
+def _die_with_parent(parent: int) -> None:
+    """Make this process end when its parent does, however the parent ends (SIGKILL included).
+
+    On Linux the kernel sends SIGKILL to this process when the thread that forked it exits
+    (``prctl(PR_SET_PDEATHSIG)``, prctl(2)); a parent that died before the call is seen by the
+    parent id having changed. Elsewhere nothing is done (the pool runs here there).
+
+    Parameters
+    ----------
+    parent : int
+        The parent's process id, taken before the fork.
     """
+    if sys.platform != "linux":
+        return
+    import ctypes
+
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):  # no prctl: the parent's check below still holds at start
+        pass
+    if os.getppid() != parent:  # the parent died before the call
+        os._exit(1)
+
+
+def _start_worker(preload: tuple[str, ...], parent: int | None = None) -> None:
+    """Prepare the worker: end with the parent, leave Ctrl-C to it, import ``preload`` meanwhile.
+
+    The parent stops the worker and removes what it wrote; a parent killed outright (SIGKILL, a
+    time limit) takes the worker with it (:func:`_die_with_parent`), so no worker outlives it.
+    """
+    if parent is not None:
+        _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the command's handler, inherited by the fork
     for module in preload:
         importlib.import_module(module)
 
@@ -121,7 +153,7 @@ class WorkerPool:
                     max_workers=1,
                     mp_context=multiprocessing.get_context("fork"),
                     initializer=_start_worker,
-                    initargs=(preload,),
+                    initargs=(preload, os.getpid()),
                 )
                 self._executor.submit(int)  # forks now, while this is the only thread
             except (OSError, NotImplementedError, ValueError, BrokenProcessPool):  # e.g. no /dev/shm: run here
@@ -130,13 +162,30 @@ class WorkerPool:
     def __enter__(self) -> WorkerPool:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.stop()
+    def __exit__(self, kind: type[BaseException] | None, *exc: object) -> None:
+        self.stop(kill=kind is not None and issubclass(kind, KeyboardInterrupt))
 
-    def stop(self) -> None:
-        """Cancel what has not started, wait for the running job, stop the worker (idempotent)."""
+    def stop(self, kill: bool = False) -> None:
+        """Cancel what has not started, wait for the running job, stop the worker (idempotent).
+
+        Parameters
+        ----------
+        kill : bool
+            End the worker at once instead of waiting for its job (Ctrl-C, SIGTERM): what it was
+            writing is a temporary the caller removes, and a dead worker writes nothing more.
+        """
         if self._executor is not None:
-            self._executor.shutdown(wait=True, cancel_futures=True)
+            if kill:
+                for process in list(getattr(self._executor, "_processes", {}).values()):
+                    try:
+                        process.kill()
+                        process.join(5.0)
+                    except (OSError, ValueError, AttributeError):
+                        pass
+            try:
+                self._executor.shutdown(wait=True, cancel_futures=True)
+            except BrokenProcessPool:  # the worker was just ended
+                pass
             self._executor = None
 
     def submit(self, job: BackgroundWriter, path: Path) -> Callable[[], None]:

@@ -33,6 +33,9 @@ from exports.reading import check_regular_file
 from rotorcad.curves import Arc, Curve, Line, Spline, sample_curve
 from rotorcad.errors import DesignError
 
+MAX_EXTENT = 1e5
+"""Largest distance of a profile's point from the origin, mm (100 m: no rotor or gear is larger)."""
+
 GAP_TOLERANCE = 1e-3
 """Largest gap between the ends of two entities that are joined, mm."""
 
@@ -45,6 +48,7 @@ PROFILE_TYPES = ("LINE", "ARC", "LWPOLYLINE", "POLYLINE", "SPLINE", "CIRCLE", "E
 
 _READ_TYPES = "LINE, ARC, LWPOLYLINE, POLYLINE or SPLINE entities"
 _VERTEX_SPLINE_FRAME = 16  # POLYLINE vertex flag: control point of a spline-fit polyline, not on it
+_NOTED_GAP = 1e-6  # mm: a closing gap wider than this (not a rounding of the drawing) is closed with a note
 _FLAT = 1e-6  # mm: an entity whose z varies more than this is not drawn in a plane z = const
 
 Piece = list[Curve]  # the curves of one entity, already end to end
@@ -220,6 +224,12 @@ def _spline(entity, label: str, value: str) -> Curve:
     return Spline(knots=(knots, coefficients, degree), s0=float(knots[degree]), s1=float(knots[-degree - 1]))
 
 
+def _finite(entity, values: np.ndarray, label: str, value: str) -> None:
+    """Refuse an entity with a NaN or infinite coordinate or bulge, before any curve is made of it."""
+    if not np.isfinite(values).all():
+        raise DesignError(label, "a profile of finite coordinates", value, f"{_name(entity)} has a NaN or infinite value")
+
+
 def _entity_piece(entity, label: str, value: str) -> Piece:
     """Return the curves of one entity in its own order, in world coordinates."""
     kind = entity.dxftype()
@@ -237,6 +247,7 @@ def _entity_piece(entity, label: str, value: str) -> Piece:
     if kind == "LINE":
         a, b = np.asarray(entity.dxf.start, dtype=float), np.asarray(entity.dxf.end, dtype=float)
         _flat(entity, np.array([a[2], b[2]]), label, value)
+        _finite(entity, np.array([a, b]), label, value)
         segment = _segment(a[:2], b[:2], 0.0)
         piece = [] if segment is None else [segment]
     elif kind == "ARC":
@@ -255,6 +266,7 @@ def _entity_piece(entity, label: str, value: str) -> Piece:
     elif kind == "LWPOLYLINE":
         mirror = _ocs_mirror(entity, label, value)
         rows = np.asarray(list(entity.get_points("xyb")), dtype=float).reshape(-1, 3)
+        _finite(entity, rows, label, value)
         piece = _polyline(rows[:, :2], rows[:, 2], bool(entity.closed))
         if mirror:
             piece = [_mirrored(c) for c in piece]
@@ -263,6 +275,7 @@ def _entity_piece(entity, label: str, value: str) -> Piece:
             raise DesignError(label, f"a profile of {_READ_TYPES}", value, f"{_name(entity)} is a mesh, not a profile")
         vertices = [v for v in entity.vertices if not v.dxf.flags & _VERTEX_SPLINE_FRAME]
         xyz = np.asarray([v.dxf.location for v in vertices], dtype=float).reshape(-1, 3)
+        _finite(entity, np.c_[xyz, [v.dxf.bulge for v in vertices]], label, value)
         if entity.is_3d_polyline:  # world coordinates, straight segments
             _flat(entity, xyz[:, 2], label, value)
             piece = _polyline(xyz[:, :2], np.zeros(len(xyz)), bool(entity.is_closed))
@@ -312,10 +325,12 @@ def _chain(pieces: list[Piece], names: list[str], label: str, value: str) -> tup
         return (i, False, float(ds[i])) if ds[i] <= de[j] else (j, True, float(de[j]))
 
     closed = bool(np.hypot(*(tail - head)) <= GAP_TOLERANCE)
+    joints: list[tuple[float, np.ndarray]] = []  # the gaps joined, and where
     while not closed and free.any():  # forward from the tail
         i, at_end, gap = nearest(tail)
         if gap > GAP_TOLERANCE:
             break
+        joints.append((gap, tail))
         free[i] = False
         chain += _reverse(pieces[i]) if at_end else pieces[i]
         tail = starts[i] if at_end else ends[i]
@@ -324,6 +339,7 @@ def _chain(pieces: list[Piece], names: list[str], label: str, value: str) -> tup
         i, at_end, gap = nearest(head)
         if gap > GAP_TOLERANCE:
             break
+        joints.append((gap, head))
         free[i] = False
         chain = (pieces[i] if at_end else _reverse(pieces[i])) + chain
         head = starts[i] if at_end else ends[i]
@@ -348,8 +364,23 @@ def _chain(pieces: list[Piece], names: list[str], label: str, value: str) -> tup
             f"there is a gap of {gap:.6g} mm between ({point[0]:.6f}, {point[1]:.6f}) mm and "
             f"({other[0]:.6f}, {other[1]:.6f}) mm ({names[i]})",
         )
-    span = np.hypot(*np.ptp(np.vstack([starts, ends]), axis=0))
+    ends_of_curves = np.array([p for c in chain for p in (c.start, c.end)])
+    span = np.hypot(*np.ptp(ends_of_curves, axis=0))  # the chain's extent (one polyline has two ends only)
     gap = float(np.hypot(*(tail - head)))
+    if closed:
+        joints.append((gap, tail))
+    widest, where = max(joints, key=lambda j: j[0], default=(0.0, tail))
+    if widest > _NOTED_GAP:
+        import warnings
+
+        from rotorcad.errors import InputNote
+
+        warnings.warn(
+            f"{label} {value}: the outline was joined across a gap of {widest:.3g} mm at ({where[0]:.6f}, {where[1]:.6f}) mm, "
+            f"within the joining accuracy of {GAP_TOLERANCE:g} mm",
+            InputNote,
+            stacklevel=2,
+        )
     if not closed and gap < CLOSING_GAP * span:
         raise DesignError(
             label,
@@ -436,6 +467,11 @@ def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]
         where = "in modelspace" if layer is None else f"on the layer {layer!r}"
         raise DesignError(label, f"a DXF drawing with a profile {where}", value, "its entities all have zero length")
     chain, closed = _chain(pieces, names, label, value)
+    far = max(float(np.hypot(*point)) for c in chain for point in (c.start, c.end))
+    if far > MAX_EXTENT:  # e.g. a drawing scaled x1e9: its arcs would be sampled to 0.1 um for hours
+        raise DesignError(
+            label, f"a profile within {MAX_EXTENT:g} mm of the origin", value, f"a point lies {far:.3g} mm from it (other units?)"
+        )
     return _orient(chain, closed), closed
 
 

@@ -27,6 +27,13 @@ from exports.step import _quiet_ocp
 from rotorcad.geometry import rotate
 
 
+class StepDeviationError(ValueError):
+    """The swept faces lie farther from the exact helicoid than the tolerance.
+
+    The samples of the section are too sparse for the B-spline fit.
+    """
+
+
 @dataclass(frozen=True)
 class SectionSegment:
     """One segment of a closed counter-clockwise section.
@@ -307,7 +314,7 @@ def write_exact_step(
         dev = helicoid_deviation(shape, exact, lead, length)
         result["deviation"] = dev
         if dev > tolerance:
-            raise ValueError(
+            raise StepDeviationError(
                 f"the STEP surface is {dev * 1e3:.2f} um from the helicoid, more than the tolerance {tolerance * 1e3:g} um"
             )
     if offset != (0.0, 0.0):

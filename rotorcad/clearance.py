@@ -392,6 +392,13 @@ class MeshingClearance:
             min_turn=MEASURED_MIN_TURN,
             join_gap=MEASURED_JOIN_GAP,
         )
+        if len(rack.points) < 2:  # e.g. a drawing in metres or scaled x1e9: no normal meets the pitch circle
+            raise DesignError(
+                f"{side.value} points",
+                "a profile whose every normal meets its pitch circle (it has a rack)",
+                None,
+                f"{100.0 * rack.lost_fraction:.1f} % of the lobe has no rack point",
+            )
         return rack.in_contract_frame()
 
     @cached_property
@@ -587,6 +594,16 @@ class MeshingClearance:
         if not use.any():
             return use
         z = z - z[use].min()
+        pairs = use[:-1] & use[1:]
+        reach = np.maximum(z[:-1], z[1:])[pairs]  # the rotor length that holds a segment of the contact line
+        if reach.size and reach.min() > pair.length + 1e-9:  # not one segment within the length: no band
+            longest = abs(pair.lead) * pair.length / float(reach.min())
+            raise DesignError(
+                "lead",
+                f"at most {longest:.6g} mm for a rotor length of {pair.length:g} mm",
+                pair.lead,
+                "a longer lead leaves less than one segment of the contact line within the rotors",
+            )
         return use & (z <= pair.length + 1e-9)
 
     @cached_property

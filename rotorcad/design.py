@@ -66,10 +66,45 @@ def check_table(
         if isinstance(value, bool) or not isinstance(value, expected):
             kind = {int: "a whole number", list: "a list", str: "a text in quotes"}.get(expected, "a number")
             raise DesignError(f"[{table}] {key}", kind, repr(value))
+    section = dict(section)
+    for key, value in section.items():  # a number as a float: an integer beyond float range is refused
+        if isinstance(value, int) and not isinstance(value, bool) and keys[key] in (NUMBER, int):
+            try:
+                number = float(value)
+                if keys[key] == NUMBER:
+                    section[key] = number
+            except OverflowError:
+                raise DesignError(
+                    f"[{table}] {key}",
+                    "a number within the range of a float (below 1.8e308)"
+                    if keys[key] == NUMBER
+                    else "a whole number below 1.8e308",
+                    f"an integer of {int(value.bit_length() * 0.30103) + 1} digits",
+                ) from None
     for key in required:
         if key not in section:
             raise DesignError(f"[{table}] {key}", "given", None, "missing key")
-    return dict(section)
+    return section
+
+
+def refuse_huge_integers(data: dict[str, Any]) -> None:
+    """Refuse any integer of a design beyond float range, in any table (a family's ``[profile]`` too).
+
+    Parameters
+    ----------
+    data : dict
+        The design as a TOML file holds it.
+
+    Raises
+    ------
+    DesignError
+        Naming the ``[table] key`` of the first such integer.
+    """
+    for table, section in data.items():
+        for key, value in section.items() if isinstance(section, dict) else ():
+            if isinstance(value, int) and not isinstance(value, bool) and abs(value).bit_length() > 1023:
+                digits = int(value.bit_length() * 0.30103) + 1
+                raise DesignError(f"[{table}] {key}", "a number below 1.8e308", f"an integer of {digits} digits")
 
 
 def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
@@ -92,6 +127,7 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
     DesignError
         Naming the table or key that is wrong.
     """
+    refuse_huge_integers(data)
     for table in data:
         if table not in ("gear", "mate"):
             raise DesignError(f"table [{table}]", "one of [gear], [mate] in a gear design", None, "unknown table")
@@ -165,6 +201,8 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
         Naming the table or key that is wrong (unknown, of the wrong type, missing or out of
         range).
     """
+    refuse_huge_integers(data)
+
     from rotorcad.linked_values import resolve_expressions
 
     data = resolve_expressions(data)  # values stated as expressions of a, z1, z2 (rotorcad.linked_values)

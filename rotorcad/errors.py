@@ -51,3 +51,11 @@ class DesignError(ValueError):
         if self.detail:
             text += f": {self.detail}"
         return text + "."
+
+
+class InputNote(UserWarning):
+    """Something rotorcad did to the input that the user should know of.
+
+    E.g. a DXF outline closed across a gap within the stated accuracy; the command line prints it
+    as one line ``rotorcad: note: ...`` on stderr after a successful run.
+    """

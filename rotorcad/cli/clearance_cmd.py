@@ -78,7 +78,10 @@ def clearance(**opts: Any) -> None:
     The normal racks of both rotors, brought into contact, the normal clearance along the female's
     rack, and the clearance band on the 3D contact line (area, equal clearance, wetted perimeter).
     """
-    mc = _evaluate(opts)
+    from rotorcad.cli.progress import Steps
+
+    with Steps("clearance: racks, contact and band", None, opts["quiet"]):  # seconds of work: a bar on a terminal
+        mc = _evaluate(opts)
     try:
         result = {
             **mc.summary(),
@@ -132,7 +135,16 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     rm, rf = np.hypot(*profile_points(male).T), np.hypot(*profile_points(female).T)
+    a = opts["center_distance"]
+    for option, radii in (("--male-points", rm), ("--female-points", rf)):
+        if np.isfinite(a) and a > 0 and not radii.max() < a:  # e.g. a drawing in other units
+            raise InputError(
+                f"{option} must be a lobe within the --center-distance of {a:g} mm, but its largest radius is "
+                f"{radii.max():.6g} mm (a drawing in other units?)."
+            )
     names = {
+        "male points": "--male-points",
+        "female points": "--female-points",
         "male_tip_radius": "--male-points (its largest radius)",
         "male_root_radius": "--male-points (its smallest radius)",
         "female_tip_radius": "--female-points (its largest radius)",
@@ -168,7 +180,7 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
             scatter=max(q[0] for q in quality),
             spacing=max(q[1] for q in quality),
         )
-        mc.clearance  # noqa: B018 - evaluate here so that its errors are reported as bad input
+        mc.summary()  # evaluate here (the clearance and its band) so that its errors are reported as bad input
     except DesignError as exc:
         bare = " " not in exc.param and not exc.param.startswith("--")  # an option's name, not already "--male-points"
         label = names.get(exc.param, f"--{exc.param.replace('_', '-')}" if bare else exc.param)

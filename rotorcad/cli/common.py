@@ -16,7 +16,7 @@ from rich.table import Table
 
 from exports.atomic import Writer, check_writable, staging_prefix, write_all
 from exports.background import WorkerPool
-from rotorcad.errors import DesignError
+from rotorcad.errors import DesignError, InputNote
 
 
 class InputError(click.ClickException):
@@ -322,6 +322,8 @@ class Outputs:
     def __init__(self) -> None:
         self._items: list[tuple[Path, Writer]] = []
         self._options: dict[Path, str] = {}
+        self.replaced: list[Path] = []
+        """The files that were there before :meth:`write` and were replaced whole."""
 
     def add(self, path: Path | None, writer: Writer, option: str) -> None:
         """Add a file to write, checked at once.
@@ -394,10 +396,21 @@ class Outputs:
         InputError
             A write that failed, naming the option and its file.
         """
+        there = [(p, self._options[p]) for p, _ in self._items if p.is_file()]  # a link: the file it points to
         try:
-            return write_all(self._items, pool)
+            written = write_all(self._items, pool)
         except OSError as exc:
             raise InputError(self._failure(exc)) from None
+        self.replaced = [p for p, _ in there]
+        if there:  # one policy for every command: an existing file is replaced whole, and named
+            import warnings
+
+            by_option: dict[str, list[str]] = {}
+            for path, option in there:
+                by_option.setdefault(option, []).append(str(path))
+            named = "; ".join(f"{', '.join(paths)} ({option})" for option, paths in by_option.items())
+            warnings.warn(f"replaced the existing {'file' if len(there) == 1 else 'files'} {named}", InputNote, stacklevel=2)
+        return written
 
     def _failure(self, exc: OSError) -> str:
         """Return the sentence for a failed write, naming the option and its file (never the temporary)."""

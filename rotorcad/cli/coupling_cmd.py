@@ -259,9 +259,14 @@ def _check_inputs(opts: dict[str, Any]) -> None:
             if key in OPTIONAL:
                 continue
             raise InputError(f"{flag} is required ({allowed}).")
-        ok = math.isfinite(v) and (v >= lo if closed else v > lo) and v <= hi
-        if not ok:
-            raise InputError(f"{flag} must be {allowed} (got {v}).")
+        ok = (v.bit_length() < 64 if isinstance(v, int) else math.isfinite(v)) and (v >= lo if closed else v > lo) and v <= hi
+        if not ok:  # an integer beyond float range (`--teeth 10**400`) is compared as it is, never converted
+            shown = (
+                v
+                if not isinstance(v, int) or v.bit_length() < 64
+                else f"an integer of {int(v.bit_length() * 0.30103) + 1} digits"
+            )
+            raise InputError(f"{flag} must be {allowed} (got {shown}).")
     if opts["barrel_radius"] is None and opts["misalignment_deg"] < MIN_DERIVED_MISALIGNMENT:
         raise InputError(
             f"--misalignment-deg must be at least {MIN_DERIVED_MISALIGNMENT} when --barrel-radius is not given "

@@ -10,6 +10,7 @@ from typing import Any, NamedTuple
 import click
 import numpy as np
 import shapely
+import shapely.validation
 from rich.console import Console
 from rich.table import Table
 
@@ -134,6 +135,7 @@ def export(
         if formats
         else [str(f).lower() for f in settings["export"].get("formats", ["stl"])]
     )
+    fmts = list(dict.fromkeys(fmts))  # a format given twice is one file, one row
     for f in fmts:
         if f not in FORMATS:
             raise InputError(f"--format must be a comma-separated list of {', '.join(FORMATS)} (got {f!r}).")
@@ -185,33 +187,49 @@ def export(
         def write_mesh_dxf(p: Path, body: str, fmt: str, row: dict[str, Any]) -> None:
             made = body_mesh(body)
             if len(made.mesh.faces) > DXF_MESH_MAX:
-                needed = tol
-                for _ in range(12):  # find the tolerance that would do (triangles fall slower than 1/tolerance)
-                    needed *= 1.5
-                    coarse = helical_solid(rotors.section(body, needed / 2), leads[body], pair.length, needed)
-                    if len(coarse.triangle_mesh.faces) <= DXF_MESH_MAX:
-                        break
-                raise InputError(
-                    f"--tolerance must be coarser for a DXF mesh ({len(made.mesh.faces)} triangles; at most {DXF_MESH_MAX}): "
-                    f"{needed:.3g} mm or coarser would do."
-                )
+                _refuse_mesh_size(fmt, body, len(made.mesh.faces), DXF_MESH_MAX, coarser_tolerance(body, DXF_MESH_MAX))
             row.update(triangles=len(made.mesh.faces), volume=made.volume, tolerance=made.tolerance)
             write_dxf_mesh(p, made.mesh.vertices, made.mesh.faces, body.upper(), "R12" if fmt.endswith("r12") else "R2000")
 
+        def estimated_triangles(body: str, t: float) -> float:
+            """Triangles of the body's mesh at the tolerance ``t`` (mm), estimated without sweeping it."""
+            coarse = max(t / 2, 0.05)
+            section = rotors.section(body, coarse)
+            r_max = float(np.hypot(*np.asarray(section.exterior.coords).T).max())
+            return solid_triangles(points_at(section, coarse, t / 2), leads[body], pair.length, r_max, t)
+
+        def coarser_tolerance(body: str, limit: int) -> float:
+            """Return a tolerance, mm (3 digits, rounded up), whose mesh of ``body`` has at most ``limit`` triangles.
+
+            Found on the estimate (:func:`rotorcad.work.solid_triangles`, bisected), then checked
+            by sweeping the body at it (coarse, so quick), coarsened until it does fit.
+            """
+            lo, hi = np.log(tol), np.log(max(tol, 1.0))
+            for _ in range(30):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (lo, mid) if estimated_triangles(body, float(np.exp(mid))) <= limit else (mid, hi)
+            need = float(np.exp(hi))
+            for _ in range(20):
+                need = float(np.ceil(need * 10 ** (2 - np.floor(np.log10(need)))) / 10 ** (2 - np.floor(np.log10(need))))
+                made = helical_solid(rotors.section(body, need / 2), leads[body], pair.length, need)
+                if len(made.mesh.faces) <= limit:
+                    break
+                need *= 1.2
+            return need
+
         def write_faceted(p: Path, body: str, row: dict[str, Any]) -> None:
             made = body_mesh(body)
-            coarse_tol = tol
             faces = len(made.mesh.faces)
-            while faces > FACETED_STEP_MAX:  # facets go like 1/tol: coarsen until readable
-                coarse_tol *= 1.5 * faces / FACETED_STEP_MAX
-                coarse = helical_solid(rotors.section(body, coarse_tol / 2), leads[body], pair.length, coarse_tol)
-                mesh = coarse.triangle_mesh.copy()
-                mesh.apply_translation([*shift[body], 0.0])
-                made = _SweptBody(mesh, coarse.volume, coarse.tolerance)
-                faces = len(mesh.faces)
+            if faces > FACETED_STEP_MAX:  # a file coarser than asked is never written: the tolerance that can be met
+                _refuse_mesh_size("step-faceted", body, faces, FACETED_STEP_MAX, coarser_tolerance(body, FACETED_STEP_MAX))
             row.update(triangles=faces, volume=made.volume, tolerance=made.tolerance)
             write_faceted_step(p, made.mesh.vertices, made.mesh.faces, body)
 
+        for fmt, limit in (("dxf-mesh", DXF_MESH_MAX), ("dxf-mesh-r12", DXF_MESH_MAX), ("step-faceted", FACETED_STEP_MAX)):
+            for body in ("male", "female") if fmt in fmts else ():  # far over on the estimate: refused before any sweep
+                if estimated_triangles(body, tol) > 2 * limit:
+                    needed = coarser_tolerance(body, limit)
+                    _refuse_mesh_size(fmt, body, estimated_triangles(body, tol), limit, needed)
         outputs = Outputs()
         rows: list[dict[str, Any]] = []
         for body in ("male", "female"):
@@ -308,6 +326,7 @@ def export(
     progress.stop()
     for row in rows:
         row["size"] = Path(row["path"]).stat().st_size if Path(row["path"]).exists() else 0
+        row["replaced"] = Path(row["path"]) in outputs.replaced  # a file that was there, replaced whole
     result = {"files": rows, "tolerance": tol, "clearance": clearance}
     if as_json:
         emit_json(result)
@@ -327,6 +346,21 @@ def export(
                 f"{row['size'] / 1e6:.2f}",
             )
         Console(file=sys.stdout, highlight=False).print(table)
+
+
+def _refuse_mesh_size(fmt: str, body: str, triangles: float, limit: int, needed: float) -> None:
+    """Refuse a DXF mesh or faceted STEP of too many triangles, naming the tolerance that would do.
+
+    A file coarser than the tolerance asked is never written (issue 24: a faceted STEP was written at
+    3.1 mm where 5 um were asked).
+    """
+    what = "a DXF mesh" if fmt.startswith("dxf-mesh") else "a faceted STEP, which OpenCASCADE reads in seconds,"
+    can = f"{needed:.3g} mm or coarser would do" if needed <= 1.0 else f"only {needed:.3g} mm would, above the 1 mm allowed"
+    alternative = "; --format step writes the exact solid" if fmt == "step-faceted" else ""
+    raise InputError(
+        f"--tolerance must be coarser for {what} of the {body} (about {triangles:.3g} triangles; at most {limit}): "
+        f"{can}{alternative}."
+    )
 
 
 STEP_TOLERANCE = 1e-3  # mm: the exact STEP is checked against the helicoid to 1 um unless --tolerance is finer
@@ -358,7 +392,7 @@ def _export_gear(
     design: Path, formats: str | None, out: Path, tolerance: float | None, as_json: bool, data: dict[str, Any] | None = None
 ) -> None:
     """Run the gear branch of ``export``: formats default to stl, step and dxf, tolerance to 5 µm."""
-    fmts = [f.strip().lower() for f in (formats or "stl,step,dxf").split(",")]
+    fmts = list(dict.fromkeys(f.strip().lower() for f in (formats or "stl,step,dxf").split(",")))  # each once
     tol = 0.005 if tolerance is None else tolerance
     if not (np.isfinite(tol) and 0 < tol <= 1.0):
         raise InputError(f"--tolerance must be a surface tolerance between 0 and 1 mm (got {tol}).")
@@ -545,6 +579,9 @@ def interfere(
                 outline = shapely.Polygon(whole_outline(read_profile_points(path, option, layer), teeth, option))
             except DesignError as exc:
                 raise InputError(exc.sentence()) from None
+            if not outline.is_valid:  # a self-crossing outline: GEOS fails on it in the sweep (exit 70)
+                why = shapely.validation.explain_validity(outline)
+                raise InputError(f"{option} must be an outline that does not cross itself (got {path}): {why}.")
             if option == "--male-points":
                 male = outline
             else:

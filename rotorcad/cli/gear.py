@@ -264,7 +264,21 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
     except DesignError as exc:
         mate_named = {k.removeprefix("mate "): v for k, v in named.items() if k.startswith("mate ")}
         raise reraise(exc, {**MATE_OPTION, **mate_named}) from None
-    check_contact(pair.contact_ratio, "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle")
+    given = set(named.values())  # the design's keys still in force are named as the user wrote them
+    names = [
+        key if key in given else option
+        for option, key in (
+            ("--teeth", "[gear] teeth"),
+            ("--mate-teeth", "[mate] teeth"),
+            ("--shift", "[gear] shift"),
+            ("--mate-shift", "[mate] shift"),
+            ("--addendum", "[gear] addendum"),
+            ("--pressure-angle", "[gear] pressure_angle_deg"),
+        )
+    ]
+    if a is not None:  # a centre distance given sets the mesh too
+        names.insert(2, "[mate] center_distance" if "[mate] center_distance" in given else "--center-distance")
+    check_contact(pair.contact_ratio, ", ".join(names[:-1]) + " and " + names[-1])
     return g, pair
 
 

@@ -7,8 +7,12 @@ Every input problem ends as one sentence on stderr and exit status 2, without a 
 from __future__ import annotations
 
 import os
+import re
+import signal
 import sys
+import threading
 import warnings
+from typing import Any
 
 
 def _interrupted_hook(kind, value, tb):  # pragma: no cover - exercised by a real Ctrl-C at start-up
@@ -27,7 +31,7 @@ import importlib  # noqa: E402
 import click  # noqa: E402
 
 from rotorcad import __version__  # noqa: E402
-from rotorcad.errors import DesignError  # noqa: E402
+from rotorcad.errors import DesignError, InputNote  # noqa: E402
 
 # name -> (module:attribute, one-line summary): a command's module (and the heavy libraries it
 # needs) is imported only when that command runs, so `rotorcad --help` starts at once
@@ -94,15 +98,69 @@ def main(argv: list[str] | None = None) -> int:
         2 bad input, 130 interrupted (Ctrl-C), 70 an internal error (a bug: please report it).
     """
     args = sys.argv[1:] if argv is None else list(argv)
-    with warnings.catch_warnings():  # numpy's RuntimeWarnings are no message for a user: results are checked
-        warnings.simplefilter("ignore", RuntimeWarning)
-        status = _run(args)
+    from rotorcad.cli import progress
+
+    previous = _on_signals()
+    progress.start_waiting("--quiet" in args or not args or {"-h", "--help", "--version"} & set(args))
+    try:
+        with warnings.catch_warnings(record=True) as caught:  # numpy's RuntimeWarnings are no message for a user
+            warnings.simplefilter("ignore", RuntimeWarning)
+            warnings.simplefilter("always", InputNote)
+            status = _run(args)
+    finally:
+        progress.stop_waiting()
+        progress.SIGNALLED.clear()
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+    for w in caught:  # other warnings as before
+        if not issubclass(w.category, InputNote):
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    if status in (0, 1):  # a refusal stays one sentence; after a result, what was done to the input
+        for note in dict.fromkeys(str(w.message) for w in caught if issubclass(w.category, InputNote)):
+            click.echo(f"rotorcad: note: {note}.", err=True)
     common = sys.modules.get("rotorcad.cli.common")  # imported by any command that makes a folder
     if common is not None:
         if status not in (0, 1):
             common.remove_created_folders()
         common.CREATED_FOLDERS.clear()
     return status
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM (a time limit, ``kill``): unwound like Ctrl-C, so that temporaries and the worker go."""
+
+
+def _signalled(signum: int, frame: object) -> None:
+    """Record Ctrl-C or SIGTERM and unwind.
+
+    A library that swallows the exception (trimesh wraps any exception of its imports) is caught
+    again at the next progress step (:data:`rotorcad.cli.progress.SIGNALLED`).
+    """
+    from rotorcad.cli import progress
+
+    progress.SIGNALLED.append(signum)
+    raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
+
+
+def _on_signals() -> dict[int, Any]:
+    """Route SIGINT and SIGTERM to :func:`_signalled` while a command runs; return the handlers replaced.
+
+    Nothing is changed outside the main thread, where Python cannot set a handler.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    return {signum: signal.signal(signum, _signalled) for signum in (signal.SIGINT, signal.SIGTERM)}
+
+
+def _stopped() -> int:
+    """Say why the command was stopped (one line) and return its status: 143 SIGTERM, else 130."""
+    from rotorcad.cli import progress
+
+    if signal.SIGTERM in progress.SIGNALLED:
+        click.echo("rotorcad: terminated.", err=True)
+        return 143
+    click.echo("rotorcad: interrupted.", err=True)
+    return 130
 
 
 def _run(args: list[str]) -> int:
@@ -116,11 +174,14 @@ def _run(args: list[str]) -> int:
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
     except (click.exceptions.Abort, KeyboardInterrupt):
-        click.echo("rotorcad: interrupted.", err=True)
-        return 130
+        return _stopped()
     except click.ClickException as exc:
         message = " ".join(exc.format_message().split())
-        if not message.endswith((".", "?", "!")):
+        # click's "No such option '--x'. Did you mean '--y'?" as one sentence: "... '--x' (did you mean '--y'?)."
+        message = re.sub(r"\. \(?Did you mean (.*?)\??\)?$", r" (did you mean \1?)", message)
+        if not message.endswith((".", "?", "!", ")")):
+            message += "."
+        elif message.endswith(")"):
             message += "."
         click.echo(f"rotorcad: error: {message}", err=True)
         return 2 if exc.exit_code in (1, 2) else int(exc.exit_code)
@@ -131,6 +192,8 @@ def _run(args: list[str]) -> int:
         click.echo("rotorcad: error: the request needs more memory than this machine has; ask for less detail.", err=True)
         return 2
     except Exception as exc:  # a bug: one line (set ROTORCAD_DEBUG=1 for the traceback), never a silent pass
+        if sys.modules["rotorcad.cli.progress"].SIGNALLED:  # the signal's exception was swallowed and this followed
+            return _stopped()
         if os.environ.get("ROTORCAD_DEBUG"):
             raise
         text = " ".join(str(exc).split())[:300]

@@ -16,6 +16,10 @@ import sys
 from types import TracebackType
 from typing import Any
 
+SIGNALLED: list[int] = []
+"""Ctrl-C or SIGTERM received while the command runs (set by the command line's handlers): the
+next progress step raises again, in case a library swallowed the first exception."""
+
 OPENED: list[str] = []
 """The descriptions of every :class:`Steps` opened in this process, in order (for the tests)."""
 
@@ -44,6 +48,11 @@ class Steps:
     def __init__(
         self, description: str, total: int | None, quiet: bool = False, columns: tuple[str, ...] = (), **fields: Any
     ) -> None:
+        stop_waiting()  # a stage's own bar replaces the command's "working" bar
+        _OWN_BAR_SHOWN.append(True)
+        self._setup(description, total, quiet, columns, fields)
+
+    def _setup(self, description: str, total: int | None, quiet: bool, columns: tuple[str, ...], fields: dict) -> None:
         self.description = description
         self.total = total
         self.done = 0
@@ -90,6 +99,8 @@ class Steps:
         description : str, optional
             Replaces the text left of the bar.
         """
+        if SIGNALLED:
+            raise KeyboardInterrupt
         self.done += steps
         if self._bar is not None:
             fields: dict[str, Any] = {"advance": steps}
@@ -107,6 +118,8 @@ class Steps:
         **fields
             Values of the columns' fields (e.g. ``failed=3``).
         """
+        if SIGNALLED:
+            raise KeyboardInterrupt
         self.done = completed
         if self._bar is not None:
             self._bar.update(self._task, completed=completed, **fields)
@@ -115,4 +128,61 @@ class Steps:
         self.stop()
 
 
-__all__ = ["OPENED", "Steps", "on_terminal"]
+WAIT_SECONDS = 2.0
+"""A command still working after this long without a bar of its own shows a "working" bar."""
+_WAITING: list[Steps] = []
+_TIMER: list[Any] = []  # the SIGALRM handler the timer replaced
+
+
+def _show_waiting(signum: int, frame: Any) -> None:
+    _restore_timer()
+    if _WAITING or _OWN_BAR_SHOWN:
+        return
+    try:  # a handler's exception would surface anywhere in the command: a bar is never worth that
+        bar = Steps.__new__(Steps)  # not through __init__: it would stop this very bar
+        Steps._setup(bar, "working", None, False, (), {})
+        _WAITING.append(bar.start())
+    except Exception:
+        pass
+
+
+def _restore_timer() -> None:
+    import signal
+
+    if _TIMER:
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        signal.signal(signal.SIGALRM, _TIMER.pop())
+
+
+def start_waiting(quiet: bool) -> None:
+    """Arm the "working" bar: shown after :data:`WAIT_SECONDS` if no stage has a bar by then.
+
+    Only on a terminal, without ``--quiet`` and in the main thread (a SIGALRM timer, not a thread:
+    a thread would keep ``export`` from forking its writer process).
+    """
+    import signal
+    import threading
+
+    if quiet or not on_terminal() or threading.current_thread() is not threading.main_thread():
+        return
+    if signal.getsignal(signal.SIGALRM) not in (signal.SIG_DFL, signal.SIG_IGN, None):
+        return  # the caller's own alarm (e.g. a test's time limit) is left alone
+    import rich.console  # imported here, never inside the signal handler
+    import rich.progress  # noqa: F401
+
+    _OWN_BAR_SHOWN.clear()
+    _TIMER.append(signal.signal(signal.SIGALRM, _show_waiting))
+    signal.setitimer(signal.ITIMER_REAL, WAIT_SECONDS)
+
+
+def stop_waiting() -> None:
+    """Disarm the timer and take the "working" bar away (idempotent)."""
+    _restore_timer()
+    while _WAITING:
+        _WAITING.pop().stop()
+
+
+_OWN_BAR_SHOWN: list[bool] = []
+
+
+__all__ = ["OPENED", "Steps", "on_terminal", "start_waiting", "stop_waiting"]

@@ -178,11 +178,12 @@ def report(design: Path, out_path: Path, files_dir: Path | None, as_json: bool, 
         "hobbable": content["hob"]["hobbable"],
         "defect_count": len(content["result"].get("defects", [])),
         "files": written,
+        "replaced": [str(p) for p in outputs.replaced],  # files that were there, replaced whole (also said on stderr)
     }
     if as_json:
         emit_json(result)
     else:
-        print_table(f"report of {design.name}", {k: v for k, v in result.items() if k != "files"})
+        print_table(f"report of {design.name}", {k: v for k, v in result.items() if k not in ("files", "replaced")})
         for p in written:
             click.echo(f"wrote {p}")
 

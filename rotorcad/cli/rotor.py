@@ -289,7 +289,8 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
     if smoothing is not None and not (np.isfinite(smoothing) and smoothing >= 0):
         raise InputError(f"--smoothing must be a number of at least 0 mm^2 (got {smoothing}).")
     if not (np.isfinite(speed) and speed > 0):
-        raise InputError(f"--speed must be a positive speed in rpm (got {speed}).")
+        named = "--speed" if opts.get("speed") is not None else "[operating] speed_rpm"  # interfere, export: no --speed
+        raise InputError(f"{named} must be a positive speed in rpm (got {speed}).")
     missing = [k for k in PAIR_OPTIONS if k not in values]
     if missing:
         raise InputError(f"--{missing[0].replace('_', '-')} is required (or a design file with [pair] {missing[0]}).")
@@ -311,9 +312,15 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
     except DesignError as exc:
         # a family's parameter is the design's key with its table (the family names it bare)
         bare = exc.param == "family" or exc.param in params or exc.param in ("points", "smoothing")
-        raise InputError(
-            exc.sentence(f"[profile] {exc.param}" if design is not None and not sources and bare else None)
-        ) from None
+        if exc.param in ("male points", "female points", "rack points"):  # the library's name of the points
+            named = "[profile] points" if design is not None and not sources else f"--{family}"
+        elif exc.param in PAIR_OPTIONS:  # a pair value the family checks: the option if given, else the design key
+            named = (
+                f"--{exc.param.replace('_', '-')}" if opts.get(exc.param) is not None or design is None else f"[pair] {exc.param}"
+            )
+        else:
+            named = f"[profile] {exc.param}" if design is not None and not sources and bare else None
+        raise InputError(exc.sentence(named)) from None
     return rotors, float(speed), clearance
 
 
