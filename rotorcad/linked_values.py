@@ -32,13 +32,13 @@ from __future__ import annotations
 
 import ast
 import math
-import operator
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
 from rotorcad.errors import DesignError
+from rotorcad.expressions import evaluate
 
 LINKED_TABLES = ("pair", "profile", "housing")
 """Tables whose numbers may be expressions."""
@@ -56,15 +56,6 @@ FUNCTIONS: dict[str, Callable[..., float]] = {
     "abs": abs,
     "min": min,
     "max": max,
-}
-_OPERATORS: dict[type, Callable[..., float]] = {
-    ast.Add: operator.add,
-    ast.Sub: operator.sub,
-    ast.Mult: operator.mul,
-    ast.Div: operator.truediv,
-    ast.Pow: operator.pow,
-    ast.USub: operator.neg,
-    ast.UAdd: operator.pos,
 }
 MAX_EXPRESSION_CHARS = 200
 ALLOWED = (
@@ -104,28 +95,7 @@ def base_quantities(pair: dict[str, Any]) -> dict[str, float]:
 
 def _evaluate(node: ast.AST, lookup: Callable[[str], float]) -> float:
     """Walk an expression tree of numbers, names, the arithmetic operators and :data:`FUNCTIONS`."""
-    if isinstance(node, ast.Expression):
-        return _evaluate(node.body, lookup)
-    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
-        return float(node.value)
-    if isinstance(node, ast.Name):
-        return lookup(node.id)
-    if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
-        left, right = _evaluate(node.left, lookup), _evaluate(node.right, lookup)
-        if isinstance(node.op, ast.Pow) and abs(right) > 64:
-            raise ValueError("an exponent above 64")
-        return float(_OPERATORS[type(node.op)](left, right))
-    if isinstance(node, ast.UnaryOp) and type(node.op) in _OPERATORS:
-        return float(_OPERATORS[type(node.op)](_evaluate(node.operand, lookup)))
-    if (
-        isinstance(node, ast.Call)
-        and isinstance(node.func, ast.Name)
-        and node.func.id in FUNCTIONS
-        and not node.keywords
-        and 1 <= len(node.args) <= 8
-    ):
-        return float(FUNCTIONS[node.func.id](*(_evaluate(a, lookup) for a in node.args)))
-    raise ValueError(f"'{ast.unparse(node)}' is not allowed")
+    return float(evaluate(node, lookup, FUNCTIONS, max_exponent=64))
 
 
 def evaluate_expression(text: str, names: dict[str, float], label: str) -> float:

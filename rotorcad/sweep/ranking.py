@@ -38,6 +38,7 @@ import numpy as np
 import pandas as pd
 
 from rotorcad.errors import DesignError
+from rotorcad.expressions import evaluate
 
 _COMPARISONS: dict[str, Callable[[Any, Any], Any]] = {
     "<=": operator.le,
@@ -55,16 +56,6 @@ _FUNCTIONS: dict[str, Callable[..., Any]] = {
     "minimum": np.minimum,
     "maximum": np.maximum,
 }
-_OPERATORS: dict[type, Callable[..., Any]] = {
-    ast.Add: operator.add,
-    ast.Sub: operator.sub,
-    ast.Mult: operator.mul,
-    ast.Div: operator.truediv,
-    ast.Pow: operator.pow,
-    ast.USub: operator.neg,
-    ast.UAdd: operator.pos,
-}
-
 
 @dataclass(frozen=True)
 class Constraint:
@@ -121,19 +112,8 @@ class Objective:
 
 
 def _evaluate(node: ast.AST, column: Callable[[str], np.ndarray]) -> Any:
-    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
-        return float(node.value)
-    if isinstance(node, ast.Name):
-        return column(node.id)
-    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):  # a varied value: pair.center_distance
-        return column(f"{node.value.id}.{node.attr}")
-    if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
-        return _OPERATORS[type(node.op)](_evaluate(node.left, column), _evaluate(node.right, column))
-    if isinstance(node, ast.UnaryOp) and type(node.op) in _OPERATORS:
-        return _OPERATORS[type(node.op)](_evaluate(node.operand, column))
-    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS and not node.keywords:
-        return _FUNCTIONS[node.func.id](*(_evaluate(a, column) for a in node.args))
-    raise ValueError(f"'{ast.unparse(node)}' is not allowed")
+    """Evaluate an objective's tree on the table's columns (a varied value by its dotted name)."""
+    return evaluate(node, column, _FUNCTIONS, dotted=True)
 
 
 def _names(node: ast.AST) -> list[str]:
