@@ -594,25 +594,19 @@ class MeshingClearance:
         if not use.any():
             return use
         z = z - z[use].min()
-        pairs = use[:-1] & use[1:]
-        reach = np.maximum(z[:-1], z[1:])[pairs]  # the rotor length that holds a segment of the contact line
-        if reach.size and reach.min() > pair.length + 1e-9:  # not one segment within the length: no band
-            longest = abs(pair.lead) * pair.length / float(reach.min())
-            raise DesignError(
-                "lead",
-                f"at most {longest:.6g} mm for a rotor length of {pair.length:g} mm",
-                pair.lead,
-                "a longer lead leaves less than one segment of the contact line within the rotors",
-            )
-        return use & (z <= pair.length + 1e-9)
+        return use & (z <= pair.length + 1e-9)  # a lead that leaves no contact run within: _band refuses it
 
     @cached_property
     def zones(self) -> Array:
         """The :class:`ClearanceZone` code of every datum rack point at the positioned racks, (n,) int."""
+        return self._zones_where(self._use)
+
+    def _zones_where(self, use: Array) -> Array:
+        """Return the zones of :attr:`zones` with ``use`` ((n,) bool) as the points inside the rotors."""
         corner = self._near_corner(self.female_rack)
         faces = self._faces_male_corner(self.shift)
         zone = np.where(corner, ClearanceZone.CORNER, np.where(faces, ClearanceZone.GAP, ClearanceZone.CONTACT))
-        zone = np.where(self._use, zone, ClearanceZone.OUTSIDE)
+        zone = np.where(use, zone, ClearanceZone.OUTSIDE)
         # the last point of a contact run beside a corner's zone is judged with that zone
         edge = (zone == ClearanceZone.CONTACT) & ((np.roll(zone, 1) > 1) | (np.roll(zone, -1) > 1))
         zone = np.where(edge, ClearanceZone.GAP, zone)
@@ -702,6 +696,35 @@ class MeshingClearance:
         """The stated accuracy of the contact-zone clearance, mm (:func:`estimated_accuracy`)."""
         return estimated_accuracy(self.scatter, self.spacing)
 
+    def _refuse_a_lead_past_the_contact_zone(self) -> None:
+        """Refuse a lead so long that the contact zone of the bores falls outside the rotor length.
+
+        The contact zone is judged as :attr:`zones` does, over the whole contact line in the bores;
+        the lead named is the longest that keeps one contact run (five points, the shortest that
+        counts as a flank) within the length.
+        """
+        pair = self.pair
+        _, angle = self._contacts(self.shift)
+        z = pair.lead * angle / (2 * np.pi)
+        inside = self._in_both_bores(self.clearance) & np.isfinite(self.clearance) & np.isfinite(z)
+        if not inside.any():
+            return
+        z = np.abs(z - z[inside].min())
+        on = self._zones_where(inside) == ClearanceZone.CONTACT
+        if not on.any():
+            return  # no contact anywhere in the bores: the contact itself is refused
+        runs = np.lib.stride_tricks.sliding_window_view(on, 5).all(axis=1)
+        reach = np.lib.stride_tricks.sliding_window_view(z, 5).max(axis=1)[runs]
+        if not reach.size or reach.min() <= pair.length + 1e-9:
+            return
+        longest = abs(pair.lead) * pair.length / float(reach.min())
+        raise DesignError(
+            "lead",
+            f"at most {longest:.6g} mm for a rotor length of {pair.length:g} mm",
+            pair.lead,
+            "a longer lead leaves the contact zone of the flanks outside the rotors",
+        )
+
     @cached_property
     def _band(self) -> dict[str, float | None]:
         """The clearance band on the 3D contact line (module docstring, step 5), and the zones' figures.
@@ -745,6 +768,7 @@ class MeshingClearance:
         length = float(dl[seg].sum())
         area = float((tri1 + tri2)[seg].sum())
         if not on.any():
+            self._refuse_a_lead_past_the_contact_zone()
             raise DesignError("contact", "a pair whose flanks touch somewhere inside both bores", self.contact)
         gap = zone == ClearanceZone.GAP
         corner = (zone == ClearanceZone.CORNER) & self.female_rack.corner_path  # the corners' own paths
