@@ -1,0 +1,197 @@
+"""Rotor pieces cut by a straight or circular rack piece, sampled in closed form.
+
+A rack piece that is a :class:`~rotorcad.curves.Line` or an :class:`~rotorcad.curves.Arc` cuts a
+rotor curve that the gear's tool cut (:class:`rotorcad.gear._ToolCut`) evaluates in closed form,
+with its curvature: the law of gearing solved for a rack-rotor motion (Litvin, *Gear Geometry and
+Applied Theory*, eq. 6.1.7). The curvature places the samples in one step
+(:func:`rotorcad.gear._chord_counts`, :func:`rotorcad.gear._grid_parameters`) instead of the
+generic sampler's refinement passes (:func:`rotorcad.curves.sample_curve`), which evaluate the
+envelope engine several times.
+
+The male turns counter-clockwise about O1 = (0, 0) at rate 1 while the rack moves +y at r1w per
+radian: the tool cut's own setting, with r = r1w. The female turns clockwise about O2 = (a, 0); in
+the mirror image x -> a - x it sits at the origin, turns counter-clockwise at rate r1w / r2w and
+the rack (pitch line x = r2w) moves +y at r2w per radian of that turn: again the tool cut's
+setting, with r = r2w, whose points map back to the female's own frame by (x, y) -> (-x, y).
+
+The samples lie on the piece's :class:`~rotorcad.envelope.Generated` curve, which the segment keeps
+(the exact STEP writer and the analysis evaluate it). Where the generic sampler would meet a point
+out of contact (a rack normal along the motion: the envelope engine's NaN, dropped by
+:meth:`rotorcad.profile.Segment.sample`) or where the closed-form chords miss the tolerance, the
+piece is left to the generic sampler (``None``), so that the outline is the generic one.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rotorcad.curves import Arc, Curve, Line
+from rotorcad.gear import SAMPLING_MARGIN, _arc_intervals, _chord_counts, _grid_parameters, _involute_parameters, _span, _ToolCut
+from rotorcad.geometry import Array
+from rotorcad.profile import Segment
+from rotorcad.roles import Side
+
+GRID = 129
+"""Equally spaced parameters at which a cut piece's curvature is evaluated to place its samples."""
+
+REFINES = 2
+"""Passes that split the chords whose sagitta estimate exceeds the tolerance before the generic
+sampler takes the piece over."""
+
+_NO_CONTACT = 1e-12
+"""The envelope engine's test for a rack normal along the motion, |n x v| <= 1e-12 |v|
+(:func:`rotorcad.envelope.contact_parameter`), and for an arc centred on the pitch line."""
+
+
+def cut_segment(name: str, curve: Curve, rack_curve: Curve, side: Side, r1: float, a: float, tolerance: float) -> Segment | None:
+    """Sample a rotor piece cut by a straight or circular rack piece in closed form.
+
+    Parameters
+    ----------
+    name : str
+        Segment name.
+    curve : Curve
+        The piece's generated curve as :class:`rotorcad.screw_rotors.ScrewRotors` makes it: for the
+        male ``Generated(rack_curve.reversed(), rack, male)``, for the female
+        ``Mapped(Generated(rack_curve, rack, female), identity, (-a, 0))``; kept on the segment.
+    rack_curve : Curve
+        The rack piece in the fixed frame at t = 0 (pitch line x = r1w, motion +y).
+    side : Side
+        The rotor cut.
+    r1 : float
+        Male pitch radius r1w, mm.
+    a : float
+        Centre distance, mm.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    Segment or None
+        The samples (parameters of ``curve``, points in the rotor's own frame, unit tangents along
+        the travel); None where the piece is not a line or an arc, where a point of it has no
+        contact (the generic sampler decides there) or where a chord misses the tolerance.
+    """
+    if type(rack_curve) not in (Line, Arc):
+        return None
+    male = side is Side.MALE
+    r = r1 if male else a - r1
+    s0, s1 = float(curve.s0), float(curve.s1)  # parameters of the rack piece (the same for both rotors)
+    if isinstance(rack_curve, Line):
+        ax, ay = rack_curve.a
+        d = np.subtract(rack_curve.b, rack_curve.a, dtype=float)
+        d /= math.hypot(*d)
+        if abs(d[1]) <= _NO_CONTACT:  # normal along the motion: no contact anywhere
+            return None
+        start, direction = ((ax, ay), (d[0], d[1])) if male else ((a - ax, ay), (-d[0], d[1]))
+        cut = _ToolCut("line", r, 1.0, start=start, direction=direction)
+        offset, flip = 0.0, 1.0  # tool parameter s' = s; tool tangent = mirrored tangent
+    else:
+        kx, ky = rack_curve.center
+        on_pitch_line = abs(kx - r1) <= _NO_CONTACT * r1  # every point touches when K passes C
+        if not on_pitch_line:
+            lo, hi = min(s0, s1), max(s0, s1)
+            k = math.floor((lo - math.pi / 2) / math.pi) + 1  # first zero of cos(s) above lo
+            if lo - _NO_CONTACT <= math.pi / 2 + k * math.pi <= hi + _NO_CONTACT:
+                return None
+        cut = _ToolCut("arc", r, 1.0, center=(kx, ky) if male else (a - kx, ky), radius=rack_curve.radius)
+        if on_pitch_line:
+            cut.arc = (cut.arc[0], 0.0, cut.arc[2])  # the engine's constant contact turn
+        offset, flip = (0.0, 1.0) if male else (math.pi, -1.0)  # mirrored polar angle s' = pi - s
+    s = _involute(cut, s0, s1, tolerance) if isinstance(rack_curve, Line) else None
+    if s is None:
+        grid = _span(s0, s1, GRID)
+        _, _, turning, speed = cut.cut(offset + flip * grid if offset else grid, curvature=True)
+        turning = np.broadcast_to(turning, grid.shape)  # a line's cut turns at a constant rate per mm of s
+        if not (np.isfinite(turning).all() and np.isfinite(speed).all()):
+            return None
+        s = _grid_parameters(_chord_counts(turning, speed, abs(s1 - s0) / (GRID - 1)), s0, s1, tolerance)
+    for _ in range(REFINES + 1):
+        z, w = cut.cut(offset + flip * s if offset else s, pairs=False)
+        if not (np.isfinite(z).all() and np.isfinite(w).all()):
+            return None
+        # the sagitta of a chord whose end tangents turn by d(psi): L |d(psi)| / 8 (circular arc)
+        sag = np.abs(z[1:] - z[:-1]) * np.abs(np.angle(w[1:] * np.conj(w[:-1]))) / 8.0
+        if (sag <= tolerance).all():
+            break
+        # the curvature estimate fell short (the last chords before a cusp): split those chords
+        s = _split(s, np.maximum(np.ceil(np.sqrt(sag / tolerance) * SAMPLING_MARGIN), 1.0).astype(int))
+    else:
+        return None  # still beyond the tolerance: the generic sampler
+    # tangents along the travel: a generated curve's frame tangent is the rack tangent turned with
+    # the rotor; mirrored back for the female, and against the mirrored polar angle for its arcs
+    w = w * (curve.direction * flip)
+    if not male:
+        z, w = -np.conj(z), -np.conj(w)
+    return Segment(name, curve, s, _pairs(z), _pairs(w))
+
+
+def _split(s: Array, parts: Array) -> Array:
+    """Split interval i of the parameters ``s`` into ``parts[i]`` equal parts.
+
+    Parameters
+    ----------
+    s : (m,) float array
+        Parameters in order of travel.
+    parts : (m - 1,) int array
+        Parts of each interval (1: kept).
+
+    Returns
+    -------
+    (m',) float array
+        The refined parameters, the old ones among them (the ends exactly).
+    """
+    j = np.repeat(np.arange(len(parts)), parts)
+    k = np.arange(len(j)) - np.repeat(np.cumsum(parts) - parts, parts)
+    out = np.empty(len(j) + 1)
+    out[:-1] = s[j] + (s[j + 1] - s[j]) * (k / parts[j])
+    out[-1] = s[-1]
+    return out
+
+
+def _involute(cut: _ToolCut, s0: float, s1: float, tolerance: float) -> Array | None:
+    """Return the parameters that sample a straight rack piece's cut, an involute, to a chord tolerance.
+
+    The cut of a straight rack piece is an involute of the base circle r_b = r |tau_x| (the line
+    of action through C along the piece's normal; ISO 21771 sec. 2.3), whose radius of curvature
+    is the roll distance: :func:`rotorcad.gear._involute_parameters` places its samples in one step.
+
+    Parameters
+    ----------
+    cut : _ToolCut
+        The straight piece's cut ("line").
+    s0, s1 : float
+        Parameters of the piece's start and end, mm along the rack line.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    (n,) float array or None
+        Parameters from ``s0`` to ``s1``; None where the roll distance changes sign inside the
+        piece (the cut passes the base circle: a cusp) or the base circle is too small to divide
+        by (a piece almost parallel to the pitch line cuts a circle): the curvature grid decides.
+    """
+    rb = cut.r * abs(cut.tangent.real)
+    if rb == 0.0:  # a piece parallel to the pitch line cuts a circle about O, turning s / r
+        (ax, ay), t0 = cut.start, cut.turn[0]
+        return _span(s0, s1, _arc_intervals(abs(s1 - s0) / cut.r, math.hypot(ax, ay + cut.r * t0), tolerance) + 1)
+    if rb <= 1e-9 * cut.r:
+        return None
+    a0, a1 = cut.roll()
+    l0, l1 = a0 + a1 * s0, a0 + a1 * s1
+    if l0 * l1 < 0.0:
+        return None
+    if l0 + l1 < 0.0:  # the roll distance counted the other way: its size is what matters
+        a0, a1 = -a0, -a1
+    return _involute_parameters(s0, s1, (a0, a1), rb, tolerance)
+
+
+def _pairs(z: Array) -> Array:
+    """Return complex numbers x + i y as an (n, 2) float array."""
+    return np.stack([z.real, z.imag], axis=-1)
+
+
+__all__ = ["GRID", "cut_segment"]
