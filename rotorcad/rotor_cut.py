@@ -24,12 +24,14 @@ piece is left to the generic sampler (``None``), so that the outline is the gene
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.curves import Arc, Curve, Line
+from rotorcad.curves import Arc, Curve, Line, Mapped, PointPath, sample_curve
 from rotorcad.gear import SAMPLING_MARGIN, _arc_intervals, _chord_counts, _grid_parameters, _involute_parameters, _span, _ToolCut
-from rotorcad.geometry import Array
+from rotorcad.geometry import Array, normalize, perp_cw
+from rotorcad.kinematics import Body, Translation
 from rotorcad.profile import Segment
 from rotorcad.roles import Side
 
@@ -45,7 +47,9 @@ _NO_CONTACT = 1e-12
 (:func:`rotorcad.envelope.contact_parameter`), and for an arc centred on the pitch line."""
 
 
-def cut_segment(name: str, curve: Curve, rack_curve: Curve, side: Side, r1: float, a: float, tolerance: float) -> Segment | None:
+def cut_segment(
+    name: str, curve: Curve, rack_curve: Curve, side: Side, r1: float, a: float, tolerance: float, rotor: Body
+) -> Segment | None:
     """Sample a rotor piece cut by a straight or circular rack piece in closed form.
 
     Parameters
@@ -66,6 +70,8 @@ def cut_segment(name: str, curve: Curve, rack_curve: Curve, side: Side, r1: floa
         Centre distance, mm.
     tolerance : float
         Largest chord error, mm.
+    rotor : Body
+        The rotor's motion (``pair.mesh.male`` or ``pair.mesh.female``).
 
     Returns
     -------
@@ -74,9 +80,11 @@ def cut_segment(name: str, curve: Curve, rack_curve: Curve, side: Side, r1: floa
         the travel); None where the piece is not a line or an arc, where a point of it has no
         contact (the generic sampler decides there) or where a chord misses the tolerance.
     """
+    male = side is Side.MALE
+    if type(rack_curve) is PointPath and type(rack_curve.observer) is Translation:
+        return _path_segment(name, curve, rack_curve, rotor, tolerance)
     if type(rack_curve) not in (Line, Arc):
         return None
-    male = side is Side.MALE
     r = r1 if male else a - r1
     s0, s1 = float(curve.s0), float(curve.s1)  # parameters of the rack piece (the same for both rotors)
     if isinstance(rack_curve, Line):
@@ -104,7 +112,8 @@ def cut_segment(name: str, curve: Curve, rack_curve: Curve, side: Side, r1: floa
     if s is None:
         grid = _span(s0, s1, GRID)
         _, _, turning, speed = cut.cut(offset + flip * grid if offset else grid, curvature=True)
-        turning = np.broadcast_to(turning, grid.shape)  # a line's cut turns at a constant rate per mm of s
+        if np.ndim(turning) == 0:  # a line's cut turns at a constant rate per mm of s
+            turning = np.full(grid.shape, turning)
         if not (np.isfinite(turning).all() and np.isfinite(speed).all()):
             return None
         s = _grid_parameters(_chord_counts(turning, speed, abs(s1 - s0) / (GRID - 1)), s0, s1, tolerance)
@@ -126,6 +135,82 @@ def cut_segment(name: str, curve: Curve, rack_curve: Curve, side: Side, r1: floa
     if not male:
         z, w = -np.conj(z), -np.conj(w)
     return Segment(name, curve, s, _pairs(z), _pairs(w))
+
+
+@dataclass(frozen=True)
+class _CutByPath(Curve):
+    """What a rack piece that is a point path (:class:`~rotorcad.curves.PointPath`) cuts on a rotor.
+
+    The path is traced in the rack by a point P carried by a rotor (a sharp corner, or with
+    ``offset`` the centre of a tip circle). Its normal at parameter s passes through the pitch
+    point C when P is there (C is the instantaneous centre of the carrier relative to the rack),
+    so the law of gearing (Litvin eq. 6.1.7) puts the contact at the motion parameter t = s and
+    the cut point is the carried point, at t = s, in the generated rotor's frame: an epitrochoid
+    (a hypotrochoid for the own rotor: the corner itself). It evaluates, in closed form, the
+    same curve as ``Generated(path, rack, rotor)`` with ``path`` travelled as ``parent``, at the
+    same parameters; points where the rack normal lies along the motion are out of contact (NaN),
+    as in :func:`rotorcad.envelope.contact_parameter`.
+
+    Parameters
+    ----------
+    path : PointPath
+        The rack piece, observed by the rack.
+    generated : Body
+        The rotor cut.
+    s0, s1 : float
+        Travel, as the generated curve's.
+    """
+
+    path: PointPath
+    generated: Body
+    s0: float
+    s1: float
+
+    def frame(self, s: Array) -> tuple[Array, Array]:
+        """Return points (mm) and unit tangents along increasing ``s``, (n, 2) each."""
+        path = self.path
+        a = np.broadcast_to(np.asarray(path.carried, dtype=float), (len(s), 2))
+        x = path.carrier.to_fixed(a, s)
+        tangent = normalize(path.carrier.velocity_at(x) - path.observer.velocity_at(x))  # rack frame = fixed
+        if path.offset:
+            x = x + path.offset * perp_cw(tangent)
+        p = self.generated.to_body(x, s)
+        t = self.generated.vectors_to_body(tangent, s)
+        lost = np.abs(tangent[:, 1]) <= _NO_CONTACT  # rack normal along the motion (+y): no contact
+        if lost.any():
+            p[lost] = np.nan
+            t[lost] = np.nan
+        return p, t
+
+
+def _path_segment(name: str, curve: Curve, path: PointPath, generated: Body, tolerance: float) -> Segment:
+    """Sample what a rack point path cuts, by the generic sampler on its closed form (:class:`_CutByPath`).
+
+    Parameters
+    ----------
+    name : str
+        Segment name.
+    curve : Curve
+        The generated curve kept on the segment (``Generated``, or for the female its ``Mapped``).
+    path : PointPath
+        The rack piece.
+    generated : Body
+        The rotor cut.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    Segment
+        Parameters of ``curve``, points in the rotor's own frame, unit tangents along the travel;
+        points out of contact dropped as :meth:`rotorcad.profile.Segment.sample` does.
+    """
+    fast = _CutByPath(path, generated, float(curve.s0), float(curve.s1))
+    s, p, t = sample_curve(fast, tolerance)
+    if isinstance(curve, Mapped):  # the female, about its own centre
+        p = p + np.asarray(curve.shift, dtype=float)
+    ok = np.isfinite(p).all(axis=1) & np.isfinite(t).all(axis=1)
+    return Segment(name, curve, s, p, t) if ok.all() else Segment(name, curve, s[ok], p[ok], t[ok])
 
 
 def _split(s: Array, parts: Array) -> Array:
@@ -191,7 +276,7 @@ def _involute(cut: _ToolCut, s0: float, s1: float, tolerance: float) -> Array | 
 
 def _pairs(z: Array) -> Array:
     """Return complex numbers x + i y as an (n, 2) float array."""
-    return np.stack([z.real, z.imag], axis=-1)
+    return np.ascontiguousarray(z, dtype=complex).view(np.float64).reshape(-1, 2)  # (re, im) pairs, one copy at most
 
 
 __all__ = ["GRID", "cut_segment"]

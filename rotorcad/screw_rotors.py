@@ -191,11 +191,12 @@ class ScrewRotors:
             The open lobe; degenerate pieces (no or one point) are left out.
         """
         r1, a = self.pair.male_pitch_radius, self.pair.center_distance
+        rotor = side.pick(self.pair.mesh.male, self.pair.mesh.female)
         segs = []
         for name, curve, piece in pieces:
             if abs(curve.s1 - curve.s0) < 1e-15:
                 continue
-            seg = cut_segment(name, curve, piece.curve, side, r1, a, tol)  # closed form (rotorcad.rotor_cut)
+            seg = cut_segment(name, curve, piece.curve, side, r1, a, tol, rotor)  # closed form (rotorcad.rotor_cut)
             if seg is None:
                 seg = Segment.sample(name, curve, tol)
             if len(seg.points) == 0 or np.ptp(seg.points, axis=0).max() < 1e-9:  # degenerate piece (none or one point)

@@ -1,4 +1,4 @@
-"""Rotor pieces cut by a rack line or arc, sampled in closed form (rotorcad.rotor_cut), held to the generic path.
+"""Rotor pieces cut by a rack line, arc or point path in closed form (rotorcad.rotor_cut), held to the generic path.
 
 References: the envelope engine (:class:`rotorcad.envelope.Generated`, the meshing condition
 solved point by point in the fixed frame; Litvin, *Gear Geometry and Applied Theory*, eq. 6.1.7)
@@ -44,13 +44,14 @@ def rotors(request):
 
 
 def _closed_form(rotors, side: Side) -> list[tuple[object, object]]:
-    """(lobe segment, its closed-form sampling) of every piece cut by a rack line or arc."""
+    """(lobe segment, its closed-form sampling) of every piece cut by a rack line, arc or point path."""
     pieces = rotors.male_pieces if side is Side.MALE else rotors.female_pieces
     lobe = rotors.male_lobe(TOL) if side is Side.MALE else rotors.female_lobe(TOL)
     by_curve = {id(seg.curve): seg for seg in lobe.segments}
     out = []
     for name, curve, piece in pieces:
-        seg = cut_segment(name, curve, piece.curve, side, rotors.pair.male_pitch_radius, rotors.pair.center_distance, TOL)
+        rotor = side.pick(rotors.pair.mesh.male, rotors.pair.mesh.female)
+        seg = cut_segment(name, curve, piece.curve, side, rotors.pair.male_pitch_radius, rotors.pair.center_distance, TOL, rotor)
         if seg is not None and id(curve) in by_curve:
             out.append((by_curve[id(curve)], seg))
     return out
@@ -66,7 +67,10 @@ def test_closed_form_samples_lie_on_the_envelope(rotors, side):
         np.testing.assert_array_equal(seg.s, cut.s)  # the lobe took the closed form
         p, t = seg.curve.evaluate(seg.s)
         assert np.abs(p - seg.points).max() <= 1e-9, seg.name
-        assert np.abs(t - seg.tangents).max() <= 1e-9, seg.name
+        # the engine solves t from cross(n, p - C) / cross(n, V), ill-conditioned where a corner
+        # passes the pitch point (sliding speed 5e-5 mm/rad at the end of srm-b's sealing root:
+        # its t is off by 1e-9 rad there, the point by 5e-14 mm); the closed form has t = s exactly
+        assert np.abs(t - seg.tangents).max() <= 1e-8, seg.name
 
 
 @pytest.mark.parametrize("side", [Side.MALE, Side.FEMALE])
@@ -90,7 +94,9 @@ def test_outline_equals_the_generic_samplers(rotors, side, monkeypatch):
     for seg, ref in zip(lobe.segments, generic.segments, strict=True):
         assert seg.curve.s0 == ref.curve.s0 and seg.curve.s1 == ref.curve.s1, seg.name
         assert np.abs(seg.points[[0, -1]] - ref.points[[0, -1]]).max() <= 1e-9, seg.name
-        assert np.abs(seg.tangents[[0, -1]] - ref.tangents[[0, -1]]).max() <= 1e-9, seg.name
+        # tangents to 1e-8: the engine's contact turn is off by 1e-9 rad where a corner passes the
+        # pitch point (see test_closed_form_samples_lie_on_the_envelope)
+        assert np.abs(seg.tangents[[0, -1]] - ref.tangents[[0, -1]]).max() <= 1e-8, seg.name
     np.testing.assert_allclose(lobe.points[[0, -1]], generic.points[[0, -1]], rtol=0.0, atol=1e-9)
 
 
@@ -112,7 +118,7 @@ def test_piece_without_contact_goes_to_the_generic_sampler(readme_pair):
     for piece in (arc, line):
         gen = Generated(piece.reversed(), mesh.rack, mesh.male)
         assert not np.isfinite(gen.evaluate(piece.s1 if piece is arc else 1.0)[0]).all()  # the engine's verdict
-        assert cut_segment("x", gen, piece, Side.MALE, r1, a, TOL) is None
+        assert cut_segment("x", gen, piece, Side.MALE, r1, a, TOL, mesh.male) is None
     inside = Arc((r1 + 3.0, 1.0), 2.0, 0.2, 1.2)  # the same arc short of the no-contact point
-    seg = cut_segment("x", Generated(inside.reversed(), mesh.rack, mesh.male), inside, Side.MALE, r1, a, TOL)
+    seg = cut_segment("x", Generated(inside.reversed(), mesh.rack, mesh.male), inside, Side.MALE, r1, a, TOL, mesh.male)
     assert seg is not None and np.abs(seg.curve.evaluate(seg.s)[0] - seg.points).max() <= 1e-9
