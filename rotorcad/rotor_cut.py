@@ -1,4 +1,4 @@
-"""Rotor pieces cut by a straight or circular rack piece, sampled in closed form.
+"""Rotor pieces cut by a straight or circular rack piece or by a point path, sampled in closed form.
 
 A rack piece that is a :class:`~rotorcad.curves.Line` or an :class:`~rotorcad.curves.Arc` cuts a
 rotor curve that the gear's tool cut (:class:`rotorcad.gear._ToolCut`) evaluates in closed form,
@@ -13,6 +13,10 @@ radian: the tool cut's own setting, with r = r1w. The female turns clockwise abo
 the mirror image x -> a - x it sits at the origin, turns counter-clockwise at rate r1w / r2w and
 the rack (pitch line x = r2w) moves +y at r2w per radian of that turn: again the tool cut's
 setting, with r = r2w, whose points map back to the female's own frame by (x, y) -> (-x, y).
+
+A rack piece that is a corner's (or a tip circle's) :class:`~rotorcad.curves.PointPath` cuts the
+carried point's path relative to the rotor, in contact at the path's own parameter
+(:class:`_CutByPath`); the generic sampler places its samples on that closed-form evaluation.
 
 The samples lie on the piece's :class:`~rotorcad.envelope.Generated` curve, which the segment keeps
 (the exact STEP writer and the analysis evaluate it). Where the generic sampler would meet a point
@@ -42,6 +46,10 @@ REFINES = 2
 """Passes that split the chords whose sagitta estimate exceeds the tolerance before the generic
 sampler takes the piece over."""
 
+MOST_SAMPLES = 20_000
+"""Most samples of one piece in closed form: a count beyond it (the curvature near a cusp) leaves
+the piece to the generic sampler."""
+
 _NO_CONTACT = 1e-12
 """The envelope engine's test for a rack normal along the motion, |n x v| <= 1e-12 |v|
 (:func:`rotorcad.envelope.contact_parameter`), and for an arc centred on the pitch line."""
@@ -50,7 +58,7 @@ _NO_CONTACT = 1e-12
 def cut_segment(
     name: str, curve: Curve, rack_curve: Curve, side: Side, r1: float, a: float, tolerance: float, rotor: Body
 ) -> Segment | None:
-    """Sample a rotor piece cut by a straight or circular rack piece in closed form.
+    """Sample a rotor piece cut by a straight or circular rack piece or a point path in closed form.
 
     Parameters
     ----------
@@ -77,8 +85,9 @@ def cut_segment(
     -------
     Segment or None
         The samples (parameters of ``curve``, points in the rotor's own frame, unit tangents along
-        the travel); None where the piece is not a line or an arc, where a point of it has no
-        contact (the generic sampler decides there) or where a chord misses the tolerance.
+        the travel); None where the piece is not a line, an arc or a point path observed by the
+        rack, where a point of a line or an arc has no contact (the generic sampler decides
+        there) or where a chord misses the tolerance.
     """
     male = side is Side.MALE
     if type(rack_curve) is PointPath and type(rack_curve.observer) is Translation:
@@ -116,8 +125,13 @@ def cut_segment(
             turning = np.full(grid.shape, turning)
         if not (np.isfinite(turning).all() and np.isfinite(speed).all()):
             return None
-        s = _grid_parameters(_chord_counts(turning, speed, abs(s1 - s0) / (GRID - 1)), s0, s1, tolerance)
+        counts = _chord_counts(turning, speed, abs(s1 - s0) / (GRID - 1))
+        if not _few(counts, tolerance):  # a cusp's curvature: the generic sampler
+            return None
+        s = _grid_parameters(counts, s0, s1, tolerance)
     for _ in range(REFINES + 1):
+        if len(s) > MOST_SAMPLES:
+            return None
         z, w = cut.cut(offset + flip * s if offset else s, pairs=False)
         if not (np.isfinite(z).all() and np.isfinite(w).all()):
             return None
@@ -211,6 +225,26 @@ def _path_segment(name: str, curve: Curve, path: PointPath, generated: Body, tol
         p = p + np.asarray(curve.shift, dtype=float)
     ok = np.isfinite(p).all(axis=1) & np.isfinite(t).all(axis=1)
     return Segment(name, curve, s, p, t) if ok.all() else Segment(name, curve, s[ok], p[ok], t[ok])
+
+
+def _few(counts: tuple[Array, Array], tolerance: float) -> bool:
+    """Whether the chord count of :func:`rotorcad.gear._chord_counts` stays within :data:`MOST_SAMPLES`.
+
+    Parameters
+    ----------
+    counts : two (m,) float arrays
+        The cumulative counts of :func:`rotorcad.gear._chord_counts`.
+    tolerance : float
+        Largest chord error, mm.
+
+    Returns
+    -------
+    bool
+        True when :func:`rotorcad.gear._grid_parameters` would place fewer samples.
+    """
+    quadratic, cubic = counts
+    total = quadratic[-1] / math.sqrt(8.0 * tolerance) + cubic[-1] / math.cbrt(72.0 * math.sqrt(3.0) * tolerance)
+    return bool(total * SAMPLING_MARGIN < MOST_SAMPLES)
 
 
 def _split(s: Array, parts: Array) -> Array:

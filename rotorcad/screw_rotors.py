@@ -174,7 +174,7 @@ class ScrewRotors:
         return cache[key]
 
     def _sample_lobe(self, pieces: list[tuple[str, Curve, RackPiece]], tol: float, side: Side) -> Profile:
-        """Sample a lobe's pieces: those cut by a rack line or arc in closed form, the others by the generic sampler.
+        """Sample a lobe's pieces: those cut by a rack line, arc or point path in closed form, the others by the generic sampler.
 
         Parameters
         ----------
