@@ -126,3 +126,92 @@ def test_ctrl_c_while_the_command_loads(module):
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60, cwd=ROOT)
     assert proc.returncode == 130, proc.stderr
     assert proc.stderr.strip() == "rotorcad: interrupted." and proc.stdout == "", proc.stderr
+
+
+# ----- a note before a run of over a minute (issue 24) -----------------------------------------
+
+
+def sweep_file(tmp_path: Path, samples: int, compute: str) -> Path:
+    """The sample sweep with ``samples`` variants and ``compute`` analyses, without its ranking."""
+    text = (SAMPLES / "sweep_rack_involute.toml").read_text().split("[constraints]")[0]
+    text, n = re.subn(r"^samples = .*$", f"samples = {samples}", text, flags=re.M)
+    text, m = re.subn(r"^compute = .*$", f"compute = {compute}", text, flags=re.M)
+    assert n == m == 1
+    path = tmp_path / f"sweep_{samples}.toml"
+    path.write_text(text)
+    return path
+
+
+def test_sweep_estimate_against_a_measured_run(tmp_path, capsys):
+    """The estimate (rotorcad.work.SWEEP_SECONDS) against the CPU time of a small sweep run now:
+    the estimate is a calibration of the same code, so a change that makes a variant much slower or
+    faster shows here. Within a factor 3 either way (the CPU time of 12 variants varies with them)."""
+    import json
+
+    from rotorcad.work import sweep_seconds
+
+    design = sweep_file(tmp_path, 12, '["volume"]')
+    capsys.readouterr()
+    assert main(["sweep", str(design), "--out", str(tmp_path / "s.parquet"), "--workers", "0", "--json", "--quiet"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["computed"] == 12
+    estimate = sweep_seconds(12, ("volume",), 1)
+    assert result["cpu_seconds"] / 3 < estimate < 3 * result["cpu_seconds"], (estimate, result["cpu_seconds"])
+
+
+def test_long_sweep_says_so_before_it_starts(tmp_path, capsys, monkeypatch):
+    """A sweep of 5000 variants with interference, in this process: about 15 min by the estimate
+    (5000 x (0.022 + 0.164) s). The note comes on stderr before the first variant is computed (the
+    work is replaced by a Ctrl-C, so that nothing runs for a minute); stdout stays empty for --json."""
+    import os
+
+    from rotorcad.cli import progress
+    from rotorcad.sweep import run as sweep_run
+    from rotorcad.work import sweep_seconds
+
+    def no_work(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(sweep_run, "evaluate_batch", no_work)
+    design = sweep_file(tmp_path, 5000, '["interference"]')
+    capsys.readouterr()
+    status = main(["sweep", str(design), "--out", str(tmp_path / "s.parquet"), "--workers", "0", "--json"])
+    out, err = capsys.readouterr()
+    assert status == 130 and out == ""
+    lines = err.strip().splitlines()
+    cores = os.cpu_count() or 1
+    minutes = round(5000 * 0.186 / 60)
+    expected = f"rotorcad: note: this will take about {minutes} min"
+    assert lines[0].startswith(expected), err
+    if cores > 1:
+        faster = sweep_seconds(5000, ("interference",), cores)
+        assert f"; --workers {cores} would make it about " in lines[0], err
+        assert faster < 5000 * 0.186 / cores + 6
+    assert lines[-1] == "rotorcad: interrupted."
+    assert progress.NOTED[-1] in lines[0]
+
+
+def test_long_sweep_note_silenced_by_quiet_and_absent_for_a_short_one(tmp_path, capsys, monkeypatch):
+    """--quiet says nothing; a sweep estimated under a minute (60 variants, 1.3 s) says nothing."""
+    from rotorcad.sweep import run as sweep_run
+
+    def no_work(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(sweep_run, "evaluate_batch", no_work)
+    for samples, extra in ((5000, ["--quiet"]), (60, [])):
+        design = sweep_file(tmp_path, samples, '["interference"]' if samples > 60 else "[]")
+        capsys.readouterr()
+        status = main(["sweep", str(design), "--out", str(tmp_path / f"s{samples}.parquet"), "--workers", "0", *extra])
+        _, err = capsys.readouterr()
+        assert status == 130 and "note" not in err, err
+
+
+def test_long_run_note_wording():
+    """The sentence of CONTRACT.md, in minutes above 90 s, and nothing up to a minute."""
+    from rotorcad.work import long_run_note
+
+    assert long_run_note(60.0, ("--workers", 2, 30.0)) is None
+    assert long_run_note(930.0, ("--workers", 2, 470.0)) == "this will take about 16 min; --workers 2 would make it about 8 min"
+    assert long_run_note(75.0, ("--workers", 2, 40.0)) == "this will take about 75 s; --workers 2 would make it about 40 s"
+    assert long_run_note(7200.0, None) == "this will take about 2.0 h"
