@@ -10,7 +10,8 @@ has ``2 x points x layers`` side triangles, with ``layers`` growing like the wra
 
 Issue 24: anything that would take over a minute says so before it starts, with the option that
 makes it faster (:func:`long_run_note`). Measured on the project's 2-core machine, the other
-commands stay under a minute at their bounds, so only ``sweep`` needs the note: ``export`` at
+commands stay under a minute at their bounds, so only ``sweep`` and ``clearance`` (2.6 million
+points: 67 s) need the note: ``export`` at
 :data:`MAX_TRIANGLES` (about 2.2 us a triangle: 8.8 s), ``cut`` at its union budget
 (:data:`hob.cutting.MAX_UNION_VERTICES`, some 3 s a pass, at most 8 passes; the issue's 45-s cases
 now 6.6 s), ``deflect --terms 400`` (15 s), ``interfere --steps 100000`` (3.3 s on the
@@ -92,6 +93,12 @@ analysis alone (``cpu_seconds`` / ``computed``: 1.32 s with none, 4.06 s hobbabi
 interference, 1.78 s volume, 13.44 s clearance; each analysis is its run less the first). The wall
 time on the loaded 2-core machine was about twice that."""
 
+CLEARANCE_SECONDS = (1.7, 2.5e-5)
+"""Seconds of ``clearance``: a constant and a time per profile point read (male and female). Measured
+as wall time of ``rotorcad clearance --json`` on the symmetric sample's outlines (``rotor
+--male-csv``) made 100 and 1000 times denser by linear interpolation: 262 800 points 8.2 s,
+2 628 000 points 67 s on the loaded 2-core machine (the line through the two)."""
+
 CLUSTER_START_SECONDS = 5.0
 """CPU-seconds to start a local Dask cluster (:data:`rotorcad.sweep.run.IN_PROCESS_BELOW`)."""
 
@@ -115,6 +122,22 @@ def sweep_seconds(count: int, extras: tuple[str, ...], workers: int) -> float:
     """
     each = SWEEP_SECONDS[None] + sum(SWEEP_SECONDS.get(x, 0.0) for x in extras)
     return count * each / max(workers, 1) + (CLUSTER_START_SECONDS if workers > 1 else 0.0)
+
+
+def clearance_seconds(points: int) -> float:
+    """Estimated wall time of ``clearance`` from the profile points read, s (:data:`CLEARANCE_SECONDS`).
+
+    Parameters
+    ----------
+    points : int
+        Points of the male and female profiles together.
+
+    Returns
+    -------
+    float
+        ``constant + points x seconds a point``.
+    """
+    return CLEARANCE_SECONDS[0] + CLEARANCE_SECONDS[1] * points
 
 
 def _duration(seconds: float) -> str:
@@ -155,6 +178,7 @@ __all__ = [
     "MAX_SECTION_POINTS",
     "MAX_TRIANGLES",
     "SWEEP_SECONDS",
+    "clearance_seconds",
     "long_run_note",
     "points_at",
     "solid_triangles",

@@ -215,3 +215,56 @@ def test_long_run_note_wording():
     assert long_run_note(930.0, ("--workers", 2, 470.0)) == "this will take about 16 min; --workers 2 would make it about 8 min"
     assert long_run_note(75.0, ("--workers", 2, 40.0)) == "this will take about 75 s; --workers 2 would make it about 40 s"
     assert long_run_note(7200.0, None) == "this will take about 2.0 h"
+
+
+def test_clearance_with_many_points_says_so_before_the_work(tmp_path, capsys, monkeypatch):
+    """`clearance` of 2.6 million points took 67 s: the note comes after the points are read and
+    before the work. Here the time a point is set to 1 s, so that the sample's 2 630 points stand
+    for a long run, and the work is replaced by a Ctrl-C."""
+    import numpy as np
+
+    from rotorcad import work
+    from rotorcad.cli import clearance_cmd
+
+    def no_work(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    folder = tmp_path
+    assert (
+        main(
+            [
+                "rotor",
+                str(SAMPLES / "srm_symmetric_4_6.toml"),
+                "--male-csv",
+                str(folder / "m.csv"),
+                "--female-csv",
+                str(folder / "f.csv"),
+                "--quiet",
+            ]
+        )
+        == 0
+    )
+    points = sum(len(np.loadtxt(folder / f"{s}.csv", delimiter=",", comments="#", skiprows=2)) for s in "mf")
+    monkeypatch.setattr(work, "CLEARANCE_SECONDS", (0.0, 1.0))
+    monkeypatch.setattr(clearance_cmd, "MeshingClearance", no_work)
+    capsys.readouterr()
+    argv = [
+        "clearance",
+        "--male-points",
+        folder / "m.csv",
+        "--female-points",
+        folder / "f.csv",
+        "--male-teeth",
+        4,
+        "--female-teeth",
+        6,
+        "--center-distance",
+        100,
+        "--json",
+    ]
+    status = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    assert status == 130 and out == ""
+    lines = err.strip().splitlines()
+    assert lines[0] == f"rotorcad: note: this will take about {points / 60:.0f} min.", err
+    assert lines[-1] == "rotorcad: interrupted."
