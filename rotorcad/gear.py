@@ -43,6 +43,7 @@ from rotorcad.involute import inv_inverse, shift_sum, transverse_pressure_angle,
 from rotorcad.kinematics import gear_mesh
 from rotorcad.profile import DEFAULT_TOLERANCE, Profile, Segment, _Sampled
 from rotorcad.roots import bracket_root
+from rotorcad.rotor_pair import MAX_LENGTH
 
 DEG = np.pi / 180.0
 MAX_TEETH = 1000
@@ -1194,6 +1195,8 @@ class GearPair:
             lo = a0 * np.cos(at)
             if not (self.center_distance > lo):
                 raise DesignError("center_distance", f"greater than {lo:.6g} mm", self.center_distance)
+            if not self.center_distance <= MAX_LENGTH:
+                raise DesignError("center_distance", f"from {lo:.6g} to {MAX_LENGTH:.0f} mm (100 m)", self.center_distance)
             if self.backlash < -1e-9:
                 need = self._zero_backlash_distance
                 raise DesignError(

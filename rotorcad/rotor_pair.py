@@ -14,6 +14,12 @@ import numpy as np
 from rotorcad.errors import DesignError
 from rotorcad.kinematics import Mesh, rotor_mesh
 
+MAX_LENGTH = 1e5
+"""Largest centre distance, radius, lead or length of a design, mm (100 m: no rotor, gear or shaft is
+larger; the same bound as a DXF profile's extent, :data:`exports.dxf_profile.MAX_EXTENT`)."""
+LENGTH_RANGE = f"a positive length up to {MAX_LENGTH:.0f} mm (100 m)"
+"""The allowed range of such a length, phrased to follow "must be"."""
+
 
 @dataclass(frozen=True)
 class RotorPair:
@@ -69,12 +75,12 @@ class RotorPair:
             if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or not 2 <= z <= 12:
                 raise DesignError(name, "a whole number from 2 to 12", z)
         a = self.center_distance
-        if not (np.isfinite(a) and a > 0):
-            raise DesignError("center_distance", "a positive length in mm", a)
+        if not (np.isfinite(a) and 0 < a <= MAX_LENGTH):
+            raise DesignError("center_distance", LENGTH_RANGE, a)
         for name in ("male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius", "lead", "length"):
             v = getattr(self, name)
-            if not (np.isfinite(v) and v > 0):
-                raise DesignError(name, "a positive length in mm", v)
+            if not (np.isfinite(v) and 0 < v <= MAX_LENGTH):
+                raise DesignError(name, LENGTH_RANGE, v)
         if self.hand not in ("right", "left"):
             raise DesignError("hand", "'right' or 'left'", self.hand)
         for rotor, pitch in (("male", self.male_pitch_radius), ("female", self.female_pitch_radius)):

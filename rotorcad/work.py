@@ -7,6 +7,15 @@ A profile sampled to a chord tolerance t has a number of points that grows like 
 sagitta of a chord of length c on radius R is c^2 / (8 R)); a helical solid (:mod:`rotorcad.solids`)
 has ``2 x points x layers`` side triangles, with ``layers`` growing like the wrap angle times
 1/sqrt(t). So the triangles grow like 1/t and like 1/lead.
+
+Issue 24: anything that would take over a minute says so before it starts, with the option that
+makes it faster (:func:`long_run_note`). Measured on the project's 2-core machine, the other
+commands stay under a minute at their bounds, so only ``sweep`` and ``clearance`` (2.6 million
+points: 67 s) need the note: ``export`` at
+:data:`MAX_TRIANGLES` (about 2.2 us a triangle: 8.8 s), ``cut`` at its union budget
+(:data:`hob.cutting.MAX_UNION_VERTICES`, some 3 s a pass, at most 8 passes; the issue's 45-s cases
+now 6.6 s), ``deflect --terms 400`` (15 s), ``interfere --steps 100000`` (3.3 s on the
+loaded machine).
 """
 
 from __future__ import annotations
@@ -73,4 +82,105 @@ def solid_triangles(points: float, lead: float, length: float, r_max: float, tol
     return 2.0 * points * layers
 
 
-__all__ = ["MAX_SECTION_POINTS", "MAX_TRIANGLES", "points_at", "solid_triangles"]
+LONG_RUN_SECONDS = 60.0
+"""A request estimated to take longer than this says so before it starts (issue 24)."""
+
+SWEEP_SECONDS = {None: 0.022, "hobbability": 0.046, "interference": 0.164, "volume": 0.008, "clearance": 0.202}
+"""CPU-seconds of one sweep variant: the pair and Rinder's analysis (key None), plus each analysis of
+``[sweep] compute``. Measured with ``rotorcad sweep --workers 0 --json`` on the 60 variants of
+``samples/sweep_rack_involute.toml`` without its [constraints] and [objectives], one run per
+analysis alone (``cpu_seconds`` / ``computed``: 1.32 s with none, 4.06 s hobbability, 11.18 s
+interference, 1.78 s volume, 13.44 s clearance; each analysis is its run less the first). The wall
+time on the loaded 2-core machine was about twice that."""
+
+CLEARANCE_SECONDS = (1.7, 2.5e-5)
+"""Seconds of ``clearance``: a constant and a time per profile point read (male and female). Measured
+as wall time of ``rotorcad clearance --json`` on the symmetric sample's outlines (``rotor
+--male-csv``) made 100 and 1000 times denser by linear interpolation: 262 800 points 8.2 s,
+2 628 000 points 67 s on the loaded 2-core machine (the line through the two)."""
+
+CLUSTER_START_SECONDS = 5.0
+"""CPU-seconds to start a local Dask cluster (:data:`rotorcad.sweep.run.IN_PROCESS_BELOW`)."""
+
+
+def sweep_seconds(count: int, extras: tuple[str, ...], workers: int) -> float:
+    """Estimated wall time of a sweep, s: ``count`` variants over ``workers`` processes.
+
+    Parameters
+    ----------
+    count : int
+        Variants to compute.
+    extras : tuple of str
+        The analyses of ``[sweep] compute`` (values of :class:`rotorcad.sweep.plan.Extra`).
+    workers : int
+        Processes sharing the variants; 1 in this process (no cluster to start).
+
+    Returns
+    -------
+    float
+        ``count x (base + extras) / workers``, plus :data:`CLUSTER_START_SECONDS` with a cluster.
+    """
+    each = SWEEP_SECONDS[None] + sum(SWEEP_SECONDS.get(x, 0.0) for x in extras)
+    return count * each / max(workers, 1) + (CLUSTER_START_SECONDS if workers > 1 else 0.0)
+
+
+def clearance_seconds(points: int) -> float:
+    """Estimated wall time of ``clearance`` from the profile points read, s (:data:`CLEARANCE_SECONDS`).
+
+    Parameters
+    ----------
+    points : int
+        Points of the male and female profiles together.
+
+    Returns
+    -------
+    float
+        ``constant + points x seconds a point``.
+    """
+    return CLEARANCE_SECONDS[0] + CLEARANCE_SECONDS[1] * points
+
+
+def _duration(seconds: float) -> str:
+    """``about N min`` (or ``N h``) for a duration above a minute, ``N s`` below."""
+    if seconds < 90:
+        return f"{seconds:.0f} s"
+    if seconds < 5400:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
+
+
+def long_run_note(seconds: float, faster: tuple[str, object, float] | None) -> str | None:
+    """Return the note said before a request estimated to take over :data:`LONG_RUN_SECONDS`, else None.
+
+    Parameters
+    ----------
+    seconds : float
+        The estimated run time, s.
+    faster : tuple of (str, object, float), optional
+        An option, its value and the run time it would give, s; None when no option helps.
+
+    Returns
+    -------
+    str or None
+        ``this will take about N min; --OPTION VALUE would make it about M s`` (no final stop).
+    """
+    if not seconds > LONG_RUN_SECONDS:
+        return None
+    text = f"this will take about {_duration(seconds)}"
+    if faster is not None:
+        option, value, quicker = faster
+        text += f"; {option} {value} would make it about {_duration(quicker)}"
+    return text
+
+
+__all__ = [
+    "LONG_RUN_SECONDS",
+    "MAX_SECTION_POINTS",
+    "MAX_TRIANGLES",
+    "SWEEP_SECONDS",
+    "clearance_seconds",
+    "long_run_note",
+    "points_at",
+    "solid_triangles",
+    "sweep_seconds",
+]

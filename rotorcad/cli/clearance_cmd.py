@@ -12,9 +12,11 @@ from exports.csv_points import write_points
 from exports.dxf_profile import read_profile
 from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, points_quality
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import lobe_pieces, profile_points
+from rotorcad.work import clearance_seconds, long_run_note
 
 INTERFERENCE_THRESHOLD = 2e-3
 """mm: a clearance below minus this (or minus the stated accuracy, the larger) is an interference.
@@ -135,6 +137,8 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     rm, rf = np.hypot(*profile_points(male).T), np.hypot(*profile_points(female).T)
+    # a note before the work when the points would take over a minute (no option makes it faster: fewer points would)
+    say_long_run(long_run_note(clearance_seconds(len(rm) + len(rf)), None), opts["quiet"])
     a = opts["center_distance"]
     for option, radii in (("--male-points", rm), ("--female-points", rf)):
         if np.isfinite(a) and a > 0 and not radii.max() < a:  # e.g. a drawing in other units

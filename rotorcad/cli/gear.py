@@ -24,6 +24,7 @@ from rotorcad.cli.progress import Steps
 from rotorcad.errors import DesignError
 from rotorcad.gear import DEG, GearPair, InvoluteGear, mate_shift
 from rotorcad.plotting import line_of_action, mate_in_mesh, plot_gears
+from rotorcad.rotor_pair import LENGTH_RANGE, MAX_LENGTH
 
 GEAR_OPTION = {
     "teeth": "--teeth",
@@ -256,6 +257,8 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
     try:
         if not isinstance(z2, int) or z2 < 3:
             raise DesignError("teeth", "a whole number of at least 3", z2)
+        if a is not None and not (np.isfinite(a) and 0 < a <= MAX_LENGTH):  # before the mate's shift is solved from it
+            raise DesignError("center_distance", LENGTH_RANGE, a)
         x2 = p.get("mate_shift")
         if x2 is None:
             x2 = 0.0 if a is None else mate_shift(g, z2, a)

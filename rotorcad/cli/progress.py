@@ -184,5 +184,29 @@ def stop_waiting() -> None:
 
 _OWN_BAR_SHOWN: list[bool] = []
 
+NOTED: list[str] = []
+"""Every note said before a long run in this process (for the tests)."""
 
-__all__ = ["OPENED", "Steps", "on_terminal", "start_waiting", "stop_waiting"]
+
+def say_long_run(note: str | None, quiet: bool) -> None:
+    """Say on stderr, before the work starts, that it will take over a minute (issue 24).
+
+    Written whether or not stderr is a terminal (a script's log then shows why it waits), never on
+    stdout (``--json`` stays one object), and not with ``--quiet``.
+
+    Parameters
+    ----------
+    note : str or None
+        :func:`rotorcad.work.long_run_note`; None says nothing.
+    quiet : bool
+        The command's ``--quiet``.
+    """
+    if note is None:
+        return
+    NOTED.append(note)
+    if not quiet:
+        sys.stderr.write(f"rotorcad: note: {note}.\n")
+        sys.stderr.flush()
+
+
+__all__ = ["NOTED", "OPENED", "Steps", "on_terminal", "say_long_run", "start_waiting", "stop_waiting"]

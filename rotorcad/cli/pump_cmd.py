@@ -53,12 +53,13 @@ def pump(design: Path | None, **opts: Any) -> None:
     Mean flow (eq. 2, and the textbook swept volume 2 pi b m^2 z n beside it), irregularity,
     harmonics and pump frequency f = n z / 60. Every default taken is printed.
     """
-    for key, flag in (("face_width", "--face-width"), ("speed", "--speed")):
+    # the face width up to 10 m as [gear] face_width of `export`, the speed up to 1e6 rpm as `coupling`'s
+    for key, flag, top, unit in (("face_width", "--face-width", 10_000.0, "mm"), ("speed", "--speed", 1e6, "rpm")):
         v = opts.get(key)
         if v is None:
             raise InputError(f"{flag} is required (a positive number).")
-        if not (np.isfinite(v) and v > 0):
-            raise InputError(f"{flag} must be a positive number (got {v}).")
+        if not (np.isfinite(v) and 0 < v <= top):
+            raise InputError(f"{flag} must be a positive number up to {top:g} {unit} (got {v}).")
     if not 1 <= opts["count"] <= 64:
         raise InputError(f"--harmonics must be a whole number from 1 to 64 (got {opts['count']}).")
     params = merge_gear_params(design, opts)

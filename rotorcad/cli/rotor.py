@@ -294,7 +294,10 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
     missing = [k for k in PAIR_OPTIONS if k not in values]
     if missing:
         raise InputError(f"--{missing[0].replace('_', '-')} is required (or a design file with [pair] {missing[0]}).")
-    label = (lambda k: f"[pair] {k}") if design is not None and not sources else (lambda k: f"--{k.replace('_', '-')}")
+    def label(key: str) -> str:  # what the user typed: the option if given, else the design's key
+        from_design = design is not None and not sources and opts.get(key) is None
+        return f"[pair] {key}" if from_design else f"--{key.replace('_', '-')}"
+
     try:
         pair = RotorPair(**values)
     except DesignError as exc:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from dataclasses import replace
@@ -13,8 +14,9 @@ import numpy as np
 from rich.console import Console
 
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
-from rotorcad.cli.progress import Steps
+from rotorcad.cli.progress import Steps, say_long_run
 from rotorcad.errors import DesignError
+from rotorcad.work import long_run_note, sweep_seconds
 
 
 @click.command()
@@ -125,7 +127,8 @@ def sweep(
 
     try:
         with bar:
-            outcome = run_sweep(plan, folder, points, out, scheduler, workers, batch, progress=report)
+            long_run = _long_run(plan, scheduler, workers, quiet)
+            outcome = run_sweep(plan, folder, points, out, scheduler, workers, batch, progress=report, before=long_run)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     steered = bool(steer.constraints or steer.objectives)
@@ -156,6 +159,27 @@ def sweep(
         emit_json(result)
     else:
         _print_result(result, outcome)
+
+
+def _long_run(plan, scheduler: str | None, workers: int | None, quiet: bool):
+    """Return the callback that says a sweep will take over a minute (:func:`rotorcad.work.sweep_seconds`).
+
+    Called by :func:`rotorcad.sweep.run.run_sweep` with the variants left to compute; the faster
+    option is ``--workers`` with one per core when fewer run. Nothing for a ``--scheduler`` (the
+    cluster's size is not known here).
+    """
+
+    def before(count: int, in_process: bool) -> None:
+        if scheduler:
+            return
+        cores = os.cpu_count() or 1
+        used = 1 if in_process else min(workers or cores, cores)
+        extras = tuple(e.value for e in plan.extras)
+        seconds = sweep_seconds(count, extras, used)
+        faster = ("--workers", cores, sweep_seconds(count, extras, cores)) if used < cores else None
+        say_long_run(long_run_note(seconds, faster), quiet)
+
+    return before
 
 
 def _check_options(workers: int | None, scheduler: str | None, batch: int | None, top: int, out: Path, targets: dict) -> None:

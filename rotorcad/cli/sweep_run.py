@@ -39,12 +39,13 @@ def run_sweep(
     batch: int | None = None,
     progress: Callable[[int, int, int], None] | None = None,
     analyses: Mapping[Extra, Callable[..., dict[str, Any]]] | None = None,
+    before: Callable[[int, bool], None] | None = None,
 ) -> SweepOutcome:
     """Run a plan with every analysis, the hobbability verdict included (:func:`rotorcad.sweep.run.run_sweep`).
 
     Parameters
     ----------
-    plan, folder, points, out, scheduler, workers, batch, progress
+    plan, folder, points, out, scheduler, workers, batch, progress, before
         As for :func:`rotorcad.sweep.run.run_sweep`.
     analyses : mapping, optional
         Default :func:`edge_analyses`.
@@ -53,7 +54,7 @@ def run_sweep(
     -------
     SweepOutcome
     """
-    return _run_sweep(plan, folder, points, out, scheduler, workers, batch, progress, analyses or edge_analyses())
+    return _run_sweep(plan, folder, points, out, scheduler, workers, batch, progress, analyses or edge_analyses(), before=before)
 
 
 def sweep(

@@ -315,6 +315,7 @@ def run_sweep(
     batch: int | None = None,
     progress: Callable[[int, int, int], None] | None = None,
     analyses: Mapping[Extra, Analysis] | None = None,
+    before: Callable[[int, bool], None] | None = None,
 ) -> SweepOutcome:
     """Compute every variant of ``plan`` not yet in ``out``; return the whole table.
 
@@ -341,6 +342,10 @@ def run_sweep(
     analyses : mapping of Extra to callable, optional
         Optional analyses the core does not make itself (the hobbability verdict of
         ``hob.sweep_check``): required when the plan asks for them.
+    before : callable, optional
+        Called with (variants to compute, whether they run in this process) once the earlier rows
+        are counted, before any cluster starts or variant is computed (the command's note of a
+        long run).
 
     Returns
     -------
@@ -369,6 +374,8 @@ def run_sweep(
     failed = int((~earlier["ok"].astype(bool)).sum()) if len(earlier) else 0
     worker_seconds = 0.0
     in_process = not scheduler and (workers == 0 or (workers is None and todo_count < IN_PROCESS_BELOW))
+    if before is not None and todo_count:
+        before(todo_count, in_process)
     if todo_count:
         parts = parts_folder(out) if out is not None else None
         submit = dict(
