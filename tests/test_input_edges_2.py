@@ -132,16 +132,16 @@ def test_male_dxf_scaled_1e9(capsys, tmp_path, outlines):
 
 def test_clearance_lead_1e9_refused_with_the_longest_lead(capsys, tmp_path, outlines):
     """`clearance --lead 1e9` returned zeros and nulls on exit 0: no segment of the contact line
-    lies within the 190 mm rotors. A lead beyond 100 m is now refused as a design length; at the
-    100 m bound the answer is a band or a one-sentence refusal, never zeros on exit 0."""
+    lies within the 190 mm rotors. A lead beyond 100 m is refused as a design length; within it, a
+    lead that leaves the flanks' contact zone outside the rotors is refused naming the longest lead
+    that does not, and just below that bound there is a band."""
     m = polyline_dxf(tmp_path / "male.dxf", outlines["male"])
     f = polyline_dxf(tmp_path / "female.dxf", outlines["female"])
     argv = ["clearance", "--male-points", m, "--female-points", f, *CLEARANCE, "--json"]
     refused(capsys, "--lead must be a positive length up to 100000 mm", *argv, "--lead", "1e9")
-    status, out, err = run(capsys, *argv, "--lead", "1e5")
-    if status == 2:  # measured: "--contact must be a pair whose flanks touch somewhere inside both bores"
-        assert len(err.strip().splitlines()) == 1 and out == "", err
-        return
+    line = refused(capsys, "--lead must be at most", *argv, "--lead", "1e5")
+    bound = float(re.search(r"at most ([0-9.e+]+) mm", line).group(1))
+    status, out, _ = run(capsys, *argv, "--lead", f"{bound * 0.999:.6g}")
     res = json.loads(out)
     assert status == 0 and res["mean_clearance"] is not None and res["band_area"] > 0
 
