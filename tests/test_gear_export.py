@@ -54,6 +54,7 @@ def test_a_spur_gear_pair_from_the_command_line(tmp_path, capsys):
     assert sorted(Path(f["path"]).name for f in files) == sorted(p.name for p in out.iterdir())
     assert {f["body"] for f in files} == {"gear", "mate"}
     width = 10 * 3.0  # the sample has no face_width: ten modules
+    sections = {}  # each STEP file's mid-width section, cut once (OpenCASCADE) and used twice
     for f in files:
         if f["format"] == "stl":
             mesh = read_mesh(Path(f["path"]), "stl")
@@ -62,11 +63,11 @@ def test_a_spur_gear_pair_from_the_command_line(tmp_path, capsys):
             info = read_step(Path(f["path"]))
             assert info["solids"] == 1 and info["valid"] and f["tolerance"] <= 1e-3
             assert info["volume"] == pytest.approx(f["volume"], rel=1e-5)  # area x face width
-            section = _section_of_step(Path(f["path"]), width / 2)
+            section = sections[f["body"]] = _section_of_step(Path(f["path"]), width / 2)
             assert section.area * width == pytest.approx(info["volume"], rel=1e-5)
     # ISO 21771 tooth thickness at the pitch circle of the gear (z = 17, m = 3, x = 0.3, 20 deg)
     step = next(f for f in files if f["format"] == "step" and f["body"] == "gear")
-    section = _section_of_step(Path(step["path"]), width / 2)
+    section = sections[step["body"]]
     r = 17 * 3.0 / 2
     circle = shapely.LineString(r * np.column_stack([np.cos(t := np.linspace(0, 2 * np.pi, 400_001)), np.sin(t)]))
     arcs = [g.length for g in shapely.get_parts(circle.intersection(section)) if g.length > 1.0]
