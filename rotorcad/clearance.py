@@ -651,10 +651,14 @@ class MeshingClearance:
         """
         male = self._male_outline
         centre, width = np.asarray(angle, dtype=float), window
+        # every grid holds its centre (odd counts), whose distance bounds the smallest: positions
+        # farther than the largest such bound are not searched (they return inf)
+        bound = distance_to_polyline(self._female_in_male_frame(female, centre), male)
+        reach = float(np.max(bound)) * (1 + 1e-9) + 1e-9 if len(bound) else None
         for n in (65, 17, 17):
             grid = centre[:, None] + np.linspace(-width, width, n)[None, :]
             pts = self._female_in_male_frame(np.repeat(female[:, None, :], n, axis=1), grid)
-            d = distance_to_polyline(pts.reshape(-1, 2), male).reshape(len(female), n)
+            d = distance_to_polyline(pts.reshape(-1, 2), male, reach).reshape(len(female), n)
             j = np.clip(np.argmin(d, axis=1), 1, n - 2)
             centre = grid[np.arange(len(female)), j]
             width = 2 * width / (n - 1)
@@ -662,7 +666,7 @@ class MeshingClearance:
         d0, d1, d2 = d[rows, j - 1], d[rows, j], d[rows, j + 1]
         curv = d0 - 2 * d1 + d2
         with np.errstate(divide="ignore", invalid="ignore"):
-            vertex = np.where(curv > 0, d1 - (d2 - d0) ** 2 / (8 * curv), d1)
+            vertex = np.where((curv > 0) & np.isfinite(curv), d1 - (d2 - d0) ** 2 / (8 * curv), d1)
         return np.minimum(np.clip(vertex, 0.0, None), d.min(axis=1))
 
     @cached_property

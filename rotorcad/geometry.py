@@ -189,7 +189,7 @@ def radius(points: Array) -> Array:
     return np.hypot(*as_points(points).T)
 
 
-def distance_to_polyline(points: Array, polyline: Array) -> Array:
+def distance_to_polyline(points: Array, polyline: Array, max_distance: float | None = None) -> Array:
     """Return the exact distance of each point to an open polyline.
 
     The nearest of the polyline's segments is found by shapely's STRtree (a packed R-tree), so that
@@ -202,11 +202,14 @@ def distance_to_polyline(points: Array, polyline: Array) -> Array:
         The points to measure.
     polyline : (m, 2) float array, mm
         Vertices of the open polyline, in order; a single distinct vertex is a point.
+    max_distance : float, optional, mm
+        Search no farther: a point farther than this from every segment gets ``inf`` (the R-tree
+        then leaves the far branches alone, which is what makes many far points fast).
 
     Returns
     -------
     (n,) float array, mm
-        Unsigned distance of each point to the polyline.
+        Unsigned distance of each point to the polyline (``inf`` beyond ``max_distance``).
     """
     import shapely
 
@@ -218,7 +221,9 @@ def distance_to_polyline(points: Array, polyline: Array) -> Array:
         return np.hypot(*(pts - line[0]).T)
     segments = shapely.linestrings(np.stack([line[:-1], line[1:]], axis=1))
     tree = shapely.STRtree(segments)
-    (which, _seg), dist = tree.query_nearest(shapely.points(pts), return_distance=True, all_matches=False)
+    (which, _seg), dist = tree.query_nearest(
+        shapely.points(pts), max_distance=max_distance, return_distance=True, all_matches=False
+    )
     out = np.full(len(pts), np.inf)
     np.minimum.at(out, which, dist)
     return out
