@@ -1,0 +1,44 @@
+"""Involute gears: closed forms, the rack tool's cut, the sampled outline and the pair in mesh.
+
+Modules, one job each:
+
+* :mod:`rotorcad.gears.formulas` - the closed forms of ISO 21771 (``inv`` and its inverse, the
+  transverse and working pressure angles, the shift sum), the one home of the involute function;
+* :mod:`rotorcad.gears.involute_gear` - :class:`InvoluteGear` and :class:`GearPair`.
+
+The names below are imported on first use (PEP 562), so that importing the closed forms alone
+does not load the envelope engine.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+_API = {
+    "DEG": "rotorcad.gears.involute_gear",
+    "MAX_TEETH": "rotorcad.gears.involute_gear",
+    "MODULE_RANGE": "rotorcad.gears.involute_gear",
+    "RELATIVE_TOLERANCE": "rotorcad.gears.involute_gear",
+    "InvoluteGear": "rotorcad.gears.involute_gear",
+    "GearPair": "rotorcad.gears.involute_gear",
+    "mate_shift": "rotorcad.gears.involute_gear",
+    "tool_tip_radius_limit": "rotorcad.gears.involute_gear",
+    "inv": "rotorcad.gears.formulas",
+    "inv_inverse": "rotorcad.gears.formulas",
+    "shift_sum": "rotorcad.gears.formulas",
+    "transverse_pressure_angle": "rotorcad.gears.formulas",
+    "working_pressure_angle": "rotorcad.gears.formulas",
+}
+
+
+def __getattr__(name: str) -> object:
+    if name in _API:
+        return getattr(importlib.import_module(_API[name]), name)
+    raise AttributeError(f"module 'rotorcad.gears' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_API])
+
+
+__all__ = sorted(_API)
