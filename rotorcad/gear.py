@@ -6,16 +6,9 @@ Kept so that ``from rotorcad.gear import InvoluteGear`` goes on working; new cod
 
 from __future__ import annotations
 
-from rotorcad.gears.involute_gear import (
-    DEG,
-    MAX_TEETH,
-    MODULE_RANGE,
-    RELATIVE_TOLERANCE,
-    GearPair,
-    InvoluteGear,
-    mate_shift,
-    tool_tip_radius_limit,
-)
+from rotorcad.gears.formulas import tool_tip_radius_limit
+from rotorcad.gears.involute_gear import DEG, MAX_TEETH, MODULE_RANGE, RELATIVE_TOLERANCE, InvoluteGear
+from rotorcad.gears.pair import GearPair, mate_shift
 
 __all__ = [
     "DEG",

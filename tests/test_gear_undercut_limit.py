@@ -77,7 +77,7 @@ def test_grid_holds_the_cases_near_the_limit(grid):
 def test_undercut_point_equals_the_brute_force_intersection(grid):
     worst = 0.0
     for g in grid:
-        cuts = {name: (s0, s1) for name, s0, s1, _ in g._half_tooth["cuts"]}
+        cuts = {name: (s0, s1) for name, s0, s1, _ in g._half_tooth.cuts}
         s_a, s_low = cuts["involute"]
         fil_s0 = cuts["fillet"][0]
         a0, a1 = g._cuts["flank"].roll()

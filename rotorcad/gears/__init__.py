@@ -4,7 +4,15 @@ Modules, one job each:
 
 * :mod:`rotorcad.gears.formulas` - the closed forms of ISO 21771 (``inv`` and its inverse, the
   transverse and working pressure angles, the shift sum), the one home of the involute function;
-* :mod:`rotorcad.gears.involute_gear` - :class:`InvoluteGear` and :class:`GearPair`.
+* :mod:`rotorcad.gears.tool` - the generating rack tool (:class:`~rotorcad.gears.tool.RackTool`)
+  and the closed form of the curve each of its pieces cuts (:class:`~rotorcad.gears.tool.ToolCut`);
+* :mod:`rotorcad.gears.tooth` - the generated tooth: its pieces, undercut point, pointed tip,
+  and the check that a flank does not sever it;
+* :mod:`rotorcad.gears.sampling` - sampling the tooth to a chord tolerance from the curvature;
+* :mod:`rotorcad.gears.involute_gear` - :class:`InvoluteGear`: the gear's design values, their
+  checks, its dimensions and its outline;
+* :mod:`rotorcad.gears.pair` - :class:`GearPair` (centre distance, backlash, contact ratio) and
+  :func:`mate_shift`.
 
 The names below are imported on first use (PEP 562), so that importing the closed forms alone
 does not load the envelope engine.
@@ -20,9 +28,9 @@ _API = {
     "MODULE_RANGE": "rotorcad.gears.involute_gear",
     "RELATIVE_TOLERANCE": "rotorcad.gears.involute_gear",
     "InvoluteGear": "rotorcad.gears.involute_gear",
-    "GearPair": "rotorcad.gears.involute_gear",
-    "mate_shift": "rotorcad.gears.involute_gear",
-    "tool_tip_radius_limit": "rotorcad.gears.involute_gear",
+    "GearPair": "rotorcad.gears.pair",
+    "mate_shift": "rotorcad.gears.pair",
+    "tool_tip_radius_limit": "rotorcad.gears.formulas",
     "inv": "rotorcad.gears.formulas",
     "inv_inverse": "rotorcad.gears.formulas",
     "shift_sum": "rotorcad.gears.formulas",
