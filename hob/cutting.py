@@ -2,7 +2,7 @@
 
 The blank minus the union of the tool positions (shapely) is the cut gear, undercut and all.
 This is the numerical envelope; it must agree with the analytic one of
-:class:`rotorcad.gear.InvoluteGear` (two independent methods
+:class:`rotorcad.gears.involute_gear.InvoluteGear` (two independent methods
 for one envelope). The number of positions follows from the requested
 scallop height h: consecutive straight flank positions turn by dt in the blank's frame and leave
 cusps of height rho (1/cos(dt/2) - 1) ~ rho dt^2 / 8 above an involute of radius of curvature
@@ -20,7 +20,8 @@ import shapely
 
 from rotorcad.curves import Curve, PointPath
 from rotorcad.errors import DesignError
-from rotorcad.gear import InvoluteGear
+from rotorcad.gears.formulas import inv
+from rotorcad.gears.involute_gear import InvoluteGear
 from rotorcad.geometry import rotate
 from rotorcad.kinematics import Rotation, Translation
 from rotorcad.profile import Segment
@@ -318,10 +319,10 @@ def simulated_form_radius(gear: InvoluteGear, result: CutResult, tolerance: floa
     ang = np.abs(np.arctan2(pts[ok, 1], pts[ok, 0]))
     # the flank's polar angle + inv(alpha) is the constant of its involute: take it halfway up the
     # analytic involute (the pitch circle can lie on the fillet: z = 3, x = 0)
-    theta = ang + np.tan(a) - a
+    theta = ang + inv(a)
     r_ref = 0.5 * (gear.form_radius + gear.tip_radius)
     a_ref = np.arccos(rb / r_ref)
-    ref = gear.half_angle(r_ref) + np.tan(a_ref) - a_ref
+    ref = gear.half_angle(r_ref) + inv(a_ref)
     gap = (theta - ref) * r[ok]  # > 0 outside the involute (scallops), < 0 inside it (undercut)
     on = np.abs(gap) <= tolerance
     inner = r[ok] < gear.tip_radius - tolerance
