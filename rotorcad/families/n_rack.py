@@ -44,17 +44,23 @@ are this rack).
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import numpy as np
 
 from rotorcad.curves import Arc, GeneralisedArc, PointPath
 from rotorcad.envelope import from_rack_frame
 from rotorcad.errors import DesignError
+from rotorcad.families.parameters import TipLand, between
 from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.kinematics import Rotation
 from rotorcad.roles import PieceRole
 from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_arc, rack_line
+
+Exponent = Annotated[float, between(1.5, 6.0, "between 1.5 and 6")]
+"""An exponent of the driving flank's generalised arc."""
 
 
 def sealing_contact(pair: RotorPair, male_radius: float, female_radius: float) -> np.ndarray:
@@ -97,14 +103,16 @@ def sealing_contact(pair: RotorPair, male_radius: float, female_radius: float) -
 
 def n_rack(
     pair: RotorPair,
-    driving_width: float = 1.25,
-    driving_exponent_along: float = 2.0,
-    driving_exponent_across: float = 2.0,
-    driving_center_depth: float = 0.5,
-    driving_root_rounding: float = 0.3,
-    tip_land: float = 0.0,
-    male_tip_rounding: float = 0.05,
-    female_tip_rounding: float = 0.1,
+    driving_width: Annotated[float, between(0.3, 1.5, "between 0.3 and 1.5 (fraction of the male addendum)")] = 1.25,
+    driving_exponent_along: Exponent = 2.0,
+    driving_exponent_across: Exponent = 2.0,
+    driving_center_depth: Annotated[float, between(0.0, 1.0, "between 0 and 1 (fraction of the male addendum)")] = 0.5,
+    driving_root_rounding: Annotated[float, between(0.01, 1.0, "between 0.01 and 1 (fraction of the male addendum)")] = 0.3,
+    tip_land: TipLand = 0.0,
+    male_tip_rounding: Annotated[float, between(0.0, 0.5, "between 0 and 0.5 (fraction of the male addendum)")] = 0.05,
+    female_tip_rounding: Annotated[
+        float, between(0.0, 0.5, "between 0 and 0.5 (fraction of the male addendum) and above the female addendum over h1")
+    ] = 0.1,
 ) -> ScrewRotors:
     """Stosic's N rack (see the module docstring for the construction and the choices made).
 
