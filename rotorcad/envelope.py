@@ -38,12 +38,16 @@ end points, whose normals lie along the pitch line.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 
 from rotorcad.curves import Curve
 from rotorcad.geometry import Array, as_points, cross, perp_cw, wrap_angle
 from rotorcad.kinematics import Body, Rotation, Translation, pitch_point
+
+Branch = Literal["A", "B"]
+"""Which root of the meshing equation of a generating rotor (see the module docstring)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,7 +101,7 @@ def contact_parameter(
     normals: Array,
     generating: Body,
     pitch: Array,
-    branch: str = "A",
+    branch: Branch = "A",
     arc_center: Array | None = None,
     reference: float = 0.0,
     corner: bool = False,
@@ -159,7 +163,7 @@ def conjugate(
     tangents: Array,
     generating: Body,
     generated: Body,
-    branch: str = "A",
+    branch: Branch = "A",
     arc_center: Array | None = None,
     limits: tuple[float, float] | None = None,
     reference: float = 0.0,
@@ -239,7 +243,7 @@ class Generated(Curve):
     parent: Curve
     generating: Body
     generated: Body
-    branch: str = "A"
+    branch: Branch = "A"
     reference: float = 0.0
     limits: tuple[float, float] | None = None
     s0: float = float("nan")

@@ -28,8 +28,8 @@ from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
 from rotorcad.gears.formulas import tool_tip_radius_limit, transverse_pressure_angle
 from rotorcad.gears.sampling import sample_tooth
-from rotorcad.gears.tool import RackTool, ToolCut
-from rotorcad.gears.tooth import HalfTooth, half_tooth, severed, severed_allowed, tooth_pieces
+from rotorcad.gears.tool import RackTool, ToolCut, ToolPiece
+from rotorcad.gears.tooth import HalfTooth, ToothPiece, half_tooth, severed, severed_allowed, tooth_pieces
 from rotorcad.geometry import polar_angle, radius
 from rotorcad.kinematics import gear_mesh
 from rotorcad.profile import DEFAULT_TOLERANCE, Profile
@@ -183,7 +183,7 @@ class InvoluteGear:
         )
 
     @cached_property
-    def tool(self) -> dict[str, Curve]:
+    def tool(self) -> dict[ToolPiece, Curve]:
         """The tool tooth facing the upper flank of tooth 0, in the fixed frame at t = 0.
 
         Travelled counter-clockwise around the tool material (outward normal towards the gear):
@@ -198,12 +198,12 @@ class InvoluteGear:
         return self._tool.curves()
 
     @cached_property
-    def _cuts(self) -> dict[str, ToolCut]:
+    def _cuts(self) -> dict[ToolPiece, ToolCut]:
         """The pieces of :attr:`tool` as closed-form cutters (:meth:`rotorcad.gears.tool.RackTool.cuts`)."""
         return self._tool.cuts()
 
     @cached_property
-    def _generated(self) -> dict[str, Generated]:
+    def _generated(self) -> dict[ToolPiece, Generated]:
         """The gear curves cut by the pieces of :attr:`tool`, as the envelope engine generates them.
 
         Returns
@@ -223,7 +223,7 @@ class InvoluteGear:
         return half_tooth(self)
 
     @cached_property
-    def _pieces(self) -> list[tuple[str, Curve]]:
+    def _pieces(self) -> list[tuple[ToothPiece, Curve]]:
         """The pieces of :attr:`_half_tooth` as exact curves (:func:`rotorcad.gears.tooth.tooth_pieces`)."""
         return tooth_pieces(self)
 

@@ -21,6 +21,8 @@ from rotorcad.geometry import Array
 
 CutKind = Literal["line", "arc"]
 """The shape of a tool piece: a straight ``"line"`` (tip line, flank) or an ``"arc"`` (tip arc)."""
+ToolPiece = Literal["tip line", "tip arc", "flank"]
+"""A piece of the tool tooth, in its counter-clockwise travel (:meth:`RackTool.curves`)."""
 
 
 def as_pairs(z: Array) -> Array:
@@ -309,7 +311,7 @@ class RackTool:
             stretch=1.0 / np.cos(helix_angle),
         )
 
-    def curves(self) -> dict[str, Curve]:
+    def curves(self) -> dict[ToolPiece, Curve]:
         """Return the tool's pieces as exact curves, in the fixed frame at t = 0.
 
         Travelled counter-clockwise around the tool material (outward normal towards the gear):
@@ -317,33 +319,34 @@ class RackTool:
 
         Returns
         -------
-        dict of str to Curve
+        dict of ToolPiece to Curve
             :class:`~rotorcad.curves.Mapped` lines and arc (stretched by 1 / cos(beta) along the
             pitch line), mm.
         """
         stretch = ((1.0, 0.0), (0.0, self.stretch))
-        curves: dict[str, Curve] = {}
+        curves: dict[ToolPiece, Curve] = {}
         if self.tip_line_start is not None:
             curves["tip line"] = Mapped(Line(self.tip_line_start, self.tip_line_end), stretch)
         curves["tip arc"] = Mapped(Arc(self.arc_center, self.arc_radius, np.pi, self.arc_end), stretch)
         curves["flank"] = Mapped(Line(self.flank_start, self.flank_end), stretch)
         return curves
 
-    def cuts(self) -> dict[str, ToolCut]:
+    def cuts(self) -> dict[ToolPiece, ToolCut]:
         """Return the pieces of :meth:`curves` as closed-form cutters.
 
         Returns
         -------
-        dict of str to ToolCut
+        dict of ToolPiece to ToolCut
             Keyed like :meth:`curves`, with the parameters of its curves (length along a line, mm;
             polar angle about the arc centre, rad).
         """
         r, k = self.pitch_radius, self.stretch
-        cuts: dict[str, ToolCut] = {}
-        for name, a, b in (
+        cuts: dict[ToolPiece, ToolCut] = {}
+        lines: tuple[tuple[ToolPiece, tuple[float, float] | None, tuple[float, float]], ...] = (
             ("tip line", self.tip_line_start, self.tip_line_end),
             ("flank", self.flank_start, self.flank_end),
-        ):
+        )
+        for name, a, b in lines:
             if a is not None:
                 dx, dy = float(b[0]) - float(a[0]), float(b[1]) - float(a[1])
                 length = math.hypot(dx, dy)

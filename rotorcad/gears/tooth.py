@@ -15,7 +15,7 @@ import cmath
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
@@ -29,6 +29,9 @@ from rotorcad.geometry import Array, polar_angle, radius
 if TYPE_CHECKING:
     from rotorcad.gears.involute_gear import InvoluteGear
 
+ToothPiece = Literal["tip arc", "involute", "fillet", "root arc"]
+"""A piece of the generated half tooth, from the tip towards the space centre."""
+
 
 @dataclass(frozen=True)
 class HalfTooth:
@@ -36,7 +39,7 @@ class HalfTooth:
 
     Parameters
     ----------
-    cuts : list of (str, float, float, ToolCut or None)
+    cuts : list of (ToothPiece, float, float, ToolCut or None)
         The pieces as (name, s_start, s_end, cutter): the tool parameters (the blank's tip arc:
         polar angles, rad) where the piece starts and ends along the counter-clockwise travel and
         the :class:`~rotorcad.gears.tool.ToolCut` that cuts it (None for the tip arc).
@@ -54,7 +57,7 @@ class HalfTooth:
         Radius of the undercut point P' (None without undercut).
     """
 
-    cuts: list[tuple[str, float, float, ToolCut | None]]
+    cuts: list[tuple[ToothPiece, float, float, ToolCut | None]]
     roll: tuple[float, float]
     fillet_points: Array
     fillet_counts: tuple[Array, Array]
@@ -115,7 +118,7 @@ def half_tooth(gear: InvoluteGear) -> HalfTooth:
         r_p, fil_s0 = undercut_point(fillet, fillet_range, flank_angle, rb)
         s_low = (math.sqrt(max(r_p * r_p - rb * rb, 0.0)) - a0) / a1
     form_radius = math.sqrt(rb * rb + (a0 + a1 * s_low) ** 2)
-    pieces: list[tuple[str, float, float, ToolCut | None]] = []
+    pieces: list[tuple[ToothPiece, float, float, ToolCut | None]] = []
     if not tip_pointed:
         pieces.append(("tip arc", 0.0, tip_angle, None))
     pieces.append(("involute", float(s_a), float(s_low), flank))
@@ -138,7 +141,7 @@ def half_tooth(gear: InvoluteGear) -> HalfTooth:
     )
 
 
-def tooth_pieces(gear: InvoluteGear) -> list[tuple[str, Curve]]:
+def tooth_pieces(gear: InvoluteGear) -> list[tuple[ToothPiece, Curve]]:
     """Return the pieces of the gear's :class:`HalfTooth` as exact curves.
 
     Parameters
@@ -155,7 +158,7 @@ def tooth_pieces(gear: InvoluteGear) -> list[tuple[str, Curve]]:
     """
     gen = gear._generated
     source = {"involute": "flank", "fillet": "tip arc"}
-    out: list[tuple[str, Curve]] = []
+    out: list[tuple[ToothPiece, Curve]] = []
     for name, s0, s1, _ in gear._half_tooth.cuts:
         if name == "tip arc":
             out.append((name, Arc((0.0, 0.0), gear.nominal_tip_radius, s0, s1)))
