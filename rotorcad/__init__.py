@@ -94,7 +94,7 @@ _API = {
     "srm_b": "rotorcad.rotor_families",
     "narrow_tip": "rotorcad.rotor_families",
     "rack_involute": "rotorcad.rotor_families",
-    "n_rack": "rotorcad.n_rack",
+    "n_rack": "rotorcad.families.n_rack",
     "SpatialBlowHole": "rotorcad.blow_hole",
     "Flank": "rotorcad.roles",
     "PieceRole": "rotorcad.roles",

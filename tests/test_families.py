@@ -318,7 +318,7 @@ def test_n_rack_sealing_tips_are_circles_on_the_rotors_touching_with_their_norma
         assert np.hypot(*pts.T).max() == pytest.approx(tip, abs=1e-7)
     # the two circles touch at the rack's junction H: at the instant they touch, the centres and
     # the contact point are collinear with C
-    from rotorcad.n_rack import sealing_contact
+    from rotorcad.families.n_rack import sealing_contact
 
     k = sealing_contact(pair, rm, rf)
     c = np.array([pair.male_pitch_radius, 0.0])
@@ -417,7 +417,7 @@ def test_a_rack_that_undercuts_its_rotor_is_refused(capsys, tmp_path):
     # generated flank loops, and the male made valid (shapely) stops 3.7 mm short of its 57.99 mm
     # tip radius (found by a new user: exit 0 and a blow-hole drawn from the nominal tip circle).
     from rotorcad.cli.main import main
-    from rotorcad.n_rack import n_rack
+    from rotorcad.families.n_rack import n_rack
 
     narrow = n_rack(PAIR_N4, driving_width=0.3)  # the builder itself, unchecked
     reach = np.hypot(*np.asarray(narrow.section("male").exterior.coords).T).max()
