@@ -14,7 +14,8 @@ from matplotlib.lines import Line2D
 from hob.undercut import effective_addendum, limit_shift, practical_limit_shift, real_limit_shift
 from rotorcad import plot_style as ps
 from rotorcad.errors import DesignError
-from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.gears.involute_gear import InvoluteGear
+from rotorcad.gears.pair import GearPair
 from rotorcad.plot_style import styled
 
 

@@ -17,7 +17,7 @@ from matplotlib.lines import Line2D
 from hob.rack import DerivedRack, hob_tooth, rack_in_contract_frame
 from rotorcad import plot_style as ps
 from rotorcad.envelope import rack_frame
-from rotorcad.gear import InvoluteGear
+from rotorcad.gears.involute_gear import InvoluteGear
 from rotorcad.geometry import perp_cw
 from rotorcad.inverse_rack import contact_of_rack_points
 from rotorcad.plot_style import styled

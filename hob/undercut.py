@@ -15,7 +15,7 @@ The effective tool addendum is the tool's addendum less the tip clearance l_w by
 rounding or chamfer shifts the decisive tip line towards the tool root (the paper's sec. 2):
 y = h_a0* - rho_a0* (1 - sin alpha0) for a rounded tip. The quartic is a truncated series, so the
 model is exact only at the onset of undercut (p = 0); the exact envelope of
-:class:`rotorcad.gear.InvoluteGear` is the reference it is reported against.
+:class:`rotorcad.gears.involute_gear.InvoluteGear` is the reference it is reported against.
 
 Limit shifts: x_g = y - z sin^2(alpha0) / 2 (theoretical: the tool's effective tip line passes the
 interference point); the practical x'_g = (5/6) y - z sin^2(alpha0) / 2 of the customary rule that
@@ -30,7 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.gears.involute_gear import InvoluteGear
+from rotorcad.gears.pair import GearPair
 from rotorcad.roots import bracket_root
 
 

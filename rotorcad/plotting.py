@@ -7,7 +7,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rotorcad import plot_style as ps
-from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.gears.involute_gear import InvoluteGear
+from rotorcad.gears.pair import GearPair
 from rotorcad.geometry import rotate
 from rotorcad.plot_style import styled
 

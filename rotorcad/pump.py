@@ -20,7 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.gears.involute_gear import InvoluteGear
+from rotorcad.gears.pair import GearPair
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,7 +44,7 @@ class GearPump:
 
     @property
     def pair(self) -> GearPair:
-        """The two gears in mesh (:class:`rotorcad.gear.GearPair` of the gear with itself)."""
+        """The two gears in mesh (:class:`rotorcad.gears.pair.GearPair` of the gear with itself)."""
         return GearPair(self.gear, self.gear)
 
     @property
