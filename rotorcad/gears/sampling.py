@@ -211,7 +211,7 @@ def chords_beyond(z: Array, w: Array, lengths: Array, tolerance: float) -> Array
 
 
 def sample_tooth(gear: InvoluteGear, tolerance: float) -> Profile:
-    """One tooth from space centre to space centre, counter-clockwise (open chain).
+    """Sample one tooth from space centre to space centre, counter-clockwise (open chain).
 
     The upper half's flank pieces (involute, fillet, root arc) are sampled once and mirrored
     in the tooth's centre line for the lower half; the tip arc, which the centre line cuts, is

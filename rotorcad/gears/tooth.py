@@ -125,7 +125,7 @@ def half_tooth(gear: InvoluteGear) -> HalfTooth:
     pieces.append(("fillet", float(fil_s0), float(fil_s1), fillet))
     if "tip line" in cuts:
         pieces.append(("root arc", cuts["tip line"].length, 0.0, cuts["tip line"]))  # the whole tip line
-    # the fillet on a fine grid: checked for crossing the tooth centre line (_severed), and its
+    # the fillet on a fine grid: checked for crossing the tooth centre line (severed), and its
     # curvature places the samples (grid_parameters)
     fillet_points, _, turning, speed = fillet.cut(span(fil_s0, fil_s1, FILLET_GRID), curvature=True)
     return HalfTooth(
