@@ -73,7 +73,8 @@ def at_least(low: float, text: str) -> Allowed:
 # ranges shared by several families
 TipLand = Annotated[float, at_least(0.0, "a finite length of at least 0 mm")]
 """The male tip land along the rack, mm."""
-FlankAngle = Annotated[float, between(5.0, 60.0, "between 5 and 60 degrees")]
+FLANK_ANGLE = between(5.0, 60.0, "between 5 and 60 degrees")
+FlankAngle = Annotated[float, FLANK_ANGLE]
 """An angle of a rack flank or of a driving arc's foot, degrees."""
 SealStop = Annotated[float, between(0.1, 0.99, "between 0.1 and 0.99 (share of the tip corner's sweep to the cusp)")]
 """The share of the male tip corner's sweep to the housing cusp that generates the female sealing flank."""
@@ -130,4 +131,4 @@ def parameters_of(build: Callable[..., object]) -> dict[str, Param]:
     return out
 
 
-__all__ = ["Allowed", "FlankAngle", "Param", "SealStop", "TipLand", "at_least", "between", "parameters_of"]
+__all__ = ["FLANK_ANGLE", "Allowed", "FlankAngle", "Param", "SealStop", "TipLand", "at_least", "between", "parameters_of"]

@@ -16,19 +16,20 @@ from rotorcad.curves import Line, PointPath
 from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
 from rotorcad.families.corners import female_corner_path, flank_to_female_tip, point_generated_sealing
-from rotorcad.families.parameters import FlankAngle, SealStop, TipLand, at_least, between
+from rotorcad.families.parameters import FLANK_ANGLE, SealStop, TipLand, at_least, between
 from rotorcad.roles import PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors, rack_arc, rack_line
 
 DEG = np.pi / 180.0
-CenterDepth = Annotated[float, at_least(0.0, "at least 0 mm (0: the driving arc centred on the pitch point)")]
+CENTER_DEPTH = at_least(0.0, "at least 0 mm (0: the driving arc centred on the pitch point)")
+CenterDepth = Annotated[float, CENTER_DEPTH]
 """Depth of the driving arc's centre below the pitch line, mm (SRM-B)."""
-OptionalCenterDepth = Annotated[float | None, at_least(0.0, "at least 0 mm (0: the driving arc centred on the pitch point)")]
+OptionalCenterDepth = Annotated[float | None, CENTER_DEPTH]
 """:data:`CenterDepth`, or None where the foot angle places the arc."""
 DrivingRounding = Annotated[float, between(0.0, 1.0, "between 0 and 1 (fraction of the male addendum)")]
 """Radius of the rounding of the female's driving tip, as a fraction of the male addendum."""
-OptionalFlankAngle = Annotated[float | None, FlankAngle.__metadata__[0]]
+OptionalFlankAngle = Annotated[float | None, FLANK_ANGLE]
 """The driving arc's foot angle, degrees, or None where its centre depth places it."""
 
 
