@@ -105,7 +105,7 @@ _API = {
     "helical_solid": "rotorcad.solids",
     "lobe_pieces": "rotorcad.rotor_points",
     "pair_from_rotor_points": "rotorcad.rotor_points",
-    "design_summary": "rotorcad.rotor_build",
+    "design_summary": "rotorcad.design.rotors",
     "GasDeflection": "rotorcad.deflection",
     "GearCoupling": "rotorcad.coupling",
     "sweep": "rotorcad.sweep",

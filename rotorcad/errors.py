@@ -9,7 +9,8 @@ sentence of its parent and is caught by ``except DesignError``:
   oversized, binary, malformed), or a design file whose tables or keys are wrong;
 * :class:`ToleranceError` -- a tolerance that cannot be met (a writer's fit, a sampling);
 * :class:`GeometryError` -- values that are each allowed but describe no part: flanks that never
-  meet, a mate generated from points that is no rotor.
+  meet, a mate generated from points that is no rotor;
+* :class:`MissingValueError` -- a value given neither as an option nor in the design file.
 """
 
 from __future__ import annotations
@@ -76,6 +77,17 @@ class ToleranceError(DesignError):
 
 class GeometryError(DesignError):
     """Values that are each allowed but together describe no part (e.g. gear flanks that never meet)."""
+
+
+class MissingValueError(DesignError):
+    """A value that must be given, as an option or in the design file, and is given by neither.
+
+    Its sentence names the library's parameter; the command line says which option (or design
+    key) gives it.
+    """
+
+    def __init__(self, param: str, allowed: str = "given", value: object = None, detail: str = "missing") -> None:
+        super().__init__(param, allowed, value, detail)
 
 
 class InputNote(UserWarning):
