@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -13,24 +14,15 @@ from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile, read_profile_points
 from rotorcad.clearance_design import ClearanceDistribution, corrected_female
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
+from rotorcad.design.labels import PAIR_FIELDS, PAIR_LABELS, PairNames, required
+from rotorcad.design.rotors import analyse_pair, build_pair, merge_pair
 from rotorcad.envelope import rack_frame
-from rotorcad.errors import DesignError
+from rotorcad.errors import DesignError, MissingValueError
 from rotorcad.profile import Segment
-from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair
-from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import ScrewRotors
 
-PAIR_OPTIONS = (
-    "male_teeth",
-    "female_teeth",
-    "center_distance",
-    "male_tip_radius",
-    "male_root_radius",
-    "female_tip_radius",
-    "female_root_radius",
-    "lead",
-    "length",
-)
+PAIR_OPTIONS = PAIR_FIELDS
+"""The pair's dimensions, each an option of the same name (``--male-teeth``)."""
 
 
 def _points_option(name: str, text: str):
@@ -257,74 +249,45 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
 def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None) -> tuple[ScrewRotors, float, float]:
     """Build the rotors of a design file or of measured points, with the command-line overrides.
 
-    ``settings`` is the design already read and checked by
-    :func:`rotorcad.cli.common.load_rotor_design`, so that the file is read once. Returns the rotors,
-    the speed (rpm) and the housing's radial clearance (mm).
+    The values merge in the core (:func:`rotorcad.design.rotors.merge_pair`); here the points
+    files are read and every refusal names the option or design key the user typed
+    (:class:`rotorcad.design.labels.PairNames`). ``settings`` is the design already read and
+    checked by :func:`rotorcad.design.files.load_rotor_design`, so that the file is read once.
+    Returns the rotors, the speed (rpm) and the housing's radial clearance (mm).
     """
     sources = [k for k in ("male_points", "female_points", "rack_points") if opts.get(k)]
     if len(sources) > 1:
         raise InputError("give only one of --male-points, --female-points, --rack-points.")
-    values: dict[str, Any] = {"lead": 300.0, "length": 190.0}
-    family, params, points, smoothing, speed, clearance = None, {}, None, opts["smoothing"], 3000.0, 0.0
-    if design is not None:
-        try:
-            d = load_rotor_design(design) if settings is None else settings
-        except DesignError as exc:
-            raise InputError(exc.sentence()) from None
-        values.update(d["pair"])
-        family, params, points = d["family"], d["params"], d["points"]
-        smoothing = d["smoothing"] if d["smoothing"] is not None else smoothing
-        speed = float(d["operating"].get("speed_rpm", speed))
-        clearance = float(d["housing"].get("radial_clearance", 0.0))
-    elif not sources:
+    if design is None and not sources:
         raise InputError("give a design file or one of --male-points, --female-points, --rack-points.")
-    for key in PAIR_OPTIONS:
-        if opts.get(key) is not None:
-            values[key] = opts[key]
-    if sources:
-        family = sources[0].replace("_", "-")
-        points = opts[sources[0]]
-    if opts.get("speed") is not None:
-        speed = opts["speed"]
-    if smoothing is not None and not (np.isfinite(smoothing) and smoothing >= 0):
-        raise InputError(f"--smoothing must be a number of at least 0 mm^2 (got {smoothing}).")
-    if not (np.isfinite(speed) and speed > 0):
-        named = "--speed" if opts.get("speed") is not None else "[operating] speed_rpm"  # interfere, export: no --speed
-        raise InputError(f"{named} must be a positive speed in rpm (got {speed}).")
-    missing = [k for k in PAIR_OPTIONS if k not in values]
-    if missing:
-        raise InputError(f"--{missing[0].replace('_', '-')} is required (or a design file with [pair] {missing[0]}).")
-    def label(key: str) -> str:  # what the user typed: the option if given, else the design's key
-        from_design = design is not None and not sources and opts.get(key) is None
-        return f"[pair] {key}" if from_design else f"--{key.replace('_', '-')}"
-
     try:
-        pair = RotorPair(**values)
+        d = None if design is None else load_rotor_design(design) if settings is None else settings
     except DesignError as exc:
-        raise InputError(exc.sentence(label(exc.param))) from None
+        raise InputError(exc.sentence()) from None
+    given = {k: opts.get(k) for k in PAIR_OPTIONS} | {"speed_rpm": opts.get("speed"), "smoothing": opts["smoothing"]}
+    source = sources[0].replace("_", "-") if sources else None
+    names = PairNames(
+        design is not None, frozenset(k for k, v in given.items() if v is not None), source, frozenset(d["params"] if d else ())
+    )
+    try:
+        spec = merge_pair(d, given, source)
+    except MissingValueError as exc:
+        raise InputError(required(PAIR_LABELS[exc.param])) from None
+    except DesignError as exc:
+        raise InputError(exc.sentence(names(exc.param))) from None
     except TypeError as exc:
         raise InputError(f"the pair is not described completely: {exc}.") from None
+    family = spec.family
     try:
-        data = None
+        path = opts[sources[0]] if sources else d["points"]
         if family == "rack-points":
-            data = read_profile_points(points, f"--{family}", opts.get("layer"))
+            spec = replace(spec, points=read_profile_points(path, f"--{family}", opts.get("layer")))
         elif family in ("male-points", "female-points"):
-            data = read_profile(points, f"--{family}", opts.get("layer"))
-        spec = PairSpec(pair, family, params, data, smoothing, float(speed), clearance)
+            spec = replace(spec, points=read_profile(path, f"--{family}", opts.get("layer")))
         rotors = build_pair(spec, label=f"--{family}")
     except DesignError as exc:
-        # a family's parameter is the design's key with its table (the family names it bare)
-        bare = exc.param == "family" or exc.param in params or exc.param in ("points", "smoothing")
-        if exc.param in ("male points", "female points", "rack points"):  # the library's name of the points
-            named = "[profile] points" if design is not None and not sources else f"--{family}"
-        elif exc.param in PAIR_OPTIONS:  # a pair value the family checks: the option if given, else the design key
-            named = (
-                f"--{exc.param.replace('_', '-')}" if opts.get(exc.param) is not None or design is None else f"[pair] {exc.param}"
-            )
-        else:
-            named = f"[profile] {exc.param}" if design is not None and not sources and bare else None
-        raise InputError(exc.sentence(named)) from None
-    return rotors, float(speed), clearance
+        raise InputError(exc.sentence(names(exc.param, family))) from None
+    return rotors, spec.speed_rpm, spec.radial_clearance
 
 
 def _exterior(polygon) -> np.ndarray:

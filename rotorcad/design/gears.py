@@ -133,7 +133,7 @@ def build_gear(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
         a mate or pair that cannot be made (``mate.PARAM``); a centre distance or mate shift
         without mate teeth (:class:`MissingValueError` ``mate.teeth``).
     GeometryError
-        Flanks that never meet (``param`` ``mate.mesh``): :func:`check_contact`.
+        Flanks that never meet (``param`` ``contact_ratio``): :func:`check_contact`.
     """
     from rotorcad.gear import DEG, GearPair, InvoluteGear, mate_shift
     from rotorcad.rotor_pair import LENGTH_RANGE, MAX_LENGTH
@@ -164,7 +164,7 @@ def build_gear(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
         pair = GearPair(gear, InvoluteGear(teeth=z2, shift=x2, **common), a)
     except DesignError as exc:
         raise type(exc)(f"mate.{exc.param}", exc.allowed, exc.value, exc.detail) from None
-    check_contact(pair.contact_ratio, "mate.mesh")
+    check_contact(pair.contact_ratio, "contact_ratio")
     return gear, pair
 
 

@@ -52,6 +52,7 @@ PAIR_FIELDS = (
 
 PAIR_LABELS: dict[str, Label] = {
     **{name: _pair_label(name) for name in PAIR_FIELDS},
+    "hand": Label("hand", "[pair] hand", "[pair] hand"),  # no option: only a design gives it
     "speed_rpm": Label("speed_rpm", "--speed", "[operating] speed_rpm"),
     "smoothing": Label("smoothing", "--smoothing", "[profile] smoothing"),
 }
