@@ -110,9 +110,6 @@ _API = {
     "GearCoupling": "rotorcad.coupling",
     "sweep": "rotorcad.sweep",
 }
-_ENTRY = {"sweep": "rotorcad.cli.sweep_run"}
-"""Public functions whose body is the application's (reading files, the ``hob`` verdict): the
-package :mod:`rotorcad.sweep` is callable and forwards here."""
 
 
 def __getattr__(name: str) -> object:
