@@ -127,22 +127,7 @@ def rotor(design: Path | None, **opts: Any) -> None:
         raise InputError(exc.sentence()) from None
     tol = opts["tolerance"]
     out = Outputs()
-    if opts["plot"]:
-        from rotorcad.rotor_plotting import plot_pair, plot_sliding  # matplotlib only when a plot is asked for
-
-        plot = Path(opts["plot"])
-        out.add_figure(plot, lambda: plot_pair(analysis, clearance), "--plot")
-        out.add_figure(plot.with_name(plot.stem + "_sliding" + (plot.suffix or ".png")), lambda: plot_sliding(analysis), "--plot")
-        measured = _measured_points(opts)
-        if measured is not None:
-            from rotorcad.rotor_plotting import plot_point_deviation
-
-            side, pts, source = measured
-            out.add_figure(
-                plot.with_name(plot.stem + "_deviation" + (plot.suffix or ".png")),
-                lambda: plot_point_deviation(analysis, side, pts, source),
-                "--plot",
-            )
+    _add_plots(out, opts, analysis, clearance)
     designed = _designed_clearance(opts)
     male_pts = lambda: _exterior(analysis.sections[0])  # noqa: E731
     female_pts = lambda: _exterior(analysis.sections[1])  # noqa: E731
@@ -166,41 +151,66 @@ def rotor(design: Path | None, **opts: Any) -> None:
     if opts["as_json"]:
         emit_json(result)
     else:
-        print_table(
-            f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair",
-            {k: v for k, v in result.items() if k != "angle_convention"},  # a sentence, printed below
+        _print_result(rotors, result)
+
+
+def _add_plots(out: Outputs, opts: dict[str, Any], analysis, clearance: float) -> None:
+    """Add the pictures of --plot: the pair in mesh, its sliding and, for measured points, their deviation."""
+    if opts["plot"]:
+        from rotorcad.rotor_plotting import plot_pair, plot_sliding  # matplotlib only when a plot is asked for
+
+        plot = Path(opts["plot"])
+        out.add_figure(plot, lambda: plot_pair(analysis, clearance), "--plot")
+        out.add_figure(plot.with_name(plot.stem + "_sliding" + (plot.suffix or ".png")), lambda: plot_sliding(analysis), "--plot")
+        measured = _measured_points(opts)
+        if measured is not None:
+            from rotorcad.rotor_plotting import plot_point_deviation
+
+            side, pts, source = measured
+            out.add_figure(
+                plot.with_name(plot.stem + "_deviation" + (plot.suffix or ".png")),
+                lambda: plot_point_deviation(analysis, side, pts, source),
+                "--plot",
+            )
+
+
+def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
+    """Print the table of Rinder's figures, then the defects, the spatial blow-hole, the flanks and the files."""
+    print_table(
+        f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair",
+        {k: v for k, v in result.items() if k != "angle_convention"},  # a sentence, printed below
+    )
+    click.echo(f"  defects judged to an accuracy of {1e3 * result['defect_accuracy']:.2g} µm of the profile")
+    for d in result["defects"]:
+        click.echo(
+            f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['angle_deg']:+.1f}°, "
+            f"flank '{d['flank']}'"
+            + (" (point-generated)" if d["point_generated"] else "")
+            + (": the tip corner itself, not a defect of the flank" if d.get("tip_corner") else "")
         )
-        click.echo(f"  defects judged to an accuracy of {1e3 * result['defect_accuracy']:.2g} µm of the profile")
-        for d in result["defects"]:
-            click.echo(
-                f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['angle_deg']:+.1f}°, "
-                f"flank '{d['flank']}'"
-                + (" (point-generated)" if d["point_generated"] else "")
-                + (": the tip corner itself, not a defect of the flank" if d.get("tip_corner") else "")
-            )
-        spatial = result["blow_hole_spatial"]
-        if spatial["area"] > 0:
-            click.echo(
-                f"  spatial blow-hole {spatial['area']:.3f} mm² (projected {spatial['projected_area']:.3f} mm²) "
-                f"between z = {spatial['z_min']:.2f} and {spatial['z_max']:.2f} mm of the contact line"
-            )
-        for flank, report in result["flanks"].items():
-            verdict = "runs" if report["runs_without_timing_gears"] else "does not run"
-            click.echo(
-                f"  {flank} flank: {verdict}; geometric contact on {100 * report['geometric_share']:.0f} % of "
-                f"{report['meshline_length']:.2f} mm of meshline, "
-                f"transverse contact ratio {report['transverse_contact_ratio']:.3f} + overlap "
-                f"{report['overlap_contact_ratio']:.3f} = {report['total_contact_ratio']:.3f}"
-            )
-        for f in result["slip_singularities"]:
-            click.echo(
-                f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank"
-            )
-        click.echo(f"  angles: {result['angle_convention']}")
-        for reason in result["running_reasons"]:
-            click.echo(f"  does not run without timing gears: {reason}")
-        for p in result["files"]:
-            click.echo(f"wrote {p}")
+    spatial = result["blow_hole_spatial"]
+    if spatial["area"] > 0:
+        click.echo(
+            f"  spatial blow-hole {spatial['area']:.3f} mm² (projected {spatial['projected_area']:.3f} mm²) "
+            f"between z = {spatial['z_min']:.2f} and {spatial['z_max']:.2f} mm of the contact line"
+        )
+    for flank, report in result["flanks"].items():
+        verdict = "runs" if report["runs_without_timing_gears"] else "does not run"
+        click.echo(
+            f"  {flank} flank: {verdict}; geometric contact on {100 * report['geometric_share']:.0f} % of "
+            f"{report['meshline_length']:.2f} mm of meshline, "
+            f"transverse contact ratio {report['transverse_contact_ratio']:.3f} + overlap "
+            f"{report['overlap_contact_ratio']:.3f} = {report['total_contact_ratio']:.3f}"
+        )
+    for f in result["slip_singularities"]:
+        click.echo(
+            f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank"
+        )
+    click.echo(f"  angles: {result['angle_convention']}")
+    for reason in result["running_reasons"]:
+        click.echo(f"  does not run without timing gears: {reason}")
+    for p in result["files"]:
+        click.echo(f"wrote {p}")
 
 
 def _measured_points(opts: dict[str, Any]) -> tuple[str, np.ndarray, str] | None:
