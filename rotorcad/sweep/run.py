@@ -38,7 +38,7 @@ from urllib.parse import urlsplit
 
 import pandas as pd
 
-from rotorcad.errors import DesignError
+from rotorcad.errors import DesignError, InputFileError
 from rotorcad.sweep.plan import Extra, SweepPlan, Variant
 from rotorcad.sweep.tasks import OBJECTIVES, Analysis, evaluate_batch
 
@@ -161,9 +161,9 @@ def _read_earlier(out: Path | None) -> pd.DataFrame:
                 frame = pd.read_parquet(path)
             except Exception as exc:  # not a Parquet table we wrote: refuse rather than overwrite it
                 reason = " ".join(str(exc).split())[:160]
-                raise DesignError("--out", EARLIER, str(path), reason) from None
+                raise InputFileError("--out", EARLIER, str(path), reason) from None
             if "key" not in frame:
-                raise DesignError("--out", EARLIER, str(path), "it has no key column")
+                raise InputFileError("--out", EARLIER, str(path), "it has no key column")
             frames.append(frame)
     if not frames:
         return pd.DataFrame()
@@ -188,7 +188,7 @@ def _number_earlier(plan: SweepPlan, earlier: pd.DataFrame) -> pd.DataFrame:
                 break
     foreign = len(wanted) - len(index)
     if foreign:
-        raise DesignError(
+        raise InputFileError(
             "--out",
             "a new file name, or the results of this same sweep",
             None,
