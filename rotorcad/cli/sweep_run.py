@@ -12,8 +12,9 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
-from rotorcad.sweep.files import load_steering, sweep, sweep_columns  # noqa: F401 - re-exported
+from rotorcad.sweep.files import load_steering, sweep_columns  # noqa: F401 - re-exported
 from rotorcad.sweep.files import load_sweep as _load_sweep
+from rotorcad.sweep.files import sweep as _sweep
 from rotorcad.sweep.plan import Extra, SweepPlan
 from rotorcad.sweep.run import SweepOutcome, parts_folder, variant_design  # noqa: F401 - re-exported
 from rotorcad.sweep.run import run_sweep as _run_sweep
@@ -37,6 +38,11 @@ def edge_readers() -> dict[str, Callable[[Path, str], Any]]:
 def load_sweep(path: Path) -> tuple[SweepPlan, Path, Any]:
     """Read a sweep file, its base design and the base's points (:func:`rotorcad.sweep.files.load_sweep`)."""
     return _load_sweep(path, edge_readers())
+
+
+def sweep(sweep_file: Any, out: Any = None, scheduler: str | None = None, workers: int | None = None) -> Any:
+    """Run a sweep file with ``hob``'s verdict and ``exports``' readers (:func:`rotorcad.sweep.files.sweep`)."""
+    return _sweep(sweep_file, out, scheduler, workers, analyses=edge_analyses(), read_points=edge_readers())
 
 
 def run_sweep(
