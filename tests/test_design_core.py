@@ -136,3 +136,15 @@ def test_the_public_sweep_takes_the_analyses_it_is_given(tmp_path):
 
     table = rotorcad.sweep(sweep_file, workers=0, analyses={Extra.HOBBABILITY: verdict})
     assert sorted(calls) == [250.0, 300.0] and list(table["pair.lead"]) == [250.0, 300.0] and np.all(table["hobbable"])
+
+
+def test_a_given_smoothing_overrides_the_design_like_every_other_value():
+    """The rule of the commands ("options given on the command line override" the design file): the
+    design's [profile] smoothing gave way to --smoothing nowhere before the merge moved to the core."""
+    from rotorcad.design import rotor_design
+
+    mapping = load_toml(SAMPLES / "rack_involute_5_6.toml")
+    mapping["profile"] = {"family": "male-points", "points": "male.csv", "smoothing": 0.5}
+    settings = rotor_design(mapping, SAMPLES)
+    assert merge_pair(settings, {}).smoothing == 0.5
+    assert merge_pair(settings, {"smoothing": 0.0}).smoothing == 0.0

@@ -148,7 +148,7 @@ def merge_pair(settings: dict[str, Any] | None, given: dict[str, Any], source: s
     if settings is not None:
         values.update(settings["pair"])
         family, params = settings["family"], settings["params"]
-        smoothing = settings["smoothing"] if settings["smoothing"] is not None else smoothing
+        smoothing = settings["smoothing"] if smoothing is None else smoothing  # the given value wins, as every other
         speed = float(settings["operating"].get("speed_rpm", speed))
         clearance = float(settings["housing"].get("radial_clearance", 0.0))
     values.update({k: given[k] for k in PAIR_FIELDS if given.get(k) is not None})
