@@ -1,7 +1,9 @@
 """The hobbability verdict of a sweep's variant (``[sweep] compute = ["hobbability"]``).
 
-The sweep runs in the core (:mod:`rotorcad.sweep`), which does not import ``hob``; the command
-line passes :data:`ANALYSES` to it. The verdict is that of ``rotorcad hob`` with its default
+The sweep runs in the core (:mod:`rotorcad.sweep`), which does not import ``hob``: this module
+registers :data:`ANALYSES` with the core's extension points when imported (:mod:`rotorcad.extensions`;
+the entry point ``hob`` of ``rotorcad.extensions`` imports it for a script), and the command line
+passes them explicitly. The verdict is that of ``rotorcad hob`` with its default
 limits, for both rotors, judged through their racks (Rinder sec. 2.1).
 """
 
@@ -11,6 +13,7 @@ from typing import Any
 
 from hob.rack import rotor_rack
 from hob.verdict import HobLimits, judge
+from rotorcad.extensions import register_sweep_analysis
 from rotorcad.sweep.plan import Extra
 
 
@@ -38,3 +41,6 @@ def hobbability(rotors: Any, spec: Any, clearance: float) -> dict[str, Any]:
 
 ANALYSES = {Extra.HOBBABILITY: hobbability}
 """The sweep analyses of this package, for :func:`rotorcad.sweep.run.run_sweep`'s ``analyses``."""
+
+for _extra, _analysis in ANALYSES.items():  # the core finds the verdict without importing hob (rotorcad.extensions)
+    register_sweep_analysis(_extra, _analysis)

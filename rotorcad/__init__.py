@@ -105,14 +105,11 @@ _API = {
     "helical_solid": "rotorcad.solids",
     "lobe_pieces": "rotorcad.rotor_points",
     "pair_from_rotor_points": "rotorcad.rotor_points",
-    "design_summary": "rotorcad.rotor_build",
+    "design_summary": "rotorcad.design.rotors",
     "GasDeflection": "rotorcad.deflection",
     "GearCoupling": "rotorcad.coupling",
     "sweep": "rotorcad.sweep",
 }
-_ENTRY = {"sweep": "rotorcad.cli.sweep_run"}
-"""Public functions whose body is the application's (reading files, the ``hob`` verdict): the
-package :mod:`rotorcad.sweep` is callable and forwards here."""
 
 
 def __getattr__(name: str) -> object:

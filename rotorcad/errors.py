@@ -1,7 +1,16 @@
-"""The one exception rotorcad raises for input it cannot accept.
+"""The exceptions rotorcad raises for input it cannot accept: :class:`DesignError` and its family.
 
 A :class:`DesignError` names the parameter, the allowed range and the value it got, so that
 the command line can print it as one sentence and exit with status 2 (CONTRACT.md, common rules).
+Three kinds are told apart by subclass, for a caller that handles them differently; each keeps the
+sentence of its parent and is caught by ``except DesignError``:
+
+* :class:`InputFileError` -- a file that cannot be read as what it should be (missing, special,
+  oversized, binary, malformed), or a design file whose tables or keys are wrong;
+* :class:`ToleranceError` -- a tolerance that cannot be met (a writer's fit, a sampling);
+* :class:`GeometryError` -- values that are each allowed but describe no part: flanks that never
+  meet, a mate generated from points that is no rotor;
+* :class:`MissingValueError` -- a value given neither as an option nor in the design file.
 """
 
 from __future__ import annotations
@@ -51,6 +60,34 @@ class DesignError(ValueError):
         if self.detail:
             text += f": {self.detail}"
         return text + "."
+
+
+class InputFileError(DesignError):
+    """A file that cannot be read as what it should be, or a design file with wrong tables or keys.
+
+    A missing, special (FIFO, device, folder), oversized, binary or malformed file, or a table or
+    key of a design that is unknown, of the wrong type or missing; ``param`` names the option or
+    ``[table] key`` that gave it.
+    """
+
+
+class ToleranceError(DesignError):
+    """A tolerance that cannot be met: the result would be farther from the exact geometry than asked."""
+
+
+class GeometryError(DesignError):
+    """Values that are each allowed but together describe no part (e.g. gear flanks that never meet)."""
+
+
+class MissingValueError(DesignError):
+    """A value that must be given, as an option or in the design file, and is given by neither.
+
+    Its sentence names the library's parameter; the command line says which option (or design
+    key) gives it.
+    """
+
+    def __init__(self, param: str, allowed: str = "given", value: object = None, detail: str = "missing") -> None:
+        super().__init__(param, allowed, value, detail)
 
 
 class InputNote(UserWarning):

@@ -1,4 +1,8 @@
-"""Helpers shared by the commands: JSON output, summary tables, output-file groups."""
+"""Helpers shared by the commands: JSON output, summary tables, output-file groups.
+
+The design files are read by the core (:mod:`rotorcad.design.files`); its readers are importable
+from here under their old names.
+"""
 
 from __future__ import annotations
 
@@ -16,6 +20,7 @@ from rich.table import Table
 
 from exports.atomic import Writer, check_writable, staging_prefix, write_all
 from exports.background import WorkerPool
+from rotorcad.design.files import MAX_DESIGN_BYTES, load_gear_design, load_rotor_design, load_toml  # noqa: F401 - the commands' names
 from rotorcad.errors import DesignError, InputNote
 
 
@@ -23,94 +28,6 @@ class InputError(click.ClickException):
     """Bad input: one sentence on stderr, exit status 2."""
 
     exit_code = 2
-
-
-MAX_DESIGN_BYTES = 2**20
-"""Largest design or sweep file read, bytes (1 MiB; a design is a few hundred bytes)."""
-
-
-def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
-    """Read the mapping a TOML design (or sweep) file holds: the one place that opens design files.
-
-    Parameters
-    ----------
-    path : Path
-        The file (UTF-8 or Latin-1 text of at most :data:`MAX_DESIGN_BYTES`).
-    label : str
-        The option or key that named the file; it leads the error sentence.
-
-    Returns
-    -------
-    dict
-        The tables and keys as TOML reads them (not checked: see :mod:`rotorcad.design`).
-
-    Raises
-    ------
-    DesignError
-        A missing, special (FIFO, device, folder), oversized, binary or malformed file, in one
-        sentence naming ``label`` (NUL bytes by their line).
-    """
-    import tomllib
-
-    from exports.reading import read_text
-
-    text = read_text(Path(path), label, "TOML design file", MAX_DESIGN_BYTES)
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(label, "valid TOML", str(path), str(exc)) from None
-
-
-def load_gear_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, dict[str, Any]]:
-    """Read a gear design file and check it (:func:`rotorcad.design.gear_design`).
-
-    Parameters
-    ----------
-    path : Path
-        The design file.
-    data : dict, optional
-        Its mapping, if the file was read already (it is then not read again).
-
-    Returns
-    -------
-    dict
-        ``{"gear": {...}, "mate": {...}}``.
-
-    Raises
-    ------
-    DesignError
-        A file that cannot be read, or a bad design.
-    """
-    from rotorcad.design import gear_design
-
-    return gear_design(load_toml(path) if data is None else data)
-
-
-def load_rotor_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, Any]:
-    """Read a screw-rotor design file and check it (:func:`rotorcad.design.rotor_design`).
-
-    A points file named in the design is found beside the design file.
-
-    Parameters
-    ----------
-    path : Path
-        The design file.
-    data : dict, optional
-        Its mapping, if the file was read already (it is then not read again).
-
-    Returns
-    -------
-    dict
-        The checked design (:func:`rotorcad.design.rotor_design`).
-
-    Raises
-    ------
-    DesignError
-        A file that cannot be read, or a bad design.
-    """
-    from rotorcad.design import rotor_design
-
-    return rotor_design(load_toml(path) if data is None else data, Path(path).parent)
 
 
 def reraise(exc: DesignError, names: dict[str, str]) -> InputError:

@@ -18,38 +18,39 @@ from rotorcad.cli.common import (
     output_folder,
     print_pair_table,
     print_table,
-    reraise,
 )
 from rotorcad.cli.progress import Steps
-from rotorcad.errors import DesignError
-from rotorcad.gear import DEG, GearPair, InvoluteGear, mate_shift
+from rotorcad.design.gears import GEAR_DEFAULTS, VALUE_FIELDS, GearSpec, gear_spec
+from rotorcad.design.gears import build_gear as core_build_gear
+from rotorcad.design.gears import check_contact as core_check_contact
+from rotorcad.design.labels import GEAR_FIELD_LABELS, GEAR_LABELS, contact_names, gear_name, required
+from rotorcad.errors import DesignError, GeometryError, MissingValueError
+from rotorcad.gear import GearPair, InvoluteGear
 from rotorcad.plotting import line_of_action, mate_in_mesh, plot_gears
-from rotorcad.rotor_pair import LENGTH_RANGE, MAX_LENGTH
 
-GEAR_OPTION = {
-    "teeth": "--teeth",
-    "module": "--module",
-    "pressure_angle": "--pressure-angle",
-    "helix_angle": "--helix-angle",
-    "shift": "--shift",
-    "addendum": "--addendum",
-    "dedendum": "--dedendum",
-    "tip_radius_factor": "--tip-radius",
-    "tolerance": "--tolerance",
-    "center_distance": "--center-distance",
-    "radius": "radius",
-}
-MATE_OPTION = {
-    "teeth": "--mate-teeth",
-    "shift": "--mate-shift",
-    "center_distance": "--center-distance",
-    "shifts": "--shift and --mate-shift",
-    "mesh": "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle",
-}
-# design-file keys ([gear], without _deg) by the parameter names of the gear's errors, where they differ
+GEAR_OPTION = {param: label.option for param, label in GEAR_LABELS.items() if not param.startswith("mate.")}
+"""Library parameter of a gear's errors -> option (:data:`rotorcad.design.labels.GEAR_LABELS`)."""
+MATE_OPTION = {param.removeprefix("mate."): label.option for param, label in GEAR_LABELS.items() if param.startswith("mate.")}
+"""Library parameter of the mate's errors -> option."""
 DESIGN_PARAM = {"tip_radius": "tip_radius_factor"}
+"""Design-file keys ([gear], without _deg) by the parameter names of the gear's errors, where they differ."""
 FROM_DESIGN = "_named_in_design"
-DEFAULTS = {"pressure_angle": 20.0, "helix_angle": 0.0, "shift": 0.0, "addendum": 1.0, "dedendum": 1.25, "tip_radius": 0.38}
+SPEC = "_spec"
+DEFAULTS = GEAR_DEFAULTS
+OPTION_FIELDS = (
+    "teeth",
+    "module",
+    "pressure_angle",
+    "helix_angle",
+    "shift",
+    "addendum",
+    "dedendum",
+    "tip_radius",
+    "mate_teeth",
+    "mate_shift",
+    "center_distance",
+)
+"""The fields of :class:`rotorcad.design.gears.GearSpec` that the options of :func:`gear_options` give."""
 
 
 GEAR_DECORATORS = [
@@ -150,6 +151,9 @@ def gear(design: Path | None, **opts: Any) -> None:
 def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str, Any] | None = None) -> dict[str, Any]:
     """Merge a gear design's values with the options given: options override the file, defaults last.
 
+    The merging is the core's (:func:`rotorcad.design.gears.gear_spec`); this reads the file and
+    names the option or key of a refusal.
+
     Parameters
     ----------
     design : Path or None
@@ -162,57 +166,33 @@ def merge_gear_params(design: Path | None, opts: dict[str, Any], data: dict[str,
     Returns
     -------
     dict
-        Gear (and mate) parameters by name, with the design keys still in force recorded so that
-        errors name them.
+        The values of the :class:`~rotorcad.design.gears.GearSpec` by field (None: not given), the
+        spec under ``SPEC`` and, for a design, the keys still in force by the gear's parameter names
+        under ``FROM_DESIGN`` (``{"tip_radius_factor": "[gear] tip_radius", "mate teeth": ...}``).
 
     Raises
     ------
     InputError
         A bad design file, or no teeth or module from either source.
     """
-    params: dict[str, Any] = {}
+    try:
+        checked = None if design is None else load_gear_design(design, data)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    try:
+        spec = gear_spec(checked, {k: opts.get(k) for k in OPTION_FIELDS})
+    except MissingValueError as exc:
+        raise InputError(required(GEAR_FIELD_LABELS[exc.param])) from None
+    params: dict[str, Any] = {f: getattr(spec, f) for f in VALUE_FIELDS}
+    params[SPEC] = spec
     if design is not None:
-        try:
-            d = load_gear_design(design, data)
-        except DesignError as exc:
-            raise InputError(exc.sentence()) from None
-        gd, md = d["gear"], d["mate"]
-        params.update({k.removesuffix("_deg"): v for k, v in gd.items()})
-        # what the design file gave, by the names the gear's errors use, to name its key in them
-        named = {DESIGN_PARAM.get(k.removesuffix("_deg"), k.removesuffix("_deg")): f"[gear] {k}" for k in gd}
-        if md:
-            params["mate_teeth"] = md.get("teeth")
-            params["mate_shift"] = md.get("shift")
-            params["center_distance"] = md.get("center_distance")
-            named.update({f"mate {k}": f"[mate] {k}" for k in md})
-        params[FROM_DESIGN] = named
-    for key in (
-        "teeth",
-        "module",
-        "pressure_angle",
-        "helix_angle",
-        "shift",
-        "addendum",
-        "dedendum",
-        "tip_radius",
-        "mate_teeth",
-        "mate_shift",
-        "center_distance",
-    ):
-        if opts.get(key) is not None:
-            params[key] = opts[key]
-            params.get(FROM_DESIGN, {}).pop(DESIGN_PARAM.get(key, key), None)  # the option overrides the file
-            params.get(FROM_DESIGN, {}).pop(f"mate {key.removeprefix('mate_')}", None)
-    for key, value in DEFAULTS.items():
-        params.setdefault(key, value)
-    for key in ("teeth", "module"):
-        if params.get(key) is None:
-            raise InputError(f"--{key} is required (or a design file with [gear] {key}).")
+        by_param = {label.field: p.replace(".", " ") for p, label in GEAR_LABELS.items() if label.key}
+        params[FROM_DESIGN] = {by_param[f]: GEAR_FIELD_LABELS[f].key for f in spec.from_design}
     return params
 
 
 def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearPair | None]:
-    """Build the gear, and its mate when one is described.
+    """Build the gear, and its mate when one is described (:func:`rotorcad.design.gears.build_gear`).
 
     Parameters
     ----------
@@ -226,67 +206,33 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
     gear : InvoluteGear
         The gear.
     pair : GearPair or None
-        The gear with its mate (the mate's shift given, zero, or for zero backlash at the centre
-        distance, ISO 21771), None without a mate.
+        The gear with its mate, None without a mate.
 
     Raises
     ------
     InputError
         A gear or mate that cannot be made, a centre distance or mate shift without mate teeth, or
-        flanks that never meet; naming the options (or design keys) given.
+        flanks that never meet; naming the options (or design keys) given
+        (:data:`rotorcad.design.labels.GEAR_LABELS`).
     """
-    common = {
-        "module": p["module"],
-        "pressure_angle": p["pressure_angle"] * DEG,
-        "helix_angle": p["helix_angle"] * DEG,
-        "addendum": p["addendum"],
-        "dedendum": p["dedendum"],
-        "tip_radius_factor": p["tip_radius"],
-        "tolerance": tolerance,
-    }
-    named = p.get(FROM_DESIGN, {})
+    from_design = p[SPEC].from_design if SPEC in p else frozenset()
+    spec = GearSpec(**{f: p[f] for f in VALUE_FIELDS if p.get(f) is not None}, from_design=from_design)
     try:
-        g = InvoluteGear(teeth=p["teeth"], shift=p["shift"], **common)
+        return core_build_gear(spec, tolerance)
+    except MissingValueError as exc:
+        if exc.param != "mate.teeth":
+            raise
+        raise InputError("--mate-teeth must be given with --center-distance or --mate-shift.") from None
     except DesignError as exc:
-        raise reraise(exc, {**GEAR_OPTION, **{k: v for k, v in named.items() if not k.startswith("mate ")}}) from None
-    z2, a = p.get("mate_teeth"), p.get("center_distance")
-    if z2 is None:
-        if a is not None or p.get("mate_shift") is not None:
-            raise InputError("--mate-teeth must be given with --center-distance or --mate-shift.")
-        return g, None
-    try:
-        if not isinstance(z2, int) or z2 < 3:
-            raise DesignError("teeth", "a whole number of at least 3", z2)
-        if a is not None and not (np.isfinite(a) and 0 < a <= MAX_LENGTH):  # before the mate's shift is solved from it
-            raise DesignError("center_distance", LENGTH_RANGE, a)
-        x2 = p.get("mate_shift")
-        if x2 is None:
-            x2 = 0.0 if a is None else mate_shift(g, z2, a)
-        mate = InvoluteGear(teeth=z2, shift=x2, **common)
-        pair = GearPair(g, mate, a)
-    except DesignError as exc:
-        mate_named = {k.removeprefix("mate "): v for k, v in named.items() if k.startswith("mate ")}
-        raise reraise(exc, {**MATE_OPTION, **mate_named}) from None
-    given = set(named.values())  # the design's keys still in force are named as the user wrote them
-    names = [
-        key if key in given else option
-        for option, key in (
-            ("--teeth", "[gear] teeth"),
-            ("--mate-teeth", "[mate] teeth"),
-            ("--shift", "[gear] shift"),
-            ("--mate-shift", "[mate] shift"),
-            ("--addendum", "[gear] addendum"),
-            ("--pressure-angle", "[gear] pressure_angle_deg"),
-        )
-    ]
-    if a is not None:  # a centre distance given sets the mesh too
-        names.insert(2, "[mate] center_distance" if "[mate] center_distance" in given else "--center-distance")
-    check_contact(pair.contact_ratio, ", ".join(names[:-1]) + " and " + names[-1])
-    return g, pair
+        if isinstance(exc, GeometryError) and exc.param == "contact_ratio":  # named by the values that set it
+            label = contact_names(spec.from_design, spec.center_distance is not None)
+        else:
+            label = gear_name(exc.param, spec.from_design)
+        raise InputError(exc.sentence(label)) from None
 
 
 def check_contact(eps: float, label: str) -> None:
-    """Refuse a pair whose flanks never meet (contact ratio 0 or undefined) instead of reporting it.
+    """Refuse a pair whose flanks never meet (:func:`rotorcad.design.gears.check_contact`) as a CLI error.
 
     Parameters
     ----------
@@ -295,11 +241,10 @@ def check_contact(eps: float, label: str) -> None:
     label : str
         The options that set it, for the sentence.
     """
-    if not (np.isfinite(eps) and eps > 0.0):
-        raise InputError(
-            f"{label} must be chosen so that the flanks meet (a contact ratio above 0; got {eps:g}): the tips do not reach "
-            "the usable involute of the mate; raise the addendum, the shifts or the pressure angle."
-        )
+    try:
+        core_check_contact(eps, label)
+    except GeometryError as exc:
+        raise InputError(exc.sentence()) from None
 
 
 def _comments(g: InvoluteGear, body: str) -> list[str]:

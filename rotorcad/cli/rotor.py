@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -13,24 +14,15 @@ from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile, read_profile_points
 from rotorcad.clearance_design import ClearanceDistribution, corrected_female
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
+from rotorcad.design.labels import PAIR_FIELDS, PAIR_LABELS, PairNames, required
+from rotorcad.design.rotors import analyse_pair, build_pair, merge_pair
 from rotorcad.envelope import rack_frame
-from rotorcad.errors import DesignError
+from rotorcad.errors import DesignError, MissingValueError
 from rotorcad.profile import Segment
-from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair
-from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import ScrewRotors
 
-PAIR_OPTIONS = (
-    "male_teeth",
-    "female_teeth",
-    "center_distance",
-    "male_tip_radius",
-    "male_root_radius",
-    "female_tip_radius",
-    "female_root_radius",
-    "lead",
-    "length",
-)
+PAIR_OPTIONS = PAIR_FIELDS
+"""The pair's dimensions, each an option of the same name (``--male-teeth``)."""
 
 
 def _points_option(name: str, text: str):
@@ -135,22 +127,7 @@ def rotor(design: Path | None, **opts: Any) -> None:
         raise InputError(exc.sentence()) from None
     tol = opts["tolerance"]
     out = Outputs()
-    if opts["plot"]:
-        from rotorcad.rotor_plotting import plot_pair, plot_sliding  # matplotlib only when a plot is asked for
-
-        plot = Path(opts["plot"])
-        out.add_figure(plot, lambda: plot_pair(analysis, clearance), "--plot")
-        out.add_figure(plot.with_name(plot.stem + "_sliding" + (plot.suffix or ".png")), lambda: plot_sliding(analysis), "--plot")
-        measured = _measured_points(opts)
-        if measured is not None:
-            from rotorcad.rotor_plotting import plot_point_deviation
-
-            side, pts, source = measured
-            out.add_figure(
-                plot.with_name(plot.stem + "_deviation" + (plot.suffix or ".png")),
-                lambda: plot_point_deviation(analysis, side, pts, source),
-                "--plot",
-            )
+    _add_plots(out, opts, analysis, clearance)
     designed = _designed_clearance(opts)
     male_pts = lambda: _exterior(analysis.sections[0])  # noqa: E731
     female_pts = lambda: _exterior(analysis.sections[1])  # noqa: E731
@@ -174,41 +151,66 @@ def rotor(design: Path | None, **opts: Any) -> None:
     if opts["as_json"]:
         emit_json(result)
     else:
-        print_table(
-            f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair",
-            {k: v for k, v in result.items() if k != "angle_convention"},  # a sentence, printed below
+        _print_result(rotors, result)
+
+
+def _add_plots(out: Outputs, opts: dict[str, Any], analysis, clearance: float) -> None:
+    """Add the pictures of --plot: the pair in mesh, its sliding and, for measured points, their deviation."""
+    if opts["plot"]:
+        from rotorcad.rotor_plotting import plot_pair, plot_sliding  # matplotlib only when a plot is asked for
+
+        plot = Path(opts["plot"])
+        out.add_figure(plot, lambda: plot_pair(analysis, clearance), "--plot")
+        out.add_figure(plot.with_name(plot.stem + "_sliding" + (plot.suffix or ".png")), lambda: plot_sliding(analysis), "--plot")
+        measured = _measured_points(opts)
+        if measured is not None:
+            from rotorcad.rotor_plotting import plot_point_deviation
+
+            side, pts, source = measured
+            out.add_figure(
+                plot.with_name(plot.stem + "_deviation" + (plot.suffix or ".png")),
+                lambda: plot_point_deviation(analysis, side, pts, source),
+                "--plot",
+            )
+
+
+def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
+    """Print the table of Rinder's figures, then the defects, the spatial blow-hole, the flanks and the files."""
+    print_table(
+        f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair",
+        {k: v for k, v in result.items() if k != "angle_convention"},  # a sentence, printed below
+    )
+    click.echo(f"  defects judged to an accuracy of {1e3 * result['defect_accuracy']:.2g} µm of the profile")
+    for d in result["defects"]:
+        click.echo(
+            f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['angle_deg']:+.1f}°, "
+            f"flank '{d['flank']}'"
+            + (" (point-generated)" if d["point_generated"] else "")
+            + (": the tip corner itself, not a defect of the flank" if d.get("tip_corner") else "")
         )
-        click.echo(f"  defects judged to an accuracy of {1e3 * result['defect_accuracy']:.2g} µm of the profile")
-        for d in result["defects"]:
-            click.echo(
-                f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['angle_deg']:+.1f}°, "
-                f"flank '{d['flank']}'"
-                + (" (point-generated)" if d["point_generated"] else "")
-                + (": the tip corner itself, not a defect of the flank" if d.get("tip_corner") else "")
-            )
-        spatial = result["blow_hole_spatial"]
-        if spatial["area"] > 0:
-            click.echo(
-                f"  spatial blow-hole {spatial['area']:.3f} mm² (projected {spatial['projected_area']:.3f} mm²) "
-                f"between z = {spatial['z_min']:.2f} and {spatial['z_max']:.2f} mm of the contact line"
-            )
-        for flank, report in result["flanks"].items():
-            verdict = "runs" if report["runs_without_timing_gears"] else "does not run"
-            click.echo(
-                f"  {flank} flank: {verdict}; geometric contact on {100 * report['geometric_share']:.0f} % of "
-                f"{report['meshline_length']:.2f} mm of meshline, "
-                f"transverse contact ratio {report['transverse_contact_ratio']:.3f} + overlap "
-                f"{report['overlap_contact_ratio']:.3f} = {report['total_contact_ratio']:.3f}"
-            )
-        for f in result["slip_singularities"]:
-            click.echo(
-                f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank"
-            )
-        click.echo(f"  angles: {result['angle_convention']}")
-        for reason in result["running_reasons"]:
-            click.echo(f"  does not run without timing gears: {reason}")
-        for p in result["files"]:
-            click.echo(f"wrote {p}")
+    spatial = result["blow_hole_spatial"]
+    if spatial["area"] > 0:
+        click.echo(
+            f"  spatial blow-hole {spatial['area']:.3f} mm² (projected {spatial['projected_area']:.3f} mm²) "
+            f"between z = {spatial['z_min']:.2f} and {spatial['z_max']:.2f} mm of the contact line"
+        )
+    for flank, report in result["flanks"].items():
+        verdict = "runs" if report["runs_without_timing_gears"] else "does not run"
+        click.echo(
+            f"  {flank} flank: {verdict}; geometric contact on {100 * report['geometric_share']:.0f} % of "
+            f"{report['meshline_length']:.2f} mm of meshline, "
+            f"transverse contact ratio {report['transverse_contact_ratio']:.3f} + overlap "
+            f"{report['overlap_contact_ratio']:.3f} = {report['total_contact_ratio']:.3f}"
+        )
+    for f in result["slip_singularities"]:
+        click.echo(
+            f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank"
+        )
+    click.echo(f"  angles: {result['angle_convention']}")
+    for reason in result["running_reasons"]:
+        click.echo(f"  does not run without timing gears: {reason}")
+    for p in result["files"]:
+        click.echo(f"wrote {p}")
 
 
 def _measured_points(opts: dict[str, Any]) -> tuple[str, np.ndarray, str] | None:
@@ -257,74 +259,45 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
 def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None) -> tuple[ScrewRotors, float, float]:
     """Build the rotors of a design file or of measured points, with the command-line overrides.
 
-    ``settings`` is the design already read and checked by
-    :func:`rotorcad.cli.common.load_rotor_design`, so that the file is read once. Returns the rotors,
-    the speed (rpm) and the housing's radial clearance (mm).
+    The values merge in the core (:func:`rotorcad.design.rotors.merge_pair`); here the points
+    files are read and every refusal names the option or design key the user typed
+    (:class:`rotorcad.design.labels.PairNames`). ``settings`` is the design already read and
+    checked by :func:`rotorcad.design.files.load_rotor_design`, so that the file is read once.
+    Returns the rotors, the speed (rpm) and the housing's radial clearance (mm).
     """
     sources = [k for k in ("male_points", "female_points", "rack_points") if opts.get(k)]
     if len(sources) > 1:
         raise InputError("give only one of --male-points, --female-points, --rack-points.")
-    values: dict[str, Any] = {"lead": 300.0, "length": 190.0}
-    family, params, points, smoothing, speed, clearance = None, {}, None, opts["smoothing"], 3000.0, 0.0
-    if design is not None:
-        try:
-            d = load_rotor_design(design) if settings is None else settings
-        except DesignError as exc:
-            raise InputError(exc.sentence()) from None
-        values.update(d["pair"])
-        family, params, points = d["family"], d["params"], d["points"]
-        smoothing = d["smoothing"] if d["smoothing"] is not None else smoothing
-        speed = float(d["operating"].get("speed_rpm", speed))
-        clearance = float(d["housing"].get("radial_clearance", 0.0))
-    elif not sources:
+    if design is None and not sources:
         raise InputError("give a design file or one of --male-points, --female-points, --rack-points.")
-    for key in PAIR_OPTIONS:
-        if opts.get(key) is not None:
-            values[key] = opts[key]
-    if sources:
-        family = sources[0].replace("_", "-")
-        points = opts[sources[0]]
-    if opts.get("speed") is not None:
-        speed = opts["speed"]
-    if smoothing is not None and not (np.isfinite(smoothing) and smoothing >= 0):
-        raise InputError(f"--smoothing must be a number of at least 0 mm^2 (got {smoothing}).")
-    if not (np.isfinite(speed) and speed > 0):
-        named = "--speed" if opts.get("speed") is not None else "[operating] speed_rpm"  # interfere, export: no --speed
-        raise InputError(f"{named} must be a positive speed in rpm (got {speed}).")
-    missing = [k for k in PAIR_OPTIONS if k not in values]
-    if missing:
-        raise InputError(f"--{missing[0].replace('_', '-')} is required (or a design file with [pair] {missing[0]}).")
-    def label(key: str) -> str:  # what the user typed: the option if given, else the design's key
-        from_design = design is not None and not sources and opts.get(key) is None
-        return f"[pair] {key}" if from_design else f"--{key.replace('_', '-')}"
-
     try:
-        pair = RotorPair(**values)
+        d = None if design is None else load_rotor_design(design) if settings is None else settings
     except DesignError as exc:
-        raise InputError(exc.sentence(label(exc.param))) from None
+        raise InputError(exc.sentence()) from None
+    given = {k: opts.get(k) for k in PAIR_OPTIONS} | {"speed_rpm": opts.get("speed"), "smoothing": opts["smoothing"]}
+    source = sources[0].replace("_", "-") if sources else None
+    names = PairNames(
+        design is not None, frozenset(k for k, v in given.items() if v is not None), source, frozenset(d["params"] if d else ())
+    )
+    try:
+        spec = merge_pair(d, given, source)
+    except MissingValueError as exc:
+        raise InputError(required(PAIR_LABELS[exc.param])) from None
+    except DesignError as exc:
+        raise InputError(exc.sentence(names(exc.param))) from None
     except TypeError as exc:
         raise InputError(f"the pair is not described completely: {exc}.") from None
+    family = spec.family
     try:
-        data = None
+        path = opts[sources[0]] if sources else d["points"]
         if family == "rack-points":
-            data = read_profile_points(points, f"--{family}", opts.get("layer"))
+            spec = replace(spec, points=read_profile_points(path, f"--{family}", opts.get("layer")))
         elif family in ("male-points", "female-points"):
-            data = read_profile(points, f"--{family}", opts.get("layer"))
-        spec = PairSpec(pair, family, params, data, smoothing, float(speed), clearance)
+            spec = replace(spec, points=read_profile(path, f"--{family}", opts.get("layer")))
         rotors = build_pair(spec, label=f"--{family}")
     except DesignError as exc:
-        # a family's parameter is the design's key with its table (the family names it bare)
-        bare = exc.param == "family" or exc.param in params or exc.param in ("points", "smoothing")
-        if exc.param in ("male points", "female points", "rack points"):  # the library's name of the points
-            named = "[profile] points" if design is not None and not sources else f"--{family}"
-        elif exc.param in PAIR_OPTIONS:  # a pair value the family checks: the option if given, else the design key
-            named = (
-                f"--{exc.param.replace('_', '-')}" if opts.get(exc.param) is not None or design is None else f"[pair] {exc.param}"
-            )
-        else:
-            named = f"[profile] {exc.param}" if design is not None and not sources and bare else None
-        raise InputError(exc.sentence(named)) from None
-    return rotors, float(speed), clearance
+        raise InputError(exc.sentence(names(exc.param, family))) from None
+    return rotors, spec.speed_rpm, spec.radial_clearance
 
 
 def _exterior(polygon) -> np.ndarray:

@@ -95,7 +95,7 @@ def sweep(
     run again, the sweep computes only what is missing. [constraints] and [objectives] of the file
     mark the feasible variants, the Pareto front and a ranking (columns feasible, pareto, rank).
     """
-    from rotorcad.cli.sweep_run import load_steering, load_sweep, run_sweep, sweep_columns
+    from rotorcad.cli.sweep_run import load_steering, load_sweep, run_sweep
     from rotorcad.sweep.run import write_table
 
     targets = {"--out": out, "--csv": csv, "--pareto": pareto, "--effects": effects, "--pareto-csv": pareto_csv}
@@ -108,16 +108,7 @@ def sweep(
     if pareto_csv is not None and not steer.objectives:
         raise InputError("--pareto-csv needs [objectives] in the sweep file (the front of what?).")
     named_objectives = [o.name if o.expression == o.name else f"objective.{o.name}" for o in steer.objectives]
-    if objectives is None:
-        objectives = ",".join(named_objectives[:2]) if len(named_objectives) >= 2 else DEFAULT_AXES
-    axes = [c.strip() for c in objectives.split(",") if c.strip()]
-    if pareto is not None and len(axes) not in (2, 3):
-        raise InputError(f"--objectives must name 2 or 3 columns (got {objectives!r}).")
-    columns = sweep_columns(plan)[0] + [f"objective.{o.name}" for o in steer.objectives if o.expression != o.name]
-    for option, wanted in (("--objectives", axes if pareto else []), ("--objective", [objective] if effects else [])):
-        unknown = [c for c in wanted if c not in columns]
-        if unknown:
-            raise InputError(f"{option} must name result columns: {', '.join(columns)} (got {unknown[0]!r}).")
+    axes = _axes(plan, steer, named_objectives, objectives, pareto is not None, objective if effects else None)
     bar = Steps("sweep", plan.count, quiet, ("{task.fields[failed]} failed, {task.fields[rate]}/s",), failed=0, rate="-")
     started = time.perf_counter()
 
@@ -139,7 +130,40 @@ def sweep(
     pictures = {"--pareto": pareto, "--effects": effects, "axes": axes, "objective": objective, "directions": directions}
     best = outcome.best()
     files = [str(out), *_write_outputs(sweep_file, plan, folder, outcome.table, best, csv, pareto_csv, best_designs, pictures)]
-    result: dict[str, Any] = {
+    result = _result(outcome, best, files)
+    if steered:
+        result["feasible"] = int(outcome.table["feasible"].sum())
+        result["pareto_front"] = int(outcome.table["pareto"].sum())
+        result["top"] = _top(outcome.table, top, named_objectives)
+    if as_json:
+        emit_json(result)
+    else:
+        _print_result(result, outcome)
+
+
+def _axes(plan, steer, named_objectives: list[str], objectives: str | None, pareto: bool, effects: str | None) -> list[str]:
+    """Return the columns of the Pareto plot; refuse --objectives / --objective naming no result column.
+
+    Default: the first two [objectives] of the sweep file, else :data:`DEFAULT_AXES`.
+    """
+    from rotorcad.sweep.files import sweep_columns
+
+    if objectives is None:
+        objectives = ",".join(named_objectives[:2]) if len(named_objectives) >= 2 else DEFAULT_AXES
+    axes = [c.strip() for c in objectives.split(",") if c.strip()]
+    if pareto and len(axes) not in (2, 3):
+        raise InputError(f"--objectives must name 2 or 3 columns (got {objectives!r}).")
+    columns = sweep_columns(plan)[0] + [f"objective.{o.name}" for o in steer.objectives if o.expression != o.name]
+    for option, wanted in (("--objectives", axes if pareto else []), ("--objective", [effects] if effects is not None else [])):
+        unknown = [c for c in wanted if c not in columns]
+        if unknown:
+            raise InputError(f"{option} must name result columns: {', '.join(columns)} (got {unknown[0]!r}).")
+    return axes
+
+
+def _result(outcome, best: dict, files: list[str]) -> dict[str, Any]:
+    """Return the JSON of a sweep (CONTRACT.md): counts, times, failures, the best variants, the files."""
+    return {
         "variants": len(outcome.table),
         "computed": outcome.computed,
         "resumed": outcome.resumed,
@@ -151,14 +175,6 @@ def sweep(
         "best": best,
         "files": files,
     }
-    if steered:
-        result["feasible"] = int(outcome.table["feasible"].sum())
-        result["pareto_front"] = int(outcome.table["pareto"].sum())
-        result["top"] = _top(outcome.table, top, named_objectives)
-    if as_json:
-        emit_json(result)
-    else:
-        _print_result(result, outcome)
 
 
 def _long_run(plan, scheduler: str | None, workers: int | None, quiet: bool):

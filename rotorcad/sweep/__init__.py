@@ -8,21 +8,19 @@ The modules, in the order data flows:
   Parquet, resumable.
 * :mod:`rotorcad.sweep.ranking` -- constraints, objectives, the Pareto front and the ranking.
 * :mod:`rotorcad.sweep.plots` -- the Pareto and effects pictures.
+* :mod:`rotorcad.sweep.files` -- a sweep file read (with its base design and the base's points)
+  and run: the public ``rotorcad.sweep(...)``.
 
-The package imports the core only (never :mod:`rotorcad.cli`, ``hob`` or ``exports``): reading a
-sweep file and its points, and the hobbability verdict of ``hob``, are the command line's
-(:mod:`rotorcad.cli.sweep_run`), which passes the verdict in as an analysis
-(:data:`hob.sweep_check.ANALYSES`).
+The package imports the core only (never :mod:`rotorcad.cli`, ``hob`` or ``exports``): the
+hobbability verdict of ``hob`` and the readers of ``exports`` come through the core's extension
+points (:mod:`rotorcad.extensions`), or are passed in (``analyses=``, ``read_points=``).
 
 ``rotorcad.sweep(...)`` stays the function that runs a sweep file (the public API since the first
-sweep): the package is callable, and the call is that of :func:`rotorcad.cli.sweep_run.sweep`,
-reached through the facade's table of public names (``rotorcad._API``), as ``rotorcad.sweep`` was
-before this package existed.
+sweep): the package is callable, and the call is that of :func:`rotorcad.sweep.files.sweep`.
 """
 
 from __future__ import annotations
 
-import importlib
 import sys
 import types
 from typing import Any
@@ -34,9 +32,9 @@ class _CallableSweep(types.ModuleType):
     """The package, callable as the public function ``rotorcad.sweep(sweep_file, ...)``."""
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
-        import rotorcad
+        from rotorcad.sweep.files import sweep
 
-        return importlib.import_module(rotorcad._ENTRY["sweep"]).sweep(*args, **kwargs)
+        return sweep(*args, **kwargs)
 
 
 sys.modules[__name__].__class__ = _CallableSweep

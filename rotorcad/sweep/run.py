@@ -31,14 +31,14 @@ import threading
 import time
 import warnings
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
 import pandas as pd
 
-from rotorcad.errors import DesignError
+from rotorcad.errors import DesignError, InputFileError
 from rotorcad.sweep.plan import Extra, SweepPlan, Variant
 from rotorcad.sweep.tasks import OBJECTIVES, Analysis, evaluate_batch
 
@@ -161,9 +161,9 @@ def _read_earlier(out: Path | None) -> pd.DataFrame:
                 frame = pd.read_parquet(path)
             except Exception as exc:  # not a Parquet table we wrote: refuse rather than overwrite it
                 reason = " ".join(str(exc).split())[:160]
-                raise DesignError("--out", EARLIER, str(path), reason) from None
+                raise InputFileError("--out", EARLIER, str(path), reason) from None
             if "key" not in frame:
-                raise DesignError("--out", EARLIER, str(path), "it has no key column")
+                raise InputFileError("--out", EARLIER, str(path), "it has no key column")
             frames.append(frame)
     if not frames:
         return pd.DataFrame()
@@ -188,7 +188,7 @@ def _number_earlier(plan: SweepPlan, earlier: pd.DataFrame) -> pd.DataFrame:
                 break
     foreign = len(wanted) - len(index)
     if foreign:
-        raise DesignError(
+        raise InputFileError(
             "--out",
             "a new file name, or the results of this same sweep",
             None,
@@ -366,82 +366,134 @@ def run_sweep(
         raise DesignError(
             "[sweep] compute", "analyses this run can make", missing[0], "pass analyses=hob.sweep_check.ANALYSES"
         )
-    total = plan.count
     earlier = _number_earlier(plan, _read_earlier(out))
     done_keys = set(earlier["key"]) if len(earlier) else set()
-    todo_count = total - len(done_keys)
-    rows: list[dict[str, Any]] = []
-    failed = int((~earlier["ok"].astype(bool)).sum()) if len(earlier) else 0
-    worker_seconds = 0.0
+    todo_count = plan.count - len(done_keys)
+    tally = _Tally(done=len(earlier), failed=int((~earlier["ok"].astype(bool)).sum()) if len(earlier) else 0)
     in_process = not scheduler and (workers == 0 or (workers is None and todo_count < IN_PROCESS_BELOW))
     if before is not None and todo_count:
         before(todo_count, in_process)
     if todo_count:
+        submit = _task_arguments(plan, folder, points, analyses)
+        pending = lambda size: _batches(plan, done_keys, size)  # noqa: E731 - the stream, once the batch size is known
         parts = parts_folder(out) if out is not None else None
-        submit = dict(
-            base=plan.base,
-            folder=None if folder is None else str(folder),
-            points=points,
-            extras=plan.extras,
-            clearance=plan.clearance,
-            analyses=dict(analyses or {}),
-            families=plan.families,
-        )
-        client = cluster = None
-        made_parts = False
-        try:
-            if not in_process:
-                client, cluster = _client(scheduler, workers)  # a bad scheduler is refused before any file
-                n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or os.cpu_count() or 1))
-            else:
-                n_workers = 1
-            if parts is not None and not parts.is_dir():
-                parts.mkdir()
-                made_parts = True
-            size = batch or max(1, min(50, todo_count // (8 * n_workers)))
-            pending = _batches(plan, done_keys, size)
-            done = len(earlier)
+        _compute(pending, todo_count, submit, _Where(parts, scheduler, workers, batch, in_process), tally, progress, plan.count)
+    table = _whole_table(out, earlier, tally.rows)
+    cpu = time.process_time() - cpu_start if in_process else tally.worker_seconds
+    return SweepOutcome(table, todo_count, len(done_keys), time.perf_counter() - start, cpu)
 
-            def finished(batch_rows: list[dict[str, Any]]) -> None:
-                nonlocal done, failed, worker_seconds
-                if parts is not None:
-                    _write_part(parts, batch_rows)
-                else:
-                    rows.extend(batch_rows)
-                done += len(batch_rows)
-                failed += sum(not r["ok"] for r in batch_rows)
-                worker_seconds += sum(r["seconds"] for r in batch_rows)
-                if progress:
-                    progress(done, failed, total)
 
-            if in_process:
-                for variants in pending:
-                    finished(evaluate_batch(variants, **submit))
-            else:
-                from dask.distributed import as_completed
+def _task_arguments(plan: SweepPlan, folder: Path | None, points: Any, analyses: Mapping[Extra, Analysis] | None) -> dict:
+    """Return what every batch's task gets beside its variants (:func:`rotorcad.sweep.tasks.evaluate_batch`)."""
+    return dict(
+        base=plan.base,
+        folder=None if folder is None else str(folder),
+        points=points,
+        extras=plan.extras,
+        clearance=plan.clearance,
+        analyses=dict(analyses or {}),
+        families=plan.families,
+    )
 
-                # at most four tasks a worker in flight: a small graph however large the sweep
-                queue = as_completed(
-                    [client.submit(evaluate_batch, b, **submit, pure=False) for b in itertools.islice(pending, 4 * n_workers)]
-                )
-                for future in queue:
-                    batch_rows = future.result()
-                    future.release()
-                    following = next(pending, None)
-                    if following is not None:
-                        queue.add(client.submit(evaluate_batch, following, **submit, pure=False))
-                    finished(batch_rows)
-        except BaseException:
-            if made_parts and parts is not None and not any(parts.iterdir()):
-                shutil.rmtree(parts, ignore_errors=True)  # nothing computed: no folder left behind
-            raise
-        finally:
-            if client is not None:
-                if cluster is not None:
-                    client.retire_workers(close_workers=True)  # workers first: no heartbeat to a closed scheduler
-                client.close()
+
+@dataclass
+class _Tally:
+    """What a run has done so far.
+
+    Variants done (earlier ones included) and failed, the workers' seconds, and the rows kept in
+    memory when there is no output file.
+    """
+
+    done: int = 0
+    failed: int = 0
+    worker_seconds: float = 0.0
+    rows: list[dict[str, Any]] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class _Where:
+    """Where and how the variants run.
+
+    The parts folder (None: rows in memory), the scheduler or the local workers, the batch size,
+    whether in this process.
+    """
+
+    parts: Path | None
+    scheduler: str | None
+    workers: int | None
+    batch: int | None
+    in_process: bool
+
+
+def _compute(
+    pending: Callable[[int], Iterator[list[Variant]]],
+    todo_count: int,
+    submit: dict[str, Any],
+    where: _Where,
+    tally: _Tally,
+    progress: Callable[[int, int, int], None] | None,
+    total: int,
+) -> None:
+    """Compute the variants not done, in batches, in this process or on Dask; each batch's rows to a part file."""
+    client = cluster = None
+    made_parts = False
+    parts = where.parts
+
+    def finished(batch_rows: list[dict[str, Any]]) -> None:
+        if parts is not None:
+            _write_part(parts, batch_rows)
+        else:
+            tally.rows.extend(batch_rows)
+        tally.done += len(batch_rows)
+        tally.failed += sum(not r["ok"] for r in batch_rows)
+        tally.worker_seconds += sum(r["seconds"] for r in batch_rows)
+        if progress:
+            progress(tally.done, tally.failed, total)
+
+    try:
+        n_workers = 1
+        if not where.in_process:
+            client, cluster = _client(where.scheduler, where.workers)  # a bad scheduler is refused before any file
+            n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (where.workers or os.cpu_count() or 1))
+        if parts is not None and not parts.is_dir():
+            parts.mkdir()
+            made_parts = True
+        batches = pending(where.batch or max(1, min(50, todo_count // (8 * n_workers))))
+        if where.in_process:
+            for variants in batches:
+                finished(evaluate_batch(variants, **submit))
+        else:
+            _on_dask(client, batches, submit, n_workers, finished)
+    except BaseException:
+        if made_parts and parts is not None and not any(parts.iterdir()):
+            shutil.rmtree(parts, ignore_errors=True)  # nothing computed: no folder left behind
+        raise
+    finally:
+        if client is not None:
             if cluster is not None:
-                cluster.close()
+                client.retire_workers(close_workers=True)  # workers first: no heartbeat to a closed scheduler
+            client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _on_dask(client, batches: Iterator[list[Variant]], submit: dict[str, Any], n_workers: int, finished) -> None:
+    """Run the batches as Dask tasks, at most four a worker in flight (a small graph however large the sweep)."""
+    from dask.distributed import as_completed
+
+    first = itertools.islice(batches, 4 * n_workers)
+    queue = as_completed([client.submit(evaluate_batch, b, **submit, pure=False) for b in first])
+    for future in queue:
+        batch_rows = future.result()
+        future.release()
+        following = next(batches, None)
+        if following is not None:
+            queue.add(client.submit(evaluate_batch, following, **submit, pure=False))
+        finished(batch_rows)
+
+
+def _whole_table(out: Path | None, earlier: pd.DataFrame, rows: list[dict[str, Any]]) -> pd.DataFrame:
+    """Join the earlier rows and this run's in variant order; write ``out`` whole and remove its parts folder."""
     if out is not None:
         table = _read_earlier(out)  # this run's rows carry their number; earlier rows are renumbered
         if len(earlier) and len(table):
@@ -454,8 +506,7 @@ def run_sweep(
     if out is not None:
         write_table(out, table)
         shutil.rmtree(parts_folder(out), ignore_errors=True)
-    cpu = time.process_time() - cpu_start if in_process else worker_seconds
-    return SweepOutcome(table, todo_count, len(done_keys), time.perf_counter() - start, cpu)
+    return table
 
 
 def write_table(out: Path, table: pd.DataFrame) -> None:

@@ -5,7 +5,7 @@ reason in one sentence why the variant could not be built). Nothing here keeps a
 profile for the caller: a worker ships numbers back.
 
 The analyses are those of the commands, with the commands' settings: the pair and Rinder's
-analysis of ``rotorcad rotor --json`` (:func:`rotorcad.rotor_build.analyse_pair`), the
+analysis of ``rotorcad rotor --json`` (:func:`rotorcad.design.rotors.analyse_pair`), the
 interference of ``rotorcad interfere`` (72 male angles over one lobe pitch, sections at half its
 0.005 mm tolerance, the housing bores with the design's radial clearance), the meshing clearance of
 ``rotorcad clearance``. The hobbability verdict of ``rotorcad hob`` belongs to the ``hob`` package,
@@ -131,8 +131,8 @@ def _build(spec: Any) -> tuple[Any, Any, dict[str, Any]]:
 
     Returns the rotors, the analysis and its summary (the keys of ``rotorcad rotor --json``).
     """
+    from rotorcad.design.rotors import analyse_pair, build_pair
     from rotorcad.meshing import MeshingAnalysis
-    from rotorcad.rotor_build import analyse_pair, build_pair
 
     key = _transverse_key(spec)
     kept = _BUILT.get(key)
@@ -214,7 +214,7 @@ def evaluate(
         stops the sweep.
     """
     from rotorcad.design import rotor_design
-    from rotorcad.rotor_build import pair_spec
+    from rotorcad.design.rotors import pair_spec
 
     start = time.perf_counter()
     row: dict[str, Any] = {

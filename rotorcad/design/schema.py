@@ -1,9 +1,8 @@
 """Design files (TOML, CONTRACT.md "Design files"): checking the mapping a file holds.
 
-This module parses mappings only; the command line opens and reads the files
-(:func:`rotorcad.cli.common.load_toml`, with the defensive reading of :mod:`exports.reading`).
+This module checks mappings only; :mod:`rotorcad.design.files` opens and reads the files.
 Unknown keys are an error naming the key, so a typo never passes silently. Angles are given in
-degrees in keys ending in ``_deg``.
+degrees in keys ending in ``_deg``. Every refusal is an :class:`rotorcad.errors.InputFileError`.
 """
 
 from __future__ import annotations
@@ -11,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from rotorcad.errors import DesignError
+from rotorcad.errors import InputFileError
 
 NUMBER = (int, float)
 
@@ -52,20 +51,20 @@ def check_table(
 
     Raises
     ------
-    DesignError
+    InputFileError
         A table that is not a table, an unknown key, a value of the wrong type (a bool is never a
         number) or a missing required key.
     """
     section = data.get(table, {})
     if not isinstance(section, dict):
-        raise DesignError(f"[{table}]", "a table of keys", type(section).__name__)
+        raise InputFileError(f"[{table}]", "a table of keys", type(section).__name__)
     for key, value in section.items():
         if key not in keys:
-            raise DesignError(f"key '{key}' in [{table}]", "one of " + ", ".join(sorted(keys)), None, "unknown key")
+            raise InputFileError(f"key '{key}' in [{table}]", "one of " + ", ".join(sorted(keys)), None, "unknown key")
         expected = keys[key]
         if isinstance(value, bool) or not isinstance(value, expected):
             kind = {int: "a whole number", list: "a list", str: "a text in quotes"}.get(expected, "a number")
-            raise DesignError(f"[{table}] {key}", kind, repr(value))
+            raise InputFileError(f"[{table}] {key}", kind, repr(value))
     section = dict(section)
     for key, value in section.items():  # a number as a float: an integer beyond float range is refused
         if isinstance(value, int) and not isinstance(value, bool) and keys[key] in (NUMBER, int):
@@ -74,7 +73,7 @@ def check_table(
                 if keys[key] == NUMBER:
                     section[key] = number
             except OverflowError:
-                raise DesignError(
+                raise InputFileError(
                     f"[{table}] {key}",
                     "a number within the range of a float (below 1.8e308)"
                     if keys[key] == NUMBER
@@ -83,7 +82,7 @@ def check_table(
                 ) from None
     for key in required:
         if key not in section:
-            raise DesignError(f"[{table}] {key}", "given", None, "missing key")
+            raise InputFileError(f"[{table}] {key}", "given", None, "missing key")
     return section
 
 
@@ -97,14 +96,14 @@ def refuse_huge_integers(data: dict[str, Any]) -> None:
 
     Raises
     ------
-    DesignError
+    InputFileError
         Naming the ``[table] key`` of the first such integer.
     """
     for table, section in data.items():
         for key, value in section.items() if isinstance(section, dict) else ():
             if isinstance(value, int) and not isinstance(value, bool) and abs(value).bit_length() > 1023:
                 digits = int(value.bit_length() * 0.30103) + 1
-                raise DesignError(f"[{table}] {key}", "a number below 1.8e308", f"an integer of {digits} digits")
+                raise InputFileError(f"[{table}] {key}", "a number below 1.8e308", f"an integer of {digits} digits")
 
 
 def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
@@ -124,13 +123,13 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
 
     Raises
     ------
-    DesignError
+    InputFileError
         Naming the table or key that is wrong.
     """
     refuse_huge_integers(data)
     for table in data:
         if table not in ("gear", "mate"):
-            raise DesignError(f"table [{table}]", "one of [gear], [mate] in a gear design", None, "unknown table")
+            raise InputFileError(f"table [{table}]", "one of [gear], [mate] in a gear design", None, "unknown table")
     gear = check_table(data, "gear", GEAR_KEYS, required=("teeth", "module"))
     mate = check_table(data, "mate", MATE_KEYS) if "mate" in data else {}
     return {"gear": gear, "mate": mate}
@@ -197,7 +196,7 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
 
     Raises
     ------
-    DesignError
+    InputFileError
         Naming the table or key that is wrong (unknown, of the wrong type, missing or out of
         range).
     """
@@ -209,35 +208,35 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
     for table in data:
         if table not in ("pair", "profile", "housing", "operating", "deflection", "export"):
             allowed = "one of [pair], [profile], [housing], [operating], [deflection], [export]"
-            raise DesignError(f"table [{table}]", allowed, None, "unknown table")
+            raise InputFileError(f"table [{table}]", allowed, None, "unknown table")
     pair = check_table(data, "pair", PAIR_KEYS, required=tuple(k for k in PAIR_KEYS if k not in ("lead", "length", "hand")))
     profile = dict(data.get("profile", {}))
     if "family" not in profile or not isinstance(profile["family"], str):
-        raise DesignError("[profile] family", "given as a name", None, "missing key")
+        raise InputFileError("[profile] family", "given as a name", None, "missing key")
     family = profile.pop("family")
     points = None
     smoothing = None  # estimated from the points' scatter
     if family in POINT_FAMILIES:
         if not isinstance(profile.get("points"), str):
-            raise DesignError("[profile] points", "a CSV file name for the family " + family, None, "missing key")
+            raise InputFileError("[profile] points", "a CSV file name for the family " + family, None, "missing key")
         points = (Path(folder or ".") / profile.pop("points")).resolve()
         smoothing = profile.pop("smoothing", None)
         bad = isinstance(smoothing, bool) or not isinstance(smoothing, NUMBER) or not 0 <= smoothing < float("inf")
         if smoothing is not None and bad:
-            raise DesignError("[profile] smoothing", "a number of at least 0 mm^2", repr(smoothing))
+            raise InputFileError("[profile] smoothing", "a number of at least 0 mm^2", repr(smoothing))
         smoothing = None if smoothing is None else float(smoothing)
         if profile:
-            raise DesignError(
+            raise InputFileError(
                 f"key '{next(iter(profile))}' in [profile]", "points or smoothing for a points family", None, "unknown key"
             )
     else:
         for key, value in profile.items():
             if isinstance(value, bool) or not isinstance(value, NUMBER):
-                raise DesignError(f"[profile] {key}", "a number", repr(value))
+                raise InputFileError(f"[profile] {key}", "a number", repr(value))
     housing = check_table(data, "housing", HOUSING_KEYS)
     gap = housing.get("radial_clearance", 0.0)
     if not (0.0 <= gap <= MAX_RADIAL_CLEARANCE):  # also NaN
-        raise DesignError("[housing] radial_clearance", f"a clearance from 0 to {MAX_RADIAL_CLEARANCE:g} mm", gap)
+        raise InputFileError("[housing] radial_clearance", f"a clearance from 0 to {MAX_RADIAL_CLEARANCE:g} mm", gap)
     return {
         "pair": pair,
         "family": family,
@@ -249,19 +248,3 @@ def rotor_design(data: dict[str, Any], folder: Path | str | None = None) -> dict
         "deflection": check_table(data, "deflection", DEFLECTION_KEYS),
         "export": check_table(data, "export", EXPORT_KEYS),
     }
-
-
-_READERS = ("load_toml", "load_gear_design", "load_rotor_design")
-
-
-def __getattr__(name: str) -> object:
-    """Return the file readers under their old names here (PEP 562).
-
-    The readers moved to the command line (:mod:`rotorcad.cli.common`); this keeps
-    ``from rotorcad.design import load_rotor_design`` working.
-    """
-    if name in _READERS:
-        from rotorcad.cli import common
-
-        return getattr(common, name)
-    raise AttributeError(f"module 'rotorcad.design' has no attribute {name!r}")

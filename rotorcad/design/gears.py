@@ -1,0 +1,192 @@
+"""An involute gear (and its mate) from a design: the spec, and the gear built from it.
+
+A gear design file (``[gear]``, optional ``[mate]``; CONTRACT.md "Design files") and the values
+given beside it (the command's options, a script's arguments) merge into one :class:`GearSpec`:
+given values override the file, the ISO 53 basic rack's defaults fill the rest. The spec records
+which values are the file's, so that a refusal names the ``[table] key`` the user wrote
+(:mod:`rotorcad.design.labels`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import Any
+
+import numpy as np
+
+from rotorcad.errors import DesignError, GeometryError, MissingValueError
+
+GEAR_DEFAULTS = {"pressure_angle": 20.0, "helix_angle": 0.0, "shift": 0.0, "addendum": 1.0, "dedendum": 1.25, "tip_radius": 0.38}
+"""The ISO 53 basic rack (pressure angle in degrees, factors of the module) and no helix, no shift."""
+
+MATE_FIELDS = {"teeth": "mate_teeth", "shift": "mate_shift", "center_distance": "center_distance"}
+"""``[mate]`` key -> field of :class:`GearSpec`."""
+
+
+@dataclass(frozen=True)
+class GearSpec:
+    """What builds an involute gear and, with ``mate_teeth``, its mate.
+
+    Attributes
+    ----------
+    teeth : int
+        Number of teeth z.
+    module : float, mm
+        Normal module m.
+    pressure_angle, helix_angle : float, deg
+        Of the basic rack; of the helix at the pitch cylinder.
+    shift : float
+        Profile shift coefficient x, modules.
+    addendum, dedendum, tip_radius : float
+        Factors of the module: h_aP*, h_fP*, the tool's tip radius rho_a0*.
+    face_width : float or None, mm
+        For solids.
+    mate_teeth : int or None
+        Teeth of the mate z2 (None: no mate).
+    mate_shift : float or None
+        Its profile shift x2 (None: 0, or for zero backlash at ``center_distance``, ISO 21771).
+    center_distance : float or None, mm
+        Working centre distance a_w (None: zero backlash for the shifts).
+    from_design : frozenset of str
+        The fields whose values are the design file's.
+    """
+
+    teeth: int
+    module: float
+    pressure_angle: float = GEAR_DEFAULTS["pressure_angle"]
+    helix_angle: float = GEAR_DEFAULTS["helix_angle"]
+    shift: float = GEAR_DEFAULTS["shift"]
+    addendum: float = GEAR_DEFAULTS["addendum"]
+    dedendum: float = GEAR_DEFAULTS["dedendum"]
+    tip_radius: float = GEAR_DEFAULTS["tip_radius"]
+    face_width: float | None = None
+    mate_teeth: int | None = None
+    mate_shift: float | None = None
+    center_distance: float | None = None
+    from_design: frozenset[str] = frozenset()
+
+
+VALUE_FIELDS = tuple(f.name for f in fields(GearSpec) if f.name != "from_design")
+"""The fields of :class:`GearSpec` that hold values."""
+
+
+def gear_spec(design: dict[str, dict[str, Any]] | None = None, given: dict[str, Any] | None = None) -> GearSpec:
+    """Merge a checked gear design with the values given beside it.
+
+    Parameters
+    ----------
+    design : dict, optional
+        ``{"gear": {...}, "mate": {...}}`` as :func:`rotorcad.design.schema.gear_design` returns it.
+    given : dict, optional
+        Values by field name (None: not given); they override the design's. Angles in degrees.
+
+    Returns
+    -------
+    GearSpec
+
+    Raises
+    ------
+    MissingValueError
+        No ``teeth`` or ``module`` from either source (its ``param`` names the field).
+    """
+    values: dict[str, Any] = {}
+    from_design: set[str] = set()
+    if design is not None:
+        for key, value in design["gear"].items():
+            values[key.removesuffix("_deg")] = value
+            from_design.add(key.removesuffix("_deg"))
+        for key, value in design.get("mate", {}).items():
+            values[MATE_FIELDS[key]] = value
+            from_design.add(MATE_FIELDS[key])
+    for key, value in (given or {}).items():
+        if value is not None and key in VALUE_FIELDS:
+            values[key] = value
+            from_design.discard(key)
+    for key in ("teeth", "module"):
+        if values.get(key) is None:
+            raise MissingValueError(key)
+    return GearSpec(**values, from_design=frozenset(from_design))
+
+
+def build_gear(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
+    """Build the gear of a spec, and its mate when one is described.
+
+    Parameters
+    ----------
+    spec : GearSpec
+        What to build.
+    tolerance : float, mm
+        Chord tolerance of the outlines.
+
+    Returns
+    -------
+    gear : InvoluteGear
+        The gear.
+    pair : GearPair or None
+        The gear with its mate (the mate's shift given, zero, or for zero backlash at the centre
+        distance, ISO 21771), None without a mate.
+
+    Raises
+    ------
+    DesignError
+        A gear that cannot be made (its parameter as :class:`rotorcad.gear.InvoluteGear` names it);
+        a mate or pair that cannot be made (``mate.PARAM``); a centre distance or mate shift
+        without mate teeth (:class:`MissingValueError` ``mate.teeth``).
+    GeometryError
+        Flanks that never meet (``param`` ``contact_ratio``): :func:`check_contact`.
+    """
+    from rotorcad.gear import DEG, GearPair, InvoluteGear, mate_shift
+    from rotorcad.rotor_pair import LENGTH_RANGE, MAX_LENGTH
+
+    common = {
+        "module": spec.module,
+        "pressure_angle": spec.pressure_angle * DEG,
+        "helix_angle": spec.helix_angle * DEG,
+        "addendum": spec.addendum,
+        "dedendum": spec.dedendum,
+        "tip_radius_factor": spec.tip_radius,
+        "tolerance": tolerance,
+    }
+    gear = InvoluteGear(teeth=spec.teeth, shift=spec.shift, **common)
+    z2, a = spec.mate_teeth, spec.center_distance
+    if z2 is None:
+        if a is not None or spec.mate_shift is not None:
+            raise MissingValueError("mate.teeth", "given with the centre distance or the mate's shift")
+        return gear, None
+    try:
+        if not isinstance(z2, int) or z2 < 3:
+            raise DesignError("teeth", "a whole number of at least 3", z2)
+        if a is not None and not (np.isfinite(a) and 0 < a <= MAX_LENGTH):  # before the mate's shift is solved from it
+            raise DesignError("center_distance", LENGTH_RANGE, a)
+        x2 = spec.mate_shift
+        if x2 is None:
+            x2 = 0.0 if a is None else mate_shift(gear, z2, a)
+        pair = GearPair(gear, InvoluteGear(teeth=z2, shift=x2, **common), a)
+    except DesignError as exc:
+        raise type(exc)(f"mate.{exc.param}", exc.allowed, exc.value, exc.detail) from None
+    check_contact(pair.contact_ratio, "contact_ratio")
+    return gear, pair
+
+
+def check_contact(eps: float, label: str) -> None:
+    """Refuse a pair whose flanks never meet (contact ratio 0 or undefined) instead of reporting it.
+
+    Parameters
+    ----------
+    eps : float
+        The pair's transverse contact ratio.
+    label : str
+        The parameter (or the options) that set it, for the sentence.
+
+    Raises
+    ------
+    GeometryError
+        A contact ratio that is not above 0.
+    """
+    if not (np.isfinite(eps) and eps > 0.0):
+        raise GeometryError(
+            label,
+            f"chosen so that the flanks meet (a contact ratio above 0; got {eps:g})",
+            None,
+            "the tips do not reach the usable involute of the mate; raise the addendum, the shifts or the pressure angle",
+        )

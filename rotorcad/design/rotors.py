@@ -1,0 +1,305 @@
+"""A rotor pair from a design, and its analysis as plain numbers.
+
+The core that the CLI, a design sweep and a notebook share. The design is a mapping as a TOML
+file holds it (tables ``pair``, ``profile``, ``housing``, ``operating``, ...; CONTRACT.md "Design
+files"), checked by :func:`rotorcad.design.schema.rotor_design`; values given beside it (the
+command's options) override it (:func:`merge_pair`). A profile given by points arrives already
+read (the caller reads points files and drawings): an ``(n, 2)`` array or the curves of a drawing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rotorcad.design.labels import PAIR_FIELDS
+from rotorcad.design.schema import POINT_FAMILIES, rotor_design
+from rotorcad.errors import DesignError, GeometryError, MissingValueError
+from rotorcad.meshing import MeshingAnalysis
+from rotorcad.profile import DEFAULT_TOLERANCE
+from rotorcad.roles import Side
+from rotorcad.rotor_families import build_family
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.rotor_points import pair_from_rack_points, pair_from_rotor_points
+from rotorcad.screw_rotors import ScrewRotors
+
+PAIR_DEFAULTS = {"lead": 300.0, "length": 190.0}
+SPEED_DEFAULT = 3000.0  # rpm
+
+
+@dataclass(frozen=True)
+class PairSpec:
+    """What builds a rotor pair: dimensions, the profile family and its parameters or points.
+
+    Attributes
+    ----------
+    pair : RotorPair
+    family : str
+        A family name (``rotorcad.rotor_families``) or ``rack-points`` / ``male-points`` /
+        ``female-points``.
+    params : dict
+        The family's parameters (empty for points).
+    points : (n, 2) float array or list of curves, optional
+        The profile of a points family, already read.
+    smoothing : float, optional, mm^2
+        Spline smoothing of measured points (None: estimated from their scatter).
+    speed_rpm : float
+        Male speed for sliding velocities.
+    radial_clearance : float, mm
+        Housing bores = tip radii + this.
+    """
+
+    pair: RotorPair
+    family: str
+    params: dict[str, float]
+    points: Any = None
+    smoothing: float | None = None
+    speed_rpm: float = SPEED_DEFAULT
+    radial_clearance: float = 0.0
+
+
+def pair_spec(settings: dict[str, Any], points: Any = None, overrides: dict[str, Any] | None = None) -> PairSpec:
+    """Make the spec of a checked design (:func:`rotorcad.design.rotor_design`).
+
+    Parameters
+    ----------
+    settings : dict
+        The checked design.
+    points : (n, 2) float array or list of Curve, optional
+        The profile of a points family, read by the caller from ``settings["points"]`` (mm).
+    overrides : dict, optional
+        Pair dimensions that replace the design's (``male_teeth``, ..., ``lead``, ``length``);
+        None values are ignored.
+
+    Returns
+    -------
+    PairSpec
+        Lead and length default to 300 mm and 190 mm, the speed to 3000 rpm.
+
+    Raises
+    ------
+    DesignError
+        An incomplete [pair], a pair that cannot be made (:class:`RotorPair`), a speed that is
+        not positive, or a points family whose ``points`` were not given.
+    """
+    if settings["family"] in POINT_FAMILIES and points is None:
+        raise DesignError(
+            "[profile] points",
+            f"read by the caller and passed as the points argument for the {settings['family']} family (the file names it)",
+            None,
+        )
+    values = dict(PAIR_DEFAULTS)
+    values.update(settings["pair"])
+    values.update({k: v for k, v in (overrides or {}).items() if v is not None})
+    try:
+        pair = RotorPair(**values)
+    except TypeError as exc:
+        raise DesignError("[pair]", "complete (teeth, centre distance, tip and root radii)", None, str(exc)) from None
+    speed = float(settings["operating"].get("speed_rpm", SPEED_DEFAULT))
+    if not (np.isfinite(speed) and speed > 0):
+        raise DesignError("[operating] speed_rpm", "a positive speed in rpm", speed)
+    return PairSpec(
+        pair=pair,
+        family=settings["family"],
+        params=dict(settings["params"]),
+        points=points,
+        smoothing=settings.get("smoothing"),
+        speed_rpm=speed,
+        radial_clearance=float(settings["housing"].get("radial_clearance", 0.0)),
+    )
+
+
+def merge_pair(settings: dict[str, Any] | None, given: dict[str, Any], source: str | None = None) -> PairSpec:
+    """Merge a checked design with the values given beside it: given values override the design's.
+
+    Parameters
+    ----------
+    settings : dict or None
+        The checked design (:func:`rotorcad.design.schema.rotor_design`), or None.
+    given : dict
+        Values by library name (None: not given): the pair's dimensions
+        (:data:`rotorcad.design.labels.PAIR_FIELDS`, mm), ``speed_rpm`` and ``smoothing`` (mm^2).
+    source : str, optional
+        A points family whose points are given beside the design (``male-points``, ...): it
+        replaces the design's profile.
+
+    Returns
+    -------
+    PairSpec
+        Without its points (``points`` None): the caller reads the points file (the design's
+        ``settings["points"]`` or the one given) and puts them in (:func:`dataclasses.replace`).
+        Lead and length default to 300 mm and 190 mm, the speed to 3000 rpm.
+
+    Raises
+    ------
+    DesignError
+        A negative smoothing, a speed that is not positive, or a pair that cannot be made
+        (:class:`RotorPair`), naming the library's parameter (``smoothing``, ``speed_rpm``, a
+        field of the pair: :class:`rotorcad.design.labels.PairNames` says how the user gave it).
+    MissingValueError
+        A dimension of the pair given by neither.
+    TypeError
+        A pair described incompletely in another way.
+    """
+    values: dict[str, Any] = dict(PAIR_DEFAULTS)
+    family, params, smoothing, speed, clearance = None, {}, given.get("smoothing"), SPEED_DEFAULT, 0.0
+    if settings is not None:
+        values.update(settings["pair"])
+        family, params = settings["family"], settings["params"]
+        smoothing = settings["smoothing"] if smoothing is None else smoothing  # the given value wins, as every other
+        speed = float(settings["operating"].get("speed_rpm", speed))
+        clearance = float(settings["housing"].get("radial_clearance", 0.0))
+    values.update({k: given[k] for k in PAIR_FIELDS if given.get(k) is not None})
+    if source is not None:
+        family, params = source, {}
+    if given.get("speed_rpm") is not None:
+        speed = given["speed_rpm"]
+    if smoothing is not None and not (np.isfinite(smoothing) and smoothing >= 0):
+        raise DesignError("smoothing", "a number of at least 0 mm^2", smoothing)
+    if not (np.isfinite(speed) and speed > 0):
+        raise DesignError("speed_rpm", "a positive speed in rpm", speed)
+    missing = [k for k in PAIR_FIELDS if k not in values]
+    if missing:
+        raise MissingValueError(missing[0])
+    pair = RotorPair(**values)
+    return PairSpec(pair, family, dict(params), None, smoothing, float(speed), clearance)
+
+
+def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
+    """Build the rotor pair of a spec: a family from its rack, or the pair from points.
+
+    Parameters
+    ----------
+    spec : PairSpec
+        What to build.
+    label : str, optional
+        How the points are named in a refusal (e.g. ``--male-points``).
+
+    Returns
+    -------
+    ScrewRotors
+        The generated pair.
+
+    Raises
+    ------
+    DesignError
+        Bad family parameters or points, or a mate generated from measured points that is not a
+        smooth rotor (noise left in by the smoothing).
+    """
+    if spec.family == "rack-points":
+        return pair_from_rack_points(spec.pair, spec.points, spec.smoothing or 0.0)
+    if spec.family in ("male-points", "female-points"):
+        rotors = pair_from_rotor_points(spec.pair, spec.points, spec.family.split("-")[0], spec.smoothing, label=label)
+        _check_generated(rotors, spec.family.split("-")[0], label or f"[profile] points ({spec.family})")
+        return rotors
+    return build_family(spec.pair, spec.family, spec.params)
+
+
+MAX_LOBE_POINTS = 50_000
+"""Most points of one generated lobe at the default tolerance (a smooth lobe has a few hundred)."""
+
+LOBE_POINTS_FACTOR = 3.0
+"""Most points of a generated lobe as a multiple of :func:`smooth_lobe_points`: the samples' lobes
+have 0.17 to 0.32 of it, mates generated from points with 0.05-0.2 mm of noise 7 to 16 (their
+sections then took minutes to make valid, and their numbers were those of the noise: a contact line
+30 times as long)."""
+
+
+def smooth_lobe_points(tip_radius: float, teeth: int, tolerance: float = DEFAULT_TOLERANCE) -> float:
+    """Estimate, generously, the number of points of a smooth lobe.
+
+    Three times the tip circle's arc of one lobe, sampled to the chord ``tolerance`` on a radius of
+    curvature of the tip radius (chord sqrt(8 R t)).
+
+    Parameters
+    ----------
+    tip_radius : float, mm
+        Tip radius of the rotor.
+    teeth : int
+        Its lobes.
+    tolerance : float, mm
+        Chord tolerance of the sampled lobe.
+
+    Returns
+    -------
+    float
+        The estimated number of points.
+    """
+    return 3.0 * 2.0 * np.pi * tip_radius / (teeth * np.sqrt(8.0 * tip_radius * tolerance))
+
+
+def _check_generated(rotors: ScrewRotors, given: Side | str, label: str) -> None:
+    """Refuse a mate generated from measured points that is not a rotor.
+
+    That is one that runs far beyond its tip circle (1.5 times) or folds into many more points than
+    a smooth lobe has (noise the smoothing left in). Checked before the sections are made: their
+    cost grows with the folds. Raises :class:`DesignError` naming ``label``.
+    """
+    mate = Side(given).other
+    lobe = mate.pick(rotors.male_lobe, rotors.female_lobe)()
+    tip = mate.pick(rotors.pair.male_tip_radius, rotors.pair.female_tip_radius)
+    teeth = mate.pick(rotors.pair.male_teeth, rotors.pair.female_teeth)
+    pts = np.vstack([seg.points for seg in lobe.segments if len(seg.points)]) if lobe.segments else np.zeros((0, 2))
+    reach = float(np.hypot(*pts.T).max()) if len(pts) else 0.0
+    most = int(min(MAX_LOBE_POINTS, LOBE_POINTS_FACTOR * smooth_lobe_points(tip, teeth)))
+    if len(pts) == 0 or len(pts) > most or reach > 1.5 * tip:
+        raise GeometryError(
+            label,
+            "a smooth profile that generates a mate",
+            None,
+            f"the {mate} generated from it has {len(pts)} points in a lobe (a smooth lobe has at most {most}) and reaches "
+            f"{reach:.4g} mm against its tip radius {tip:g} mm; noise in the points? (raise --smoothing or [profile] smoothing)",
+        )
+
+
+def analyse_pair(rotors: ScrewRotors, speed_rpm: float) -> tuple[MeshingAnalysis, dict[str, Any]]:
+    """Run Rinder's analysis of a pair and summarise it.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair.
+    speed_rpm : float, rpm
+        Male speed, for the sliding velocities.
+
+    Returns
+    -------
+    analysis : MeshingAnalysis
+        The analysis (for pictures).
+    summary : dict
+        :meth:`MeshingAnalysis.summary` with ``rack_loss_percent``: the keys of
+        ``rotorcad rotor --json``.
+    """
+    analysis = MeshingAnalysis(rotors, speed_rpm=speed_rpm)
+    result = analysis.summary()
+    result["rack_loss_percent"] = rotors.rack_loss
+    return analysis, result
+
+
+def design_summary(mapping: dict[str, Any], folder: Any = None, points: Any = None) -> dict[str, Any]:
+    """Build and analyse the pair of a design mapping in one call.
+
+    Parameters
+    ----------
+    mapping : dict
+        The design as a TOML file holds it (CONTRACT.md "Design files").
+    folder : path, optional
+        Where a relative points file name is resolved (:func:`rotorcad.design.rotor_design`); the
+        file is not read here.
+    points : (n, 2) float array or list of Curve, optional
+        The profile of a points family, already read (mm).
+
+    Returns
+    -------
+    dict
+        The numbers of ``rotorcad rotor --json`` (``files`` aside).
+
+    Raises
+    ------
+    DesignError
+        A bad design.
+    """
+    spec = pair_spec(rotor_design(mapping, folder), points)
+    return analyse_pair(build_pair(spec), spec.speed_rpm)[1]
