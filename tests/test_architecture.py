@@ -43,8 +43,19 @@ def modules() -> dict[str, Path]:
     return found
 
 
-def imports(name: str, path: Path, known: set[str]) -> set[str]:
-    """Return the modules of the three packages that ``name`` (at ``path``) imports, anywhere in it.
+def type_checking_imports(tree: ast.Module) -> set[int]:
+    """Return the ids of the import statements under ``if TYPE_CHECKING:`` (read by type checkers
+    only, never run, so no dependency at run time)."""
+    guarded = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            guarded.update(id(n) for stmt in node.body for n in ast.walk(stmt))
+    return guarded
+
+
+def imports(name: str, path: Path, known: set[str], typing: bool = True) -> set[str]:
+    """Return the modules of the three packages that ``name`` (at ``path``) imports, anywhere in it
+    (``typing=False``: leaving out the imports under ``if TYPE_CHECKING:``).
 
     ``from a.b import c`` is an import of ``a.b.c`` when that is a module, else of ``a.b``; a
     relative import is resolved against the module's package. The parents a dotted import loads on
@@ -52,7 +63,11 @@ def imports(name: str, path: Path, known: set[str]) -> set[str]:
     """
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found = set()
-    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+    tree = ast.parse(path.read_text(), str(path))
+    skipped = set() if typing else type_checking_imports(tree)
+    for node in ast.walk(tree):
+        if id(node) in skipped:
+            continue
         if isinstance(node, ast.Import):
             targets = [alias.name for alias in node.names]
         elif isinstance(node, ast.ImportFrom):
@@ -68,11 +83,12 @@ def imports(name: str, path: Path, known: set[str]) -> set[str]:
 
 
 @functools.cache
-def graph() -> dict[str, set[str]]:
-    """Return the import graph: module -> the modules of the three packages it imports."""
+def graph(typing: bool = True) -> dict[str, set[str]]:
+    """Return the import graph: module -> the modules of the three packages it imports
+    (``typing=False``: the graph at run time, without the imports for type checkers only)."""
     found = modules()
     known = set(found)
-    return {name: imports(name, path, known) for name, path in found.items()}
+    return {name: imports(name, path, known, typing) for name, path in found.items()}
 
 
 def test_the_graph_is_read():
@@ -161,8 +177,9 @@ def find_cycles(g: dict[str, set[str]]) -> list[list[str]]:
 
 
 def test_no_import_cycle():
-    """No module reaches itself through the imports."""
-    cycles = find_cycles(graph())
+    """No module reaches itself through the imports that run (an import under ``if TYPE_CHECKING:``,
+    for a type annotation only, does not run; the upward check above counts those too)."""
+    cycles = find_cycles(graph(typing=False))
     assert not cycles, "import cycles:\n" + "\n".join(" <-> ".join(c) for c in cycles)
 
 
@@ -179,3 +196,5 @@ def test_a_cycle_and_an_upward_import_are_found():
     assert layer("rotorcad.cli.common") not in LAYERS[layer("rotorcad.design")]
     assert layer("hob.verdict") in LAYERS[layer("rotorcad.cli.hob_cmd")]
     assert layer("rotorcad.cli.common") not in LAYERS[layer("exports.dxf")]
+    guarded = ast.parse("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import rotorcad.gears\nimport hob\n")
+    assert len(type_checking_imports(guarded)) >= 2  # the import and its alias, not `import hob`
