@@ -69,6 +69,10 @@ def test_a_curve_of_two_samples_is_their_hermite_cubic_not_the_chord():
     off = np.abs(np.hypot(*xy.T) - radius).max()
     assert off == pytest.approx(radius * theta**4 / 128, rel=1e-2)
     assert off < 1e-3 * radius * (1 - np.cos(theta / 2))
+    # an arc of two samples is the circle through them tangent to the first one's tangent
+    arc = BRepAdaptor_Curve(_edge(SectionSegment("root arc", seg.points, seg.tangents, "arc", (0.0, 0.0)), 1e-3))
+    xy = np.array([(p.X(), p.Y()) for p in (arc.Value(u) for u in np.linspace(arc.FirstParameter(), arc.LastParameter(), 101))])
+    assert np.abs(np.hypot(*xy.T) - radius).max() < 1e-9 and np.abs(xy[[0, -1]] - seg.points).max() < 1e-9
 
 
 @pytest.fixture(scope="module")
