@@ -7,8 +7,9 @@ commands, ``time.process_time`` for the library calls), so that other processes 
 disturb them less than wall time. Printed per target: the median figure, the median baseline of
 the same rounds, their ratio and the goal (a ratio for the commands, milliseconds for the calls).
 
-Run by hand: ``python benchmarks/run_all.py [--rounds N] [--scripts]``; ``--scripts`` also runs
-every other ``benchmarks/bench_*.py`` and says whether each ran to its end. The byte code of the
+Run by hand: ``python benchmarks/run_all.py [--rounds N] [--scripts] [--only TEXT]``; ``--scripts``
+also runs every other ``benchmarks/bench_*.py`` and says whether each ran to its end; ``--only``
+measures the targets whose name contains TEXT (e.g. ``--only "rotor outlines"``). The byte code of the
 package is compiled first (``compileall``) so that a first run does not pay for it.
 """
 
@@ -116,14 +117,15 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=5, help="interleaved rounds (medians are printed)")
     parser.add_argument("--scripts", action="store_true", help="also run every benchmarks/bench_*.py")
+    parser.add_argument("--only", default="", help="measure only the targets whose name contains this text")
     args = parser.parse_args()
     for package in ("rotorcad", "exports", "hob"):
         compileall.compile_dir(str(ROOT / package), quiet=1)
     print(f"machine load (1, 5, 15 min): {', '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores")
     baseline_cmd = [PY, "-c", "import numpy, scipy"]
     with tempfile.TemporaryDirectory() as tmp:
-        commands = command_targets(Path(tmp) / "out")
-        library = library_targets()
+        commands = {k: v for k, v in command_targets(Path(tmp) / "out").items() if args.only in k}
+        library = {k: v for k, v in library_targets().items() if args.only in k}
         base: list[float] = []
         figures: dict[str, list[float]] = {name: [] for name in (*commands, *library)}
         for _ in range(args.rounds):

@@ -25,6 +25,7 @@ from rotorcad.curves import Arc, Curve, Line, Mapped
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.profile import Profile, Segment
 from rotorcad.roles import PieceRole, Side
+from rotorcad.rotor_cut import cut_segment
 from rotorcad.rotor_pair import RotorPair
 
 
@@ -168,16 +169,36 @@ class ScrewRotors:
         cache = self.__dict__.setdefault("_lobes", {})  # one sampling per rotor and tolerance
         key = (id(pieces), tol)
         if key not in cache:
-            cache[key] = self._sample_lobe(pieces, tol)
+            side = Side.MALE if pieces is self.male_pieces else Side.FEMALE
+            cache[key] = self._sample_lobe(pieces, tol, side)
         return cache[key]
 
-    @staticmethod
-    def _sample_lobe(pieces: list[tuple[str, Curve, RackPiece]], tol: float) -> Profile:
+    def _sample_lobe(self, pieces: list[tuple[str, Curve, RackPiece]], tol: float, side: Side) -> Profile:
+        """Sample a lobe's pieces: those cut by a rack line, arc or point path in closed form, the others by the generic sampler.
+
+        Parameters
+        ----------
+        pieces : list of (str, Curve, RackPiece)
+            :attr:`male_pieces` or :attr:`female_pieces`.
+        tol : float
+            Largest chord error, mm.
+        side : Side
+            The rotor the pieces belong to.
+
+        Returns
+        -------
+        Profile
+            The open lobe; degenerate pieces (no or one point) are left out.
+        """
+        r1, a = self.pair.male_pitch_radius, self.pair.center_distance
+        rotor = side.pick(self.pair.mesh.male, self.pair.mesh.female)
         segs = []
-        for name, curve, _ in pieces:
+        for name, curve, piece in pieces:
             if abs(curve.s1 - curve.s0) < 1e-15:
                 continue
-            seg = Segment.sample(name, curve, tol)
+            seg = cut_segment(name, curve, piece.curve, side, r1, a, tol, rotor)  # closed form (rotorcad.rotor_cut)
+            if seg is None:
+                seg = Segment.sample(name, curve, tol)
             if len(seg.points) == 0 or np.ptp(seg.points, axis=0).max() < 1e-9:  # degenerate piece (none or one point)
                 continue
             segs.append(seg)

@@ -8,11 +8,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 import shapely
 
 from exports.step import read_step
-from exports.step_exact import SectionSegment, faces, helicoid_deviation, write_exact_step
+from exports.step_exact import SectionSegment, StepDeviationError, faces, helicoid_deviation, section_segments, write_exact_step
 from rotorcad.design import load_rotor_design
 from rotorcad.rotor_families import build_family
 from rotorcad.rotor_pair import RotorPair
@@ -47,3 +48,79 @@ def test_exact_step_is_the_helicoid_to_the_micrometre(tmp_path, sample, rotor):
     shape = _read_shape(path)
     assert len(faces(shape)) == len(segments) + 2  # one side face a segment, two end caps
     assert helicoid_deviation(shape, exact, lead, pair.length, per_face=12) < 1e-3
+
+
+def test_a_curve_of_two_samples_is_their_hermite_cubic_not_the_chord():
+    # A piece sampled in closed form may keep only its two ends (a short arc within the chord
+    # tolerance). Its edge is the cubic through them with their exact unit tangents on chord-length
+    # parameters: on a circle of radius R over an angle theta its middle lies R theta^4 / 128 inside
+    # the circle (the handles fall short of the optimal (4 R / 3) tan(theta / 4) by R theta^3 / 48,
+    # de Boor ch. IV), far inside the chord's sagitta R theta^2 / 8 it was drawn as before.
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+
+    from exports.step_exact import _edge
+
+    radius, theta = 46.5, 0.06
+    ends = np.array([0.0, theta])
+    seg = SectionSegment("root arc", radius * np.c_[np.cos(ends), np.sin(ends)], np.c_[-np.sin(ends), np.cos(ends)], "curve")
+    curve = BRepAdaptor_Curve(_edge(seg, 1e-3))
+    u0, u1 = curve.FirstParameter(), curve.LastParameter()
+    xy = np.array([(p.X(), p.Y()) for p in (curve.Value(u) for u in np.linspace(u0, u1, 101))])
+    off = np.abs(np.hypot(*xy.T) - radius).max()
+    assert off == pytest.approx(radius * theta**4 / 128, rel=1e-2)
+    assert off < 1e-3 * radius * (1 - np.cos(theta / 2))
+    # an arc of two samples is the circle through them tangent to the first one's tangent
+    arc = BRepAdaptor_Curve(_edge(SectionSegment("root arc", seg.points, seg.tangents, "arc", (0.0, 0.0)), 1e-3))
+    xy = np.array([(p.X(), p.Y()) for p in (arc.Value(u) for u in np.linspace(arc.FirstParameter(), arc.LastParameter(), 101))])
+    assert np.abs(np.hypot(*xy.T) - radius).max() < 1e-9 and np.abs(xy[[0, -1]] - seg.points).max() < 1e-9
+
+
+@pytest.fixture(scope="module")
+def involute_to_its_cusp():
+    # the README pair: the female's sealing involute runs down to its base circle (the cusp)
+    d = load_rotor_design(SAMPLES / "rack_involute_5_6.toml")
+    pair = RotorPair(**{**d["pair"], "length": 30.0})
+    rotors = build_family(pair, d["family"], d["params"])
+    return pair, rotors.female_outline(1e-2), rotors.female_outline(1e-5).points
+
+
+def test_samples_are_added_where_the_hermite_cubic_leaves_the_curve(involute_to_its_cusp):
+    # At 10 um in chord the last interval before the involute's cusp (radius of curvature -> 0) is
+    # bridged by a cubic 1.8 um off the curve; with the STEP tolerance of 1 um, section_segments adds
+    # samples until every cubic is within a quarter of it. Reference: the exact outline sampled by
+    # chords of 0.01 um, against the cubics as OpenCASCADE makes them (read back from the edges).
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+
+    from exports.step_exact import _edge
+    from rotorcad.geometry import distance_to_polyline
+
+    _, outline, exact = involute_to_its_cusp
+    ring = np.vstack([exact, exact[:1]])
+
+    def largest_gap(segments):
+        gaps = []
+        for seg in segments:
+            if seg.kind != "curve":
+                continue
+            curve = BRepAdaptor_Curve(_edge(seg, 1e-3))
+            u0, u1 = curve.FirstParameter(), curve.LastParameter()
+            xy = np.array([(p.X(), p.Y()) for p in (curve.Value(u) for u in np.linspace(u0, u1, 40 * len(seg.points)))])
+            gaps.append(distance_to_polyline(xy, ring).max())
+        return max(gaps)
+
+    flank = [i for i, s in enumerate(outline.segments[:9]) if s.name == "sealing flank"]
+    assert largest_gap([section_segments(outline)[i] for i in flank]) > 1e-3  # the chord tolerance alone
+    assert largest_gap([section_segments(outline, 0.0, 1e-3)[i] for i in flank]) < 0.25e-3
+
+
+def test_the_face_check_looks_between_the_samples(tmp_path, involute_to_its_cusp):
+    # The check samples every knot span's middle, where a cubic between two samples errs most: it
+    # refuses the female swept from the 10 um samples as they were (1.8 um off) and passes it with
+    # the samples section_segments adds. Reference: the exact section (0.01 um chords).
+    pair, outline, exact = involute_to_its_cusp
+    lead = -pair.female_lead
+    with pytest.raises(StepDeviationError, match="um from the helicoid"):
+        write_exact_step(tmp_path / "a.step", section_segments(outline), lead, pair.length, 1e-3, "female", exact=exact)
+    refined = section_segments(outline, 0.0, 1e-3)
+    done = write_exact_step(tmp_path / "b.step", refined, lead, pair.length, 1e-3, "female", exact=exact)
+    assert done["deviation"] < 0.5e-3

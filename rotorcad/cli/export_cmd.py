@@ -381,11 +381,11 @@ def _step_section(rotors, body: str, turn: float, tolerance: float) -> tuple[lis
     polyline is sampled to a hundredth of it; both turned by ``turn`` (rad).
     """
     # the B-splines interpolate points and exact tangents (Hermite): points at 10 x the tolerance in
-    # chord keep the faces within 0.06 um of the helicoid on the samples (measured), and the face
-    # check below refuses any that would not be
+    # chord, with samples added where the cubic between two would be off by more than a quarter of
+    # the tolerance (section_segments), and the face check refuses any solid that would not be
     outline = rotors.male_outline(10 * tolerance) if body == "male" else rotors.female_outline(10 * tolerance)
     fine = rotors.male_outline(tolerance / 100) if body == "male" else rotors.female_outline(tolerance / 100)
-    return section_segments(outline, turn), rotate(fine.points, turn)
+    return section_segments(outline, turn, tolerance), rotate(fine.points, turn)
 
 
 def _export_gear(
