@@ -263,3 +263,27 @@ def check_profile(points: np.ndarray, label: str, value: object = None) -> np.nd
             f"all {len(distinct)} points lie on one straight line (within {off_line:.3g} mm over {extent:.6g} mm)",
         )
     return distinct
+
+
+def _plan_points(fmt, body, tolerance: float, row: dict):
+    """Plan a body's section as points, in its own frame (turned into mesh, not shifted)."""
+    row.update(triangles=0, volume=body.section_volume, tolerance=body.section_tolerance)
+    own = body.own_points()
+    return lambda path: write_points(path, own)
+
+
+def _register() -> None:
+    from exports.formats import SWEPT_BODIES, ExportFormat, register
+
+    register(
+        ExportFormat(
+            "csv",
+            "_own_frame.csv",  # the section about its own axis, unlike the placed solids
+            _plan_points,
+            "the section's chords: half the surface tolerance asked (a quarter for a gear)",
+            SWEPT_BODIES,
+        )
+    )
+
+
+_register()

@@ -170,3 +170,33 @@ def read_mesh(path: Path, fmt: str) -> trimesh.Trimesh:
         mesh = loaded
     mesh.merge_vertices()
     return mesh
+
+
+def _plan_mesh(fmt, body, tolerance: float, row: dict):
+    """Plan a mesh file: the solid is swept when first written (:meth:`rotorcad.assembly.PlacedBody.mesh`)."""
+    from exports.formats import meshed
+
+    row.update(triangles=0, volume=body.section_volume)
+
+    def write(path: Path) -> None:
+        write_mesh(path, meshed(fmt, body, tolerance, row).mesh, fmt.name)
+
+    return write
+
+
+def _register() -> None:
+    from exports.formats import ExportFormat, register
+
+    for name in MESH_FORMATS:
+        register(
+            ExportFormat(
+                name,
+                EXTENSIONS[name],
+                _plan_mesh,
+                "the surface tolerance asked: the swept solid's layers and the section's chords (the row gives the "
+                "solid's own); the housing's, the sag of the bores' chords",
+            )
+        )
+
+
+_register()
