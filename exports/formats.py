@@ -151,10 +151,16 @@ def unregister(name: str) -> None:
 
 
 def table() -> dict[str, ExportFormat]:
-    """Return the table, name -> row: the built-in writers' rows first, in :data:`WRITER_MODULES` order."""
+    """Return the table, name -> row: the built-in writers' rows first, in :data:`WRITER_MODULES` order.
+
+    Whatever order the writer modules were imported in; rows registered elsewhere follow, in the
+    order they were registered.
+    """
     for module in WRITER_MODULES:
         importlib.import_module(module)
-    return _TABLE
+    rank = {module: i for i, module in enumerate(WRITER_MODULES)}
+    ordered = sorted(_TABLE.values(), key=lambda f: rank.get(f.plan.__module__, len(rank)))  # stable: rows in order
+    return {f.name: f for f in ordered}
 
 
 def names(kind: BodyKind | None = None) -> tuple[str, ...]:

@@ -30,7 +30,15 @@ from rotorcad.screw_rotors import ScrewRotors
 from rotorcad.solids import helical_solid
 
 FORMATS = names()
-"""The formats of the built-in table (:mod:`exports.formats`), as listed by ``--help``; the check reads the table."""
+"""The formats of the built-in table (:mod:`exports.formats`); ``--help`` and the check read the table itself."""
+
+
+class _FormatOption(click.Option):
+    """``--format``, whose help lists the formats of the table when it is shown (a row added later too)."""
+
+    def get_help_record(self, ctx: click.Context) -> tuple[str, str] | None:
+        self.help = "Comma-separated formats: " + ", ".join(names()) + ". Default: the design's [export] formats, else stl."
+        return super().get_help_record(ctx)
 
 LABELS = {
     "radial_clearance": "[housing] radial_clearance",
@@ -84,11 +92,7 @@ ASSEMBLY_OPTIONS = (
 
 @click.command()
 @click.argument("design", type=click.Path(path_type=Path, dir_okay=False))
-@click.option(
-    "--format",
-    "formats",
-    help="Comma-separated formats: " + ", ".join(FORMATS) + ". Default: the design's [export] formats, else stl.",
-)
+@click.option("--format", "formats", cls=_FormatOption, help="Comma-separated formats (the table of exports.formats).")
 @click.option(
     "--out", type=click.Path(path_type=Path, file_okay=False), required=True, help="Output folder (created if missing)."
 )
