@@ -6,19 +6,18 @@ how, the limits that refuse a file too large, and whether it is written in the b
 process (:mod:`exports.background`). ``rotorcad export`` (and the gear export) is one loop over
 placed bodies (:mod:`rotorcad.assembly`) and these rows (:func:`plan_files`).
 
-================  =====================  ===========================================================
-format            written by             tolerance met, and how
-================  =====================  ===========================================================
-stl ... xdmf      :mod:`exports.meshes`  the surface tolerance asked: the swept solid's layers and
-                                         the section's chords (the row gives the solid's own)
-dxf, dxf-r12      :mod:`exports.dxf`     the section's chords: half the tolerance (a quarter for a
-                                         gear)
-dxf-mesh(-r12)    :mod:`exports.dxf`     as the meshes; at most 50 000 triangles
-step              :mod:`exports.step`    min(tolerance, 1 µm), measured on the solid's faces
-                                         against the helicoid (refused when not met)
-step-faceted      :mod:`exports.step`    as the meshes; at most 20 000 facets
-csv               :mod:`exports.csv_points`  the section's chords, in the body's own frame
-================  =====================  ===========================================================
+The built-in rows, the tolerance each file meets and how:
+
+- ``stl``, ``stl-ascii``, ``3mf``, ``obj``, ``ply``, ``glb``, ``vtu``, ``xdmf``
+  (:mod:`exports.meshes`): the surface tolerance asked, by the swept solid's layers and the
+  section's chords (the row gives the solid's own); the housing's, the sag of the bores' chords.
+- ``dxf``, ``dxf-r12`` (:mod:`exports.dxf`, in the worker): the section's chords, half the
+  tolerance (a quarter for a gear).
+- ``dxf-mesh``, ``dxf-mesh-r12`` (:mod:`exports.dxf`): as the meshes; at most 50 000 triangles.
+- ``step`` (:mod:`exports.step`, in the worker): min(tolerance, 1 µm), measured on the solid's
+  faces against the helicoid and refused when not met; the housing exact (box and cylinders).
+- ``step-faceted`` (:mod:`exports.step`): as the meshes; at most 20 000 facets.
+- ``csv`` (:mod:`exports.csv_points`): the section's chords, in the body's own frame.
 
 Adding a format is one writer, one row and one test (README.md, developer section)::
 

@@ -122,3 +122,22 @@ def test_format_choices_come_from_the_table(capsys, tmp_path, toy_format):
     design = ROOT / "samples" / "rack_involute_5_6.toml"
     status, _, err = run(capsys, "export", design, "--format", "stl,nope", "--out", tmp_path / "o")
     assert status == 2 and tuple(re.search(r"list of (.*) \(got 'nope'\)", err).group(1).split(", ")) == names(BodyKind.ROTOR)
+
+
+def test_background_rows_hand_the_worker_what_it_can_unpickle(tmp_path):
+    """A row that says background must give a BackgroundWriter whose function and arguments pickle
+    (the worker process receives them by pickle, exports.background); the others write here."""
+    import pickle
+
+    from exports.background import BackgroundWriter
+    from rotorcad.cli.common import load_toml
+    from rotorcad.cli.gear_export import design_gear_bodies
+
+    bodies = design_gear_bodies(GEAR_PAIR, 0.05, load_toml(GEAR_PAIR))
+    for fmt in table().values():
+        for body in bodies:
+            writer = fmt.plan(fmt, body, 0.05, {})
+            assert isinstance(writer, BackgroundWriter) == fmt.background, fmt.name
+            if fmt.background:
+                function, args = pickle.loads(pickle.dumps((writer.function, writer.args)))
+                assert function is writer.function and len(args) == len(writer.args)
