@@ -40,6 +40,7 @@ class _FormatOption(click.Option):
         self.help = "Comma-separated formats: " + ", ".join(names()) + ". Default: the design's [export] formats, else stl."
         return super().get_help_record(ctx)
 
+
 LABELS = {
     "radial_clearance": "[housing] radial_clearance",
     "phase_deg": "--phase-deg",
@@ -318,9 +319,7 @@ def interfere(
     if check_3d:
         _check_solid_work(rotors, tolerance, "--tolerance")
     male = _as_built(rotors.section("male", tolerance / 2), "--male-points", male_points, layer, rotors.pair.male_teeth)
-    female = _as_built(
-        rotors.section("female", tolerance / 2), "--female-points", female_points, layer, rotors.pair.female_teeth
-    )
+    female = _as_built(rotors.section("female", tolerance / 2), "--female-points", female_points, layer, rotors.pair.female_teeth)
     pair, phase = _assemble(rotors.pair, center_distance, phase_deg, clearance)
     progress = Steps("interference: 2-D sweep", 4 if check_3d else 1, quiet).start()
     result_2d = interference_2d(pair, male, female, steps, tolerance, female_phase=phase, clearance=clearance)
