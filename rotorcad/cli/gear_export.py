@@ -55,4 +55,28 @@ def design_gear_bodies(design: Path, tol: float, data: dict[str, Any] | None = N
     return gear_bodies(g, pair, width, tol)
 
 
-__all__ = ["GEAR_FORMATS", "design_gear_bodies", "gear_lead", "is_gear_design"]
+def export_gear(
+    design: Path, fmts: list[str], folder: Path, tol: float, data: dict[str, Any] | None = None
+) -> list[dict[str, Any]]:
+    """Write the gear (and mate) solids in each of ``fmts`` into ``folder``; return the rows (as ``export --json``).
+
+    Kept for callers of the former gear export; ``rotorcad export`` runs the same loop
+    (:func:`exports.formats.plan_files`) with the worker process and a progress bar.
+    """
+    from exports.formats import plan_files, table
+    from rotorcad.cli.common import Outputs
+
+    outputs, rows = Outputs(), []
+    for path, row, writer in plan_files(
+        [table()[f] for f in fmts], design_gear_bodies(design, tol, data), tol, folder, design.stem
+    ):
+        outputs.add(path, writer, "--out")
+        rows.append(row)
+    outputs.write()
+    for row in rows:
+        row["size"] = Path(row["path"]).stat().st_size
+        row["replaced"] = Path(row["path"]) in outputs.replaced  # a file that was there, replaced whole
+    return rows
+
+
+__all__ = ["GEAR_FORMATS", "design_gear_bodies", "export_gear", "gear_lead", "is_gear_design"]
