@@ -16,11 +16,16 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from exports.reading import read_bytes
 from rotorcad.errors import DesignError
+
+if TYPE_CHECKING:
+    from exports.formats import ExportFormat, Writer
+    from rotorcad.assembly import PlacedBody
 
 MAX_POINTS = 2_000_000
 """Largest number of points in a profile."""
@@ -265,7 +270,7 @@ def check_profile(points: np.ndarray, label: str, value: object = None) -> np.nd
     return distinct
 
 
-def _plan_points(fmt, body, tolerance: float, row: dict):
+def _plan_points(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
     """Plan a body's section as points, in its own frame (turned into mesh, not shifted)."""
     row.update(triangles=0, volume=body.section_volume, tolerance=body.section_tolerance)
     own = body.own_points()

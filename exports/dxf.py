@@ -12,12 +12,15 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 if TYPE_CHECKING:
     import ezdxf.document
+
+    from exports.formats import ExportFormat, Writer
+    from rotorcad.assembly import PlacedBody
 
 LAYER_COLOURS = {
     "GEAR": 5,
@@ -208,7 +211,7 @@ DXF_MESH_MAX = 50_000
 """Most triangles of a DXF mesh: a DXF mesh is for small meshes (measured)."""
 
 
-def _plan_drawing(fmt, body, tolerance: float, row: dict):
+def _plan_drawing(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
     """Plan a body's drawing: its section placed in mesh, pitch circle; a rotor's also its centre and spline.
 
     Written by the worker process (ezdxf); the section's chords are its tolerance.
@@ -229,7 +232,7 @@ def _plan_drawing(fmt, body, tolerance: float, row: dict):
     return BackgroundWriter(write_dxf, (drawing, "R12" if r12 else "R2000"))
 
 
-def _plan_mesh_dxf(fmt, body, tolerance: float, row: dict):
+def _plan_mesh_dxf(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
     """Plan a body's DXF mesh (a POLYFACE in R12, a MESH in R2000), at most :data:`DXF_MESH_MAX` triangles."""
     from exports.formats import meshed
 

@@ -15,8 +15,13 @@ from __future__ import annotations
 import importlib.util
 import io
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from exports.formats import ExportFormat, Writer
+    from rotorcad.assembly import PlacedBody
 
 HEADER = """ISO-10303-21;
 HEADER;
@@ -202,7 +207,7 @@ def write_exact_step_refined(
     raise ValueError("no section to write")
 
 
-def _plan_exact_step(fmt, body, tolerance: float, row: dict):
+def _plan_exact_step(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
     """Plan a body's exact STEP: B-spline faces for a rotor or gear, box and cylinders for the housing.
 
     Made to min(tolerance, :data:`STEP_TOLERANCE`); the row's tolerance is then the deviation
@@ -237,7 +242,7 @@ def _plan_exact_step(fmt, body, tolerance: float, row: dict):
     )
 
 
-def _plan_faceted_step(fmt, body, tolerance: float, row: dict):
+def _plan_faceted_step(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
     """Plan a body's faceted STEP: its mesh's triangles as planar faces, at most :data:`FACETED_STEP_MAX`."""
     from exports.formats import meshed
 
