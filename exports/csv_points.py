@@ -16,11 +16,16 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from exports.reading import read_bytes
 from rotorcad.errors import DesignError
+
+if TYPE_CHECKING:
+    from exports.formats import ExportFormat, Writer
+    from rotorcad.assembly import PlacedBody
 
 MAX_POINTS = 2_000_000
 """Largest number of points in a profile."""
@@ -263,3 +268,29 @@ def check_profile(points: np.ndarray, label: str, value: object = None) -> np.nd
             f"all {len(distinct)} points lie on one straight line (within {off_line:.3g} mm over {extent:.6g} mm)",
         )
     return distinct
+
+
+def _plan_points(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
+    """Plan a body's section as points, in its own frame (turned into mesh, not shifted)."""
+    row.update(triangles=0, volume=body.section_volume, tolerance=body.section_tolerance)
+    own = body.own_points()
+    return lambda path: write_points(path, own)
+
+
+def _register() -> None:
+    from exports.formats import SWEPT_BODIES, ExportFormat, register
+    from rotorcad.assembly import BodyKind
+
+    register(
+        ExportFormat(
+            "csv",
+            "_own_frame.csv",  # the section about its own axis, unlike the placed solids
+            _plan_points,
+            "the section's chords: half the surface tolerance asked (a quarter for a gear)",
+            SWEPT_BODIES,
+            kind_extensions=((BodyKind.GEAR, ".csv"),),  # a gear's points file: <design>_<body>.csv, as before
+        )
+    )
+
+
+_register()

@@ -12,12 +12,15 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 if TYPE_CHECKING:
     import ezdxf.document
+
+    from exports.formats import ExportFormat, Writer
+    from rotorcad.assembly import PlacedBody
 
 LAYER_COLOURS = {
     "GEAR": 5,
@@ -202,3 +205,64 @@ def _save(doc: ezdxf.document.Drawing, path: Path, version: str) -> None:
         doc.saveas(path)
     finally:
         logger.setLevel(level)
+
+
+DXF_MESH_MAX = 50_000
+"""Most triangles of a DXF mesh: a DXF mesh is for small meshes (measured)."""
+
+
+def _plan_drawing(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
+    """Plan a body's drawing: its section placed in mesh, pitch circle; a rotor's also its centre and spline.
+
+    Written by the worker process (ezdxf); the section's chords are its tolerance.
+    """
+    from exports.background import BackgroundWriter
+    from rotorcad.assembly import BodyKind
+
+    row.update(triangles=0, volume=body.section_volume, tolerance=body.section_tolerance)
+    placed = body.placed_points()
+    drawing = Drawing(mark_size=body.mark_size)
+    drawing.outlines.append((body.name.upper(), placed))
+    drawing.circles.append(("PITCH", body.shift, body.pitch_radius))
+    r12 = fmt.name.endswith("r12")
+    if body.kind is BodyKind.ROTOR:
+        drawing.centers.append(body.shift)
+        if not r12:
+            drawing.splines.append((f"{body.name.upper()}_SPLINE", placed))
+    return BackgroundWriter(write_dxf, (drawing, "R12" if r12 else "R2000"))
+
+
+def _plan_mesh_dxf(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
+    """Plan a body's DXF mesh (a POLYFACE in R12, a MESH in R2000), at most :data:`DXF_MESH_MAX` triangles."""
+    from exports.formats import meshed
+
+    row.update(triangles=0, volume=body.section_volume)
+
+    def write(path: Path) -> None:
+        made = meshed(fmt, body, tolerance, row)
+        version = "R12" if fmt.name.endswith("r12") else "R2000"
+        write_dxf_mesh(path, made.mesh.vertices, made.mesh.faces, body.name.upper(), version)
+
+    return write
+
+
+def _register() -> None:
+    from exports.formats import SWEPT_BODIES, ExportFormat, Limit, register
+
+    chords = "the section's chords: half the surface tolerance asked (a quarter for a gear)"
+    for name, extension in (("dxf", ".dxf"), ("dxf-r12", "_r12.dxf")):
+        register(ExportFormat(name, extension, _plan_drawing, chords, SWEPT_BODIES, background=True, preload=("ezdxf",)))
+    for name, extension in (("dxf-mesh", "_mesh.dxf"), ("dxf-mesh-r12", "_mesh_r12.dxf")):
+        register(
+            ExportFormat(
+                name,
+                extension,
+                _plan_mesh_dxf,
+                "as the meshes (stl ...); refused when the mesh would have more triangles than the limit",
+                SWEPT_BODIES,
+                limit=Limit(DXF_MESH_MAX, "a DXF mesh"),
+            )
+        )
+
+
+_register()

@@ -12,7 +12,7 @@ to about 1e-7 relative.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -20,6 +20,9 @@ from rotorcad.triangle_mesh import TriangleMesh, face_normals
 
 if TYPE_CHECKING:
     import trimesh
+
+    from exports.formats import ExportFormat, Writer
+    from rotorcad.assembly import PlacedBody
 
 TRIMESH_FORMATS = {"stl": "stl", "stl-ascii": "stl_ascii", "3mf": "3mf", "obj": "obj", "ply": "ply", "glb": "glb"}
 MESHIO_FORMATS = {"vtu": "vtu", "xdmf": "xdmf"}
@@ -170,3 +173,33 @@ def read_mesh(path: Path, fmt: str) -> trimesh.Trimesh:
         mesh = loaded
     mesh.merge_vertices()
     return mesh
+
+
+def _plan_mesh(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
+    """Plan a mesh file: the solid is swept when first written (:meth:`rotorcad.assembly.PlacedBody.mesh`)."""
+    from exports.formats import meshed
+
+    row.update(triangles=0, volume=body.section_volume)
+
+    def write(path: Path) -> None:
+        write_mesh(path, meshed(fmt, body, tolerance, row).mesh, fmt.name)
+
+    return write
+
+
+def _register() -> None:
+    from exports.formats import ExportFormat, register
+
+    for name in MESH_FORMATS:
+        register(
+            ExportFormat(
+                name,
+                EXTENSIONS[name],
+                _plan_mesh,
+                "the surface tolerance asked: the swept solid's layers and the section's chords (the row gives the "
+                "solid's own); the housing's, the sag of the bores' chords",
+            )
+        )
+
+
+_register()

@@ -309,11 +309,11 @@ def test_export_rows_say_which_file_was_replaced(capsys, tmp_path):
 def test_dxf_mesh_r12_refused_before_any_sweep(capsys, tmp_path, monkeypatch):
     """`export --format dxf-mesh-r12` took 18 s to refuse: refused now on the estimate before the
     fine solids are swept (the sweep at the asked tolerance, 5 um, is never made)."""
-    import rotorcad.cli.export_cmd as export_cmd
+    import rotorcad.solids as solids
 
     tolerances = []
-    real = export_cmd.helical_solid
-    monkeypatch.setattr(export_cmd, "helical_solid", lambda s, h, length, t: tolerances.append(t) or real(s, h, length, t))
+    real = solids.helical_solid
+    monkeypatch.setattr(solids, "helical_solid", lambda s, h, length, t: tolerances.append(t) or real(s, h, length, t))
     design = SAMPLES / "srm_symmetric_4_6.toml"
     line = refused(
         capsys,

@@ -216,13 +216,11 @@ def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
     InputError
         When the design cannot be built or analysed (the DesignError's sentence).
     """
-    from hob.plotting import plot_hob, rotor_rack_comparison
     from hob.rack import rack_deviation, rotor_rack
     from hob.verdict import HobLimits
     from rotorcad.cli import hob_cmd
     from rotorcad.cli import rotor as rotor_cmd
     from rotorcad.rotor_build import analyse_pair
-    from rotorcad.rotor_plotting import plot_pair, plot_sliding
 
     try:
         settings = load_rotor_design(design, data)
@@ -236,10 +234,29 @@ def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     verdicts, hob = hob_cmd.judge_racks(racks, deviation, HobLimits())
-    root_clearance = 0.25 * rotors.pair.male_addendum  # rotorcad hob's default --root-clearance
     pair = rotors.pair
     case = f"{rotors.family} {pair.male_teeth}/{pair.female_teeth}"
-    figures = {
+    figures = _rotor_figures(rotors, analysis, clearance, racks, verdicts, deviation, case)
+    files = _rotor_files(rotors, analysis, clearance, racks)
+    return {
+        "kind": "rotor",
+        "case": f"screw-rotor pair {case}",
+        "family": rotors.family,
+        "result": result,
+        "hob": hob,
+        "figures": figures,
+        "files": files,
+        "command": "rotorcad rotor",
+    }
+
+
+def _rotor_figures(rotors, analysis, clearance: float, racks, verdicts, deviation, case: str) -> dict[str, tuple[str, str]]:
+    """Return the pictures of a screw-rotor design (id -> (SVG text, caption)), those of ``rotor --plot`` and ``hob --plot``."""
+    from hob.plotting import plot_hob, rotor_rack_comparison
+    from rotorcad.rotor_plotting import plot_pair, plot_sliding
+
+    root_clearance = 0.25 * rotors.pair.male_addendum  # rotorcad hob's default --root-clearance
+    return {
         "pair": (_figure(plot_pair(analysis, clearance), "pair"), "The pair in mesh at male angle 0 (rotorcad rotor --plot)."),
         "sliding": (
             _figure(plot_sliding(analysis), "sliding"),
@@ -255,10 +272,18 @@ def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
             "teeth (rotorcad hob --plot).",
         ),
     }
+
+
+def _rotor_files(rotors, analysis, clearance: float, racks) -> dict[str, tuple[Any, str]]:
+    """Return the files of a screw-rotor design (name -> (writer, what it holds)), as ``rotor`` and ``hob`` write them."""
+    from rotorcad.cli import hob_cmd
+    from rotorcad.cli import rotor as rotor_cmd
+
     tol = 1e-3
+    root_clearance = 0.25 * rotors.pair.male_addendum  # rotorcad hob's default --root-clearance
     male = rotor_cmd._exterior(analysis.sections[0])
     female = rotor_cmd._exterior(analysis.sections[1])
-    files = {
+    return {
         "male.csv": (
             lambda p: write_points(p, male, ["male outline, own frame, male angle 0"]),
             "male outline (x,y, own frame)",
@@ -279,16 +304,6 @@ def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
             lambda p: write_dxf(p, hob_cmd._drawing(racks, root_clearance)),
             "normal racks and hob teeth side by side",
         ),
-    }
-    return {
-        "kind": "rotor",
-        "case": f"screw-rotor pair {case}",
-        "family": rotors.family,
-        "result": result,
-        "hob": hob,
-        "figures": figures,
-        "files": files,
-        "command": "rotorcad rotor",
     }
 
 
@@ -378,31 +393,7 @@ def _page(design: Path, data: dict[str, Any], content: dict[str, Any], planned: 
         The page's HTML.
     """
     result, hob = content["result"], content["hob"]
-    text = Path(design).read_bytes() if Path(design).is_file() else b""
-    meta = [
-        ("design file", str(design)),
-        ("design file SHA-256", hashlib.sha256(text).hexdigest()),
-        ("case", content["case"]),
-        ("made by", f"rotorcad {__version__}, rotorcad report"),
-        ("made on", datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")),
-        ("units", "lengths mm, areas mm², volumes mm³, angles °, speeds m/s (CONTRACT.md)"),
-    ]
-    defects = result.get("defects", [])
     verdict = "hobbable" if hob["hobbable"] else "NOT hobbable"
-    summary = [hr.verdict_box(hob["hobbable"], f"Hobbability: {verdict}")]
-    if content["kind"] == "rotor":
-        summary.append(hr.verdict_box(not defects, f"Meshing defects: {len(defects)}" + (" (none)" if not defects else "")))
-        summary.append(
-            hr.verdict_box(
-                bool(result.get("meshline_closed")),
-                f"Meshline {'closed' if result.get('meshline_closed') else 'open'}; blow-hole "
-                f"{hr.number_text(result.get('blow_hole_area'))} mm²",
-            )
-        )
-    else:
-        summary.append(hr.verdict_box(not result.get("undercut"), "Undercut" if result.get("undercut") else "No undercut"))
-    summary.append("<h3>Why (reasons of the hobbability verdict)</h3>")
-    summary.append(hr.bullet_list(hob["reasons"], "No reason against: every check of rotorcad hob passed."))
     family = content.get("family")
     inputs = [
         (f"{table}.{key}", value)
@@ -417,7 +408,7 @@ def _page(design: Path, data: dict[str, Any], content: dict[str, Any], planned: 
         return _input_unit(table, key, family)
 
     sections = [
-        hr.Section("summary", "Verdict", "\n".join(summary)),
+        hr.Section("summary", "Verdict", _summary(content, verdict)),
         hr.Section("design", "Design", hr.quantity_table(inputs, input_unit, "design key")),
         hr.Section(
             "numbers",
@@ -427,33 +418,7 @@ def _page(design: Path, data: dict[str, Any], content: dict[str, Any], planned: 
         ),
     ]
     if content["kind"] == "rotor":
-        sections.append(
-            hr.Section(
-                "defects",
-                "Defects (cusps, jamming, slipping)",
-                hr.record_table(
-                    defects,
-                    [
-                        ("kind", "kind"),
-                        ("rotor", "rotor"),
-                        ("flank", "flank"),
-                        ("x", "x [mm]"),
-                        ("y", "y [mm]"),
-                        ("angle_deg", "male angle φ1 [°] (to go until a male tip's middle is on O1O2)"),
-                        ("point_generated", "point-generated"),
-                        ("tip_corner", "tip corner (not a defect of the flank)"),
-                        ("extent", "extent along the meshline [mm]"),
-                    ],
-                    "No defect: no cusp, jamming or slipping on the meshline.",
-                )
-                + "<h3>Point-generated flanks</h3>"
-                + hr.record_table(
-                    result.get("point_generated_flanks", []),
-                    [("rotor", "rotor"), ("flank", "flank"), ("generated_by", "generated by")],
-                    "None.",
-                ),
-            )
-        )
+        sections.append(_defects_section(result))
     sections.append(
         hr.Section(
             "hob",
@@ -477,4 +442,68 @@ def _page(design: Path, data: dict[str, Any], content: dict[str, Any], planned: 
             hr.record_table([{"path": str(p), "what": what} for p, what in planned], [("path", "file"), ("what", "content")], ""),
         )
     )
-    return hr.page(f"rotorcad report: {content['case']} ({Path(design).name})", meta, sections)
+    return hr.page(f"rotorcad report: {content['case']} ({Path(design).name})", _meta(design, content), sections)
+
+
+def _meta(design: Path, content: dict[str, Any]) -> list[tuple[str, str]]:
+    """Return the page's head: the design file and its SHA-256, the case, who made it and when, the units."""
+    text = Path(design).read_bytes() if Path(design).is_file() else b""
+    return [
+        ("design file", str(design)),
+        ("design file SHA-256", hashlib.sha256(text).hexdigest()),
+        ("case", content["case"]),
+        ("made by", f"rotorcad {__version__}, rotorcad report"),
+        ("made on", datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")),
+        ("units", "lengths mm, areas mm², volumes mm³, angles °, speeds m/s (CONTRACT.md)"),
+    ]
+
+
+def _summary(content: dict[str, Any], verdict: str) -> str:
+    """Return the verdict section's HTML: hobbability, defects and meshline (a pair) or undercut (a gear), reasons."""
+    result, hob = content["result"], content["hob"]
+    defects = result.get("defects", [])
+    summary = [hr.verdict_box(hob["hobbable"], f"Hobbability: {verdict}")]
+    if content["kind"] == "rotor":
+        summary.append(hr.verdict_box(not defects, f"Meshing defects: {len(defects)}" + (" (none)" if not defects else "")))
+        summary.append(
+            hr.verdict_box(
+                bool(result.get("meshline_closed")),
+                f"Meshline {'closed' if result.get('meshline_closed') else 'open'}; blow-hole "
+                f"{hr.number_text(result.get('blow_hole_area'))} mm²",
+            )
+        )
+    else:
+        summary.append(hr.verdict_box(not result.get("undercut"), "Undercut" if result.get("undercut") else "No undercut"))
+    summary.append("<h3>Why (reasons of the hobbability verdict)</h3>")
+    summary.append(hr.bullet_list(hob["reasons"], "No reason against: every check of rotorcad hob passed."))
+    return "\n".join(summary)
+
+
+def _defects_section(result: dict[str, Any]) -> hr.Section:
+    """Return the section of a pair's defects (cusps, jamming, slipping) and point-generated flanks."""
+    defects = result.get("defects", [])
+    return hr.Section(
+        "defects",
+        "Defects (cusps, jamming, slipping)",
+        hr.record_table(
+            defects,
+            [
+                ("kind", "kind"),
+                ("rotor", "rotor"),
+                ("flank", "flank"),
+                ("x", "x [mm]"),
+                ("y", "y [mm]"),
+                ("angle_deg", "male angle φ1 [°] (to go until a male tip's middle is on O1O2)"),
+                ("point_generated", "point-generated"),
+                ("tip_corner", "tip corner (not a defect of the flank)"),
+                ("extent", "extent along the meshline [mm]"),
+            ],
+            "No defect: no cusp, jamming or slipping on the meshline.",
+        )
+        + "<h3>Point-generated flanks</h3>"
+        + hr.record_table(
+            result.get("point_generated_flanks", []),
+            [("rotor", "rotor"), ("flank", "flank"), ("generated_by", "generated by")],
+            "None.",
+        ),
+    )
