@@ -1,10 +1,10 @@
 """Rotor pieces cut by a straight or circular rack piece or by a point path, sampled in closed form.
 
 A rack piece that is a :class:`~rotorcad.curves.Line` or an :class:`~rotorcad.curves.Arc` cuts a
-rotor curve that the gear's tool cut (:class:`rotorcad.gear._ToolCut`) evaluates in closed form,
+rotor curve that the gear's tool cut (:class:`rotorcad.gears.tool.ToolCut`) evaluates in closed form,
 with its curvature: the law of gearing solved for a rack-rotor motion (Litvin, *Gear Geometry and
 Applied Theory*, eq. 6.1.7). The curvature places the samples in one step
-(:func:`rotorcad.gear._chord_counts`, :func:`rotorcad.gear._grid_parameters`) instead of the
+(:func:`rotorcad.gears.sampling.chord_counts`, :func:`rotorcad.gears.sampling.grid_parameters`) instead of the
 generic sampler's refinement passes (:func:`rotorcad.curves.sample_curve`), which evaluate the
 envelope engine several times.
 
@@ -33,7 +33,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorcad.curves import Arc, Curve, Line, Mapped, PointPath, sample_curve
-from rotorcad.gear import SAMPLING_MARGIN, _arc_intervals, _chord_counts, _grid_parameters, _involute_parameters, _span, _ToolCut
+from rotorcad.gears.sampling import SAMPLING_MARGIN, arc_intervals, chord_counts, grid_parameters, involute_parameters, span
+from rotorcad.gears.tool import ToolCut
 from rotorcad.geometry import Array, normalize, perp_cw
 from rotorcad.kinematics import Body, Translation
 from rotorcad.profile import Segment
@@ -103,7 +104,7 @@ def cut_segment(
         if abs(d[1]) <= _NO_CONTACT:  # normal along the motion: no contact anywhere
             return None
         start, direction = ((ax, ay), (d[0], d[1])) if male else ((a - ax, ay), (-d[0], d[1]))
-        cut = _ToolCut("line", r, 1.0, start=start, direction=direction)
+        cut = ToolCut("line", r, 1.0, start=start, direction=direction)
         offset, flip = 0.0, 1.0  # tool parameter s' = s; tool tangent = mirrored tangent
     else:
         kx, ky = rack_curve.center
@@ -113,22 +114,22 @@ def cut_segment(
             k = math.floor((lo - math.pi / 2) / math.pi) + 1  # first zero of cos(s) above lo
             if lo - _NO_CONTACT <= math.pi / 2 + k * math.pi <= hi + _NO_CONTACT:
                 return None
-        cut = _ToolCut("arc", r, 1.0, center=(kx, ky) if male else (a - kx, ky), radius=rack_curve.radius)
+        cut = ToolCut("arc", r, 1.0, center=(kx, ky) if male else (a - kx, ky), radius=rack_curve.radius)
         if on_pitch_line:
             cut.arc = (cut.arc[0], 0.0, cut.arc[2])  # the engine's constant contact turn
         offset, flip = (0.0, 1.0) if male else (math.pi, -1.0)  # mirrored polar angle s' = pi - s
     s = _involute(cut, s0, s1, tolerance) if isinstance(rack_curve, Line) else None
     if s is None:
-        grid = _span(s0, s1, GRID)
+        grid = span(s0, s1, GRID)
         _, _, turning, speed = cut.cut(offset + flip * grid if offset else grid, curvature=True)
         if np.ndim(turning) == 0:  # a line's cut turns at a constant rate per mm of s
             turning = np.full(grid.shape, turning)
         if not (np.isfinite(turning).all() and np.isfinite(speed).all()):
             return None
-        counts = _chord_counts(turning, speed, abs(s1 - s0) / (GRID - 1))
+        counts = chord_counts(turning, speed, abs(s1 - s0) / (GRID - 1))
         if not _few(counts, tolerance):  # a cusp's curvature: the generic sampler
             return None
-        s = _grid_parameters(counts, s0, s1, tolerance)
+        s = grid_parameters(counts, s0, s1, tolerance)
     for _ in range(REFINES + 1):
         if len(s) > MOST_SAMPLES:
             return None
@@ -228,19 +229,19 @@ def _path_segment(name: str, curve: Curve, path: PointPath, generated: Body, tol
 
 
 def _few(counts: tuple[Array, Array], tolerance: float) -> bool:
-    """Whether the chord count of :func:`rotorcad.gear._chord_counts` stays within :data:`MOST_SAMPLES`.
+    """Whether the chord count of :func:`rotorcad.gears.sampling.chord_counts` stays within :data:`MOST_SAMPLES`.
 
     Parameters
     ----------
     counts : two (m,) float arrays
-        The cumulative counts of :func:`rotorcad.gear._chord_counts`.
+        The cumulative counts of :func:`rotorcad.gears.sampling.chord_counts`.
     tolerance : float
         Largest chord error, mm.
 
     Returns
     -------
     bool
-        True when :func:`rotorcad.gear._grid_parameters` would place fewer samples.
+        True when :func:`rotorcad.gears.sampling.grid_parameters` would place fewer samples.
     """
     quadratic, cubic = counts
     total = quadratic[-1] / math.sqrt(8.0 * tolerance) + cubic[-1] / math.cbrt(72.0 * math.sqrt(3.0) * tolerance)
@@ -270,16 +271,16 @@ def _split(s: Array, parts: Array) -> Array:
     return out
 
 
-def _involute(cut: _ToolCut, s0: float, s1: float, tolerance: float) -> Array | None:
+def _involute(cut: ToolCut, s0: float, s1: float, tolerance: float) -> Array | None:
     """Return the parameters that sample a straight rack piece's cut, an involute, to a chord tolerance.
 
     The cut of a straight rack piece is an involute of the base circle r_b = r |tau_x| (the line
     of action through C along the piece's normal; ISO 21771 sec. 2.3), whose radius of curvature
-    is the roll distance: :func:`rotorcad.gear._involute_parameters` places its samples in one step.
+    is the roll distance: :func:`rotorcad.gears.sampling.involute_parameters` places its samples in one step.
 
     Parameters
     ----------
-    cut : _ToolCut
+    cut : ToolCut
         The straight piece's cut ("line").
     s0, s1 : float
         Parameters of the piece's start and end, mm along the rack line.
@@ -296,7 +297,7 @@ def _involute(cut: _ToolCut, s0: float, s1: float, tolerance: float) -> Array | 
     rb = cut.r * abs(cut.tangent.real)
     if rb == 0.0:  # a piece parallel to the pitch line cuts a circle about O, turning s / r
         (ax, ay), t0 = cut.start, cut.turn[0]
-        return _span(s0, s1, _arc_intervals(abs(s1 - s0) / cut.r, math.hypot(ax, ay + cut.r * t0), tolerance) + 1)
+        return span(s0, s1, arc_intervals(abs(s1 - s0) / cut.r, math.hypot(ax, ay + cut.r * t0), tolerance) + 1)
     if rb <= 1e-9 * cut.r:
         return None
     a0, a1 = cut.roll()
@@ -305,7 +306,7 @@ def _involute(cut: _ToolCut, s0: float, s1: float, tolerance: float) -> Array | 
         return None
     if l0 + l1 < 0.0:  # the roll distance counted the other way: its size is what matters
         a0, a1 = -a0, -a1
-    return _involute_parameters(s0, s1, (a0, a1), rb, tolerance)
+    return involute_parameters(s0, s1, (a0, a1), rb, tolerance)
 
 
 def _pairs(z: Array) -> Array:
