@@ -186,7 +186,7 @@ def preload(fmts: Iterable[ExportFormat]) -> tuple[str, ...]:
 def refuse_mesh_size(fmt: ExportFormat, body: PlacedBody, triangles: float, tolerance: float) -> None:
     """Refuse a file of too many triangles, naming the tolerance that would do.
 
-    A file coarser than the tolerance asked is never written (issue 24: a faceted STEP was written at
+    A file coarser than the tolerance asked is never written (once a faceted STEP was written at
     3.1 mm where 5 µm were asked).
 
     Raises

@@ -80,7 +80,7 @@ def _drop_repeats(pts: np.ndarray, eps: float) -> np.ndarray:
 
     The pieces of the tool tooth (tip line, tip arc, flank) share their end points; turned to a tool
     position, such a pair a rounding error apart is a spike that makes the position an invalid
-    polygon, and GEOS then unites the positions wrongly (issue 15: z = 3 lost up to all of the tooth,
+    polygon, and GEOS then unites the positions wrongly (found by the fuzz suite: z = 3 lost up to all of the tooth,
     z = 4 and 7 some positions too).
     """
     keep = np.r_[True, np.hypot(*np.diff(pts, axis=0).T) > eps]

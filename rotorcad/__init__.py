@@ -54,6 +54,58 @@ Gears, curves and the envelope engine
 * :func:`conjugate`, :func:`contact_parameter`, :class:`Generated` -- the envelope engine:
   the meshing condition n · v_rel = 0.
 * :class:`DesignError` -- the one exception for input that cannot describe a real part.
+
+Examples
+--------
+An involute gear and a pair after ISO 21771: the base radius is m z cos(alpha) / 2, and the working
+pressure angle solves inv(alpha_w) = inv(alpha) + 2 tan(alpha) (x1 + x2) / (z1 + z2):
+
+>>> import math
+>>> from rotorcad import DEG, GearPair, InvoluteGear
+>>> g = InvoluteGear(teeth=17, module=3.0, pressure_angle=20 * DEG, shift=0.3)
+>>> round(float(g.base_radius), 6), round(3.0 * 17 * math.cos(20 * DEG) / 2, 6)
+(23.962162, 23.962162)
+>>> pair = GearPair(g, InvoluteGear(29, 3.0, 20 * DEG, shift=-0.1))
+>>> inv = lambda a: math.tan(a) - a
+>>> abs(inv(pair.working_pressure_angle) - (inv(20 * DEG) + 2 * math.tan(20 * DEG) * 0.2 / 46)) < 1e-12
+True
+>>> a = 3.0 * (17 + 29) / 2  # the reference centre distance m (z1 + z2) / 2, mm
+>>> round(float(pair.working_center_distance), 4), round(a * math.cos(20 * DEG) / math.cos(pair.working_pressure_angle), 4)
+(69.582, 69.582)
+
+A screw-rotor pair: the pitch radius of the male is a / (1 + z2/z1), the wrap angle 2 pi L / h:
+
+>>> from rotorcad import MeshingAnalysis, RotorPair, build_family
+>>> pair = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0, lead=300.0, length=190.0)
+>>> round(pair.male_pitch_radius, 6), round(116.0 / (1 + 6 / 5), 6)
+(52.727273, 52.727273)
+>>> round(pair.wrap_angle, 6) == round(2 * math.pi * 190.0 / 300.0, 6)
+True
+
+Rinder's figures of the rack-involute family (the pair of ``samples/rack_involute_5_6.toml``) as plain
+numbers (mm, mm², m/s); the displacement per male revolution is z1 (A1 + A2) L:
+
+>>> pair = RotorPair(5, 6, 116.0, 69.51066515617151, 51.72727272727273, 64.27272727272728, 46.48933484382849,
+...                  lead=300.0, length=190.0)
+>>> profile = dict(driving_angle_deg=30.0, sealing_angle_deg=26.0, lobe_width=0.4, tip_rounding=0.0,
+...                root_rounding=2.5, sealing_tip_rounding=2.5)
+>>> summary = MeshingAnalysis(build_family(pair, "rack-involute", profile)).summary()
+>>> summary["family"], summary["runs_without_timing_gears"], summary["running_reasons"]
+('rack-involute', True, [])
+>>> flutes = summary["male_flute_area"] + summary["female_flute_area"]
+>>> abs(summary["displacement_per_rev"] - 5 * flutes * 190.0) < 1e-6 * summary["displacement_per_rev"]
+True
+>>> 0 < summary["blow_hole_area"] < 0.05 * flutes
+True
+
+Input that cannot describe a real part is refused in one sentence naming the parameter:
+
+>>> from rotorcad import DesignError
+>>> try:
+...     RotorPair(5, 6, -116.0, 63.0, 45.0, 71.0, 53.0)
+... except DesignError as error:
+...     print(error)
+center_distance must be a positive length up to 100000 mm (100 m) (got -116.0).
 """
 
 import importlib

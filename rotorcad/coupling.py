@@ -54,7 +54,7 @@ Tooth load. Torque T = P / omega, tangential force F_t = T / r shared by the z_c
 factor K_H carries the unequal sharing), normal tooth load F_n = K_H F_t / (z_c cos alpha), and
 w' = F_n / l per unit length of the contact line.
 
-Regime (issue 23: one word from a stated rule, :attr:`CouplingResult.regime`), checked in this
+Regime (one word from a stated rule, :attr:`CouplingResult.regime`), checked in this
 order: ``no_solution`` when no film was found or the line-contact model does not hold (the Hertz
 strip 2 b_H is wider than the contact line l is long: side leakage the model lacks);
 ``edge_contact`` when the strip runs off the face width; ``boundary`` / ``mixed`` when the film

@@ -83,7 +83,7 @@ def solid_triangles(points: float, lead: float, length: float, r_max: float, tol
 
 
 LONG_RUN_SECONDS = 60.0
-"""A request estimated to take longer than this says so before it starts (issue 24)."""
+"""A request estimated to take longer than this says so before it starts (CONTRACT.md, long runs)."""
 
 SWEEP_SECONDS = {None: 0.022, "hobbability": 0.046, "interference": 0.164, "volume": 0.008, "clearance": 0.202}
 """CPU-seconds of one sweep variant: the pair and Rinder's analysis (key None), plus each analysis of

@@ -57,7 +57,7 @@ OPTION_OF = {
 
 # option key -> (flag, low, high, low included, the allowed range as words); None = required option absent.
 # The lower ends keep the film thicknesses above underflow: `--speed 1e-308` or `--module 1e-300`
-# made the EHL film 0 and its ratio a division by zero (issue 15, the 20 000-case run)
+# made the EHL film 0 and its ratio a division by zero (found by the fuzz suite, tests/test_fuzz_cli.py)
 RANGES: dict[str, tuple[str, float, float, bool, str]] = {
     "teeth": ("--teeth", 6, 1000, True, "a whole number from 6 to 1000"),
     "module": ("--module", 0.1, 100.0, True, "a number from 0.1 to 100 (mm)"),

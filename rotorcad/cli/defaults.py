@@ -1,4 +1,4 @@
-"""Defaults a command took: "value (default: how it was chosen)", for the JSON and the table (issue 23)."""
+"""Defaults a command took: "value (default: how it was chosen)", for the JSON and the table (CONTRACT.md, "defaults")."""
 
 from __future__ import annotations
 

@@ -189,7 +189,7 @@ NOTED: list[str] = []
 
 
 def say_long_run(note: str | None, quiet: bool) -> None:
-    """Say on stderr, before the work starts, that it will take over a minute (issue 24).
+    """Say on stderr, before the work starts, that it will take over a minute (CONTRACT.md).
 
     Written whether or not stderr is a terminal (a script's log then shows why it waits), never on
     stdout (``--json`` stays one object), and not with ``--quiet``.
