@@ -21,6 +21,7 @@ import numpy as np
 
 from exports.reading import read_bytes
 from rotorcad.errors import DesignError
+from rotorcad.quantities import csv_units_line
 
 MAX_POINTS = 2_000_000
 """Largest number of points in a profile."""
@@ -55,10 +56,13 @@ def write_points(path: Path, points: np.ndarray, comments: list[str] | None = No
     comments : list of str, optional
         Lines written first, each after ``# ``.
     header : str
-        The header line, e.g. ``x,y``.
+        The header line, e.g. ``x,y``. When every column's unit is declared
+        (:func:`rotorcad.quantities.csv_units_line`), a comment line ``# units: x mm, y mm`` comes
+        before it; readers skip comments, so files with and without it read the same.
     """
+    units = csv_units_line(header.split(","))
     with open(path, "w", encoding="utf-8", newline="\n") as f:
-        for line in comments or []:
+        for line in [*(comments or []), *([units] if units else [])]:
             f.write(f"# {line}\n")
         f.write(f"{header}\n")
         np.savetxt(f, np.asarray(points, dtype=float), delimiter=",", fmt="%.12g")

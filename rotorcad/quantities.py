@@ -23,7 +23,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-__all__ = ["QUANTITIES", "Quantity", "axis_label", "column_suffix", "lookup", "symbol", "unit_of"]
+__all__ = ["QUANTITIES", "Quantity", "axis_label", "column_suffix", "csv_units_line", "lookup", "symbol", "unit_of"]
 
 
 @dataclass(frozen=True)
@@ -221,7 +221,7 @@ CLEARANCE_CSV_COLUMNS: dict[str, str] = {
     "x": "mm",
     "y": "mm",
     "clearance": "mm",
-    "angle_deg": "deg",
+    "male_angle_deg": "deg",
     "z": "mm",
     "contact_x": "mm",
     "contact_y": "mm",
@@ -237,6 +237,9 @@ CLEARANCE_CSV_COLUMNS: dict[str, str] = {
 
 POINTS_CSV_COLUMNS: dict[str, str] = {"x": "mm", "y": "mm"}
 """Units of the columns of a points file (CONTRACT.md, "Points files")."""
+
+INDICATOR_CSV_COLUMNS: dict[str, str] = {"angle_deg": "deg", "pressure_bar": "bar"}
+"""Units of the columns of an indicator diagram (``rotorcad deflect --indicator``)."""
 
 # --- deflection under gas load (rotorcad/deflection.py; Rinder & Deix) ----------------------------
 _declare(
@@ -398,6 +401,28 @@ _declare(
         ("face_width", "mm", "face width"),
     ],
 )
+
+
+def csv_units_line(columns: Iterable[str]) -> str | None:
+    """Return the comment line naming each CSV column's unit, ``units: x mm, y mm`` (None if one is not declared).
+
+    Written by :func:`exports.csv_points.write_points` above the header; readers skip it as a
+    comment, so files without it (written before) read the same.
+
+    Parameters
+    ----------
+    columns : iterable of str
+        The column names of the header line.
+
+    Returns
+    -------
+    str or None
+    """
+    table = POINTS_CSV_COLUMNS | CLEARANCE_CSV_COLUMNS | INDICATOR_CSV_COLUMNS
+    names = list(columns)
+    if not names or any(name not in table for name in names):
+        return None
+    return "units: " + ", ".join(f"{name} {table[name]}" for name in names)
 
 
 def lookup(key: str) -> Quantity | None:
