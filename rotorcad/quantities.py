@@ -374,6 +374,39 @@ _declare(
     ],
 )
 
+# the columns of a sweep's table (rotorcad/sweep/tasks.py; CONTRACT.md, sweep rows): the unit ends the name
+SWEEP_COLUMNS: dict[str, Quantity] = {
+    key: Quantity(key, unit, label, "rotorcad.sweep.tasks")
+    for key, unit, label in [
+        ("blow_hole_area_mm2", "mm²", "blow-hole area"),
+        ("contact_line_length_mm", "mm", "contact line length"),
+        ("male_flute_area_mm2", "mm²", "male flute area"),
+        ("female_flute_area_mm2", "mm²", "female flute area"),
+        ("displacement_per_rev_mm3", "mm³", "displacement per male revolution"),
+        ("area_utilisation", "1", "area utilisation"),
+        ("max_sliding_velocity_m_s", "m/s", "largest sliding velocity"),
+        ("max_slip_male", "1", "largest slip, male"),
+        ("max_slip_female", "1", "largest slip, female"),
+        ("wrap_angle_deg", "deg", "wrap angle"),
+        ("rack_loss_percent", "%", "rack loss"),
+        ("defects", "1", "meshline defects"),
+        ("defects_cusp", "1", "cusps on the meshline"),
+        ("defects_jamming", "1", "jamming points on the meshline"),
+        ("defects_slipping", "1", "slipping points on the meshline"),
+        ("interference_volume_mm3", "mm³", "largest intersection volume of the pair"),
+        ("housing_intersection_volume_mm3", "mm³", "volume of the rotors outside the bores"),
+        ("male_volume_mm3", "mm³", "male volume"),
+        ("female_volume_mm3", "mm³", "female volume"),
+        ("clearance_mean_mm", "mm", "mean normal clearance"),
+        ("clearance_max_mm", "mm", "largest normal clearance"),
+        ("clearance_min_mm", "mm", "smallest normal clearance"),
+        ("clearance_band_area_mm2", "mm²", "clearance band area"),
+        ("seconds", "s", "time per variant"),
+        ("rank", "1", "rank"),
+    ]
+}
+"""Every numeric column of a sweep's table (Parquet, CSV) with its unit and plot label."""
+
 # --- the report page (rotorcad/cli/report_cmd.py) -------------------------------------------------
 _declare("rotorcad.cli.report_cmd", [("defect_count", "1", "defects")])
 

@@ -265,3 +265,21 @@ def test_the_clearance_csv_names_the_unit_of_every_column(work, tmp_path):
     assert list(named) == header.split(",")
     assert named["clearance"] == "mm" and named["male_angle_deg"] == "deg" and named["zone"] == "1"
     assert len(read_points(csv)) > 100
+
+
+def test_sweep_columns_name_their_declared_unit():
+    # CONTRACT.md, sweep rows: results with their unit at the end of the column's name; each
+    # column is declared, its name ends with its unit, and a column copied from `rotor --json`
+    # has the unit of that key
+    from rotorcad.sweep.plan import Extra
+    from rotorcad.sweep.plots import column_label
+    from rotorcad.sweep.tasks import RESULT_COLUMNS, result_columns
+
+    for column in result_columns(tuple(Extra)):
+        q = quantities.SWEEP_COLUMNS[column]
+        suffix = quantities.column_suffix(q.unit)
+        assert not suffix or column.endswith("_" + suffix) or column == "seconds", f"{column} is in {q.unit}"
+        assert column_label(column).endswith(f"[{quantities.symbol(q.unit)}]")
+    for key, column in RESULT_COLUMNS.items():
+        if column in quantities.SWEEP_COLUMNS:
+            assert quantities.SWEEP_COLUMNS[column].unit == quantities.unit_of(key), column
