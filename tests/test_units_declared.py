@@ -283,3 +283,12 @@ def test_sweep_columns_name_their_declared_unit():
     for key, column in RESULT_COLUMNS.items():
         if column in quantities.SWEEP_COLUMNS:
             assert quantities.SWEEP_COLUMNS[column].unit == quantities.unit_of(key), column
+
+
+def test_every_declaration_names_a_module_that_exists():
+    # Quantity.source tells a newcomer where the number is computed: it must be a real module
+    import importlib.util
+
+    sources = {q.source for q in [*quantities.QUANTITIES.values(), *quantities.SWEEP_COLUMNS.values()]}
+    assert not [s for s in sorted(sources) if importlib.util.find_spec(s) is None]
+    assert all(q.unit and q.label for q in quantities.QUANTITIES.values())
