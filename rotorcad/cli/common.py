@@ -16,7 +16,6 @@ from rich.table import Table
 
 from exports.atomic import Writer, check_writable, staging_prefix, write_all
 from exports.background import WorkerPool
-from rotorcad import quantities
 from rotorcad.errors import DesignError, InputNote
 
 
@@ -165,7 +164,22 @@ def emit_json(data: dict[str, Any]) -> None:
     click.echo(json.dumps(plain(data), indent=2))
 
 
-unit_of = quantities.unit_of  # the unit of a result key: declared in rotorcad.quantities, not guessed
+def unit_of(key: str) -> str:
+    """Return the unit of a result key as the tables print it: its declaration in :mod:`rotorcad.quantities`.
+
+    Parameters
+    ----------
+    key : str
+        A result key or dotted path, e.g. ``max_normal_clearance``.
+
+    Returns
+    -------
+    str
+        ``mm``, ``mm²``, ``deg``, ...; ``"1"`` for a pure number; ``""`` for a key without a declaration.
+    """
+    from rotorcad.quantities import unit_of as declared
+
+    return declared(key)
 
 
 def print_table(title: str, rows: dict[str, Any]) -> None:
