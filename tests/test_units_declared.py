@@ -291,3 +291,23 @@ def test_every_declaration_names_a_module_that_exists():
     missing = [s for s in sorted(sources) if not ((ROOT / f"{s}.py").is_file() or (ROOT / s / "__init__.py").is_file())]
     assert not missing
     assert all(q.unit and q.label for q in quantities.QUANTITIES.values())
+
+
+def test_the_report_page_shows_the_declared_units(tmp_path):
+    # the page's result tables (sections numbers and hob; the design's own keys have their table)
+    # show each number with its declared unit, ° for degrees and – for a pure number
+    page = tmp_path / "report.html"
+    code, _ = run(["report", RACK, "--out", page, "--quiet"])
+    assert code == 0
+    html = page.read_text()
+    checked = 0
+    for section in ("numbers", "hob"):
+        body = re.search(rf"<section id='{section}'.*?</section>", html, re.S).group(0)
+        row = r"<tr data-key='([^']*)'[^>]*><td class='key'>[^<]*</td><td class='num'>([^<]*)</td><td>([^<]*)</td></tr>"
+        for key, value, unit in re.findall(row, body):
+            if not re.fullmatch(r"[−-]?[\d.]+(e[−+-]?\d+)?", value):
+                continue
+            assert quantities.lookup(key) is not None, f"{key} is on the page but not declared"
+            assert unit == quantities.symbol(quantities.unit_of(key)), f"{key}: the page shows {unit!r}"
+            checked += 1
+    assert checked >= 30
