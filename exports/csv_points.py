@@ -57,12 +57,16 @@ def write_points(path: Path, points: np.ndarray, comments: list[str] | None = No
         Lines written first, each after ``# ``.
     header : str
         The header line, e.g. ``x,y``. When every column's unit is declared
-        (:func:`rotorcad.quantities.csv_units_line`), a comment line ``# units: x mm, y mm`` comes
-        before it; readers skip comments, so files with and without it read the same.
+        (:func:`rotorcad.quantities.csv_units_line`), the last comment line ends with them,
+        ``(units: x mm, y mm)``: readers skip comments, and the file keeps its number of lines
+        before the data (scripts that skip a fixed number of lines read it as before).
     """
     units = csv_units_line(header.split(","))
+    lines = list(comments or [])
+    if units and lines:
+        lines[-1] = f"{lines[-1]} ({units})"
     with open(path, "w", encoding="utf-8", newline="\n") as f:
-        for line in [*(comments or []), *([units] if units else [])]:
+        for line in lines:
             f.write(f"# {line}\n")
         f.write(f"{header}\n")
         np.savetxt(f, np.asarray(points, dtype=float), delimiter=",", fmt="%.12g")

@@ -439,10 +439,10 @@ _declare(
 
 
 def csv_units_line(columns: Iterable[str]) -> str | None:
-    """Return the comment line naming each CSV column's unit, ``units: x mm, y mm`` (None if one is not declared).
+    """Return the words naming each CSV column's unit, ``units: x mm, y mm`` (None if one is not declared).
 
-    Written by :func:`exports.csv_points.write_points` above the header; readers skip it as a
-    comment, so files without it (written before) read the same.
+    :func:`exports.csv_points.write_points` ends the file's last comment line with them; readers
+    skip comments, so files without them (written before) read the same.
 
     Parameters
     ----------

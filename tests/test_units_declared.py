@@ -242,14 +242,16 @@ def test_lookup_follows_dotted_paths_and_list_items():
 
 
 def test_points_files_carry_their_units_and_old_files_still_read(tmp_path):
-    # CONTRACT.md, points files: the header x,y in mm; the unit line is a comment the reader skips
+    # CONTRACT.md, points files: the header x,y in mm; the units end the last comment line, so the
+    # lines above the data stay as many as before (a script's skiprows) and readers skip them
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 1.5]])
     old = tmp_path / "old.csv"
-    old.write_text("x,y\n" + "".join(f"{x},{y}\n" for x, y in square))
+    old.write_text("# male outline\nx,y\n" + "".join(f"{x},{y}\n" for x, y in square))
     new = tmp_path / "new.csv"
-    write_points(new, square)
+    write_points(new, square, ["male outline"])
     assert np.array_equal(read_points(old), read_points(new))
-    assert "# units: x mm, y mm" in new.read_text().splitlines()
+    assert new.read_text().splitlines()[:2] == ["# male outline (units: x mm, y mm)", "x,y"]
+    assert np.array_equal(np.loadtxt(new, delimiter=",", skiprows=2), square)  # numpy, as a user's script reads it
 
 
 def test_the_clearance_csv_names_the_unit_of_every_column(work, tmp_path):
@@ -260,8 +262,8 @@ def test_the_clearance_csv_names_the_unit_of_every_column(work, tmp_path):
     assert code == 0
     lines = csv.read_text().splitlines()
     header = next(line for line in lines if not line.startswith("#"))
-    units = next(line for line in lines if line.startswith("# units: "))
-    named = dict(item.rsplit(" ", 1) for item in units.removeprefix("# units: ").split(", "))
+    units = re.search(r"\(units: (.*)\)$", lines[lines.index(header) - 1]).group(1)
+    named = dict(item.rsplit(" ", 1) for item in units.split(", "))
     assert list(named) == header.split(",")
     assert named["clearance"] == "mm" and named["male_angle_deg"] == "deg" and named["zone"] == "1"
     assert len(read_points(csv)) > 100
