@@ -2,8 +2,8 @@
 
 Every number a command reports (its JSON key, CONTRACT.md) is declared here beside the module that
 computes it: one :class:`Quantity` per key, with its unit and a short label. The command tables,
-the HTML report, the pictures' axis labels and the CSV headers take the unit from this table
-instead of guessing it from the key's name. A key that is not declared shows no unit, and
+the HTML report, the sweep's column names and plot axes, and the units that end a points file's
+comment take the unit from this table instead of guessing it from the key's name. A key that is not declared shows no unit, and
 ``tests/test_units_declared.py`` fails: adding a result key means adding one line here.
 
 Units are written as the command tables print them: ``mm``, ``mm²``, ``mm³``, ``mm⁴``, ``deg``,
@@ -41,7 +41,7 @@ class Quantity:
     source : str
         Where it is computed, the module's path without ``.py`` (``rotorcad/clearance``): where to
         look when the number is wrong. A path, not a module name to import: the core names no
-        module above it (tests/test_architecture.py).
+        module above it (the architecture test).
     """
 
     key: str
