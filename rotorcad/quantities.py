@@ -1,4 +1,4 @@
-"""The unit and short label of every result quantity, declared once (issue 25, units as data).
+"""The unit and short label of every result quantity, declared once: units as data.
 
 Every number a command reports (its JSON key, CONTRACT.md) is declared here beside the module that
 computes it: one :class:`Quantity` per key, with its unit and a short label. The command tables,

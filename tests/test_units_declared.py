@@ -1,5 +1,5 @@
-"""Every number a command reports has its unit declared once, in :mod:`rotorcad.quantities` (issue 25,
-item 6), and the tables print that unit.
+"""Every number a command reports has its unit declared once, in :mod:`rotorcad.quantities`, and
+the tables print that unit.
 
 Each command runs in process on a sample, once with ``--json`` and once for its table: every numeric
 JSON key has a declaration, and every unit in the table is the declared one. The declarations
@@ -185,8 +185,8 @@ def test_every_unit_in_the_table_is_the_declared_one(work, name):
         assert unit == declared, f"{name}: {key} printed in {unit!r}, declared {declared!r}"
 
 
-def test_the_keys_issue_25_found_misread_print_their_units(work):
-    # issue 25: max_normal_clearance was printed in N ("_n"), max_penetration as a ratio
+def test_the_keys_the_name_rules_misread_print_their_units(work):
+    # the old rules on key names printed max_normal_clearance in N ("_n"), max_penetration as a ratio
     # ("penetRATIOn"), touching_threshold without mm³; the scaling test below checks these units
     printed = {}
     for name in ("clearance", "interfere"):
