@@ -22,6 +22,7 @@ import numpy as np
 
 from exports.reading import read_bytes
 from rotorcad.errors import DesignError
+from rotorcad.quantities import csv_units_line
 
 if TYPE_CHECKING:
     from exports.formats import ExportFormat, Writer
@@ -60,10 +61,17 @@ def write_points(path: Path, points: np.ndarray, comments: list[str] | None = No
     comments : list of str, optional
         Lines written first, each after ``# ``.
     header : str
-        The header line, e.g. ``x,y``.
+        The header line, e.g. ``x,y``. When every column's unit is declared
+        (:func:`rotorcad.quantities.csv_units_line`), the last comment line ends with them,
+        ``(units: x mm, y mm)``: readers skip comments, and the file keeps its number of lines
+        before the data (scripts that skip a fixed number of lines read it as before).
     """
+    units = csv_units_line(header.split(","))
+    lines = list(comments or [])
+    if units and lines:
+        lines[-1] = f"{lines[-1]} ({units})"
     with open(path, "w", encoding="utf-8", newline="\n") as f:
-        for line in comments or []:
+        for line in lines:
             f.write(f"# {line}\n")
         f.write(f"{header}\n")
         np.savetxt(f, np.asarray(points, dtype=float), delimiter=",", fmt="%.12g")

@@ -81,86 +81,22 @@ def emit_json(data: dict[str, Any]) -> None:
     click.echo(json.dumps(plain(data), indent=2))
 
 
-DIMENSIONLESS = (
-    "teeth",
-    "steps",
-    "positions",
-    "contact_ratio",
-    "irregularity",
-    "utilisation",
-    "count",
-    "faces",
-    "triangles",
-    "kappa",
-    "ratio",
-    "terms",
-    "exponent",
-    "anisotropy",
-    "_to_",  # a ratio of two methods' values, e.g. male_max_deflection_paper_to_rotorcad
-)
-_UNIT_RULES = (  # (pattern in the key, unit), first match wins
-    ("mean_flow", "L/min"),  # before "volume": mean_flow_swept_volume is a flow
-    ("_deg", "deg"),
-    ("_hz", "Hz"),
-    ("_rpm", "rpm"),
-    ("_percent", "%"),
-    ("_bar", "bar"),
-    ("_n_", "N"),  # a force in newtons inside a key (gas_force_n_paper); a key ending in _n: unit_of
-    ("clearance", "mm"),  # before "_n" could match max_normal_clearance
-    ("_gap", "mm"),
-    ("second_moment", "mm⁴"),
-    ("deflection", "mm"),
-    ("diameter", "mm"),
-    ("area", "mm²"),
-    ("volume", "mm³"),
-    ("displacement", "mm³"),
-    ("velocity", "m/s"),
-    ("module", "mm"),
-    ("shift", "mm"),
-    ("clearance", "mm"),
-    ("deviation", "mm"),
-    ("radius", "mm"),
-    ("distance", "mm"),
-    ("length", "mm"),
-    ("perimeter", "mm"),
-    ("thickness", "mm"),
-    ("backlash", "mm"),
-    ("lead", "mm"),
-    ("tolerance", "mm"),
-    ("accuracy", "mm"),
-)
-
-
-_EXACT_UNITS = {  # keys whose names the rules would misread ("penetRATIOn" is no ratio)
-    "max_penetration": "mm",
-    "touching_threshold": "mm³",
-    "contact_zone_share": "1",
-}
-
-
 def unit_of(key: str) -> str:
-    """Return the unit of a result key as the command prints it.
-
-    CONTRACT.md: lengths mm, areas mm², volumes mm³, angles deg, speeds m/s, flows L/min, read off
-    the key's name.
+    """Return the unit of a result key as the tables print it: its declaration in :mod:`rotorcad.quantities`.
 
     Parameters
     ----------
     key : str
-        A result key, e.g. ``blow_hole_area``.
+        A result key or dotted path, e.g. ``max_normal_clearance``.
 
     Returns
     -------
     str
-        The unit; "1" for counts and ratios, "" if not known.
+        ``mm``, ``mm²``, ``deg``, ...; ``"1"`` for a pure number; ``""`` for a key without a declaration.
     """
-    if key in _EXACT_UNITS:
-        return _EXACT_UNITS[key]
-    if any(word in key for word in DIMENSIONLESS):
-        return "1"
-    if key.endswith("_n"):
-        return "N"
-    return next((unit for pattern, unit in _UNIT_RULES if pattern in key), "")
+    from rotorcad.quantities import unit_of as declared
+
+    return declared(key)
 
 
 def print_table(title: str, rows: dict[str, Any]) -> None:

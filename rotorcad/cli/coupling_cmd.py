@@ -18,6 +18,7 @@ from rich.console import Console
 from rich.table import Table
 
 from rotorcad import plot_style as ps
+from rotorcad import quantities
 from rotorcad.cli.common import InputError, Outputs, emit_json, plain, reraise
 from rotorcad.cli.defaults import print_defaults, taken
 from rotorcad.coupling import (
@@ -78,50 +79,6 @@ RANGES: dict[str, tuple[str, float, float, bool, str]] = {
 OPTIONAL = {"pressure_angle", "addendum", "load_factor", "barrel_radius", "young_modulus", "poisson_ratio", "roughness"}
 PAPER_PRESSURE_SHARE = 0.5  # Belkov et al., text under Fig. 4: p_max about 50 % below the Hertz stress
 MIN_DERIVED_MISALIGNMENT = 0.01  # deg: below it the derived crowning radius exceeds ~100 b
-
-# result key -> unit in the text table (JSON: the same units)
-UNITS = {
-    "hydrodynamic": "",
-    "min_film_thickness": "mm",
-    "load_capacity": "N",
-    "max_pressure": "MPa",
-    "hertz_stress": "MPa",
-    "message": "",
-    "central_film_thickness": "mm",
-    "ehl_film_thickness": "mm",
-    "ehl_ratio": "1",
-    "pressure_to_hertz_ratio": "1",
-    "tooth_load": "N",
-    "load_per_length": "N/mm",
-    "pitch_radius": "mm",
-    "barrel_radius": "mm",
-    "flank_crown_radius": "mm",
-    "crowning_depth": "mm",
-    "contact_length": "mm",
-    "hertz_half_width": "mm",
-    "contact_excursion": "mm",
-    "edge_contact": "",
-    "inlet_length": "mm",
-    "inlet_room": "mm",
-    "inlet_off_face": "",
-    "mean_sliding_velocity": "m/s",
-    "mean_entraining_velocity": "m/s",
-    "max_rolling_velocity": "m/s",
-    "max_axial_sliding_velocity": "m/s",
-    "regime": "",
-    "regime_reason": "",
-    "film_parameter": "1",
-    "roughness": "mm",
-    "line_contact_holds": "",
-    "method": "",
-    "eq7_velocity": "m/s",
-    "min_film_thickness_rotorcad": "mm",
-    "min_film_thickness_paper": "mm",
-    "min_film_thickness_paper_to_rotorcad": "1",
-    "ehl_film_thickness_rotorcad": "mm",
-    "ehl_film_thickness_paper": "mm",
-    "ehl_film_thickness_paper_to_rotorcad": "1",
-}
 
 HELP = """Lubricant film of a gear coupling with barrel-shaped (crowned) hub teeth: the contact-hydrodynamic
 calculation of Belkov, Maksimov & Shitikov (Reynolds equation with Barus viscosity and the elastic gap of a
@@ -343,7 +300,7 @@ def _result(r: CouplingResult) -> dict[str, Any]:
 
 
 def _print_table(title: str, rows: dict[str, Any]) -> None:
-    """Quantity, value and unit of every key (units from :data:`UNITS`)."""
+    """Quantity, value and unit of every key (units declared in :mod:`rotorcad.quantities`)."""
     table = Table(title=title, show_header=True, header_style="bold")
     for name, justify in (("quantity", "left"), ("value", "right"), ("unit", "left")):
         table.add_column(name, justify=justify)
@@ -353,7 +310,7 @@ def _print_table(title: str, rows: dict[str, Any]) -> None:
         if isinstance(value, bool) or value is None or isinstance(value, str):
             table.add_row(key, "-" if value is None else str(value), "")
         else:
-            table.add_row(key, f"{value:.6g}" if abs(value) < 1e-3 else f"{value:.6f}", UNITS.get(key, ""))
+            table.add_row(key, f"{value:.6g}" if abs(value) < 1e-3 else f"{value:.6f}", quantities.unit_of(key))
     Console(file=sys.stdout, highlight=False, width=110).print(table)
 
 

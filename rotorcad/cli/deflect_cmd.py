@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -94,6 +95,76 @@ def deflect(
         settings = load_rotor_design(design)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    given = _gather(design, settings, angle, terms, indicator)
+    rotors, _, _ = build_rotors(design, _rotor_options(design), settings)  # the design as read above
+    model = _model(rotors, given, LoadModel(method))
+    sweep_angles = np.linspace(0.0, 2 * np.pi / rotors.pair.male_teeth, SWEEP_ANGLES, endpoint=False)
+    solved = _solve(model, sweep_angles, given, quiet)
+    result = _result(model, solved, given, rotors.pair.male_teeth, sweep_angles)
+    result["defaults"] = _defaults(given.op, given.de, model, given.exponent, given.terms_label, given.terms)
+    out = Outputs()
+    case = f"{Path(design).name}: {rotors.family}"
+    out.add_figure(
+        plot,
+        lambda: _plot(
+            model, solved.lines, sweep_angles, solved.swept, given.shafts, case, solved.other_lines, solved.other_swept
+        ),
+        "--plot",
+    )
+    result["files"] = [str(x) for x in out.write()]
+    if as_json:
+        emit_json(result)
+    else:
+        print_table(
+            f"deflection under gas load, {Path(design).name}, flute load '{model.load.value}', "
+            f"male angle {np.degrees(solved.at):.2f} deg",
+            result,
+        )
+        print_defaults(result["defaults"])
+
+
+@dataclass(frozen=True)
+class _Given:
+    """The inputs of ``deflect`` after every check: the design's tables and what they set.
+
+    Attributes
+    ----------
+    op, de : dict
+        The design's ``[operating]`` and ``[deflection]`` tables.
+    angle : float or None
+        ``--angle`` [deg]; None: the worst angle over one male pitch.
+    terms : int
+        Sine terms of the Ritz-Galerkin series; ``terms_label`` names where they came from.
+    curve : (n, 2) array or None
+        The indicator diagram: chamber angle [rad], absolute pressure [bar]; ``curve_label`` names it.
+    exponent : float
+        Polytropic exponent.
+    male_shaft, female_shaft : Shaft
+        The shaft ends of each rotor.
+    """
+
+    op: dict[str, Any]
+    de: dict[str, Any]
+    angle: float | None
+    terms: int
+    terms_label: str
+    curve: np.ndarray | None
+    curve_label: str
+    exponent: float
+    male_shaft: Shaft
+    female_shaft: Shaft
+
+    @property
+    def shafts(self) -> bool:
+        """Whether any shaft end is given (then the whole shafts on their bearings)."""
+        return bool(self.male_shaft.given or self.female_shaft.given)
+
+
+def _gather(design: Path, settings: dict[str, Any], angle: float | None, terms: int | None, indicator: Path | None) -> _Given:
+    """Check the options and the design's ``[operating]`` and ``[deflection]`` tables.
+
+    Every refusal is one sentence naming the option or ``[table] key`` (:class:`InputError`).
+    """
     op, de = settings["operating"], settings["deflection"]
     for key in ("suction_pressure_bar", "discharge_pressure_bar"):
         if key not in op:
@@ -104,6 +175,26 @@ def deflect(
         raise InputError(f"{terms_label} must be a whole number from 1 to 400 (got {terms}).")
     if angle is not None and not (np.isfinite(angle) and abs(angle) <= 3600):
         raise InputError(f"--angle must be a male angle from -3600 to 3600 degrees (got {angle}).")
+    _check_operating(op, indicator)
+    source = indicator or (Path(design).parent / op["indicator"] if "indicator" in op else None)
+    label = "--indicator" if indicator else "[operating] indicator"
+    curve = None if source is None else _indicator(Path(source), label)
+    male_shaft = Shaft(
+        _shaft(de.get("male_shaft_discharge"), "male_shaft_discharge"), _shaft(de.get("male_shaft_suction"), "male_shaft_suction")
+    )
+    female_shaft = Shaft(
+        _shaft(de.get("female_shaft_discharge"), "female_shaft_discharge"),
+        _shaft(de.get("female_shaft_suction"), "female_shaft_suction"),
+    )
+    if "speed_rpm" in op and not (np.isfinite(op["speed_rpm"]) and op["speed_rpm"] > 0):
+        # deflect has no --speed: the speed only reaches the shared rotor build, which would name --speed
+        raise InputError(f"[operating] speed_rpm must be a positive speed in rpm (got {op['speed_rpm']}).")
+    exponent = float(op.get("polytropic_exponent", AIR_EXPONENT))
+    return _Given(op, de, angle, terms, terms_label, curve, label, exponent, male_shaft, female_shaft)
+
+
+def _check_operating(op: dict[str, Any], indicator: Path | None) -> None:
+    """Refuse pressures, volume ratio, exponent and control edge out of range, and two ways of setting the discharge."""
     for key in ("suction_pressure_bar", "discharge_pressure_bar"):
         if not (np.isfinite(op[key]) and 0 < op[key] <= 1000):
             raise InputError(f"[operating] {key} must be an absolute pressure above 0 and up to 1000 bar (got {op[key]}).")
@@ -116,81 +207,96 @@ def deflect(
     for key, lo, hi in (("polytropic_exponent", 1.0, 2.0), ("discharge_edge_deg", 0.0, 3600.0)):
         if key in op and not (np.isfinite(op[key]) and lo <= op[key] <= hi):
             raise InputError(f"[operating] {key} must be a number from {lo:g} to {hi:g} (got {op[key]}).")
-    curve = None
-    source = indicator or (Path(design).parent / op["indicator"] if "indicator" in op else None)
-    if source is not None:
-        label = "--indicator" if indicator else "[operating] indicator"
-        try:
-            rows = read_points(Path(source), label, columns=("angle_deg", "pressure_bar"))
-        except DesignError as exc:
-            raise InputError(exc.sentence()) from None
-        if not (np.all(np.diff(rows[:, 0]) >= 0) and rows[-1, 0] > rows[0, 0]):
-            line = int(np.argmin(np.diff(rows[:, 0]) >= 0)) + 2
-            raise InputError(
-                f"{label} must have chamber angles that do not decrease (a pressure jump: one angle twice; data row {line} "
-                f"goes back): {source}."
-            )
-        if not np.all((rows[:, 1] > 0) & (rows[:, 1] <= 1000)):
-            raise InputError(f"{label} must have absolute pressures above 0 and up to 1000 bar: {source}.")
-        curve = np.c_[np.radians(rows[:, 0]), rows[:, 1]]
-    edge = op.get("discharge_edge_deg")
-    male_shaft = Shaft(
-        _shaft(de.get("male_shaft_discharge"), "male_shaft_discharge"), _shaft(de.get("male_shaft_suction"), "male_shaft_suction")
-    )
-    female_shaft = Shaft(
-        _shaft(de.get("female_shaft_discharge"), "female_shaft_discharge"),
-        _shaft(de.get("female_shaft_suction"), "female_shaft_suction"),
-    )
-    if "speed_rpm" in op and not (np.isfinite(op["speed_rpm"]) and op["speed_rpm"] > 0):
-        # deflect has no --speed: the speed only reaches the shared rotor build, which would name --speed
-        raise InputError(f"[operating] speed_rpm must be a positive speed in rpm (got {op['speed_rpm']}).")
-    rotors, _, _ = build_rotors(design, _rotor_options(design), settings)  # the design as read above
-    exponent = float(op.get("polytropic_exponent", AIR_EXPONENT))
+
+
+def _indicator(source: Path, label: str) -> np.ndarray:
+    """Read an indicator diagram (CSV ``angle_deg,pressure_bar``); return chamber angle [rad] and pressure [bar], (n, 2)."""
+    try:
+        rows = read_points(source, label, columns=("angle_deg", "pressure_bar"))
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
+    if not (np.all(np.diff(rows[:, 0]) >= 0) and rows[-1, 0] > rows[0, 0]):
+        line = int(np.argmin(np.diff(rows[:, 0]) >= 0)) + 2
+        raise InputError(
+            f"{label} must have chamber angles that do not decrease (a pressure jump: one angle twice; data row {line} "
+            f"goes back): {source}."
+        )
+    if not np.all((rows[:, 1] > 0) & (rows[:, 1] <= 1000)):
+        raise InputError(f"{label} must have absolute pressures above 0 and up to 1000 bar: {source}.")
+    return np.c_[np.radians(rows[:, 0]), rows[:, 1]]
+
+
+def _model(rotors, given: _Given, load: LoadModel) -> GasDeflection:
+    """Build the gas-load model of the pair; a model the design cannot make, or an indicator that falls short, is refused."""
+    op, de, edge = given.op, given.de, given.op.get("discharge_edge_deg")
     try:
         model = GasDeflection(
             rotors,
             float(op["suction_pressure_bar"]),
             float(op["discharge_pressure_bar"]),
-            exponent=exponent,
+            exponent=given.exponent,
             volume_ratio=op.get("volume_ratio"),
             discharge_edge=None if edge is None else float(np.radians(edge)),
-            indicator=curve,
+            indicator=given.curve,
             young=float(de.get("young_modulus", STEEL[0])),
             poisson=float(de.get("poisson_ratio", STEEL[1])),
-            male_shaft=male_shaft,
-            female_shaft=female_shaft,
-            terms=terms,
-            load=LoadModel(method),
+            male_shaft=given.male_shaft,
+            female_shaft=given.female_shaft,
+            terms=given.terms,
+            load=load,
         )
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    if curve is not None:
+    if given.curve is not None:
         end = float(np.degrees(model.cycle.angle[-1]))
-        first, last = np.degrees(curve[0, 0]), np.degrees(curve[-1, 0])
+        first, last = np.degrees(given.curve[0, 0]), np.degrees(given.curve[-1, 0])
         if first > 1.0 or last < end - 1.0:
             raise InputError(
-                f"{label} must cover the chamber's cycle from 0 to {end:.1f} deg (male rotation since the chamber "
+                f"{given.curve_label} must cover the chamber's cycle from 0 to {end:.1f} deg (male rotation since the chamber "
                 f"opened at the suction end; it covers {first:.1f} to {last:.1f} deg)."
             )
-    pitch = 2 * np.pi / rotors.pair.male_teeth
-    shafts = male_shaft.given or female_shaft.given
-    sweep_angles = np.linspace(0.0, pitch, SWEEP_ANGLES, endpoint=False)
+    return model
+
+
+@dataclass(frozen=True)
+class _Solved:
+    """The deflection lines of both flute loads: the chosen one's and the other's (for comparison)."""
+
+    at: float  # male angle shown [rad]
+    swept: np.ndarray  # (angles, 2) largest |w| of male and female over one male pitch [mm]
+    lines: Any  # the lines at ``at``
+    two: Any  # the same with two sine terms (Rinder & Deix's own approximation)
+    other: GasDeflection  # the model with the other flute load
+    other_at: float
+    other_swept: np.ndarray
+    other_lines: Any
+
+
+def _solve(model: GasDeflection, sweep_angles: np.ndarray, given: _Given, quiet: bool) -> _Solved:
+    """Sweep one male pitch, find the worst angle (or take --angle), and the lines of both flute loads there."""
+    shafts = given.shafts
     other = model.with_load(LoadModel.CHORD if model.load is LoadModel.CHAMBER else LoadModel.CHAMBER)
     with Steps("deflection: angle sweep", 4, quiet) as progress:
         swept = model.sweep(sweep_angles, shaft=shafts)
         progress.advance(description="deflection: worst angle")
-        if angle is None:
+        if given.angle is None:
             at = model.refine_worst(sweep_angles, swept.max(axis=1), shaft=shafts)
         else:
-            at = float(np.radians(angle))
+            at = float(np.radians(given.angle))
         progress.advance(description="deflection: lines")
         lines = model.at(at)
         two = model.at(at, terms=2)
         progress.advance(description="deflection: the other flute load")
         other_swept = other.sweep(sweep_angles, shaft=shafts)
-        other_at = at if angle is not None else other.refine_worst(sweep_angles, other_swept.max(axis=1), shaft=shafts)
+        other_at = at if given.angle is not None else other.refine_worst(sweep_angles, other_swept.max(axis=1), shaft=shafts)
         other_lines = other.at(other_at)
         progress.advance()
+    return _Solved(at, swept, lines, two, other, other_at, other_swept, other_lines)
+
+
+def _result(model: GasDeflection, solved: _Solved, given: _Given, male_teeth: int, sweep_angles: np.ndarray) -> dict[str, Any]:
+    """Return the result keys (CONTRACT.md, ``deflect``; units declared in :mod:`rotorcad.quantities`)."""
+    lines, at = solved.lines, solved.at
     result: dict[str, Any] = {}
     for column, (rotor, beam) in enumerate((("male", model.male), ("female", model.female))):
         helical = lines.largest(rotor)
@@ -199,7 +305,7 @@ def deflect(
         result[f"{rotor}_max_deflection_position"] = whole[1]  # from the discharge bearing (or end face)
         result[f"{rotor}_deflection_direction_deg"] = whole[2]
         result[f"{rotor}_max_deflection_helical"] = helical[0]
-        result[f"{rotor}_max_deflection_helical_ritz2"] = two.largest(rotor)[0]
+        result[f"{rotor}_max_deflection_helical_ritz2"] = solved.two.largest(rotor)[0]
         result[f"{rotor}_equivalent_diameter"] = beam.diameter
         result[f"{rotor}_root_diameter"] = beam.root_diameter
         result[f"{rotor}_section_area"] = beam.area
@@ -207,7 +313,7 @@ def deflect(
         result[f"{rotor}_second_moment_core"] = beam.j_core
         result[f"{rotor}_second_moment_reduced"] = beam.j_reduced
         result[f"{rotor}_kappa_min"], result[f"{rotor}_kappa_max"] = beam.kappa_range
-        result[f"{rotor}_worst_angle_deg"] = float(np.degrees(sweep_angles[int(np.argmax(swept[:, column]))]))
+        result[f"{rotor}_worst_angle_deg"] = float(np.degrees(sweep_angles[int(np.argmax(solved.swept[:, column]))]))
     result["angle_deg"] = float(np.degrees(at))
     cycle = model.cycle
     if np.isfinite(cycle.opening):
@@ -216,8 +322,19 @@ def deflect(
         result["discharge_opening_deg"] = float(np.degrees(cycle.opening))
         result["volume_ratio"] = cycle.volume_ratio
     result["chamber_max_volume"] = float(cycle.volume.max())
-    result["displacement_per_male_rev"] = float(cycle.volume.max() * rotors.pair.male_teeth)
+    result["displacement_per_male_rev"] = float(cycle.volume.max() * male_teeth)
     result["chambers"] = model.chambers(at)  # at the angle shown: pressure and reach of each chamber
+    result.update(_bearing_loads(model, at, sweep_angles))
+    result["terms"] = given.terms
+    result["shaft_ends"] = given.shafts
+    result["method"] = model.load.value
+    result.update(_both_loads(model, solved))
+    return result
+
+
+def _bearing_loads(model: GasDeflection, at: float, sweep_angles: np.ndarray) -> dict[str, float]:
+    """Gas force and bearing loads at the angle shown, and each bearing's largest load over one male pitch."""
+    result: dict[str, float] = {}
     loads = model.bearing_loads(at)
     peak = [loads] + [model.bearing_loads(a) for a in sweep_angles[::4]]  # and 25 angles over the pitch
     for rotor in ("male", "female"):
@@ -226,10 +343,16 @@ def deflect(
         for end in ("discharge", "suction"):
             result[f"{rotor}_{end}_bearing_load_n"] = loads[rotor][f"{end}_bearing"]
             result[f"{rotor}_{end}_bearing_load_max_n"] = max(p[rotor][f"{end}_bearing"] for p in peak)
-    result["terms"] = terms
-    result["shaft_ends"] = bool(shafts)
-    result["method"] = model.load.value
-    both = {model.load.value: (lines, at, model), other.load.value: (other_lines, other_at, other)}
+    return result
+
+
+def _both_loads(model: GasDeflection, solved: _Solved) -> dict[str, float]:
+    """Return the largest deflections and gas forces of both flute loads, and the paper's over rotorcad's."""
+    result: dict[str, float] = {}
+    both = {
+        model.load.value: (solved.lines, solved.at, model),
+        solved.other.load.value: (solved.other_lines, solved.other_at, solved.other),
+    }
     for name in ("rotorcad", "paper"):
         ls, a, m = both[name]
         forces = m.bearing_loads(a)
@@ -241,25 +364,7 @@ def deflect(
     for rotor in ("male", "female"):
         for key in (f"{rotor}_max_deflection_helical", f"{rotor}_max_deflection", f"{rotor}_gas_force_n"):
             result[f"{key}_paper_to_rotorcad"] = result[f"{key}_paper"] / result[f"{key}_rotorcad"]
-    result["defaults"] = _defaults(op, de, model, exponent, terms_label, terms)
-    out = Outputs()
-    out.add_figure(
-        plot,
-        lambda: _plot(
-            model, lines, sweep_angles, swept, shafts, f"{Path(design).name}: {rotors.family}", other_lines, other_swept
-        ),
-        "--plot",
-    )
-    result["files"] = [str(x) for x in out.write()]
-    if as_json:
-        emit_json(result)
-    else:
-        print_table(
-            f"deflection under gas load, {Path(design).name}, flute load '{model.load.value}', "
-            f"male angle {np.degrees(at):.2f} deg",
-            result,
-        )
-        print_defaults(result["defaults"])
+    return result
 
 
 def _defaults(

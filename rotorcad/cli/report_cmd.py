@@ -20,8 +20,8 @@ import click
 from exports import html_report as hr
 from exports.csv_points import write_points
 from exports.dxf import write_dxf
-from rotorcad import __version__
-from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, output_folder, print_table, unit_of
+from rotorcad import __version__, quantities
+from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, output_folder, print_table
 from rotorcad.errors import DesignError
 
 ROTOR_OPTIONS: dict[str, Any] = {
@@ -62,8 +62,8 @@ GEAR_INPUT_UNITS = {
 def report_unit(key: str) -> str:
     """Return the unit of a result's dotted key as the page shows it.
 
-    ° for degrees, – for a pure number; the rules of the command tables,
-    :func:`rotorcad.cli.common.unit_of`.
+    The unit declared in :mod:`rotorcad.quantities` (the one of the command tables), with ° for
+    degrees and – for a pure number.
 
     Parameters
     ----------
@@ -76,17 +76,7 @@ def report_unit(key: str) -> str:
     str
         The unit as printed ("mm", "m/s", "°", "–", ...).
     """
-    last = key.split(".")[-1]
-    if last == "value" and key.startswith("max_sliding"):
-        return "m/s"
-    if last == "value" and key.startswith("max_slip"):
-        return "–"
-    if last in ("x", "y", "z_min", "z_max") or last.endswith("_z") or key.startswith("blow_hole_spatial.apex"):
-        return "mm"  # coordinates, and heights along the contact line
-    if "share" in last:
-        return "–"
-    unit = unit_of(last) or unit_of(key)
-    return {"deg": "°", "1": "–", "": "–"}.get(unit, unit)
+    return quantities.symbol(quantities.unit_of(key))
 
 
 def _input_unit(table: str, key: str, family: str | None) -> str:

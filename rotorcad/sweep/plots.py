@@ -9,6 +9,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from rotorcad import plot_style as ps
+from rotorcad import quantities
 from rotorcad.plot_style import styled
 
 
@@ -37,32 +38,8 @@ def pareto_mask(x: np.ndarray, y: np.ndarray, smaller_x: bool = True, smaller_y:
 
 
 NAMES: dict[str, tuple[str, str]] = {
-    # result columns (CONTRACT.md, sweep rows): name and unit
-    "blow_hole_area_mm2": ("blow-hole area", "mm²"),
-    "contact_line_length_mm": ("contact line length", "mm"),
-    "male_flute_area_mm2": ("male flute area", "mm²"),
-    "female_flute_area_mm2": ("female flute area", "mm²"),
-    "displacement_per_rev_mm3": ("displacement per male revolution", "mm³"),
-    "area_utilisation": ("area utilisation", "1"),
-    "max_sliding_velocity_m_s": ("largest sliding velocity", "m/s"),
-    "max_slip_male": ("largest slip, male", "1"),
-    "max_slip_female": ("largest slip, female", "1"),
-    "wrap_angle_deg": ("wrap angle", "°"),
-    "rack_loss_percent": ("rack loss", "%"),
-    "defects": ("meshline defects", "1"),
-    "defects_cusp": ("cusps on the meshline", "1"),
-    "defects_jamming": ("jamming points on the meshline", "1"),
-    "defects_slipping": ("slipping points on the meshline", "1"),
-    "interference_volume_mm3": ("largest intersection volume of the pair", "mm³"),
-    "housing_intersection_volume_mm3": ("volume of the rotors outside the bores", "mm³"),
-    "male_volume_mm3": ("male volume", "mm³"),
-    "female_volume_mm3": ("female volume", "mm³"),
-    "clearance_mean_mm": ("mean normal clearance", "mm"),
-    "clearance_max_mm": ("largest normal clearance", "mm"),
-    "clearance_min_mm": ("smallest normal clearance", "mm"),
-    "clearance_band_area_mm2": ("clearance band area", "mm²"),
-    "seconds": ("time per variant", "s"),
-    "rank": ("rank", "1"),
+    # result columns (CONTRACT.md, sweep rows): label and unit declared in rotorcad.quantities
+    **{name: (q.label, q.unit) for name, q in quantities.SWEEP_COLUMNS.items()},
     # varied design values ("table.key"): name and unit
     "pair.male_teeth": ("male teeth z1", "1"),
     "pair.female_teeth": ("female teeth z2", "1"),
@@ -103,7 +80,7 @@ def column_label(name: str) -> str:
     """
     if name in NAMES:
         words, unit = NAMES[name]
-        return ps.label(words, unit)
+        return ps.label(words, quantities.symbol(unit))
     key = name.split(".", 1)[1] if "." in name else name
     if key.endswith("_deg"):
         return ps.label(key[:-4].replace("_", " ") + " angle" * ("angle" not in key), "°")
