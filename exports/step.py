@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from exports.ocp_messages import quiet_ocp
+
 if TYPE_CHECKING:
     from exports.formats import ExportFormat, Writer
     from rotorcad.assembly import PlacedBody
@@ -117,17 +119,6 @@ def ocp_available() -> bool:
     return importlib.util.find_spec("OCP") is not None
 
 
-def _quiet_ocp() -> None:
-    """Keep only failures of OpenCASCADE's default messenger, which prints banners on stdout.
-
-    The stdout of a --json command must hold the JSON alone.
-    """
-    from OCP.Message import Message, Message_Gravity
-
-    for printer in Message.DefaultMessenger_s().Printers():
-        printer.SetTraceLevel(Message_Gravity.Message_Fail)
-
-
 def read_step(path: Path) -> dict[str, object]:
     """Read a STEP file with OpenCASCADE and check it.
 
@@ -156,7 +147,7 @@ def read_step(path: Path) -> dict[str, object]:
     from OCP.TopAbs import TopAbs_SOLID
     from OCP.TopExp import TopExp_Explorer
 
-    _quiet_ocp()
+    quiet_ocp()
     if not Path(path).is_file():  # OpenCASCADE's reader crashes on a missing file
         raise FileNotFoundError(str(path))
     reader = STEPControl_Reader()

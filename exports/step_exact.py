@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exports.step import _quiet_ocp
+from exports.ocp_messages import quiet_ocp
 from rotorcad.geometry import rotate
 
 
@@ -260,7 +260,7 @@ def helical_solid(segments: list[SectionSegment], lead: float, length: float, to
     from OCP.Geom2d import Geom2d_Line
     from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d
 
-    _quiet_ocp()
+    quiet_ocp()
     wire = BRepBuilderAPI_MakeWire()
     for seg in segments:
         wire.Add(_edge(seg, tolerance))
@@ -519,7 +519,7 @@ def write_housing_step(
     from OCP.Interface import Interface_Static
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
 
-    _quiet_ocp()
+    quiet_ocp()
     axis = gp_Dir(0.0, 0.0, 1.0)
     male = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0.0, 0.0, 0.0), axis), male_bore, length).Shape()
     female = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(center_distance, 0.0, 0.0), axis), female_bore, length).Shape()

@@ -69,7 +69,7 @@ def _rotors(rows: Iterable[tuple[str, str, str]], rotors: tuple[str, ...] = ("ma
 
 # --- involute gears (rotorcad/gear.py, rotorcad/cli/gear.py; ISO 21771) ---------------------------
 _declare(
-    "rotorcad/gear",
+    "rotorcad/gears",
     [
         ("pitch_radius", "mm", "pitch radius"),
         ("base_radius", "mm", "base radius"),
