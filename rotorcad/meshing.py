@@ -128,6 +128,7 @@ class MeshlinePiece:
     roles: np.ndarray = field(
         default_factory=lambda: np.zeros(0, dtype=object)
     )  # (n,) Flank per point: the lobe part (read off the rack)
+    rack_index: int = -1  # the rack piece (index into ScrewRotors.rack) whose contacts these are
 
 
 _FLANKS = np.array(list(Flank), dtype=object)
@@ -459,7 +460,72 @@ def _persistent(
     return [crossings[k] for k, _ in kept if not near_stretch[k]]
 
 
-def _meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float) -> np.ndarray:
+UNEVEN = 4.0
+"""A piece sampled evenly over its rack parameter whose longest meshline step exceeds this many times
+the mean step is resampled evenly along its meshline (:func:`_even_meshline_parameters`)."""
+
+
+def _even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int, scale: float) -> np.ndarray:
+    """Return rack parameters of one piece whose contacts lie about evenly along the meshline.
+
+    A rack curve fitted through a whole flank of points carries, in a short stretch of its
+    parameter, a long stretch of meshline (the N rack's tip circle: 0.2 mm of rack, 30 mm of
+    meshline along the male tip circle); sampled evenly over the parameter, that stretch gets two or
+    three contacts and no tangent. Where the even sampling is uneven along the meshline (a step over
+    :data:`UNEVEN` times the mean), the parameter is redistributed by the meshline's arc length
+    (plus a fifth of the samples evenly over the parameter, for the parts out of contact), twice,
+    with as many samples as keep the steps at 1/2000 of the centre distance (at least ``samples``,
+    at most 8 times as many).
+
+    Parameters
+    ----------
+    gen : Generated
+        The rack piece generating the female (its contact gives the meshline).
+    s0, s1 : float
+        The piece's parameter range.
+    samples : int
+        Samples of an even piece.
+    scale : float, mm
+        The centre distance.
+
+    Returns
+    -------
+    (n,) float array
+        Monotonic from ``s0`` to ``s1``.
+    """
+    s = np.linspace(s0, s1, samples)
+    for _ in range(2):
+        x = gen.contact(s).meshline
+        step = np.hypot(*np.diff(x, axis=0).T)
+        step = np.where(np.isfinite(step), step, 0.0)
+        length = float(step.sum())
+        if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
+            return s
+        measure = np.concatenate([[0.0], np.cumsum(step + 0.25 * length / (len(s) - 1))])
+        n = int(np.clip(np.ceil(2000.0 * length / scale), samples, 8 * samples))
+        s = np.interp(np.linspace(0.0, measure[-1], n), measure, s)
+    return s
+
+
+def _ramps(g: np.ndarray, arclen: np.ndarray) -> bool:
+    """Tell whether a miss within its band over a stretch runs through the band rather than staying at 0.
+
+    ``g`` is the miss over its band (|g| <= 1) along the stretch, at arc lengths ``arclen`` (mm).
+    An arc about the centre keeps g about 0 all along; a slow crossing of it (on O1O2, where the
+    normal passes through O1, O2 and C at once) runs g from one side of the band to the other: its
+    median |g| is over 0.3, or its straight-line trend (least squares, robust to one wobbling sample
+    of a fit's end) changes g by more than 1 over the stretch.
+    """
+    if np.median(np.abs(g)) > 0.3:
+        return True
+    span = float(arclen[-1] - arclen[0])
+    if len(g) < 3 or span <= 0:
+        return False
+    slope = np.polyfit(arclen - arclen[0], g, 1)[0]
+    return bool(abs(slope) * span > 1.0)
+
+
+def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float) -> np.ndarray:
     """Return the unit tangents of a meshline piece at its samples, (n, 2).
 
     Of the design's exact meshline, from a shape-preserving (modified Akima) cubic over the piece's
@@ -587,9 +653,9 @@ class MeshingAnalysis:
         mesh = pair.mesh
         o2 = np.array([pair.center_distance, 0.0])
         out = []
-        for piece in self.rotors.rack:
+        for index, piece in enumerate(self.rotors.rack):
             gen = Generated(piece.curve, mesh.rack, mesh.female)
-            s = np.linspace(piece.curve.s0, piece.curve.s1, self.samples)
+            s = _even_meshline_parameters(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
             c = gen.contact(s)
             x = c.meshline
             inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
@@ -610,6 +676,7 @@ class MeshingAnalysis:
                     piece.male_name,
                     piece.female_name,
                     roles,
+                    index,
                 )
             )
         return out
@@ -678,7 +745,7 @@ class MeshingAnalysis:
             length = float(arclen[-1])
             if len(pts) < 4 or length < 1e-6 * scale:
                 continue  # the piece touches at a single point (a tip or root land): no meshline
-            tau = _meshline_tangents(piece, arclen, acc if given else 0.0)
+            tau = meshline_tangents(piece, arclen, acc if given else 0.0)
             # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
             # through O1, O2 and C at once), and C itself lies on every meshline
             judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
@@ -695,7 +762,7 @@ class MeshingAnalysis:
                 for i, j in stretches:
                     if kind == "jamming":
                         continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
-                    ramp = np.median(np.abs(f[i : j + 1]) / band[i : j + 1]) > 0.3  # |f| runs through the band: no arc
+                    ramp = _ramps(f[i : j + 1] / band[i : j + 1], arclen[i : j + 1])  # f runs through the band: no arc
                     if not whole and ramp and np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale:
                         continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once
                     mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
@@ -938,9 +1005,39 @@ class MeshingAnalysis:
 
     @cached_property
     def meshline_end(self) -> np.ndarray:
-        """Meshline point nearest the housing cusp :attr:`cusp`, (2,) float, mm."""
+        """Meshline point nearest the housing cusp :attr:`cusp`, (2,) float, mm.
+
+        The nearest sample, then the nearest contact between its neighbours along the rack piece
+        (two rounds of 200 contacts): where the meshline turns sharply inside one piece (a rack
+        fitted through points carries the design's piece ends inside it), the turn's point lies
+        between samples.
+        """
         pts = self.meshline
-        return pts[np.argmin(np.hypot(*(pts - self.cusp).T))]
+        k = self.cusp
+        i = int(np.argmin(np.hypot(*(pts - k).T)))
+        sizes = np.cumsum([len(p.points) for p in self.pieces])
+        j = int(np.searchsorted(sizes, i, side="right"))
+        piece, local = self.pieces[j], i - (int(sizes[j - 1]) if j else 0)
+        if piece.rack_index < 0:
+            return pts[i]
+        pair = self.rotors.pair
+        gen = Generated(self.rotors.rack[piece.rack_index].curve, pair.mesh.rack, pair.mesh.female)
+        o2 = np.array([pair.center_distance, 0.0])
+        best, lo, hi = pts[i], piece.s[max(local - 1, 0)], piece.s[min(local + 1, len(piece.s) - 1)]
+        for _ in range(2):
+            s = np.linspace(lo, hi, 201)
+            c = gen.contact(s)
+            x = c.meshline
+            ok = c.in_contact & np.all(np.isfinite(x), axis=1)
+            ok &= (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            if not ok.any():
+                break
+            d = np.where(ok, np.hypot(*(x - k).T), np.inf)
+            m = int(np.argmin(d))
+            if d[m] < np.hypot(*(best - k)):
+                best = x[m]
+            lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
+        return best
 
     @property
     def meshline_closed(self) -> bool:
