@@ -507,6 +507,64 @@ def _even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int
     return s
 
 
+def turn_corner(points: np.ndarray, arclen: np.ndarray, i: int, reach: float) -> np.ndarray | None:
+    """Return the corner of a sampled meshline that turns sharply at sample ``i``, or None.
+
+    A profile's curvature jump (the N rack's male tip round meeting its sealing flank) turns the
+    meshline by a right angle at one point; a fit through points rounds that jump over a few
+    micrometres of profile, and where one profile micrometre carries 45 of meshline (the tip round)
+    the rounded turn overshoots the corner by 0.25 mm (measured from the N rack's own CSV: its
+    meshline leaves the design's by up to 0.2 mm within 1 mm of the turn, by 1 um beyond). A turn
+    by more than :data:`SHARP_TURN` is a corner: each branch, fitted by a quadratic in arc length
+    from 2 to 4 times the resolution ``reach`` (mm, :func:`resolution`) away from the turn (outside
+    the rounding), is extended towards it, and the corner is where the two extensions come nearest
+    each other (within ``reach`` / 10).
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The meshline samples of one piece.
+    arclen : (n,) float array, mm
+        Their arc length.
+    i : int
+        The sample at the turn (the meshline's end nearest the housing cusp).
+    reach : float, mm
+        The resolution.
+
+    Returns
+    -------
+    (2,) float array, mm, or None
+        None where the samples within ``reach`` of sample ``i`` do not turn by more than
+        :data:`SHARP_TURN` (chords either side), where a branch has under six samples or the
+        extended branches turn less, or where their corner lies farther than ``reach`` from sample
+        ``i`` or they pass farther than ``reach`` / 10 from each other.
+    """
+    s0 = arclen[i]
+    back = points[int(np.searchsorted(arclen, s0 - reach))]
+    ahead = points[min(int(np.searchsorted(arclen, s0 + reach)), len(points) - 1)]
+    chords = (points[i] - back, ahead - points[i])
+    if min(np.hypot(*chords[0]), np.hypot(*chords[1])) <= 0:
+        return None
+    if abs(np.angle(complex(*chords[1]) / complex(*chords[0]))) <= SHARP_TURN:
+        return None  # the samples do not turn there: the nearest point of a smooth stretch
+    before = (arclen >= s0 - 4 * reach) & (arclen <= s0 - 2 * reach)
+    after = (arclen >= s0 + 2 * reach) & (arclen <= s0 + 4 * reach)
+    if before.sum() < 6 or after.sum() < 6:
+        return None
+    fits = [np.polyfit(arclen[m] - s0, points[m], 2) for m in (before, after)]
+    heading = [complex(*(np.polyval(np.polyder(f[:, k]), d) for k in (0, 1))) for f, d in zip(fits, (-reach, reach), strict=True)]
+    if abs(np.angle(heading[1] / heading[0])) <= SHARP_TURN:
+        return None
+    u = np.linspace(-2 * reach, 2 * reach, 801)
+    ext = [np.column_stack([np.polyval(f[:, 0], u), np.polyval(f[:, 1], u)]) for f in fits]
+    gap = np.hypot(*(ext[0][:, None, :] - ext[1][None, :, :]).transpose(2, 0, 1))
+    a, b = np.unravel_index(int(np.argmin(gap)), gap.shape)
+    corner = 0.5 * (ext[0][a] + ext[1][b])
+    if gap[a, b] > 0.1 * reach or np.hypot(*(corner - points[i])) > reach:
+        return None
+    return corner
+
+
 def _ramps(g: np.ndarray, arclen: np.ndarray) -> bool:
     """Tell whether a miss within its band over a stretch runs through the band rather than staying at 0.
 
@@ -690,6 +748,11 @@ class MeshingAnalysis:
     def contact_angles(self) -> np.ndarray:
         """Male rotation angle at every point of :attr:`meshline`, (n,) float, rad."""
         return np.concatenate([p.t for p in self.pieces]) if self.pieces else np.zeros(0)
+
+    @property
+    def is_given(self) -> bool:
+        """True when the pair comes from points or a drawing (or an accuracy is imposed), not the design's exact curves."""
+        return getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None
 
     # ---- the rules of sec. 2.2.1 -----------------------------------------------------------
     @property
@@ -1037,6 +1100,11 @@ class MeshingAnalysis:
             if d[m] < np.hypot(*(best - k)):
                 best = x[m]
             lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
+        if self.is_given:
+            arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece.points, axis=0).T))])
+            corner = turn_corner(piece.points, arclen, local, resolution(self.judged_accuracy, pair.center_distance))
+            if corner is not None:
+                return corner
         return best
 
     @property
