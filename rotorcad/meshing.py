@@ -507,7 +507,14 @@ def _even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int
     return s
 
 
-def turn_corner(points: np.ndarray, arclen: np.ndarray, i: int, reach: float) -> np.ndarray | None:
+def turn_corner(
+    points: np.ndarray,
+    arclen: np.ndarray,
+    i: int,
+    reach: float,
+    circles: tuple[tuple[np.ndarray, float], ...] = (),
+    accuracy: float = 0.0,
+) -> np.ndarray | None:
     """Return the corner of a sampled meshline that turns sharply at sample ``i``, or None.
 
     A profile's curvature jump (the N rack's male tip round meeting its sealing flank) turns the
@@ -518,7 +525,12 @@ def turn_corner(points: np.ndarray, arclen: np.ndarray, i: int, reach: float) ->
     by more than :data:`SHARP_TURN` is a corner: each branch, fitted by a quadratic in arc length
     from 2 to 4 times the resolution ``reach`` (mm, :func:`resolution`) away from the turn (outside
     the rounding), is extended towards it, and the corner is where the two extensions come nearest
-    each other (within ``reach`` / 10).
+    each other (within ``reach`` / 10). A branch whose fitted samples lie on one of ``circles``
+    within 10 ``accuracy`` is that circle (a tip corner's path runs on its tip circle, Rinder's
+    "Radlinien der Punkte"), and the corner is where the other branch's extension meets it: the
+    rack-involute male's sealing tip corner meets the female's involute there, and from the
+    female's points the corner's path leaves its circle by 14-60 um in the last millimetre before
+    the turn.
 
     Parameters
     ----------
@@ -530,6 +542,10 @@ def turn_corner(points: np.ndarray, arclen: np.ndarray, i: int, reach: float) ->
         The sample at the turn (the meshline's end nearest the housing cusp).
     reach : float, mm
         The resolution.
+    circles : tuple of ((2,) float array, float), mm
+        Centres and radii of circles a branch may run on (the tip circles).
+    accuracy : float, mm
+        Accuracy of the samples.
 
     Returns
     -------
@@ -547,8 +563,8 @@ def turn_corner(points: np.ndarray, arclen: np.ndarray, i: int, reach: float) ->
         return None
     if abs(np.angle(complex(*chords[1]) / complex(*chords[0]))) <= SHARP_TURN:
         return None  # the samples do not turn there: the nearest point of a smooth stretch
-    before = (arclen >= s0 - 4 * reach) & (arclen <= s0 - 2 * reach)
-    after = (arclen >= s0 + 2 * reach) & (arclen <= s0 + 4 * reach)
+    before = (arclen >= s0 - 8 * reach) & (arclen <= s0 - 2 * reach)
+    after = (arclen >= s0 + 2 * reach) & (arclen <= s0 + 8 * reach)
     if before.sum() < 6 or after.sum() < 6:
         return None
     fits = [np.polyfit(arclen[m] - s0, points[m], 2) for m in (before, after)]
@@ -557,6 +573,19 @@ def turn_corner(points: np.ndarray, arclen: np.ndarray, i: int, reach: float) ->
         return None
     u = np.linspace(-2 * reach, 2 * reach, 801)
     ext = [np.column_stack([np.polyval(f[:, 0], u), np.polyval(f[:, 1], u)]) for f in fits]
+    for k, m in enumerate((before, after)):
+        for centre, radius in circles:
+            if np.abs(np.hypot(*(points[m] - centre).T) - radius).max() > 10 * accuracy:
+                continue
+            g = np.hypot(*(ext[1 - k] - centre).T) - radius  # the other branch's extension against the circle
+            cut = np.flatnonzero(g[:-1] * g[1:] <= 0)
+            if len(cut) == 0:
+                return None
+            j = int(cut[np.argmin(np.abs(u[cut]))])
+            w = g[j] / (g[j] - g[j + 1]) if g[j] != g[j + 1] else 0.0
+            corner = ext[1 - k][j] + w * (ext[1 - k][j + 1] - ext[1 - k][j])
+            corner = centre + (corner - centre) * radius / np.hypot(*(corner - centre))
+            return corner if np.hypot(*(corner - points[i])) <= reach else None
     gap = np.hypot(*(ext[0][:, None, :] - ext[1][None, :, :]).transpose(2, 0, 1))
     a, b = np.unravel_index(int(np.argmin(gap)), gap.shape)
     corner = 0.5 * (ext[0][a] + ext[1][b])
@@ -1102,7 +1131,9 @@ class MeshingAnalysis:
             lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
         if self.is_given:
             arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece.points, axis=0).T))])
-            corner = turn_corner(piece.points, arclen, local, resolution(self.judged_accuracy, pair.center_distance))
+            tips = ((np.zeros(2), pair.male_tip_radius), (o2, pair.female_tip_radius))
+            reach = resolution(self.judged_accuracy, pair.center_distance)
+            corner = turn_corner(piece.points, arclen, local, reach, tips, self.judged_accuracy)
             if corner is not None:
                 return corner
         return best
