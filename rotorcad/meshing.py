@@ -703,6 +703,46 @@ def is_tip_corner(defect: Defect, pair: RotorPair, tolerance: float) -> bool:
     return min(abs(r1 - pair.male_tip_radius), abs(r2 - pair.female_tip_radius)) <= tolerance
 
 
+def tip_on_centre_line(outline: np.ndarray, teeth: int, tip_radius: float, tolerance: float, angles: np.ndarray) -> float:
+    """Return the male rotation (rad) at which the middle of a male tip lies on O1O2.
+
+    The zero of the one angle convention (:data:`ANGLE_CONVENTION`, :meth:`MeshingAnalysis.rinder_angle`):
+    the tip land is the outline's points within ``tolerance`` of ``tip_radius`` (the outermost
+    point when none is), folded over the lobes; the male turns counter-clockwise, so a point at
+    polar angle b is on O1O2 at rotation -b. Of the passages one pitch apart, the one nearest the
+    middle of ``angles``.
+
+    Parameters
+    ----------
+    outline : (n, 2) float array, mm
+        The male outline (one lobe or more) in its own frame.
+    teeth : int
+        Male lobe count z1.
+    tip_radius : float, mm
+        Male tip radius.
+    tolerance : float, mm
+        How near the tip radius a point of the tip land lies.
+    angles : (m,) float array, rad
+        Male rotation angles of the contacts the convention is for (the meshline's, the
+        clearance's), in the meshing engine's count.
+
+    Returns
+    -------
+    float, rad
+    """
+    r = np.hypot(*outline.T)
+    top = outline[r >= tip_radius - tolerance]
+    if len(top) == 0:
+        top = outline[[int(np.argmax(r))]]
+    pitch = 2 * np.pi / teeth
+    beta = np.arctan2(top[:, 1], top[:, 0])
+    b0 = float(np.angle(np.exp(1j * teeth * beta).mean())) / teeth  # one tip, folded over the lobes
+    near = wrap_angle(beta, b0, pitch)  # the tip points of every lobe, folded onto that one
+    t_ref = -0.5 * (float(near.min()) + float(near.max()))
+    mid = 0.5 * (float(np.min(angles)) + float(np.max(angles))) if len(angles) else 0.0
+    return t_ref + pitch * round((mid - t_ref) / pitch)
+
+
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
     """Everything Rinder reads off a toothing, for one pair at a design speed.
@@ -1043,26 +1083,14 @@ class MeshingAnalysis:
     def angle_reference(self) -> float:
         """Male rotation (rad) at which the middle of a male tip lies on O1O2, the zero of :meth:`rinder_angle`.
 
-        Read off the male section (its points on the tip circle, to 1e-4 of the addendum), so it
-        does not depend on how the profile was given; of the passages one pitch apart, the one
-        nearest the middle of the meshline's range of angles.
+        Read off the male section (:func:`tip_on_centre_line`), so it does not depend on how the
+        profile was given; of the passages one pitch apart, the one nearest the middle of the
+        meshline's range of angles.
         """
         pair = self.rotors.pair
         ring = np.asarray(self.sections[0].exterior.coords)
-        r = np.hypot(*ring.T)
-        top = ring[r >= pair.male_tip_radius - 1e-4 * max(pair.male_addendum, 1e-3)]
-        if len(top) == 0:
-            top = ring[[int(np.argmax(r))]]
-        z1 = pair.male_teeth
-        pitch = 2 * np.pi / z1
-        beta = np.arctan2(top[:, 1], top[:, 0])
-        b0 = float(np.angle(np.exp(1j * z1 * beta).mean())) / z1  # one tip, folded over the lobes
-        near = wrap_angle(beta, b0, pitch)  # the tip points of every lobe, folded onto that one
-        b_mid = 0.5 * (float(near.min()) + float(near.max()))
-        t_ref = -b_mid  # the male turns counter-clockwise: a point at polar angle b is on O1O2 at t = -b
-        t = self.contact_angles
-        mid = 0.5 * (float(t.min()) + float(t.max())) if len(t) else 0.0
-        return t_ref + pitch * round((mid - t_ref) / pitch)
+        tolerance = 1e-4 * max(pair.male_addendum, 1e-3)
+        return tip_on_centre_line(ring, pair.male_teeth, pair.male_tip_radius, tolerance, self.contact_angles)
 
     def rinder_angle(self, t: np.ndarray | float) -> np.ndarray | float:
         """Male rotation angle in the convention of every angle rotorcad shows (deg).

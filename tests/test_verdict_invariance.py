@@ -334,3 +334,40 @@ def test_n_rack_tip_round_meshline_from_points(form):
     assert np.hypot(*(piece.points[on] - x).T).max() < 10 * given.judged_accuracy
     turn = np.abs(np.arcsin(np.clip(v[:, 0] * tau[:, 1] - v[:, 1] * tau[:, 0], -1.0, 1.0)))
     assert turn.max() < given.tolerance  # within the cusp test's tangent tolerance (1 mrad), not 7-9 mrad off
+
+
+def test_clearance_angles_in_the_one_convention(verdicts, written, tmp_path, capsys):
+    # issue 21 item 4: the clearance CSV's male_angle_deg was the engine's male rotation (another zero,
+    # the opposite sign, over more than one lobe), not `rotor`'s count. References: (1) the male tip
+    # land is on O1O2 exactly while the middle of the tip passes it, phi in +-w/2 with w the land's
+    # polar width (the design's tip arc segment): the rows touching at the tip point are symmetric
+    # about 0; (2) the design's meshline angle in
+    # `rotor`'s count (MeshingAnalysis.kinematics, its own passage) at the same contact point
+    from scipy.spatial import cKDTree
+
+    from rotorcad.meshing import MeshingAnalysis
+
+    path = tmp_path / "c.csv"
+    given = ["--male-points", written["male"], "--female-points", written["female"]]
+    rc, _, err = run(capsys, "clearance", *given, *DIMS_56, "--csv", path)
+    assert rc == 0, err
+    lines = [line for line in path.read_text().splitlines() if line and not line.startswith("#")]
+    header, rows = lines[0].split(","), np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+    col = dict(zip(header, rows.T, strict=True))
+    on = col["in_contact"] == 1
+    contact, phi = np.column_stack([col["contact_x"], col["contact_y"]])[on], col["male_angle_deg"][on]
+    assert np.all(np.abs(phi) <= 180.0 / 5 + 1e-9)  # one lobe's window, root to root
+    rotors = _rack_involute()
+    pair = rotors.pair
+    land = next(s for s in rotors.male_lobe().segments if s.name == "tip arc").points
+    half = 0.5 * np.degrees(np.ptp(np.arctan2(land[:, 1], land[:, 0])))
+    at_tip = np.hypot(contact[:, 0] - pair.male_tip_radius, contact[:, 1]) < 1e-2
+    assert at_tip.sum() > 10
+    assert abs(phi[at_tip].min() + phi[at_tip].max()) < 0.05
+    assert phi[at_tip].max() <= half + 0.1
+    analysis = MeshingAnalysis(rotors)
+    dist, idx = cKDTree(analysis.meshline).query(contact)
+    c = np.array([pair.male_pitch_radius, 0.0])
+    away = (dist < 0.02) & (np.abs(contact[:, 1]) > 0.05) & (np.hypot(*(contact - c).T) > 1.0)  # off the lands and C
+    assert away.sum() > 1000
+    assert np.abs(phi[away] - analysis.kinematics["angle_deg"][idx[away]]).max() < 0.1
