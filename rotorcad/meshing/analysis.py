@@ -292,13 +292,14 @@ class MeshingAnalysis:
     def spatial_blow_hole(self) -> SpatialBlowHole:
         """The blow-hole triangle in 3D (:mod:`rotorcad.blow_hole`).
 
-        Its apex is the meshline end nearest the cusp, at that point's height on the contact line (z
-        measured as in :attr:`contact_line`, from the contact line's start).
+        Its apex is the meshline end nearest the cusp (:attr:`meshline_end`, the apex of the projected
+        blow-hole), at the height on the contact line of the meshline sample nearest it (z measured
+        as in :attr:`contact_line`, from the contact line's start).
         """
-        pts = self.meshline
-        i = int(np.argmin(np.hypot(*(pts - self.cusp).T)))
+        pts, end = self.meshline, self.meshline_end
+        i = int(np.argmin(np.hypot(*(pts - end).T)))
         z = self.rotors.pair.lead * self.contact_angles / (2 * np.pi)
-        return SpatialBlowHole(self.rotors.pair, pts[i], float(z[i] - z.min()), self.cusp)
+        return SpatialBlowHole(self.rotors.pair, end, float(z[i] - z.min()), self.cusp)
 
     # ---- contact line (eq. 1) ------------------------------------------------------------
     @cached_property
