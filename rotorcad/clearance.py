@@ -794,6 +794,31 @@ class MeshingClearance:
             "contact_zone_share": float(on.sum() / use.sum()),
         }
 
+    def rinder_angle(self, angle: Array) -> Array:
+        """Male rotation angles of contacts in the one angle convention (deg, :data:`rotorcad.meshing.ANGLE_CONVENTION`).
+
+        The rotation still to go until the middle of the nearest male tip (the given male's points
+        within the larger of 1e-4 of the addendum and :attr:`accuracy` of its outermost radius)
+        reaches O1O2, as :meth:`rotorcad.meshing.MeshingAnalysis.rinder_angle` counts it: within
+        +-180/z1 deg, the window of one lobe from root to root in which ``rotor`` gives its angles.
+
+        Parameters
+        ----------
+        angle : (n,) float array, rad
+            Male rotation angles of the contacts (the count of :meth:`distribution`'s ``z``).
+
+        Returns
+        -------
+        (n,) float array, deg
+        """
+        from rotorcad.meshing import tip_on_centre_line  # meshing imports the engine, not this module
+
+        ring, pair = self._male_outline, self.pair
+        tol = max(1e-4 * pair.male_addendum, self.accuracy)
+        zero = tip_on_centre_line(ring, pair.male_teeth, float(np.hypot(*ring.T).max()), tol, angle[self._use])
+        half = 180.0 / pair.male_teeth
+        return (np.degrees(zero - angle) + half) % (2 * half) - half
+
     def distribution(self) -> dict[str, Array]:
         """Return the clearance on both rotors and over the rotation (Wu & Chi Fig. 9).
 
@@ -801,9 +826,10 @@ class MeshingClearance:
         -------
         dict of (n,) float arrays
             One row per datum rack point: ``x``, ``y`` the positioned datum normal rack (mm);
-            ``clearance`` along its normal (mm); ``male_angle_deg`` the male rotation angle at which the
-            point is in contact (deg) and ``z`` its axial position on the contact line (mm, z = h1 phi /
-            2 pi from the first contact inside both bores, so that 0 is the suction end and ``length``
+            ``clearance`` along its normal (mm); ``male_angle_deg`` the male angle at which the
+            point is in contact (deg, the one angle convention, :meth:`rinder_angle`) and ``z`` its
+            axial position on the contact line (mm, z = h1 phi / 2 pi with phi the male rotation,
+            from the first contact inside both bores, so that 0 is the suction end and ``length``
             the discharge end); ``contact_x``, ``contact_y`` the contact point in the fixed transverse
             frame (mm); ``female_x``, ``female_y`` the female profile point there (own frame, mesh
             position, mm), ``male_x``, ``male_y`` the male point facing it across the transverse gap
@@ -831,7 +857,7 @@ class MeshingClearance:
             "x": pts[:, 0],
             "y": pts[:, 1],
             "clearance": delta,
-            "male_angle_deg": np.degrees(angle),
+            "male_angle_deg": self.rinder_angle(angle),
             "z": z,
             "contact_x": contact[:, 0],
             "contact_y": contact[:, 1],

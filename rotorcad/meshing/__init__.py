@@ -1,0 +1,128 @@
+"""Meshing analysis of a screw-rotor pair after Rinder (*Sonderverzahnungen für Schraubenverdichterrotoren*).
+
+Meshline, contact line (eq. 1), the kinematic rules of sec. 2.2.1 (cusp, jamming, slipping),
+tightness and blow-hole (sec. 2.2.2), flute areas and displacement, sliding velocity and slip
+(eqs. 2-4).
+
+The package, one job a module (every name importable from ``rotorcad.meshing`` as before):
+:mod:`~rotorcad.meshing.meshline` (the meshline's pieces, their sampling, tangents, turns and
+corners), :mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's
+accuracy), :mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per
+flank), :mod:`~rotorcad.meshing.angles` (the one angle convention) and
+:mod:`~rotorcad.meshing.analysis` (:class:`MeshingAnalysis`: the verdict and the summary).
+
+The meshline is the set of contact points in the fixed transverse frame: for a rack-generated
+pair the rack touches both rotors at the same point, so it is the rack's contact locus. Only
+contacts inside both bores (tip circles) count. Its tangent comes from an interpolating spline of
+each piece over the generating parameter (never from point differences).
+
+Rinder's criteria, as this module applies them
+----------------------------------------------
+*Geometric contact* (sec. 1.2, of Krigar's profile: "Eine Berührung der Flanken ... im
+geometrischen Sinn mit gemeinsamen Tangenten im Eingriffspunkt, wie sie für eine lauffähige
+Verzahnung gefordert werden muß"): the two flanks touch with a common tangent. A rack curve
+touching both rotors gives it; the path of a tip corner (a *point-generated* flank part, "Radlinien
+der Punkte P_H und P_N") does not: it is a corner against a flank.
+
+*Working part* of a flank: its meshline with geometric contact. Point-generated parts seal (they
+carry the meshline to the housing cusp, sec. 2.2.2) but do not drive; Rinder's narrow-tip profile
+has "lange, punkterzeugte Flankenteile an der Dichtflanke" and still "gute Laufeigenschaften an
+beiden Flankenteilen", and the asymmetric SRM profile's sealing flank runs properly "zumindest in
+einem kleinen Flankenbereich" (a short straight female flank): a working part of any length makes
+the flank run, with the helix.
+
+*Cusp* (Spitze, sec. 2.2.1): a meshline point whose normal passes through O1 (a cusp on the male
+flank) or O2 (on the female). Rinder names these in the profiles he calls runnable ("vgl. Bild 1,
+2, 3 und 4") and says of the tips "Am Haupt- bzw. Nebenläuferkopf ist demnach nur eine Spitze oder
+Ecke als Flanke denkbar" (sec. 2.2.2). So a cusp that is a rotor's tip corner is no defect: a
+point-generated piece (the corner's path, its normal through the centre all along) and a cusp on
+either tip circle, where the working flank hands over to a tip corner's path (a smooth flank touches
+its tip circle only on O1O2), end the working part (:func:`is_tip_corner`; the JSON says
+``tip_corner``). A cusp inside a working part, off the tip circles, is a defect: the flank reverses
+(an undercut). The rack-involute pair shows it: its female sealing involute is used down to its
+base circle, where its cusp meets the male tip corner.
+
+*Jamming* (Klemmen): the meshline normal passes through the pitch point C, except where "beide
+Flankenkrümmungsmittelpunkte mit dem Wälzpunkt zusammenfallen" (Lysholm's circular driving flank and
+the symmetric SRM flanks, circles about C: their meshline is an arc about C).
+
+*Slipping* (Durchrutschen): the meshline crosses O1O2 away from C; no flank drives the other there,
+but "durch die verschraubten Zähne stellt diese Bedingung aber keine Einschränkung ... dar": it
+does not count against running.
+
+*Contact ratios* per flank (helical-gear sense): the transverse ratio is the male rotation over
+which the working part is in contact, per angular pitch 2 pi / z1 (0 for a circle about C, which
+touches at one instant: Lysholm's "nur infinitesimale Stirnüberdeckung"); the overlap ratio
+(Sprungüberdeckung) is the male rotation over which one lobe's contact line lasts along the rotor,
+the wrap angle 2 pi L / h1, per angular pitch: z1 L / h1; the total ratio is their sum. The helix
+carries only a working contact along the rotor, so a flank without a working part has overlap 0.
+
+*Runs* (a flank runs, i.e. carries the drive in the sense of rotation that loads it): it has a
+working part, no cusp or jamming inside it, and a total contact ratio of at least 1 ("Die nur
+infinitesimale Stirnüberdeckung wird durch ... hohe Sprungüberdeckung kompensiert"; the symmetric
+SRM profile runs "bei ausreichender Verschraubung der Zähne in beiden Drehrichtungen").
+*Runs without timing gears*: both flanks run (Rinder: "Lauffähigkeit in beiden Drehrichtungen",
+sec. 2.1); Lysholm's profile, whose sealing flank has no working part, needs them ("ohne
+Koppelgetriebe nicht einwandfrei verwendbar").
+
+Angle convention
+----------------
+Every angle a user reads (JSON ``angle_deg`` keys, tables, pictures, report, README) is
+:meth:`MeshingAnalysis.rinder_angle`: the male rotation still to go until the middle of a male tip
+reaches the line of centres O1O2 (the lobe pointing at O2), positive before and negative after that
+instant. In it the male tip reaches the housing cusp on the sealing side at a negative angle, as in
+Rinder's Figs. 10-13 ("ca. -25°", sec. 3.2). The figures themselves are not legible in the source;
+this zero and sign are read from the text of sec. 3.2.
+
+Blow-hole (projected definition, stated because the paper gives no formula): the curvilinear
+triangle in the transverse plane between the meshline's end E nearest the housing cusp K and K
+itself, bounded by the arc of the female tip circle from K to the radial projection of E on it, the
+arc of the male tip circle from K to the radial projection of E on it, and the two radial pieces
+to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear) blow-hole is
+:class:`rotorcad.blow_hole.SpatialBlowHole` (:attr:`MeshingAnalysis.spatial_blow_hole`).
+"""
+
+from rotorcad.meshing.analysis import MeshingAnalysis
+from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
+from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
+from rotorcad.meshing.defects import (
+    Defect,
+    is_tip_corner,
+    meshline_defects,
+    resolution,
+    robust_zeros,
+    slipping_between_pieces,
+)
+from rotorcad.meshing.meshline import (
+    SHARP_TURN,
+    UNEVEN,
+    MeshlinePiece,
+    even_meshline_parameters,
+    flank_roles,
+    meshline_tangents,
+    reversals,
+    turn_corner,
+)
+
+__all__ = [
+    "ANGLE_CONVENTION",
+    "SHARP_TURN",
+    "UNEVEN",
+    "Defect",
+    "FlankReport",
+    "MeshingAnalysis",
+    "MeshlinePiece",
+    "even_meshline_parameters",
+    "flank_reports",
+    "flank_roles",
+    "is_tip_corner",
+    "meshline_defects",
+    "meshline_tangents",
+    "resolution",
+    "reversals",
+    "robust_zeros",
+    "running_reasons",
+    "slipping_between_pieces",
+    "tip_on_centre_line",
+    "turn_corner",
+]

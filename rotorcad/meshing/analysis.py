@@ -1,0 +1,534 @@
+"""The meshing analysis of a pair, everything Rinder reads off a toothing (:class:`MeshingAnalysis`).
+
+Meshline (:mod:`rotorcad.meshing.meshline`), the rules of sec. 2.2.1 (:mod:`rotorcad.meshing.defects`),
+the per-flank verdict (:mod:`rotorcad.meshing.contact_ratios`), the one angle convention
+(:mod:`rotorcad.meshing.angles`), tightness and blow-hole (sec. 2.2.2), contact line (eq. 1), flute
+areas and displacement, sliding velocity and slip (eqs. 2-4), and the summary ``rotor --json``
+prints. The criteria are stated in :mod:`rotorcad.meshing`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import shapely
+
+from rotorcad.blow_hole import SpatialBlowHole
+from rotorcad.envelope import Generated
+from rotorcad.geometry import cross, wrap_angle
+from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
+from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
+from rotorcad.meshing.defects import Defect, is_tip_corner, meshline_defects, resolution
+from rotorcad.meshing.meshline import MeshlinePiece, even_meshline_parameters, flank_roles, turn_corner
+from rotorcad.profile import DEFAULT_TOLERANCE
+from rotorcad.roles import Flank, PieceRole
+from rotorcad.screw_rotors import ScrewRotors
+
+
+@dataclass(frozen=True, eq=False)
+class MeshingAnalysis:
+    """Everything Rinder reads off a toothing, for one pair at a design speed.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The generated pair.
+    speed_rpm : float, rpm
+        Male speed, for the sliding velocities (m/s).
+    samples : int
+        Samples along each rack piece.
+    tolerance : float, rad
+        Relative tolerance of the cusp/jamming test: the uncertainty of the meshline's tangent
+        direction (a whole piece within it is a point-generated flank).
+    accuracy : float, mm, optional
+        Accuracy of the profile to which the defects are judged; None: that of the rotors
+        (:attr:`judged_accuracy`).
+    """
+
+    rotors: ScrewRotors
+    speed_rpm: float = 3000.0
+    samples: int = 600
+    tolerance: float = 1e-3
+    accuracy: float | None = None
+
+    # ---- meshline ------------------------------------------------------------------------
+    @cached_property
+    def pieces(self) -> list[MeshlinePiece]:
+        """The meshline, piece by piece: the contacts of every rack piece inside both bores.
+
+        A list of :class:`MeshlinePiece`; pieces with fewer than two contacts are left out.
+        """
+        pair = self.rotors.pair
+        mesh = pair.mesh
+        o2 = np.array([pair.center_distance, 0.0])
+        out = []
+        for index, piece in enumerate(self.rotors.rack):
+            gen = Generated(piece.curve, mesh.rack, mesh.female)
+            s = even_meshline_parameters(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
+            c = gen.contact(s)
+            x = c.meshline
+            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            ok = c.in_contact & inside & np.all(np.isfinite(x), axis=1)
+            if ok.sum() < 2:
+                continue
+            rack_pts, tan = piece.curve.evaluate(s)
+            tan_fixed = mesh.rack.vectors_to_fixed(tan, c.t)
+            roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, pair.center_distance)
+            out.append(
+                MeshlinePiece(
+                    piece.male_name,
+                    piece.kind,
+                    s[ok],
+                    c.t[ok],
+                    x[ok],
+                    tan_fixed[ok],
+                    piece.male_name,
+                    piece.female_name,
+                    roles,
+                    index,
+                )
+            )
+        return out
+
+    @property
+    def meshline(self) -> np.ndarray:
+        """All contact points in the fixed frame, (n, 2) float, mm (piece after piece)."""
+        return np.concatenate([p.points for p in self.pieces]) if self.pieces else np.zeros((0, 2))
+
+    @property
+    def contact_angles(self) -> np.ndarray:
+        """Male rotation angle at every point of :attr:`meshline`, (n,) float, rad."""
+        return np.concatenate([p.t for p in self.pieces]) if self.pieces else np.zeros(0)
+
+    @property
+    def is_given(self) -> bool:
+        """True when the pair comes from points or a drawing (or an accuracy is imposed), not the design's exact curves."""
+        return getattr(self.rotors, "accuracy", 0.0) > 0 or self.accuracy is not None
+
+    # ---- the rules of sec. 2.2.1 -----------------------------------------------------------
+    @property
+    def judged_accuracy(self) -> float:
+        """The accuracy (mm) to which the defects are judged (``defect_accuracy`` of the summary).
+
+        :attr:`accuracy` when given, else that of the profile the pair was generated from
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), at least the design's chord tolerance
+        :data:`rotorcad.profile.DEFAULT_TOLERANCE`.
+        """
+        if self.accuracy is not None:
+            return float(self.accuracy)
+        return max(float(getattr(self.rotors, "accuracy", 0.0)), DEFAULT_TOLERANCE)
+
+    @cached_property
+    def defects(self) -> list[Defect]:
+        """Cusps, jamming and slipping points on the meshline (Rinder sec. 2.2.1), a list of :class:`Defect`.
+
+        :func:`rotorcad.meshing.defects.meshline_defects` of :attr:`pieces`, judged to
+        :attr:`judged_accuracy`.
+        """
+        return meshline_defects(self.pieces, self.rotors.pair, self.judged_accuracy, self.tolerance, self.is_given)
+
+    @property
+    def point_generated_flanks(self) -> list[dict[str, str]]:
+        """Flanks traced by a single corner of the mate (punkterzeugt).
+
+        A list of dicts with ``rotor``, ``flank`` (segment name) and ``generated_by``.
+        """
+        out = []
+        for piece in self.rotors.rack:
+            if piece.kind is PieceRole.MALE_CORNER_PATH:
+                out.append({"rotor": "female", "flank": piece.female_name, "generated_by": "male tip corner"})
+            elif piece.kind is PieceRole.FEMALE_CORNER_PATH:
+                out.append({"rotor": "male", "flank": piece.male_name, "generated_by": "female tip corner"})
+        return out
+
+    # ---- running without timing gears (1.2, 2.2.1) -----------------------------------------
+    @property
+    def tip_corner_tolerance(self) -> float:
+        """How near a tip circle a cusp must lie to be that tip's corner (:func:`is_tip_corner`), mm.
+
+        1e-4 of the centre distance (12 µm at a = 116 mm): far below any flank's extent, far above
+        the meshline's sampling error at a corner's end; for a profile given to a coarser accuracy
+        (:attr:`judged_accuracy`, measured points) 20 times that accuracy, the distance by which a
+        corner found from points may sit off its tip circle.
+        """
+        return max(1e-4 * self.rotors.pair.center_distance, 20.0 * self.judged_accuracy)
+
+    @cached_property
+    def flanks(self) -> dict[Flank, FlankReport]:
+        """Per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
+
+        :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`.
+        """
+        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance)
+
+    @property
+    def running_reasons(self) -> list[str]:
+        """Why the pair does not run without timing gears, one sentence per flank (empty: it runs)."""
+        return running_reasons(self.flanks, self.defects, self.rotors.pair, self.tip_corner_tolerance)
+
+    # ---- one angle convention (Rinder Figs. 10-13) -------------------------------------------
+    @cached_property
+    def angle_reference(self) -> float:
+        """Male rotation (rad) at which the middle of a male tip lies on O1O2, the zero of :meth:`rinder_angle`.
+
+        Read off the male section (:func:`tip_on_centre_line`), so it does not depend on how the
+        profile was given; of the passages one pitch apart, the one nearest the middle of the
+        meshline's range of angles.
+        """
+        pair = self.rotors.pair
+        ring = np.asarray(self.sections[0].exterior.coords)
+        tolerance = 1e-4 * max(pair.male_addendum, 1e-3)
+        return tip_on_centre_line(ring, pair.male_teeth, pair.male_tip_radius, tolerance, self.contact_angles)
+
+    def rinder_angle(self, t: np.ndarray | float) -> np.ndarray | float:
+        """Male rotation angle in the convention of every angle rotorcad shows (deg).
+
+        phi = male rotation still to go until the middle of a male tip reaches the line of centres
+        O1O2 (the lobe pointing at O2): positive before, negative after that instant. In this count
+        the male tip reaches the housing cusp on the sealing side at a negative angle, as in
+        Rinder's Figs. 10-13 and sec. 3.2 ("Drehwinkelstellung von ca. -25°").
+
+        Parameters
+        ----------
+        t : float or (n,) float array, rad
+            Male rotation angle of the meshing engine (:attr:`contact_angles`).
+
+        Returns
+        -------
+        float or (n,) float array, deg
+        """
+        return np.degrees(self.angle_reference - np.asarray(t, dtype=float))
+
+    # ---- tightness (2.2.2) -----------------------------------------------------------------
+    @cached_property
+    def cusp(self) -> np.ndarray:
+        """The housing cusp that the meshline comes nearest, (2,) float, mm.
+
+        The intersection of the tip circles above O1O2, or its mirror image below.
+        """
+        k = self.rotors.pair.housing_cusp
+        pts = self.meshline
+        lower = k * np.array([1.0, -1.0])
+        return k if np.hypot(*(pts - k).T).min() <= np.hypot(*(pts - lower).T).min() else lower
+
+    @cached_property
+    def meshline_end(self) -> np.ndarray:
+        """Meshline point nearest the housing cusp :attr:`cusp`, (2,) float, mm.
+
+        The nearest sample, then the nearest contact between its neighbours along the rack piece
+        (two rounds of 200 contacts): where the meshline turns sharply inside one piece (a rack
+        fitted through points carries the design's piece ends inside it), the turn's point lies
+        between samples.
+        """
+        pts = self.meshline
+        k = self.cusp
+        i = int(np.argmin(np.hypot(*(pts - k).T)))
+        sizes = np.cumsum([len(p.points) for p in self.pieces])
+        j = int(np.searchsorted(sizes, i, side="right"))
+        piece, local = self.pieces[j], i - (int(sizes[j - 1]) if j else 0)
+        if piece.rack_index < 0:
+            return pts[i]
+        pair = self.rotors.pair
+        gen = Generated(self.rotors.rack[piece.rack_index].curve, pair.mesh.rack, pair.mesh.female)
+        o2 = np.array([pair.center_distance, 0.0])
+        best, lo, hi = pts[i], piece.s[max(local - 1, 0)], piece.s[min(local + 1, len(piece.s) - 1)]
+        for _ in range(2):
+            s = np.linspace(lo, hi, 201)
+            c = gen.contact(s)
+            x = c.meshline
+            ok = c.in_contact & np.all(np.isfinite(x), axis=1)
+            ok &= (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            if not ok.any():
+                break
+            d = np.where(ok, np.hypot(*(x - k).T), np.inf)
+            m = int(np.argmin(d))
+            if d[m] < np.hypot(*(best - k)):
+                best = x[m]
+            lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
+        if self.is_given:
+            arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece.points, axis=0).T))])
+            tips = ((np.zeros(2), pair.male_tip_radius), (o2, pair.female_tip_radius))
+            reach = resolution(self.judged_accuracy, pair.center_distance)
+            corner = turn_corner(piece.points, arclen, local, reach, tips, self.judged_accuracy)
+            if corner is not None:
+                return corner
+        return best
+
+    @property
+    def meshline_closed(self) -> bool:
+        """The meshline runs into the housing cusp (Rinder 2.2.2), within 1 micrometre."""
+        return bool(np.hypot(*(self.meshline_end - self.cusp)) < 1e-3)
+
+    @cached_property
+    def blow_hole(self) -> shapely.Geometry:
+        """Projected blow-hole polygon (see the module docstring)."""
+        pair = self.rotors.pair
+        k, e = self.cusp, self.meshline_end
+        if np.hypot(*(e - k)) < 1e-3:
+            return shapely.Polygon()
+        o2 = np.array([pair.center_distance, 0.0])
+        r1, r2 = pair.male_tip_radius, pair.female_tip_radius
+        em = e / np.hypot(*e) * r1
+        ef = o2 + (e - o2) / np.hypot(*(e - o2)) * r2
+
+        def arc(center: np.ndarray, r: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+            t0 = np.arctan2(*(a - center)[::-1])
+            t1 = np.arctan2(*(b - center)[::-1])
+            t1 = wrap_angle(t1, t0)
+            th = np.linspace(t0, t1, 200)
+            return center + r * np.stack([np.cos(th), np.sin(th)], axis=1)
+
+        ring = np.vstack([[e], arc(o2, r2, ef, k), arc(np.zeros(2), r1, k, em), [e]])
+        return shapely.make_valid(shapely.Polygon(ring))
+
+    @property
+    def blow_hole_area(self) -> float:
+        """Area of the projected blow-hole :attr:`blow_hole`, mm²."""
+        return float(self.blow_hole.area)
+
+    @cached_property
+    def spatial_blow_hole(self) -> SpatialBlowHole:
+        """The blow-hole triangle in 3D (:mod:`rotorcad.blow_hole`).
+
+        Its apex is the meshline end nearest the cusp (:attr:`meshline_end`, the apex of the projected
+        blow-hole), at the height on the contact line of the meshline sample nearest it (z measured
+        as in :attr:`contact_line`, from the contact line's start).
+        """
+        pts, end = self.meshline, self.meshline_end
+        i = int(np.argmin(np.hypot(*(pts - end).T)))
+        z = self.rotors.pair.lead * self.contact_angles / (2 * np.pi)
+        return SpatialBlowHole(self.rotors.pair, end, float(z[i] - z.min()), self.cusp)
+
+    # ---- contact line (eq. 1) ------------------------------------------------------------
+    @cached_property
+    def contact_line(self) -> np.ndarray:
+        """3D contact (sealing) line, (n, 3) float, mm.
+
+        Meshline points with z = h1 alpha / 2 pi (Rinder eq. 1, alpha the male rotation angle), shifted
+        to start at z = 0 and cut at the rotor length.
+        """
+        pair = self.rotors.pair
+        pts = self.meshline
+        z = pair.lead * self.contact_angles / (2 * np.pi)
+        line = np.column_stack([pts, z - z.min()])
+        return line[line[:, 2] <= pair.length + 1e-9]
+
+    @property
+    def contact_line_length(self) -> float:
+        """Length of the polyline :attr:`contact_line`, mm."""
+        line = self.contact_line
+        return float(np.linalg.norm(np.diff(line, axis=0), axis=1).sum())
+
+    # ---- areas and displacement ------------------------------------------------------------
+    @cached_property
+    def sections(self) -> tuple[shapely.Polygon, shapely.Polygon]:
+        """Transverse sections of the male and the female, each in its own frame (shapely polygons, mm)."""
+        return self.rotors.section("male"), self.rotors.section("female")
+
+    @property
+    def male_flute_area(self) -> float:
+        """Male flute area A1 = (bore area - rotor section) / z1, mm² (bore = male tip circle)."""
+        pair = self.rotors.pair
+        return float((np.pi * pair.male_tip_radius**2 - self.sections[0].area) / pair.male_teeth)
+
+    @property
+    def female_flute_area(self) -> float:
+        """Female flute area A2 = (bore area - rotor section) / z2, mm² (bore = female tip circle)."""
+        pair = self.rotors.pair
+        return float((np.pi * pair.female_tip_radius**2 - self.sections[1].area) / pair.female_teeth)
+
+    @property
+    def displacement_per_rev(self) -> float:
+        """Displacement per male revolution V = z1 L (A1 + A2), mm³."""
+        pair = self.rotors.pair
+        return pair.male_teeth * pair.length * (self.male_flute_area + self.female_flute_area)
+
+    @property
+    def area_utilisation(self) -> float:
+        """Share of the two bores' area that is flute: (z1 A1 + z2 A2) / (pi r1t^2 + pi r2t^2)."""
+        pair = self.rotors.pair
+        flutes = pair.male_teeth * self.male_flute_area + pair.female_teeth * self.female_flute_area
+        return float(flutes / (np.pi * (pair.male_tip_radius**2 + pair.female_tip_radius**2)))
+
+    # ---- sliding velocity and slip (eqs. 2-4) ----------------------------------------------
+    @cached_property
+    def kinematics(self) -> dict[str, np.ndarray]:
+        """Velocities and slips at every contact of :attr:`meshline` (Rinder eqs. 2-4).
+
+        A dict of (n,) float arrays: ``v1t`` and ``v2t``, the rotors' velocities along the common
+        tangent (m/s, eq. 2); ``sliding``, the sliding velocity v_g = v1t - v2t (m/s, eq. 3); ``slip_male`` and
+        ``slip_female``, the slips v_g / v1t and v_g / v2t (eq. 4; infinite where a tangential velocity
+        vanishes); ``angle_deg``, the male angle in Rinder's count (deg, :meth:`rinder_angle`);
+        ``normal_check``, the cross product of the tangent with the relative velocity (zero: the law
+        of gearing holds).
+        """
+        pair = self.rotors.pair
+        w1 = self.speed_rpm * 2 * np.pi / 60.0
+        w2 = -w1 * pair.male_teeth / pair.female_teeth
+        pts = self.meshline
+        tau = np.concatenate([p.tangents for p in self.pieces])
+        o2 = np.array([pair.center_distance, 0.0])
+        v1 = w1 * np.stack([-pts[:, 1], pts[:, 0]], axis=1)
+        d2 = pts - o2
+        v2 = w2 * np.stack([-d2[:, 1], d2[:, 0]], axis=1)
+        v1t = np.einsum("ij,ij->i", v1, tau) * 1e-3
+        v2t = np.einsum("ij,ij->i", v2, tau) * 1e-3
+        vg = v1t - v2t
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z1 = vg / v1t
+            z2 = vg / v2t
+        return {
+            "v1t": v1t,
+            "v2t": v2t,
+            "sliding": vg,
+            "slip_male": z1,
+            "slip_female": z2,
+            "angle_deg": self.rinder_angle(self.contact_angles),
+            "normal_check": cross(tau, v1 - v2),
+        }
+
+    @cached_property
+    def slip_singularities(self) -> list[dict[str, object]]:
+        """Points of infinite slip: where a rotor's tangential velocity vanishes (Rinder eq. 4, sec. 3.2).
+
+        Rinder: "nur in einem einzigen Punkt unendliche Schlupfwerte ... daß die Evolventenflanke bis
+        zum Grundkreis benutzt wurde". Found on each meshline piece where v1t (male slip infinite)
+        or v2t (female slip infinite) changes sign between neighbouring contacts (located by linear
+        interpolation), or, at a piece's end, falls below 1 % of the rotor's largest tangential
+        velocity while falling towards that end (a zero where the piece leaves a bore: the sampled
+        meshline stops within one step of it). The pitch point C is left out (both velocities
+        vanish there with the sliding: pure rolling, not infinite slip). Points closer than 1 % of
+        the centre distance are one.
+
+        Returns
+        -------
+        list of dict
+            ``rotor`` (whose slip is infinite), ``x``, ``y`` (mm), ``angle_deg`` (:meth:`rinder_angle`),
+            ``flank`` (lobe part), ``male_radius``, ``female_radius`` (mm).
+        """
+        pair = self.rotors.pair
+        k = self.kinematics
+        found: list[dict[str, object]] = []
+        start = 0
+        for piece in self.pieces:
+            n = len(piece.t)
+            sl = slice(start, start + n)
+            start += n
+            for key, rotor in (("v1t", "male"), ("v2t", "female")):
+                v = k[key][sl]
+                mag = np.abs(v)
+                big = float(np.abs(k[key]).max()) if len(k[key]) else 0.0
+                ends = [i for i, j in ((0, 1), (n - 1, n - 2)) if n > 1 and mag[i] <= 1e-2 * big and mag[i] < mag[j]]
+                cross_ = np.nonzero(v[:-1] * v[1:] < 0)[0]
+                hits = [(i, 0.0) for i in ends] + [(int(i), float(v[i] / (v[i] - v[i + 1]))) for i in cross_]
+                for i, w in hits:
+                    j = min(i + 1, n - 1)
+                    p = piece.points[i] + w * (piece.points[j] - piece.points[i])
+                    t = piece.t[i] + w * (piece.t[j] - piece.t[i])
+                    if np.hypot(p[0] - pair.male_pitch_radius, p[1]) < 1e-3 * pair.center_distance:
+                        continue  # the pitch point: pure rolling
+                    if any(
+                        f["rotor"] == rotor and np.hypot(f["x"] - p[0], f["y"] - p[1]) < 1e-2 * pair.center_distance
+                        for f in found
+                    ):
+                        continue
+                    found.append(
+                        {
+                            "rotor": rotor,
+                            "x": float(p[0]),
+                            "y": float(p[1]),
+                            "angle_deg": float(self.rinder_angle(t)),
+                            "flank": str(piece.roles[i]),
+                            "male_radius": float(np.hypot(*p)),
+                            "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
+                        }
+                    )
+        return found
+
+    def _max(self, key: str) -> dict[str, float]:
+        """Return the largest magnitude of a :attr:`kinematics` entry and where it occurs.
+
+        A dict with ``value``, ``x``, ``y`` (mm), ``angle_deg``, ``flank`` and both radii (mm).
+        """
+        k = self.kinematics
+        v = np.abs(k[key])
+        v = np.where(np.isfinite(v), v, -1.0)
+        i = int(np.argmax(v))
+        p = self.meshline[i]
+        pair = self.rotors.pair
+        roles = np.concatenate([piece.roles for piece in self.pieces])
+        return {
+            "value": float(v[i]),
+            "x": float(p[0]),
+            "y": float(p[1]),
+            "angle_deg": float(k["angle_deg"][i]),
+            "flank": str(roles[i]),
+            "male_radius": float(np.hypot(*p)),
+            "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
+        }
+
+    def defect_dicts(self) -> list[dict[str, object]]:
+        """Return :attr:`defects` as plain values, angles in Rinder's count and each cusp's reading.
+
+        Returns
+        -------
+        list of dict
+            :meth:`Defect.as_dict` with ``angle_deg`` converted by :meth:`rinder_angle` and
+            ``tip_corner`` (bool): the cusp is a rotor's tip corner or its point-generated path
+            (:func:`is_tip_corner`), not a defect of a working flank.
+        """
+        out = []
+        pair = self.rotors.pair
+        for d in self.defects:
+            row = d.as_dict()
+            row["angle_deg"] = float(self.rinder_angle(np.radians(d.angle_deg)))
+            row["tip_corner"] = is_tip_corner(d, pair, self.tip_corner_tolerance)
+            out.append(row)
+        return out
+
+    def summary(self) -> dict[str, object]:
+        """Return the analysis as plain values (the figures of ``rotorcad rotor --json``).
+
+        Returns
+        -------
+        dict
+            Tooth counts, centre distance (mm), family, ``meshline_closed``, blow-hole areas (mm²)
+            and the spatial blow-hole, contact-line length (mm), flute areas (mm²), displacement per
+            revolution (mm³), area utilisation, the largest sliding velocity (m/s) and slips with where
+            they occur, the points of infinite slip, speed (rpm), the angle convention, defects (with
+            ``tip_corner``), point-generated flanks, per-flank reports (working part, transverse,
+            overlap and total contact ratio), the pair's overlap ratio, whether the pair runs without
+            timing gears and why not, wrap angle (deg). Angles in Rinder's count (:meth:`rinder_angle`).
+        """
+        pair = self.rotors.pair
+        return {
+            "male_teeth": pair.male_teeth,
+            "female_teeth": pair.female_teeth,
+            "center_distance": pair.center_distance,
+            "family": self.rotors.family,
+            "meshline_closed": self.meshline_closed,
+            "blow_hole_area": self.blow_hole_area,
+            "blow_hole_spatial": self.spatial_blow_hole.as_dict(),
+            "contact_line_length": self.contact_line_length,
+            "male_flute_area": self.male_flute_area,
+            "female_flute_area": self.female_flute_area,
+            "displacement_per_rev": self.displacement_per_rev,
+            "area_utilisation": self.area_utilisation,
+            "max_sliding_velocity": self._max("sliding")["value"],
+            "max_sliding_at": self._max("sliding"),
+            "max_slip_male": self._max("slip_male"),
+            "max_slip_female": self._max("slip_female"),
+            "slip_singularities": self.slip_singularities,
+            "speed_rpm": self.speed_rpm,
+            "angle_convention": ANGLE_CONVENTION,
+            "defects": self.defect_dicts(),
+            "defect_accuracy": self.judged_accuracy,
+            "point_generated_flanks": self.point_generated_flanks,
+            "flanks": {str(f): r.as_dict() for f, r in self.flanks.items()},
+            "overlap_contact_ratio": float(pair.wrap_angle * pair.male_teeth / (2 * np.pi)),
+            "runs_without_timing_gears": all(r.runs_without_timing_gears for r in self.flanks.values()),
+            "running_reasons": self.running_reasons,
+            "wrap_angle_deg": float(np.degrees(pair.wrap_angle)),
+        }

@@ -1,0 +1,280 @@
+"""The meshline of a screw-rotor pair, piece by piece, and what is read off its samples alone.
+
+After Rinder (*Sonderverzahnungen für Schraubenverdichterrotoren*), sec. 2: the meshline
+(Eingriffslinie) is the set of contact points in the fixed transverse frame; for a rack-generated
+pair it is the rack's contact locus. Here: a piece's samples (:class:`MeshlinePiece`, sampled about
+evenly along the meshline), the lobe part of each point (:func:`flank_roles`), the meshline's
+tangents (a spline over the piece, never point differences), its reversals and sharp turns, and
+the corner of a turn that a fit through points rounds (:func:`turn_corner`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rotorcad.envelope import Generated
+from rotorcad.roles import Flank, PieceRole
+from rotorcad.spline_slopes import makima_slopes
+
+
+@dataclass(frozen=True, eq=False)
+class MeshlinePiece:
+    """Contact points of one rack piece, ordered along the piece.
+
+    Parameters
+    ----------
+    name : str
+        Name of the segment the piece generates on the male.
+    kind : PieceRole
+        What the rack piece does (a curve, or a corner's path).
+    s : (n,) float array
+        Parameter of the rack piece at each contact.
+    t : (n,) float array, rad
+        Male rotation angle at contact.
+    points : (n, 2) float array, mm
+        Contact points in the fixed frame (the meshline).
+    tangents : (n, 2) float array
+        Unit common tangent of the flanks at contact, fixed frame.
+    male_name, female_name : str
+        Names of the segments the piece generates on the male and on the female.
+    roles : (n,) object array of Flank
+        The lobe part of each point, read off the rack (:func:`flank_roles`).
+    """
+
+    name: str
+    kind: PieceRole
+    s: np.ndarray
+    t: np.ndarray  # male rotation angle at contact (rad)
+    points: np.ndarray  # fixed frame
+    tangents: np.ndarray  # common tangent of the flanks at contact (unit)
+    male_name: str = ""
+    female_name: str = ""
+    roles: np.ndarray = field(
+        default_factory=lambda: np.zeros(0, dtype=object)
+    )  # (n,) Flank per point: the lobe part (read off the rack)
+    rack_index: int = -1  # the rack piece (index into ScrewRotors.rack) whose contacts these are
+
+
+_FLANKS = np.array(list(Flank), dtype=object)
+
+
+def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
+    """Return the lobe part of rack points (fixed frame at t = 0, pitch line x = r1w, motion +y).
+
+    Parameters
+    ----------
+    points, tangents : (n, 2) float array
+        Rack points (mm) and unit tangents along the chain (the direction of motion).
+    pitch_radius : float, mm
+        Male pitch radius r1w: the rack's pitch line.
+    scale : float, mm
+        A length of the pair for the flatness tolerance.
+
+    Returns
+    -------
+    (n,) object array of Flank
+        DRIVING where the rack rises towards the male tip (x grows along the chain), SEALING
+        where it falls, TIP / ROOT on a land above / below the pitch line (Rinder sec. 1.2).
+    """
+    rise = tangents[:, 0]
+    flat = np.abs(rise) <= 1e-9
+    above = points[:, 0] > pitch_radius + 1e-9 * scale
+    order = list(Flank)
+    code = np.where(
+        flat,
+        np.where(above, order.index(Flank.TIP), order.index(Flank.ROOT)),
+        np.where(rise > 0, order.index(Flank.DRIVING), order.index(Flank.SEALING)),
+    )
+    return _FLANKS[code]
+
+
+UNEVEN = 4.0
+"""A piece sampled evenly over its rack parameter whose longest meshline step exceeds this many times
+the mean step is resampled evenly along its meshline (:func:`even_meshline_parameters`)."""
+
+
+def even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int, scale: float) -> np.ndarray:
+    """Return rack parameters of one piece whose contacts lie about evenly along the meshline.
+
+    A rack curve fitted through a whole flank of points carries, in a short stretch of its
+    parameter, a long stretch of meshline (the N rack's tip circle: 0.2 mm of rack, 30 mm of
+    meshline along the male tip circle); sampled evenly over the parameter, that stretch gets two or
+    three contacts and no tangent. Where the even sampling is uneven along the meshline (a step over
+    :data:`UNEVEN` times the mean), the parameter is redistributed by the meshline's arc length
+    (plus a fifth of the samples evenly over the parameter, for the parts out of contact), twice,
+    with as many samples as keep the steps at 1/2000 of the centre distance (at least ``samples``,
+    at most 8 times as many).
+
+    Parameters
+    ----------
+    gen : Generated
+        The rack piece generating the female (its contact gives the meshline).
+    s0, s1 : float
+        The piece's parameter range.
+    samples : int
+        Samples of an even piece.
+    scale : float, mm
+        The centre distance.
+
+    Returns
+    -------
+    (n,) float array
+        Monotonic from ``s0`` to ``s1``.
+    """
+    s = np.linspace(s0, s1, samples)
+    for _ in range(2):
+        x = gen.contact(s).meshline
+        step = np.hypot(*np.diff(x, axis=0).T)
+        step = np.where(np.isfinite(step), step, 0.0)
+        length = float(step.sum())
+        if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
+            return s
+        measure = np.concatenate([[0.0], np.cumsum(step + 0.25 * length / (len(s) - 1))])
+        n = int(np.clip(np.ceil(2000.0 * length / scale), samples, 8 * samples))
+        s = np.interp(np.linspace(0.0, measure[-1], n), measure, s)
+    return s
+
+
+SHARP_TURN = np.pi / 4
+"""rad: a meshline whose tangent turns by more than this within the resolution has a corner there
+(as where a rack rounding about C meets a straight flank), at which its normal sweeps through
+every direction in between."""
+
+
+def reversals(points: np.ndarray, arclen: np.ndarray, longest: float = 0.0) -> np.ndarray:
+    """Return the arc lengths (mm) where a sampled meshline turns back or turns sharply.
+
+    It turns back where two consecutive chords point against each other, and sharply where its
+    chords' direction changes by more than :data:`SHARP_TURN` within ``longest`` (mm); positions
+    only, no tangents. A sign change of a normal's miss there is the turn, not a normal through a
+    centre.
+    """
+    d = np.diff(points, axis=0)
+    back = np.flatnonzero(np.einsum("ij,ij->i", d[:-1], d[1:]) < 0) + 1
+    if longest <= 0 or len(d) < 2:
+        return arclen[back]
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    mid = 0.5 * (arclen[:-1] + arclen[1:])
+    ahead = np.interp(mid + 0.5 * longest, mid, heading)
+    behind = np.interp(mid - 0.5 * longest, mid, heading)
+    sharp = np.flatnonzero(np.abs(ahead - behind) > SHARP_TURN)
+    return np.concatenate([arclen[back], mid[sharp]])
+
+
+def turn_corner(
+    points: np.ndarray,
+    arclen: np.ndarray,
+    i: int,
+    reach: float,
+    circles: tuple[tuple[np.ndarray, float], ...] = (),
+    accuracy: float = 0.0,
+) -> np.ndarray | None:
+    """Return the corner of a sampled meshline that turns sharply at sample ``i``, or None.
+
+    A profile's curvature jump (the N rack's male tip round meeting its sealing flank) turns the
+    meshline by a right angle at one point; a fit through points rounds that jump over a few
+    micrometres of profile, and where one profile micrometre carries 45 of meshline (the tip round)
+    the rounded turn overshoots the corner by 0.25 mm (measured from the N rack's own CSV: its
+    meshline leaves the design's by up to 0.2 mm within 1 mm of the turn, by 1 um beyond). A turn
+    by more than :data:`SHARP_TURN` is a corner: each branch, fitted by a quadratic in arc length
+    from 2 to 4 times the resolution ``reach`` (mm, :func:`resolution`) away from the turn (outside
+    the rounding), is extended towards it, and the corner is where the two extensions come nearest
+    each other (within ``reach`` / 10). A branch whose fitted samples lie on one of ``circles``
+    within 10 ``accuracy`` is that circle (a tip corner's path runs on its tip circle, Rinder's
+    "Radlinien der Punkte"), and the corner is where the other branch's extension meets it: the
+    rack-involute male's sealing tip corner meets the female's involute there, and from the
+    female's points the corner's path leaves its circle by 14-60 um in the last millimetre before
+    the turn.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The meshline samples of one piece.
+    arclen : (n,) float array, mm
+        Their arc length.
+    i : int
+        The sample at the turn (the meshline's end nearest the housing cusp).
+    reach : float, mm
+        The resolution.
+    circles : tuple of ((2,) float array, float), mm
+        Centres and radii of circles a branch may run on (the tip circles).
+    accuracy : float, mm
+        Accuracy of the samples.
+
+    Returns
+    -------
+    (2,) float array, mm, or None
+        None where the samples within ``reach`` of sample ``i`` do not turn by more than
+        :data:`SHARP_TURN` (chords either side), where a branch has under six samples or the
+        extended branches turn less, or where their corner lies farther than ``reach`` from sample
+        ``i`` or they pass farther than ``reach`` / 10 from each other.
+    """
+    s0 = arclen[i]
+    back = points[int(np.searchsorted(arclen, s0 - reach))]
+    ahead = points[min(int(np.searchsorted(arclen, s0 + reach)), len(points) - 1)]
+    chords = (points[i] - back, ahead - points[i])
+    if min(np.hypot(*chords[0]), np.hypot(*chords[1])) <= 0:
+        return None
+    if abs(np.angle(complex(*chords[1]) / complex(*chords[0]))) <= SHARP_TURN:
+        return None  # the samples do not turn there: the nearest point of a smooth stretch
+    before = (arclen >= s0 - 8 * reach) & (arclen <= s0 - 2 * reach)
+    after = (arclen >= s0 + 2 * reach) & (arclen <= s0 + 8 * reach)
+    if before.sum() < 6 or after.sum() < 6:
+        return None
+    fits = [np.polyfit(arclen[m] - s0, points[m], 2) for m in (before, after)]
+    heading = [complex(*(np.polyval(np.polyder(f[:, k]), d) for k in (0, 1))) for f, d in zip(fits, (-reach, reach), strict=True)]
+    if abs(np.angle(heading[1] / heading[0])) <= SHARP_TURN:
+        return None
+    u = np.linspace(-2 * reach, 2 * reach, 801)
+    ext = [np.column_stack([np.polyval(f[:, 0], u), np.polyval(f[:, 1], u)]) for f in fits]
+    for k, m in enumerate((before, after)):
+        for centre, radius in circles:
+            if np.abs(np.hypot(*(points[m] - centre).T) - radius).max() > 10 * accuracy:
+                continue
+            g = np.hypot(*(ext[1 - k] - centre).T) - radius  # the other branch's extension against the circle
+            cut = np.flatnonzero(g[:-1] * g[1:] <= 0)
+            if len(cut) == 0:
+                return None
+            j = int(cut[np.argmin(np.abs(u[cut]))])
+            w = g[j] / (g[j] - g[j + 1]) if g[j] != g[j + 1] else 0.0
+            corner = ext[1 - k][j] + w * (ext[1 - k][j + 1] - ext[1 - k][j])
+            corner = centre + (corner - centre) * radius / np.hypot(*(corner - centre))
+            return corner if np.hypot(*(corner - points[i])) <= reach else None
+    gap = np.hypot(*(ext[0][:, None, :] - ext[1][None, :, :]).transpose(2, 0, 1))
+    a, b = np.unravel_index(int(np.argmin(gap)), gap.shape)
+    corner = 0.5 * (ext[0][a] + ext[1][b])
+    if gap[a, b] > 0.1 * reach or np.hypot(*(corner - points[i])) > reach:
+        return None
+    return corner
+
+
+def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float) -> np.ndarray:
+    """Return the unit tangents of a meshline piece at its samples, (n, 2).
+
+    Of the design's exact meshline, from a shape-preserving (modified Akima) cubic over the piece's
+    parameter: an interpolating cubic rings where the meshline turns sharply (a rack rounding about
+    C meeting a straight flank), and its tangent flips from sample to sample. Of a meshline
+    generated from a profile known to ``accuracy`` (mm, > 0), from a smoothing cubic over its arc
+    length that stays within that accuracy of the samples (scipy's s = n e^2, Dierckx sec. 5.2):
+    the samples wobble by the profile's error, far more than their spacing resolves.
+    """
+    order = np.argsort(piece.s)
+    pts = piece.points
+    if accuracy > 0:
+        from scipy import interpolate  # a given profile only: points come through scipy's fits anyway
+
+        keep = np.concatenate([[True], np.diff(arclen) > 1e-12])
+        if keep.sum() > 8:
+            try:
+                tck, _ = interpolate.splprep(pts[keep].T, u=arclen[keep], s=keep.sum() * accuracy**2, k=3, quiet=2)
+                tau = np.column_stack(interpolate.splev(arclen, tck, der=1))
+                norm = np.linalg.norm(tau, axis=1, keepdims=True)
+                if np.all(norm > 0):
+                    return tau / norm
+            except (ValueError, TypeError):
+                pass  # too few distinct samples for a smoothing cubic: the interpolating one below
+    tau = np.empty_like(pts)
+    tau[order] = makima_slopes(piece.s[order], pts[order])
+    return tau / np.linalg.norm(tau, axis=1, keepdims=True)
