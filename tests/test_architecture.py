@@ -198,3 +198,32 @@ def test_a_cycle_and_an_upward_import_are_found():
     assert layer("rotorcad.cli.common") not in LAYERS[layer("exports.dxf")]
     guarded = ast.parse("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import rotorcad.gears\nimport hob\n")
     assert len(type_checking_imports(guarded)) >= 2  # the import and its alias, not `import hob`
+
+
+MODULE_LINES = 800
+"""The longest module a newcomer should have to read whole (issue "A core a newcomer can change")."""
+
+CLI_FUNCTION_LINES = 80
+"""The longest function of the command line, counted by ``ast`` from ``def`` to its end (decorators
+not counted); its cyclomatic complexity is held to 20 by ruff (``[tool.ruff.lint.mccabe]``)."""
+
+
+def test_no_module_is_longer_than_a_newcomer_reads():
+    long = sorted(
+        f"{path.relative_to(ROOT)}: {n} lines"
+        for path in modules().values()
+        if (n := len(path.read_text().splitlines())) > MODULE_LINES
+    )
+    assert not long, "modules over 800 lines:\n" + "\n".join(long)
+
+
+def test_no_command_line_function_is_longer_than_80_lines():
+    long = []
+    for path in sorted((ROOT / "rotorcad" / "cli").glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if (
+                isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+                and node.end_lineno - node.lineno + 1 > CLI_FUNCTION_LINES
+            ):
+                long.append(f"{path.name}::{node.name}: {node.end_lineno - node.lineno + 1} lines")
+    assert not long, "command-line functions over 80 lines:\n" + "\n".join(long)
