@@ -1,0 +1,23 @@
+"""Form grinding of helical rotors and gears: the wheel from the rotor, the rotor from the wheel.
+
+:mod:`~rotorcad.grinding.setting` (where the wheel sits), :mod:`~rotorcad.grinding.wheel_profile`
+(the wheel's axial profile from the rotor), :mod:`~rotorcad.grinding.ground_rotor` (the rotor a
+wheel grinds, the stock it leaves: secondary cutting and unreached flank parts).
+"""
+
+from rotorcad.grinding.ground_rotor import WheelEnvelope, rotor_from_wheel, stock
+from rotorcad.grinding.setting import GrindingSetting, default_setting, helix_crossing_angle
+from rotorcad.grinding.wheel_profile import Flute, WheelProfile, flute_of, wheel_profile
+
+__all__ = [
+    "Flute",
+    "GrindingSetting",
+    "WheelEnvelope",
+    "WheelProfile",
+    "default_setting",
+    "flute_of",
+    "helix_crossing_angle",
+    "rotor_from_wheel",
+    "stock",
+    "wheel_profile",
+]
