@@ -121,7 +121,7 @@ def _brent(f: Callable[[float], float], a: float, b: float, fa: float, fb: float
     return float(xcur)
 
 
-__all__ = ["bracket_root", "bisect_many"]
+__all__ = ["bisect_many", "bracket_root"]
 
 
 def bisect_many(f: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray, xtol: float = 1e-12) -> np.ndarray:

@@ -40,7 +40,7 @@ from rotorcad.grinding.setting import GrindingSetting
 
 
 def rotor_from_wheel(axial: Array, radius: Array, normals: Array, setting: GrindingSetting) -> tuple[Array, Array]:
-    """The transverse rotor profile points the wheel's profile points grind (module docstring).
+    """Return the transverse rotor profile points the wheel's profile points grind (module docstring).
 
     Parameters
     ----------
@@ -95,7 +95,7 @@ class WheelEnvelope:
 
     @staticmethod
     def of(axial: Array, radius: Array, step: float = 0.002) -> WheelEnvelope:
-        """The upper envelope of a profile polyline on a grid of ``step`` (mm).
+        """Make the upper envelope of a profile polyline on a grid of ``step`` (mm).
 
         Parameters
         ----------
@@ -123,13 +123,13 @@ class WheelEnvelope:
         return WheelEnvelope(grid, best)
 
     def __call__(self, t: Array) -> Array:
-        """The wheel's radius at axial coordinates ``t``, mm (-inf beyond its profile's ends)."""
+        """Return the wheel's radius at axial coordinates ``t``, mm (-inf beyond its profile's ends)."""
         r = np.interp(t, self.axial, self.radius)
         return np.where((t >= self.axial[0]) & (t <= self.axial[-1]), r, -np.inf)
 
 
 def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: float, steps: int = 1024) -> Array:
-    """The material the wheel leaves at rotor points: least distance from the wheel surface.
+    """Return the material the wheel leaves at rotor points: least distance from the wheel surface.
 
     For each transverse point the helix through it, ``(Rz(k z) P, z)`` for ``|z| <= reach``, is
     searched for the least ``d(z) = distance from the wheel axis - wheel radius there``: a grid of
@@ -178,4 +178,4 @@ def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: 
     return np.where(np.isfinite(best), np.minimum(best, v1), np.inf)
 
 
-__all__ = ["rotor_from_wheel", "WheelEnvelope", "stock"]
+__all__ = ["WheelEnvelope", "rotor_from_wheel", "stock"]

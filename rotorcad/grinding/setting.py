@@ -93,7 +93,7 @@ class GrindingSetting:
 
 
 def helix_crossing_angle(twist: float, radius: float) -> float:
-    """The helix angle of a rotor at ``radius``: the default crossing angle, rad.
+    """Return the helix angle of a rotor at ``radius``: the default crossing angle, rad.
 
     ``tan beta = k r`` with the twist ``k = 2 pi / h`` (signed by the hand).
 
@@ -120,7 +120,7 @@ def default_setting(
     crossing_angle: float | None = None,
     center_distance: float | None = None,
 ) -> GrindingSetting:
-    """The setting a grinding engineer starts from.
+    """Make the setting a grinding engineer starts from.
 
     The crossing angle is the helix angle at ``setting_radius`` (:func:`helix_crossing_angle`) and
     the centre distance ``A = root radius + wheel radius``: the wheel's outside circle plunges to
@@ -163,4 +163,4 @@ def default_setting(
     return GrindingSetting(float(wheel_radius), float(a), float(angle), float(twist))
 
 
-__all__ = ["GrindingSetting", "default_setting", "helix_crossing_angle", "MAX_WHEEL_RADIUS"]
+__all__ = ["MAX_WHEEL_RADIUS", "GrindingSetting", "default_setting", "helix_crossing_angle"]

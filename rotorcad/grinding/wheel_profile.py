@@ -172,7 +172,7 @@ def _reach(s: GrindingSetting, tip_radius: float) -> float:
 
 
 def wheel_profile(flute: Flute, setting: GrindingSetting) -> WheelProfile:
-    """The wheel's axial profile that grinds ``flute`` in ``setting`` (module docstring).
+    """Compute the wheel's axial profile that grinds ``flute`` in ``setting`` (module docstring).
 
     Parameters
     ----------
@@ -229,7 +229,7 @@ def _helicoid(p: Array, n: Array, q: Array, z: Array, k: float) -> tuple[Array, 
 
 
 def _facing(p: Array, n: Array, q: Array, z: Array, s: GrindingSetting) -> Array:
-    """True where the helicoid's normal at ``z`` points from the rotor towards the wheel axis.
+    """Tell where the helicoid's normal at ``z`` points from the rotor towards the wheel axis.
 
     The contact point lies on the wheel's side (``X > 0``) and the foot of its perpendicular on
     the wheel axis is ahead along the outward normal.
@@ -240,4 +240,4 @@ def _facing(p: Array, n: Array, q: Array, z: Array, s: GrindingSetting) -> Array
     return (pts[..., 0] > 0.0) & (np.einsum("...i,...i->...", foot, nrm) < 0.0)
 
 
-__all__ = ["Flute", "WheelProfile", "flute_of", "wheel_profile", "contact_function"]
+__all__ = ["Flute", "WheelProfile", "contact_function", "flute_of", "wheel_profile"]

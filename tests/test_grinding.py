@@ -1,0 +1,166 @@
+"""Form grinding: the wheel from the rotor, the rotor from the wheel, checked by means rotorcad did not use.
+
+References:
+
+* a brute-force grinding simulation (the issue's check): the wheel, a solid of revolution of the
+  computed axial profile, screwed along the rotor's helix to 1201 positions; each position's section
+  in the plane z = 0 is the set of points whose distance from the wheel axis is below the wheel's
+  radius at their axial coordinate (found in closed form per line of the plane, as polygons), and
+  the rotor is the tip-circle blank minus all of them (shapely). Neither the contact condition nor
+  the envelope formula of rotorcad.grinding is used there;
+* the round trip wheel -> rotor through a spline fitted to the wheel points (scipy), evaluated
+  between the points the wheel came from;
+* for involute gears, the involute itself (ISO 21771: polar angle of a flank point = constant +-
+  inv(arccos(r_b / r))), which the spur gear's form wheel must reproduce as its profile (the wheel
+  axis lies in the transverse plane), and the symmetry of the helical gear's wheel: turning the whole
+  setting by 180 deg about the common perpendicular maps the rotor's helicoid with a symmetric tooth
+  space and the wheel axis onto themselves and the wheel's axial coordinate t onto -t, so the wheel's
+  profile of a symmetric space is symmetric, rho(t) = rho(-t).
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from scipy.interpolate import CubicSpline
+
+from rotorcad.design.rotors import build_pair, pair_spec
+from rotorcad.design.schema import rotor_design
+from rotorcad.gears import InvoluteGear
+from rotorcad.gears.formulas import inv
+from rotorcad.grinding import WheelEnvelope, default_setting, flute_of, rotor_from_wheel, stock, wheel_profile
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+WHEEL_RADIUS = 100.0
+
+
+@pytest.fixture(scope="module")
+def n_rack_male():
+    """The N-rack 5/6 male (Wu & Chi's N4 pair), its flute and the wheel of radius 100 mm."""
+    design = tomllib.loads((SAMPLES / "n_rack_5_6.toml").read_text())
+    rotors = build_pair(pair_spec(rotor_design(design)))
+    pair = rotors.pair
+    flute = flute_of(rotors.male_outline().resampled(2e-5))  # 20 nm chords: wheel points 0.2 mm apart at most
+    setting = default_setting(2 * np.pi / pair.lead, flute.root_radius, WHEEL_RADIUS, pair.male_pitch_radius)
+    return flute, setting, wheel_profile(flute, setting)
+
+
+def _brute_force_section(flute, setting, wheel, positions=1201, lines=2500):
+    """The blank (tip circle) minus the wheel at ``positions`` places along the helix (module docstring).
+
+    The wheel at the advance ``-zc`` along the helix, cut by z = 0, is the fixed wheel cut by the plane
+    z = zc, turned by -k zc about the rotor axis. In that plane a point (x, y, zc) has the axial
+    coordinate t = y cos S - zc sin S and lies at the distance sqrt((x - A)^2 + w^2),
+    w = y sin S + zc cos S, from the wheel axis: inside for |x - A| < sqrt(rho(t)^2 - w^2).
+    """
+    t_w, r_w = wheel.axial, wheel.radius
+    assert np.all(np.diff(t_w) > 0)  # a wheel without folds: rho(t) by interpolation
+    k, a_ = setting.twist, setting.center_distance
+    cs, sn = np.cos(setting.crossing_angle), np.sin(setting.crossing_angle)
+    zmax = 1.2 * np.abs(wheel.contact[:, 2]).max() + 2.0
+    polys = []
+    for zc in np.linspace(-zmax, zmax, positions):
+        y = np.linspace((t_w[0] + zc * sn) / cs, (t_w[-1] + zc * sn) / cs, lines)
+        t = y * cs - zc * sn
+        half2 = np.interp(t, t_w, r_w) ** 2 - (y * sn + zc * cs) ** 2
+        inside = half2 > 0
+        if inside.sum() < 2:
+            continue
+        yy, hw = y[inside], np.sqrt(half2[inside])  # one run: the wheel's section is convex across y here
+        ring = np.vstack([np.column_stack([a_ - hw, yy]), np.column_stack([a_ + hw, yy])[::-1]])
+        c, s = np.cos(-k * zc), np.sin(-k * zc)
+        polys.append(shapely.Polygon(np.column_stack([ring[:, 0] * c - ring[:, 1] * s, ring[:, 0] * s + ring[:, 1] * c])))
+    assert len(polys) >= 1000
+    cut = shapely.union_all(polys)
+    blank = shapely.Point(0.0, 0.0).buffer(flute.tip_radius + 1.0, 2048)
+    return blank.difference(cut)
+
+
+@pytest.fixture(scope="module")
+def simulated(n_rack_male):
+    flute, setting, wheel = n_rack_male
+    return _brute_force_section(flute, setting, wheel)
+
+
+def test_brute_force_grinding_matches_the_rotor(n_rack_male, simulated):
+    """The simulated ground section runs through the rotor's flute within 1 um where the wheel reaches it.
+
+    Reference: the brute-force simulation (module docstring). Reachable: where rotorcad's own stock
+    check finds no secondary cutting (|stock| < 0.5 um); where it does find some, the simulation must
+    show the wheel cutting into the rotor there too (the point outside the ground section).
+    """
+    flute, setting, wheel = n_rack_male
+    pts = shapely.points(flute.points)
+    gap = shapely.distance(pts, simulated.boundary)
+    kept = shapely.contains(simulated, pts) | (gap < 1e-9)
+    envelope = WheelEnvelope.of(wheel.axial, wheel.radius)
+    left = stock(flute.points, envelope, setting, reach=150.0)
+    reach = np.abs(left) < 5e-4
+    assert reach.mean() > 0.8
+    assert gap[reach].max() < 1e-3, gap[reach].max()
+    over = left < -1.5e-3  # rotorcad says: the wheel cuts in by more than 1.5 um
+    assert (~kept[over]).all() and np.allclose(gap[over], -left[over], atol=1e-3)
+
+
+def test_round_trip_through_a_spline(n_rack_male):
+    """Wheel from rotor, rotor from wheel: within 0.5 um of the rotor outline between the wheel's points.
+
+    The wheel points are fitted with a cubic spline in their chord length (scipy), its normals taken
+    from the spline's derivative and evaluated half-way between the points; the ground points must lie
+    on the rotor's flute (distance to its polyline, sampled to 0.1 um chord, shapely).
+    """
+    flute, setting, wheel = n_rack_male
+    t, r = wheel.axial, wheel.radius
+    u = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(t), np.diff(r)))])
+    spline = CubicSpline(u, np.column_stack([t, r]))
+    um = 0.5 * (u[1:] + u[:-1])
+    tr, d = spline(um), spline(um, 1)
+    normals = np.column_stack([d[:, 1], -d[:, 0]]) / np.hypot(d[:, 0], d[:, 1])[:, None]
+    normals *= np.sign(np.einsum("ij,ij->i", normals, 0.5 * (wheel.normals[1:] + wheel.normals[:-1])))[:, None]
+    ground, _ = rotor_from_wheel(tr[:, 0], tr[:, 1], normals, setting)
+    exact, _ = rotor_from_wheel(t, r, wheel.normals, setting)
+    assert np.abs(exact - flute.points).max() < 1e-9  # the analytic normals give the points back
+    dist = shapely.distance(shapely.points(ground), shapely.LineString(flute.points))
+    assert np.isfinite(dist).all() and dist.max() < 5e-4, dist.max()
+
+
+def _gear_wheel(helix_deg):
+    gear = InvoluteGear(teeth=23, module=4.0, helix_angle=np.radians(helix_deg), shift=0.2, tolerance=1e-4)
+    flute = flute_of(gear.outline())
+    k = np.tan(gear.helix_angle) / gear.pitch_radius
+    setting = default_setting(k, flute.root_radius, 80.0, gear.pitch_radius)
+    return gear, flute, setting, wheel_profile(flute, setting)
+
+
+def test_spur_gear_wheel_is_the_involute_space():
+    """A spur gear's form wheel has the tooth space's involute as its profile (ISO 21771 involute)."""
+    gear, _, setting, wheel = _gear_wheel(0.0)
+    assert setting.crossing_angle == 0.0
+    x, y = setting.center_distance - wheel.radius, wheel.axial  # the wheel's profile laid in the transverse plane
+    r = np.hypot(x, y)
+    rb = gear.base_radius
+    on = (r > gear.form_radius + 0.05) & (r < gear.tip_radius - 0.05)
+    for sign in (1.0, -1.0):  # each flank: polar angle - sign * inv(alpha(r)) is constant
+        sel = on & (sign * y > 0)
+        assert sel.sum() > 20
+        c = np.arctan2(y[sel], x[sel]) - sign * inv(np.arccos(rb / r[sel]))
+        assert np.ptp(c) * r[sel].max() < 1e-6, np.ptp(c) * r[sel].max()
+
+
+def test_helical_gear_wheel_is_symmetric():
+    """A helical gear's form wheel grinds a symmetric space with a symmetric profile (module docstring)."""
+    _, _, setting, wheel = _gear_wheel(20.0)
+    assert np.isclose(setting.crossing_angle, np.radians(20.0))
+    assert not wheel.folds and wheel.valid.all()
+    t, r = wheel.axial, wheel.radius
+    pos = t > 0
+    neg = (t < 0) & (-t < t[pos].max())
+    mirrored = np.interp(-t[neg], t[pos], r[pos])
+    assert neg.sum() > 50 and np.abs(mirrored - r[neg]).max() < 5e-4
+    # and it is not the spur wheel: the helix changes the profile by more than the tolerance
+    _, _, _, spur = _gear_wheel(0.0)
+    assert np.abs(np.interp(t, spur.axial, spur.radius) - r).max() > 1e-2
