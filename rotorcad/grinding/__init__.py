@@ -5,15 +5,17 @@
 wheel grinds, the stock it leaves: secondary cutting and unreached flank parts).
 """
 
-from rotorcad.grinding.ground_rotor import WheelEnvelope, rotor_from_wheel, stock
+from rotorcad.grinding.ground_rotor import GrindingCheck, WheelEnvelope, check_grinding, rotor_from_wheel, stock
 from rotorcad.grinding.setting import GrindingSetting, default_setting, helix_crossing_angle
 from rotorcad.grinding.wheel_profile import Flute, WheelProfile, flute_of, wheel_profile
 
 __all__ = [
     "Flute",
+    "GrindingCheck",
     "GrindingSetting",
     "WheelEnvelope",
     "WheelProfile",
+    "check_grinding",
     "default_setting",
     "flute_of",
     "helix_crossing_angle",

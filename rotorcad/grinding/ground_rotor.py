@@ -35,8 +35,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.geometry import Array
+from rotorcad.geometry import Array, rotate
 from rotorcad.grinding.setting import GrindingSetting
+from rotorcad.grinding.wheel_profile import WheelProfile, reach
+
+CHECK_TOLERANCE = 1e-3
+"""Stock (mm) beyond which a rotor point counts as cut into (secondary cutting) or not reached: 1 um,
+the accuracy the brute-force grinding simulation confirms (tests/test_grinding.py)."""
 
 
 def rotor_from_wheel(axial: Array, radius: Array, normals: Array, setting: GrindingSetting) -> tuple[Array, Array]:
@@ -125,16 +130,17 @@ class WheelEnvelope:
     def __call__(self, t: Array) -> Array:
         """Return the wheel's radius at axial coordinates ``t``, mm (-inf beyond its profile's ends)."""
         r = np.interp(t, self.axial, self.radius)
-        return np.where((t >= self.axial[0]) & (t <= self.axial[-1]), r, -np.inf)
+        ends = 1e-9  # mm: the profile's end points themselves (the flute's tip points) are on the wheel
+        return np.where((t >= self.axial[0] - ends) & (t <= self.axial[-1] + ends), r, -np.inf)
 
 
-def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: float, steps: int = 1024) -> Array:
+def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: float, steps: int = 256) -> Array:
     """Return the material the wheel leaves at rotor points: least distance from the wheel surface.
 
     For each transverse point the helix through it, ``(Rz(k z) P, z)`` for ``|z| <= reach``, is
     searched for the least ``d(z) = distance from the wheel axis - wheel radius there``: a grid of
-    ``steps`` intervals, then a finer grid of 64 about the best one and a parabola through the
-    three best values (vectorised over points).
+    ``steps`` intervals, then twice a finer grid of 32 about the best one and a parabola through
+    the three best values (vectorised over points).
 
     Parameters
     ----------
@@ -164,13 +170,14 @@ def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: 
         return rho - wheel(t)
 
     grid = np.linspace(-reach, reach, steps + 1)
-    coarse = d(grid[None, :])
-    j = np.clip(np.argmin(coarse, axis=1), 1, steps - 1)
+    best_z = grid[np.argmin(d(grid[None, :]), axis=1)]
     h = grid[1] - grid[0]
-    fine = grid[j][:, None] + np.linspace(-h, h, 65)[None, :]
-    v = d(fine)
-    i = np.clip(np.argmin(v, axis=1), 1, 63)
     rows = np.arange(len(p))
+    for _ in range(2):  # two finer grids about the best so far, each 1/16 of the last step
+        fine = best_z[:, None] + np.linspace(-h, h, 33)[None, :]
+        v = d(fine)
+        i = np.clip(np.argmin(v, axis=1), 1, 31)
+        best_z, h = fine[rows, i], h / 16.0
     v0, v1, v2 = v[rows, i - 1], v[rows, i], v[rows, i + 1]
     curv = v0 - 2 * v1 + v2
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -178,4 +185,74 @@ def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: 
     return np.where(np.isfinite(best), np.minimum(best, v1), np.inf)
 
 
-__all__ = ["WheelEnvelope", "rotor_from_wheel", "stock"]
+@dataclass(frozen=True, eq=False)
+class GrindingCheck:
+    """What a wheel does to the rotor it was made for.
+
+    Attributes
+    ----------
+    flute_stock : (n,) float array, mm
+        :func:`stock` at the flute's points (the wheel profile's own rotor points).
+    neighbour_points : (m, 2) float array, mm
+        The outline's points within one and a half lobe pitches of the flute's middle, turned like
+        the flute, and ``neighbour_stock`` (m,) their stock: the lobes either side, which a wheel
+        that is too wide or set wrongly cuts into.
+    unreached : (n,) bool array
+        Flute points the wheel does not grind: no contact, or stock above :data:`CHECK_TOLERANCE`.
+    round_trip : float, mm
+        Largest distance between the flute's points and the rotor the wheel grinds
+        (:func:`rotor_from_wheel` of the wheel's profile and analytic normals), over the points
+        with contact.
+    """
+
+    flute_stock: Array
+    neighbour_points: Array
+    neighbour_stock: Array
+    unreached: Array
+    round_trip: float
+
+    @property
+    def secondary_cutting_depth(self) -> float:
+        """Deepest cut into the rotor beyond :data:`CHECK_TOLERANCE`, mm (0 when there is none)."""
+        least = min(float(np.min(self.flute_stock, initial=np.inf)), float(np.min(self.neighbour_stock, initial=np.inf)))
+        return max(0.0, -least) if least < -CHECK_TOLERANCE else 0.0
+
+    @property
+    def secondary_cutting_points(self) -> int:
+        """Rotor points the wheel cuts into by more than :data:`CHECK_TOLERANCE`."""
+        return int((self.flute_stock < -CHECK_TOLERANCE).sum() + (self.neighbour_stock < -CHECK_TOLERANCE).sum())
+
+
+def check_grinding(wheel: WheelProfile, outline: Array, lobes: int) -> GrindingCheck:
+    """Check a wheel against the rotor it was made for: stock, secondary cutting, round trip.
+
+    Parameters
+    ----------
+    wheel : WheelProfile
+        The wheel (:func:`rotorcad.grinding.wheel_profile`).
+    outline : (k, 2) float array, mm
+        The whole rotor outline in its own frame (not turned).
+    lobes : int
+        The rotor's lobes (teeth), for the neighbouring lobes' window.
+
+    Returns
+    -------
+    GrindingCheck
+    """
+    setting, flute = wheel.setting, wheel.flute
+    envelope = WheelEnvelope.of(wheel.axial, wheel.radius)
+    zmax = reach(setting, flute.tip_radius)
+    turned = rotate(np.asarray(outline, dtype=float), flute.turn)
+    window = np.abs(np.arctan2(turned[:, 1], turned[:, 0])) <= 1.5 * 2 * np.pi / lobes
+    near = turned[window]
+    flute_stock = stock(flute.points, envelope, setting, zmax)
+    near_stock = stock(near, envelope, setting, zmax) if len(near) else np.zeros(0)
+    valid = wheel.valid
+    ground, _ = rotor_from_wheel(wheel.axial[valid], wheel.radius[valid], wheel.normals[valid], setting)
+    trip = np.hypot(*(ground - flute.points[valid]).T)
+    round_trip = float(np.nanmax(trip)) if len(trip) and np.isfinite(trip).any() else float("nan")
+    unreached = ~valid | (np.isfinite(flute_stock) & (flute_stock > CHECK_TOLERANCE))  # inf: a tip point at the wheel's end
+    return GrindingCheck(flute_stock, near, near_stock, unreached, round_trip)
+
+
+__all__ = ["CHECK_TOLERANCE", "GrindingCheck", "WheelEnvelope", "check_grinding", "rotor_from_wheel", "stock"]

@@ -166,7 +166,7 @@ def contact_function(p: Array, n: Array, q: Array, z: Array, s: GrindingSetting)
     return g, dg
 
 
-def _reach(s: GrindingSetting, tip_radius: float) -> float:
+def reach(s: GrindingSetting, tip_radius: float) -> float:
     """Half the axial range searched for contacts, mm: a sphere about ``W0`` holding wheel and flute."""
     return float(np.hypot(s.center_distance + tip_radius, tip_radius))
 
@@ -188,7 +188,7 @@ def wheel_profile(flute: Flute, setting: GrindingSetting) -> WheelProfile:
     p, t = flute.points, flute.tangents
     n = perp_cw(t)
     q = np.einsum("ij,ij->i", p, t)
-    zmax = _reach(setting, flute.tip_radius)
+    zmax = reach(setting, flute.tip_radius)
     grid = np.linspace(-zmax, zmax, GRID_STEPS + 1)
     g, _ = contact_function(p[:, None, :], n[:, None, :], q[:, None], grid[None, :], setting)
     change = (np.sign(g[:, :-1]) * np.sign(g[:, 1:]) <= 0) & np.isfinite(g[:, :-1]) & np.isfinite(g[:, 1:])
@@ -197,8 +197,10 @@ def wheel_profile(flute: Flute, setting: GrindingSetting) -> WheelProfile:
     with np.errstate(divide="ignore", invalid="ignore"):
         frac = np.where(g0 != g1, g0 / (g0 - g1), 0.0)
     z_est = grid[:-1][None, :] + frac * (grid[1] - grid[0])
-    ok = change & _facing(p[:, None, :], n[:, None, :], q[:, None], z_est, setting)
-    cost = np.where(ok, np.abs(z_est), np.inf)
+    rows, cols = np.nonzero(change)  # a few brackets per point: the side test only there
+    facing = _facing(p[rows], n[rows], q[rows], z_est[rows, cols], setting)
+    cost = np.full(change.shape, np.inf)
+    cost[rows[facing], cols[facing]] = np.abs(z_est[rows[facing], cols[facing]])
     j = np.argmin(cost, axis=1)
     found = np.isfinite(cost[np.arange(len(p)), j])
     lo, hi = grid[j], grid[j + 1]
