@@ -212,7 +212,7 @@ class GrindingCheck:
     round_trip: float
 
     @property
-    def secondary_cutting_depth(self) -> float:
+    def secondary_cutting_deviation(self) -> float:
         """Deepest cut into the rotor beyond :data:`CHECK_TOLERANCE`, mm (0 when there is none)."""
         least = min(float(np.min(self.flute_stock, initial=np.inf)), float(np.min(self.neighbour_stock, initial=np.inf)))
         return max(0.0, -least) if least < -CHECK_TOLERANCE else 0.0

@@ -57,7 +57,7 @@ class GrindingJob:
             "no_contact_point_count": int((~ok).sum()),
             "unreached_point_count": int(c.unreached.sum()),
             "secondary_cutting_point_count": c.secondary_cutting_points,
-            "secondary_cutting_deviation": c.secondary_cutting_depth,
+            "secondary_cutting_deviation": c.secondary_cutting_deviation,
             "check_tolerance": CHECK_TOLERANCE,
             "round_trip_deviation": c.round_trip,
         }
