@@ -94,7 +94,7 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
             raise InputError(exc.sentence(label)) from None
     result: dict[str, Any] = {
         "body": body["name"],
-        "lobes": body["lobes"],
+        "lobe_count": body["lobes"],
         "lead": body["lead"],
         "tip_radius": jobs["new"].wheel.flute.tip_radius,
         "root_radius": jobs["new"].wheel.flute.root_radius,
