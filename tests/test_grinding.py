@@ -32,7 +32,8 @@ from rotorcad.design.rotors import build_pair, pair_spec
 from rotorcad.design.schema import rotor_design
 from rotorcad.gears import InvoluteGear
 from rotorcad.gears.formulas import inv
-from rotorcad.grinding import WheelEnvelope, default_setting, flute_of, rotor_from_wheel, stock, wheel_profile
+from rotorcad.geometry import perp_cw
+from rotorcad.grinding import WheelEnvelope, default_setting, flute_of, rotor_from_wheel, sensitivities, stock, wheel_profile
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
 WHEEL_RADIUS = 100.0
@@ -244,3 +245,54 @@ def test_grind_command_refuses_bad_settings(tmp_path, capsys, extra, option):
     err = capsys.readouterr().err.strip()
     assert err.startswith(f"rotorcad: error: {option} must") and err.count("\n") == 0 and "Traceback" not in err
     assert not out.exists()
+
+
+def test_spur_gear_sensitivities_are_translations():
+    """Spur gear: a wheel moved along x or along its axis (y) grinds the space translated (a rigid
+    motion: normal deviation = the step's component along the normal); a wheel worn and set to plunge
+    again grinds the same space (its section in z = 0 is the space); a wheel dressed thicker by d
+    grinds the rotor thinner by d."""
+    _, flute, _, wheel = _gear_wheel(0.0)
+    sens = sensitivities(wheel)
+    n = perp_cw(flute.tangents[wheel.valid])
+    assert np.abs(sens.per_unit[0] - n[:, 0]).max() < 1e-8  # centre distance: along +x
+    assert np.abs(sens.per_unit[2] - n[:, 1]).max() < 1e-8  # axial position: the wheel axis is +y
+    assert np.abs(sens.per_unit[3]).max() < 1e-8
+    assert np.abs(sens.per_unit[4] + 1.0).max() < 1e-8
+
+
+def test_helical_profile_sensitivity_is_the_normals_inclination(n_rack_male):
+    """A wheel dressed thicker by d along its normal takes d off the helicoid along the common normal
+    N = (n, k q) (q = P . T): in the transverse section that is d sqrt(1 + (k q)^2) along n (the
+    helicoid's normal derived in rotorcad.grinding.wheel_profile's docstring, by hand: r_u x r_theta)."""
+    flute, setting, wheel = n_rack_male
+    sens = sensitivities(wheel)
+    q = np.einsum("ij,ij->i", flute.points, flute.tangents)[wheel.valid]
+    expected = -np.sqrt(1.0 + (setting.twist * q) ** 2)
+    assert np.abs(sens.per_unit[4] - expected).max() < 1e-6
+    assert expected.min() < -1.3  # the inclination matters on this rotor
+
+
+def test_setting_errors_as_the_brute_force_grinds_them(n_rack_male):
+    """Centre distance +20 um, axial position +20 um and crossing angle +0.02 deg at once: the linear
+    prediction of the sensitivities against the brute-force simulation of the wheel so set (the
+    simulated section's signed distance from each design point: + where material is left), 1 um."""
+    import dataclasses
+    import types
+
+    flute, setting, wheel = n_rack_male
+    errors = {"center_distance": 0.02, "axial_position": 0.02, "crossing_angle": 0.02}
+    predicted = sensitivities(wheel).deviation(errors)
+    wrong = dataclasses.replace(
+        setting,
+        center_distance=setting.center_distance + 0.02,
+        crossing_angle=setting.crossing_angle + np.radians(0.02),
+    )
+    moved = types.SimpleNamespace(axial=wheel.axial + 0.02, radius=wheel.radius, contact=wheel.contact)
+    sim = _brute_force_section(flute, wrong, moved)
+    pts = shapely.points(flute.points[wheel.valid])
+    gap = shapely.distance(pts, sim.boundary)
+    signed = np.where(shapely.contains(sim, pts), gap, -gap)
+    inner = np.hypot(*flute.points[wheel.valid].T) < flute.tip_radius - 0.5  # the tip edges aside
+    assert np.abs(predicted).max() > 0.02  # the errors matter
+    assert np.abs(signed - predicted)[inner].max() < 1e-3, np.abs(signed - predicted)[inner].max()

@@ -179,8 +179,8 @@ def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: 
         i = np.clip(np.argmin(v, axis=1), 1, 31)
         best_z, h = fine[rows, i], h / 16.0
     v0, v1, v2 = v[rows, i - 1], v[rows, i], v[rows, i + 1]
-    curv = v0 - 2 * v1 + v2
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore"):  # inf - inf where the wheel never comes near
+        curv = v0 - 2 * v1 + v2
         best = np.where(curv > 0, v1 - (v2 - v0) ** 2 / (8 * curv), v1)
     return np.where(np.isfinite(best), np.minimum(best, v1), np.inf)
 

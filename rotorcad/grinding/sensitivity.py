@@ -1,0 +1,109 @@
+"""How far the ground rotor moves off its design for an error of the wheel or its setting.
+
+For each error the wheel is set (or dressed) wrongly by a small step either way, the rotor it then
+grinds is computed in closed form (:func:`rotorcad.grinding.rotor_from_wheel`: the envelope of the
+wheel in helical motion), and the displacement of every ground point along the design's outward
+normal at the point it came from is divided by the step (central difference over the setting, so
+exact to second order in the step; the normals themselves are the analytic ones). A point that
+slides along the flank moves it by nothing to first order, so this is the rotor's normal deviation
+per unit error, positive where the rotor is left thicker.
+
+The errors (:data:`ERRORS`, unit of the error in brackets):
+
+* ``center_distance`` [mm]: the wheel axis farther from the rotor axis;
+* ``crossing_angle`` [deg]: the wheel head swivelled more;
+* ``axial_position`` [mm]: the wheel moved along its own axis;
+* ``wheel_radius`` [mm]: the wheel worn by this much (its outside circle smaller) but still dressed to
+  the new wheel's profile shape, set to plunge to the root circle again (centre distance smaller by
+  the same); the error a worn wheel makes when it is not dressed to its own profile;
+* ``wheel_profile`` [mm]: the wheel's profile dressed thicker along its own normal by this much.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorcad.geometry import Array, perp_cw
+from rotorcad.grinding.ground_rotor import rotor_from_wheel
+from rotorcad.grinding.wheel_profile import WheelProfile
+
+ERRORS = ("center_distance", "crossing_angle", "axial_position", "wheel_radius", "wheel_profile")
+"""The errors, in the order of :attr:`Sensitivity.per_unit`."""
+
+UNITS = {"center_distance": "mm", "crossing_angle": "deg", "axial_position": "mm", "wheel_radius": "mm", "wheel_profile": "mm"}
+"""Unit of each error: the deviation (mm) is per this unit."""
+
+STEPS = {"center_distance": 1e-3, "crossing_angle": 1e-3, "axial_position": 1e-3, "wheel_radius": 1e-2, "wheel_profile": 1e-3}
+"""Steps of the central differences, in :data:`UNITS`."""
+
+
+@dataclass(frozen=True, eq=False)
+class Sensitivity:
+    """The rotor's normal deviation per unit error, along the flute.
+
+    Attributes
+    ----------
+    points : (n, 2) float array, mm
+        The flute's points with a contact (the flute turned to face the wheel, as the wheel's).
+    per_unit : (5, n) float array
+        Normal deviation (mm, + thicker) per unit of each error of :data:`ERRORS`.
+    """
+
+    points: Array
+    per_unit: Array
+
+    def deviation(self, errors: dict[str, float]) -> Array:
+        """Return the normal deviation (mm, (n,)) of the errors given (in :data:`UNITS`), to first order."""
+        return sum((self.per_unit[ERRORS.index(k)] * v for k, v in errors.items()), np.zeros(len(self.points)))
+
+    def largest(self) -> dict[str, float]:
+        """Return, per error, the largest magnitude of the deviation per unit error along the flute."""
+        return {name: float(np.nanmax(np.abs(row))) for name, row in zip(ERRORS, self.per_unit, strict=True)}
+
+
+def _ground(wheel: WheelProfile, name: str, step: float) -> Array:
+    """Return the rotor points the wheel grinds with the error ``name`` of size ``step`` (:data:`UNITS`)."""
+    s, ok = wheel.setting, wheel.valid
+    t, rho, nrm = wheel.axial[ok], wheel.radius[ok], wheel.normals[ok]
+    if name == "center_distance":
+        s = dataclasses.replace(s, center_distance=s.center_distance + step)
+    elif name == "crossing_angle":
+        s = dataclasses.replace(s, crossing_angle=s.crossing_angle + math.radians(step))
+    elif name == "axial_position":
+        t = t + step
+    elif name == "wheel_radius":
+        rho = rho - step
+        s = dataclasses.replace(s, center_distance=s.center_distance - step)
+    else:  # wheel_profile: dressed thicker along its outward normal
+        t, rho = t + step * nrm[:, 0], rho + step * nrm[:, 1]
+    return rotor_from_wheel(t, rho, nrm, s)[0]
+
+
+def sensitivities(wheel: WheelProfile) -> Sensitivity:
+    """Compute the rotor's normal deviation per unit error for each of :data:`ERRORS` (module docstring).
+
+    Parameters
+    ----------
+    wheel : WheelProfile
+        The wheel made for the rotor (:func:`rotorcad.grinding.wheel_profile`).
+
+    Returns
+    -------
+    Sensitivity
+    """
+    ok = wheel.valid
+    p = wheel.flute.points[ok]
+    n = perp_cw(wheel.flute.tangents[ok])
+    rows = []
+    for name in ERRORS:
+        h = STEPS[name]
+        plus, minus = _ground(wheel, name, h), _ground(wheel, name, -h)
+        rows.append(np.einsum("ij,ij->i", plus - minus, n) / (2 * h))
+    return Sensitivity(p, np.array(rows))
+
+
+__all__ = ["ERRORS", "STEPS", "UNITS", "Sensitivity", "sensitivities"]
