@@ -203,14 +203,21 @@ def test_grind_command_writes_the_dresser_files(tmp_path, capsys):
 
     out = tmp_path / "wheel"
     args = ["grind", str(SAMPLES / "n_rack_5_6.toml"), "--wheel-radius", "100", "--worn-radius", "80"]
-    args += ["--out", str(out), "--json"]
+    args += ["--out", str(out), "--plot", str(tmp_path / "chart.svg"), "--json"]
     assert main(args) == 0
     result = json.loads(capsys.readouterr().out)
     new, worn = result["wheels"]["new"], result["wheels"]["worn"]
     assert result["body"] == "male" and np.isclose(result["crossing_angle_deg"], 46.0, atol=1e-4)  # the N4 pair's 46 deg
     assert np.isclose(new["center_distance"] - worn["center_distance"], 20.0)
     assert new["secondary_cutting_point_count"] == 0 and new["round_trip_deviation"] < 1e-9
-    assert len(result["files"]) == 6
+    assert len(result["files"]) == 8 and (tmp_path / "chart.svg").read_text().lstrip().startswith("<?xml")
+    sens = np.loadtxt(out / "wheel_male_sensitivity.csv", delimiter=",", comments="#", skiprows=3)
+    for k, name in enumerate(("center_distance", "crossing_angle", "axial_position", "wheel_radius", "wheel_profile")):
+        assert result["sensitivity"][name]["unit"] == ("deg" if name == "crossing_angle" else "mm")
+        assert np.isclose(np.abs(sens[:, 3 + k]).max(), result["sensitivity"][name]["max_normal_deviation_per_unit"])
+    worn_use = result["worn_with_new_profile"]
+    assert worn_use["wheel_radius_change"] == -20.0
+    assert worn_use["rms_normal_deviation_compensated"] < worn_use["rms_normal_deviation"]
     for state, numbers in (("new", new), ("worn", worn)):
         rows = np.loadtxt(out / f"wheel_male_{state}.csv", delimiter=",", comments="#", skiprows=3)
         assert rows.shape == (numbers["profile_point_count"], 6)
@@ -296,3 +303,18 @@ def test_setting_errors_as_the_brute_force_grinds_them(n_rack_male):
     inner = np.hypot(*flute.points[wheel.valid].T) < flute.tip_radius - 0.5  # the tip edges aside
     assert np.abs(predicted).max() > 0.02  # the errors matter
     assert np.abs(signed - predicted)[inner].max() < 1e-3, np.abs(signed - predicted)[inner].max()
+
+
+def test_compensation_finds_a_planted_setting_error(n_rack_male):
+    """A wheel swivelled 0.05 deg too far and set 30 um too far out: the corrections that minimise the
+    rms deviation are the planted errors undone (the planted values are the reference), and the rotor
+    is then ground back to its design (the closed-form envelope, not linearised)."""
+    from rotorcad.grinding.sensitivity import compensate, normal_deviation
+
+    _, _, wheel = n_rack_male
+    planted = {"crossing_angle": 0.05, "center_distance": 0.03}
+    assert np.abs(normal_deviation(wheel, planted)).max() > 0.02  # the errors matter
+    fix = compensate(wheel, planted, ("crossing_angle", "center_distance"))
+    assert abs(fix["crossing_angle"] + 0.05) < 1e-6 and abs(fix["center_distance"] + 0.03) < 1e-6
+    undone = {k: planted[k] + fix[k] for k in planted}
+    assert np.abs(normal_deviation(wheel, undone)).max() < 1e-7

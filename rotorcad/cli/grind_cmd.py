@@ -9,14 +9,18 @@ from typing import Any
 import click
 import numpy as np
 
+from exports.csv_points import write_points
 from exports.dresser import write_wheel_csv, write_wheel_dxf
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, output_folder, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.rotor import PAIR_OPTIONS, rotor_input_options
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.errors import DesignError
+from rotorcad.geometry import rotate
 from rotorcad.grinding.job import GrindingJob, grind
+from rotorcad.grinding.sensitivity import ERRORS, UNITS, Sensitivity, compensate, normal_deviation, sensitivities
 from rotorcad.grinding.setting import MAX_WHEEL_RADIUS
+from rotorcad.grinding.wheel_profile import WheelProfile as GrindingWheel
 
 OPTION_NAMES = {
     "wheel_radius": "--wheel-radius",
@@ -55,6 +59,11 @@ OPTION_NAMES = {
 )
 @click.option(
     "--out", type=click.Path(path_type=Path, file_okay=False), help="Folder for the dresser's CSV and DXF (R12, R2000) files."
+)
+@click.option(
+    "--plot",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Chart (PNG, SVG or PDF by the suffix): the wheel profiles and the rotor's deviation for each setting error.",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--quiet", is_flag=True, help="No progress output.")
@@ -102,11 +111,30 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
         "crossing_angle_deg": math.degrees(jobs["new"].wheel.setting.crossing_angle),
         "wheels": {state: job.summary() for state, job in jobs.items()},
     }
+    sens = sensitivities(jobs["new"].wheel)
+    result["sensitivity"] = {
+        name: {"unit": UNITS[name], "max_normal_deviation_per_unit": value} for name, value in sens.largest().items()
+    }
+    if "worn" in jobs:
+        result["worn_with_new_profile"] = _worn_with_new_profile(jobs["new"].wheel, wheel_radius - worn)
     out = Outputs()
     if opts["out"] is not None:
         folder = output_folder(opts["out"])
         for state, job in jobs.items():
             _add_files(out, folder, f"wheel_{body['name']}_{state}", job, body["name"])
+        rows = _sensitivity_rows(jobs["new"].wheel, sens)
+        header = "rotor_x,rotor_y,flute_arc_length," + ",".join(ERRORS)
+        notes = [
+            f"the {body['name']}'s normal deviation (mm, + thicker) per unit error of the new wheel's setting: "
+            + ", ".join(f"{n} per {UNITS[n]}" for n in ERRORS),
+            "rotor_x, rotor_y: the rotor point in its own frame [mm]; flute_arc_length: from the flute's first tip [mm]",
+        ]
+        out.add(folder / f"wheel_{body['name']}_sensitivity.csv", lambda p: write_points(p, rows, notes, header=header), "--out")
+    if opts["plot"] is not None:
+        from rotorcad.grinding.plotting import grinding_chart  # matplotlib only for a picture
+
+        case = f"form-grinding wheel for the {body['name']}"
+        out.add_figure(opts["plot"], lambda: grinding_chart({k: j.wheel for k, j in jobs.items()}, sens, case), "--plot")
     result["files"] = [str(p) for p in out.write()]
     if opts["as_json"]:
         emit_json(result)
@@ -114,8 +142,47 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
     print_table(f"grinding wheel for the {body['name']}", {k: v for k, v in result.items() if k not in ("wheels", "files")})
     for state, numbers in result["wheels"].items():
         print_table(f"{state} wheel", numbers)
+    _print_sensitivity(result["sensitivity"])
+    if "worn_with_new_profile" in result:
+        print_table("worn wheel left at the new wheel's profile", result["worn_with_new_profile"])
     for p in result["files"]:
         click.echo(f"wrote {p}")
+
+
+def _print_sensitivity(sensitivity: dict[str, dict[str, Any]]) -> None:
+    """Print the largest normal deviation per unit error, with its unit (mm/mm or mm/deg)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title="largest normal deviation of the rotor per unit error (new wheel)", header_style="bold")
+    for column, justify in (("error", "left"), ("value", "right"), ("unit", "left")):
+        table.add_column(column, justify=justify)
+    for name, row in sensitivity.items():
+        table.add_row(name, f"{row['max_normal_deviation_per_unit']:.6f}", f"mm/{row['unit']}")
+    Console(highlight=False).print(table)
+
+
+def _worn_with_new_profile(wheel: GrindingWheel, wear: float) -> dict[str, float]:
+    """Judge the worn wheel dressed to the new one's profile: its deviation, and the crossing angle that helps most."""
+    errors = {"wheel_radius": wear}
+    before = normal_deviation(wheel, errors)
+    fix = compensate(wheel, errors, ("crossing_angle",))
+    after = normal_deviation(wheel, {**errors, **fix})
+    return {
+        "wheel_radius_change": -wear,
+        "max_normal_deviation": float(np.abs(before).max()),
+        "rms_normal_deviation": float(np.sqrt(np.mean(before**2))),
+        "best_crossing_angle_change_deg": fix["crossing_angle"],
+        "max_normal_deviation_compensated": float(np.abs(after).max()),
+        "rms_normal_deviation_compensated": float(np.sqrt(np.mean(after**2))),
+    }
+
+
+def _sensitivity_rows(wheel: GrindingWheel, sens: Sensitivity) -> np.ndarray:
+    """Rows of the sensitivity CSV: rotor point (own frame), arc length along the flute, per-unit deviations."""
+    own = rotate(sens.points, -wheel.flute.turn)
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(sens.points, axis=0).T))])
+    return np.column_stack([own, arc, sens.per_unit.T])
 
 
 def _add_files(out: Outputs, folder: Path, stem: str, job: GrindingJob, name: str) -> None:

@@ -65,22 +65,81 @@ class Sensitivity:
         return {name: float(np.nanmax(np.abs(row))) for name, row in zip(ERRORS, self.per_unit, strict=True)}
 
 
-def _ground(wheel: WheelProfile, name: str, step: float) -> Array:
-    """Return the rotor points the wheel grinds with the error ``name`` of size ``step`` (:data:`UNITS`)."""
+def _ground(wheel: WheelProfile, errors: dict[str, float]) -> Array:
+    """Return the rotor points the wheel grinds with the ``errors`` (by name, in :data:`UNITS`), exactly."""
     s, ok = wheel.setting, wheel.valid
     t, rho, nrm = wheel.axial[ok], wheel.radius[ok], wheel.normals[ok]
-    if name == "center_distance":
-        s = dataclasses.replace(s, center_distance=s.center_distance + step)
-    elif name == "crossing_angle":
-        s = dataclasses.replace(s, crossing_angle=s.crossing_angle + math.radians(step))
-    elif name == "axial_position":
-        t = t + step
-    elif name == "wheel_radius":
-        rho = rho - step
-        s = dataclasses.replace(s, center_distance=s.center_distance - step)
-    else:  # wheel_profile: dressed thicker along its outward normal
-        t, rho = t + step * nrm[:, 0], rho + step * nrm[:, 1]
+    a = s.center_distance + errors.get("center_distance", 0.0) - errors.get("wheel_radius", 0.0)
+    angle = s.crossing_angle + math.radians(errors.get("crossing_angle", 0.0))
+    s = dataclasses.replace(s, center_distance=a, crossing_angle=angle)
+    d = errors.get("wheel_profile", 0.0)  # dressed thicker along the wheel's outward normal
+    t = t + errors.get("axial_position", 0.0) + d * nrm[:, 0]
+    rho = rho - errors.get("wheel_radius", 0.0) + d * nrm[:, 1]
     return rotor_from_wheel(t, rho, nrm, s)[0]
+
+
+def normal_deviation(wheel: WheelProfile, errors: dict[str, float]) -> Array:
+    """Return the rotor's normal deviation (mm, + thicker) for the ``errors`` (by name, :data:`UNITS`).
+
+    The ground points (closed form, not linearised) against the design's points along the design's
+    outward normals: exact for the ground point's offset, first order in its slide along the flank.
+
+    Parameters
+    ----------
+    wheel : WheelProfile
+        The wheel made for the rotor.
+    errors : dict
+        Error sizes by the names of :data:`ERRORS`.
+
+    Returns
+    -------
+    (n,) float array, mm
+        At the flute's points with a contact.
+    """
+    ok = wheel.valid
+    n = perp_cw(wheel.flute.tangents[ok])
+    return np.einsum("ij,ij->i", _ground(wheel, errors) - wheel.flute.points[ok], n)
+
+
+def compensate(wheel: WheelProfile, errors: dict[str, float], free: tuple[str, ...] = ("crossing_angle",)) -> dict[str, float]:
+    """Find the setting corrections that minimise the rms normal deviation the ``errors`` cause.
+
+    Gauss-Newton on :func:`normal_deviation` (its Jacobian by central differences over the
+    corrections, :data:`STEPS`), five steps.
+
+    Parameters
+    ----------
+    wheel : WheelProfile
+        The wheel made for the rotor.
+    errors : dict
+        The errors to compensate (e.g. ``{"wheel_radius": 20.0}``: a worn wheel left at the new one's
+        profile).
+    free : tuple of str
+        The errors used as corrections (names of :data:`ERRORS`; one also in ``errors`` adds to it).
+
+    Returns
+    -------
+    dict
+        The corrections by name (:data:`UNITS`).
+    """
+    x = np.zeros(len(free))
+
+    def residual(v: Array) -> Array:
+        merged = dict(errors)
+        for name, value in zip(free, v, strict=True):  # a correction adds to an error of the same name
+            merged[name] = merged.get(name, 0.0) + float(value)
+        return normal_deviation(wheel, merged)
+
+    for _ in range(5):
+        r = residual(x)
+        jac = np.column_stack(
+            [
+                (residual(x + STEPS[k] * e) - residual(x - STEPS[k] * e)) / (2 * STEPS[k])
+                for k, e in zip(free, np.eye(len(free)), strict=True)
+            ]
+        )
+        x = x - np.linalg.lstsq(jac, r, rcond=None)[0]
+    return dict(zip(free, (float(v) for v in x), strict=True))
 
 
 def sensitivities(wheel: WheelProfile) -> Sensitivity:
@@ -101,9 +160,9 @@ def sensitivities(wheel: WheelProfile) -> Sensitivity:
     rows = []
     for name in ERRORS:
         h = STEPS[name]
-        plus, minus = _ground(wheel, name, h), _ground(wheel, name, -h)
+        plus, minus = _ground(wheel, {name: h}), _ground(wheel, {name: -h})
         rows.append(np.einsum("ij,ij->i", plus - minus, n) / (2 * h))
     return Sensitivity(p, np.array(rows))
 
 
-__all__ = ["ERRORS", "STEPS", "UNITS", "Sensitivity", "sensitivities"]
+__all__ = ["ERRORS", "STEPS", "UNITS", "Sensitivity", "compensate", "normal_deviation", "sensitivities"]
