@@ -161,13 +161,16 @@ def stock(points: Array, wheel: WheelEnvelope, setting: GrindingSetting, reach: 
     """
     p = np.asarray(points, dtype=float)
 
+    cs, sn = np.cos(setting.crossing_angle), np.sin(setting.crossing_angle)
+
     def d(z: Array) -> Array:
+        # the point (x, y, z) about the wheel axis W0 + t a, a = (0, cos S, -sin S): axial
+        # t = y cos S - z sin S, radius^2 = (x - A)^2 + (y sin S + z cos S)^2
         c, s = np.cos(setting.twist * z), np.sin(setting.twist * z)
         x = p[:, 0, None] * c - p[:, 1, None] * s
         y = p[:, 0, None] * s + p[:, 1, None] * c
-        q = np.stack([x, y, np.broadcast_to(z, x.shape)], axis=-1)
-        t, rho = setting.meridian(q)
-        return rho - wheel(t)
+        rho = np.hypot(x - setting.center_distance, y * sn + z * cs)
+        return rho - wheel(y * cs - z * sn)
 
     grid = np.linspace(-reach, reach, steps + 1)
     best_z = grid[np.argmin(d(grid[None, :]), axis=1)]
@@ -194,9 +197,9 @@ class GrindingCheck:
     flute_stock : (n,) float array, mm
         :func:`stock` at the flute's points (the wheel profile's own rotor points).
     neighbour_points : (m, 2) float array, mm
-        The outline's points within one and a half lobe pitches of the flute's middle, turned like
-        the flute, and ``neighbour_stock`` (m,) their stock: the lobes either side, which a wheel
-        that is too wide or set wrongly cuts into.
+        The outline's points outside the flute within one lobe pitch of its middle, turned like the
+        flute, and ``neighbour_stock`` (m,) their stock: the lobes either side, which a wheel that
+        is too wide or set wrongly cuts into.
     unreached : (n,) bool array
         Flute points the wheel does not grind: no contact, or stock above :data:`CHECK_TOLERANCE`.
     round_trip : float, mm
@@ -243,8 +246,10 @@ def check_grinding(wheel: WheelProfile, outline: Array, lobes: int) -> GrindingC
     envelope = WheelEnvelope.of(wheel.axial, wheel.radius)
     zmax = reach(setting, flute.tip_radius)
     turned = rotate(np.asarray(outline, dtype=float), flute.turn)
-    window = np.abs(np.arctan2(turned[:, 1], turned[:, 0])) <= 1.5 * 2 * np.pi / lobes
-    near = turned[window]
+    angle = np.arctan2(turned[:, 1], turned[:, 0])
+    ends = np.arctan2(flute.points[[0, -1], 1], flute.points[[0, -1], 0])
+    outside = (angle < ends[0] - 1e-9) | (angle > ends[1] + 1e-9)  # the flute itself is checked on its dense points
+    near = turned[outside & (np.abs(angle) <= 2 * np.pi / lobes)]
     flute_stock = stock(flute.points, envelope, setting, zmax)
     near_stock = stock(near, envelope, setting, zmax) if len(near) else np.zeros(0)
     valid = wheel.valid

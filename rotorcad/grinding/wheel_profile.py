@@ -34,7 +34,7 @@ from rotorcad.grinding.setting import GrindingSetting
 from rotorcad.profile import Profile
 from rotorcad.roots import bisect_many
 
-GRID_STEPS = 512
+GRID_STEPS = 256
 """Grid intervals over the wheel's reach along the rotor axis on which every contact is bracketed."""
 
 
