@@ -318,3 +318,48 @@ def test_compensation_finds_a_planted_setting_error(n_rack_male):
     assert abs(fix["crossing_angle"] + 0.05) < 1e-6 and abs(fix["center_distance"] + 0.03) < 1e-6
     undone = {k: planted[k] + fix[k] for k in planted}
     assert np.abs(normal_deviation(wheel, undone)).max() < 1e-7
+
+
+def test_grind_from_measured_points_matches_the_design(n_rack_male, tmp_path, capsys):
+    """The male given as points (its outline at 1 um chords, CSV, read and fitted by rotorcad's points
+    readers) gives the design's wheel: the same shape within 5 um once the axial zero is matched (the
+    zero is the bisector of the flute's tip points, which a fitted outline puts a few ten um along the
+    helix elsewhere); reference: the wheel of the analytic design (its own round trip and brute-force
+    checks above)."""
+    from exports.csv_points import write_points
+    from rotorcad.cli.main import main
+
+    _, _, wheel = n_rack_male
+    design = tomllib.loads((SAMPLES / "n_rack_5_6.toml").read_text())
+    rotors = build_pair(pair_spec(rotor_design(design)))
+    write_points(tmp_path / "male.csv", rotors.male_outline().resampled(1e-3).points)
+    pair = design["pair"]
+    args = ["grind", "--male-points", str(tmp_path / "male.csv"), "--wheel-radius", "100", "--out", str(tmp_path)]
+    args += [
+        x
+        for k in (
+            "male_teeth",
+            "female_teeth",
+            "center_distance",
+            "male_tip_radius",
+            "male_root_radius",
+            "female_tip_radius",
+            "female_root_radius",
+            "lead",
+        )
+        for x in (f"--{k.replace('_', '-')}", str(pair[k]))
+    ]
+    assert main([*args, "--quiet"]) == 0
+    capsys.readouterr()
+    rows = np.loadtxt(tmp_path / "wheel_male_new.csv", delimiter=",", comments="#", skiprows=3)
+    from scipy.spatial import cKDTree
+
+    # signed distance along the design wheel's normal at the nearest design point (tangential offsets
+    # cancel to first order), then the axial shift that fits best (least squares) and what is left
+    inner = rows[20:-20, :2]
+    j = cKDTree(np.column_stack([wheel.axial, wheel.radius])).query(inner)[1]
+    n = wheel.normals[j]
+    signed = np.einsum("ij,ij->i", inner - np.column_stack([wheel.axial[j], wheel.radius[j]]), n)
+    shift = -np.sum(signed * n[:, 0]) / np.sum(n[:, 0] ** 2)
+    left = signed + shift * n[:, 0]
+    assert abs(shift) < 0.1 and np.abs(left).max() < 5e-3, (shift, np.abs(left).max())
