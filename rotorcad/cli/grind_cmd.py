@@ -168,13 +168,13 @@ def _worn_with_new_profile(wheel: GrindingWheel, wear: float) -> dict[str, float
     before = normal_deviation(wheel, errors)
     fix = compensate(wheel, errors, ("crossing_angle",))
     after = normal_deviation(wheel, {**errors, **fix})
-    return {
+    return {  # over the points where the wheel still touches the rotor
         "wheel_radius_change": -wear,
-        "max_normal_deviation": float(np.abs(before).max()),
-        "rms_normal_deviation": float(np.sqrt(np.mean(before**2))),
+        "max_normal_deviation": float(np.nanmax(np.abs(before))),
+        "rms_normal_deviation": float(np.sqrt(np.nanmean(before**2))),
         "best_crossing_angle_change_deg": fix["crossing_angle"],
-        "max_normal_deviation_compensated": float(np.abs(after).max()),
-        "rms_normal_deviation_compensated": float(np.sqrt(np.mean(after**2))),
+        "max_normal_deviation_compensated": float(np.nanmax(np.abs(after))),
+        "rms_normal_deviation_compensated": float(np.sqrt(np.nanmean(after**2))),
     }
 
 

@@ -105,7 +105,8 @@ def compensate(wheel: WheelProfile, errors: dict[str, float], free: tuple[str, .
     """Find the setting corrections that minimise the rms normal deviation the ``errors`` cause.
 
     Gauss-Newton on :func:`normal_deviation` (its Jacobian by central differences over the
-    corrections, :data:`STEPS`), five steps.
+    corrections, :data:`STEPS`), five steps, over the points where the wheel touches the rotor in
+    every trial.
 
     Parameters
     ----------
@@ -138,7 +139,10 @@ def compensate(wheel: WheelProfile, errors: dict[str, float], free: tuple[str, .
                 for k, e in zip(free, np.eye(len(free)), strict=True)
             ]
         )
-        x = x - np.linalg.lstsq(jac, r, rcond=None)[0]
+        ok = np.isfinite(r) & np.isfinite(jac).all(axis=1)  # wheel points that touch the rotor in every trial
+        if ok.sum() < len(free):
+            break
+        x = x - np.linalg.lstsq(jac[ok], r[ok], rcond=None)[0]
     return dict(zip(free, (float(v) for v in x), strict=True))
 
 
