@@ -90,6 +90,13 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
     body = _body(design, opts)
     setting_radius = body["pitch_radius"] if opts["setting_radius"] is None else opts["setting_radius"]
     angle = None if opts["crossing_angle"] is None else math.radians(opts["crossing_angle"])
+    if angle is None and opts["setting_radius"] is not None and body["twist"] != 0.0:
+        most = math.tan(math.radians(80.0)) / abs(body["twist"])  # the helix angle there reaches 80 deg
+        if not 0 < setting_radius <= most:
+            raise InputError(
+                f"--setting-radius must be above 0 and at most {most:.6g} mm, where the helix angle reaches 80 deg "
+                f"(got {setting_radius})."
+            )
     radii = {"new": wheel_radius} | ({"worn": worn} if worn is not None else {})
     jobs: dict[str, GrindingJob] = {}
     for state, radius in radii.items():
