@@ -382,3 +382,18 @@ def test_worn_wheel_compensation_where_some_wheel_points_lose_contact():
     after = normal_deviation(wheel, {"wheel_radius": 10.0, **fix})
     assert np.isnan(after).any() and not np.isnan(before).any()
     assert np.isfinite(fix["crossing_angle"]) and np.sqrt(np.nanmean(after**2)) < 0.8 * np.sqrt(np.nanmean(before**2))
+
+
+def test_least_cutting_angle_cuts_less_than_its_neighbours():
+    """The helical gear's tip edges cut by 20 um at the helix angle: the crossing angle found cuts less
+    than the default and than 0.5 deg either side of it (each judged by the stock check, which the
+    brute-force simulation confirms above)."""
+    from rotorcad.grinding.job import cut_depth, grind, least_cutting_angle
+
+    gear = InvoluteGear(teeth=17, module=3.0, helix_angle=np.radians(15.0), shift=0.3, tolerance=1e-4)
+    args = (gear.outline(), np.tan(gear.helix_angle) / gear.pitch_radius, 17, 60.0, gear.pitch_radius)
+    angle, job = least_cutting_angle(*args)
+    found = cut_depth(job)
+    assert found < 0.5 * cut_depth(grind(*args))
+    for step in (-0.5, 0.5):
+        assert found <= cut_depth(grind(*args, angle + np.radians(step)))

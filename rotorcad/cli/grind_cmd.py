@@ -17,7 +17,7 @@ from rotorcad.cli.rotor import PAIR_OPTIONS, rotor_input_options
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate
-from rotorcad.grinding.job import GrindingJob, grind
+from rotorcad.grinding.job import GrindingJob, cut_depth, grind, least_cutting_angle
 from rotorcad.grinding.sensitivity import ERRORS, UNITS, Sensitivity, compensate, normal_deviation, sensitivities
 from rotorcad.grinding.setting import MAX_WHEEL_RADIUS
 from rotorcad.grinding.wheel_profile import WheelProfile as GrindingWheel
@@ -64,6 +64,11 @@ OPTION_NAMES = {
     "--plot",
     type=click.Path(path_type=Path, dir_okay=False),
     help="Chart (PNG, SVG or PDF by the suffix): the wheel profiles and the rotor's deviation for each setting error.",
+)
+@click.option(
+    "--least-cutting-angle",
+    is_flag=True,
+    help="Also find the crossing angle at which the new wheel cuts least into the rotor (a scan: some seconds).",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--quiet", is_flag=True, help="No progress output.")
@@ -122,6 +127,15 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
     result["sensitivity"] = {
         name: {"unit": UNITS[name], "max_normal_deviation_per_unit": value} for name, value in sens.largest().items()
     }
+    if opts["least_cutting_angle"]:
+        a = opts["wheel_center_distance"]
+        best, job = least_cutting_angle(body["outline"], body["twist"], body["lobes"], wheel_radius, setting_radius, a)
+        numbers = job.summary()
+        result["least_cutting"] = {
+            "crossing_angle_deg": math.degrees(best),
+            "deepest_cut_deviation": cut_depth(job),
+            **{k: numbers[k] for k in ("secondary_cutting_point_count", "secondary_cutting_deviation", "no_contact_point_count")},
+        }
     if "worn" in jobs:
         result["worn_with_new_profile"] = _worn_with_new_profile(jobs["new"].wheel, wheel_radius - worn)
     out = Outputs()
@@ -150,6 +164,8 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
     for state, numbers in result["wheels"].items():
         print_table(f"{state} wheel", numbers)
     _print_sensitivity(result["sensitivity"])
+    if "least_cutting" in result:
+        print_table("crossing angle of the least secondary cutting (new wheel)", result["least_cutting"])
     if "worn_with_new_profile" in result:
         print_table("worn wheel left at the new wheel's profile", result["worn_with_new_profile"])
     for p in result["files"]:

@@ -82,6 +82,7 @@ def grind(
     setting_radius: float,
     crossing_angle: float | None = None,
     center_distance: float | None = None,
+    tolerance: float = FLUTE_TOLERANCE,
 ) -> GrindingJob:
     """Make and check the wheel that grinds a rotor.
 
@@ -101,6 +102,8 @@ def grind(
         Instead of the helix angle at ``setting_radius``.
     center_distance : float, optional, mm
         Instead of root radius + wheel radius.
+    tolerance : float, mm
+        Chord tolerance of the flute's samples (:data:`FLUTE_TOLERANCE`).
 
     Returns
     -------
@@ -111,10 +114,91 @@ def grind(
     DesignError
         A setting out of range (:func:`rotorcad.grinding.default_setting`).
     """
-    flute = flute_of(outline.resampled(FLUTE_TOLERANCE))
+    flute = flute_of(outline.resampled(tolerance))
     setting = default_setting(twist, flute.root_radius, wheel_radius, setting_radius, crossing_angle, center_distance)
     wheel = wheel_profile(flute, setting)
     return GrindingJob(wheel, check_grinding(wheel, outline.points, lobes))
 
 
-__all__ = ["FLUTE_TOLERANCE", "GrindingJob", "grind"]
+SCAN_TOLERANCE = 1e-4
+"""Chord tolerance (mm) of the flute while crossing angles are scanned (the chosen one is checked at
+:data:`FLUTE_TOLERANCE`)."""
+
+
+def cut_depth(job: GrindingJob) -> float:
+    """Return how deep the wheel cuts into the rotor anywhere, mm (inf when a flute point has no contact).
+
+    The deepest negative stock of the flute and the lobes either side, also below
+    :data:`~rotorcad.grinding.ground_rotor.CHECK_TOLERANCE` (0 when the wheel cuts nowhere).
+    """
+    c = job.check
+    if not job.wheel.valid.all():
+        return float("inf")
+    least = min(float(np.min(c.flute_stock, initial=np.inf)), float(np.min(c.neighbour_stock, initial=np.inf)))
+    return max(0.0, -least)
+
+
+def least_cutting_angle(
+    outline: Profile,
+    twist: float,
+    lobes: int,
+    wheel_radius: float,
+    setting_radius: float,
+    center_distance: float | None = None,
+) -> tuple[float, GrindingJob]:
+    """Find the crossing angle at which the wheel cuts least into the rotor (secondary cutting).
+
+    The helix angles from the root radius less 5 deg to the tip radius plus 5 deg (within +-79 deg)
+    are tried in steps of 1 deg (:func:`cut_depth`, the flute at :data:`SCAN_TOLERANCE`); about the
+    best, golden-section search to 0.01 deg; where several angles cut nowhere, the one nearest the
+    helix angle at ``setting_radius`` is kept. The angle found is checked at :data:`FLUTE_TOLERANCE`.
+
+    Parameters
+    ----------
+    outline, twist, lobes, wheel_radius, setting_radius, center_distance
+        As :func:`grind`.
+
+    Returns
+    -------
+    angle : float, rad
+        The crossing angle.
+    job : GrindingJob
+        The wheel at that angle.
+    """
+    flute = flute_of(outline)
+    limit = math.radians(79.0)
+    lo = max(-limit, min(math.atan(twist * flute.root_radius), math.atan(twist * flute.tip_radius)) - math.radians(5.0))
+    hi = min(limit, max(math.atan(twist * flute.root_radius), math.atan(twist * flute.tip_radius)) + math.radians(5.0))
+    usual = math.atan(twist * setting_radius)
+
+    def depth(angle: float) -> float:
+        return cut_depth(grind(outline, twist, lobes, wheel_radius, setting_radius, angle, center_distance, SCAN_TOLERANCE))
+
+    angles = np.arange(lo, hi + 1e-12, math.radians(1.0))
+    depths = np.array([depth(a) for a in angles])  # one wheel per angle: a few dozen at most
+    best = float(depths.min())
+    if best == 0.0:
+        clean = angles[depths == 0.0]
+        angle = float(clean[np.argmin(np.abs(clean - usual))])
+    else:
+        i = int(np.argmin(depths))
+        a, b = angles[max(i - 1, 0)], angles[min(i + 1, len(angles) - 1)]
+        golden = (math.sqrt(5.0) - 1.0) / 2.0
+        c, d = b - golden * (b - a), a + golden * (b - a)
+        fc, fd = depth(c), depth(d)
+        while b - a > math.radians(0.01):
+            if fc <= fd:
+                b, d, fd = d, c, fc
+                c = b - golden * (b - a)
+                fc = depth(c)
+            else:
+                a, c, fc = c, d, fd
+                d = a + golden * (b - a)
+                fd = depth(d)
+        angle = 0.5 * (a + b)
+        if depth(angle) > best:  # the grid point was better (a cut depth need not be unimodal)
+            angle = float(angles[i])
+    return angle, grind(outline, twist, lobes, wheel_radius, setting_radius, angle, center_distance)
+
+
+__all__ = ["FLUTE_TOLERANCE", "SCAN_TOLERANCE", "GrindingJob", "cut_depth", "grind", "least_cutting_angle"]
