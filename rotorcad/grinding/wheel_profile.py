@@ -18,7 +18,8 @@ tangent ``T`` from the analytic segment and outward normal ``n = (T_y, -T_x)``, 
 which holds for the spur gear (``k = 0``, ``S = 0``: ``g = z n_x``, contact in the plane z = 0)
 as well. ``g`` is transcendental in ``z``; every profile point's root is bracketed on one grid
 (vectorised) and closed by bisection (:func:`rotorcad.roots.bisect_many`). Of several roots the
-one nearest the wheel's mid-plane whose normal points at the axis from the rotor's side is kept.
+one nearest the transverse plane z = 0 (which holds the common perpendicular of the axes) whose
+normal points at the wheel axis from the rotor's side is kept.
 The wheel's profile point is the contact point's axial coordinate and distance from the axis.
 """
 
