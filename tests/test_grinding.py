@@ -240,7 +240,9 @@ def test_grind_command_writes_the_dresser_files(tmp_path, capsys):
         (["--wheel-radius", "0"], "--wheel-radius"),
         (["--wheel-radius", "100", "--worn-radius", "100"], "--worn-radius"),
         (["--wheel-radius", "100", "--crossing-angle", "85"], "--crossing-angle"),
-        (["--wheel-radius", "100", "--wheel-center-distance", "30"], "--wheel-center-distance"),
+        (["--wheel-radius", "100", "--wheel-center-distance", "50"], "--wheel-center-distance"),
+        (["--wheel-radius", "100", "--wheel-center-distance", "1e9"], "--wheel-center-distance"),
+        (["--wheel-radius", "10"], "--wheel-radius"),
         (["--wheel-radius", "100", "--setting-radius", "5000"], "--setting-radius"),
     ],
 )

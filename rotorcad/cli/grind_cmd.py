@@ -111,7 +111,11 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
         try:
             jobs[state] = grind(body["outline"], body["twist"], body["lobes"], radius, setting_radius, angle, a)
         except DesignError as exc:
-            label = "--worn-radius" if (state == "worn" and exc.param == "wheel_radius") else OPTION_NAMES.get(exc.param)
+            label = OPTION_NAMES.get(exc.param)
+            if state == "worn":  # the worn wheel's values follow from --worn-radius
+                label = {"wheel_radius": "--worn-radius", "center_distance": "--wheel-center-distance less the wear"}.get(
+                    exc.param, label
+                )
             raise InputError(exc.sentence(label)) from None
     result: dict[str, Any] = {
         "body": body["name"],

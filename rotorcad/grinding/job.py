@@ -115,7 +115,9 @@ def grind(
         A setting out of range (:func:`rotorcad.grinding.default_setting`).
     """
     flute = flute_of(outline.resampled(tolerance))
-    setting = default_setting(twist, flute.root_radius, wheel_radius, setting_radius, crossing_angle, center_distance)
+    setting = default_setting(
+        twist, flute.root_radius, wheel_radius, setting_radius, crossing_angle, center_distance, flute.tip_radius
+    )
     wheel = wheel_profile(flute, setting)
     return GrindingJob(wheel, check_grinding(wheel, outline.points, lobes))
 

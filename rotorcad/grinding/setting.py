@@ -119,6 +119,7 @@ def default_setting(
     setting_radius: float,
     crossing_angle: float | None = None,
     center_distance: float | None = None,
+    tip_radius: float | None = None,
 ) -> GrindingSetting:
     """Make the setting a grinding engineer starts from.
 
@@ -141,6 +142,9 @@ def default_setting(
         Given instead of the default.
     center_distance : float, optional, mm
         Given instead of the default.
+    tip_radius : float, optional, mm
+        The rotor's tip radius: the wheel axis must pass outside the tip circle (else the wheel's
+        hub meets the lobes). Default: not checked.
 
     Returns
     -------
@@ -149,17 +153,34 @@ def default_setting(
     Raises
     ------
     DesignError
-        A wheel radius out of range; a centre distance at most the root radius (the wheel axis
-        inside the rotor), naming ``center_distance``.
+        A wheel radius out of range, or one that puts the wheel axis inside the tip circle
+        (``wheel_radius``, a :class:`GeometryError`); a given centre distance not above the tip
+        radius or more than root radius + :data:`MAX_WHEEL_RADIUS` (``center_distance``).
     """
     if not (math.isfinite(setting_radius) and setting_radius > 0.0):
         raise DesignError("setting_radius", "a radius above 0 mm", setting_radius)
     angle = helix_crossing_angle(twist, setting_radius) if crossing_angle is None else crossing_angle
     if not (math.isfinite(wheel_radius) and 0.0 < wheel_radius <= MAX_WHEEL_RADIUS):
         raise DesignError("wheel_radius", f"a radius above 0 and at most {MAX_WHEEL_RADIUS:g} mm", wheel_radius)
-    a = root_radius + wheel_radius if center_distance is None else center_distance
-    if not (math.isfinite(a) and a > root_radius):
-        raise GeometryError("center_distance", f"more than the rotor's root radius {root_radius:.6g} mm", a)
+    inner = root_radius if tip_radius is None else tip_radius
+    if center_distance is None:
+        if not root_radius + wheel_radius > inner:
+            raise GeometryError(
+                "wheel_radius",
+                f"more than the flute's depth {inner - root_radius:.6g} mm (tip radius - root radius)",
+                wheel_radius,
+                "the wheel axis would pass inside the rotor's tip circle",
+            )
+        a = root_radius + wheel_radius
+    else:
+        a = center_distance
+        if not (math.isfinite(a) and inner < a <= root_radius + MAX_WHEEL_RADIUS):
+            raise GeometryError(
+                "center_distance",
+                f"more than the rotor's {'tip' if tip_radius is not None else 'root'} radius {inner:.6g} mm and at most "
+                f"{root_radius + MAX_WHEEL_RADIUS:.6g} mm (root radius + {MAX_WHEEL_RADIUS:g} mm)",
+                a,
+            )
     return GrindingSetting(float(wheel_radius), float(a), float(angle), float(twist))
 
 
