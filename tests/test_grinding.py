@@ -399,3 +399,21 @@ def test_least_cutting_angle_cuts_less_than_its_neighbours():
     assert found < 0.5 * cut_depth(grind(*args))
     for step in (-0.5, 0.5):
         assert found <= cut_depth(grind(*args, angle + np.radians(step)))
+
+
+def test_left_hand_rotor_wheel_is_the_mirror_image(n_rack_male):
+    """A left-hand rotor is the right-hand one mirrored in the plane y = 0 (profile mirrored, twist and
+    crossing angle negated); the mirror takes the wheel axis to the new one with t -> -t, so its wheel
+    is the same profile mirrored about the mid-plane: rho(t) = rho_right(-t) (a symmetry, not a
+    computed reference)."""
+    _, setting, wheel = n_rack_male
+    design = tomllib.loads((SAMPLES / "n_rack_5_6.toml").read_text())
+    rotors = build_pair(pair_spec(rotor_design(design)))
+    left = flute_of(rotors.male_outline().mirrored(0.0).resampled(2e-5))
+    mirrored = default_setting(-setting.twist, left.root_radius, WHEEL_RADIUS, rotors.pair.male_pitch_radius)
+    assert np.isclose(mirrored.crossing_angle, -setting.crossing_angle)
+    other = wheel_profile(left, mirrored)
+    t, r = -other.axial[::-1], other.radius[::-1]
+    inside = (t > wheel.axial.min() + 0.01) & (t < wheel.axial.max() - 0.01)
+    assert inside.sum() > 1000
+    assert np.abs(np.interp(t[inside], wheel.axial, wheel.radius) - r[inside]).max() < 1e-6
