@@ -121,4 +121,34 @@ def _brent(f: Callable[[float], float], a: float, b: float, fa: float, fb: float
     return float(xcur)
 
 
-__all__ = ["bracket_root"]
+__all__ = ["bisect_many", "bracket_root"]
+
+
+def bisect_many(f: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray, xtol: float = 1e-12) -> np.ndarray:
+    """Roots of a vectorised ``f`` in many brackets at once, by bisection.
+
+    Parameters
+    ----------
+    f : callable
+        Maps an (n,) array of parameters to the (n,) values of n independent functions.
+    lo, hi : (n,) float arrays
+        Brackets: the values at their ends differ in sign (or one is zero).
+    xtol : float
+        Width of the final brackets, in the unit of the parameter.
+
+    Returns
+    -------
+    (n,) float array
+        The middle of every final bracket (NaN where ``lo`` or ``hi`` is not finite).
+    """
+    lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
+    flo = f(lo)
+    width = float(np.nanmax(np.abs(hi - lo))) if len(lo) else 0.0
+    steps = int(np.ceil(np.log2(max(width, xtol) / xtol))) + 1 if width > 0 else 0
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        fm = f(mid)
+        left = np.sign(fm) * np.sign(flo) <= 0
+        hi = np.where(left, mid, hi)
+        lo, flo = np.where(left, lo, mid), np.where(left, flo, fm)
+    return 0.5 * (lo + hi)

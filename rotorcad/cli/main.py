@@ -53,6 +53,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "deflect": ("rotorcad.cli.deflect_cmd:deflect", "Deflection of the rotors under gas load (Rinder & Deix)."),
     "sweep": ("rotorcad.cli.sweep_cmd:sweep", "Thousands of rotor variants built and judged side by side, on Dask."),
     "coupling": ("rotorcad.cli.coupling_cmd:coupling", "Oil film of a gear coupling with barrel-shaped teeth (Belkov et al.)."),
+    "grind": ("rotorcad.cli.grind_cmd:grind_cmd", "Form-grinding wheel of a rotor or gear, checked; the dresser's files."),
     "report": ("rotorcad.cli.report_cmd:report", "One self-contained HTML page per rotor or gear design, for a design review."),
 }
 
