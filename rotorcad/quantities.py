@@ -539,3 +539,37 @@ def column_suffix(unit: str) -> str:
     if unit in ("1", ""):
         return ""
     return _ASCII.get(unit, unit)
+
+# --- form grinding (rotorcad/grinding/, rotorcad/cli/grind_cmd.py; the wheel from the rotor) -------
+_declare(
+    "rotorcad/grinding",
+    [
+        ("lobe_count", "1", "lobes"),
+        ("setting_radius", "mm", "radius of the crossing angle's helix"),
+        ("crossing_angle_deg", "deg", "crossing angle"),
+        ("flute_turn_deg", "deg", "flute turn to the wheel"),
+        ("wheel_radius", "mm", "wheel outside radius"),
+        ("profile_point_count", "1", "wheel profile points"),
+        ("profile_axial_length", "mm", "wheel profile axial length"),
+        ("profile_radial_length", "mm", "wheel profile radial length"),
+        ("wheel_max_radius", "mm", "wheel largest radius"),
+        ("wheel_min_radius", "mm", "wheel least radius"),
+        ("profile_folds", "1", "folds of the wheel profile"),
+        ("no_contact_point_count", "1", "points without contact"),
+        ("unreached_point_count", "1", "points not ground"),
+        ("secondary_cutting_point_count", "1", "points cut into"),
+        ("secondary_cutting_deviation", "mm", "deepest secondary cut"),
+        ("check_tolerance", "mm", "grinding check tolerance"),
+        ("round_trip_deviation", "mm", "wheel round trip"),
+        ("wheel_radius_change", "mm", "wear"),
+        ("max_normal_deviation", "mm", "largest normal deviation"),
+        ("rms_normal_deviation", "mm", "rms normal deviation"),
+        ("best_crossing_angle_change_deg", "deg", "crossing angle correction"),
+        ("max_normal_deviation_compensated", "mm", "largest deviation, compensated"),
+        ("rms_normal_deviation_compensated", "mm", "rms deviation, compensated"),
+        ("deepest_cut_deviation", "mm", "deepest cut"),
+        # per unit of each setting error (rotorcad.grinding.sensitivity.UNITS): mm per mm, or per degree
+        ("sensitivity.crossing_angle.max_normal_deviation_per_unit", "mm/deg", "deviation per degree of crossing angle"),
+        ("max_normal_deviation_per_unit", "1", "deviation per mm of the setting error"),
+    ],
+)

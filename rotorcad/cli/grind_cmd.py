@@ -79,29 +79,9 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
     condition (the common normal meets the wheel axis). The wheel is checked against the rotor:
     secondary cutting, flank parts it does not reach, and the rotor it grinds back.
     """
-    wheel_radius, worn = opts["wheel_radius"], opts["worn_radius"]
-    if wheel_radius is None:
-        raise InputError(
-            f"--wheel-radius must be given: the new wheel's outside radius in mm (above 0, at most {MAX_WHEEL_RADIUS:g})."
-        )
-    if not (math.isfinite(wheel_radius) and 0 < wheel_radius <= MAX_WHEEL_RADIUS):
-        raise InputError(f"--wheel-radius must be above 0 and at most {MAX_WHEEL_RADIUS:g} mm (got {wheel_radius}).")
-    if worn is not None and not (math.isfinite(worn) and 0 < worn < wheel_radius):
-        raise InputError(f"--worn-radius must be above 0 and below --wheel-radius {wheel_radius:g} mm (got {worn}).")
-    for key in ("crossing_angle", "setting_radius", "wheel_center_distance"):
-        v = opts[key]
-        if v is not None and not math.isfinite(v):
-            raise InputError(f"--{key.replace('_', '-')} must be a finite number (got {v}).")
+    wheel_radius, worn = _check_numbers(opts)
     body = _body(design, opts)
-    setting_radius = body["pitch_radius"] if opts["setting_radius"] is None else opts["setting_radius"]
-    angle = None if opts["crossing_angle"] is None else math.radians(opts["crossing_angle"])
-    if angle is None and opts["setting_radius"] is not None and body["twist"] != 0.0:
-        most = math.tan(math.radians(80.0)) / abs(body["twist"])  # the helix angle there reaches 80 deg
-        if not 0 < setting_radius <= most:
-            raise InputError(
-                f"--setting-radius must be above 0 and at most {most:.6g} mm, where the helix angle reaches 80 deg "
-                f"(got {setting_radius})."
-            )
+    setting_radius, angle = _setting(body, opts)
     radii = {"new": wheel_radius} | ({"worn": worn} if worn is not None else {})
     jobs: dict[str, GrindingJob] = {}
     for state, radius in radii.items():
@@ -142,6 +122,24 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
         }
     if "worn" in jobs:
         result["worn_with_new_profile"] = _worn_with_new_profile(jobs["new"].wheel, wheel_radius - worn)
+    result["files"] = _write_files(opts, jobs, body, sens)
+    if opts["as_json"]:
+        emit_json(result)
+        return
+    print_table(f"grinding wheel for the {body['name']}", {k: v for k, v in result.items() if k not in ("wheels", "files")})
+    for state, numbers in result["wheels"].items():
+        print_table(f"{state} wheel", numbers)
+    _print_sensitivity(result["sensitivity"])
+    if "least_cutting" in result:
+        print_table("crossing angle of the least secondary cutting (new wheel)", result["least_cutting"])
+    if "worn_with_new_profile" in result:
+        print_table("worn wheel left at the new wheel's profile", result["worn_with_new_profile"])
+    for p in result["files"]:
+        click.echo(f"wrote {p}")
+
+
+def _write_files(opts: dict[str, Any], jobs: dict[str, GrindingJob], body: dict[str, Any], sens: Sensitivity) -> list[str]:
+    """Write the dresser's files (``--out``) and the chart (``--plot``), all or none; return their paths."""
     out = Outputs()
     if opts["out"] is not None:
         folder = output_folder(opts["out"])
@@ -160,20 +158,39 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
 
         case = f"form-grinding wheel for the {body['name']}"
         out.add_figure(opts["plot"], lambda: grinding_chart({k: j.wheel for k, j in jobs.items()}, sens, case), "--plot")
-    result["files"] = [str(p) for p in out.write()]
-    if opts["as_json"]:
-        emit_json(result)
-        return
-    print_table(f"grinding wheel for the {body['name']}", {k: v for k, v in result.items() if k not in ("wheels", "files")})
-    for state, numbers in result["wheels"].items():
-        print_table(f"{state} wheel", numbers)
-    _print_sensitivity(result["sensitivity"])
-    if "least_cutting" in result:
-        print_table("crossing angle of the least secondary cutting (new wheel)", result["least_cutting"])
-    if "worn_with_new_profile" in result:
-        print_table("worn wheel left at the new wheel's profile", result["worn_with_new_profile"])
-    for p in result["files"]:
-        click.echo(f"wrote {p}")
+    return [str(p) for p in out.write()]
+
+
+def _check_numbers(opts: dict[str, Any]) -> tuple[float, float | None]:
+    """Return the new and the worn wheel radius (mm) after checking every number given."""
+    wheel_radius, worn = opts["wheel_radius"], opts["worn_radius"]
+    if wheel_radius is None:
+        raise InputError(
+            f"--wheel-radius must be given: the new wheel's outside radius in mm (above 0, at most {MAX_WHEEL_RADIUS:g})."
+        )
+    if not (math.isfinite(wheel_radius) and 0 < wheel_radius <= MAX_WHEEL_RADIUS):
+        raise InputError(f"--wheel-radius must be above 0 and at most {MAX_WHEEL_RADIUS:g} mm (got {wheel_radius}).")
+    if worn is not None and not (math.isfinite(worn) and 0 < worn < wheel_radius):
+        raise InputError(f"--worn-radius must be above 0 and below --wheel-radius {wheel_radius:g} mm (got {worn}).")
+    for key in ("crossing_angle", "setting_radius", "wheel_center_distance"):
+        v = opts[key]
+        if v is not None and not math.isfinite(v):
+            raise InputError(f"--{key.replace('_', '-')} must be a finite number (got {v}).")
+    return wheel_radius, worn
+
+
+def _setting(body: dict[str, Any], opts: dict[str, Any]) -> tuple[float, float | None]:
+    """Return the setting radius (mm) and the crossing angle given (rad, or None for the helix angle there)."""
+    setting_radius = body["pitch_radius"] if opts["setting_radius"] is None else opts["setting_radius"]
+    angle = None if opts["crossing_angle"] is None else math.radians(opts["crossing_angle"])
+    if angle is None and opts["setting_radius"] is not None and body["twist"] != 0.0:
+        most = math.tan(math.radians(80.0)) / abs(body["twist"])  # the helix angle there reaches 80 deg
+        if not 0 < setting_radius <= most:
+            raise InputError(
+                f"--setting-radius must be above 0 and at most {most:.6g} mm, where the helix angle reaches 80 deg "
+                f"(got {setting_radius})."
+            )
+    return setting_radius, angle
 
 
 def _print_sensitivity(sensitivity: dict[str, dict[str, Any]]) -> None:
