@@ -19,6 +19,7 @@ import numpy as np
 if TYPE_CHECKING:
     import ezdxf.document
 
+    from exports.dxf_spline import SplinePiece
     from exports.formats import ExportFormat, Writer
     from rotorcad.assembly import PlacedBody
 
@@ -53,8 +54,9 @@ class Drawing:
         Centre marks, drawn as crosses on the layer CENTER.
     polylines : list of (str, (n, 2) float array)
         (layer, open points).
-    splines : list of (str, (n, 2) float array)
-        (layer, closed points): a closed cubic spline through them (R2000+ only).
+    splines : list of (str, SplinePiece)
+        (layer, piece): one non-rational B-spline per profile segment, each ending where the next
+        starts (:func:`exports.dxf_spline.profile_splines`, R2000+ only).
     texts : list of (str, (float, float), str, float)
         (layer, insertion point, text, height in mm): one-line TEXT labels.
     mark_size : float, mm
@@ -66,7 +68,7 @@ class Drawing:
     lines: list[tuple[str, tuple[float, float], tuple[float, float]]] = field(default_factory=list)
     centers: list[tuple[float, float]] = field(default_factory=list)
     polylines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, open points)
-    splines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, closed points): cubic through them
+    splines: list[tuple[str, SplinePiece]] = field(default_factory=list)  # (layer, one segment's B-spline)
     texts: list[tuple[str, tuple[float, float], str, float]] = field(default_factory=list)  # (layer, insert, text, height mm)
     mark_size: float = 2.0
 
@@ -91,6 +93,7 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
         doc.header["$MEASUREMENT"] = 1  # metric
     layers = (
         {name for name, _ in drawing.outlines + drawing.polylines}
+        | ({name for name, _ in drawing.splines} if version != "R12" else set())
         | {c[0] for c in drawing.circles}
         | {ln[0] for ln in drawing.lines}
         | {t[0] for t in drawing.texts}
@@ -112,11 +115,10 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
             msp.add_polyline2d(xy, dxfattribs={"layer": layer})
         else:
             _lwpolyline(msp, pts, False, layer)
-    if version != "R12":  # SPLINE needs R2000+; a closed outline gets a seam where it starts (measured)
-        for layer, pts in drawing.splines:
-            closed = np.vstack([pts, pts[:1]])
-            spline = msp.add_spline_control_frame([(float(x), float(y), 0.0) for x, y in closed], degree=3, method="chord")
-            spline.dxf.layer = layer
+    if version != "R12":  # SPLINE needs R2000+: its control points and knots as they are (no fit points to re-interpolate)
+        for layer, piece in drawing.splines:
+            control = np.column_stack([piece.control_points, np.zeros(len(piece.control_points))])
+            msp.add_open_spline(control, degree=piece.degree, knots=piece.knots.tolist(), dxfattribs={"layer": layer})
     for layer, centre, r in drawing.circles:
         msp.add_circle(centre, r, dxfattribs={"layer": layer})
     for layer, a, b in drawing.lines:
@@ -214,9 +216,14 @@ DXF_MESH_MAX = 50_000
 def _plan_drawing(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str, Any]) -> Writer:
     """Plan a body's drawing: its section placed in mesh, pitch circle; a rotor's also its centre and spline.
 
-    Written by the worker process (ezdxf); the section's chords are its tolerance.
+    Written by the worker process (ezdxf); the section's chords are its tolerance. A rotor's
+    splines, one per profile segment (:func:`exports.dxf_spline.placed_splines`), are made here
+    and their measured deviation goes into the row (``spline_deviation``); where the section's
+    tolerance cannot be met by them the export is refused naming it.
     """
     from exports.background import BackgroundWriter
+    from exports.dxf_spline import SplineToleranceError, placed_splines
+    from exports.formats import RefusalError
     from rotorcad.assembly import BodyKind
 
     row.update(triangles=0, volume=body.section_volume, tolerance=body.section_tolerance)
@@ -227,8 +234,16 @@ def _plan_drawing(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: di
     r12 = fmt.name.endswith("r12")
     if body.kind is BodyKind.ROTOR:
         drawing.centers.append(body.shift)
-        if not r12:
-            drawing.splines.append((f"{body.name.upper()}_SPLINE", placed))
+        if not r12:  # one spline per profile segment, its deviation from the exact curve measured
+            try:
+                pieces = placed_splines(body.outline, body.section_tolerance, body.turn, body.shift)
+            except SplineToleranceError as exc:
+                raise RefusalError(
+                    f"--tolerance {2 * body.section_tolerance:g} mm cannot be met by the DXF spline of the {body.name}: "
+                    f"{exc} (the DXF is drawn to half the tolerance; --format dxf-r12 writes the polyline alone)."
+                ) from None
+            row.update(spline_deviation=max(piece.deviation for piece in pieces))
+            drawing.splines.extend((f"{body.name.upper()}_SPLINE", piece) for piece in pieces)
     return BackgroundWriter(write_dxf, (drawing, "R12" if r12 else "R2000"))
 
 

@@ -353,6 +353,7 @@ _declare(
         ("files[].volume", "mm³", "volume of the body"),
         ("files[].tolerance", "mm", "surface tolerance"),
         ("files[].size", "B", "file size"),
+        ("files[].spline_deviation", "mm", "largest distance of the drawing's splines from the exact outline"),
         ("tolerance", "mm", "surface tolerance"),
         ("clearance", "mm", "radial clearance of the housing"),
     ],
