@@ -23,6 +23,7 @@ from rotorcad.cli.progress import Steps
 from rotorcad.design.gears import GEAR_DEFAULTS, VALUE_FIELDS, GearSpec, gear_spec
 from rotorcad.design.gears import build_gear as core_build_gear
 from rotorcad.design.gears import check_contact as core_check_contact
+from rotorcad.design.gears import shop_values as core_shop_values
 from rotorcad.design.labels import GEAR_FIELD_LABELS, GEAR_LABELS, contact_names, gear_name, required
 from rotorcad.errors import DesignError, GeometryError, MissingValueError
 from rotorcad.gear import GearPair, InvoluteGear
@@ -49,6 +50,12 @@ OPTION_FIELDS = (
     "mate_teeth",
     "mate_shift",
     "center_distance",
+    "thickness_allowance_upper",
+    "thickness_allowance_lower",
+    "span_teeth",
+    "pin_diameter",
+    "mate_thickness_allowance_upper",
+    "mate_thickness_allowance_lower",
 )
 """The fields of :class:`rotorcad.design.gears.GearSpec` that the options of :func:`gear_options` give."""
 
@@ -74,6 +81,29 @@ GEAR_DECORATORS = [
 ]
 
 
+SHOP_DECORATORS = [
+    click.option(
+        "--thickness-allowance-upper",
+        type=float,
+        help="Upper tooth-thickness allowance A_sne [mm], normal section, DIN 3967 (<= 0). Default 0.",
+    ),
+    click.option(
+        "--thickness-allowance-lower",
+        type=float,
+        help="Lower tooth-thickness allowance A_sni [mm] (<= the upper one). Default 0. Files get the middle of the field.",
+    ),
+    click.option("--span-teeth", type=int, help="Teeth k of the span measurement W_k. Default: the standard rule."),
+    click.option(
+        "--pin-diameter",
+        type=float,
+        help="Pin (ball, helical) diameter D_M of the dimension over pins [mm]. Default: the standard rule.",
+    ),
+    click.option("--mate-thickness-allowance-upper", type=float, help="The mate's upper allowance A_sne [mm]. Default 0."),
+    click.option("--mate-thickness-allowance-lower", type=float, help="The mate's lower allowance A_sni [mm]. Default 0."),
+]
+"""The options of ``rotorcad gear`` alone: the tooth-thickness allowances and their measurements."""
+
+
 def gear_options(fn):
     """Add the options of ``rotorcad gear`` that describe the gear (and mate) to another command.
 
@@ -84,9 +114,17 @@ def gear_options(fn):
     return fn
 
 
+def shop_options(fn):
+    """Add :data:`SHOP_DECORATORS` to a command (a decorator)."""
+    for deco in reversed(SHOP_DECORATORS):
+        fn = deco(fn)
+    return fn
+
+
 @click.command()
 @click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
 @gear_options
+@shop_options
 @click.option("--tolerance", type=float, default=1e-4, show_default=True, help="Chord tolerance of the outline [mm].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="Write a DXF of the gear (and mate in mesh) [mm].")
@@ -115,6 +153,10 @@ def gear(design: Path | None, **opts: Any) -> None:
     params = merge_gear_params(design, opts)
     g, pair = build_gear(params, opts["tolerance"])
     result: dict[str, Any] = pair.summary() if pair is not None else g.summary()
+    shop, g, pair = shop_gears(params, g, pair)
+    if pair is not None:
+        result["mate"].update(shop.pop("mate"))
+    result.update(shop)
 
     outputs = Outputs()
     out = output_folder(opts["out"])
@@ -229,6 +271,46 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
         else:
             label = gear_name(exc.param, spec.from_design)
         raise InputError(exc.sentence(label)) from None
+
+
+def shop_gears(
+    p: dict[str, Any], gear: InvoluteGear, pair: GearPair | None
+) -> tuple[dict[str, Any], InvoluteGear, GearPair | None]:
+    """Return the allowances' measurements and backlash, and the gears as made (:func:`rotorcad.design.gears.shop_values`).
+
+    Parameters
+    ----------
+    p : dict
+        Parameters from :func:`merge_gear_params`.
+    gear : InvoluteGear
+        The nominal gear.
+    pair : GearPair or None
+        The nominal pair.
+
+    Returns
+    -------
+    values : dict
+        The CONTRACT.md keys of the measurements (the mate's under ``"mate"``) and the backlash.
+    made : InvoluteGear
+        The gear cut at the middle of its tolerance field (the nominal gear without allowances).
+    made_pair : GearPair or None
+        The two gears as made at the pair's centre distance.
+
+    Raises
+    ------
+    InputError
+        A value that cannot be used, naming the option or design key given.
+    """
+    spec = GearSpec(**{f: p[f] for f in VALUE_FIELDS if p.get(f) is not None}, from_design=p[SPEC].from_design)
+    try:
+        values, made, made_mate = core_shop_values(spec, gear, pair)
+    except DesignError as exc:
+        raise InputError(exc.sentence(gear_name(exc.param, spec.from_design))) from None
+    if pair is None:
+        return values, made, None
+    if made is pair.gear and made_mate is pair.mate:
+        return values, made, pair
+    return values, made, GearPair(made, made_mate, pair.working_center_distance)
 
 
 def check_contact(eps: float, label: str) -> None:

@@ -24,8 +24,18 @@ GEAR_KEYS: dict[str, type | tuple[type, ...]] = {
     "dedendum": NUMBER,
     "tip_radius": NUMBER,
     "face_width": NUMBER,  # mm, for solids (rotorcad export)
+    "thickness_allowance_upper": NUMBER,  # mm, DIN 3967 A_sne (normal section, <= 0)
+    "thickness_allowance_lower": NUMBER,  # mm, DIN 3967 A_sni
+    "span_teeth": int,  # teeth spanned by the span measurement (default: the standard rule)
+    "pin_diameter": NUMBER,  # mm, pins or balls of the dimension over pins (default: the standard rule)
 }
-MATE_KEYS: dict[str, type | tuple[type, ...]] = {"teeth": int, "shift": NUMBER, "center_distance": NUMBER}
+MATE_KEYS: dict[str, type | tuple[type, ...]] = {
+    "teeth": int,
+    "shift": NUMBER,
+    "center_distance": NUMBER,
+    "thickness_allowance_upper": NUMBER,
+    "thickness_allowance_lower": NUMBER,
+}
 
 
 def check_table(
