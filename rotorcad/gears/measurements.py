@@ -50,7 +50,7 @@ def span_teeth(gear: InvoluteGear) -> int:
     """Return the number of teeth k the span is measured over, by the standard rule.
 
     k = z / pi [tan(alpha_Mt) / cos^2(beta_b) - 2 x tan(alpha_n) / z - inv(alpha_t)] + 0.5,
-    rounded to the nearest whole number and at least 1 (ISO 21771, DIN 3960): the caliper touches
+    rounded to the nearest whole number (a half upwards) and at least 1 (ISO 21771, DIN 3960): the caliper touches
     the flanks near the measuring circle d + 2 x m_n (k = z / 9 + 0.5 for an unshifted 20 degree
     spur gear).
 
@@ -69,7 +69,8 @@ def span_teeth(gear: InvoluteGear) -> int:
     a_m = measuring_pressure_angle(gear)
     at = gear.transverse_pressure_angle
     k = z / np.pi * (np.tan(a_m) / np.cos(bb) ** 2 - 2.0 * gear.shift * np.tan(an) / z - inv(at)) + 0.5
-    return int(min(max(round(float(k)), 1), z - 1))
+    # to the nearest, a half upwards (z = 99: 11.5 -> 12; 1e-9 against the rounding of the floats)
+    return int(min(max(math.floor(float(k) + 0.5 + 1e-9), 1), z - 1))
 
 
 def span(gear: InvoluteGear, k: int, allowance: float = 0.0) -> float:
