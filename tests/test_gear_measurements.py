@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -336,3 +337,24 @@ def test_design_keys_are_named(tmp_path, capsys):
     design.write_text("[gear]\nteeth = 20\nmodule = 2\nthickness_allowance_upper = -0.02\nthickness_allowance_lower = -0.05\n")
     rc, out, _ = run(capsys, "gear", design, "--json")
     assert rc == 0 and json.loads(out)["span"]["lower"] == pytest.approx(iso_span(20, 2.0, 0, 0, 3, -0.05), abs=1e-10)
+
+
+def test_export_writes_the_mid_tolerance_tooth(tmp_path, capsys):
+    # rotorcad export: the gear's section as made at A_sn = (upper + lower) / 2 = -0.06; its tooth
+    # thickness on the reference circle is ISO 21771's s = m (pi/2 + 2 x tan a) + A_sn (spur), measured
+    # on the written CSV with shapely (a circle cut by the section)
+    design = tmp_path / "g.toml"
+    design.write_text(
+        "[gear]\nteeth = 17\nmodule = 3.0\nshift = 0.3\nthickness_allowance_upper = -0.04\nthickness_allowance_lower = -0.08\n"
+    )
+    out = tmp_path / "o"
+    assert main(["export", str(design), "--out", str(out), "--format", "csv", "--tolerance", "0.0001", "--json"]) == 0
+    files = json.loads(capsys.readouterr().out)["files"]
+    section = shapely.Polygon(read_points(next(Path(f["path"]) for f in files if f["body"] == "gear")))
+    r = 17 * 3.0 / 2
+    t = np.linspace(0, 2 * np.pi, 400_001)
+    circle = shapely.LineString(r * np.column_stack([np.cos(t), np.sin(t)]))
+    expected = 3.0 * (np.pi / 2 + 2 * 0.3 * np.tan(20 * DEG)) - 0.06
+    arcs = [a.length for a in shapely.get_parts(circle.intersection(section)) if a.length > 0.75 * expected]
+    assert len(arcs) >= 16
+    np.testing.assert_allclose(arcs, expected, atol=1e-4)

@@ -20,7 +20,7 @@ from exports.dxf import Drawing, write_dxf
 from exports.meshes import MESH_FORMATS, write_mesh
 from exports.step_exact import StepDeviationError, section_segments, write_exact_step
 from rotorcad.cli.common import InputError, Outputs
-from rotorcad.cli.gear import build_gear, merge_gear_params
+from rotorcad.cli.gear import build_gear, merge_gear_params, shop_gears
 from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import rotate
 from rotorcad.solids import helical_solid
@@ -86,6 +86,7 @@ def export_gear(
     if not (np.isfinite(width) and 0 < width <= 1e4):
         raise InputError(f"[gear] face_width must be a length from 0 to 10000 mm (got {width}).")
     g, pair = build_gear(params, tol / 4)
+    _, g, pair = shop_gears(params, g, pair)  # cut at the middle of the tooth-thickness tolerance fields
     bodies: dict[str, tuple[InvoluteGear, float, tuple[float, float], float]] = {"gear": (g, gear_lead(g), (0.0, 0.0), 0.0)}
     if pair is not None:
         mate = pair.mate
