@@ -22,11 +22,13 @@ from rotorcad.cli.common import (
 from rotorcad.cli.progress import Steps
 from rotorcad.design.gears import GEAR_DEFAULTS, VALUE_FIELDS, GearSpec, gear_spec
 from rotorcad.design.gears import build_gear as core_build_gear
+from rotorcad.design.gears import build_rack as core_build_rack
 from rotorcad.design.gears import check_contact as core_check_contact
 from rotorcad.design.gears import shop_values as core_shop_values
 from rotorcad.design.labels import GEAR_FIELD_LABELS, GEAR_LABELS, contact_names, gear_name, required
 from rotorcad.errors import DesignError, GeometryError, MissingValueError
 from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.gears.rack import GearRack
 from rotorcad.plotting import line_of_action, mate_in_mesh, plot_gears
 
 GEAR_OPTION = {param: label.option for param, label in GEAR_LABELS.items() if not param.startswith("mate.")}
@@ -56,6 +58,8 @@ OPTION_FIELDS = (
     "pin_diameter",
     "mate_thickness_allowance_upper",
     "mate_thickness_allowance_lower",
+    "rack_length",
+    "rack_height",
 )
 """The fields of :class:`rotorcad.design.gears.GearSpec` that the options of :func:`gear_options` give."""
 
@@ -100,6 +104,15 @@ SHOP_DECORATORS = [
     ),
     click.option("--mate-thickness-allowance-upper", type=float, help="The mate's upper allowance A_sne [mm]. Default 0."),
     click.option("--mate-thickness-allowance-lower", type=float, help="The mate's lower allowance A_sni [mm]. Default 0."),
+    click.option(
+        "--rack",
+        "rack_length",
+        type=float,
+        help="Also a gear rack of this length [mm] with the gear's basic rack (rack.csv, rack.dxf; JSON key rack).",
+    ),
+    click.option(
+        "--rack-height", type=float, help="The rack's height from its back to the datum line [mm]. Default h_fP* m + 2 m."
+    ),
 ]
 """The options of ``rotorcad gear`` alone: the tooth-thickness allowances and their measurements."""
 
@@ -157,6 +170,9 @@ def gear(design: Path | None, **opts: Any) -> None:
     if pair is not None:
         result["mate"].update(shop.pop("mate"))
     result.update(shop)
+    rack = make_rack(params, opts["tolerance"])
+    if rack is not None:
+        result["rack"] = rack.summary()
 
     outputs = Outputs()
     out = output_folder(opts["out"])
@@ -172,6 +188,14 @@ def gear(design: Path | None, **opts: Any) -> None:
             outputs.add(
                 mate_path, lambda path: write_points(path, pair.mate.outline().points, _comments(pair.mate, "mate")), "--csv"
             )
+    if rack is not None:
+        comments = [f"rotorcad rack: L={rack.length:g} mm m={rack.module:g} mm", "x along the rack, datum line y = 0"]
+        for p in dxf_paths:
+            rack_path = p.with_name("rack.dxf") if out and p == out / "gear.dxf" else p.with_name(p.stem + "_rack.dxf")
+            outputs.add(rack_path, lambda path: write_dxf(path, _rack_drawing(rack)), "--dxf")
+        for p in csv_paths:
+            rack_path = p.with_name("rack.csv") if out and p == out / "gear.csv" else p.with_name(p.stem + "_rack.csv")
+            outputs.add(rack_path, lambda path: write_points(path, rack.outline(), comments), "--csv")
     for p in png_paths:
         outputs.add_figure(p, lambda: plot_gears(g, pair), "--plot")
     with Steps("gear: writing files", None, opts["quiet"] or not (dxf_paths or csv_paths or png_paths)):
@@ -311,6 +335,42 @@ def shop_gears(
     if made is pair.gear and made_mate is pair.mate:
         return values, made, pair
     return values, made, GearPair(made, made_mate, pair.working_center_distance)
+
+
+def make_rack(p: dict[str, Any], tolerance: float) -> GearRack | None:
+    """Build the gear rack the options or the design's ``[rack]`` describe (:func:`rotorcad.design.gears.build_rack`).
+
+    Parameters
+    ----------
+    p : dict
+        Parameters from :func:`merge_gear_params`.
+    tolerance : float, mm
+        Chord tolerance of the outline.
+
+    Returns
+    -------
+    GearRack or None
+        None without ``--rack`` (or ``[rack] length``).
+
+    Raises
+    ------
+    InputError
+        A rack that cannot be made, naming the option or design key given.
+    """
+    spec = GearSpec(**{f: p[f] for f in VALUE_FIELDS if p.get(f) is not None}, from_design=p[SPEC].from_design)
+    try:
+        return core_build_rack(spec, tolerance)
+    except MissingValueError:
+        raise InputError("--rack must be given with --rack-height.") from None
+    except DesignError as exc:
+        raise InputError(exc.sentence(gear_name(exc.param, spec.from_design))) from None
+
+
+def _rack_drawing(rack: GearRack) -> Drawing:
+    d = Drawing(mark_size=rack.module)
+    d.outlines.append(("RACK", rack.outline()))
+    d.lines.append(("PITCH", (0.0, 0.0), (float(rack.length), 0.0)))
+    return d
 
 
 def check_contact(eps: float, label: str) -> None:

@@ -61,6 +61,9 @@ class GearSpec:
         Pins or balls of the dimension over pins (None: the standard rule).
     mate_thickness_allowance_upper, mate_thickness_allowance_lower : float, mm
         The mate's allowances.
+    rack_length, rack_height : float or None, mm
+        A gear rack of the gear's basic rack (None: no rack), and its height from the back to the
+        datum line (None: h_fP* m + 2 m).
     from_design : frozenset of str
         The fields whose values are the design file's.
     """
@@ -83,11 +86,17 @@ class GearSpec:
     pin_diameter: float | None = None
     mate_thickness_allowance_upper: float = 0.0
     mate_thickness_allowance_lower: float = 0.0
+    rack_length: float | None = None
+    rack_height: float | None = None
     from_design: frozenset[str] = frozenset()
 
 
 VALUE_FIELDS = tuple(f.name for f in fields(GearSpec) if f.name != "from_design")
 """The fields of :class:`GearSpec` that hold values."""
+
+
+RACK_FIELDS = {"length": "rack_length", "height": "rack_height"}
+"""``[rack]`` key -> field of :class:`GearSpec`."""
 
 
 def gear_spec(design: dict[str, dict[str, Any]] | None = None, given: dict[str, Any] | None = None) -> GearSpec:
@@ -118,6 +127,9 @@ def gear_spec(design: dict[str, dict[str, Any]] | None = None, given: dict[str, 
         for key, value in design.get("mate", {}).items():
             values[MATE_FIELDS[key]] = value
             from_design.add(MATE_FIELDS[key])
+        for key, value in design.get("rack", {}).items():
+            values[RACK_FIELDS[key]] = value
+            from_design.add(RACK_FIELDS[key])
     for key, value in (given or {}).items():
         if value is not None and key in VALUE_FIELDS:
             values[key] = value
@@ -242,6 +254,46 @@ def shop_values(spec: GearSpec, gear: Any, pair: Any) -> tuple[dict[str, Any], A
     values["backlash_circumferential"] = backlash["circumferential"]
     values["backlash_normal"] = backlash["normal"]
     return values, made_gear, made_mate
+
+
+def build_rack(spec: GearSpec, tolerance: float) -> Any:
+    """Build the gear rack of a spec: the gear's basic rack (module, angles, addendum, dedendum, fillet).
+
+    Parameters
+    ----------
+    spec : GearSpec
+        The spec (``rack_length``, ``rack_height``).
+    tolerance : float, mm
+        Chord tolerance of the outline.
+
+    Returns
+    -------
+    GearRack or None
+        :class:`rotorcad.gears.rack.GearRack`; None without ``rack_length``.
+
+    Raises
+    ------
+    DesignError
+        A rack that cannot be made, naming ``rack_length``, ``rack_height`` or the gear's parameter.
+    """
+    if spec.rack_length is None:
+        if spec.rack_height is not None:
+            raise MissingValueError("rack_length", "given with the rack's height")
+        return None
+    from rotorcad.gears.involute_gear import DEG
+    from rotorcad.gears.rack import GearRack
+
+    return GearRack(
+        length=spec.rack_length,
+        module=spec.module,
+        pressure_angle=spec.pressure_angle * DEG,
+        helix_angle=spec.helix_angle * DEG,
+        addendum=spec.addendum,
+        dedendum=spec.dedendum,
+        root_radius_factor=spec.tip_radius,
+        height=spec.rack_height,
+        tolerance=tolerance,
+    )
 
 
 def check_contact(eps: float, label: str) -> None:

@@ -83,6 +83,8 @@ GEAR_LABELS: dict[str, Label] = {
     ),
     "span_teeth": Label("span_teeth", "--span-teeth", "[gear] span_teeth"),
     "pin_diameter": Label("pin_diameter", "--pin-diameter", "[gear] pin_diameter"),
+    "rack_length": Label("rack_length", "--rack", "[rack] length"),
+    "rack_height": Label("rack_height", "--rack-height", "[rack] height"),
     "mate.teeth": Label("mate_teeth", "--mate-teeth", "[mate] teeth"),
     "mate.thickness_allowance_upper": Label(
         "mate_thickness_allowance_upper", "--mate-thickness-allowance-upper", "[mate] thickness_allowance_upper"

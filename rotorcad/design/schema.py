@@ -38,6 +38,10 @@ MATE_KEYS: dict[str, type | tuple[type, ...]] = {
 }
 
 
+RACK_KEYS: dict[str, type | tuple[type, ...]] = {"length": NUMBER, "height": NUMBER}
+"""``[rack]`` of a gear design: a gear rack of the gear's basic rack, length and height to the datum line, mm."""
+
+
 def check_table(
     data: dict[str, Any], table: str, keys: dict[str, type | tuple[type, ...]], required: tuple[str, ...] = ()
 ) -> dict[str, Any]:
@@ -138,10 +142,12 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
     """
     refuse_huge_integers(data)
     for table in data:
-        if table not in ("gear", "mate"):
-            raise InputFileError(f"table [{table}]", "one of [gear], [mate] in a gear design", None, "unknown table")
+        if table not in ("gear", "mate", "rack"):
+            raise InputFileError(f"table [{table}]", "one of [gear], [mate], [rack] in a gear design", None, "unknown table")
     gear = check_table(data, "gear", GEAR_KEYS, required=("teeth", "module"))
     mate = check_table(data, "mate", MATE_KEYS) if "mate" in data else {}
+    if "rack" in data:  # a gear rack of the gear's basic rack (issue 28)
+        return {"gear": gear, "mate": mate, "rack": check_table(data, "rack", RACK_KEYS, required=("length",))}
     return {"gear": gear, "mate": mate}
 
 
