@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 import shapely
+import shapely.affinity
 
 from exports.csv_points import read_points
 from rotorcad.cli.main import main
@@ -154,3 +156,27 @@ def test_cli_rack_bad_length(tmp_path, capsys):
     rc, _, err = run(capsys, "gear", "--teeth", 20, "--module", 2, "--rack", -3, "--out", tmp_path / "o")
     assert rc == 2 and "--rack" in err and err.count("\n") == 1
     assert not (tmp_path / "o").exists()
+
+
+def test_export_rack_body(tmp_path, capsys):
+    # rotorcad export of a gear design with [rack]: the STL read back by trimesh is watertight, holds
+    # the section's area x face width, and its section at mid-face is the outline shifted by z tan(beta)
+    import trimesh
+
+    design = tmp_path / "g.toml"
+    design.write_text("[gear]\nteeth = 20\nmodule = 2.0\nhelix_angle_deg = 15\nface_width = 24\n\n[rack]\nlength = 60\n")
+    out = tmp_path / "o"
+    assert main(["export", str(design), "--out", str(out), "--format", "stl,csv", "--json"]) == 0
+    files = {(f["body"], f["format"]): f for f in json.loads(capsys.readouterr().out)["files"]}
+    section = shapely.Polygon(read_points(Path(files["rack", "csv"]["path"])))
+    mesh = trimesh.load(files["rack", "stl"]["path"])
+    assert mesh.is_watertight
+    assert mesh.volume == pytest.approx(section.area * 24.0, rel=1e-6)
+    cut = mesh.section(plane_origin=[0, 0, 12.0], plane_normal=[0, 0, 1])
+    planar, to_3d = cut.to_2D()
+    rings = [
+        shapely.Polygon(trimesh.transform_points(np.column_stack([p, np.zeros(len(p))]), to_3d)[:, :2]) for p in planar.discrete
+    ]
+    mid = max(rings, key=lambda p: p.area)
+    shifted = shapely.affinity.translate(section, xoff=12.0 * math.tan(15 * DEG))
+    assert mid.symmetric_difference(shifted).area < 1e-6 * section.area

@@ -20,7 +20,7 @@ from exports.dxf import Drawing, write_dxf
 from exports.meshes import MESH_FORMATS, write_mesh
 from exports.step_exact import StepDeviationError, section_segments, write_exact_step
 from rotorcad.cli.common import InputError, Outputs
-from rotorcad.cli.gear import build_gear, merge_gear_params, shop_gears
+from rotorcad.cli.gear import build_gear, make_rack, merge_gear_params, shop_gears
 from rotorcad.gear import InvoluteGear
 from rotorcad.geometry import rotate
 from rotorcad.solids import helical_solid
@@ -138,10 +138,40 @@ def export_gear(
 
                 outputs.add(path, write_step, "--out")
             rows.append(row)
+    rack = make_rack(params, tol / 4)
+    if rack is not None:  # the gear rack of [rack], in its own frame; meshes, DXF and CSV (no STEP yet)
+        rows += _rack_rows(rack, design, fmts, folder, width, outputs)
     outputs.write()
     for row in rows:
         row["size"] = Path(row["path"]).stat().st_size
         row["replaced"] = Path(row["path"]) in outputs.replaced  # a file that was there, replaced whole
+    return rows
+
+
+def _rack_rows(rack: Any, design: Path, fmts: list[str], folder: Path, width: float, outputs: Outputs) -> list[dict[str, Any]]:
+    """Queue the rack's files (body ``rack``) and return their summary rows (STEP left out)."""
+    from rotorcad.gears.rack import rack_solid_mesh
+
+    rows: list[dict[str, Any]] = []
+    for fmt in fmts:
+        path = folder / f"{design.stem}_rack{_extension(fmt)}"
+        row: dict[str, Any] = {"path": str(path), "format": fmt, "body": "rack", "volume": float(rack.section.area * width)}
+        if fmt in MESH_FORMATS:
+            mesh = rack_solid_mesh(rack, width)
+            row.update(triangles=len(mesh.faces), volume=float(mesh.volume), tolerance=rack.tolerance)
+            outputs.add(path, lambda p, m=mesh, f=fmt: write_mesh(p, m, f), "--out")
+        elif fmt == "dxf":
+            d = Drawing(mark_size=rack.module)
+            d.outlines.append(("RACK", rack.outline()))
+            d.lines.append(("PITCH", (0.0, 0.0), (float(rack.length), 0.0)))
+            row.update(tolerance=rack.tolerance)
+            outputs.add(path, lambda p, dr=d: write_dxf(p, dr), "--out")
+        elif fmt == "csv":
+            row.update(tolerance=rack.tolerance)
+            outputs.add(path, lambda p: write_points(p, rack.outline()), "--out")
+        else:
+            continue
+        rows.append(row)
     return rows
 
 
