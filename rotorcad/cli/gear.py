@@ -10,6 +10,7 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
+from exports.svg import write_svg
 from rotorcad.cli.common import (
     InputError,
     Outputs,
@@ -142,6 +143,11 @@ def shop_options(fn):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="Write a DXF of the gear (and mate in mesh) [mm].")
 @click.option(
+    "--svg",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Write an SVG of the drawing of --dxf [mm, y up]; the rack goes to NAME_rack.svg.",
+)
+@click.option(
     "--csv",
     type=click.Path(path_type=Path, dir_okay=False),
     help="Write the gear outline as x,y points; the mate goes to NAME_mate.csv.",
@@ -181,6 +187,11 @@ def gear(design: Path | None, **opts: Any) -> None:
     png_paths = [p for p in (opts["plot"], out and out / "gear.png") if p]
     for p in dxf_paths:
         outputs.add(p, lambda path: write_dxf(path, _drawing(g, pair)), "--dxf")
+    if opts["svg"]:
+        outputs.add(opts["svg"], lambda path: write_svg(path, _drawing(g, pair)), "--svg")
+        if rack is not None:
+            rack_svg = opts["svg"].with_name(opts["svg"].stem + "_rack.svg")
+            outputs.add(rack_svg, lambda path: write_svg(path, _rack_drawing(rack)), "--svg")
     for p in csv_paths:
         outputs.add(p, lambda path: write_points(path, g.outline().points, _comments(g, "gear")), "--csv")
         if pair is not None:
@@ -198,7 +209,7 @@ def gear(design: Path | None, **opts: Any) -> None:
             outputs.add(rack_path, lambda path: write_points(path, rack.outline(), comments), "--csv")
     for p in png_paths:
         outputs.add_figure(p, lambda: plot_gears(g, pair), "--plot")
-    with Steps("gear: writing files", None, opts["quiet"] or not (dxf_paths or csv_paths or png_paths)):
+    with Steps("gear: writing files", None, opts["quiet"] or not (dxf_paths or csv_paths or png_paths or opts["svg"])):
         written = outputs.write()  # 1000 teeth at the finest tolerance: some 20 s
     result["files"] = [str(p) for p in written]
 
