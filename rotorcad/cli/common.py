@@ -128,6 +128,10 @@ _UNIT_RULES = (  # (pattern in the key, unit), first match wins
     ("lead", "mm"),
     ("tolerance", "mm"),
     ("accuracy", "mm"),
+    ("span", "mm"),  # the span W_k of a gear (span_nominal, ...); span_teeth is a count (DIMENSIONLESS)
+    ("over_pins", "mm"),
+    ("_pitch", "mm"),
+    ("rack_", "mm"),  # the rack's lengths (rack_height, rack_addendum, ...); its angles, area, teeth matched above
 )
 
 

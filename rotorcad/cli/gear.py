@@ -217,10 +217,11 @@ def gear(design: Path | None, **opts: Any) -> None:
         emit_json(result)
     else:
         title = f"gear z={g.teeth}, m={g.module:g} mm" + (f" with mate z={pair.mate.teeth}" if pair else "")
+        shown = _flat(result)
         if pair is not None and isinstance(result.get("mate"), dict):
-            print_pair_table(title, result, result["mate"])
+            print_pair_table(title, shown, _flat(result["mate"]))
         else:
-            print_table(title, result)
+            print_table(title, shown)
         for p in written:
             click.echo(f"wrote {p}")
 
@@ -375,6 +376,21 @@ def make_rack(p: dict[str, Any], tolerance: float) -> GearRack | None:
         raise InputError("--rack must be given with --rack-height.") from None
     except DesignError as exc:
         raise InputError(exc.sentence(gear_name(exc.param, spec.from_design))) from None
+
+
+FLAT_KEYS = ("thickness_allowance", "span", "over_pins", "backlash_circumferential", "backlash_normal", "rack")
+"""Nested result keys shown in the text table as one row per value (``span_nominal``, ``rack_pitch``, ...)."""
+
+
+def _flat(result: dict[str, Any]) -> dict[str, Any]:
+    """Return the result with the values of :data:`FLAT_KEYS` as rows of their own, for the text table."""
+    out: dict[str, Any] = {}
+    for key, value in result.items():
+        if key in FLAT_KEYS and isinstance(value, dict):
+            out.update({f"{key}_{sub}": v for sub, v in value.items() if not (key == "rack" and sub == "length")})
+        else:
+            out[key] = value
+    return out
 
 
 def _rack_drawing(rack: GearRack) -> Drawing:
