@@ -358,3 +358,29 @@ def test_export_writes_the_mid_tolerance_tooth(tmp_path, capsys):
     arcs = [a.length for a in shapely.get_parts(circle.intersection(section)) if a.length > 0.75 * expected]
     assert len(arcs) >= 16
     np.testing.assert_allclose(arcs, expected, atol=1e-4)
+
+
+def test_no_standard_ball_for_few_teeth_and_a_large_shift():
+    # 5 teeth shifted by 2.15 modules: the base tangent through the point on d + 2 x m_n leaves the
+    # space before it meets the space's centre line, so no ball touches there (the rule's D_M <= 0):
+    # the pin's values are null, and a given pin is measured over
+    g = InvoluteGear(
+        5,
+        2.0,
+        pressure_angle=22.86 * DEG,
+        helix_angle=-16.73 * DEG,
+        shift=2.149,
+        addendum=0.573,
+        dedendum=0.978,
+        tip_radius_factor=0.1,
+    )
+    assert ball_diameter(g) <= 0.0
+    out = measurements(g)
+    assert out["pin_diameter"] is None and set(out["over_pins"].values()) == {None} and out["pin_touches_flank"] is False
+    assert out["span"]["nominal"] == pytest.approx(
+        iso_span(5, 2.0, 2.149, -16.73 * DEG, out["span_teeth"], 0.0, 22.86 * DEG), abs=1e-10
+    )
+    given = measurements(g, diameter=1.0)
+    assert given["over_pins"]["nominal"] == pytest.approx(
+        iso_over_balls(5, 2.0, 2.149, -16.73 * DEG, 1.0, 0.0, 22.86 * DEG), abs=1e-9
+    )

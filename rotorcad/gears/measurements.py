@@ -190,6 +190,8 @@ def ball_diameter(gear: InvoluteGear) -> float:
     Returns
     -------
     float, mm
+        D_M; 0 or less where no ball touches there (few teeth and a large shift: the base tangent
+        through the contact point leaves the space before it meets the space's centre line).
     """
     z, an = gear.teeth, gear.pressure_angle
     a_m = measuring_pressure_angle(gear)
@@ -244,9 +246,11 @@ def measurements(
     dict
         The CONTRACT.md keys: ``thickness_allowance`` ({upper, lower}, mm), ``span_teeth`` (k),
         ``span`` ({nominal, upper, lower}, mm, normal section), ``span_contact_radius`` (mm,
-        nominal), ``pin_diameter`` (mm), ``over_pins`` ({nominal, upper, lower}, mm; balls for a
-        helical gear), ``pin_contact_radius`` (mm, nominal), ``pin_touches_flank`` (bool: the
-        nominal contact lies on the usable involute, between the form and the tip circle).
+        nominal), ``span_touches_flank`` (bool: that contact lies on the usable involute, between
+        the form and the tip circle), ``pin_diameter`` (mm), ``over_pins`` ({nominal, upper,
+        lower}, mm; balls for a helical gear), ``pin_contact_radius`` (mm, nominal),
+        ``pin_touches_flank`` (bool, likewise). Where the standard rule finds no ball
+        (:func:`ball_diameter` not above 0) and none is given, the pin's values are None.
 
     Raises
     ------
@@ -262,21 +266,32 @@ def measurements(
         raise DesignError("span_teeth", f"a whole number from 1 to {gear.teeth - 1} (the teeth less one)", k)
     if diameter is None:
         diameter = ball_diameter(gear)
+        if not diameter > 0.0:
+            diameter = None
     elif not (np.isfinite(diameter) and 0.0 < diameter <= 5.0 * gear.module):
         raise DesignError("pin_diameter", f"a diameter above 0 and at most {5.0 * gear.module:.6g} mm (5 modules)", diameter)
     limits = allowance.limits()
+
+    def on_flank(r: float | None) -> bool:
+        return r is not None and math.isfinite(r) and gear.form_radius - 1e-9 <= r <= gear.tip_radius + 1e-9
+
     w = {name: span(gear, int(k), a) for name, a in limits.items()}
-    m_d = {name: over_balls(gear, diameter, a) for name, a in limits.items()}
-    contact = ball_contact_radius(gear, diameter)
+    w_contact = span_contact_radius(gear, w["nominal"])
+    m_d: dict[str, float | None] = dict.fromkeys(limits)
+    contact = None
+    if diameter is not None:
+        m_d = {name: over_balls(gear, diameter, a) for name, a in limits.items()}
+        contact = ball_contact_radius(gear, diameter)
     return {
         "thickness_allowance": {"upper": float(allowance.upper), "lower": float(allowance.lower)},
         "span_teeth": int(k),
         "span": w,
-        "span_contact_radius": span_contact_radius(gear, w["nominal"]),
-        "pin_diameter": float(diameter),
+        "span_contact_radius": w_contact,
+        "span_touches_flank": on_flank(w_contact),
+        "pin_diameter": None if diameter is None else float(diameter),
         "over_pins": m_d,
         "pin_contact_radius": contact,
-        "pin_touches_flank": bool(gear.form_radius - 1e-9 <= contact <= gear.tip_radius + 1e-9 and math.isfinite(contact)),
+        "pin_touches_flank": on_flank(contact),
     }
 
 
