@@ -166,7 +166,7 @@ def test_export_rack_body(tmp_path, capsys):
     design = tmp_path / "g.toml"
     design.write_text("[gear]\nteeth = 20\nmodule = 2.0\nhelix_angle_deg = 15\nface_width = 24\n\n[rack]\nlength = 60\n")
     out = tmp_path / "o"
-    assert main(["export", str(design), "--out", str(out), "--format", "stl,csv", "--json"]) == 0
+    assert main(["export", str(design), "--out", str(out), "--format", "stl,csv,step", "--json"]) == 0
     files = {(f["body"], f["format"]): f for f in json.loads(capsys.readouterr().out)["files"]}
     section = shapely.Polygon(read_points(Path(files["rack", "csv"]["path"])))
     mesh = trimesh.load(files["rack", "stl"]["path"])
@@ -180,3 +180,41 @@ def test_export_rack_body(tmp_path, capsys):
     mid = max(rings, key=lambda p: p.area)
     shifted = shapely.affinity.translate(section, xoff=12.0 * math.tan(15 * DEG))
     assert mid.symmetric_difference(shifted).area < 1e-6 * section.area
+    from exports.step import read_step
+
+    info = read_step(Path(files["rack", "step"]["path"]))
+    fine = GearRack(60.0, 2.0, helix_angle=15 * DEG, tolerance=1e-6).section  # the CSV's chords are at tol / 4
+    assert info["solids"] == 1 and info["valid"] and info["volume"] == pytest.approx(fine.area * 24.0, rel=1e-7)
+
+
+def closed_form_area(n: int, m: float, alpha: float, beta: float, rho: float, height: float) -> float:
+    """Section area of a rack of n whole pitches (ISO 53 profile, h_aP* = 1, h_fP* = 1.25).
+
+    Per pitch in the normal section: the trapezoid tooth above the root line,
+    (p/2)(h_a + h_f) - tan(alpha)(h_a^2 - h_f^2), plus the two root fillets, each the area between
+    an arc of radius rho and its two tangents turning by psi = pi/2 - alpha, rho^2 (tan(psi/2) - psi/2);
+    stretched by 1/cos(beta) along the length; below the root line the bar of height H - h_f.
+    """
+    h_a, h_f, p = m, 1.25 * m, math.pi * m
+    psi = math.pi / 2 - alpha
+    tooth = p / 2 * (h_a + h_f) - math.tan(alpha) * (h_a**2 - h_f**2) + 2 * (rho * m) ** 2 * (math.tan(psi / 2) - psi / 2)
+    k = 1 / math.cos(beta)
+    return n * k * tooth + n * k * p * (height - h_f)
+
+
+@pytest.mark.parametrize("beta", [0.0, 20.0])
+def test_rack_area_and_exact_step_volume(tmp_path, beta):
+    from exports.step import read_step
+    from exports.step_rack import write_rack_step
+
+    m, n, b = 2.0, 9, 24.0
+    p_t = math.pi * m / math.cos(beta * DEG)
+    rack = GearRack(n * p_t, m, helix_angle=beta * DEG, tolerance=1e-6)
+    area = closed_form_area(n, m, 20 * DEG, beta * DEG, 0.38, rack.back_height)
+    assert rack.section.area == pytest.approx(area, abs=rack.section.length * 1e-6)  # chords within 1e-6 mm
+    path = tmp_path / "rack.step"
+    out = write_rack_step(path, rack, b)
+    info = read_step(path)
+    assert info["solids"] == 1 and info["valid"]
+    assert info["volume"] == pytest.approx(area * b, rel=1e-9)  # exact surfaces: the closed form
+    assert out["faces"] >= 6 * n  # one face per piece: root, fillet, flank, tip, flank, fillet per pitch

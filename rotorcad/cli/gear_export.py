@@ -139,7 +139,7 @@ def export_gear(
                 outputs.add(path, write_step, "--out")
             rows.append(row)
     rack = make_rack(params, tol / 4)
-    if rack is not None:  # the gear rack of [rack], in its own frame; meshes, DXF and CSV (no STEP yet)
+    if rack is not None:  # the gear rack of [rack], in its own frame
         rows += _rack_rows(rack, design, fmts, folder, width, outputs)
     outputs.write()
     for row in rows:
@@ -149,7 +149,8 @@ def export_gear(
 
 
 def _rack_rows(rack: Any, design: Path, fmts: list[str], folder: Path, width: float, outputs: Outputs) -> list[dict[str, Any]]:
-    """Queue the rack's files (body ``rack``) and return their summary rows (STEP left out)."""
+    """Queue the rack's files (body ``rack``) and return their summary rows."""
+    from exports.step_rack import write_rack_step
     from rotorcad.gears.rack import rack_solid_mesh
 
     rows: list[dict[str, Any]] = []
@@ -169,6 +170,13 @@ def _rack_rows(rack: Any, design: Path, fmts: list[str], folder: Path, width: fl
         elif fmt == "csv":
             row.update(tolerance=rack.tolerance)
             outputs.add(path, lambda p: write_points(p, rack.outline()), "--out")
+        elif fmt == "step":  # exact: planes and the fillets' cylinders (exports/step_rack.py)
+            row.update(tolerance=0.0, faces=len(rack.pieces()) + 5)
+
+            def write_step(p: Path, r: dict[str, Any] = row) -> None:
+                r["faces"] = int(write_rack_step(p, rack, width)["faces"])
+
+            outputs.add(path, write_step, "--out")
         else:
             continue
         rows.append(row)

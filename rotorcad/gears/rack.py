@@ -167,6 +167,49 @@ class GearRack:
             pts.append((pn / 2.0, -h_f))
         return np.asarray(pts, dtype=float)
 
+    def pieces(self) -> list[tuple]:
+        """Return the exact pieces of the section's top along the periods that cover 0 <= x <= L.
+
+        From the space centre at x = -p_t (one period before the rack) to x = (count + 1) p_t, in the
+        transverse section (the normal one stretched by k = 1 / cos(beta) along x): straight
+        ``("line", (x0, y0), (x1, y1))`` and root fillets ``("ellipse", (cx, cy), k rho, rho, t0,
+        t1)``, the points (cx + k rho cos t, cy + rho sin t) from t0 to t1 (a circle for beta = 0).
+
+        Returns
+        -------
+        list of tuple
+            The pieces end to end, mm and rad.
+        """
+        m, a, k = self.module, self.pressure_angle, self.stretch
+        pn = np.pi * m
+        rho = self.root_radius_factor * m
+        h_a, h_f = self.addendum * m, self.dedendum * m
+        yc = -h_f + rho
+        xc = pn / 4.0 + (rho - yc * np.sin(a)) / np.cos(a)
+        tip = pn / 4.0 - h_a * np.tan(a)
+        flank_low = (xc - rho * np.cos(a), yc - rho * np.sin(a)) if rho > 0.0 else (pn / 4.0 + h_f * np.tan(a), -h_f)
+        has_root = pn / 2.0 - xc > 1e-12 * m
+        out: list[tuple] = []
+        count = int(np.ceil(self.length / self.pitch)) + 1
+        for j in range(-1, count + 1):
+            c = pn / 2.0 + j * pn  # the tooth centre, normal section (the space centres at j pn)
+
+            def pt(x: float, y: float, c: float = c) -> tuple[float, float]:
+                return (float((c + x) * k), float(y))
+
+            if has_root:
+                out.append(("line", pt(-pn / 2.0, -h_f), pt(-xc, -h_f)))
+            if rho > 0.0:  # the left flank's fillet, from the root line up to the flank (mirror of the right one)
+                out.append(("ellipse", pt(-xc, yc), k * rho, rho, 1.5 * np.pi, 2.0 * np.pi - a))
+            out.append(("line", pt(-flank_low[0], flank_low[1]), pt(-tip, h_a)))
+            out.append(("line", pt(-tip, h_a), pt(tip, h_a)))
+            out.append(("line", pt(tip, h_a), pt(*flank_low)))
+            if rho > 0.0:
+                out.append(("ellipse", pt(xc, yc), k * rho, rho, np.pi + a, 1.5 * np.pi))
+            if has_root:
+                out.append(("line", pt(xc, -h_f), pt(pn / 2.0, -h_f)))
+        return out
+
     def period(self, tolerance: float | None = None) -> Array:
         """One pitch of the section along the length, from space centre to space centre: (n, 2) mm.
 
