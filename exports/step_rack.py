@@ -15,7 +15,10 @@ from typing import Any
 
 import numpy as np
 
-from exports.step import _quiet_ocp
+try:  # main moved the messenger's quieting to exports.ocp_messages; this branch has it in exports.step
+    from exports.ocp_messages import quiet_ocp
+except ImportError:
+    from exports.step import _quiet_ocp as quiet_ocp
 
 
 def rack_shape(rack: Any, face_width: float) -> Any:
@@ -38,7 +41,7 @@ def rack_shape(rack: Any, face_width: float) -> Any:
     from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
     from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Elips, gp_Pnt, gp_Vec
 
-    _quiet_ocp()
+    quiet_ocp()
 
     def point(x: float, y: float) -> gp_Pnt:
         return gp_Pnt(float(x), float(y), 0.0)

@@ -70,7 +70,7 @@ def test_the_label_table_keeps_the_options_of_the_commands():
         "center_distance": "--center-distance",
         "radius": "radius",
         "face_width": "--face-width",
-        # added by issue 28 (gear-shop): allowances, their measurements and the rack
+        # added with the tooth-thickness allowances, their measurements and the rack
         "thickness_allowance_upper": "--thickness-allowance-upper",
         "thickness_allowance_lower": "--thickness-allowance-lower",
         "span_teeth": "--span-teeth",
@@ -84,7 +84,7 @@ def test_the_label_table_keeps_the_options_of_the_commands():
         "center_distance": "--center-distance",
         "shifts": "--shift and --mate-shift",
         "mesh": "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle",
-        "thickness_allowance_upper": "--mate-thickness-allowance-upper",  # issue 28
+        "thickness_allowance_upper": "--mate-thickness-allowance-upper",
         "thickness_allowance_lower": "--mate-thickness-allowance-lower",
     }
     assert contact_names(frozenset({"teeth", "mate_teeth"}), True) == (

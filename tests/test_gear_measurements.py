@@ -31,7 +31,7 @@ from rotorcad.gears.measurements import ball_diameter, measurements, over_balls,
 from rotorcad.gears.pair import GearPair
 
 DEG = math.pi / 180.0
-BRUTE_TOL = 1e-4  # mm: 0.1 um asserted, 1 um required (issue 28)
+BRUTE_TOL = 1e-4  # mm: 0.1 um asserted, 1 um required
 
 # (teeth, module, shift, helix deg): even and odd, spur and helical, shifted both ways
 GEARS = [(20, 2.0, 0.0, 0.0), (17, 3.0, 0.3, 0.0), (23, 3.0, -0.2, 15.0), (24, 3.0, 0.4, 25.0), (40, 1.5, 0.1, -20.0)]

@@ -1,4 +1,4 @@
-"""Gear racks (issue 28 item 2) against the closed-form ISO 53 basic rack.
+"""Gear racks against the closed-form ISO 53 basic rack.
 
 References, none of them the code under test: ISO 53's basic rack (pitch p = pi m, tooth thickness
 p / 2 on the datum line, addendum h_aP* m, dedendum h_fP* m, straight flanks at alpha_n, root

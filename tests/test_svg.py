@@ -1,4 +1,4 @@
-"""SVG of outlines (issue 28 item 4), read back by a third-party parser.
+"""SVG of outlines, read back by a third-party parser.
 
 References: svgelements (an SVG 1.1 parser that applies the viewBox and the transforms) reads the
 written file; the outlines it gives back must be rotorcad's points within 1 nm (the file's

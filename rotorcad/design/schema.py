@@ -146,7 +146,7 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
             raise InputFileError(f"table [{table}]", "one of [gear], [mate], [rack] in a gear design", None, "unknown table")
     gear = check_table(data, "gear", GEAR_KEYS, required=("teeth", "module"))
     mate = check_table(data, "mate", MATE_KEYS) if "mate" in data else {}
-    if "rack" in data:  # a gear rack of the gear's basic rack (issue 28)
+    if "rack" in data:  # a gear rack of the gear's basic rack
         return {"gear": gear, "mate": mate, "rack": check_table(data, "rack", RACK_KEYS, required=("length",))}
     return {"gear": gear, "mate": mate}
 
