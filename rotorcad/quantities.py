@@ -574,3 +574,40 @@ _declare(
         ("max_normal_deviation_per_unit", "1", "deviation per mm of the setting error"),
     ],
 )
+
+# --- a gear as the shop makes and checks it (rotorcad/gears/allowances.py, measurements.py, rack.py;
+# DIN 3967 / ISO 21771): nested figures are declared by their path and by the row name of the table
+_SHOP = [
+    ("thickness_allowance", ("upper", "lower"), "mm", "tooth-thickness allowance"),
+    ("span", ("nominal", "upper", "lower"), "mm", "span W_k"),
+    ("over_pins", ("nominal", "upper", "lower"), "mm", "dimension over pins or balls M_d"),
+    ("backlash_circumferential", ("nominal", "max", "min"), "mm", "circumferential backlash"),
+    ("backlash_normal", ("nominal", "max", "min"), "mm", "normal backlash"),
+]
+_declare(
+    "rotorcad/gears",
+    [(f"{key}{sep}{part}", unit, f"{label}, {part}") for key, parts, unit, label in _SHOP for part in parts for sep in (".", "_")]
+    + [
+        ("span_teeth", "1", "teeth spanned"),
+        ("span_contact_radius", "mm", "radius where the span touches"),
+        ("pin_diameter", "mm", "pin or ball diameter"),
+        ("pin_contact_radius", "mm", "radius where the pins touch"),
+    ]
+    + [
+        (f"rack{sep}{key}", unit, f"rack {label}")
+        for key, unit, label in (
+            ("length", "mm", "length"),
+            ("height", "mm", "height"),
+            ("pitch", "mm", "transverse pitch"),
+            ("normal_pitch", "mm", "normal pitch"),
+            ("tooth_thickness", "mm", "tooth thickness at the datum line"),
+            ("addendum", "mm", "addendum"),
+            ("dedendum", "mm", "dedendum"),
+            ("pressure_angle_deg", "deg", "pressure angle"),
+            ("transverse_pressure_angle_deg", "deg", "transverse pressure angle"),
+            ("teeth", "1", "teeth"),
+            ("area", "mm²", "section area"),
+        )
+        for sep in (".", "_")
+    ],
+)

@@ -70,6 +70,13 @@ def test_the_label_table_keeps_the_options_of_the_commands():
         "center_distance": "--center-distance",
         "radius": "radius",
         "face_width": "--face-width",
+        # added with the tooth-thickness allowances, their measurements and the rack
+        "thickness_allowance_upper": "--thickness-allowance-upper",
+        "thickness_allowance_lower": "--thickness-allowance-lower",
+        "span_teeth": "--span-teeth",
+        "pin_diameter": "--pin-diameter",
+        "rack_length": "--rack",
+        "rack_height": "--rack-height",
     }
     assert MATE_OPTION == {
         "teeth": "--mate-teeth",
@@ -77,6 +84,8 @@ def test_the_label_table_keeps_the_options_of_the_commands():
         "center_distance": "--center-distance",
         "shifts": "--shift and --mate-shift",
         "mesh": "--teeth, --mate-teeth, --shift, --mate-shift, --addendum and --pressure-angle",
+        "thickness_allowance_upper": "--mate-thickness-allowance-upper",
+        "thickness_allowance_lower": "--mate-thickness-allowance-lower",
     }
     assert contact_names(frozenset({"teeth", "mate_teeth"}), True) == (
         "[gear] teeth, [mate] teeth, --center-distance, --shift, --mate-shift, --addendum and --pressure-angle"

@@ -18,7 +18,7 @@ from exports.dxf_profile import read_profile_points
 from exports.formats import ExportFormat, check_limits, names, plan_files, preload, table
 from rotorcad.assembly import BodyKind, PlacedBody, assemble, check_section_work, check_solid_work, housing_bodies, rotor_bodies
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, output_folder
-from rotorcad.cli.gear_export import design_gear_bodies, is_gear_design
+from rotorcad.cli.gear_export import design_gear_bodies, design_rack_files, is_gear_design
 from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
@@ -165,6 +165,8 @@ def export(
         for path, row, writer in plan_files(fmts, bodies, tol, folder, design.stem):
             outputs.add(path, writer, "--out")
             rows.append(row)
+        if is_gear_design(data):  # a gear design's rack ([rack]), in its own frame
+            rows += design_rack_files(design, [f.name for f in fmts], folder, tol, outputs, data)
         outputs.write(pool)
     progress.stop()
     for row in rows:

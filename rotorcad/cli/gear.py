@@ -10,6 +10,7 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
+from exports.svg import write_svg
 from rotorcad.cli.common import (
     InputError,
     Outputs,
@@ -22,10 +23,13 @@ from rotorcad.cli.common import (
 from rotorcad.cli.progress import Steps
 from rotorcad.design.gears import GEAR_DEFAULTS, VALUE_FIELDS, GearSpec, gear_spec
 from rotorcad.design.gears import build_gear as core_build_gear
+from rotorcad.design.gears import build_rack as core_build_rack
 from rotorcad.design.gears import check_contact as core_check_contact
+from rotorcad.design.gears import shop_values as core_shop_values
 from rotorcad.design.labels import GEAR_FIELD_LABELS, GEAR_LABELS, contact_names, gear_name, required
 from rotorcad.errors import DesignError, GeometryError, MissingValueError
 from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.gears.rack import GearRack
 from rotorcad.plotting import line_of_action, mate_in_mesh, plot_gears
 
 GEAR_OPTION = {param: label.option for param, label in GEAR_LABELS.items() if not param.startswith("mate.")}
@@ -49,6 +53,14 @@ OPTION_FIELDS = (
     "mate_teeth",
     "mate_shift",
     "center_distance",
+    "thickness_allowance_upper",
+    "thickness_allowance_lower",
+    "span_teeth",
+    "pin_diameter",
+    "mate_thickness_allowance_upper",
+    "mate_thickness_allowance_lower",
+    "rack_length",
+    "rack_height",
 )
 """The fields of :class:`rotorcad.design.gears.GearSpec` that the options of :func:`gear_options` give."""
 
@@ -74,6 +86,38 @@ GEAR_DECORATORS = [
 ]
 
 
+SHOP_DECORATORS = [
+    click.option(
+        "--thickness-allowance-upper",
+        type=float,
+        help="Upper tooth-thickness allowance A_sne [mm], normal section, DIN 3967 (<= 0). Default 0.",
+    ),
+    click.option(
+        "--thickness-allowance-lower",
+        type=float,
+        help="Lower tooth-thickness allowance A_sni [mm] (<= the upper one). Default 0. Files get the middle of the field.",
+    ),
+    click.option("--span-teeth", type=int, help="Teeth k of the span measurement W_k. Default: the standard rule."),
+    click.option(
+        "--pin-diameter",
+        type=float,
+        help="Pin (ball, helical) diameter D_M of the dimension over pins [mm]. Default: the standard rule.",
+    ),
+    click.option("--mate-thickness-allowance-upper", type=float, help="The mate's upper allowance A_sne [mm]. Default 0."),
+    click.option("--mate-thickness-allowance-lower", type=float, help="The mate's lower allowance A_sni [mm]. Default 0."),
+    click.option(
+        "--rack",
+        "rack_length",
+        type=float,
+        help="Also a gear rack of this length [mm] with the gear's basic rack (rack.csv, rack.dxf; JSON key rack).",
+    ),
+    click.option(
+        "--rack-height", type=float, help="The rack's height from its back to the datum line [mm]. Default h_fP* m + 2 m."
+    ),
+]
+"""The options of ``rotorcad gear`` alone: the tooth-thickness allowances and their measurements."""
+
+
 def gear_options(fn):
     """Add the options of ``rotorcad gear`` that describe the gear (and mate) to another command.
 
@@ -84,12 +128,25 @@ def gear_options(fn):
     return fn
 
 
+def shop_options(fn):
+    """Add :data:`SHOP_DECORATORS` to a command (a decorator)."""
+    for deco in reversed(SHOP_DECORATORS):
+        fn = deco(fn)
+    return fn
+
+
 @click.command()
 @click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
 @gear_options
+@shop_options
 @click.option("--tolerance", type=float, default=1e-4, show_default=True, help="Chord tolerance of the outline [mm].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="Write a DXF of the gear (and mate in mesh) [mm].")
+@click.option(
+    "--svg",
+    type=click.Path(path_type=Path, dir_okay=False),
+    help="Write an SVG of the drawing of --dxf [mm, y up]; the rack goes to NAME_rack.svg.",
+)
 @click.option(
     "--csv",
     type=click.Path(path_type=Path, dir_okay=False),
@@ -115,6 +172,13 @@ def gear(design: Path | None, **opts: Any) -> None:
     params = merge_gear_params(design, opts)
     g, pair = build_gear(params, opts["tolerance"])
     result: dict[str, Any] = pair.summary() if pair is not None else g.summary()
+    shop, g, pair = shop_gears(params, g, pair)
+    if pair is not None:
+        result["mate"].update(shop.pop("mate"))
+    result.update(shop)
+    rack = make_rack(params, opts["tolerance"])
+    if rack is not None:
+        result["rack"] = rack.summary()
 
     outputs = Outputs()
     out = output_folder(opts["out"])
@@ -123,6 +187,11 @@ def gear(design: Path | None, **opts: Any) -> None:
     png_paths = [p for p in (opts["plot"], out and out / "gear.png") if p]
     for p in dxf_paths:
         outputs.add(p, lambda path: write_dxf(path, _drawing(g, pair)), "--dxf")
+    if opts["svg"]:
+        outputs.add(opts["svg"], lambda path: write_svg(path, _drawing(g, pair)), "--svg")
+        if rack is not None:
+            rack_svg = opts["svg"].with_name(opts["svg"].stem + "_rack.svg")
+            outputs.add(rack_svg, lambda path: write_svg(path, _rack_drawing(rack)), "--svg")
     for p in csv_paths:
         outputs.add(p, lambda path: write_points(path, g.outline().points, _comments(g, "gear")), "--csv")
         if pair is not None:
@@ -130,9 +199,17 @@ def gear(design: Path | None, **opts: Any) -> None:
             outputs.add(
                 mate_path, lambda path: write_points(path, pair.mate.outline().points, _comments(pair.mate, "mate")), "--csv"
             )
+    if rack is not None:
+        comments = [f"rotorcad rack: L={rack.length:g} mm m={rack.module:g} mm", "x along the rack, datum line y = 0"]
+        for p in dxf_paths:
+            rack_path = p.with_name("rack.dxf") if out and p == out / "gear.dxf" else p.with_name(p.stem + "_rack.dxf")
+            outputs.add(rack_path, lambda path: write_dxf(path, _rack_drawing(rack)), "--dxf")
+        for p in csv_paths:
+            rack_path = p.with_name("rack.csv") if out and p == out / "gear.csv" else p.with_name(p.stem + "_rack.csv")
+            outputs.add(rack_path, lambda path: write_points(path, rack.outline(), comments), "--csv")
     for p in png_paths:
         outputs.add_figure(p, lambda: plot_gears(g, pair), "--plot")
-    with Steps("gear: writing files", None, opts["quiet"] or not (dxf_paths or csv_paths or png_paths)):
+    with Steps("gear: writing files", None, opts["quiet"] or not (dxf_paths or csv_paths or png_paths or opts["svg"])):
         written = outputs.write()  # 1000 teeth at the finest tolerance: some 20 s
     result["files"] = [str(p) for p in written]
 
@@ -140,10 +217,11 @@ def gear(design: Path | None, **opts: Any) -> None:
         emit_json(result)
     else:
         title = f"gear z={g.teeth}, m={g.module:g} mm" + (f" with mate z={pair.mate.teeth}" if pair else "")
+        shown = _flat(result)
         if pair is not None and isinstance(result.get("mate"), dict):
-            print_pair_table(title, result, result["mate"])
+            print_pair_table(title, shown, _flat(result["mate"]))
         else:
-            print_table(title, result)
+            print_table(title, shown)
         for p in written:
             click.echo(f"wrote {p}")
 
@@ -229,6 +307,97 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
         else:
             label = gear_name(exc.param, spec.from_design)
         raise InputError(exc.sentence(label)) from None
+
+
+def shop_gears(
+    p: dict[str, Any], gear: InvoluteGear, pair: GearPair | None
+) -> tuple[dict[str, Any], InvoluteGear, GearPair | None]:
+    """Return the allowances' measurements and backlash, and the gears as made (:func:`rotorcad.design.gears.shop_values`).
+
+    Parameters
+    ----------
+    p : dict
+        Parameters from :func:`merge_gear_params`.
+    gear : InvoluteGear
+        The nominal gear.
+    pair : GearPair or None
+        The nominal pair.
+
+    Returns
+    -------
+    values : dict
+        The CONTRACT.md keys of the measurements (the mate's under ``"mate"``) and the backlash.
+    made : InvoluteGear
+        The gear cut at the middle of its tolerance field (the nominal gear without allowances).
+    made_pair : GearPair or None
+        The two gears as made at the pair's centre distance.
+
+    Raises
+    ------
+    InputError
+        A value that cannot be used, naming the option or design key given.
+    """
+    spec = GearSpec(**{f: p[f] for f in VALUE_FIELDS if p.get(f) is not None}, from_design=p[SPEC].from_design)
+    try:
+        values, made, made_mate = core_shop_values(spec, gear, pair)
+    except DesignError as exc:
+        raise InputError(exc.sentence(gear_name(exc.param, spec.from_design))) from None
+    if pair is None:
+        return values, made, None
+    if made is pair.gear and made_mate is pair.mate:
+        return values, made, pair
+    return values, made, GearPair(made, made_mate, pair.working_center_distance)
+
+
+def make_rack(p: dict[str, Any], tolerance: float) -> GearRack | None:
+    """Build the gear rack the options or the design's ``[rack]`` describe (:func:`rotorcad.design.gears.build_rack`).
+
+    Parameters
+    ----------
+    p : dict
+        Parameters from :func:`merge_gear_params`.
+    tolerance : float, mm
+        Chord tolerance of the outline.
+
+    Returns
+    -------
+    GearRack or None
+        None without ``--rack`` (or ``[rack] length``).
+
+    Raises
+    ------
+    InputError
+        A rack that cannot be made, naming the option or design key given.
+    """
+    spec = GearSpec(**{f: p[f] for f in VALUE_FIELDS if p.get(f) is not None}, from_design=p[SPEC].from_design)
+    try:
+        return core_build_rack(spec, tolerance)
+    except MissingValueError:
+        raise InputError("--rack must be given with --rack-height.") from None
+    except DesignError as exc:
+        raise InputError(exc.sentence(gear_name(exc.param, spec.from_design))) from None
+
+
+FLAT_KEYS = ("thickness_allowance", "span", "over_pins", "backlash_circumferential", "backlash_normal", "rack")
+"""Nested result keys shown in the text table as one row per value (``span_nominal``, ``rack_pitch``, ...)."""
+
+
+def _flat(result: dict[str, Any]) -> dict[str, Any]:
+    """Return the result with the values of :data:`FLAT_KEYS` as rows of their own, for the text table."""
+    out: dict[str, Any] = {}
+    for key, value in result.items():
+        if key in FLAT_KEYS and isinstance(value, dict):
+            out.update({f"{key}_{sub}": v for sub, v in value.items() if not (key == "rack" and sub == "length")})
+        else:
+            out[key] = value
+    return out
+
+
+def _rack_drawing(rack: GearRack) -> Drawing:
+    d = Drawing(mark_size=rack.module)
+    d.outlines.append(("RACK", rack.outline()))
+    d.lines.append(("PITCH", (0.0, 0.0), (float(rack.length), 0.0)))
+    return d
 
 
 def check_contact(eps: float, label: str) -> None:

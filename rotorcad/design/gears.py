@@ -19,7 +19,13 @@ from rotorcad.errors import DesignError, GeometryError, MissingValueError
 GEAR_DEFAULTS = {"pressure_angle": 20.0, "helix_angle": 0.0, "shift": 0.0, "addendum": 1.0, "dedendum": 1.25, "tip_radius": 0.38}
 """The ISO 53 basic rack (pressure angle in degrees, factors of the module) and no helix, no shift."""
 
-MATE_FIELDS = {"teeth": "mate_teeth", "shift": "mate_shift", "center_distance": "center_distance"}
+MATE_FIELDS = {
+    "teeth": "mate_teeth",
+    "shift": "mate_shift",
+    "center_distance": "center_distance",
+    "thickness_allowance_upper": "mate_thickness_allowance_upper",
+    "thickness_allowance_lower": "mate_thickness_allowance_lower",
+}
 """``[mate]`` key -> field of :class:`GearSpec`."""
 
 
@@ -47,6 +53,17 @@ class GearSpec:
         Its profile shift x2 (None: 0, or for zero backlash at ``center_distance``, ISO 21771).
     center_distance : float or None, mm
         Working centre distance a_w (None: zero backlash for the shifts).
+    thickness_allowance_upper, thickness_allowance_lower : float, mm
+        The gear's tooth-thickness allowances A_sne, A_sni (DIN 3967, normal section, <= 0).
+    span_teeth : int or None
+        Teeth spanned by the span measurement (None: the standard rule).
+    pin_diameter : float or None, mm
+        Pins or balls of the dimension over pins (None: the standard rule).
+    mate_thickness_allowance_upper, mate_thickness_allowance_lower : float, mm
+        The mate's allowances.
+    rack_length, rack_height : float or None, mm
+        A gear rack of the gear's basic rack (None: no rack), and its height from the back to the
+        datum line (None: h_fP* m + 2 m).
     from_design : frozenset of str
         The fields whose values are the design file's.
     """
@@ -63,11 +80,23 @@ class GearSpec:
     mate_teeth: int | None = None
     mate_shift: float | None = None
     center_distance: float | None = None
+    thickness_allowance_upper: float = 0.0
+    thickness_allowance_lower: float = 0.0
+    span_teeth: int | None = None
+    pin_diameter: float | None = None
+    mate_thickness_allowance_upper: float = 0.0
+    mate_thickness_allowance_lower: float = 0.0
+    rack_length: float | None = None
+    rack_height: float | None = None
     from_design: frozenset[str] = frozenset()
 
 
 VALUE_FIELDS = tuple(f.name for f in fields(GearSpec) if f.name != "from_design")
 """The fields of :class:`GearSpec` that hold values."""
+
+
+RACK_FIELDS = {"length": "rack_length", "height": "rack_height"}
+"""``[rack]`` key -> field of :class:`GearSpec`."""
 
 
 def gear_spec(design: dict[str, dict[str, Any]] | None = None, given: dict[str, Any] | None = None) -> GearSpec:
@@ -98,6 +127,9 @@ def gear_spec(design: dict[str, dict[str, Any]] | None = None, given: dict[str, 
         for key, value in design.get("mate", {}).items():
             values[MATE_FIELDS[key]] = value
             from_design.add(MATE_FIELDS[key])
+        for key, value in design.get("rack", {}).items():
+            values[RACK_FIELDS[key]] = value
+            from_design.add(RACK_FIELDS[key])
     for key, value in (given or {}).items():
         if value is not None and key in VALUE_FIELDS:
             values[key] = value
@@ -166,6 +198,102 @@ def build_gear(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
         raise type(exc)(f"mate.{exc.param}", exc.allowed, exc.value, exc.detail) from None
     check_contact(pair.contact_ratio, "contact_ratio")
     return gear, pair
+
+
+def shop_values(spec: GearSpec, gear: Any, pair: Any) -> tuple[dict[str, Any], Any, Any]:
+    """Return the measurements that check a spec's tooth-thickness allowances, and the gears as made.
+
+    Parameters
+    ----------
+    spec : GearSpec
+        The spec (its allowances, ``span_teeth`` and ``pin_diameter``).
+    gear : InvoluteGear
+        The nominal gear (:func:`build_gear`).
+    pair : GearPair or None
+        The nominal pair.
+
+    Returns
+    -------
+    values : dict
+        :func:`rotorcad.gears.measurements.measurements` of the gear, under ``"mate"`` those of the
+        mate, and with a pair ``backlash_circumferential`` and ``backlash_normal``
+        (:func:`rotorcad.gears.allowances.pair_backlash`).
+    made, made_mate : InvoluteGear
+        The gear and the mate (None without) cut at the middle of their tolerance fields
+        (:func:`rotorcad.gears.allowances.thinned`): the outlines written to files.
+
+    Raises
+    ------
+    DesignError
+        An allowance, span count or pin diameter that cannot be used, naming the spec's field
+        (``mate.thickness_allowance_upper`` ... for the mate's).
+    """
+    from rotorcad.gears.allowances import ThicknessAllowance, pair_backlash, thinned
+    from rotorcad.gears.measurements import measurements
+
+    def made(g: Any, allowance: ThicknessAllowance) -> Any:
+        for a in (allowance.lower, allowance.mean):  # the thinnest tooth first: it refuses first
+            try:
+                out = thinned(g, a)
+            except DesignError as exc:
+                raise DesignError("thickness_allowance_lower", exc.allowed, allowance.lower, exc.detail) from None
+        return out
+
+    own = ThicknessAllowance(spec.thickness_allowance_upper, spec.thickness_allowance_lower)
+    values = measurements(gear, own, spec.span_teeth, spec.pin_diameter)
+    made_gear = made(gear, own)
+    if pair is None:
+        return values, made_gear, None
+    other = ThicknessAllowance(spec.mate_thickness_allowance_upper, spec.mate_thickness_allowance_lower)
+    try:
+        values["mate"] = measurements(pair.mate, other)
+        made_mate = made(pair.mate, other)
+    except DesignError as exc:
+        raise type(exc)(f"mate.{exc.param}", exc.allowed, exc.value, exc.detail) from None
+    backlash = pair_backlash(pair, own, other)
+    values["backlash_circumferential"] = backlash["circumferential"]
+    values["backlash_normal"] = backlash["normal"]
+    return values, made_gear, made_mate
+
+
+def build_rack(spec: GearSpec, tolerance: float) -> Any:
+    """Build the gear rack of a spec: the gear's basic rack (module, angles, addendum, dedendum, fillet).
+
+    Parameters
+    ----------
+    spec : GearSpec
+        The spec (``rack_length``, ``rack_height``).
+    tolerance : float, mm
+        Chord tolerance of the outline.
+
+    Returns
+    -------
+    GearRack or None
+        :class:`rotorcad.gears.rack.GearRack`; None without ``rack_length``.
+
+    Raises
+    ------
+    DesignError
+        A rack that cannot be made, naming ``rack_length``, ``rack_height`` or the gear's parameter.
+    """
+    if spec.rack_length is None:
+        if spec.rack_height is not None:
+            raise MissingValueError("rack_length", "given with the rack's height")
+        return None
+    from rotorcad.gears.involute_gear import DEG
+    from rotorcad.gears.rack import GearRack
+
+    return GearRack(
+        length=spec.rack_length,
+        module=spec.module,
+        pressure_angle=spec.pressure_angle * DEG,
+        helix_angle=spec.helix_angle * DEG,
+        addendum=spec.addendum,
+        dedendum=spec.dedendum,
+        root_radius_factor=spec.tip_radius,
+        height=spec.rack_height,
+        tolerance=tolerance,
+    )
 
 
 def check_contact(eps: float, label: str) -> None:

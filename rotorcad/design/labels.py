@@ -75,7 +75,23 @@ GEAR_LABELS: dict[str, Label] = {
     "tolerance": Label("tolerance", "--tolerance", None),
     "center_distance": Label("center_distance", "--center-distance", None),
     "radius": Label("radius", "radius", None),
+    "thickness_allowance_upper": Label(
+        "thickness_allowance_upper", "--thickness-allowance-upper", "[gear] thickness_allowance_upper"
+    ),
+    "thickness_allowance_lower": Label(
+        "thickness_allowance_lower", "--thickness-allowance-lower", "[gear] thickness_allowance_lower"
+    ),
+    "span_teeth": Label("span_teeth", "--span-teeth", "[gear] span_teeth"),
+    "pin_diameter": Label("pin_diameter", "--pin-diameter", "[gear] pin_diameter"),
+    "rack_length": Label("rack_length", "--rack", "[rack] length"),
+    "rack_height": Label("rack_height", "--rack-height", "[rack] height"),
     "mate.teeth": Label("mate_teeth", "--mate-teeth", "[mate] teeth"),
+    "mate.thickness_allowance_upper": Label(
+        "mate_thickness_allowance_upper", "--mate-thickness-allowance-upper", "[mate] thickness_allowance_upper"
+    ),
+    "mate.thickness_allowance_lower": Label(
+        "mate_thickness_allowance_lower", "--mate-thickness-allowance-lower", "[mate] thickness_allowance_lower"
+    ),
     "mate.shift": Label("mate_shift", "--mate-shift", "[mate] shift"),
     "mate.center_distance": Label("center_distance", "--center-distance", "[mate] center_distance"),
     "mate.shifts": Label("shifts", "--shift and --mate-shift", None),

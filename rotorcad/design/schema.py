@@ -24,8 +24,22 @@ GEAR_KEYS: dict[str, type | tuple[type, ...]] = {
     "dedendum": NUMBER,
     "tip_radius": NUMBER,
     "face_width": NUMBER,  # mm, for solids (rotorcad export)
+    "thickness_allowance_upper": NUMBER,  # mm, DIN 3967 A_sne (normal section, <= 0)
+    "thickness_allowance_lower": NUMBER,  # mm, DIN 3967 A_sni
+    "span_teeth": int,  # teeth spanned by the span measurement (default: the standard rule)
+    "pin_diameter": NUMBER,  # mm, pins or balls of the dimension over pins (default: the standard rule)
 }
-MATE_KEYS: dict[str, type | tuple[type, ...]] = {"teeth": int, "shift": NUMBER, "center_distance": NUMBER}
+MATE_KEYS: dict[str, type | tuple[type, ...]] = {
+    "teeth": int,
+    "shift": NUMBER,
+    "center_distance": NUMBER,
+    "thickness_allowance_upper": NUMBER,
+    "thickness_allowance_lower": NUMBER,
+}
+
+
+RACK_KEYS: dict[str, type | tuple[type, ...]] = {"length": NUMBER, "height": NUMBER}
+"""``[rack]`` of a gear design: a gear rack of the gear's basic rack, length and height to the datum line, mm."""
 
 
 def check_table(
@@ -128,10 +142,12 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
     """
     refuse_huge_integers(data)
     for table in data:
-        if table not in ("gear", "mate"):
-            raise InputFileError(f"table [{table}]", "one of [gear], [mate] in a gear design", None, "unknown table")
+        if table not in ("gear", "mate", "rack"):
+            raise InputFileError(f"table [{table}]", "one of [gear], [mate], [rack] in a gear design", None, "unknown table")
     gear = check_table(data, "gear", GEAR_KEYS, required=("teeth", "module"))
     mate = check_table(data, "mate", MATE_KEYS) if "mate" in data else {}
+    if "rack" in data:  # a gear rack of the gear's basic rack
+        return {"gear": gear, "mate": mate, "rack": check_table(data, "rack", RACK_KEYS, required=("length",))}
     return {"gear": gear, "mate": mate}
 
 

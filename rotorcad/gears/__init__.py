@@ -12,7 +12,11 @@ Modules, one job each:
 * :mod:`rotorcad.gears.involute_gear` - :class:`InvoluteGear`: the gear's design values, their
   checks, its dimensions and its outline;
 * :mod:`rotorcad.gears.pair` - :class:`GearPair` (centre distance, backlash, contact ratio) and
-  :func:`mate_shift`.
+  :func:`mate_shift`;
+* :mod:`rotorcad.gears.allowances` - tooth-thickness allowances (DIN 3967) as the generating rack
+  fed in (:func:`~rotorcad.gears.allowances.thinned`) and a pair's backlash from them;
+* :mod:`rotorcad.gears.measurements` - span W_k and dimension over pins or balls M_d (ISO 21771);
+* :mod:`rotorcad.gears.rack` - :class:`GearRack`, a gear rack part of the ISO 53 basic rack.
 
 The names below are imported on first use (PEP 562), so that importing the closed forms alone
 does not load the envelope engine.
@@ -31,6 +35,11 @@ _API = {
     "GearPair": "rotorcad.gears.pair",
     "mate_shift": "rotorcad.gears.pair",
     "tool_tip_radius_limit": "rotorcad.gears.formulas",
+    "base_helix_angle": "rotorcad.gears.formulas",
+    "ThicknessAllowance": "rotorcad.gears.allowances",
+    "thinned": "rotorcad.gears.allowances",
+    "pair_backlash": "rotorcad.gears.allowances",
+    "GearRack": "rotorcad.gears.rack",
     "inv": "rotorcad.gears.formulas",
     "inv_inverse": "rotorcad.gears.formulas",
     "shift_sum": "rotorcad.gears.formulas",

@@ -83,6 +83,24 @@ def transverse_pressure_angle(pressure_angle: float, helix_angle: float) -> floa
     return float(np.arctan(np.tan(pressure_angle) / np.cos(helix_angle)))
 
 
+def base_helix_angle(pressure_angle: float, helix_angle: float) -> float:
+    """Return the base helix angle beta_b: sin(beta_b) = sin(beta) cos(alpha_n) (ISO 21771).
+
+    Parameters
+    ----------
+    pressure_angle : float, rad
+        Normal pressure angle alpha_n.
+    helix_angle : float, rad
+        Helix angle beta at the reference cylinder.
+
+    Returns
+    -------
+    float, rad
+        beta_b, of the sign of beta.
+    """
+    return float(np.arcsin(np.sin(helix_angle) * np.cos(pressure_angle)))
+
+
 def working_pressure_angle(z1: int, z2: int, x1: float, x2: float, alpha_t: float, alpha_n: float) -> float:
     """Return the working transverse pressure angle alpha_wt of a pair (ISO 21771 eq. 4.14, zero backlash).
 
