@@ -21,6 +21,7 @@ from rotorcad.gears.involute_gear import InvoluteGear
 from rotorcad.geometry import perp_cw
 from rotorcad.inverse_rack import contact_of_rack_points
 from rotorcad.plot_style import styled
+from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -86,8 +87,8 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
     """
     pair = rotors.pair
     male = racks["male"]
-    pts = rack_in_contract_frame(male, "male")
-    other = rack_in_contract_frame(racks["female"], "female")
+    pts = rack_in_contract_frame(male, Side.MALE)
+    other = rack_in_contract_frame(racks["female"], Side.FEMALE)
     shift = np.array([pair.rack_period, 0.0])
     contact, _ = contact_of_rack_points(pair.male_pitch_radius, pts, male.tangents)
     inside = (np.hypot(*contact.T) <= pair.male_tip_radius) & (
