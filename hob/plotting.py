@@ -21,6 +21,7 @@ from rotorcad.gears.involute_gear import InvoluteGear
 from rotorcad.geometry import perp_cw
 from rotorcad.inverse_rack import contact_of_rack_points
 from rotorcad.plot_style import styled
+from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -74,7 +75,8 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
     rotors : ScrewRotors
         The pair.
     racks : dict of DerivedRack
-        ``male`` and ``female``, each from :func:`rotorcad.inverse_rack.rotor_rack`.
+        Keyed by :class:`rotorcad.roles.Side` (or its text, "male" and "female"), each from
+        :func:`rotorcad.inverse_rack.rotor_rack`.
 
     Returns
     -------
@@ -85,9 +87,9 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
         ``compared`` the female rack's points; ``names`` of the two racks; ``period`` (mm).
     """
     pair = rotors.pair
-    male = racks["male"]
-    pts = rack_in_contract_frame(male, "male")
-    other = rack_in_contract_frame(racks["female"], "female")
+    male = racks[Side.MALE]
+    pts = rack_in_contract_frame(male, Side.MALE)
+    other = rack_in_contract_frame(racks[Side.FEMALE], Side.FEMALE)
     shift = np.array([pair.rack_period, 0.0])
     contact, _ = contact_of_rack_points(pair.male_pitch_radius, pts, male.tangents)
     inside = (np.hypot(*contact.T) <= pair.male_tip_radius) & (

@@ -14,6 +14,7 @@ from typing import Any
 from hob.rack import rotor_rack
 from hob.verdict import HobLimits, judge
 from rotorcad.extensions import register_sweep_analysis
+from rotorcad.roles import Side
 from rotorcad.sweep.plan import Extra
 
 
@@ -34,8 +35,8 @@ def hobbability(rotors: Any, spec: Any, clearance: float) -> dict[str, Any]:
     dict
         ``hobbable`` (bool) and ``hob_reason`` (the reasons against, "rotor: reason; ...").
     """
-    verdicts = [judge(rotor_rack(rotors, rotor), HobLimits()) for rotor in ("male", "female")]
-    reasons = [f"{rotor}: {r}" for rotor, v in zip(("male", "female"), verdicts, strict=True) for r in v.reasons]
+    verdicts = [judge(rotor_rack(rotors, side), HobLimits()) for side in Side]
+    reasons = [f"{side}: {r}" for side, v in zip(Side, verdicts, strict=True) for r in v.reasons]
     return {"hobbable": all(v.hobbable for v in verdicts), "hob_reason": "; ".join(reasons)}
 
 

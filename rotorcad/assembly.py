@@ -28,6 +28,7 @@ import shapely.affinity
 
 from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate
+from rotorcad.roles import Side
 from rotorcad.triangle_mesh import TriangleMesh
 
 if TYPE_CHECKING:
@@ -247,28 +248,24 @@ def rotor_bodies(rotors: ScrewRotors, pair: RotorPair, angle: float, phase: floa
     tolerance : float, mm
         Surface tolerance; the sections are sampled to half of it.
     """
-    turn = {"male": angle, "female": -angle * pair.male_teeth / pair.female_teeth + phase}
     lead = pair.lead if pair.hand == "right" else -pair.lead
-    leads = {"male": lead, "female": -np.sign(lead) * pair.female_lead}
-    shifts = {"male": (0.0, 0.0), "female": (float(pair.center_distance), 0.0)}
-    pitch = {"male": pair.male_pitch_radius, "female": pair.female_pitch_radius}
-    outlines = {"male": rotors.male_outline, "female": rotors.female_outline}
+    turn = {Side.MALE: angle, Side.FEMALE: -angle * pair.male_teeth / pair.female_teeth + phase}
     return [
         PlacedBody(
-            name=body,
+            name=side.value,
             kind=BodyKind.ROTOR,
             length=float(pair.length),
-            shift=shifts[body],
-            section=shapely.affinity.rotate(rotors.section(body, tolerance / 2), turn[body], origin=(0, 0), use_radians=True),
+            shift=side.pick((0.0, 0.0), (float(pair.center_distance), 0.0)),
+            section=shapely.affinity.rotate(rotors.section(side, tolerance / 2), turn[side], origin=(0, 0), use_radians=True),
             section_tolerance=tolerance / 2,
-            lead=float(leads[body]),
-            turn=float(turn[body]),
-            pitch_radius=float(pitch[body]),
+            lead=float(side.pick(lead, -np.sign(lead) * pair.female_lead)),
+            turn=float(turn[side]),
+            pitch_radius=float(side.pick(pair.male_pitch_radius, pair.female_pitch_radius)),
             mark_size=0.05 * pair.male_tip_radius,
-            section_of=lambda chord, b=body: rotors.section(b, chord),
-            outline=outlines[body],
+            section_of=lambda chord, s=side: rotors.section(s, chord),
+            outline=side.pick(rotors.male_outline, rotors.female_outline),
         )
-        for body in ("male", "female")
+        for side in Side
     ]
 
 
@@ -396,8 +393,8 @@ def check_solid_work(rotors: ScrewRotors, tolerance: float, label: str) -> None:
     pair = rotors.pair
     coarse = max(tolerance / 2, 0.05)
     total = 0.0
-    for body, lead in (("male", pair.lead), ("female", pair.female_lead)):
-        section = rotors.section(body, coarse)
+    for side, lead in ((Side.MALE, pair.lead), (Side.FEMALE, pair.female_lead)):
+        section = rotors.section(side, coarse)
         r_max = float(np.hypot(*np.asarray(section.exterior.coords).T).max())
         total += solid_triangles(points_at(section, coarse, tolerance / 2), lead, pair.length, r_max, tolerance)
     if total <= MAX_TRIANGLES:
@@ -431,7 +428,7 @@ def check_section_work(rotors: ScrewRotors, tolerance: float, label: str) -> Non
     from rotorcad.work import MAX_SECTION_POINTS, points_at
 
     coarse = max(tolerance / 2, 0.05)
-    points = sum(points_at(rotors.section(b, coarse), coarse, tolerance / 2) for b in ("male", "female"))
+    points = sum(points_at(rotors.section(side, coarse), coarse, tolerance / 2) for side in Side)
     if points > MAX_SECTION_POINTS:
         need = tolerance * (points / MAX_SECTION_POINTS) ** 2 * 1.05
         raise DesignError(

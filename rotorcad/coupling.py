@@ -121,8 +121,12 @@ class Hold(Enum):
     TOOTH_LOAD = "tooth_load"  # m, b, R0 and the tooth load (power as z^2): only eq. 7's arm changes
 
 
-class Flank(Enum):
-    """Which flank of the tooth carries the torque: the sign of alpha in V_k = R_b omega sin(gamma) sin(omega t +- alpha)."""
+class LoadedFlank(Enum):
+    """Which flank of a coupling tooth carries the torque: the sign of alpha in V_k = R_b omega sin(gamma) sin(omega t +- alpha).
+
+    The drive flank or the coast flank of an involute tooth (the side of contact when the torque
+    reverses). Not :class:`rotorcad.roles.Flank`, which names the parts of a screw rotor's lobe.
+    """
 
     DRIVING = 1
     COAST = -1
@@ -303,14 +307,14 @@ class GearCoupling:
         """Angular speed omega = 2 pi n / 60 [rad/s]."""
         return 2.0 * math.pi * self.speed_rpm / 60.0
 
-    def speeds(self, samples: int = 361, flank: Flank = Flank.DRIVING) -> tuple[Array, Array, Array, Array]:
+    def speeds(self, samples: int = 361, flank: LoadedFlank = LoadedFlank.DRIVING) -> tuple[Array, Array, Array, Array]:
         """Speeds of the contact of one tooth over one revolution (paper, Fig. 2).
 
         Parameters
         ----------
         samples : int
             Number of angles n_s.
-        flank : Flank
+        flank : LoadedFlank
             The loaded flank (sign of alpha in V_k).
 
         Returns

@@ -23,6 +23,7 @@ import numpy as np
 
 from rotorcad.errors import DesignError
 from rotorcad.gas_load import PressureCycle, line_loads, pressure_cycle
+from rotorcad.roles import Side
 from rotorcad.rotor_beam import (
     KAPPA_ROUND,
     Beam,
@@ -235,13 +236,13 @@ class DeflectionLines:
     female_shaft_z: np.ndarray = field(default_factory=lambda: np.zeros(0))
     female_shaft: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
 
-    def largest(self, rotor: str, shaft: bool = False) -> tuple[float, float, float]:
+    def largest(self, rotor: Side | str, shaft: bool = False) -> tuple[float, float, float]:
         """Return the largest deflection of a rotor, where it occurs and its direction.
 
         Parameters
         ----------
-        rotor : {"male", "female"}
-            Which rotor.
+        rotor : Side or {"male", "female"}
+            Which rotor (the text is read as ``Side(rotor)``).
         shaft : bool
             True: along the whole shaft on its bearings (falls back to the helical part when there
             are no shaft ends).
@@ -251,10 +252,11 @@ class DeflectionLines:
         tuple of float
             (|w| max in mm, its z in mm, its direction in deg from +x towards +y: tan phi = w_y / w_x).
         """
-        w = getattr(self, f"{rotor}_shaft" if shaft else rotor)
-        z = getattr(self, f"{rotor}_shaft_z") if shaft else self.z
+        side = Side(rotor)
+        w = side.pick(self.male_shaft, self.female_shaft) if shaft else side.pick(self.male, self.female)
+        z = side.pick(self.male_shaft_z, self.female_shaft_z) if shaft else self.z
         if len(w) == 0:
-            return self.largest(rotor)
+            return self.largest(side)
         mag = np.hypot(w[:, 0], w[:, 1])
         i = int(np.argmax(mag))
         return float(mag[i]), float(z[i]), float(np.degrees(np.arctan2(w[i, 1], w[i, 0])) % 360.0)
@@ -331,8 +333,8 @@ class GasDeflection:
             )
         self.pair = pair
         self.terms = int(terms)
-        male = rotors.section("male", 0.01)
-        female = rotors.section("female", 0.01)
+        male = rotors.section(Side.MALE, 0.01)
+        female = rotors.section(Side.FEMALE, 0.01)
         self.table: ChamberTable = chamber_table(
             male, female, pair.male_teeth, pair.female_teeth, pair.center_distance, pair.lead, pair.length, step_deg
         )
@@ -350,8 +352,8 @@ class GasDeflection:
         self.z = (np.arange(cells) + 0.5) * pair.length / cells
         self._young, self._poisson = young, poisson
         self._shafts = {
-            "male": male_shaft.segments(self.male.beam, young, poisson) if male_shaft.given else None,
-            "female": female_shaft.segments(self.female.beam, young, poisson) if female_shaft.given else None,
+            Side.MALE: male_shaft.segments(self.male.beam, young, poisson) if male_shaft.given else None,
+            Side.FEMALE: female_shaft.segments(self.female.beam, young, poisson) if female_shaft.given else None,
         }
         if load is not LoadModel.CHAMBER:
             self.table = self.with_load(load).table
@@ -380,20 +382,20 @@ class GasDeflection:
             other.table = chord_table(self.chamber_table, p.male_teeth, p.female_teeth, p.male_tip_radius, p.female_tip_radius)
         return other
 
-    def journal_length(self, rotor: str) -> float:
+    def journal_length(self, rotor: Side | str) -> float:
         """Return the length from the discharge bearing to the discharge end face of a rotor.
 
         Parameters
         ----------
-        rotor : {"male", "female"}
-            Which rotor.
+        rotor : Side or {"male", "female"}
+            Which rotor (the text is read as ``Side(rotor)``).
 
         Returns
         -------
         float, mm
             0 without shaft ends.
         """
-        shaft = self._shafts[rotor]
+        shaft = self._shafts[Side(rotor)]
         return 0.0 if shaft is None else float(sum(seg.length for seg in shaft[0][: shaft[1]]))
 
     def chambers(self, angle: float) -> list[dict[str, float]]:
@@ -450,14 +452,14 @@ class GasDeflection:
         """
         out = {}
         cell = self.pair.length / len(self.z)
-        for rotor, load in zip(("male", "female"), self.loads(angle), strict=True):
+        for rotor, load in zip(Side, self.loads(angle), strict=True):
             near = self.journal_length(rotor)
             shaft = self._shafts[rotor]
             span = sum(seg.length for seg in shaft[0]) if shaft is not None else self.pair.length
             force = load.sum(axis=0) * cell  # (2,) N
             suction = (load * (near + self.z)[:, None]).sum(axis=0) * cell / span
             discharge = force - suction
-            out[rotor] = {
+            out[rotor.value] = {
                 "force": float(np.hypot(*force)),
                 "direction_deg": float(np.degrees(np.arctan2(force[1], force[0])) % 360.0),
                 "discharge_bearing": float(np.hypot(*discharge)),
@@ -478,8 +480,8 @@ class GasDeflection:
         tuple of two (cells, 2) float arrays, N/mm
             Load per unit length (x, y) at the cell centres :attr:`z` on the male and the female.
         """
-        male = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "male")
-        female = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, "female")
+        male = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, Side.MALE)
+        female = line_loads(self.table, self.cycle, self.pair.male_teeth, angle, self.z, Side.FEMALE)
         return male, female
 
     def at(self, angle: float, terms: int | None = None, points: int = 201) -> DeflectionLines:
@@ -500,11 +502,11 @@ class GasDeflection:
         """
         terms = self.terms if terms is None else terms
         z = np.linspace(0.0, self.pair.length, points)
-        loads = dict(zip(("male", "female"), self.loads(angle), strict=True))
+        loads = dict(zip(Side, self.loads(angle), strict=True))
         lines = {}
-        for rotor, model in (("male", self.male), ("female", self.female)):
+        for rotor, model in ((Side.MALE, self.male), (Side.FEMALE, self.female)):
             coeff = model.beam.sine_coefficients(self.z, loads[rotor], terms)
-            lines[rotor] = model.beam.deflection(coeff, z)
+            lines[rotor.value] = model.beam.deflection(coeff, z)
             shaft = self._shafts[rotor]
             if shaft is not None:
                 lines[f"{rotor}_shaft_z"], lines[f"{rotor}_shaft"] = stepped_deflection(shaft[0], shaft[1], loads[rotor])
@@ -528,7 +530,7 @@ class GasDeflection:
         out = np.empty((len(angles), 2))
         for i, a in enumerate(np.asarray(angles, dtype=float)):  # each angle is vectorised inside
             lines = self.at(a, points=101)
-            out[i] = [lines.largest("male", shaft)[0], lines.largest("female", shaft)[0]]
+            out[i] = [lines.largest(Side.MALE, shaft)[0], lines.largest(Side.FEMALE, shaft)[0]]
         return out
 
     def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False) -> float:
@@ -557,7 +559,7 @@ class GasDeflection:
 
         def minus(a: float) -> float:
             lines = self.at(a, points=101)
-            return -max(lines.largest("male", shaft)[0], lines.largest("female", shaft)[0])
+            return -max(lines.largest(Side.MALE, shaft)[0], lines.largest(Side.FEMALE, shaft)[0])
 
         best = minimize_scalar(minus, bounds=(angles[i] - step, angles[i] + step), method="bounded", options={"xatol": 1e-4})
         return float(best.x) if -best.fun >= largest[i] else float(angles[i])

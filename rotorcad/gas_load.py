@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorcad.errors import DesignError
+from rotorcad.roles import Side
 from rotorcad.working_chamber import ChamberTable
 
 BAR = 0.1  # N/mm^2
@@ -179,7 +180,7 @@ def pressure_cycle(
 
 
 def line_loads(
-    table: ChamberTable, cycle: PressureCycle, male_teeth: int, male_angle: float, z: np.ndarray, rotor: str
+    table: ChamberTable, cycle: PressureCycle, male_teeth: int, male_angle: float, z: np.ndarray, rotor: Side
 ) -> np.ndarray:
     """Line load on a rotor along its length at one male angle (Rinder & Deix eq. 6 with the table's flute load).
 
@@ -193,8 +194,8 @@ def line_loads(
         The male's angle (rotors' frame) in the discharge end section.
     z : (n,) float, mm
         Distances from the discharge end face, 0 <= z <= L.
-    rotor : str
-        "male" or "female".
+    rotor : Side
+        Which rotor.
 
     Returns
     -------

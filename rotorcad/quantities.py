@@ -23,6 +23,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from rotorcad.roles import Side
+
 __all__ = ["QUANTITIES", "Quantity", "axis_label", "column_suffix", "csv_units_line", "lookup", "symbol", "unit_of"]
 
 
@@ -62,9 +64,9 @@ def _declare(source: str, rows: Iterable[tuple[str, str, str]]) -> None:
         QUANTITIES.setdefault(key, Quantity(key, unit, label, source))
 
 
-def _rotors(rows: Iterable[tuple[str, str, str]], rotors: tuple[str, ...] = ("male", "female")) -> list[tuple[str, str, str]]:
+def _rotors(rows: Iterable[tuple[str, str, str]]) -> list[tuple[str, str, str]]:
     """Each row once per rotor: ``{rotor}_key`` with the label ``{rotor} label``."""
-    return [(f"{rotor}_{key}", unit, f"{rotor} {label}") for key, unit, label in rows for rotor in rotors]
+    return [(f"{side}_{key}", unit, f"{side} {label}") for key, unit, label in rows for side in Side]
 
 
 # --- involute gears (rotorcad/gear.py, rotorcad/cli/gear.py; ISO 21771) ---------------------------

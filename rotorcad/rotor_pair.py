@@ -13,6 +13,7 @@ import numpy as np
 
 from rotorcad.errors import DesignError
 from rotorcad.kinematics import Mesh, rotor_mesh
+from rotorcad.roles import Side
 
 MAX_LENGTH = 1e5
 """Largest centre distance, radius, lead or length of a design, mm (100 m: no rotor, gear or shaft is
@@ -83,7 +84,7 @@ class RotorPair:
                 raise DesignError(name, LENGTH_RANGE, v)
         if self.hand not in ("right", "left"):
             raise DesignError("hand", "'right' or 'left'", self.hand)
-        for rotor, pitch in (("male", self.male_pitch_radius), ("female", self.female_pitch_radius)):
+        for rotor, pitch in ((Side.MALE, self.male_pitch_radius), (Side.FEMALE, self.female_pitch_radius)):
             if not self.strict:
                 break  # an assembled or measured pair: its radii need not straddle these pitch circles
             tip, root = getattr(self, f"{rotor}_tip_radius"), getattr(self, f"{rotor}_root_radius")

@@ -33,7 +33,7 @@ def defect_label(analysis: MeshingAnalysis, defect) -> str:
         if defect.point_generated:
             return f"{defect.rotor} tip corner{role}"
         on_male_tip = abs(np.hypot(defect.x, defect.y) - pair.male_tip_radius) <= analysis.tip_corner_tolerance
-        return f"{defect.rotor} cusp at the {'male' if on_male_tip else 'female'} tip corner{role}"
+        return f"{defect.rotor} cusp at the {Side.MALE if on_male_tip else Side.FEMALE} tip corner{role}"
     if defect.kind == "slipping":
         return f"slipping ({defect.flank})"
     return f"{defect.kind} on the {defect.rotor}{role}"
@@ -345,7 +345,7 @@ def point_deviation(section, points: np.ndarray) -> tuple[np.ndarray, np.ndarray
 
 
 @styled
-def plot_point_deviation(analysis: MeshingAnalysis, rotor: str, points: np.ndarray, source: str) -> Figure:
+def plot_point_deviation(analysis: MeshingAnalysis, rotor: Side, points: np.ndarray, source: str) -> Figure:
     """Draw measured points against the profile the pair is built on (the smoothed fit of those points).
 
     The deviation of every point along the profile's normal, magnified with the factor stated, and
@@ -355,7 +355,7 @@ def plot_point_deviation(analysis: MeshingAnalysis, rotor: str, points: np.ndarr
     ----------
     analysis : MeshingAnalysis
         The pair built from the points.
-    rotor : {"male", "female"}
+    rotor : Side
         Which rotor the points measure.
     points : (n, 2) float array, mm
         The measured points in the rotor's own frame.
@@ -366,7 +366,7 @@ def plot_point_deviation(analysis: MeshingAnalysis, rotor: str, points: np.ndarr
     -------
     matplotlib.figure.Figure
     """
-    section = analysis.sections[Side(rotor).pick(0, 1)]
+    section = analysis.sections[rotor.pick(0, 1)]
     foot, normal, dev = point_deviation(section, points)
     fig = ps.new_figure(11.0, 5.6)
     ax1, ax2 = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.2, 1.0]})

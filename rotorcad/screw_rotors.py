@@ -279,7 +279,7 @@ class ScrewRotors:
         """
         return np.asarray(points) + np.array([self.pair.center_distance, 0.0])
 
-    def section(self, rotor: str, tolerance: float | None = None) -> shapely.Polygon:
+    def section(self, rotor: Side | str, tolerance: float | None = None) -> shapely.Polygon:
         """Return a rotor's transverse section as a valid polygon in its own frame.
 
         The outline is clipped to the rotor's tip circle (generated curves may overshoot it by the
@@ -287,8 +287,8 @@ class ScrewRotors:
 
         Parameters
         ----------
-        rotor : {"male", "female"} or Side
-            Which rotor.
+        rotor : Side or {"male", "female"}
+            Which rotor (the text is read as ``Side(rotor)``).
         tolerance : float, mm, optional
             Chord tolerance; default the pair's ``tolerance``.
 

@@ -124,7 +124,7 @@ class ChamberTable:
         hi = np.clip(psi0 + self.wrap, start, stop)
         return self.lead / (2 * np.pi) * (np.interp(hi, nodes, cum) - np.interp(lo, nodes, cum))
 
-    def force_at(self, psi: np.ndarray, rotor: str) -> np.ndarray:
+    def force_at(self, psi: np.ndarray, rotor: Side) -> np.ndarray:
         """Return the force of a unit overpressure per unit length on a rotor at flute phases.
 
         Linear between the table's phases; zero outside :attr:`span` (those sections belong to other
@@ -134,7 +134,7 @@ class ChamberTable:
         ----------
         psi : float array, rad
             Flute phases, any shape.
-        rotor : {"male", "female"}
+        rotor : Side
             Which rotor.
 
         Returns
@@ -142,7 +142,7 @@ class ChamberTable:
         (..., 2) float array, mm
             Force per unit length and unit overpressure (N/mm per N/mm²), x and y.
         """
-        table = Side(rotor).pick(self.male_force, self.female_force)
+        table = rotor.pick(self.male_force, self.female_force)
         psi = np.asarray(psi, dtype=float)
         start, stop = self.span
         inside = (psi >= start) & (psi < stop)

@@ -19,6 +19,7 @@ from rotorcad.design.rotors import analyse_pair, build_pair, merge_pair
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError, MissingValueError
 from rotorcad.profile import Segment
+from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
 
 PAIR_OPTIONS = PAIR_FIELDS
@@ -169,7 +170,7 @@ def _add_plots(out: Outputs, opts: dict[str, Any], analysis, clearance: float) -
             side, pts, source = measured
             out.add_figure(
                 plot.with_name(plot.stem + "_deviation" + (plot.suffix or ".png")),
-                lambda: plot_point_deviation(analysis, side, pts, source),
+                lambda: plot_point_deviation(analysis, Side(side), pts, source),
                 "--plot",
             )
 

@@ -191,8 +191,9 @@ def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
     if spec.family == "rack-points":
         return pair_from_rack_points(spec.pair, spec.points, spec.smoothing or 0.0)
     if spec.family in ("male-points", "female-points"):
-        rotors = pair_from_rotor_points(spec.pair, spec.points, spec.family.split("-")[0], spec.smoothing, label=label)
-        _check_generated(rotors, spec.family.split("-")[0], label or f"[profile] points ({spec.family})")
+        measured = Side(spec.family.split("-")[0])  # the design's text read once: "male-points" -> Side.MALE
+        rotors = pair_from_rotor_points(spec.pair, spec.points, measured, spec.smoothing, label=label)
+        _check_generated(rotors, measured, label or f"[profile] points ({spec.family})")
         return rotors
     return build_family(spec.pair, spec.family, spec.params)
 
@@ -230,14 +231,14 @@ def smooth_lobe_points(tip_radius: float, teeth: int, tolerance: float = DEFAULT
     return 3.0 * 2.0 * np.pi * tip_radius / (teeth * np.sqrt(8.0 * tip_radius * tolerance))
 
 
-def _check_generated(rotors: ScrewRotors, given: Side | str, label: str) -> None:
+def _check_generated(rotors: ScrewRotors, given: Side, label: str) -> None:
     """Refuse a mate generated from measured points that is not a rotor.
 
     That is one that runs far beyond its tip circle (1.5 times) or folds into many more points than
     a smooth lobe has (noise the smoothing left in). Checked before the sections are made: their
     cost grows with the folds. Raises :class:`DesignError` naming ``label``.
     """
-    mate = Side(given).other
+    mate = given.other
     lobe = mate.pick(rotors.male_lobe, rotors.female_lobe)()
     tip = mate.pick(rotors.pair.male_tip_radius, rotors.pair.female_tip_radius)
     teeth = mate.pick(rotors.pair.male_teeth, rotors.pair.female_teeth)
