@@ -393,7 +393,9 @@ def robust_zeros(
     flip = sign[:-1] * sign[1:] < 0
     direct = np.flatnonzero(flip & ~inside[:-1] & ~inside[1:])
     crossings = [(float(i + f[i] / (f[i] - f[i + 1])), int(i), int(i) + 1) for i in direct]
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(int), [0]])))
+    padded = np.zeros(n + 2, dtype=bool)  # the runs inside the band: where the padded mask changes
+    padded[1:-1] = inside
+    edges = np.flatnonzero(padded[1:] != padded[:-1])
     stretches = []
     for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
         if arclen[b] - arclen[a] >= longest:
@@ -403,6 +405,18 @@ def robust_zeros(
             i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
             crossings.append((float(i + f[i] / (f[i] - f[i + 1])), int(a) - 1, int(b) + 1))
     return _persistent(sorted(crossings), stretches, arclen, longest, reversals), stretches
+
+
+def _median(values: np.ndarray) -> float:
+    """``np.median`` of a 1-d array, the same number, by one partition (np.median's own way, without its overhead)."""
+    n = len(values)
+    if n == 0 or np.isnan(values).any():
+        return float(np.median(values))
+    k = n // 2
+    if n % 2:
+        return float(np.partition(values, k)[k])
+    part = np.partition(values, (k - 1, k))
+    return float((part[k - 1] + part[k]) / 2)
 
 
 SHARP_TURN = np.pi / 4
@@ -686,14 +700,14 @@ class MeshingAnalysis:
             for q, _kind, _ in tests:
                 f = np.einsum("ij,ij->i", q - pts, tau)  # zero: the meshline normal passes through q
                 band = acc + max(tol, acc / longest) * np.hypot(*(q - pts).T)
-                whole = bool(np.median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()))
+                whole = bool(_median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()))
                 misses.append((f, band, whole, *robust_zeros(f, band, arclen, longest, whole, turns)))
             at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) for m in misses]
             for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
                 for i, j in stretches:
                     if kind == "jamming":
                         continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
-                    ramp = np.median(np.abs(f[i : j + 1]) / band[i : j + 1]) > 0.3  # |f| runs through the band: no arc
+                    ramp = _median(np.abs(f[i : j + 1]) / band[i : j + 1]) > 0.3  # |f| runs through the band: no arc
                     if not whole and ramp and np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale:
                         continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once
                     mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
