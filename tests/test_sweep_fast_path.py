@@ -79,3 +79,40 @@ def test_sweep_figures_are_those_of_rotor_json_within_the_stated_tolerance(name,
         for kind in ("cusp", "jamming", "slipping"):
             assert row[f"defects_{kind}"] == kinds.count(kind)
     assert any(r["ok"] for r in rows)
+
+
+def test_meshline_contact_is_that_of_the_full_conjugate():
+    # Generated.meshline_contact skips the generated points; its t and meshline must be those of
+    # Generated.contact (the full conjugate) and its rack points and tangents those of Curve.evaluate
+    import numpy as np
+
+    from rotorcad.design.rotors import build_pair, pair_spec
+    from rotorcad.design.schema import rotor_design
+    from rotorcad.envelope import Generated
+
+    for name in ("rack_involute_5_6", "lysholm_4_6", "srm_symmetric_4_6"):
+        rotors = build_pair(pair_spec(rotor_design(load_toml(SAMPLES / f"{name}.toml"), None)))
+        mesh = rotors.pair.mesh
+        for piece in rotors.rack:
+            gen = Generated(piece.curve, mesh.rack, mesh.female)
+            s = np.linspace(piece.curve.s0, piece.curve.s1, 101)
+            full = gen.contact(s)
+            t, x, p, tan = gen.meshline_contact(s)
+            ref_p, ref_tan = piece.curve.evaluate(s)
+            np.testing.assert_array_equal(t, full.t)
+            np.testing.assert_array_equal(x, full.meshline)
+            np.testing.assert_array_equal(p, ref_p)
+            np.testing.assert_array_equal(tan, ref_tan)
+
+
+def test_the_median_of_the_defect_tests_is_numpys():
+    # meshing._median replaces np.median in the defect tests: the same number (numpy the reference)
+    import numpy as np
+
+    from rotorcad.meshing import _median
+
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 3, 600, 601):
+        values = np.abs(rng.normal(size=n))
+        assert _median(values) == float(np.median(values))
+    assert np.isnan(_median(np.array([1.0, np.nan, 2.0])))
