@@ -116,3 +116,33 @@ def test_the_median_of_the_defect_tests_is_numpys():
         values = np.abs(rng.normal(size=n))
         assert _median(values) == float(np.median(values))
     assert np.isnan(_median(np.array([1.0, np.nan, 2.0])))
+
+
+@pytest.mark.parametrize("driving_width", [0.3, 0.5, 0.7, 0.9, 1.25])
+def test_tip_check_refuses_exactly_where_the_lobe_made_valid_falls_short(driving_width):
+    # check_tips measures the lobe's joined points and skips make_valid when they form a valid
+    # polygon; the reference is the brute-force way: the raw samples of every segment closed
+    # through the centre, made valid by shapely, the largest part's farthest point
+    import numpy as np
+    import shapely
+
+    from rotorcad.errors import DesignError
+    from rotorcad.families.checks import check_tips
+    from rotorcad.families.n_rack import n_rack
+    from rotorcad.rotor_pair import RotorPair
+
+    pair = RotorPair(5, 6, 82.0, 57.99, 35.66, 46.34, 24.01, lead=300.0, length=162.079)  # test_families' PAIR_N4
+    rotors = n_rack(pair, driving_width=driving_width)
+    short = False
+    for lobe, tip in ((rotors.male_lobe(), pair.male_tip_radius), (rotors.female_lobe(), pair.female_tip_radius)):
+        raw = np.vstack([[0.0, 0.0]] + [seg.points for seg in lobe.segments if len(seg.points)])
+        parts = shapely.get_parts(shapely.make_valid(shapely.Polygon(raw)))
+        while any(g.geom_type in ("MultiPolygon", "GeometryCollection") for g in parts):
+            parts = shapely.get_parts(parts)
+        body = max((g for g in parts if g.geom_type == "Polygon"), key=lambda g: g.area)
+        short |= float(np.hypot(*np.asarray(body.exterior.coords).T).max()) < tip - 1e-3
+    if short:
+        with pytest.raises(DesignError):
+            check_tips(rotors)
+    else:
+        check_tips(rotors)  # the sample's 1.25 passes, test_families' 0.3 is refused: both branches run
