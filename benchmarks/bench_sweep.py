@@ -6,7 +6,9 @@ CPU time (``time.process_time``), not wall time: the machine is shared. Two work
 process (``--workers 0``): a Latin hypercube over the profile and the lead (every variant a new
 transverse section: nothing to reuse), and a designer's grid over the profile, lead and length
 (few sections, many leads and lengths: a worker reuses the section of a pair it built). Target:
->= 100 variants per CPU-second per core; the plan's memory flat in the number of variants.
+>= 100 variants per CPU-second per core; the plan's memory flat in the number of variants. A row
+holds the figures of :func:`rotorcad.sweep.figures.sweep_figures` (``rotorcad rotor --json``'s
+numbers; the flute areas within a relative 1e-6, tests/test_sweep_fast_path.py).
 Run by hand: ``python benchmarks/bench_sweep.py [variants of the whole sweep]``.
 """
 

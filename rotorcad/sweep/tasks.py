@@ -5,7 +5,9 @@ reason in one sentence why the variant could not be built). Nothing here keeps a
 profile for the caller: a worker ships numbers back.
 
 The analyses are those of the commands, with the commands' settings: the pair and Rinder's
-analysis of ``rotorcad rotor --json`` (:func:`rotorcad.design.rotors.analyse_pair`), the
+analysis of ``rotorcad rotor --json`` (:class:`rotorcad.meshing.MeshingAnalysis`, of which a row
+takes only its columns: :func:`rotorcad.sweep.figures.sweep_figures`, the command's numbers bit for
+bit except the flute areas, within :data:`rotorcad.sweep.figures.FLUTE_AREA_RTOL`), the
 interference of ``rotorcad interfere`` (72 male angles over one lobe pitch, sections at half its
 0.005 mm tolerance, the housing bores with the design's radial clearance), the meshing clearance of
 ``rotorcad clearance``. The hobbability verdict of ``rotorcad hob`` belongs to the ``hob`` package,
