@@ -1062,7 +1062,9 @@ class MeshingAnalysis:
         ``normal_check``, the cross product of the tangent with the relative velocity (zero: the law
         of gearing holds).
         """
-        return {**self.velocities, "angle_deg": self.rinder_angle(self.contact_angles)}
+        v = self.velocities
+        keys = ("v1t", "v2t", "sliding", "slip_male", "slip_female")
+        return {**{k: v[k] for k in keys}, "angle_deg": self.rinder_angle(self.contact_angles), "normal_check": v["normal_check"]}
 
     @cached_property
     def velocities(self) -> dict[str, np.ndarray]:
