@@ -102,8 +102,10 @@ def main() -> None:
     rate(GRID | {"vary": {"profile.lobe_width": [0.62], "pair.lead": [300.0]}})  # imports
     for name, data in (("Latin hypercube, every section new", LHS), ("grid: 4 sections x 20 leads x 3 lengths", GRID)):
         per_cpu_s, count, ok = rate(data)
-        print(f"{name}: {count} variants ({ok} built), {per_cpu_s:.1f} variants per CPU-second "
-              f"({1e3 / per_cpu_s:.1f} ms each; target >= 100)")
+        print(
+            f"{name}: {count} variants ({ok} built), {per_cpu_s:.1f} variants per CPU-second "
+            f"({1e3 / per_cpu_s:.1f} ms each; target >= 100)"
+        )
     for method in ("latin-hypercube", "random", "grid"):
         for count in (1_000, 10_000, 100_000, 1_000_000):
             growth, peak, seconds = plan_memory(count, method)

@@ -362,7 +362,7 @@ def test_sample_sweeps_rank_the_feasible_and_mark_the_pareto_front(tmp_path, cap
                 "displacement_per_rev_mm3 / pair.center_distance ** 3": table["displacement_per_rev_mm3"].to_numpy(float) / a**3,
                 "contact_line_length_mm / pair.center_distance": table["contact_line_length_mm"].to_numpy(float) / a,
             }
-            (direction, expression), = spec.items()
+            ((direction, expression),) = spec.items()
             values = by_hand[expression]
             assert np.allclose(table[f"objective.{name}"], values, equal_nan=True)
             costs.append(values if direction == "min" else -values)
