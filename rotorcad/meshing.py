@@ -699,9 +699,10 @@ class MeshingAnalysis:
             tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
             misses = []
             for q, _kind, _ in tests:
-                f = np.einsum("ij,ij->i", q - pts, tau)  # zero: the meshline normal passes through q
-                band = acc + max(tol, acc / longest) * np.hypot(*(q - pts).T)
-                whole = bool(_median(np.abs(f)) < tol * max(1.0, np.abs(q - pts).max()))
+                to_q = q - pts
+                f = np.einsum("ij,ij->i", to_q, tau)  # zero: the meshline normal passes through q
+                band = acc + max(tol, acc / longest) * np.hypot(*to_q.T)
+                whole = bool(_median(np.abs(f)) < tol * max(1.0, np.abs(to_q).max()))
                 misses.append((f, band, whole, *robust_zeros(f, band, arclen, longest, whole, turns)))
             at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) for m in misses]
             for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
@@ -827,14 +828,14 @@ class MeshingAnalysis:
         overlap = float(pair.wrap_angle / pitch_angle)  # Sprungüberdeckung: wrap angle per angular pitch
         tol = self.tip_corner_tolerance
         out = {}
+        steps = [np.hypot(*np.diff(piece.points, axis=0).T) for piece in self.pieces]  # chord lengths, once
         for flank in (Flank.DRIVING, Flank.SEALING):
             total = geometric = 0.0
             t_geo: list[np.ndarray] = []
-            for piece in self.pieces:
+            for piece, seg in zip(self.pieces, steps, strict=True):
                 mask = piece.roles == flank
                 if mask.sum() < 2:
                     continue
-                seg = np.hypot(*np.diff(piece.points, axis=0).T)
                 length = float(seg[mask[:-1] & mask[1:]].sum())
                 if length < 1e-6 * pair.center_distance:
                     continue
