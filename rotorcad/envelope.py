@@ -122,7 +122,7 @@ def contact_parameter(
             if abs(cross(k, v)) <= 1e-12 * np.dot(v, v):  # arc centred on the pitch line
                 return np.full(len(p), -np.dot(k, v) / np.dot(v, v))
         den = cross(n, v)
-        ok = np.abs(den) > 1e-12 * np.linalg.norm(v)
+        ok = np.abs(den) > 1e-12 * np.sqrt(v.dot(v))  # |v|, as np.linalg.norm computes it for a vector
         with np.errstate(divide="ignore", invalid="ignore"):
             t = np.where(ok, -cross(n, p - c) / np.where(ok, den, 1.0), np.nan)
         return t
