@@ -6,7 +6,9 @@ CPU time (``time.process_time``), not wall time: the machine is shared. Two work
 process (``--workers 0``): a Latin hypercube over the profile and the lead (every variant a new
 transverse section: nothing to reuse), and a designer's grid over the profile, lead and length
 (few sections, many leads and lengths: a worker reuses the section of a pair it built). Target:
->= 100 variants per CPU-second per core; the plan's memory flat in the number of variants.
+>= 100 variants per CPU-second per core; the plan's memory flat in the number of variants. A row
+holds the figures of :func:`rotorcad.sweep.figures.sweep_figures` (``rotorcad rotor --json``'s
+numbers; the flute areas within a relative 1e-6, tests/test_sweep_fast_path.py).
 Run by hand: ``python benchmarks/bench_sweep.py [variants of the whole sweep]``.
 """
 
@@ -100,8 +102,10 @@ def main() -> None:
     rate(GRID | {"vary": {"profile.lobe_width": [0.62], "pair.lead": [300.0]}})  # imports
     for name, data in (("Latin hypercube, every section new", LHS), ("grid: 4 sections x 20 leads x 3 lengths", GRID)):
         per_cpu_s, count, ok = rate(data)
-        print(f"{name}: {count} variants ({ok} built), {per_cpu_s:.1f} variants per CPU-second "
-              f"({1e3 / per_cpu_s:.1f} ms each; target >= 100)")
+        print(
+            f"{name}: {count} variants ({ok} built), {per_cpu_s:.1f} variants per CPU-second "
+            f"({1e3 / per_cpu_s:.1f} ms each; target >= 100)"
+        )
     for method in ("latin-hypercube", "random", "grid"):
         for count in (1_000, 10_000, 100_000, 1_000_000):
             growth, peak, seconds = plan_memory(count, method)

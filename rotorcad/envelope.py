@@ -122,7 +122,7 @@ def contact_parameter(
             if abs(cross(k, v)) <= 1e-12 * np.dot(v, v):  # arc centred on the pitch line
                 return np.full(len(p), -np.dot(k, v) / np.dot(v, v))
         den = cross(n, v)
-        ok = np.abs(den) > 1e-12 * np.linalg.norm(v)
+        ok = np.abs(den) > 1e-12 * np.sqrt(v.dot(v))  # |v|, as np.linalg.norm computes it for a vector
         with np.errstate(divide="ignore", invalid="ignore"):
             t = np.where(ok, -cross(n, p - c) / np.where(ok, den, 1.0), np.nan)
         return t
@@ -181,6 +181,29 @@ def conjugate(
     tg = as_points(tangents)
     n = perp_cw(tg)
     c = pitch_point(generating, generated)
+    t = _contact_times(p, n, generating, generated, c, branch, arc_center, limits, reference, corner)
+    x = generating.to_fixed(p, t)
+    nx = generating.vectors_to_fixed(n, t)
+    tx = generating.vectors_to_fixed(tg, t)
+    gen_pts = generated.to_body(x, t)
+    gen_tan = -generated.vectors_to_body(tx, t)
+    sliding = generating.velocity_at(x) - generated.velocity_at(x)
+    return Contact(t=t, meshline=x, normal=nx, points=gen_pts, tangents=gen_tan, sliding=sliding, pitch_point=c)
+
+
+def _contact_times(
+    p: Array,
+    n: Array,
+    generating: Body,
+    generated: Body,
+    c: Array,
+    branch: Branch,
+    arc_center: Array | None,
+    limits: tuple[float, float] | None,
+    reference: float,
+    corner: bool,
+) -> Array:
+    """Motion parameter at contact of :func:`conjugate` (the root chosen by ``limits``), (n,) float array."""
     t = contact_parameter(p, n, generating, c, branch, arc_center, reference, corner)
     if limits is not None and isinstance(generating, Rotation):
         other = contact_parameter(p, n, generating, c, "B" if branch == "A" else "A", None, reference, corner)
@@ -191,13 +214,7 @@ def conjugate(
         out_a = ~((r_a >= lo - tol) & (r_a <= hi + tol))
         in_b = (r_b >= lo - tol) & (r_b <= hi + tol)
         t = np.where(out_a & in_b, other, t)
-    x = generating.to_fixed(p, t)
-    nx = generating.vectors_to_fixed(n, t)
-    tx = generating.vectors_to_fixed(tg, t)
-    gen_pts = generated.to_body(x, t)
-    gen_tan = -generated.vectors_to_body(tx, t)
-    sliding = generating.velocity_at(x) - generated.velocity_at(x)
-    return Contact(t=t, meshline=x, normal=nx, points=gen_pts, tangents=gen_tan, sliding=sliding, pitch_point=c)
+    return t
 
 
 def _generated_extent(p: Array, t: Array, generating: Body, generated: Body, pitch: Array) -> Array:
@@ -286,6 +303,35 @@ class Generated(Curve):
             reference=self.reference,
             corner=self.parent.is_corner(),
         )
+
+    def meshline_contact(self, s: Array) -> tuple[Array, Array, Array, Array]:
+        """Return the contact at parameters ``s`` without the generated points: the meshline alone.
+
+        The ``t`` and ``meshline`` of :meth:`contact` (the same numbers), and the parent's points
+        and tangents along its travel (those of :meth:`Curve.evaluate`), for a caller that reads
+        only where the contact lies (the meshing analysis).
+
+        Parameters
+        ----------
+        s : (n,) float array
+            Parameters of ``parent``.
+
+        Returns
+        -------
+        t : (n,) float array, rad
+            Motion parameter at contact (NaN: none).
+        meshline : (n, 2) float array, mm
+            Contact points in the fixed frame.
+        points, tangents : (n, 2) float arrays
+            The parent's points (mm) and unit tangents along its travel at ``s``.
+        """
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        p, t_can = self.parent.frame(s)
+        tg = t_can * self.parent_direction
+        c = pitch_point(self.generating, self.generated)
+        args = (self.branch, self.parent.arc_center(), self.limits, self.reference, self.parent.is_corner())
+        t = _contact_times(p, perp_cw(tg), self.generating, self.generated, c, *args)
+        return t, self.generating.to_fixed(p, t), p, tg
 
     def frame(self, s: Array) -> tuple[Array, Array]:
         """Return points and unit tangents at parameters ``s``.

@@ -36,15 +36,21 @@ def check_tips(rotors: ScrewRotors, tolerance: float | None = None) -> None:
     pair = rotors.pair
     for side in (Side.MALE, Side.FEMALE):
         lobe = side.pick(rotors.male_lobe, rotors.female_lobe)(tolerance)
-        pts = np.vstack([[0.0, 0.0]] + [seg.points for seg in lobe.segments if len(seg.points)])
-        parts = shapely.get_parts(shapely.make_valid(shapely.Polygon(pts)))
-        while any(g.geom_type in ("MultiPolygon", "GeometryCollection") for g in parts):  # a collection of multi-parts
-            parts = shapely.get_parts(parts)
-        polygons = [g for g in parts if g.geom_type == "Polygon"]
-        if not polygons:
-            continue  # a degenerate lobe: nothing to measure here, the section's own checks refuse it
-        body = max(polygons, key=lambda g: g.area)
-        reach = float(np.hypot(*np.asarray(body.exterior.coords).T).max())
+        # the lobe's joined points (a segment's first point dropped where it repeats the last one
+        # within 1e-9 mm: such a pair is a sliver that makes the polygon invalid at a sharp corner)
+        pts = np.vstack([[0.0, 0.0], lobe.points])
+        polygon = shapely.Polygon(pts)
+        if shapely.is_valid(polygon):  # the body itself (make_valid would return it as it is)
+            reach = float(np.hypot(*pts.T).max())
+        else:
+            parts = shapely.get_parts(shapely.make_valid(polygon))
+            while any(g.geom_type in ("MultiPolygon", "GeometryCollection") for g in parts):  # a collection of multi-parts
+                parts = shapely.get_parts(parts)
+            polygons = [g for g in parts if g.geom_type == "Polygon"]
+            if not polygons:
+                continue  # a degenerate lobe: nothing to measure here, the section's own checks refuse it
+            body = max(polygons, key=lambda g: g.area)
+            reach = float(np.hypot(*np.asarray(body.exterior.coords).T).max())
         tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
         if reach < tip - 1e-3:
             raise DesignError(

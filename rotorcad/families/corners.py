@@ -62,18 +62,18 @@ def female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Curv
     o2 = np.array([pair.center_distance, 0.0])
     gen = Generated(flank, mesh.rack, mesh.female)
     s = np.linspace(flank.s0, flank.s1, 801)
-    c = gen.contact(s)
-    r = np.hypot(*(c.meshline - o2).T) - pair.female_tip_radius
+    meshline = gen.meshline_contact(s)[1]  # where the contacts lie (the generated points are not needed)
+    r = np.hypot(*(meshline - o2).T) - pair.female_tip_radius
     beyond = r > 1e-9 * pair.female_tip_radius
     k = np.nonzero(beyond[:-1] != beyond[1:])[0]
     if len(k) == 0:
         return None
     i = k[-1] if at_end else k[0]
     s_n = bracket_root(
-        lambda v: np.hypot(*(gen.contact(v).meshline[0] - o2)) - pair.female_tip_radius, (s[i], s[i + 1]), xtol=1e-14
+        lambda v: np.hypot(*(gen.meshline_contact(v)[1][0] - o2)) - pair.female_tip_radius, (s[i], s[i + 1]), xtol=1e-14
     )
-    c_n = gen.contact(s_n)
-    path, x_foot = female_corner_path(pair, c_n.meshline[0], float(c_n.t[0]), at_end)
+    t_n, x_n = gen.meshline_contact(s_n)[:2]
+    path, x_foot = female_corner_path(pair, x_n[0], float(t_n[0]), at_end)
     trimmed = flank.trimmed(flank.s0, s_n) if at_end else flank.trimmed(s_n, flank.s1)
     return trimmed, path, x_foot
 
@@ -198,17 +198,19 @@ def male_tip_corner(pair: RotorPair, flank: Curve, rising: bool = False) -> tupl
     r1t = pair.male_tip_radius
     gen = Generated(flank, mesh.rack, mesh.female)
     s = np.linspace(flank.s0, flank.s1, 801)
-    c = gen.contact(s)
-    beyond = np.hypot(*c.meshline.T) - r1t > 1e-9 * r1t
+    meshline = gen.meshline_contact(s)[1]  # where the contacts lie (the generated points are not needed)
+    beyond = np.hypot(*meshline.T) - r1t > 1e-9 * r1t
     k = np.nonzero(~beyond[:-1] & beyond[1:])[0] if rising else np.nonzero(beyond[:-1] & ~beyond[1:])[0]
     if len(k) == 0:
         return None
     i = k[0] if rising else k[-1]
-    s_m = bracket_root(lambda v: float(np.hypot(*gen.contact(v).meshline[0]) - r1t), (float(s[i]), float(s[i + 1])), xtol=1e-14)
+    s_m = bracket_root(
+        lambda v: float(np.hypot(*gen.meshline_contact(v)[1][0]) - r1t), (float(s[i]), float(s[i + 1])), xtol=1e-14
+    )
     if s_m is None:  # the sample before lies within 1e-9 r1t outside the tip circle: it is the root
         s_m = float(s[i] if rising else s[i + 1])
-    c_m = gen.contact(s_m)
-    p, t_m = c_m.meshline[0], float(c_m.t[0])
+    t_c, x_c = gen.meshline_contact(s_m)[:2]
+    p, t_m = x_c[0], float(t_c[0])
     t_q = t_m - float(np.arctan2(p[1], p[0]))  # the corner on O1O2 (polar angle 0) at t_q
     x_corner = -t_q * pair.male_pitch_radius
     if rising:

@@ -67,21 +67,19 @@ class MeshingAnalysis:
         for index, piece in enumerate(self.rotors.rack):
             gen = Generated(piece.curve, mesh.rack, mesh.female)
             s = even_meshline_parameters(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
-            c = gen.contact(s)
-            x = c.meshline
+            t, x, rack_pts, tan = gen.meshline_contact(s)  # the rack's points and tangents along its travel
             inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
-            ok = c.in_contact & inside & np.all(np.isfinite(x), axis=1)
+            ok = np.isfinite(t) & inside & np.all(np.isfinite(x), axis=1)
             if ok.sum() < 2:
                 continue
-            rack_pts, tan = piece.curve.evaluate(s)
-            tan_fixed = mesh.rack.vectors_to_fixed(tan, c.t)
+            tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
             roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, pair.center_distance)
             out.append(
                 MeshlinePiece(
                     piece.male_name,
                     piece.kind,
                     s[ok],
-                    c.t[ok],
+                    t[ok],
                     x[ok],
                     tan_fixed[ok],
                     piece.male_name,
@@ -364,6 +362,13 @@ class MeshingAnalysis:
         ``normal_check``, the cross product of the tangent with the relative velocity (zero: the law
         of gearing holds).
         """
+        v = self.velocities
+        keys = ("v1t", "v2t", "sliding", "slip_male", "slip_female")
+        return {**{k: v[k] for k in keys}, "angle_deg": self.rinder_angle(self.contact_angles), "normal_check": v["normal_check"]}
+
+    @cached_property
+    def velocities(self) -> dict[str, np.ndarray]:
+        """:attr:`kinematics` without ``angle_deg`` (Rinder eqs. 2-4): no section needed (a sweep's figures)."""
         pair = self.rotors.pair
         w1 = self.speed_rpm * 2 * np.pi / 60.0
         w2 = -w1 * pair.male_teeth / pair.female_teeth
@@ -379,15 +384,7 @@ class MeshingAnalysis:
         with np.errstate(divide="ignore", invalid="ignore"):
             z1 = vg / v1t
             z2 = vg / v2t
-        return {
-            "v1t": v1t,
-            "v2t": v2t,
-            "sliding": vg,
-            "slip_male": z1,
-            "slip_female": z2,
-            "angle_deg": self.rinder_angle(self.contact_angles),
-            "normal_check": cross(tau, v1 - v2),
-        }
+        return {"v1t": v1t, "v2t": v2t, "sliding": vg, "slip_male": z1, "slip_female": z2, "normal_check": cross(tau, v1 - v2)}
 
     @cached_property
     def slip_singularities(self) -> list[dict[str, object]]:

@@ -148,14 +148,14 @@ def flank_reports(
     overlap = float(pair.wrap_angle / pitch_angle)  # Sprungüberdeckung: wrap angle per angular pitch
     tol = tip_tolerance
     out = {}
+    steps = [np.hypot(*np.diff(piece.points, axis=0).T) for piece in pieces]  # chord lengths, once
     for flank in (Flank.DRIVING, Flank.SEALING):
         total = geometric = 0.0
         t_geo: list[np.ndarray] = []
-        for piece in pieces:
+        for piece, seg in zip(pieces, steps, strict=True):
             mask = piece.roles == flank
             if mask.sum() < 2:
                 continue
-            seg = np.hypot(*np.diff(piece.points, axis=0).T)
             length = float(seg[mask[:-1] & mask[1:]].sum())
             if length < 1e-6 * pair.center_distance:
                 continue

@@ -58,6 +58,8 @@ class MeshlinePiece:
 
 
 _FLANKS = np.array(list(Flank), dtype=object)
+_FLANK_CODE = {flank: i for i, flank in enumerate(Flank)}
+"""Index of each lobe part in :data:`_FLANKS`."""
 
 
 def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
@@ -81,11 +83,10 @@ def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, s
     rise = tangents[:, 0]
     flat = np.abs(rise) <= 1e-9
     above = points[:, 0] > pitch_radius + 1e-9 * scale
-    order = list(Flank)
     code = np.where(
         flat,
-        np.where(above, order.index(Flank.TIP), order.index(Flank.ROOT)),
-        np.where(rise > 0, order.index(Flank.DRIVING), order.index(Flank.SEALING)),
+        np.where(above, _FLANK_CODE[Flank.TIP], _FLANK_CODE[Flank.ROOT]),
+        np.where(rise > 0, _FLANK_CODE[Flank.DRIVING], _FLANK_CODE[Flank.SEALING]),
     )
     return _FLANKS[code]
 

@@ -5,7 +5,9 @@ reason in one sentence why the variant could not be built). Nothing here keeps a
 profile for the caller: a worker ships numbers back.
 
 The analyses are those of the commands, with the commands' settings: the pair and Rinder's
-analysis of ``rotorcad rotor --json`` (:func:`rotorcad.design.rotors.analyse_pair`), the
+analysis of ``rotorcad rotor --json`` (:class:`rotorcad.meshing.MeshingAnalysis`, of which a row
+takes only its columns: :func:`rotorcad.sweep.figures.sweep_figures`, the command's numbers bit for
+bit except the flute areas, within :data:`rotorcad.sweep.figures.FLUTE_AREA_RTOL`), the
 interference of ``rotorcad interfere`` (72 male angles over one lobe pitch, sections at half its
 0.005 mm tolerance, the housing bores with the design's radial clearance), the meshing clearance of
 ``rotorcad clearance``. The hobbability verdict of ``rotorcad hob`` belongs to the ``hob`` package,
@@ -129,38 +131,39 @@ def _transverse_key(spec: Any) -> str:
 def _build(spec: Any) -> tuple[Any, Any, dict[str, Any]]:
     """Build and analyse a pair, reusing a kept pair of the same transverse section.
 
-    Returns the rotors, the analysis and its summary (the keys of ``rotorcad rotor --json``).
+    Returns the rotors, the analysis and its figures (:func:`rotorcad.sweep.figures.sweep_figures`:
+    the keys of ``rotorcad rotor --json`` that are columns).
     """
-    from rotorcad.design.rotors import analyse_pair, build_pair
+    from rotorcad.design.rotors import build_pair
     from rotorcad.meshing import MeshingAnalysis
+    from rotorcad.sweep.figures import sweep_figures
 
     key = _transverse_key(spec)
     kept = _BUILT.get(key)
     if kept is None:
         try:
             rotors = build_pair(spec)
-            analysis, summary = analyse_pair(rotors, spec.speed_rpm)
+            analysis = MeshingAnalysis(rotors, speed_rpm=spec.speed_rpm)
+            figures = sweep_figures(analysis)
         except DesignError as exc:
             _keep(key, exc)
             raise
         _keep(key, (rotors, analysis))
-        return rotors, analysis, summary
+        return rotors, analysis, figures
     if isinstance(kept, DesignError):
         _BUILT.move_to_end(key)
         raise kept
     _BUILT.move_to_end(key)
     old_rotors, old_analysis = kept
     rotors = replace(old_rotors, pair=spec.pair)  # the same rack and lobes: the transverse section
-    for name in ("male_pieces", "female_pieces", "_lobes"):
+    for name in ("male_pieces", "female_pieces", "_lobes", "_section_areas"):
         if name in old_rotors.__dict__:
             rotors.__dict__[name] = old_rotors.__dict__[name]
     analysis = MeshingAnalysis(rotors, speed_rpm=spec.speed_rpm)
     for name in _TRANSVERSE:
         if name in old_analysis.__dict__:
             analysis.__dict__[name] = old_analysis.__dict__[name]
-    summary = analysis.summary()
-    summary["rack_loss_percent"] = rotors.rack_loss
-    return rotors, analysis, summary
+    return rotors, analysis, sweep_figures(analysis)
 
 
 def _keep(key: str, value: Any) -> None:
@@ -228,15 +231,16 @@ def evaluate(
     table = {**ANALYSES, **(analyses or {})}
     try:
         spec = pair_spec(rotor_design(apply(base, variant.values, families), folder), points)
-        rotors, _, summary = _build(spec)
+        rotors, _, figures = _build(spec)
         for key, column in RESULT_COLUMNS.items():
-            row[column] = summary.get(key)
-        row["max_slip_male"] = summary["max_slip_male"]["value"]
-        row["max_slip_female"] = summary["max_slip_female"]["value"]
-        row["defects"] = len(summary["defects"])
-        row["defect_kinds"] = ", ".join(sorted({d["kind"] for d in summary["defects"]}))
+            row[column] = figures.get(key)
+        row["max_slip_male"] = figures["max_slip_male"]
+        row["max_slip_female"] = figures["max_slip_female"]
+        kinds = figures["defect_kinds"]
+        row["defects"] = len(kinds)
+        row["defect_kinds"] = ", ".join(sorted(set(kinds)))
         for kind in DEFECT_KINDS:
-            row[f"defects_{kind}"] = sum(d["kind"] == kind for d in summary["defects"])
+            row[f"defects_{kind}"] = sum(k == kind for k in kinds)
         for extra in extras:
             if extra not in table:
                 raise DesignError("[sweep] compute", "analyses this run can make", extra.value, "its analysis was not given")

@@ -1,0 +1,148 @@
+"""A sweep's figures against the full single-design analysis (``rotorcad rotor --json``).
+
+A sweep row is computed by :func:`rotorcad.sweep.figures.sweep_figures`, which skips what a row
+does not hold and takes the flute areas from the outline's own polygon instead of clipping it to a
+2048-gon (:data:`rotorcad.sweep.figures.FLUTE_AREA_RTOL`). The reference is the command itself,
+run on a design file of each variant: ``rotorcad rotor FILE --json`` (its ``analyse_pair`` and
+``MeshingAnalysis.summary``, shapely's clipped sections). Every other column must be the command's
+number bit for bit; the flute areas, the displacement and the area utilisation within
+FLUTE_AREA_RTOL; a variant the command refuses is a row with the command's sentence.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+import tomli_w
+
+from rotorcad.cli.main import main
+from rotorcad.design import load_toml
+from rotorcad.sweep.figures import FLUTE_AREA_RTOL
+from rotorcad.sweep.plan import apply, sweep_plan
+from rotorcad.sweep.tasks import RESULT_COLUMNS, clear_cache, evaluate
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+EXACT = ("meshline_closed", "blow_hole_area", "contact_line_length", "max_sliding_velocity", "wrap_angle_deg")
+EXACT += ("rack_loss_percent", "runs_without_timing_gears")
+AREAS = ("male_flute_area", "female_flute_area", "displacement_per_rev", "area_utilisation")
+
+# a few variants of several families: lead and length (the section kept), a tip radius and the
+# centre distance (a new section; some of them refused by the family)
+VARIANTS = {
+    "rack_involute_5_6": {"profile.lobe_width": [0.4, 0.66], "pair.lead": [250.0, 340.0]},
+    "lysholm_4_6": {"pair.male_root_radius": [None, -0.5], "pair.length": [150.0]},
+    "srm_asymmetric_5_6": {"pair.center_distance": [None, 1.0], "pair.lead": [300.0]},
+    "n_rack_5_6": {"pair.female_tip_radius": [None, -0.3], "pair.lead": [280.0]},
+    "krigar_4_6": {"pair.lead": [260.0, 330.0]},
+    "srm_b_5_6": {"pair.male_tip_radius": [None, -0.4]},
+}
+
+
+def _sweep_data(name: str, base: dict) -> dict:
+    """The [vary] table of a family's variants: ``None`` the base's value, a number beside "pair.*_radius" an offset."""
+    vary = {}
+    for key, values in VARIANTS[name].items():
+        table, _, sub = key.partition(".")
+        offsets = key.endswith("_radius") or key.endswith("center_distance")
+        vary[key] = [base[table][sub] + (v or 0.0) if offsets else v for v in values]
+    return {"vary": vary}
+
+
+@pytest.mark.parametrize("name", sorted(VARIANTS))
+def test_sweep_figures_are_those_of_rotor_json_within_the_stated_tolerance(name, tmp_path, capsys):
+    base = load_toml(SAMPLES / f"{name}.toml")
+    plan = sweep_plan(_sweep_data(name, base), base)
+    clear_cache()
+    rows = [evaluate(plan.base, None, None, (), v) for v in plan.variants()]
+    assert len(rows) >= 2
+    for variant, row in zip(plan.variants(), rows, strict=True):
+        design = tmp_path / f"{name}_{variant.index}.toml"
+        design.write_text(tomli_w.dumps(apply(plan.base, variant.values)))
+        code = main(["rotor", str(design), "--json"])
+        out, err = capsys.readouterr()
+        if not row["ok"]:
+            assert code == 2 and row["reason"] in err  # the command refuses it with the same sentence
+            continue
+        assert code == 0, err
+        reference = json.loads(out)
+        for key in EXACT:
+            assert row[RESULT_COLUMNS[key]] == reference[key], key
+        for key in AREAS:
+            assert row[RESULT_COLUMNS[key]] == pytest.approx(reference[key], rel=FLUTE_AREA_RTOL, abs=0), key
+        assert row["max_slip_male"] == reference["max_slip_male"]["value"]
+        assert row["max_slip_female"] == reference["max_slip_female"]["value"]
+        kinds = [d["kind"] for d in reference["defects"]]
+        assert row["defects"] == len(kinds)
+        assert row["defect_kinds"] == ", ".join(sorted(set(kinds)))
+        for kind in ("cusp", "jamming", "slipping"):
+            assert row[f"defects_{kind}"] == kinds.count(kind)
+    assert any(r["ok"] for r in rows)
+
+
+def test_meshline_contact_is_that_of_the_full_conjugate():
+    # Generated.meshline_contact skips the generated points; its t and meshline must be those of
+    # Generated.contact (the full conjugate) and its rack points and tangents those of Curve.evaluate
+    import numpy as np
+
+    from rotorcad.design.rotors import build_pair, pair_spec
+    from rotorcad.design.schema import rotor_design
+    from rotorcad.envelope import Generated
+
+    for name in ("rack_involute_5_6", "lysholm_4_6", "srm_symmetric_4_6"):
+        rotors = build_pair(pair_spec(rotor_design(load_toml(SAMPLES / f"{name}.toml"), None)))
+        mesh = rotors.pair.mesh
+        for piece in rotors.rack:
+            gen = Generated(piece.curve, mesh.rack, mesh.female)
+            s = np.linspace(piece.curve.s0, piece.curve.s1, 101)
+            full = gen.contact(s)
+            t, x, p, tan = gen.meshline_contact(s)
+            ref_p, ref_tan = piece.curve.evaluate(s)
+            np.testing.assert_array_equal(t, full.t)
+            np.testing.assert_array_equal(x, full.meshline)
+            np.testing.assert_array_equal(p, ref_p)
+            np.testing.assert_array_equal(tan, ref_tan)
+
+
+def test_the_median_of_the_defect_tests_is_numpys():
+    # meshing._median replaces np.median in the defect tests: the same number (numpy the reference)
+    import numpy as np
+
+    from rotorcad.meshing.defects import _median
+
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 3, 600, 601):
+        values = np.abs(rng.normal(size=n))
+        assert _median(values) == float(np.median(values))
+    assert np.isnan(_median(np.array([1.0, np.nan, 2.0])))
+
+
+@pytest.mark.parametrize("driving_width", [0.3, 0.5, 0.7, 0.9, 1.25])
+def test_tip_check_refuses_exactly_where_the_lobe_made_valid_falls_short(driving_width):
+    # check_tips measures the lobe's joined points and skips make_valid when they form a valid
+    # polygon; the reference is the brute-force way: the raw samples of every segment closed
+    # through the centre, made valid by shapely, the largest part's farthest point
+    import numpy as np
+    import shapely
+
+    from rotorcad.errors import DesignError
+    from rotorcad.families.checks import check_tips
+    from rotorcad.families.n_rack import n_rack
+    from rotorcad.rotor_pair import RotorPair
+
+    pair = RotorPair(5, 6, 82.0, 57.99, 35.66, 46.34, 24.01, lead=300.0, length=162.079)  # test_families' PAIR_N4
+    rotors = n_rack(pair, driving_width=driving_width)
+    short = False
+    for lobe, tip in ((rotors.male_lobe(), pair.male_tip_radius), (rotors.female_lobe(), pair.female_tip_radius)):
+        raw = np.vstack([[0.0, 0.0]] + [seg.points for seg in lobe.segments if len(seg.points)])
+        parts = shapely.get_parts(shapely.make_valid(shapely.Polygon(raw)))
+        while any(g.geom_type in ("MultiPolygon", "GeometryCollection") for g in parts):
+            parts = shapely.get_parts(parts)
+        body = max((g for g in parts if g.geom_type == "Polygon"), key=lambda g: g.area)
+        short |= float(np.hypot(*np.asarray(body.exterior.coords).T).max()) < tip - 1e-3
+    if short:
+        with pytest.raises(DesignError):
+            check_tips(rotors)
+    else:
+        check_tips(rotors)  # the sample's 1.25 passes, test_families' 0.3 is refused: both branches run
