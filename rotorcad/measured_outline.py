@@ -277,9 +277,11 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     d = np.roll(p, -1, axis=0) - p
     heading = np.arctan2(d[:, 1], d[:, 0])
     vertex_turn = np.abs(wrap_angle(heading - np.roll(heading, 1)))
-    if sigma <= 0:
-        at_start = vertex_turn[idx] > np.radians(angle_deg)
-        at_end = vertex_turn[(idx + 1) % n] > np.radians(angle_deg)
+    if sigma <= 0:  # on a point when that point turns by (nearly) the whole corner; between two points (a
+        # resampled outline: the corner's chord) it turns by a share of it, and the chords' crossing is the corner
+        whole = np.maximum(turn[idx], np.radians(angle_deg))
+        at_start = vertex_turn[idx] > 0.9 * whole
+        at_end = vertex_turn[(idx + 1) % n] > 0.9 * whole
         point[at_start] = p[idx[at_start]]
         point[at_end & ~at_start] = p[(idx[at_end & ~at_start] + 1) % n]
     return idx, point
