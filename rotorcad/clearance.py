@@ -86,11 +86,11 @@ def points_quality(points: Array) -> tuple[float, float]:
     Returns
     -------
     sigma : float, mm
-        Scatter normal to the outline (:func:`rotorcad.measured_outline.scatter`; 0 for exact points).
+        Scatter normal to the outline (:func:`rotorcad.measured.outline.scatter`; 0 for exact points).
     spacing : float, mm
         Median distance between neighbouring points.
     """
-    from rotorcad.measured_outline import scatter
+    from rotorcad.measured.outline import scatter
 
     p = np.asarray(points, dtype=float)
     return scatter(p), float(np.median(np.hypot(*np.diff(p, axis=0).T)))
@@ -331,7 +331,7 @@ class MeshingClearance:
         Dimensions of the pair (use ``strict=False`` for measured or hot rotors).
     male_pieces, female_pieces : list of (str, Curve)
         One lobe of each rotor as named counter-clockwise pieces in the rotor's own frame (e.g.
-        :func:`rotorcad.rotor_points.lobe_pieces`), mm.
+        :func:`rotorcad.measured.fit.lobe_pieces`), mm.
     contact : {"driving", "sealing", "as-given"}
         Flank on which the racks are brought into contact, or "as-given" to leave them as the
         points lie.

@@ -397,7 +397,7 @@ def rotor_rack(
         The rotor.
     pieces : list of (str, Curve), optional
         One lobe, counter-clockwise, in the rotor's own frame (centre at the origin), e.g.
-        :func:`rotorcad.rotor_points.lobe_pieces`; default the lobe of ``rotors``.
+        :func:`rotorcad.measured.fit.lobe_pieces`; default the lobe of ``rotors``.
     tolerance : float, mm
         Chord tolerance of the rack's samples.
     samples : int
