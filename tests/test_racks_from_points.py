@@ -96,9 +96,11 @@ CASES = [
     ("4/6", "female", "exact"),
     ("4/6", "female", "dense"),
     ("4/6", "female", "scatter"),
+    ("4/6", "female", "sparse"),
     ("5/6", "female", "exact"),
     ("5/6", "female", "dense"),
     ("5/6", "female", "scatter"),
+    ("5/6", "female", "sparse"),
 ]
 
 

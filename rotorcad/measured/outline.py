@@ -231,7 +231,7 @@ def accuracy(whole: np.ndarray, sigma: float) -> float:
     return max(2.0 * sigma, sagitta)
 
 
-def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
+def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0, convex_only: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Find the sharp corners of a closed outline: the edges across which it turns by more than ``angle_deg``.
 
     The turn across edge i (from point i to point i + 1) is the angle between the chord from point
@@ -250,6 +250,11 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
         Its scatter (:func:`scatter`); 0 for exact points.
     angle_deg : float, deg
         Smallest turn of a corner.
+    convex_only : bool
+        Only left turns of the counter-clockwise outline are corners (a generated rotor's sharp
+        corners: tips cut back by the rack's flats); a concave turn that large is a root fillet
+        the points do not resolve, which a spline through it keeps smooth (a kink there would send
+        the rack's normals anywhere). False finds both.
 
     Returns
     -------
@@ -265,7 +270,11 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     a0, a1 = np.roll(p, k, axis=0), p  # chord before the edge
     b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
     back, ahead = a1 - a0, b1 - b0
-    turn = np.abs(np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead)))
+    signed = np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead))
+    # a generated rotor's sharp corners are convex (tips cut back by the rack's flats: left turns of the
+    # counter-clockwise outline); a concave turn above the threshold is a fillet the points do not
+    # resolve (a root fillet between two points 0.75 mm apart), which the spline keeps smooth
+    turn = np.where(signed > 0, signed, 0.0) if convex_only else np.abs(signed)
     from scipy.ndimage import maximum_filter1d
 
     peak = maximum_filter1d(turn, size=2 * k + 1, mode="wrap")
