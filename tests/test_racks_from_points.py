@@ -196,7 +196,8 @@ def test_the_undercut_male_reads_undercut():
 
 def test_cli_hob_from_female_points_gives_the_rack_and_a_hobbable_verdict(tmp_path, capsys):
     # The user's path: `rotorcad hob --female-points` of the exact 4/6 female (was rack_deviation
-    # 0.57 mm): rack_deviation within 2 um, hobbable, the normal flank angle atan(tan 30 cos beta).
+    # 0.57 mm): rack_deviation within 2 um, the profile's accuracy stated, hobbable, the normal
+    # flank angle atan(tan 30 cos beta).
     rp = trapezoid_4_6()
     write_points(tmp_path / "f.csv", points("4/6", "female", "exact"))
     dims = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--lead", str(LEAD)]
@@ -206,6 +207,7 @@ def test_cli_hob_from_female_points_gives_the_rack_and_a_hobbable_verdict(tmp_pa
     data = json.loads(capsys.readouterr().out)
     beta = np.arctan(2 * np.pi * rp.male_pitch_radius / LEAD)
     assert data["rack_deviation"] < 2e-3
+    assert 0 < data["accuracy"] < 1e-3  # exact points: the chords' sagitta, stated with the verdict
     assert data["hobbable"] and data["reasons"] == []
     assert data["normal_pressure_angle_min_deg"] == pytest.approx(
         np.degrees(np.arctan(np.tan(np.radians(30)) * np.cos(beta))), abs=0.02

@@ -130,8 +130,8 @@ def judge_racks(
     verdicts : dict of Verdict
         The verdict on each rack.
     result : dict
-        ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg`` and
-        per rack its figures (radii and tip thickness in mm, angles in deg).
+        ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg``,
+        ``accuracy`` (mm) and per rack its figures (radii and tip thickness in mm, angles in deg).
     """
     verdicts = {name: judge(rack, limits, accuracy) for name, rack in racks.items()}
     result: dict[str, Any] = {
@@ -139,6 +139,7 @@ def judge_racks(
         "reasons": [f"{name}: {r}" if len(verdicts) > 1 else r for name, v in verdicts.items() for r in v.reasons],
         "rack_deviation": deviation,
         "normal_pressure_angle_min_deg": min(v.normal_pressure_angle_min_deg for v in verdicts.values()),
+        "accuracy": float(accuracy),
         "racks": {
             name: {
                 "hobbable": v.hobbable,
