@@ -30,6 +30,12 @@ from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 
 SCATTER_FLOOR = 1e-4  # mm: below this the points are taken as exact (interpolated)
+CONCAVE_CORNER_DEG = 60.0
+"""deg: smallest turn of a concave corner. A convex corner (a tip cut back by the rack's flat) turns
+by 30 deg or more; a concave one is where two generated flanks meet at a root (87 deg on the
+Lysholm and Krigar males), while a root fillet that sparse points do not resolve turns by 42-46 deg
+between two of them (the independent pairs' females at 80 points a lobe, 0.9-1 mm apart), and a
+kink there would send the rack's normals anywhere: the spline keeps it smooth."""
 
 
 def _drop_repeats(points: np.ndarray) -> np.ndarray:
@@ -231,7 +237,9 @@ def accuracy(whole: np.ndarray, sigma: float) -> float:
     return max(2.0 * sigma, sagitta)
 
 
-def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0, convex_only: bool = True) -> tuple[np.ndarray, np.ndarray]:
+def corners(
+    whole: np.ndarray, sigma: float, angle_deg: float = 30.0, concave_angle_deg: float = CONCAVE_CORNER_DEG
+) -> tuple[np.ndarray, np.ndarray]:
     """Find the sharp corners of a closed outline: the edges across which it turns by more than ``angle_deg``.
 
     The turn across edge i (from point i to point i + 1) is the angle between the chord from point
@@ -250,11 +258,9 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0, convex_onl
         Its scatter (:func:`scatter`); 0 for exact points.
     angle_deg : float, deg
         Smallest turn of a corner.
-    convex_only : bool
-        Only left turns of the counter-clockwise outline are corners (a generated rotor's sharp
-        corners: tips cut back by the rack's flats); a concave turn that large is a root fillet
-        the points do not resolve, which a spline through it keeps smooth (a kink there would send
-        the rack's normals anywhere). False finds both.
+    concave_angle_deg : float, deg
+        Smallest turn of a concave corner (a right turn of the counter-clockwise outline):
+        :data:`CONCAVE_CORNER_DEG`.
 
     Returns
     -------
@@ -271,10 +277,9 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0, convex_onl
     b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
     back, ahead = a1 - a0, b1 - b0
     signed = np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead))
-    # a generated rotor's sharp corners are convex (tips cut back by the rack's flats: left turns of the
-    # counter-clockwise outline); a concave turn above the threshold is a fillet the points do not
-    # resolve (a root fillet between two points 0.75 mm apart), which the spline keeps smooth
-    turn = np.where(signed > 0, signed, 0.0) if convex_only else np.abs(signed)
+    # a concave turn (to the right of the counter-clockwise outline) is a corner only beyond its own,
+    # larger threshold: a root fillet that sparse points do not resolve turns that way too
+    turn = np.where(signed >= 0, signed, np.where(-signed > np.radians(concave_angle_deg), -signed, 0.0))
     from scipy.ndimage import maximum_filter1d
 
     peak = maximum_filter1d(turn, size=2 * k + 1, mode="wrap")
@@ -566,6 +571,7 @@ def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: st
 
 
 __all__ = [
+    "CONCAVE_CORNER_DEG",
     "DRAWN_SPANS",
     "SCATTER_FLOOR",
     "SMOOTH_JOINT",
