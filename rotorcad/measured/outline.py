@@ -30,12 +30,6 @@ from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 
 SCATTER_FLOOR = 1e-4  # mm: below this the points are taken as exact (interpolated)
-CONCAVE_CORNER_DEG = 60.0
-"""deg: smallest turn of a concave corner. A convex corner (a tip cut back by the rack's flat) turns
-by 30 deg or more; a concave one is where two generated flanks meet at a root (87 deg on the
-Lysholm and Krigar males), while a root fillet that sparse points do not resolve turns by 42-46 deg
-between two of them (the independent pairs' females at 80 points a lobe, 0.9-1 mm apart), and a
-kink there would send the rack's normals anywhere: the spline keeps it smooth."""
 
 
 def _drop_repeats(points: np.ndarray) -> np.ndarray:
@@ -237,9 +231,7 @@ def accuracy(whole: np.ndarray, sigma: float) -> float:
     return max(2.0 * sigma, sagitta)
 
 
-def corners(
-    whole: np.ndarray, sigma: float, angle_deg: float = 30.0, concave_angle_deg: float = CONCAVE_CORNER_DEG
-) -> tuple[np.ndarray, np.ndarray]:
+def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
     """Find the sharp corners of a closed outline: the edges across which it turns by more than ``angle_deg``.
 
     The turn across edge i (from point i to point i + 1) is the angle between the chord from point
@@ -258,9 +250,6 @@ def corners(
         Its scatter (:func:`scatter`); 0 for exact points.
     angle_deg : float, deg
         Smallest turn of a corner.
-    concave_angle_deg : float, deg
-        Smallest turn of a concave corner (a right turn of the counter-clockwise outline):
-        :data:`CONCAVE_CORNER_DEG`.
 
     Returns
     -------
@@ -277,9 +266,19 @@ def corners(
     b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
     back, ahead = a1 - a0, b1 - b0
     signed = np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead))
-    # a concave turn (to the right of the counter-clockwise outline) is a corner only beyond its own,
-    # larger threshold: a root fillet that sparse points do not resolve turns that way too
-    turn = np.where(signed >= 0, signed, np.where(-signed > np.radians(concave_angle_deg), -signed, 0.0))
+    turn = np.abs(signed)
+    if k == 1:
+        # a concave turn (to the right of the counter-clockwise outline) across one edge is a corner
+        # when it happens at the edge alone: where two generated flanks meet at a root (Lysholm,
+        # Krigar, SRM-B males: 58-88 deg, the vertices beside it turn by 2.4 % of that at most). A
+        # root fillet that sparse points do not resolve turns as much over the edge, but the vertices
+        # beside it turn too (the independent females at 80 points a lobe: 42-46 deg, 19-43 % beside);
+        # the spline keeps it smooth (a kink there would send the rack's normals anywhere)
+        dv = np.roll(p, -1, axis=0) - p
+        hv = np.arctan2(dv[:, 1], dv[:, 0])
+        vt = np.abs(wrap_angle(hv - np.roll(hv, 1)))  # turn at each vertex
+        beside = np.maximum(np.roll(vt, 1), np.roll(vt, -2))  # at the vertices before and after the edge's two
+        turn = np.where((signed < 0) & (beside > 0.1 * turn), 0.0, turn)
     from scipy.ndimage import maximum_filter1d
 
     peak = maximum_filter1d(turn, size=2 * k + 1, mode="wrap")
@@ -571,7 +570,6 @@ def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: st
 
 
 __all__ = [
-    "CONCAVE_CORNER_DEG",
     "DRAWN_SPANS",
     "SCATTER_FLOOR",
     "SMOOTH_JOINT",
