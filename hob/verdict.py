@@ -82,7 +82,7 @@ class Verdict:
     tip_thickness: float
 
 
-def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
+def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 0.0) -> Verdict:
     """Judge a derived rack in its normal section (module docstring).
 
     Parameters
@@ -91,6 +91,11 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
         The rack of a rotor or gear (its helix angle gives the normal section).
     limits : HobLimits, optional
         Limits of a producible hob; default the workshop values.
+    accuracy : float, mm
+        How far the profile the rack was derived from may lie from the true one (a pair from
+        measured points: :attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`; 0 for a design). A
+        loop of the rack narrower than this (or than :data:`FOLD_TOLERANCE`) is a fold of the fit,
+        not an undercut the points can show.
 
     Returns
     -------
@@ -119,7 +124,8 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
     snapped = np.round(pts, 9)  # floating noise (1e-15) on straight pieces must not read as a loop
     keep = np.concatenate([[True], np.any(np.diff(snapped, axis=0) != 0.0, axis=1)])
     line = shapely.LineString(snapped[keep])
-    if not line.is_simple and _crosses_itself(snapped[keep]):
+    fold = max(FOLD_TOLERANCE, accuracy)
+    if not line.is_simple and _crosses_itself(snapped[keep], fold):
         noded = shapely.node(line)
         hits = shapely.get_coordinates(shapely.intersection(line, shapely.MultiLineString(list(noded.geoms)).boundary))
         where = f" near x = {hits[0, 0]:.3f} mm, y = {hits[0, 1]:.3f} mm" if len(hits) else ""
@@ -151,19 +157,29 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
     # curvature from the exact tangents: turning angle over arc length, travelling +x
     psi = np.unwrap(np.arctan2(tan[:, 1], tan[:, 0]))
     ds = np.hypot(*np.diff(pts, axis=0).T)
+    jumps = (idx[:-1] != idx[1:]) & cutting[:-1] & cutting[1:] & (np.abs(np.diff(psi)) > 1e-3) & (ds < 1e-6 * rack.period)
+    # the curvature is taken along runs of cutting points that a sharp corner or a corner path does
+    # not interrupt: pieces meeting without a corner (a measured rack's fitted pieces, a sliver of
+    # spline between a land and a corner) are one run, so that a piece shorter than the base does
+    # not read its few samples' kink as a sharp tool radius
+    run = np.concatenate([[0], np.cumsum(jumps | (cutting[:-1] != cutting[1:]))])
     same = (idx[:-1] == idx[1:]) & cutting[:-1] & cutting[1:] & (ds > 0)
     kappa = np.where(same, np.diff(psi) / np.where(ds > 0, ds, 1.0), 0.0)
     # the turn over an arc length of CURVATURE_BASE at least, within one cutting piece: sub-micrometre
     # folds of a measured rack (see above) must not read as a sharp tool radius
     arc = np.concatenate([[0.0], np.cumsum(ds)])
     j = np.minimum(np.searchsorted(arc, arc + CURVATURE_BASE), len(arc) - 1)
-    piece_ok = (idx[j] == idx) & cutting & cutting[j] & (arc[j] - arc > 0.5 * CURVATURE_BASE)
+    piece_ok = (run[j] == run) & cutting & cutting[j] & (arc[j] - arc > 0.5 * CURVATURE_BASE)
     kappa_w = np.where(piece_ok, (psi[j] - psi) / np.where(arc[j] > arc, arc[j] - arc, 1.0), 0.0)[:-1]
+    # within the base of a run's end the window looks back instead; a run shorter than half the base
+    # (a sliver between corners) keeps its own estimate
+    i0 = np.maximum(np.searchsorted(arc, arc - CURVATURE_BASE, side="right") - 1, 0)
+    back_ok = (run[i0] == run) & cutting & cutting[i0] & (arc - arc[i0] > 0.5 * CURVATURE_BASE)
+    kappa_b = np.where(back_ok, (psi - psi[i0]) / np.where(arc > arc[i0], arc - arc[i0], 1.0), 0.0)[:-1]
     short = np.zeros(len(kappa), dtype=bool)
-    last = np.flatnonzero(np.diff(idx) != 0)  # pieces too short for the base keep their own estimate
+    last = np.flatnonzero(np.diff(run) != 0)
     short[last] = True
-    kappa = np.where(piece_ok[:-1], kappa_w, np.where(short, 0.0, kappa))
-    jumps = (idx[:-1] != idx[1:]) & cutting[:-1] & cutting[1:] & (np.abs(np.diff(psi)) > 1e-3) & (ds < 1e-6 * rack.period)
+    kappa = np.where(piece_ok[:-1], kappa_w, np.where(back_ok[:-1], kappa_b, np.where(short, 0.0, kappa)))
     # a turn of less than a micro-radian over a rack period is a straight piece (rounding noise of
     # its tangents), whose radius is infinite, not 1e12 mm
     kappa = np.where(np.abs(kappa) * rack.period < 1e-6, 0.0, kappa)
@@ -184,7 +200,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
     if 0 < root_r < lim.min_root_radius:
         i = int(np.argmin(kappa))
         reasons.append(f"the hob root radius is {root_r:.4f} mm {at(i)}, below the minimum {lim.min_root_radius:g} mm.")
-    thickness = _tip_thickness(pts[cutting], rack.normal_period)
+    thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
         reasons.append(
             f"the hob tooth is {thickness:.3f} mm thick near its tip (5 % of the depth above it), below the minimum "
@@ -193,7 +209,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None) -> Verdict:
     return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness)
 
 
-def _tip_thickness(pts: np.ndarray, period: float) -> float:
+def _tip_thickness(pts: np.ndarray, period: float, fold: float = FOLD_TOLERANCE) -> float:
     """Return the width (mm) of the hob material (above the rack curve) at 5 % of the depth above its lowest point."""
     y0, y1 = pts[:, 1].min(), pts[:, 1].max()
     level = y0 + 0.05 * (y1 - y0)
@@ -201,12 +217,12 @@ def _tip_thickness(pts: np.ndarray, period: float) -> float:
     top = y1 + (y1 - y0)
     poly = shapely.make_valid(shapely.Polygon(np.vstack([chain, [[chain[-1, 0], top], [chain[0, 0], top]]])))
     cut = poly.intersection(shapely.LineString([(pts[0, 0], level), (pts[0, 0] + period, level)]))
-    widths = [g.length for g in getattr(cut, "geoms", [cut]) if g.length > FOLD_TOLERANCE]  # not a fold's sliver
+    widths = [g.length for g in getattr(cut, "geoms", [cut]) if g.length > fold]  # not a fold's sliver
     return float(min(widths)) if widths else 0.0
 
 
-def _crosses_itself(pts: np.ndarray) -> bool:
-    """Tell whether the polyline crosses itself so that it encloses a loop wider than FOLD_TOLERANCE.
+def _crosses_itself(pts: np.ndarray, fold: float = FOLD_TOLERANCE) -> bool:
+    """Tell whether the polyline crosses itself so that it encloses a loop wider than ``fold`` (mm).
 
     The width of a loop is its mean width 2 area / perimeter, for each loop that shapely's noding
     and polygonizing finds: an undercut's swallowtail is tens of micrometres wide, the zigzag of a
@@ -224,4 +240,4 @@ def _crosses_itself(pts: np.ndarray) -> bool:
     if len(loops) == 0:
         return False
     width = 2 * shapely.area(loops) / np.maximum(shapely.length(loops), 1e-300)
-    return bool(np.any(width > FOLD_TOLERANCE))
+    return bool(np.any(width > fold))

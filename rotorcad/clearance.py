@@ -30,15 +30,17 @@ normal rack (the paper's average over its contact points, which are spread along
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from enum import IntEnum
 from functools import cached_property
 
 import numpy as np
 
-from rotorcad.curves import Curve, Mapped, sample_curve
+from rotorcad.clearance_normals import normal_clearance, normal_crossing
+from rotorcad.clearance_thermal import ThermalState
+from rotorcad.curves import Curve, sample_curve
 from rotorcad.errors import DesignError
-from rotorcad.geometry import Array, cross, distance_to_polyline, rotate
+from rotorcad.geometry import Array, distance_to_polyline, rotate
 from rotorcad.inverse_rack import (
     MEASURED_JOIN_GAP,
     MEASURED_MIN_TURN,
@@ -86,11 +88,11 @@ def points_quality(points: Array) -> tuple[float, float]:
     Returns
     -------
     sigma : float, mm
-        Scatter normal to the outline (:func:`rotorcad.measured_outline.scatter`; 0 for exact points).
+        Scatter normal to the outline (:func:`rotorcad.measured.outline.scatter`; 0 for exact points).
     spacing : float, mm
         Median distance between neighbouring points.
     """
-    from rotorcad.measured_outline import scatter
+    from rotorcad.measured.outline import scatter
 
     p = np.asarray(points, dtype=float)
     return scatter(p), float(np.median(np.hypot(*np.diff(p, axis=0).T)))
@@ -119,193 +121,6 @@ def estimated_accuracy(sigma: float, spacing: float) -> float:
     return float(ACCURACY_FLOOR + 2.5 * sigma + 0.004 * spacing**2)
 
 
-def _hermite(p0: Array, t0: Array, p1: Array, t1: Array, tau: Array) -> tuple[Array, Array]:
-    """Evaluate the cubic Hermite point and derivative between samples with exact unit tangents.
-
-    The tangents are scaled by the chord. ``p0``, ``t0``, ``p1``, ``t1`` are (n, 2), ``tau`` (n,) in
-    [0, 1]; returns the points and the derivatives d/dtau, both (n, 2).
-    """
-    h = np.hypot(*(p1 - p0).T)[:, None]
-    m0, m1 = t0 * h, t1 * h
-    u = tau[:, None]
-    p = (2 * u**3 - 3 * u**2 + 1) * p0 + (u**3 - 2 * u**2 + u) * m0 + (-2 * u**3 + 3 * u**2) * p1 + (u**3 - u**2) * m1
-    d = (6 * u**2 - 6 * u) * p0 + (3 * u**2 - 4 * u + 1) * m0 + (-6 * u**2 + 6 * u) * p1 + (3 * u**2 - 2 * u) * m1
-    return p, d
-
-
-def normal_clearance(datum: Array, normals: Array, compared: Array, compared_tangents: Array, window: int = 8) -> Array:
-    """Measure from each datum point along its unit normal to the compared polyline (Wu & Chi eq. 10).
-
-    The crossing nearest the datum point is taken among the ``window`` segments either side of the
-    nearest compared point, then refined on the Hermite cubic of that segment (Newton).
-
-    Parameters
-    ----------
-    datum : (n, 2) float array, mm
-        Points of the datum rack.
-    normals : (n, 2) float array
-        Their unit normals (positive clearance along them).
-    compared : (m, 2) float array, mm
-        The compared rack as a polyline.
-    compared_tangents : (m, 2) float array
-        Its exact unit tangents at the vertices.
-    window : int
-        Segments searched either side of the nearest compared vertex.
-
-    Returns
-    -------
-    (n,) float array, mm
-        Signed distance delta with datum + delta normal on the compared rack (positive a gap,
-        negative an interference); NaN where the normal line does not cut it nearby.
-    """
-    return normal_crossing(datum, normals, compared, compared_tangents, window)[0]
-
-
-def normal_crossing(
-    datum: Array, normals: Array, compared: Array, compared_tangents: Array, window: int = 8
-) -> tuple[Array, Array]:
-    """Return :func:`normal_clearance` and the compared segment each normal cuts.
-
-    Parameters as :func:`normal_clearance`.
-
-    Returns
-    -------
-    delta : (n,) float array, mm
-        As :func:`normal_clearance`.
-    segment : (n,) int array
-        The compared polyline's segment (joining points i, i + 1) that the normal cuts, -1 for none.
-    """
-    from scipy.spatial import cKDTree
-
-    k = cKDTree(compared).query(datum)[1]
-    n_seg = len(compared) - 1
-    offsets = np.arange(-window, window)
-    seg = np.clip(k[:, None] + offsets[None, :], 0, n_seg - 1)  # segment i joins points i, i+1
-    a, b = compared[seg], compared[seg + 1]
-    g_a = cross(normals[:, None, :], a - datum[:, None, :])
-    g_b = cross(normals[:, None, :], b - datum[:, None, :])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        tau = g_a / (g_a - g_b)
-    hit = (g_a * g_b <= 0) & np.isfinite(tau)
-    cut = a + np.nan_to_num(tau)[..., None] * (b - a)
-    delta = np.einsum("ijk,ik->ij", cut - datum[:, None, :], normals)
-    delta = np.where(hit, delta, np.inf)
-    j = np.argmin(np.abs(delta), axis=1)
-    rows = np.arange(len(datum))
-    found = np.isfinite(delta[rows, j])
-    s = seg[rows, j]
-    u = np.clip(np.nan_to_num(tau[rows, j]), 0.0, 1.0)
-    p0, p1, t0, t1 = compared[s], compared[s + 1], compared_tangents[s], compared_tangents[s + 1]
-    for _ in range(4):  # Newton on cross(n, H(u) - datum) = 0
-        p, d = _hermite(p0, t0, p1, t1, u)
-        f = cross(normals, p - datum)
-        df = cross(normals, d)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = np.where(np.abs(df) > 1e-300, f / df, 0.0)
-        u = np.clip(u - step, 0.0, 1.0)
-    p, _ = _hermite(p0, t0, p1, t1, u)
-    return np.where(found, np.einsum("ij,ij->i", p - datum, normals), np.nan), np.where(found, s, -1)
-
-
-@dataclass(frozen=True)
-class ThermalState:
-    """Rotors and housing at working temperature.
-
-    After the Chinese paper in Wu & Chi's seed (sec. 1.2): a body grows by dL = L zeta (t_c - t0)
-    (its eq. 1); the rotor's computation temperature is the arithmetic mean of suction and discharge
-    temperature, and the centre distance follows the housing.
-
-    Parameters
-    ----------
-    suction_temperature, discharge_temperature : float, degC
-        Gas temperatures at suction and discharge.
-    reference_temperature : float, degC
-        Temperature at which the design's dimensions hold.
-    rotor_expansion : float, 1/K
-        Linear expansion coefficient of the rotors (default steel, 11.5e-6).
-    housing_expansion : float, 1/K
-        Linear expansion coefficient of the housing (default grey cast iron, 10.5e-6).
-    housing_temperature : float, degC, optional
-        Housing temperature; default the rotors' computation temperature.
-
-    Raises
-    ------
-    DesignError
-        A temperature at or below absolute zero, or an expansion coefficient outside [0, 0.001) 1/K.
-    """
-
-    suction_temperature: float
-    discharge_temperature: float
-    reference_temperature: float = 20.0
-    rotor_expansion: float = 11.5e-6  # steel
-    housing_expansion: float = 10.5e-6  # grey cast iron
-    housing_temperature: float | None = None  # default: the rotors' computation temperature
-
-    def __post_init__(self) -> None:
-        for name in ("suction_temperature", "discharge_temperature", "reference_temperature"):
-            v = getattr(self, name)
-            if not (np.isfinite(v) and v > -273.15):
-                raise DesignError(name, "a temperature above absolute zero in degC", v)
-        for name in ("rotor_expansion", "housing_expansion"):
-            v = getattr(self, name)
-            if not (np.isfinite(v) and 0.0 <= v < 1e-3):
-                raise DesignError(name, "a linear expansion coefficient from 0 to 0.001 per K", v)
-
-    @property
-    def rotor_temperature(self) -> float:
-        """Rotor computation temperature, the mean of suction and discharge temperature, degC."""
-        return 0.5 * (self.suction_temperature + self.discharge_temperature)
-
-    @property
-    def rotor_scale(self) -> float:
-        """Growth factor of the rotors, 1 + zeta_rotor (t_rotor - t_ref)."""
-        return 1.0 + self.rotor_expansion * (self.rotor_temperature - self.reference_temperature)
-
-    @property
-    def housing_scale(self) -> float:
-        """Growth factor of the housing (and so of the centre distance), 1 + zeta_housing (t_housing - t_ref)."""
-        t = self.rotor_temperature if self.housing_temperature is None else self.housing_temperature
-        return 1.0 + self.housing_expansion * (t - self.reference_temperature)
-
-    def apply(self, pair: RotorPair, male: Array, female: Array) -> tuple[RotorPair, Array, Array]:
-        """Return the hot pair and the hot profile points.
-
-        Each rotor grows about its own axis, the lead and the length with it; the centre distance grows
-        with the housing.
-
-        Parameters
-        ----------
-        pair : RotorPair
-            The cold pair.
-        male, female : (n, 2) float array or list of Curve, mm
-            Profile points (or exact curves) of each rotor in its own frame.
-
-        Returns
-        -------
-        tuple of (RotorPair, male, female)
-            The hot pair and both profiles scaled by :attr:`rotor_scale`.
-        """
-        k = self.rotor_scale
-        hot = replace(
-            pair,
-            center_distance=pair.center_distance * self.housing_scale,
-            male_tip_radius=pair.male_tip_radius * k,
-            male_root_radius=pair.male_root_radius * k,
-            female_tip_radius=pair.female_tip_radius * k,
-            female_root_radius=pair.female_root_radius * k,
-            lead=pair.lead * k,
-            length=pair.length * k,
-        )
-        return hot, _scaled(male, k), _scaled(female, k)
-
-
-def _scaled(profile: Array | list[Curve], k: float) -> Array | list[Curve]:
-    """Grow points (n, 2) or exact curves by the factor ``k`` about the rotor's centre."""
-    if isinstance(profile, list | tuple):
-        return [Mapped(c, ((k, 0.0), (0.0, k))) for c in profile]
-    return np.asarray(profile) * k
-
-
 def _running_mean(values: Array, arc: Array, width: float) -> Array:
     """Mean of ``values`` (n,) over a window ``width`` (mm) about each point, by arc length ``arc`` (n,), increasing."""
     if width <= 0 or len(values) < 2:
@@ -331,7 +146,7 @@ class MeshingClearance:
         Dimensions of the pair (use ``strict=False`` for measured or hot rotors).
     male_pieces, female_pieces : list of (str, Curve)
         One lobe of each rotor as named counter-clockwise pieces in the rotor's own frame (e.g.
-        :func:`rotorcad.rotor_points.lobe_pieces`), mm.
+        :func:`rotorcad.measured.fit.lobe_pieces`), mm.
     contact : {"driving", "sealing", "as-given"}
         Flank on which the racks are brought into contact, or "as-given" to leave them as the
         points lie.

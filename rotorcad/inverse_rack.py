@@ -25,6 +25,7 @@ from rotorcad.curves import Arc, Curve, Mapped, sample_curve, split_intervals
 from rotorcad.envelope import Generated, conjugate, from_rack_frame
 from rotorcad.geometry import cross, rotate, wrap_angle
 from rotorcad.kinematics import Rotation, Translation, gear_mesh
+from rotorcad.lobe_trim import trimmed_lobe
 from rotorcad.roles import PieceRole, Side
 from rotorcad.roots import bracket_root
 
@@ -380,6 +381,7 @@ def rotor_rack(
     min_turn: float = 1e-6,
     clip_at_tip: bool | None = None,
     join_gap: float = 2e-3,
+    cut_loops: bool = False,
 ) -> DerivedRack:
     """Derive the transverse rack of one lobe of the male or the female of a pair.
 
@@ -395,7 +397,7 @@ def rotor_rack(
         The rotor.
     pieces : list of (str, Curve), optional
         One lobe, counter-clockwise, in the rotor's own frame (centre at the origin), e.g.
-        :func:`rotorcad.rotor_points.lobe_pieces`; default the lobe of ``rotors``.
+        :func:`rotorcad.measured.fit.lobe_pieces`; default the lobe of ``rotors``.
     tolerance : float, mm
         Chord tolerance of the rack's samples.
     samples : int
@@ -412,6 +414,13 @@ def rotor_rack(
     join_gap : float, mm
         Largest distance between pieces' ends at a corner (:func:`with_corner_fans`;
         :data:`MEASURED_JOIN_GAP` for measured pieces).
+    cut_loops : bool
+        With ``clip_at_tip``: cut the loops the generated lobe makes beyond its tip circle and join
+        its parts cut there by the tip land (:func:`rotorcad.lobe_trim.trimmed_lobe`), as the
+        blank leaves them. For a pair generated from a measured rotor, whose rack keeps the
+        roundings that cut the measured rotor's root: the mate's images of them overshoot its tip
+        and come back onto the land. False keeps each piece's longest part inside the tip circle
+        (a design's pieces, which its rack's corner paths keep from overshooting).
 
     Returns
     -------
@@ -435,7 +444,10 @@ def rotor_rack(
     if clip_at_tip:
         tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
         centre = np.asarray(body.center, dtype=float)
-        pieces = [p for p in (_inside_tip(name, curve, centre, tip) for name, curve in pieces) if p is not None]
+        if cut_loops:
+            pieces = trimmed_lobe(pieces, centre, tip, 2 * np.pi / side.pick(pair.male_teeth, pair.female_teeth))
+        else:
+            pieces = [p for p in (_inside_tip(name, curve, centre, tip) for name, curve in pieces) if p is not None]
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
     rack = derive_rack(
         pieces,

@@ -73,8 +73,10 @@ def hob(design: Path | None, **opts: Any) -> None:
         rotors, _, _ = build_rotors(design, rotor_opts, settings)
         try:
             # measured pieces: their fits leave kinks of a fraction of a degree and gaps of a few µm
-            # at the lands, which are no corners (the meshing clearance judges them alike)
-            measured = {"min_turn": MEASURED_MIN_TURN, "join_gap": MEASURED_JOIN_GAP} if _measured(rotors) else {}
+            # at the lands, which are no corners (the meshing clearance judges them alike); the mate generated
+            # from their rack overshoots its tip where the rack's rounding meets its flat (its loops are cut)
+            measured = {"min_turn": MEASURED_MIN_TURN, "join_gap": MEASURED_JOIN_GAP, "cut_loops": True}
+            measured = measured if _measured(rotors) else {}
             racks = {"male": rotor_rack(rotors, "male", **measured), "female": rotor_rack(rotors, "female", **measured)}
             deviation = rack_deviation(rotors, **measured)
         except DesignError as exc:
@@ -87,7 +89,7 @@ def hob(design: Path | None, **opts: Any) -> None:
         deviation = _basic_rack_deviation(g, racks["gear"])
         scale = g.module
         body = g
-    verdicts, result = judge_racks(racks, deviation, limits)
+    verdicts, result = judge_racks(racks, deviation, limits, getattr(body, "accuracy", 0.0))
     first = next(iter(racks))
     normal = racks[first].normal()
     clearance = opts["root_clearance"] * scale
@@ -105,7 +107,9 @@ def hob(design: Path | None, **opts: Any) -> None:
             click.echo(f"  - {r}")
 
 
-def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimits) -> tuple[dict[str, Any], dict[str, Any]]:
+def judge_racks(
+    racks: dict[str, DerivedRack], deviation: float, limits: HobLimits, accuracy: float = 0.0
+) -> tuple[dict[str, Any], dict[str, Any]]:
     """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
 
     For this command and ``rotorcad report``.
@@ -118,21 +122,24 @@ def judge_racks(racks: dict[str, DerivedRack], deviation: float, limits: HobLimi
         The largest distance between the racks (or from the basic rack).
     limits : HobLimits
         Limits of a producible hob.
+    accuracy : float, mm
+        Accuracy of a profile given by points (:func:`hob.verdict.judge`; 0 for a design).
 
     Returns
     -------
     verdicts : dict of Verdict
         The verdict on each rack.
     result : dict
-        ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg`` and
-        per rack its figures (radii and tip thickness in mm, angles in deg).
+        ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg``,
+        ``accuracy`` (mm) and per rack its figures (radii and tip thickness in mm, angles in deg).
     """
-    verdicts = {name: judge(rack, limits) for name, rack in racks.items()}
+    verdicts = {name: judge(rack, limits, accuracy) for name, rack in racks.items()}
     result: dict[str, Any] = {
         "hobbable": all(v.hobbable for v in verdicts.values()),
         "reasons": [f"{name}: {r}" if len(verdicts) > 1 else r for name, v in verdicts.items() for r in v.reasons],
         "rack_deviation": deviation,
         "normal_pressure_angle_min_deg": min(v.normal_pressure_angle_min_deg for v in verdicts.values()),
+        "accuracy": float(accuracy),
         "racks": {
             name: {
                 "hobbable": v.hobbable,

@@ -1,0 +1,383 @@
+"""The fit of a measured or drawn rotor outline: one lobe as curves with exact tangents.
+
+The second stage of the measured-outline pipeline (:mod:`rotorcad.measured`). The whole outline
+(:mod:`rotorcad.measured.outline`) is fitted with cubic splines (interpolating, or smoothing with
+n sigma^2 from the estimated scatter), piecewise between its sharp corners, lands as exact arcs
+about the centre, so that tangents are exact; the lobe facing the mate is cut from it at two roots.
+Calls go to :mod:`rotorcad.measured.outline` only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorcad.curves import Arc, Curve, Spline, rotated, sample_curve
+from rotorcad.errors import DesignError
+from rotorcad.geometry import rotate, wrap_angle
+from rotorcad.measured.outline import Outline, corners, lands, read_outline, scatter, whole_outline
+from rotorcad.roles import Side
+from rotorcad.roots import bracket_root
+from rotorcad.rotor_pair import RotorPair
+
+
+def _smoothing(run: np.ndarray, sigma: float, smoothing: float | None) -> float:
+    """Return scipy's smoothing value for a run of points.
+
+    The user's value, or n sigma^2 from the estimated scatter (:mod:`rotorcad.measured.outline`); a
+    run too short for a smoothing cubic (8 points or fewer) interpolates.
+    """
+    if smoothing is not None:
+        return smoothing
+    return len(run) * sigma**2 if len(run) > 8 else 0.0
+
+
+def _facing_root_angle(whole: np.ndarray, teeth: int, facing: float) -> float:
+    """Polar angle of the root that starts the lobe containing the polar angle ``facing``."""
+    root = whole[np.argmin(np.hypot(*whole.T))]
+    pitch = 2 * np.pi / teeth
+    theta0 = np.arctan2(root[1], root[0])
+    return float(theta0 + np.floor((facing - theta0) / pitch) * pitch)
+
+
+def _lobe_spline(whole: np.ndarray, teeth: int, smoothing: float, facing: float) -> tuple[Spline, float, float]:
+    """Fit a periodic spline to the whole outline and find the lobe facing the mate.
+
+    Returns the spline and the parameters of the lobe between two consecutive roots that contains
+    the polar angle ``facing`` (towards the mate, so that its contacts lie within half a turn of the
+    mesh position).
+    """
+    spline = Spline.fit(whole, smoothing=smoothing, periodic=True)
+    s = np.linspace(0.0, spline.s1, 20 * len(whole) + 1)
+    p, _ = spline.evaluate(s)
+    pitch = 2 * np.pi / teeth
+    theta = _facing_root_angle(p, teeth, facing)
+
+    s_a = _polar_crossing(spline, p, s, theta)
+    s_b = _polar_crossing(spline, p, s, theta + pitch)
+    if s_a is None or s_b is None:
+        raise DesignError("points", "an outline that every ray from its centre crosses once", None)
+    if s_b <= s_a:
+        s_b += spline.s1
+    return spline, s_a, s_b
+
+
+def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None) -> Curve:
+    """Fit the spline of one lobe of the male or the female, the lobe facing the mate.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts and centre distance (mm).
+    points : (n, 2) float array, mm
+        One lobe or the whole outline in the rotor's own frame.
+    rotor : {"male", "female"}
+        Which rotor the points are.
+    smoothing : float, mm², optional
+        scipy's spline smoothing; None estimates it from the points' scatter.
+
+    Returns
+    -------
+    Curve
+        The lobe from root to root, own frame, counter-clockwise.
+
+    Raises
+    ------
+    DesignError
+        An outline that a ray from its centre crosses more than once, or a wrong lobe count.
+    """
+    side = Side(rotor)
+    teeth = side.pick(pair.male_teeth, pair.female_teeth)
+    whole = whole_outline(points, teeth, f"{side.value} points")
+    s_fit = _smoothing(whole, scatter(whole), smoothing)
+    spline, s_a, s_b = _lobe_spline(whole, teeth, s_fit, side.pick(0.0, np.pi))
+    if s_b > spline.s1:  # the lobe wraps past the spline's seam: shift the seam
+        p, _ = spline.evaluate(np.linspace(s_a, s_b, 4000) % spline.s1)
+        spline = Spline.fit(p, smoothing=0.0)
+        s_a, s_b = 0.0, spline.s1
+    return spline.trimmed(s_a, s_b)
+
+
+def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: float) -> float | None:
+    """Find the parameter where ``curve`` crosses the polar ray at ``theta`` counter-clockwise.
+
+    ``points`` are the curve's samples at parameters ``u``; the crossing is bracketed between them
+    and refined on the curve. Returns None when the samples do not cross the ray.
+    """
+    rel = wrap_angle(np.arctan2(points[:, 1], points[:, 0]) - theta)
+    i = np.nonzero((rel[:-1] < 0) & (rel[1:] >= 0) & (np.abs(rel[:-1]) < np.pi / 2) & (np.abs(rel[1:]) < np.pi / 2))[0]
+    if len(i) == 0:
+        return None
+
+    def f(v: float) -> float:
+        q = curve.evaluate(v)[0][0]
+        return float(wrap_angle(np.arctan2(q[1], q[0]) - theta))
+
+    a, b = u[i[0]], u[i[0] + 1]
+    root = bracket_root(f, (a, b), xtol=1e-13)
+    return float(a) if root is None else root  # no sign change on the spline: the chord's crossing
+
+
+def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray) -> list[np.ndarray]:
+    """Cut the outline at its corners.
+
+    For each corner (on edge i, at a point) to the next: the corner's point, the outline's points in
+    between and the next corner's point; points within 1e-6 mm of a corner point are left out (the
+    corner is that point).
+    """
+    n = len(whole)
+    ring = np.vstack([whole, whole])
+    out = []
+    for j, (i, c) in enumerate(zip(edges, points, strict=True)):
+        i_next = edges[(j + 1) % len(edges)] + (n if j + 1 == len(edges) else 0)
+        c_next = points[(j + 1) % len(edges)]
+        inner = ring[i + 1 : i_next + 1]
+        inner = inner[(np.hypot(*(inner - c).T) > 1e-6) & (np.hypot(*(inner - c_next).T) > 1e-6)]
+        out.append(np.vstack([c, inner, c_next]))
+    return out
+
+
+def _refined_corners(
+    whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float, smoothing: float | None
+) -> np.ndarray:
+    """Locate the corners of scattered points where the splines beside each corner cross.
+
+    The smoothing splines of the two runs beside a corner, extended past their ends, are crossed by
+    Newton on both parameters: the chords' crossing is off by a sample spacing when the corner falls
+    between scattered points, which moves the corner's path on the rack by as much. A crossing not
+    found within two spacings keeps the chords' one.
+    """
+    n = len(whole)
+    ring = np.vstack([whole, whole, whole])
+    fits = []
+    for j, i in enumerate(edges):
+        i_next = edges[(j + 1) % len(edges)] + (n if j + 1 == len(edges) else 0)
+        inner = ring[i + 1 : i_next + 1]
+        fits.append(Spline.fit(inner, smoothing=_smoothing(inner, sigma, smoothing)) if len(inner) >= 4 else None)
+    h = float(np.median(np.hypot(*np.diff(whole, axis=0).T)))
+    out = np.array(points, dtype=float)
+    for j in range(len(edges)):
+        before, after = fits[j - 1], fits[j]  # the run ending at corner j, and the one starting there
+        if before is None or after is None:
+            continue
+        with np.errstate(all="ignore"):  # a diverging Newton step is refused below, not reported
+            p = _cross_ends(before, after, before.s1, after.s0)
+        if p is not None and np.hypot(*(p - out[j])) < 2 * h:
+            out[j] = p
+    return out
+
+
+def _cross_ends(before: Curve, after: Curve, u: float, v: float) -> np.ndarray | None:
+    """Where two curves extended past their ends cross (Newton on both parameters from u, v)."""
+    for _ in range(8):
+        (pa,), (ta,) = before.frame(np.array([u]))
+        (pb,), (tb,) = after.frame(np.array([v]))
+        jac = np.column_stack([ta, -tb])
+        if not np.all(np.isfinite(jac)) or abs(np.linalg.det(jac)) < 1e-6:
+            return None
+        du, dv = np.linalg.solve(jac, pb - pa)
+        u, v = u + du, v + dv
+    p, q = before.frame(np.array([u]))[0][0], after.frame(np.array([v]))[0][0]
+    return p if np.all(np.isfinite(p)) and np.hypot(*(p - q)) < 1e-7 else None
+
+
+def lobe_pieces(
+    pair: RotorPair,
+    points: np.ndarray | list[Curve] | Outline,
+    rotor: str,
+    smoothing: float | None = None,
+    corner_angle_deg: float = 30.0,
+    label: str | None = None,
+    drawn_as_points: bool = False,
+) -> list[tuple[str, Curve]]:
+    """Fit one lobe of the male or the female as pieces between the sharp corners of its points.
+
+    A measured outline may have sharp corners (a female tip without rounding, a tip land cut by
+    the rack's flat): a spline through one rings. The outline is fitted piecewise between corners
+    (each piece a cubic spline with exact tangents; lands as exact arcs about the centre), and the
+    corners stay corners (their fans of normals are added where racks are derived). An outline
+    without corners is one periodic spline (:func:`lobe_curve`).
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts and centre distance (mm).
+    points : (n, 2) float array, mm, list of Curve, or Outline
+        One lobe or the whole outline in the rotor's own frame, either direction, any start
+        (or the profile read already, :func:`rotorcad.measured.outline.read_outline`);
+        exact, measured (scatter of a few µm) or polygonal (boolean cutting, with scallops). Or
+        the exact curves of a drawing, chained counter-clockwise (lines, arcs, splines), which are
+        used as they are.
+    rotor : {"male", "female"}
+        Which rotor the points are.
+    smoothing : float, mm², optional
+        scipy's spline smoothing for every piece; None: n sigma^2 from the estimated scatter sigma
+        (:func:`rotorcad.measured.outline.scatter`), 0 for exact points.
+    corner_angle_deg : float, deg
+        Turn above which a vertex is a sharp corner (:func:`rotorcad.measured.outline.corners`).
+    label : str, optional
+        How the points are named in errors (default "<rotor> points").
+    drawn_as_points : bool
+        Read a drawing that approximates the outline as the points it was drawn through
+        (:func:`drawing_points`), as the rack generation needs; False (the clearance) uses its
+        curves as drawn. A drawing of one groove or tooth is read as points either way.
+
+    Returns
+    -------
+    list of (str, Curve)
+        The lobe facing the mate, root to root, own frame, counter-clockwise, as named pieces
+        (``"lobe part 1"``, ...; ``"flank"`` for one periodic spline).
+
+    Raises
+    ------
+    DesignError
+        An outline that a ray from its centre crosses more than once, or a wrong lobe count.
+    """
+    side = Side(rotor)
+    rotor = side.value
+    teeth = side.pick(pair.male_teeth, pair.female_teeth)
+    label = label or f"{rotor} points"
+    outline = read_outline(points, teeth, label, corner_angle_deg, drawn_as_points)  # read once (or already)
+    points = outline.given
+    if isinstance(points, list):
+        return _lobe_from_curves(points, teeth, rotor, label)
+    whole = outline.whole
+    sigma = outline.sigma if smoothing is None else 0.0
+    edges, corner_points = corners(whole, sigma, corner_angle_deg)
+    if len(edges):
+        if sigma > 0:
+            corner_points = _refined_corners(whole, edges, corner_points, sigma, smoothing)
+        runs = _runs_between_corners(whole, edges, corner_points)
+    else:  # no corners: cut the ring in the middle of a land, if it has one
+        found = lands(np.vstack([whole, whole[:1]]), sigma)
+        if not found:
+            return [("flank", lobe_curve(pair, whole, rotor, smoothing))]
+        a, b, _ = found[0]
+        start = (a + b) // 2
+        ring = np.roll(whole, -start, axis=0)
+        runs = [np.vstack([ring, ring[:1]])]
+    fitted = [piece for run in runs for piece in _fit_run(run, sigma, smoothing)]
+    return _cut_lobe(fitted, whole, teeth, rotor, label)
+
+
+def _cut_lobe(
+    fitted: list[tuple[Curve, np.ndarray, np.ndarray]], whole: np.ndarray, teeth: int, rotor: str, label: str
+) -> list[tuple[str, Curve]]:
+    """Cut the lobe facing the mate, root to root, out of the whole outline's curves.
+
+    Each curve comes with its sample points and their parameters; the lobe is trimmed at the two
+    roots' polar angles and its pieces are named ``"lobe part i"``.
+    """
+    theta = _facing_root_angle(whole, teeth, Side(rotor).pick(0.0, np.pi))
+
+    def locate(th: float) -> tuple[int, float]:
+        for k, (curve, pts, u) in enumerate(fitted):
+            s = _polar_crossing(curve, pts, u, th)
+            if s is not None:
+                return k, s
+        raise DesignError(label, "an outline that every ray from its centre crosses once", None)
+
+    (k_a, s_a), (k_b, s_b) = locate(theta), locate(theta + 2 * np.pi / teeth)
+    first, last = fitted[k_a][0], fitted[k_b][0]
+    if k_a == k_b and (s_b - s_a) * first.direction > 0:
+        curves = [first.trimmed(s_a, s_b)]
+    else:
+        curves = [first.trimmed(s_a, first.s1)]
+        k = (k_a + 1) % len(fitted)
+        while k != k_b:
+            curves.append(fitted[k][0])
+            k = (k + 1) % len(fitted)
+        curves.append(last.trimmed(last.s0, s_b))
+    return [(f"lobe part {i + 1}", c) for i, c in enumerate(curves) if abs(c.s1 - c.s0) > 1e-9]
+
+
+def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -> list[tuple[str, Curve]]:
+    """Cut the lobe facing the mate from the exact curves of a drawing.
+
+    The curves are one lobe (patterned here), or the whole outline, counter-clockwise
+    (:func:`exports.dxf_profile.read_profile_dxf`): arcs stay arcs, splines stay the drawing's
+    splines, and the lobe is cut from them at the roots.
+    """
+    samples = [sample_curve(c, 1e-4) for c in curves]
+    pts = np.vstack([p for _, p, _ in samples])
+    whole = whole_outline(pts, teeth, label)  # checks the lobe count or the span of one lobe
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    pitch = 2 * np.pi / teeth
+    if abs(ang[-1] - ang[0]) < 2 * np.pi - 0.5 * pitch:  # one lobe: pattern the curves
+        curves = [rotated(c, k * pitch) for k in range(teeth) for c in curves]
+        samples = [sample_curve(c, 1e-4) for c in curves]
+    fitted = [(c, p, s) for c, (s, p, _) in zip(curves, samples, strict=True)]
+    return _cut_lobe(fitted, whole, teeth, rotor, label)
+
+
+def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tuple[Curve, np.ndarray, np.ndarray]]:
+    """Fit a run of outline points between corners as curves.
+
+    Every land (an arc about the rotor's centre within the scatter,
+    :func:`rotorcad.measured.outline.lands`) becomes that exact arc, whose normals are radial, so that
+    its rack image is the exact flat at the tip or root line; the rest cubic splines. Each curve comes
+    with sample points and their parameters (for locating polar crossings).
+    """
+    out: list[tuple[Curve, np.ndarray, np.ndarray]] = []
+
+    def spline(i0: int, i1: int, lead_in: int, lead_out: int) -> None:
+        """Fit the spline of run[i0 : i1 + 1] and append it.
+
+        It is fitted with ``lead_in`` / ``lead_out`` points of the neighbouring lands (so that its ends
+        see the land it runs into) and trimmed back.
+        """
+        if i1 - i0 < 1 or np.hypot(*(run[i1] - run[i0])) <= 1e-9:
+            return
+        j0, j1 = max(i0 - lead_in, 0), min(i1 + lead_out, len(run) - 1)
+        part = run[j0 : j1 + 1]
+        u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(part, axis=0).T))])
+        curve = Spline.fit(part, smoothing=_smoothing(part, sigma, smoothing)).trimmed(u[i0 - j0], u[i1 - j0])
+        out.append((curve, run[i0 : i1 + 1], u[i0 - j0 : i1 - j0 + 1]))
+
+    pos, lead = 0, 0
+    for a, b, radius in lands(run, sigma):
+        spline(pos, a, lead, 3)
+        t0 = float(np.arctan2(run[a, 1], run[a, 0]))
+        t1 = t0 + float(np.unwrap(np.arctan2(run[a : b + 1, 1], run[a : b + 1, 0]))[-1] - t0)
+        arc = Arc((0.0, 0.0), radius, t0, t1)
+        u = np.linspace(t0, t1, b - a + 1)
+        out.append((arc, arc.evaluate(u)[0], u))
+        pos, lead = b, 3
+    spline(pos, len(run) - 1, lead, 0)
+    return out
+
+
+def fit_residual(
+    pair: RotorPair, points: np.ndarray | list[Curve] | Outline, pieces: list[tuple[str, Curve]], rotor: str
+) -> float:
+    """Return how far the fitted lobe leaves the given points, mm (90th percentile; 0 for exact curves).
+
+    The distance of every point of the whole outline from the fitted lobe patterned around the
+    rotor (sampled to 0.1 µm chord): the smoothing the user chose (``--smoothing``) or the one
+    estimated from the scatter lets the fit leave the points, and the verdicts are judged to that.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Tooth counts.
+    points : (n, 2) float array or list of Curve, mm
+        The profile as given.
+    pieces : list of (str, Curve)
+        The fitted lobe (:func:`lobe_pieces`), own frame.
+    rotor : {"male", "female"}
+        Which rotor.
+    """
+    side = Side(rotor)
+    teeth = side.pick(pair.male_teeth, pair.female_teeth)
+    outline = read_outline(points, teeth, f"{side.value} points")
+    if outline.whole is None:
+        return 0.0
+    import shapely  # here: the points path only
+
+    whole = outline.whole
+    lobe = np.vstack([sample_curve(c, 1e-4)[1] for _, c in pieces])
+    line = shapely.MultiLineString([rotate(lobe, k * 2 * np.pi / teeth) for k in range(teeth)])
+    gaps = shapely.distance(shapely.points(whole), line)
+    return float(np.quantile(gaps, 0.9))
+
+
+__all__ = ["fit_residual", "lobe_curve", "lobe_pieces"]

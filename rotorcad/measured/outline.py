@@ -1,0 +1,588 @@
+"""Rotor outlines as users bring them: measured (CMM), drawn, or cut by a boolean simulation.
+
+The first stage of the measured-outline pipeline (:mod:`rotorcad.measured`): reading the geometry
+that was given. A drawing's curves stay curves when they are the outline's own, or are read as the
+points they were drawn through; points of one lobe, one groove or tooth, or the whole outline, in
+any order and from any start, become one clean whole outline (counter-clockwise, no repeated or
+duplicated points), with the lobe count checked against the design, the scatter of the points
+estimated, the accuracy they carry stated, and the sharp corners and lands found at a scale above
+that scatter. The fit that follows (:mod:`rotorcad.measured.fit`) relies on it; nothing here calls
+back into it.
+
+Scatter. A smooth curve sampled at nearly even spacing h has third differences
+p[i+2] - 3 p[i+1] + 3 p[i] - p[i-1] of order h^3 / rho^2; independent normal scatter of standard
+deviation sigma adds a term of standard deviation sigma sqrt(20). The median of the third
+differences' normal component (a robust estimate, untouched by the few corners) gives sigma; the
+smoothing spline that follows allows a mean squared residual of sigma^2 (scipy's s = n sigma^2,
+Dierckx, *Curve and Surface Fitting with Splines*, sec. 5.2).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorcad.curves import Curve, Line, Spline, sample_curve
+from rotorcad.errors import DesignError
+from rotorcad.geometry import cross, rotate, wrap_angle
+from rotorcad.roles import Side
+from rotorcad.rotor_pair import RotorPair
+
+SCATTER_FLOOR = 1e-4  # mm: below this the points are taken as exact (interpolated)
+
+
+def _drop_repeats(points: np.ndarray) -> np.ndarray:
+    """Points without consecutive duplicates (within 1e-9 mm) and without a repeated end point."""
+    pts = np.asarray(points, dtype=float)
+    step = np.hypot(*np.diff(pts, axis=0).T)
+    pts = pts[np.concatenate([[True], step > 1e-9])]
+    while len(pts) > 1 and np.hypot(*(pts[0] - pts[-1])) <= 1e-9:
+        pts = pts[:-1]
+    return pts
+
+
+def lobe_count(whole: np.ndarray) -> int:
+    """Count the lobes of a closed outline about the origin.
+
+    The lobes are the cycles of its radius between the lower and the upper third of its range (a
+    hysteresis that noise cannot trip).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline (without a repeated end point).
+
+    Returns
+    -------
+    int
+        Number of lobes (0 for a circle).
+    """
+    r = np.hypot(*whole.T)
+    lo, hi = r.min() + (r.max() - r.min()) / 3, r.max() - (r.max() - r.min()) / 3
+    state = np.where(r >= hi, 1, np.where(r <= lo, -1, 0))
+    state = state[state != 0]
+    if len(state) == 0:
+        return 0
+    changes = np.count_nonzero(np.diff(np.concatenate([state, state[:1]])) > 0)  # low -> high, around the ring
+    return int(changes)
+
+
+def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
+    """Make the whole outline from the points of one lobe, one groove or tooth, or of the whole outline.
+
+    The result runs counter-clockwise about the rotor's centre (the origin), without repeated or
+    duplicated points; the points may come in either direction and from any start, and one lobe is
+    patterned ``teeth`` times. One groove (tip to tip) or one tooth (root to root), which holds
+    both flanks but spans less than the lobe pitch, is patterned too, the unmeasured tip or root
+    between the copies filled (:func:`_patterned_groove`).
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        One lobe or the whole outline in the rotor's own frame.
+    teeth : int
+        Lobe count of the rotor.
+    label : str
+        How the points are named in errors.
+
+    Returns
+    -------
+    (m, 2) float array, mm
+        The whole outline, counter-clockwise.
+
+    Raises
+    ------
+    DesignError
+        Naming ``label``: fewer than 4 distinct points, points that wind around the centre but
+        have another number of lobes than ``teeth``, or points of one lobe that span another angle
+        than the lobe pitch.
+    """
+    pts = _drop_repeats(points)
+    if len(pts) < 4:
+        raise DesignError(label, "at least 4 distinct points", None, f"{len(pts)} found")
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    pitch = 2 * np.pi / teeth
+    closing = np.arctan2(cross(pts[-1], pts[0]), np.dot(pts[-1], pts[0]))  # the step from the last point back to the first
+    winding = (ang[-1] - ang[0] + closing) / (2 * np.pi)
+    if abs(abs(winding) - 1.0) < 0.25:  # a closed outline around the centre
+        whole = pts if winding > 0 else pts[::-1]
+        found = lobe_count(whole)
+        if found != teeth:
+            raise DesignError(label, f"an outline of {teeth} lobes as the tooth count says", None, f"it has {found} lobes")
+        return whole
+    span = ang[-1] - ang[0]
+    if span < 0:
+        pts, span = pts[::-1], -span
+    spacing = np.median(np.abs(np.diff(ang)))
+    if span < pitch - max(3 * spacing, 0.02 * pitch) and _one_groove(pts, span, pitch):
+        return _patterned_groove(pts, teeth)
+    if abs(span - pitch) > max(3 * spacing, 0.02 * pitch):
+        fits = 2 * np.pi / span if span > 0 else float("inf")
+        raise DesignError(
+            label,
+            f"one lobe spanning the lobe pitch 360/{teeth} = {np.degrees(pitch):.4g} deg (or one groove or tooth from tip "
+            "to tip or root to root), or the whole outline",
+            None,
+            f"the points span {np.degrees(span):.4g} deg, which fits {fits:.3g} lobes",
+        )
+    # one lobe: keep one pitch of it (the last point may repeat the first one lobe on) and pattern it
+    ang = ang - ang[0]
+    keep = ang < pitch - 1e-9 * pitch
+    lobe = pts[keep]
+    return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
+
+
+GROOVE_ENDS = 0.1
+"""Share of the radial range within which both ends of a span shorter than the pitch lie at the
+same extreme radius (tip or root) for the span to be one groove or one tooth."""
+
+
+def _one_groove(pts: np.ndarray, span: float, pitch: float) -> bool:
+    """Tell whether points spanning less than the pitch are one groove or one tooth of a rotor.
+
+    That is a span from tip to tip (a groove, as a CMM measures a female) or from root to root (a
+    tooth), which holds both flanks: both ends within :data:`GROOVE_ENDS` of the radial range from
+    the same extreme radius, and a span of at least a quarter of the pitch.
+    """
+    r = np.hypot(*pts.T)
+    lo, hi = float(r.min()), float(r.max())
+    near = GROOVE_ENDS * (hi - lo)
+    ends = r[[0, -1]]
+    at_tip, at_root = np.all(ends >= hi - near), np.all(ends <= lo + near)
+    return bool(span >= 0.25 * pitch and hi - lo > 0 and (at_tip or at_root))
+
+
+def _patterned_groove(pts: np.ndarray, teeth: int) -> np.ndarray:
+    """Make the whole outline from one groove or tooth, counter-clockwise.
+
+    The span is patterned ``teeth`` times; the part between the end of one copy and the start of
+    the next, which was not measured (the tip or the root between two grooves), is filled with
+    points at the polar angle's own spacing whose radius runs linearly in angle from the one end to
+    the other: an arc about the centre (a land) when both ends lie on one radius.
+    """
+    pitch = 2 * np.pi / teeth
+    theta = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    r = np.hypot(*pts.T)
+    gap = theta[0] + pitch - theta[-1]
+    step = float(np.median(np.abs(np.diff(theta))))
+    n = max(int(np.ceil(gap / max(step, 1e-6))), 2)
+    u = np.linspace(0.0, 1.0, n + 1)[1:-1]
+    fill_t = theta[-1] + gap * u
+    fill_r = r[-1] + (r[0] - r[-1]) * u
+    fill = np.column_stack([fill_r * np.cos(fill_t), fill_r * np.sin(fill_t)])
+    lobe = np.vstack([pts, fill])
+    return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
+
+
+def scatter(whole: np.ndarray) -> float:
+    """Estimate the standard deviation of the points' scatter normal to the outline.
+
+    From the median of the third differences (module docstring).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+
+    Returns
+    -------
+    float, mm
+        sigma; 0 for exact points (below :data:`SCATTER_FLOOR`) or fewer than 8 points.
+    """
+    p = np.asarray(whole, dtype=float)
+    if len(p) < 8:
+        return 0.0
+    d3 = np.roll(p, -2, axis=0) - 3 * np.roll(p, -1, axis=0) + 3 * p - np.roll(p, 1, axis=0)
+    chord = np.roll(p, -2, axis=0) - np.roll(p, 1, axis=0)
+    length = np.hypot(*chord.T)
+    ok = length > 0
+    normal = np.abs(cross(chord[ok], d3[ok])) / length[ok]
+    sigma = 1.4826 * np.median(normal) / np.sqrt(20.0)  # MAD of a zero-mean normal, sqrt(20): the difference's gain
+    return float(sigma) if sigma > SCATTER_FLOOR else 0.0
+
+
+def accuracy(whole: np.ndarray, sigma: float) -> float:
+    """Estimate how far the outline the points give may lie from the true one.
+
+    The larger of two scatters (2 sigma) and the chords' sagitta: between points spaced h on a
+    curve of curvature k the curve leaves the chord by h^2 k / 8, which is a quarter of the distance
+    of a point from the chord of its two neighbours; the 90th percentile of that over the outline
+    (the corners, a few points, stay above it).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    sigma : float, mm
+        Its scatter (:func:`scatter`).
+
+    Returns
+    -------
+    float, mm
+    """
+    p = np.asarray(whole, dtype=float)
+    before, after = np.roll(p, 1, axis=0), np.roll(p, -1, axis=0)
+    chord = after - before
+    length = np.hypot(*chord.T)
+    ok = length > 0
+    off = np.abs(cross(chord[ok], (p - before)[ok])) / length[ok]
+    sagitta = float(np.quantile(off, 0.9)) / 4.0 if ok.any() else 0.0
+    return max(2.0 * sigma, sagitta)
+
+
+def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
+    """Find the sharp corners of a closed outline: the edges across which it turns by more than ``angle_deg``.
+
+    The turn across edge i (from point i to point i + 1) is the angle between the chord from point
+    i - k to point i and the chord from point i + 1 to point i + 1 + k, so a corner shows in full
+    whether it falls on a point or between two (a resampled or measured outline). k is chosen so
+    that the chords are 40 scatters long at least (their directions then wander by 2 deg at most,
+    however dense the points), but at most 0.1 mm. Of the edges within k of each
+    other only the one of largest turn is kept, and the corner's point is where the lines of its two
+    chords cross (on the points for an exact corner vertex, between them otherwise).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    sigma : float, mm
+        Its scatter (:func:`scatter`); 0 for exact points.
+    angle_deg : float, deg
+        Smallest turn of a corner.
+
+    Returns
+    -------
+    edges : (m,) int array
+        Index i of the edge (i, i + 1) of each corner, ascending.
+    points : (m, 2) float array, mm
+        Each corner's point.
+    """
+    p = np.asarray(whole, dtype=float)
+    n = len(p)
+    h = float(np.median(np.hypot(*np.diff(p, axis=0).T)))
+    k = 1 if sigma <= 0 else int(np.clip(np.ceil(40 * sigma / h), 1, max(1, int(0.1 / h))))
+    a0, a1 = np.roll(p, k, axis=0), p  # chord before the edge
+    b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
+    back, ahead = a1 - a0, b1 - b0
+    signed = np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead))
+    turn = np.abs(signed)
+    if k == 1:
+        # a concave turn (to the right of the counter-clockwise outline) across one edge is a corner
+        # when it happens at the edge alone: where two generated flanks meet at a root (Lysholm,
+        # Krigar, SRM-B males: 58-88 deg, the vertices beside it turn by 2.4 % of that at most). A
+        # root fillet that sparse points do not resolve turns as much over the edge, but the vertices
+        # beside it turn too (the independent females at 80 points a lobe: 42-46 deg, 19-43 % beside);
+        # the spline keeps it smooth (a kink there would send the rack's normals anywhere)
+        dv = np.roll(p, -1, axis=0) - p
+        hv = np.arctan2(dv[:, 1], dv[:, 0])
+        vt = np.abs(wrap_angle(hv - np.roll(hv, 1)))  # turn at each vertex
+        beside = np.maximum(np.roll(vt, 1), np.roll(vt, -2))  # at the vertices before and after the edge's two
+        turn = np.where((signed < 0) & (beside > 0.1 * turn), 0.0, turn)
+    from scipy.ndimage import maximum_filter1d
+
+    peak = maximum_filter1d(turn, size=2 * k + 1, mode="wrap")
+    idx = np.flatnonzero((turn > np.radians(angle_deg)) & (turn >= peak))
+    if len(idx) > 1:  # a plateau of equal turns: its first edge (also across the ring's seam)
+        gaps = np.diff(np.concatenate([idx, [idx[0] + n]]))
+        idx = idx[np.roll(gaps, 1) > k] if np.any(gaps > k) else idx[:1]
+    den = cross(back[idx], ahead[idx])
+    u = cross(b0[idx] - a0[idx], ahead[idx]) / np.where(np.abs(den) > 0, den, 1.0)
+    point = a0[idx] + u[:, None] * back[idx]
+    # a crossing far from the edge (nearly parallel chords): the edge's middle
+    mid = 0.5 * (a1[idx] + b0[idx])
+    far = np.hypot(*(point - mid).T) > 2 * k * h
+    point[far] = mid[far]
+    # a corner on a point of exact data is that point (the chords' lines of curved pieces cross
+    # a little off it): the end of the edge that turns by more than the threshold on its own
+    d = np.roll(p, -1, axis=0) - p
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    vertex_turn = np.abs(wrap_angle(heading - np.roll(heading, 1)))
+    if sigma <= 0:  # on a point when that point turns by (nearly) the whole corner; between two points (a
+        # resampled outline: the corner's chord) it turns by a share of it, and the chords' crossing is the corner
+        whole = np.maximum(turn[idx], np.radians(angle_deg))
+        at_start = vertex_turn[idx] > 0.9 * whole
+        at_end = vertex_turn[(idx + 1) % n] > 0.9 * whole
+        point[at_start] = p[idx[at_start]]
+        point[at_end & ~at_start] = p[(idx[at_end & ~at_start] + 1) % n]
+    return idx, point
+
+
+def lands(run: np.ndarray, sigma: float, min_angle_deg: float = 0.5, min_points: int = 6) -> list[tuple[int, int, float]]:
+    """Find the lands of a run of outline points: arcs about the rotor's own centre within the scatter.
+
+    Lands are the images of the rack's flats at the tip and root lines. A point belongs to a land when
+    the radii of the points within 0.05 mm either side of it differ by at most 2 tol,
+    tol = max(4 sigma, 0.3 µm) (the scallops of a boolean cut, the chords of a drawing); runs of such
+    points, trimmed at both ends to the points within max(2 sigma, 0.01 µm) of the run's median radius
+    (the window reaches past a land's ends), spanning ``min_angle_deg`` and ``min_points`` at least
+    are lands.
+
+    Parameters
+    ----------
+    run : (n, 2) float array, mm
+        Consecutive outline points about the origin.
+    sigma : float, mm
+        Their scatter.
+    min_angle_deg : float, deg
+        Smallest angle a land spans about the origin.
+    min_points : int
+        Fewest points of a land.
+
+    Returns
+    -------
+    list of (first, last, radius)
+        Indices of the land's first and last point in ``run`` and its radius (mm, the median
+        of its points' radii).
+    """
+    p = np.asarray(run, dtype=float)
+    if len(p) < min_points:
+        return []
+    r = np.hypot(*p.T)
+    h = float(np.median(np.hypot(*np.diff(p, axis=0).T)))
+    w = int(np.clip(np.ceil(0.05 / max(h, 1e-9)), 1, 50))
+    tol = max(4 * sigma, 3e-4)
+    from scipy.ndimage import maximum_filter1d, minimum_filter1d
+
+    spread = maximum_filter1d(r, size=2 * w + 1, mode="nearest") - minimum_filter1d(r, size=2 * w + 1, mode="nearest")
+    flat = spread <= 2 * tol
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], flat.astype(int), [0]])))
+    out = []
+    theta = np.unwrap(np.arctan2(p[:, 1], p[:, 0]))
+    end_tol = max(2 * sigma, 1e-5)
+    for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
+        radius = float(np.median(r[a : b + 1]))
+        on = np.flatnonzero(np.abs(r[a : b + 1] - radius) <= end_tol)  # the window reaches past the ends:
+        if len(on) == 0:  # trim them to the points on the circle
+            continue
+        a, b = a + int(on[0]), a + int(on[-1])
+        if b - a + 1 >= min_points and abs(theta[b] - theta[a]) >= np.radians(min_angle_deg):
+            out.append((int(a), int(b), float(np.median(r[a : b + 1]))))
+    return out
+
+
+def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -> np.ndarray:
+    """Return the points of a profile given by points or by exact curves.
+
+    Parameters
+    ----------
+    profile : (n, 2) float array or list of Curve, mm
+        Points (returned as they are) or exact curves.
+    tolerance : float, mm
+        Chord tolerance for sampling curves.
+
+    Returns
+    -------
+    (n, 2) float array, mm
+    """
+    if isinstance(profile, list | tuple):
+        return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
+    return np.asarray(profile, dtype=float)
+
+
+def as_given(
+    points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: float = 30.0, drawn_as_points: bool = True
+) -> np.ndarray | list[Curve]:
+    """Return a profile as it is to be fitted: a drawing's exact curves, or points.
+
+    A drawing stays its curves when they are the outline's own (:func:`drawing_points` finds no
+    approximation) and span one lobe or more; a drawing that approximates the outline is read as
+    its points (with ``drawn_as_points``: the rack generation needs them), and one of a single
+    groove or tooth (less than the lobe pitch) as points sampled at 0.1 µm chord, which
+    :func:`rotorcad.measured.outline.whole_outline` patterns.
+
+    Parameters
+    ----------
+    points : (n, 2) float array or list of Curve, mm
+        The profile.
+    teeth : int
+        Lobe count of the rotor.
+    corner_angle_deg : float, deg
+        Turn above which a joint is a sharp corner.
+    drawn_as_points : bool
+        Read a drawing that approximates the outline as its points (:func:`drawing_points`);
+        False keeps its curves (the clearance measures distances between them as drawn).
+
+    Returns
+    -------
+    (n, 2) float array or list of Curve
+    """
+    if not (isinstance(points, list | tuple) and points and isinstance(points[0], Curve)):
+        return np.asarray(points, dtype=float)
+    curves = list(points)
+    drawn = drawing_points(curves, corner_angle_deg) if drawn_as_points else None
+    if drawn is not None:
+        return drawn
+    pts = np.vstack([sample_curve(c, 1e-4)[1] for c in curves])
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    if abs(ang[-1] - ang[0]) < 0.98 * 2 * np.pi / teeth:  # one groove or tooth: patterned as points
+        return pts
+    return curves
+
+
+SMOOTH_JOINT = 1e-3
+"""rad: consecutive curves of a drawing whose tangents differ by more than this (and less than a
+corner's angle) meet at a kink: the drawing approximates the outline (a polyline, a chain of arcs
+fitted to points) and is read as its points."""
+
+
+def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.ndarray | None:
+    """Return the points of a drawing that approximates an outline, or None for an exact drawing.
+
+    A drawing is read as the points it was drawn through when its curves meet at kinks (tangents
+    turning by more than :data:`SMOOTH_JOINT` and less than ``corner_angle_deg``: a polyline, arcs
+    fitted to points), or when it holds a spline of more than :data:`DRAWN_SPANS` polynomial pieces
+    (a spline through points, as CAD and rotorcad's own export draw an outline): the rack of a
+    straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
+    rings. The points are each line's start, each arc sampled to 0.1 µm chord (at least its
+    start and middle, the bulge's point) and a spline's points at its knots; they are then
+    fitted, smoothed and cut at corners as measured points are, to the accuracy they carry
+    (:func:`points_accuracy`).
+
+    Parameters
+    ----------
+    curves : list of Curve
+        The drawing's curves, chained (:func:`exports.dxf_profile.read_profile_dxf`).
+    corner_angle_deg : float, deg
+        Turn above which a joint is a sharp corner (kept as a corner by the points' fit).
+
+    Returns
+    -------
+    (n, 2) float array, mm, or None
+    """
+    ends = np.array([c.evaluate(np.array([c.s1]))[1][0] for c in curves])
+    starts = np.array([c.evaluate(np.array([c.s0]))[1][0] for c in curves])
+    following = np.roll(starts, -1, axis=0)
+    turn = np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
+    kinks = (turn > SMOOTH_JOINT) & (turn < np.radians(corner_angle_deg))
+    drawn = [c for c in curves if isinstance(c, Spline) and _knot_parameters(c).size > DRAWN_SPANS + 1]
+    if not kinks[:-1].any() and not drawn:  # the last joint closes a lobe (a corner or nothing)
+        return None
+    pts = []
+    for c in curves:
+        if isinstance(c, Spline):
+            u = _knot_parameters(c)
+            pts.append(c.evaluate(u[:-1])[0])
+        elif isinstance(c, Line):
+            pts.append(c.start[None, :])
+        else:  # an arc to 0.1 um chord, at least its middle (a land stays a land of many points)
+            pts.append(sample_curve(c, 1e-4, minimum=3)[1][:-1])
+    return np.vstack(pts)
+
+
+DRAWN_SPANS = 16
+"""A drawing's spline of more polynomial pieces than this was drawn through points (a designed curve
+needs a few)."""
+
+
+def _knot_parameters(spline: Spline) -> np.ndarray:
+    """Return the spline's distinct knots within its range, in the direction of travel (both ends included)."""
+    lo, hi = sorted((spline.s0, spline.s1))
+    knots = np.unique(spline.knots[0])
+    u = np.concatenate([[lo], knots[(knots > lo) & (knots < hi)], [hi]])
+    return u if spline.s1 >= spline.s0 else u[::-1]
+
+
+@dataclass(frozen=True, eq=False)
+class Outline:
+    """A rotor outline as given, read once: what the fit and the accuracy statements start from.
+
+    Attributes
+    ----------
+    given : (n, 2) float array or list of Curve, mm
+        Points, or a drawing's exact curves (:func:`as_given`).
+    whole : (m, 2) float array or None, mm
+        The whole outline of the points (:func:`whole_outline`); None for exact curves.
+    sigma : float, mm
+        Estimated scatter of the points (:func:`scatter`; 0 for curves).
+    accuracy : float, mm
+        How far the outline the points give may lie from the true one (:func:`points_accuracy`).
+    teeth : int
+        Lobe count.
+    label : str
+        How the profile is named in errors.
+    """
+
+    given: np.ndarray | list[Curve]
+    whole: np.ndarray | None
+    sigma: float
+    accuracy: float
+    teeth: int
+    label: str
+
+
+def read_outline(
+    points: np.ndarray | list[Curve] | Outline,
+    teeth: int,
+    label: str,
+    corner_angle_deg: float = 30.0,
+    drawn_as_points: bool = True,
+) -> Outline:
+    """Read a rotor profile once: the geometry to fit, its whole outline, scatter and accuracy.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, list of Curve or Outline, mm
+        One lobe, one groove or tooth, or the whole outline in the rotor's own frame, or a
+        drawing's curves (an Outline is returned as it is).
+    teeth : int
+        Lobe count of the rotor.
+    label : str
+        How the profile is named in errors.
+    corner_angle_deg : float, deg
+        Turn above which a drawing's joint is a sharp corner (:func:`as_given`).
+    drawn_as_points : bool
+        Read a drawing that approximates the outline as its points (:func:`drawing_points`).
+
+    Returns
+    -------
+    Outline
+
+    Raises
+    ------
+    DesignError
+        Naming ``label``: points that do not make a rotor of ``teeth`` lobes (:func:`whole_outline`).
+    """
+    if isinstance(points, Outline):
+        return points
+    given = as_given(points, teeth, corner_angle_deg, drawn_as_points)
+    if isinstance(given, list):
+        # a drawing's splines are as accurate as the points they were drawn through: their knots
+        knots = [c.evaluate(np.unique(np.clip(c.knots[0], *sorted((c.s0, c.s1)))))[0] for c in given if isinstance(c, Spline)]
+        pts = np.vstack(knots) if knots else np.zeros((0, 2))
+        acc = max(accuracy(pts, 0.0), 1e-9) if len(pts) >= 8 else 1e-9
+        return Outline(given, None, 0.0, acc, teeth, label)
+    whole = whole_outline(given, teeth, label)
+    sigma = scatter(whole)
+    return Outline(given, whole, sigma, accuracy(whole, sigma), teeth, label)
+
+
+def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, label: str | None = None) -> float:
+    """Estimate the accuracy of a rotor profile given by points or by a drawing's curves (mm).
+
+    :func:`rotorcad.measured.outline.accuracy` of the whole outline: twice the estimated scatter, or
+    the sagitta of the chords between the points, whichever is larger. A drawing's splines are
+    judged by the points at their knots (what they were drawn through); lines and arcs are exact
+    (1e-9 mm: given, not designed). :attr:`Outline.accuracy` of :func:`read_outline`.
+    """
+    side = Side(rotor)
+    return read_outline(points, side.pick(pair.male_teeth, pair.female_teeth), label or f"{side.value} points").accuracy
+
+
+__all__ = [
+    "DRAWN_SPANS",
+    "SCATTER_FLOOR",
+    "SMOOTH_JOINT",
+    "Outline",
+    "accuracy",
+    "as_given",
+    "corners",
+    "drawing_points",
+    "lands",
+    "lobe_count",
+    "points_accuracy",
+    "profile_points",
+    "read_outline",
+    "scatter",
+    "whole_outline",
+]
