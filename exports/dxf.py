@@ -54,9 +54,10 @@ class Drawing:
         Centre marks, drawn as crosses on the layer CENTER.
     polylines : list of (str, (n, 2) float array)
         (layer, open points).
-    splines : list of (str, SplinePiece)
+    splines : list of (str, SplinePiece or (n, 2) float array)
         (layer, piece): one non-rational B-spline per profile segment, each ending where the next
-        starts (:func:`exports.dxf_spline.profile_splines`, R2000+ only).
+        starts (:func:`exports.dxf_spline.profile_splines`, R2000+ only); or (layer, closed points):
+        one closed cubic spline through them, chord-length parameters (a drawing made on points).
     texts : list of (str, (float, float), str, float)
         (layer, insertion point, text, height in mm): one-line TEXT labels.
     mark_size : float, mm
@@ -68,7 +69,7 @@ class Drawing:
     lines: list[tuple[str, tuple[float, float], tuple[float, float]]] = field(default_factory=list)
     centers: list[tuple[float, float]] = field(default_factory=list)
     polylines: list[tuple[str, np.ndarray]] = field(default_factory=list)  # (layer, open points)
-    splines: list[tuple[str, SplinePiece]] = field(default_factory=list)  # (layer, one segment's B-spline)
+    splines: list[tuple[str, SplinePiece | np.ndarray]] = field(default_factory=list)  # (layer, B-spline or points)
     texts: list[tuple[str, tuple[float, float], str, float]] = field(default_factory=list)  # (layer, insert, text, height mm)
     mark_size: float = 2.0
 
@@ -117,6 +118,11 @@ def write_dxf(path: Path, drawing: Drawing, version: str = "R2000") -> None:
             _lwpolyline(msp, pts, False, layer)
     if version != "R12":  # SPLINE needs R2000+: its control points and knots as they are (no fit points to re-interpolate)
         for layer, piece in drawing.splines:
+            if isinstance(piece, np.ndarray):  # closed points: one cubic through them (as a CAD user draws a spline on points)
+                closed = np.vstack([piece, piece[:1]])
+                spline = msp.add_spline_control_frame([(float(x), float(y), 0.0) for x, y in closed], degree=3, method="chord")
+                spline.dxf.layer = layer
+                continue
             control = np.column_stack([piece.control_points, np.zeros(len(piece.control_points))])
             msp.add_open_spline(control, degree=piece.degree, knots=piece.knots.tolist(), dxfattribs={"layer": layer})
     for layer, centre, r in drawing.circles:

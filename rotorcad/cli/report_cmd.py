@@ -321,8 +321,13 @@ def _gear_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
     from rotorcad.cli import hob_cmd
     from rotorcad.plotting import plot_gears
 
-    g, pair = gear_cmd.build_gear(gear_cmd.merge_gear_params(design, {}, data), 1e-4)  # gear's default --tolerance
+    params = gear_cmd.merge_gear_params(design, {}, data)
+    g, pair = gear_cmd.build_gear(params, 1e-4)  # gear's default --tolerance
     result: dict[str, Any] = pair.summary() if pair is not None else g.summary()
+    shop, g, pair = gear_cmd.shop_gears(params, g, pair)  # allowances, span, over pins, backlash: as gear --json
+    if pair is not None:
+        result["mate"].update(shop.pop("mate"))
+    result.update(shop)
     racks = {"gear": gear_rack(g)}
     deviation = hob_cmd._basic_rack_deviation(g, racks["gear"])
     verdicts, hob = hob_cmd.judge_racks(racks, deviation, HobLimits())
