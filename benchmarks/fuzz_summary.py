@@ -4,8 +4,8 @@ The log is the one ``tests/test_fuzz_cli.py`` appends to with ``ROTORCAD_FUZZ_LO
 line a case (test, command, exit status, wall and CPU seconds, peak memory), a line per broken rule
 (``failure``), per refusal that does not name what the user typed (``unclear``) and per kill. This
 prints the cases per command, the exit statuses, the failures by kind (internal error, hang,
-unclear refusal, leftovers, orphan process, user file lost, other), the slowest cases with their
-command lines, the peak memory, and the cases past 60 s of wall time.
+unclear refusal, leftovers, orphan process, user file lost, memory, other), the slowest cases with
+their command lines, the peak memory, and the cases past 60 s of wall time.
 
 On a shared machine a case can take a minute of wall time with a few seconds of CPU; ``--rerun``
 runs each case past ``--over`` seconds again alone (a fresh process, its inputs as the run kept them
@@ -32,7 +32,7 @@ import tempfile
 import time
 from pathlib import Path
 
-KINDS = ("internal error", "hang", "unclear refusal", "leftovers", "orphan", "user file lost", "other")
+KINDS = ("internal error", "hang", "unclear refusal", "leftovers", "orphan", "user file lost", "memory", "other")
 TEST_COMMAND = {
     "test_fuzz_gear": "gear",
     "test_fuzz_cut": "cut",
@@ -85,6 +85,8 @@ def kind_of(row: dict) -> str:
         return "user file lost"
     if re.search(r"^exit 70\b|Traceback|traceback for|internal error", text):
         return "internal error"
+    if text.startswith("peak memory"):
+        return "memory"
     if re.search(r"files changed by a failed run|temporar|left", text):
         return "leftovers"
     if re.search(r"not one line|names no parameter|^rotorcad: error", text):

@@ -452,6 +452,41 @@ def _orient(chain: Piece, closed: bool) -> Piece:
     return chain if forward else _reverse(chain)
 
 
+def _crossing(chain: Piece, closed: bool) -> np.ndarray | None:
+    """Where the chain crosses or runs along itself, mm (2,); None for a simple outline.
+
+    The curves are followed by chords within :data:`GAP_TOLERANCE` of them (lines by their ends),
+    so a crossing shallower than that may go unseen; GEOS tells whether the chords are simple
+    (:func:`shapely.is_simple`) and an R-tree of the chords finds the first pair that crosses or
+    overlaps (chords that only share an end are a joint).
+    """
+    import shapely
+
+    parts = [_samples(c, GAP_TOLERANCE) for c in chain]
+    points = np.vstack([parts[0], *(q[1:] for q in parts[1:])])
+    if closed:
+        points[-1] = points[0]
+    if shapely.is_simple(shapely.linestrings(points)):
+        return None
+    chords = shapely.linestrings(np.stack([points[:-1], points[1:]], axis=1))
+    tree = shapely.STRtree(chords)
+    for predicate in ("crosses", "overlaps"):
+        pairs = tree.query(chords, predicate=predicate)
+        if pairs.shape[1]:
+            where = shapely.intersection(chords[pairs[0, 0]], chords[pairs[1, 0]])
+            return np.asarray(shapely.get_coordinates(shapely.centroid(where))[0])
+    # a chord touching the interior of a chord two or more away (a vertex on the outline)
+    near = tree.query(chords, predicate="touches")
+    apart = np.abs(near[0] - near[1]) > 1
+    if closed:
+        apart &= np.abs(near[0] - near[1]) < len(chords) - 1
+    if apart.any():
+        k = int(np.argmax(apart))
+        where = shapely.intersection(chords[near[0, k]], chords[near[1, k]])
+        return np.asarray(shapely.get_coordinates(shapely.centroid(where))[0])
+    return None
+
+
 def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]:
     path = Path(path)
     value = str(path)
@@ -472,6 +507,10 @@ def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]
         raise DesignError(
             label, f"a profile within {MAX_EXTENT:g} mm of the origin", value, f"a point lies {far:.3g} mm from it (other units?)"
         )
+    crossing = _crossing(chain, closed)
+    if crossing is not None:  # taken as drawn, such an outline would reach the contact search and fail there
+        x, y = crossing
+        raise DesignError(label, "an outline that does not cross itself", value, f"it crosses itself at ({x:.6f}, {y:.6f}) mm")
     return _orient(chain, closed), closed
 
 
@@ -505,7 +544,8 @@ def read_profile_dxf(path: Path, label: str, layer: str | None = None) -> list[C
         drawing, no profile entities, entities on several layers and no ``layer`` (naming
         them), an unknown or empty layer (naming the layers found), a CIRCLE or full ARC, an
         ELLIPSE, a rational SPLINE, an entity out of the xy plane, a gap wider than
-        :data:`GAP_TOLERANCE` (naming where), a branch, or more than one profile.
+        :data:`GAP_TOLERANCE` (naming where), a branch, more than one profile, or an outline that
+        crosses or runs along itself (naming where).
     """
     return _read_chain(path, label, layer)[0]
 

@@ -1315,3 +1315,63 @@ def test_a_run_leaves_no_folder(tmp_path):
     )
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith("rotorcad-fuzz")] == []
+
+
+# ----- findings of the long run (issue 24, item 3), each with its exact input ------------------------
+def test_clearance_reads_rotorcads_own_male_drawing(tmp_path, capsys):
+    """`rotor --dxf` then `clearance --male-points pair.dxf --layer MALE`: refused naming --contact
+    (which was not typed) after 29 s and 1.6 GB. Reference: the same run's `--male-csv`, read as
+    points without the drawing reader."""
+    pair, male, female = tmp_path / "pair.dxf", tmp_path / "m.csv", tmp_path / "f.csv"
+    argv = ["rotor", str(SAMPLES / "srm_symmetric_4_6.toml"), "--dxf", str(pair), "--male-csv", str(male)]
+    assert main([*argv, "--female-csv", str(female), "--quiet"]) == 0
+    dims = ["--female-points", str(female), "--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--json"]
+    results = {}
+    for name, read in (("dxf", ["--male-points", str(pair), "--layer", "MALE"]), ("csv", ["--male-points", str(male)])):
+        capsys.readouterr()
+        _reset_peak()
+        status = main(["clearance", *read, *dims])
+        out, err = capsys.readouterr()
+        assert status == 0, err
+        assert _peak_bytes() < 600 * 2**20
+        results[name] = json.loads(out)
+    for key in ("max_normal_clearance", "min_normal_clearance", "mean_clearance"):
+        assert results["dxf"][key] == pytest.approx(results["csv"][key], abs=1e-8), key  # 0.01 um
+
+
+def test_self_crossing_drawing_is_refused_naming_where(tmp_path, capsys):
+    """The fuzz's self-crossing polyline (two points 7 apart swapped, seed 0): `clearance` refused it
+    naming --contact after 14 to 24 s and 1.6 GB. Reference for the place named: shapely on the
+    polyline as written, the point on two of its segments that do not meet end to end."""
+    import shapely
+
+    path, _ = dxf_file(tmp_path, "male.dxf", "male", "polyline", "self-crossing", 0)
+    other = points_file(tmp_path, "other.csv", "female", "clean", 0.0, 0)
+    argv = ["clearance", "--male-points", str(path), "--female-points", str(other)]
+    capsys.readouterr()
+    started = time.monotonic()
+    status = main([*argv, "--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--json"])
+    _, err = capsys.readouterr()
+    assert status == 2 and time.monotonic() - started < 10
+    line = err.strip()
+    assert "\n" not in line
+    assert line.startswith(f"rotorcad: error: --male-points must be an outline that does not cross itself (got {path})")
+    x, y = map(float, re.search(r"crosses itself at \(([-0-9.]+), ([-0-9.]+)\) mm\.$", line).groups())
+    import ezdxf
+
+    drawn = np.array([v[:2] for v in next(iter(ezdxf.readfile(path).modelspace())).get_points()])
+    ring = np.vstack([drawn, drawn[:1]])
+    segments = shapely.linestrings(np.stack([ring[:-1], ring[1:]], axis=1))
+    on = np.flatnonzero(shapely.distance(segments, shapely.Point(x, y)) < 1e-5)
+    assert len(on) >= 2 and np.ptp(on) > 1
+
+
+def test_drawing_that_does_not_cross_itself_is_accepted(tmp_path):
+    """The check refuses no good drawing: the sample's outlines as a polyline and as arcs, the male
+    as lines (the female's has a chord under the joining accuracy of 1 um: a branch as lines)."""
+    from exports.dxf_profile import read_profile_dxf
+
+    for kind, rotor in itertools.product(("polyline", "lines", "bulges"), ("male", "female")):
+        if (kind, rotor) != ("lines", "female"):
+            path, _ = dxf_file(tmp_path, f"{kind}-{rotor}.dxf", rotor, kind, "none", 1)
+            assert len(read_profile_dxf(path, "--male-points")) > 100
