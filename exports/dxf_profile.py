@@ -452,6 +452,17 @@ def _orient(chain: Piece, closed: bool) -> Piece:
     return chain if forward else _reverse(chain)
 
 
+def _shorter_than_a_joint(piece: Piece) -> bool:
+    """Tell whether a piece of straight lines is shorter in all than :data:`GAP_TOLERANCE`.
+
+    Such an entity (a LINE between two points of an outline under 1 um apart) would be taken for a
+    branch at the joint it lies in; left out, its neighbours are joined across it as across a gap.
+    """
+    if not all(isinstance(c, Line) for c in piece):
+        return False
+    return sum(float(np.hypot(*(c.end - c.start))) for c in piece) < GAP_TOLERANCE
+
+
 def _crossing(chain: Piece, closed: bool) -> np.ndarray | None:
     """Where the chain crosses or runs along itself, mm (2,); None for a simple outline.
 
@@ -498,6 +509,11 @@ def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]
         if piece:
             pieces.append(piece)
             names.append(_name(entity))
+    if len(pieces) > 1:  # a straight entity shorter than the joining accuracy is a joint, not a piece (nor a branch)
+        keep = [not _shorter_than_a_joint(p) for p in pieces]
+        if any(keep):
+            names = [n for n, k in zip(names, keep, strict=True) if k]
+            pieces = [p for p, k in zip(pieces, keep, strict=True) if k]
     if not pieces:
         where = "in modelspace" if layer is None else f"on the layer {layer!r}"
         raise DesignError(label, f"a DXF drawing with a profile {where}", value, "its entities all have zero length")
