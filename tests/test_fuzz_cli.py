@@ -543,7 +543,19 @@ def finite_numbers(value: object, where: str = "") -> None:
 
 
 def _reset_peak() -> None:
-    """Start a new peak of resident memory (Linux: 5 to /proc/self/clear_refs resets VmHWM)."""
+    """Start a new peak of resident memory (Linux: 5 to /proc/self/clear_refs resets VmHWM).
+
+    The heap's free memory is first handed back (glibc's ``malloc_trim``): else the peak of a case
+    starts from what the largest case before it left mapped (a long run's clearance cases went
+    from 0.23 to 0.75 GB of resident memory at their start after one case of 0.94 GB, while the
+    same cases in a loop of their own stay at 0.14 GB).
+    """
+    try:
+        import ctypes
+
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):
+        pass  # not glibc: the peak is only stricter
     try:
         with open("/proc/self/clear_refs", "w") as f:
             f.write("5")
