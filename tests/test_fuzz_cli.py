@@ -547,8 +547,8 @@ def _reset_peak() -> None:
 
     The heap's free memory is first handed back (glibc's ``malloc_trim``): else the peak of a case
     starts from what the largest case before it left mapped (a long run's clearance cases went
-    from 0.23 to 0.75 GB of resident memory at their start after one case of 0.94 GB, while the
-    same cases in a loop of their own stay at 0.14 GB).
+    from 0.23 to 0.75 GB of resident memory at their start after one case of 0.94 GB, while twelve
+    clearance cases in a loop of their own stay at 0.14 GB).
     """
     try:
         import ctypes
