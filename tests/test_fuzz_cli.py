@@ -24,10 +24,10 @@ and files left behind.
 
 A long run's log is read by ``benchmarks/fuzz_summary.py``: each row has the case's command, exit
 status, wall and CPU seconds (the CPU time tells a slow case on a loaded machine from a hang), and
-the inputs of a case past :data:`SLOW_SECONDS` are kept in ``FILE.cases/`` so that the script's
-``--rerun`` runs it again alone. Each case works in its own folder under one folder of the run
-(``rotorcad-fuzz-run-<pid>-*`` in the temporary folder), removed as the next case starts and at the
-end; a run killed before its clean-up has its folder removed by the next run.
+the inputs of a failing case or one past :data:`SLOW_SECONDS` are kept in ``FILE.cases/`` (the
+script's ``--rerun`` runs the slow ones again alone). Each case works in its own folder under one
+folder of the run (``rotorcad-fuzz-run-<pid>-*`` in the temporary folder), removed as the next case
+starts and at the end; a run killed before its clean-up has its folder removed by the next run.
 """
 
 from __future__ import annotations
@@ -592,8 +592,9 @@ def _cpu_seconds() -> float:
 
 
 def _keep(argv: list[str], folder: Path, before: dict[str, bytes | None]) -> dict[str, object]:
-    """Keep the input files of a slow or hung case next to the log, so that
-    ``benchmarks/fuzz_summary.py --rerun`` can run it again alone; returns the log row's keys.
+    """Keep the input files of a slow, hung or failing case next to the log, so that it can be run
+    again (``benchmarks/fuzz_summary.py --rerun`` runs the slow ones alone); returns the log row's
+    keys.
 
     The files are written as they were before the case ran (a folder, a fifo: an empty folder).
     """
@@ -667,7 +668,7 @@ def run_case(capsys, folder: Path, argv: list[str], allow_finding: bool = False)
     except AssertionError as exc:
         if not LOG:
             raise
-        _log_failure(argv, str(exc))
+        _log_failure(argv, str(exc), _keep(argv, folder, before))  # its inputs, to be run again
     return status, out, err
 
 
