@@ -452,6 +452,52 @@ def _orient(chain: Piece, closed: bool) -> Piece:
     return chain if forward else _reverse(chain)
 
 
+def _shorter_than_a_joint(piece: Piece) -> bool:
+    """Tell whether a piece of straight lines is shorter in all than :data:`GAP_TOLERANCE`.
+
+    Such an entity (a LINE between two points of an outline under 1 um apart) would be taken for a
+    branch at the joint it lies in; left out, its neighbours are joined across it as across a gap.
+    """
+    if not all(isinstance(c, Line) for c in piece):
+        return False
+    return sum(float(np.hypot(*(c.end - c.start))) for c in piece) < GAP_TOLERANCE
+
+
+def _crossing(chain: Piece, closed: bool) -> np.ndarray | None:
+    """Where the chain crosses or runs along itself, mm (2,); None for a simple outline.
+
+    The curves are followed by chords within :data:`GAP_TOLERANCE` of them (lines by their ends),
+    so a crossing shallower than that may go unseen; GEOS tells whether the chords are simple
+    (:func:`shapely.is_simple`) and an R-tree of the chords finds the first pair that crosses or
+    overlaps (chords that only share an end are a joint).
+    """
+    import shapely
+
+    parts = [_samples(c, GAP_TOLERANCE) for c in chain]
+    points = np.vstack([parts[0], *(q[1:] for q in parts[1:])])
+    if closed:
+        points[-1] = points[0]
+    if shapely.is_simple(shapely.linestrings(points)):
+        return None
+    chords = shapely.linestrings(np.stack([points[:-1], points[1:]], axis=1))
+    tree = shapely.STRtree(chords)
+    for predicate in ("crosses", "overlaps"):
+        pairs = tree.query(chords, predicate=predicate)
+        if pairs.shape[1]:
+            where = shapely.intersection(chords[pairs[0, 0]], chords[pairs[1, 0]])
+            return np.asarray(shapely.get_coordinates(shapely.centroid(where))[0])
+    # a chord touching the interior of a chord two or more away (a vertex on the outline)
+    near = tree.query(chords, predicate="touches")
+    apart = np.abs(near[0] - near[1]) > 1
+    if closed:
+        apart &= np.abs(near[0] - near[1]) < len(chords) - 1
+    if apart.any():
+        k = int(np.argmax(apart))
+        where = shapely.intersection(chords[near[0, k]], chords[near[1, k]])
+        return np.asarray(shapely.get_coordinates(shapely.centroid(where))[0])
+    return None
+
+
 def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]:
     path = Path(path)
     value = str(path)
@@ -463,6 +509,11 @@ def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]
         if piece:
             pieces.append(piece)
             names.append(_name(entity))
+    if len(pieces) > 1:  # a straight entity shorter than the joining accuracy is a joint, not a piece (nor a branch)
+        keep = [not _shorter_than_a_joint(p) for p in pieces]
+        if any(keep):
+            names = [n for n, k in zip(names, keep, strict=True) if k]
+            pieces = [p for p, k in zip(pieces, keep, strict=True) if k]
     if not pieces:
         where = "in modelspace" if layer is None else f"on the layer {layer!r}"
         raise DesignError(label, f"a DXF drawing with a profile {where}", value, "its entities all have zero length")
@@ -472,6 +523,10 @@ def _read_chain(path: Path, label: str, layer: str | None) -> tuple[Piece, bool]
         raise DesignError(
             label, f"a profile within {MAX_EXTENT:g} mm of the origin", value, f"a point lies {far:.3g} mm from it (other units?)"
         )
+    crossing = _crossing(chain, closed)
+    if crossing is not None:  # taken as drawn, such an outline would reach the contact search and fail there
+        x, y = crossing
+        raise DesignError(label, "an outline that does not cross itself", value, f"it crosses itself at ({x:.6f}, {y:.6f}) mm")
     return _orient(chain, closed), closed
 
 
@@ -505,7 +560,8 @@ def read_profile_dxf(path: Path, label: str, layer: str | None = None) -> list[C
         drawing, no profile entities, entities on several layers and no ``layer`` (naming
         them), an unknown or empty layer (naming the layers found), a CIRCLE or full ARC, an
         ELLIPSE, a rational SPLINE, an entity out of the xy plane, a gap wider than
-        :data:`GAP_TOLERANCE` (naming where), a branch, or more than one profile.
+        :data:`GAP_TOLERANCE` (naming where), a branch, more than one profile, or an outline that
+        crosses or runs along itself (naming where).
     """
     return _read_chain(path, label, layer)[0]
 

@@ -134,11 +134,18 @@ def test_clearance_lead_1e9_refused_with_the_longest_lead(capsys, tmp_path, outl
     """`clearance --lead 1e9` returned zeros and nulls on exit 0: no segment of the contact line
     lies within the 190 mm rotors. A lead beyond 100 m is refused as a design length; within it, a
     lead that leaves the flanks' contact zone outside the rotors is refused naming the longest lead
-    that does not, and just below that bound there is a band."""
+    that does not, and just below that bound there is a band (the rack-involute pair: the symmetric
+    one, its polylines read as points as its CSV files are, keeps a contact run up to 100 m)."""
     m = polyline_dxf(tmp_path / "male.dxf", outlines["male"])
     f = polyline_dxf(tmp_path / "female.dxf", outlines["female"])
     argv = ["clearance", "--male-points", m, "--female-points", f, *CLEARANCE, "--json"]
     refused(capsys, "--lead must be a positive length up to 100000 mm", *argv, "--lead", "1e9")
+    rotor = ["rotor", str(SAMPLES / "rack_involute_5_6.toml"), "--male-csv", str(tmp_path / "m.csv")]
+    assert main([*rotor, "--female-csv", str(tmp_path / "f.csv"), "--quiet"]) == 0
+    drawn = {s: np.loadtxt(tmp_path / f"{s}.csv", delimiter=",", comments="#", skiprows=2) for s in "mf"}
+    m, f = polyline_dxf(tmp_path / "ri_male.dxf", drawn["m"]), polyline_dxf(tmp_path / "ri_female.dxf", drawn["f"])
+    argv = ["clearance", "--male-points", m, "--female-points", f, "--male-teeth", "5", "--female-teeth", "6"]
+    argv += ["--center-distance", "116", "--json"]
     line = refused(capsys, "--lead must be at most", *argv, "--lead", "1e5")
     bound = float(re.search(r"at most ([0-9.e+]+) mm", line).group(1))
     status, out, _ = run(capsys, *argv, "--lead", f"{bound * 0.999:.6g}")
@@ -508,4 +515,4 @@ def test_interfere_self_crossing_dxf_refused(capsys, tmp_path, outlines):
         "--steps",
         "2",
     )
-    assert "Self-intersection" in line
+    assert re.search(r"crosses itself at \(-?[0-9.]+, -?[0-9.]+\) mm\.$", line)  # where, read from the drawing

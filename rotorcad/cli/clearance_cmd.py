@@ -15,7 +15,7 @@ from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
 from rotorcad.rotor_pair import RotorPair
-from rotorcad.rotor_points import lobe_pieces, profile_points
+from rotorcad.rotor_points import as_given, lobe_pieces, profile_points
 from rotorcad.work import clearance_seconds, long_run_note
 
 INTERFERENCE_THRESHOLD = 2e-3
@@ -173,6 +173,9 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
             opts["length"],
             strict=False,
         )
+        # a drawing read as its points (a polyline through them) is judged by their scatter and spacing, as a CSV is
+        male = as_given(male, pair.male_teeth, drawn_as_points=False)
+        female = as_given(female, pair.female_teeth, drawn_as_points=False)
         thermal = _thermal(opts)
         if thermal is not None:
             pair, male, female = thermal.apply(pair, male, female)

@@ -410,7 +410,7 @@ def as_given(
     if not (isinstance(points, list | tuple) and points and isinstance(points[0], Curve)):
         return np.asarray(points, dtype=float)
     curves = list(points)
-    drawn = drawing_points(curves, corner_angle_deg) if drawn_as_points else None
+    drawn = drawing_points(curves, corner_angle_deg) if drawn_as_points or _polygonal(curves, corner_angle_deg) else None
     if drawn is not None:
         return drawn
     pts = np.vstack([sample_curve(c, 1e-4)[1] for c in curves])
@@ -432,7 +432,7 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
     A drawing is read as the points it was drawn through when its curves meet at kinks (tangents
     turning by more than :data:`SMOOTH_JOINT` and less than ``corner_angle_deg``: a polyline, arcs
     fitted to points), or when it holds a spline of more than :data:`DRAWN_SPANS` polynomial pieces
-    (a spline through points, as CAD and rotorcad's own export draw an outline): the rack of a
+    (a spline through points, as CAD draws one on measured points): the rack of a
     straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
     rings. The points are each line's start, each arc sampled to 0.1 µm chord (at least its
     start and middle, the bulge's point) and a spline's points at its knots; they are then
@@ -450,11 +450,7 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
     -------
     (n, 2) float array, mm, or None
     """
-    ends = np.array([c.evaluate(np.array([c.s1]))[1][0] for c in curves])
-    starts = np.array([c.evaluate(np.array([c.s0]))[1][0] for c in curves])
-    following = np.roll(starts, -1, axis=0)
-    turn = np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
-    kinks = (turn > SMOOTH_JOINT) & (turn < np.radians(corner_angle_deg))
+    kinks = _kinks(curves, corner_angle_deg)
     drawn = [c for c in curves if isinstance(c, Spline) and _knot_parameters(c).size > DRAWN_SPANS + 1]
     if not kinks[:-1].any() and not drawn:  # the last joint closes a lobe (a corner or nothing)
         return None
@@ -468,6 +464,28 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
         else:  # an arc to 0.1 um chord, at least its middle (a land stays a land of many points)
             pts.append(sample_curve(c, 1e-4, minimum=3)[1][:-1])
     return np.vstack(pts)
+
+
+def _kinks(curves: list[Curve], corner_angle_deg: float) -> np.ndarray:
+    """(n,) bool: the joint after each curve turns by more than :data:`SMOOTH_JOINT` and less than a corner."""
+    ends = np.array([c.evaluate(np.array([c.s1]))[1][0] for c in curves])
+    starts = np.array([c.evaluate(np.array([c.s0]))[1][0] for c in curves])
+    following = np.roll(starts, -1, axis=0)
+    turn = np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
+    return (turn > SMOOTH_JOINT) & (turn < np.radians(corner_angle_deg))
+
+
+def _polygonal(curves: list[Curve], corner_angle_deg: float) -> bool:
+    """Tell whether a drawing is a polyline through points: straight lines meeting at kinks.
+
+    Such a drawing (``rotor --dxf`` writes one) is read as its points even where curves are kept as
+    drawn (the clearance): as drawn, the rack of a straight piece is a single point and each kink
+    a corner's fan, which leave no flank to bring into contact (``clearance`` refused rotorcad's
+    own male drawing naming ``--contact``, after 29 s and 1.6 GB).
+    """
+    straight = np.array([isinstance(c, Line) for c in curves])
+    between_lines = straight & np.roll(straight, -1)
+    return bool((_kinks(curves, corner_angle_deg) & between_lines)[:-1].any())
 
 
 DRAWN_SPANS = 16
