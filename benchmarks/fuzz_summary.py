@@ -167,9 +167,7 @@ def summarise(rows: list[dict], slowest: int, over: float) -> dict:
         "slowest": timed[:slowest],
         "over": [r for r in timed if r.get("seconds", 120.0) > over],
         "peak": max(cases, key=lambda r: r.get("peak_mb", 0.0), default=None),
-        "peak_by_command": {
-            c: max(r.get("peak_mb", 0.0) for r in cases if command_of(r) == c) for c in sorted(exits_by_command)
-        },
+        "peak_by_command": {c: max(r.get("peak_mb", 0.0) for r in cases if command_of(r) == c) for c in sorted(exits_by_command)},
         "seconds": sum(r.get("seconds", 0.0) for r in cases) + sum(r.get("seconds", 0.0) for r in kills),
         "cpu": sum(r.get("cpu", 0.0) for r in cases),
     }

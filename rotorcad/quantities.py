@@ -147,8 +147,11 @@ _declare(
         ("max_sliding_at.value", "m/s", "largest sliding velocity"),
         ("max_slip_male.value", "1", "largest male slip"),
         ("max_slip_female.value", "1", "largest female slip"),
-        *((f"{point}.{key}", unit, label) for point in ("max_sliding_at", "max_slip_male", "max_slip_female",
-                                                          "slip_singularities[]") for key, unit, label in _SLIP_POINT),
+        *(
+            (f"{point}.{key}", unit, label)
+            for point in ("max_sliding_at", "max_slip_male", "max_slip_female", "slip_singularities[]")
+            for key, unit, label in _SLIP_POINT
+        ),
         ("speed_rpm", "rpm", "male speed"),
         ("defects[].x", "mm", "x"),
         ("defects[].y", "mm", "y"),
@@ -508,7 +511,14 @@ def unit_of(key: str) -> str:
 
 _SYMBOLS = {"deg": "°", "1": "–", "": "–"}
 _ASCII = {
-    "mm²": "mm2", "mm³": "mm3", "mm⁴": "mm4", "m/s": "m_s", "N/mm": "N_mm", "L/min": "L_min", "1/s": "per_s", "%": "percent"
+    "mm²": "mm2",
+    "mm³": "mm3",
+    "mm⁴": "mm4",
+    "m/s": "m_s",
+    "N/mm": "N_mm",
+    "L/min": "L_min",
+    "1/s": "per_s",
+    "%": "percent",
 }
 
 
@@ -542,6 +552,7 @@ def column_suffix(unit: str) -> str:
     if unit in ("1", ""):
         return ""
     return _ASCII.get(unit, unit)
+
 
 # --- form grinding (rotorcad/grinding/, rotorcad/cli/grind_cmd.py; the wheel from the rotor) -------
 _declare(

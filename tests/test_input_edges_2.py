@@ -275,8 +275,18 @@ def test_faceted_step_coarser_than_asked_is_refused(capsys, tmp_path):
         named = above or re.search(r"([0-9.e+-]+) mm or coarser would do", line)
         assert named, line
     if not above:  # the tolerance named must do: the file is written at it
-        status, _, err = run(capsys, "export", design, "--out", tmp_path / "o", "--format", "step-faceted",
-                             "--quiet", "--tolerance", named.group(1))
+        status, _, err = run(
+            capsys,
+            "export",
+            design,
+            "--out",
+            tmp_path / "o",
+            "--format",
+            "step-faceted",
+            "--quiet",
+            "--tolerance",
+            named.group(1),
+        )
         assert status == 0 and (tmp_path / "o").is_dir(), err
 
 

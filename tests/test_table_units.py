@@ -72,6 +72,13 @@ def test_keys_the_name_rules_misread_have_their_contract_units():
     # touching_threshold without mm³; CONTRACT.md gives clearances and penetrations in mm, volumes in mm³
     from rotorcad.cli.common import unit_of
 
-    expected = {"max_normal_clearance": "mm", "min_normal_clearance": "mm", "max_penetration": "mm",
-                "touching_threshold": "mm³", "max_gap": "mm", "male_gas_force_n": "N", "male_gas_force_n_paper": "N"}
+    expected = {
+        "max_normal_clearance": "mm",
+        "min_normal_clearance": "mm",
+        "max_penetration": "mm",
+        "touching_threshold": "mm³",
+        "max_gap": "mm",
+        "male_gas_force_n": "N",
+        "male_gas_force_n_paper": "N",
+    }
     assert {key: unit_of(key) for key in expected} == expected

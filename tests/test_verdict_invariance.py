@@ -109,9 +109,7 @@ def test_same_defects_and_running(verdicts, name, form):
     assert_same_verdicts(verdicts[(name, "design")], verdicts[(name, form)])
 
 
-@pytest.mark.parametrize(
-    ("name", "form"), [_case(n, f, {**KNOWN, **KNOWN_BLOW_HOLE}) for n in ROTOR_SAMPLES for f in FORMS]
-)
+@pytest.mark.parametrize(("name", "form"), [_case(n, f, {**KNOWN, **KNOWN_BLOW_HOLE}) for n in ROTOR_SAMPLES for f in FORMS])
 def test_same_blow_hole(verdicts, name, form):
     design, given = verdicts[(name, "design")]["blow_hole_area"], verdicts[(name, form)]["blow_hole_area"]
     assert given == pytest.approx(design, rel=0.01, abs=1e-3)  # 1 % (1e-3 mm² where the meshline closes)
@@ -137,8 +135,11 @@ def test_own_csv_has_no_jamming(verdicts):
 _RI_PAIR = tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"]  # the sample's own dimensions
 DIMS_56 = ["--male-teeth", _RI_PAIR["male_teeth"], "--female-teeth", _RI_PAIR["female_teeth"]]
 DIMS_56 += ["--center-distance", repr(_RI_PAIR["center_distance"])]
-RADII_56 = [f"--{key.replace('_', '-')}" if i % 2 == 0 else repr(_RI_PAIR[key]) for key in
-            ("male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius") for i in (0, 1)]
+RADII_56 = [
+    f"--{key.replace('_', '-')}" if i % 2 == 0 else repr(_RI_PAIR[key])
+    for key in ("male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius")
+    for i in (0, 1)
+]
 
 
 def run(capsys, *args) -> tuple[int, str, str]:

@@ -204,9 +204,7 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
             f"{report['overlap_contact_ratio']:.3f} = {report['total_contact_ratio']:.3f}"
         )
     for f in result["slip_singularities"]:
-        click.echo(
-            f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank"
-        )
+        click.echo(f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank")
     click.echo(f"  angles: {result['angle_convention']}")
     for reason in result["running_reasons"]:
         click.echo(f"  does not run without timing gears: {reason}")

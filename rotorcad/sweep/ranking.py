@@ -57,6 +57,7 @@ _FUNCTIONS: dict[str, Callable[..., Any]] = {
     "maximum": np.maximum,
 }
 
+
 @dataclass(frozen=True)
 class Constraint:
     """One condition on a result column.

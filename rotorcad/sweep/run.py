@@ -363,9 +363,7 @@ def run_sweep(
     start, cpu_start = time.perf_counter(), time.process_time()
     missing = [e.value for e in plan.extras if e not in {**ANALYSES, **(analyses or {})}]
     if missing:
-        raise DesignError(
-            "[sweep] compute", "analyses this run can make", missing[0], "pass analyses=hob.sweep_check.ANALYSES"
-        )
+        raise DesignError("[sweep] compute", "analyses this run can make", missing[0], "pass analyses=hob.sweep_check.ANALYSES")
     earlier = _number_earlier(plan, _read_earlier(out))
     done_keys = set(earlier["key"]) if len(earlier) else set()
     todo_count = plan.count - len(done_keys)

@@ -131,10 +131,7 @@ def verdict_table(summaries: dict[str, dict]) -> str:
 
     def ratios(name: str, flank: str) -> str:
         f = s[name]["flanks"][flank]
-        return (
-            f"ε_α {f['transverse_contact_ratio']:.2f} + ε_β {f['overlap_contact_ratio']:.2f} = "
-            f"{f['total_contact_ratio']:.2f}"
-        )
+        return f"ε_α {f['transverse_contact_ratio']:.2f} + ε_β {f['overlap_contact_ratio']:.2f} = {f['total_contact_ratio']:.2f}"
 
     def share(name: str) -> str:
         x = s[name]
