@@ -40,6 +40,12 @@ from rotorcad.kinematics import Body, Translation
 from rotorcad.profile import Segment
 from rotorcad.roles import Side
 
+LAND_SAMPLES = 17
+"""Fewest samples of a land (a circle about the rotor's axis, cut by a rack line parallel to the
+pitch line), as :func:`rotorcad.curves.sample_curve` takes of any piece: a rotor's points file keeps
+enough points on a tip or root land to be read back as one (with 5, the N rack and Rinder-Deix males
+read from their own CSV gained a sealing cusp the design has not: tests/test_verdict_invariance.py)."""
+
 GRID = 129
 """Equally spaced parameters at which a cut piece's curvature is evaluated to place its samples."""
 
@@ -297,7 +303,9 @@ def _involute(cut: ToolCut, s0: float, s1: float, tolerance: float) -> Array | N
     rb = cut.r * abs(cut.tangent.real)
     if rb == 0.0:  # a piece parallel to the pitch line cuts a circle about O, turning s / r
         (ax, ay), t0 = cut.start, cut.turn[0]
-        return span(s0, s1, arc_intervals(abs(s1 - s0) / cut.r, math.hypot(ax, ay + cut.r * t0), tolerance) + 1)
+        # at least as many samples as the generic sampler takes (:data:`LAND_SAMPLES`)
+        n = arc_intervals(abs(s1 - s0) / cut.r, math.hypot(ax, ay + cut.r * t0), tolerance) + 1
+        return span(s0, s1, max(n, LAND_SAMPLES))
     if rb <= 1e-9 * cut.r:
         return None
     a0, a1 = cut.roll()

@@ -28,10 +28,6 @@ from rotorcad.roles import PieceRole, Side
 from rotorcad.rotor_cut import cut_segment
 from rotorcad.rotor_pair import RotorPair
 
-MIN_PIECE_SAMPLES = 17
-"""Fewest samples of a piece, as :func:`rotorcad.curves.sample_curve` takes: a tip or root land of a
-rotor's points file keeps enough points to be read back as one (the verdicts from points need them)."""
-
 
 @dataclass(frozen=True)
 class RackPiece:
@@ -201,8 +197,7 @@ class ScrewRotors:
             if abs(curve.s1 - curve.s0) < 1e-15:
                 continue
             seg = cut_segment(name, curve, piece.curve, side, r1, a, tol, rotor)  # closed form (rotorcad.rotor_cut)
-            if seg is None or len(seg.points) < MIN_PIECE_SAMPLES:  # a short piece keeps the generic sampler's floor:
-                # its points are what a user's points file of the rotor holds (fewer turned verdicts from points)
+            if seg is None:
                 seg = Segment.sample(name, curve, tol)
             if len(seg.points) == 0 or np.ptp(seg.points, axis=0).max() < 1e-9:  # degenerate piece (none or one point)
                 continue
