@@ -55,7 +55,7 @@ def gear_rack(gear: InvoluteGear, samples: int = 400) -> DerivedRack:
     )
 
 
-def rack_in_contract_frame(rack: DerivedRack, rotor: str) -> np.ndarray:
+def rack_in_contract_frame(rack: DerivedRack, rotor: Side) -> np.ndarray:
     """Return rack points in the rack frame of CONTRACT.md (y > 0 on the female side), (n, 2), mm.
 
     Parameters
@@ -65,6 +65,7 @@ def rack_in_contract_frame(rack: DerivedRack, rotor: str) -> np.ndarray:
     rotor : {"male", "female"}
         Which rotor it was derived from (the female's is flipped).
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     return rack.points if Side(rotor) is Side.MALE else rack.points * np.array([1.0, -1.0])
 
 

@@ -61,7 +61,7 @@ def _lobe_spline(whole: np.ndarray, teeth: int, smoothing: float, facing: float)
     return spline, s_a, s_b
 
 
-def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float | None = None) -> Curve:
+def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: Side, smoothing: float | None = None) -> Curve:
     """Fit the spline of one lobe of the male or the female, the lobe facing the mate.
 
     Parameters
@@ -85,6 +85,7 @@ def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: str, smoothing: float
     DesignError
         An outline that a ray from its centre crosses more than once, or a wrong lobe count.
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     side = Side(rotor)
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     whole = whole_outline(points, teeth, f"{side.value} points")
@@ -183,7 +184,7 @@ def _cross_ends(before: Curve, after: Curve, u: float, v: float) -> np.ndarray |
 def lobe_pieces(
     pair: RotorPair,
     points: np.ndarray | list[Curve] | Outline,
-    rotor: str,
+    rotor: Side | str,
     smoothing: float | None = None,
     corner_angle_deg: float = 30.0,
     label: str | None = None,
@@ -232,6 +233,7 @@ def lobe_pieces(
     DesignError
         An outline that a ray from its centre crosses more than once, or a wrong lobe count.
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     side = Side(rotor)
     rotor = side.value
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
@@ -260,13 +262,14 @@ def lobe_pieces(
 
 
 def _cut_lobe(
-    fitted: list[tuple[Curve, np.ndarray, np.ndarray]], whole: np.ndarray, teeth: int, rotor: str, label: str
+    fitted: list[tuple[Curve, np.ndarray, np.ndarray]], whole: np.ndarray, teeth: int, rotor: Side, label: str
 ) -> list[tuple[str, Curve]]:
     """Cut the lobe facing the mate, root to root, out of the whole outline's curves.
 
     Each curve comes with its sample points and their parameters; the lobe is trimmed at the two
     roots' polar angles and its pieces are named ``"lobe part i"``.
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     theta = _facing_root_angle(whole, teeth, Side(rotor).pick(0.0, np.pi))
 
     def locate(th: float) -> tuple[int, float]:
@@ -290,13 +293,14 @@ def _cut_lobe(
     return [(f"lobe part {i + 1}", c) for i, c in enumerate(curves) if abs(c.s1 - c.s0) > 1e-9]
 
 
-def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: str, label: str) -> list[tuple[str, Curve]]:
+def _lobe_from_curves(curves: list[Curve], teeth: int, rotor: Side, label: str) -> list[tuple[str, Curve]]:
     """Cut the lobe facing the mate from the exact curves of a drawing.
 
     The curves are one lobe (patterned here), or the whole outline, counter-clockwise
     (:func:`exports.dxf_profile.read_profile_dxf`): arcs stay arcs, splines stay the drawing's
     splines, and the lobe is cut from them at the roots.
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     samples = [sample_curve(c, 1e-4) for c in curves]
     pts = np.vstack([p for _, p, _ in samples])
     whole = whole_outline(pts, teeth, label)  # checks the lobe count or the span of one lobe
@@ -347,7 +351,7 @@ def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tup
 
 
 def fit_residual(
-    pair: RotorPair, points: np.ndarray | list[Curve] | Outline, pieces: list[tuple[str, Curve]], rotor: str
+    pair: RotorPair, points: np.ndarray | list[Curve] | Outline, pieces: list[tuple[str, Curve]], rotor: Side
 ) -> float:
     """Return how far the fitted lobe leaves the given points, mm (90th percentile; 0 for exact curves).
 
@@ -366,6 +370,7 @@ def fit_residual(
     rotor : {"male", "female"}
         Which rotor.
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     side = Side(rotor)
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     outline = read_outline(points, teeth, f"{side.value} points")

@@ -575,7 +575,7 @@ def read_outline(
     return Outline(given, whole, sigma, accuracy(whole, sigma), teeth, label)
 
 
-def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, label: str | None = None) -> float:
+def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: Side, label: str | None = None) -> float:
     """Estimate the accuracy of a rotor profile given by points or by a drawing's curves (mm).
 
     :func:`rotorcad.measured.outline.accuracy` of the whole outline: twice the estimated scatter, or
@@ -583,6 +583,7 @@ def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: st
     judged by the points at their knots (what they were drawn through); lines and arcs are exact
     (1e-9 mm: given, not designed). :attr:`Outline.accuracy` of :func:`read_outline`.
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     side = Side(rotor)
     return read_outline(points, side.pick(pair.male_teeth, pair.female_teeth), label or f"{side.value} points").accuracy
 

@@ -134,7 +134,7 @@ def _mate_corner_runs(
 
 
 def pair_from_rotor_points(
-    pair: RotorPair, points: np.ndarray | list[Curve], rotor: str, smoothing: float | None = None, label: str | None = None
+    pair: RotorPair, points: np.ndarray | list[Curve], rotor: Side | str, smoothing: float | None = None, label: str | None = None
 ) -> ScrewRotors:
     """Generate a pair from points (or curves) of the male or the female rotor.
 
@@ -170,6 +170,7 @@ def pair_from_rotor_points(
         Points that do not make a lobe, or more than 2 % of the lobe without a rack point (its
         normal misses the pitch circle).
     """
+    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
     mesh = pair.mesh
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
     side = Side(rotor)

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_tangents, reversals
-from rotorcad.roles import Flank
+from rotorcad.roles import Flank, Side
 from rotorcad.rotor_pair import RotorPair
 
 
@@ -45,7 +45,7 @@ class Defect:
     """
 
     kind: str  # cusp, jamming, slipping
-    rotor: str  # male, female
+    rotor: Side  # male, female (text reads as the rotor)
     x: float
     y: float
     angle_deg: float
@@ -53,6 +53,10 @@ class Defect:
     point_generated: bool = False
     extent: float = 0.0  # meshline length over which it holds (0: a single point)
     role: Flank | None = None  # the lobe part where it occurs
+
+    def __post_init__(self) -> None:
+        """Read the rotor given as text ("male", "female") as a :class:`Side`."""
+        object.__setattr__(self, "rotor", Side(self.rotor))
 
     def as_dict(self) -> dict[str, object]:
         """Return the defect as plain values (an entry of ``defects`` in :meth:`MeshingAnalysis.summary`).
@@ -64,7 +68,7 @@ class Defect:
         """
         return {
             "kind": self.kind,
-            "rotor": self.rotor,
+            "rotor": str(self.rotor),
             "x": self.x,
             "y": self.y,
             "angle_deg": self.angle_deg,
