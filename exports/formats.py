@@ -183,7 +183,9 @@ def preload(fmts: Iterable[ExportFormat]) -> tuple[str, ...]:
     return tuple(m for m in wanted if importlib.util.find_spec(m.split(".")[0]) is not None)
 
 
-def refuse_mesh_size(fmt: ExportFormat, body: PlacedBody, triangles: float, tolerance: float) -> None:
+def refuse_mesh_size(
+    fmt: ExportFormat, body: PlacedBody, triangles: float, tolerance: float, needed: float | None = None
+) -> None:
     """Refuse a file of too many triangles, naming the tolerance that would do.
 
     A file coarser than the tolerance asked is never written (once a faceted STEP was written at
@@ -195,7 +197,7 @@ def refuse_mesh_size(fmt: ExportFormat, body: PlacedBody, triangles: float, tole
         Always, naming ``--tolerance``.
     """
     limit = fmt.limit
-    needed = body.coarser_tolerance(tolerance, limit.triangles)
+    needed = body.coarser_tolerance(tolerance, limit.triangles) if needed is None else needed
     can = f"{needed:.3g} mm or coarser would do" if needed <= 1.0 else f"only {needed:.3g} mm would, above the 1 mm allowed"
     raise DesignError(
         "--tolerance",
@@ -230,11 +232,17 @@ def check_limits(fmts: Iterable[ExportFormat], bodies: Iterable[PlacedBody], tol
     """
     bodies = list(bodies)
     for fmt in fmts:
-        for body in bodies if fmt.limit is not None else ():
-            if body.swept and body.kind in fmt.bodies:
-                estimate = body.estimated_triangles(tolerance)
-                if estimate > 2 * fmt.limit.triangles:
-                    refuse_mesh_size(fmt, body, estimate, tolerance)
+        if fmt.limit is None:
+            continue
+        limit = fmt.limit.triangles
+        estimates = [(body, body.estimated_triangles(tolerance)) for body in bodies if body.swept and body.kind in fmt.bodies]
+        if any(estimate > 2 * limit for _, estimate in estimates):
+            # the tolerance named must do for every body of the file set: the coarsest any body over the limit needs
+            over = [
+                (body, estimate, body.coarser_tolerance(tolerance, limit)) for body, estimate in estimates if estimate > limit
+            ]
+            body, estimate, needed = max(over, key=lambda b: b[2])
+            refuse_mesh_size(fmt, body, estimate, tolerance, needed)
 
 
 def plan_files(

@@ -184,10 +184,11 @@ class PlacedBody:
             mid = 0.5 * (lo + hi)
             lo, hi = (lo, mid) if self.estimated_triangles(float(np.exp(mid))) <= limit else (mid, hi)
         need = float(np.exp(hi))
+        share = self.section_tolerance / tolerance  # the export at `need` samples its section so (a half, a quarter)
         for _ in range(20):
             digits = 10 ** (2 - np.floor(np.log10(need)))
             need = float(np.ceil(need * digits) / digits)
-            if len(self._sweep(self.section_of(need / 2), need).mesh.faces) <= limit:
+            if len(self._sweep(self.section_of(need * share), need).mesh.faces) <= limit:
                 break
             need *= 1.2
         return need
