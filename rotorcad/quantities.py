@@ -585,6 +585,12 @@ _declare(
         # per unit of each setting error (rotorcad.grinding.sensitivity.UNITS): mm per mm, or per degree
         ("sensitivity.crossing_angle.max_normal_deviation_per_unit", "mm/deg", "deviation per degree of crossing angle"),
         ("max_normal_deviation_per_unit", "1", "deviation per mm of the setting error"),
+        # the rows of grind's sensitivity table: the largest normal deviation per unit of each error
+        ("sensitivity.center_distance", "mm/mm", "deviation per mm of centre distance"),
+        ("sensitivity.crossing_angle", "mm/deg", "deviation per degree of crossing angle"),
+        ("sensitivity.axial_position", "mm/mm", "deviation per mm of axial position"),
+        ("sensitivity.wheel_radius", "mm/mm", "deviation per mm of wheel radius"),
+        ("sensitivity.wheel_profile", "mm/mm", "deviation per mm of wheel profile"),
     ],
 )
 

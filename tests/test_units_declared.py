@@ -39,7 +39,7 @@ DEFLECT = ROOT / "samples" / "rinder_deix_5_6.toml"
 
 # the power of length in each unit under geometric similarity (same rpm, pressure, material)
 LENGTH_POWER = {"mm": 1, "mm²": 2, "mm³": 3, "mm⁴": 4, "1": 0, "deg": 0, "%": 0, "m/s": 1, "L/min": 3, "N": 2, "N/mm": 1}
-LENGTH_POWER |= {"MPa": 0, "bar": 0, "rpm": 0, "Hz": 0}
+LENGTH_POWER |= {"MPa": 0, "bar": 0, "rpm": 0, "Hz": 0, "mm/mm": 0, "mm/deg": 1}
 PAIR_LENGTHS = ("center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius")
 PAIR_LENGTHS += ("lead", "length")
 
@@ -115,6 +115,7 @@ def work(tmp_path_factory) -> dict[str, list[object]]:
             "--male-teeth", 5, "--female-teeth", 6, "--center-distance", 116 * k, "--lead", 300 * k, "--length", 190 * k,
         ]  # fmt: skip
         cases["deflect" + suffix] = ["deflect", DEFLECT if k == 1 else scaled_design(DEFLECT, folder, k), "--terms", 4]
+        cases["grind" + suffix] = ["grind", design, "--wheel-radius", 150 * k, "--worn-radius", 130 * k]
     cases["cut"] = ["cut", "--teeth", 11, "--module", 2]
     cases["coupling"] = ["coupling", "--teeth", 40, "--module", 4, "--face-width", 32, "--speed", 8000, "--viscosity", 0.02]
     cases["coupling"] += ["--power", 4000, "--pressure-viscosity", 2e-8, "--misalignment-deg", 0.3]
@@ -147,7 +148,7 @@ def table_of(work: dict[str, list[object]], name: str) -> str:
     return _TABLE[name]
 
 
-COMMANDS = ["gear", "cut", "pump", "rotor", "hob", "interfere", "clearance", "deflect", "coupling", "export", "sweep"]
+COMMANDS = ["gear", "cut", "pump", "rotor", "hob", "interfere", "clearance", "deflect", "coupling", "export", "sweep", "grind"]
 TABLES = [c for c in COMMANDS if c != "export"]  # export lists its files, with the units in the headings
 
 
@@ -198,10 +199,18 @@ def test_the_keys_the_name_rules_misread_print_their_units(work):
 # quantities that are not results of the geometry: settings and thresholds that a scaled design keeps
 NOT_SCALED = {
     "rotor": {"defect_accuracy"},  # the defect search's set accuracy, 1e-4 mm whatever the size
+    # counts of the rotor outline's samples (chords at a set tolerance: more on a larger rotor), and
+    # the check's set tolerance (1 um whatever the size)
+    "grind": {f"wheels.{w}.check_tolerance" for w in ("new", "worn")}
+    | {
+        f"wheels.{w}.{k}_point_count"
+        for w in ("new", "worn")
+        for k in ("profile", "no_contact", "unreached", "secondary_cutting")
+    },
 }
 
 
-@pytest.mark.parametrize("name", ["gear", "pump", "rotor", "hob", "interfere", "clearance"])
+@pytest.mark.parametrize("name", ["gear", "pump", "rotor", "hob", "interfere", "clearance", "grind"])
 def test_declared_units_scale_with_the_design(work, name):
     base, twice = numbers(json_of(work, name)), numbers(json_of(work, f"{name}@2"))
     checked = 0

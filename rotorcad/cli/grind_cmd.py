@@ -201,8 +201,10 @@ def _print_sensitivity(sensitivity: dict[str, dict[str, Any]]) -> None:
     table = Table(title="largest normal deviation of the rotor per unit error (new wheel)", header_style="bold")
     for column, justify in (("error", "left"), ("value", "right"), ("unit", "left")):
         table.add_column(column, justify=justify)
-    for name, row in sensitivity.items():
-        table.add_row(name, f"{row['max_normal_deviation_per_unit']:.6f}", f"mm/{row['unit']}")
+    from rotorcad.quantities import unit_of
+
+    for name, row in sensitivity.items():  # the row's unit, mm/mm or mm/deg, as rotorcad.quantities declares it
+        table.add_row(f"sensitivity.{name}", f"{row['max_normal_deviation_per_unit']:.6f}", unit_of(f"sensitivity.{name}"))
     Console(highlight=False).print(table)
 
 
