@@ -1,7 +1,7 @@
 """Gear coupling with barrel-shaped (crowned) hub teeth: kinematics, tooth load and lubricant film.
 
 After Belkov, Maksimov & Shitikov, *Contact-hydrodynamic calculation of gear couplings of
-high-speed turbomachines* (seed 003); the film itself is solved in :mod:`rotorcad.coupling_film`.
+high-speed turbomachines*; the film itself is solved in :mod:`rotorcad.coupling_film`.
 
 Geometry (paper, Fig. 1). Hub and sleeve have the same number of teeth z, module m, pressure angle
 alpha and addendum factor h_a* (0.8); no profile shift (the paper's X only balances bending

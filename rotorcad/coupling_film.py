@@ -1,7 +1,7 @@
 """Lubricant film of a cylinder on a plane: the contact-hydrodynamic (EHL) line-contact problem.
 
 After Belkov, Maksimov & Shitikov, *Contact-hydrodynamic calculation of gear couplings of
-high-speed turbomachines* (seed 003), eqs. 1-6, solved numerically.
+high-speed turbomachines*, eqs. 1-6, solved numerically.
 
 The paper's system, as reconstructed from the damaged OCR (every symbol in SI units):
 

@@ -31,7 +31,7 @@ PAIR_SRM = RotorPair(5, 6, A, 63.0, R1W, R2W, A - 63.0)
 PAIR_NARROW = RotorPair(5, 6, A, 70.0, R1W, R2W, A - 70.0)
 PAIR_56 = RotorPair(5, 6, A, 63.0, 45.0, 71.0, 53.0)
 PAIR_46 = RotorPair(4, 6, 100.0, 54.0, 40.0, 60.0, 46.0)
-# Wu & Chi (seed 004) Table 1, the N4 pair: 5/6, a = 82 mm, outer/inner radii 57.99/35.66 (male) and
+# Wu & Chi Table 1, the N4 pair: 5/6, a = 82 mm, outer/inner radii 57.99/35.66 (male) and
 # 46.34/24.01 mm (female), pitch helix angle 46 deg, screw length 162.079 mm
 N4_LEAD = 2 * np.pi * (82.0 * 5 / 11) / np.tan(np.radians(46.0))
 PAIR_N4 = RotorPair(5, 6, 82.0, 57.99, 35.66, 46.34, 24.01, lead=N4_LEAD, length=162.079)

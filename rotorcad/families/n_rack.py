@@ -3,7 +3,7 @@
 Sources: N. Stosic and K. Hanjalic, *Development and optimization of screw machines with a
 simulation model, Part I: Profile generation*, ASME J. Fluids Eng. 119 (1997) 659-663; N. Stosic,
 I. K. Smith and A. Kovacevic, *Screw Compressors: Mathematical Modelling and Performance
-Calculation*, Springer 2005, sec. 2.4 (the "N" rotor profile); Wu & Chi (seed 004) Table 1 for the
+Calculation*, Springer 2005, sec. 2.4 (the "N" rotor profile); Wu & Chi Table 1 for the
 N4 pair's dimensions. The published construction names its features; what those sources leave to
 the designer, and so what was chosen here, is said at each item.
 
