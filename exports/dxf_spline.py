@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from exports.hermite import distance_to_chains, hermite_cubic
 from rotorcad.curves import Curve
 from rotorcad.geometry import rotate
 
@@ -134,36 +135,6 @@ def hermite_spline(points: np.ndarray, tangents: np.ndarray) -> tuple[np.ndarray
     return control, knots
 
 
-def _bezier(points: np.ndarray, tangents: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """Evaluate the cubic of every interval at the fractions ``u`` of its chord parameter, (n, len(u), 2), mm."""
-    p, t = points, tangents
-    chord = np.hypot(*(p[1:] - p[:-1]).T)[:, None]
-    poles = np.stack([p[:-1], p[:-1] + chord * t[:-1] / 3.0, p[1:] - chord * t[1:] / 3.0, p[1:]], axis=1)  # (n, 4, 2)
-    v = 1.0 - u
-    basis = np.stack([v**3, 3 * u * v**2, 3 * u**2 * v, u**3])  # Bernstein, (4, k)
-    return np.einsum("ku,nkd->nud", basis, poles)
-
-
-def _to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
-    """Largest distance of each interval's points to its own chain of chords, (n,) mm.
-
-    Parameters
-    ----------
-    points : (n, m, 2) float array, mm
-        m points per interval (NaN rows are left out).
-    chains : (n, k, 2) float array, mm
-        The vertices of each interval's chain (no NaN).
-    """
-    a, b = chains[:, None, :-1], chains[:, None, 1:]
-    d = b - a
-    w = points[:, :, None] - a
-    length2 = np.maximum((d * d).sum(-1), 1e-300)
-    foot = np.clip((w * d).sum(-1) / length2, 0.0, 1.0)
-    gap = w - foot[..., None] * d
-    near = np.sqrt((gap * gap).sum(-1)).min(axis=2)
-    return np.nan_to_num(near, nan=0.0).max(axis=1)
-
-
 def _sag(points: np.ndarray, middles: np.ndarray) -> np.ndarray:
     """Largest distance of the middles of a chain's steps to their chords, (n,) mm (NaN left out).
 
@@ -217,13 +188,13 @@ def interval_deviation(curve: Curve, s: np.ndarray, points: np.ndarray, tangents
     exact[:, 0], exact[:, -1] = points[:-1], points[1:]
     mid, _ = curve.evaluate((s[:-1, None] + ds * half).ravel())
     mid = mid.reshape(len(ds), k, 2)
-    cubic = _bezier(points, tangents, frac)
-    cubic_mid = _bezier(points, tangents, half)
+    cubic = hermite_cubic(points, tangents, frac)
+    cubic_mid = hermite_cubic(points, tangents, half)
     chain = np.where(np.isfinite(exact), exact, cubic)  # a missing exact point: the chain skips through the cubic
     sag_exact = _sag(chain, mid)
     sag_cubic = _sag(cubic, cubic_mid)
-    out = _to_chains(cubic, chain) + sag_exact
-    back = _to_chains(np.concatenate([exact, mid], axis=1), cubic) + sag_cubic
+    out = distance_to_chains(cubic, chain) + sag_exact
+    back = distance_to_chains(np.concatenate([exact, mid], axis=1), cubic) + sag_cubic
     return np.maximum(out, back)
 
 

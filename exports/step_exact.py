@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from exports.hermite import distance_to_chains, hermite_cubic
 from exports.ocp_messages import quiet_ocp
 from rotorcad.geometry import rotate
 
@@ -142,14 +143,11 @@ def _hermite_samples(segment, budget: float, passes: int = 8) -> tuple[np.ndarra
     curve, s, p, t = segment.curve, np.asarray(segment.s, dtype=float), segment.points, segment.tangents
     probe = np.arange(1, _PROBES + 1) / (_PROBES + 1)
     u = np.linspace(0.0, 1.0, 33)
-    basis = np.stack([2 * u**3 - 3 * u**2 + 1, u**3 - 2 * u**2 + u, -2 * u**3 + 3 * u**2, u**3 - u**2])  # h00 h10 h01 h11
     for _ in range(passes):
         n = len(s) - 1
-        chord = np.hypot(*(p[1:] - p[:-1]).T)[:, None]
-        poles = np.stack([p[:-1], chord * t[:-1], p[1:], chord * t[1:]], axis=1)  # (n, 4, 2)
-        cubic = np.einsum("ku,nkd->nud", basis, poles)  # (n, 33, 2)
+        cubic = hermite_cubic(p, t, u)  # (n, 33, 2)
         q, _ = curve.evaluate((s[:-1, None] + (s[1:] - s[:-1])[:, None] * probe).ravel())
-        err = _to_chords(q.reshape(n, _PROBES, 2), cubic)
+        err = distance_to_chains(q.reshape(n, _PROBES, 2), cubic)
         parts = np.maximum(np.ceil((np.nan_to_num(err, nan=0.0) / budget) ** 0.25), 1.0).astype(int)
         if (parts == 1).all():
             break
@@ -167,29 +165,6 @@ def _hermite_samples(segment, budget: float, passes: int = 8) -> tuple[np.ndarra
 
 _PROBES = 7
 """Points of the exact curve inside each interval at which :func:`_hermite_samples` measures the cubic."""
-
-
-def _to_chords(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
-    """Largest distance of each interval's points to its own chain of chords.
-
-    Parameters
-    ----------
-    points : (n, m, 2) float array, mm
-        m points per interval.
-    chains : (n, k, 2) float array, mm
-        The vertices of each interval's chain.
-
-    Returns
-    -------
-    (n,) float array, mm
-    """
-    a, b = chains[:, None, :-1], chains[:, None, 1:]  # (n, 1, k - 1, 2)
-    d = b - a
-    w = points[:, :, None] - a  # (n, m, k - 1, 2)
-    length2 = np.maximum((d * d).sum(-1), 1e-300)
-    foot = np.clip((w * d).sum(-1) / length2, 0.0, 1.0)
-    gap = w - foot[..., None] * d
-    return np.sqrt((gap * gap).sum(-1)).min(axis=2).max(axis=1)
 
 
 def _edge(segment: SectionSegment, tolerance: float):

@@ -11,10 +11,9 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dresser import write_wheel_csv, write_wheel_dxf
-from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, output_folder, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, load_toml, output_folder, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
-from rotorcad.cli.rotor import PAIR_OPTIONS, rotor_input_options
-from rotorcad.cli.rotor import _build as build_rotors
+from rotorcad.cli.rotor import rotor_input_options, rotors_of
 from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate
 from rotorcad.grinding.job import GrindingJob, cut_depth, grind, least_cutting_angle
@@ -261,16 +260,8 @@ def _body(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
             data = load_toml(design)
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
-    if any(opts.get(k) for k in ("male_points", "female_points", "rack_points")) or (data is not None and "pair" in data):
-        rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer")}
-        rotor_opts.update({"smoothing": None, "speed": None})
-        settings = None
-        if data is not None:
-            try:
-                settings = load_rotor_design(design, data)
-            except DesignError as exc:
-                raise InputError(exc.sentence()) from None
-        rotors, _, _ = build_rotors(design, rotor_opts, settings)
+    rotors = rotors_of(design, data, opts)
+    if rotors is not None:
         pair = rotors.pair
         hand = 1.0 if pair.hand == "right" else -1.0
         if opts["body"] == "male":

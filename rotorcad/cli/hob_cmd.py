@@ -13,10 +13,9 @@ from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.rack import DerivedRack, gear_rack, hob_tooth, rack_deviation, rotor_rack
 from hob.verdict import HobLimits, judge
-from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
-from rotorcad.cli.rotor import PAIR_OPTIONS, rotor_input_options
-from rotorcad.cli.rotor import _build as build_rotors
+from rotorcad.cli.rotor import rotor_input_options, rotors_of
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.gear import InvoluteGear
@@ -61,16 +60,8 @@ def hob(design: Path | None, **opts: Any) -> None:
     limits = HobLimits(opts["min_flank_angle"], opts["min_tip_radius_mm"], opts["min_root_radius_mm"], opts["min_tip_thickness"])
     racks: dict[str, DerivedRack] = {}
     data = _read_design(design)  # the one reading of the design file
-    if any(opts.get(k) for k in ("male_points", "female_points", "rack_points")) or (data is not None and "pair" in data):
-        rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer")}
-        rotor_opts.update({"smoothing": None, "speed": None})
-        settings = None
-        if data is not None:
-            try:
-                settings = load_rotor_design(design, data)
-            except DesignError as exc:
-                raise InputError(exc.sentence()) from None
-        rotors, _, _ = build_rotors(design, rotor_opts, settings)
+    rotors = rotors_of(design, data, opts)
+    if rotors is not None:
         try:
             # measured pieces: their fits leave kinks of a fraction of a degree and gaps of a few µm
             # at the lands, which are no corners (the meshing clearance judges them alike); the mate generated

@@ -255,6 +255,25 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
     return _exterior(poly)
 
 
+def rotors_of(design: Path | None, data: dict[str, Any] | None, opts: dict[str, Any]) -> ScrewRotors | None:
+    """Build the rotor pair that the points options or the design's ``[pair]`` describe, else None.
+
+    For a command that takes a rotor pair or something else (``hob``, ``grind``): its options of the
+    pair and the points, without smoothing or speed (:func:`_build` merges them with the design).
+    """
+    if not (any(opts.get(k) for k in ("male_points", "female_points", "rack_points")) or (data is not None and "pair" in data)):
+        return None
+    rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer")}
+    rotor_opts.update({"smoothing": None, "speed": None})
+    settings = None
+    if data is not None:
+        try:
+            settings = load_rotor_design(design, data)
+        except DesignError as exc:
+            raise InputError(exc.sentence()) from None
+    return _build(design, rotor_opts, settings)[0]
+
+
 def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None) -> tuple[ScrewRotors, float, float]:
     """Build the rotors of a design file or of measured points, with the command-line overrides.
 

@@ -46,28 +46,7 @@ def sweep(sweep_file: Any, out: Any = None, scheduler: str | None = None, worker
 
 
 def run_sweep(
-    plan: SweepPlan,
-    folder: Path | None,
-    points: Any = None,
-    out: Path | None = None,
-    scheduler: str | None = None,
-    workers: int | None = None,
-    batch: int | None = None,
-    progress: Callable[[int, int, int], None] | None = None,
-    analyses: Mapping[Extra, Callable[..., dict[str, Any]]] | None = None,
-    before: Callable[[int, bool], None] | None = None,
+    plan: SweepPlan, *args: Any, analyses: Mapping[Extra, Callable[..., dict[str, Any]]] | None = None, **kwargs: Any
 ) -> SweepOutcome:
-    """Run a plan with every analysis, the hobbability verdict included (:func:`rotorcad.sweep.run.run_sweep`).
-
-    Parameters
-    ----------
-    plan, folder, points, out, scheduler, workers, batch, progress, before
-        As for :func:`rotorcad.sweep.run.run_sweep`.
-    analyses : mapping, optional
-        Default :func:`edge_analyses`.
-
-    Returns
-    -------
-    SweepOutcome
-    """
-    return _run_sweep(plan, folder, points, out, scheduler, workers, batch, progress, analyses or edge_analyses(), before=before)
+    """Run a plan as :func:`rotorcad.sweep.run.run_sweep` does, every analysis by default (:func:`edge_analyses`)."""
+    return _run_sweep(plan, *args, analyses=analyses or edge_analyses(), **kwargs)
