@@ -496,7 +496,7 @@ def names_what_was_typed(argv: list[str], line: str) -> str | None:
 
 
 COMMAND_NAMES = ("gear", "rotor", "hob", "cut", "pump", "export", "interfere", "clearance", "deflect", "sweep", "coupling")
-COMMAND_NAMES += ("report",)
+COMMAND_NAMES += ("report", "grind")
 
 
 def snapshot(folder: Path) -> dict[str, bytes | None]:
@@ -1044,6 +1044,63 @@ def test_fuzz_coupling(capsys, work, opts):
             assert regime == "no_solution", argv
 
 
+@fuzz_settings(12)
+@given(
+    source=st.sampled_from(["design", "design", "points", "gear", "gear-options"]),
+    design=st.one_of(st.just("sample"), DESIGN_KINDS),
+    key=st.integers(0, 20),
+    value=number(-10.0, 1000.0),
+    rotor=st.sampled_from(["male", "female"]),
+    points=POINT_KINDS,
+    seed=st.integers(0, 1000),
+    opts=st.one_of(
+        st.just([]),
+        options(wheel_radius=st.floats(50.0, 300.0), crossing_angle=st.floats(-60.0, 60.0), setting_radius=st.floats(30.0, 70.0)),
+        options(
+            wheel_radius=number(1.0, 2500.0),
+            worn_radius=number(1.0, 300.0),
+            crossing_angle=number(-90.0, 90.0),
+            setting_radius=number(0.0, 100.0),
+            wheel_center_distance=number(0.0, 500.0),
+        ),
+    ),
+    out=OUT_KINDS,
+    plot=st.sampled_from([None, None, ".png", ".svg", ".txt"]),
+)
+def test_fuzz_grind(capsys, work, source, design, key, value, rotor, points, seed, opts, out, plot):
+    """`grind` from a (spoilt) rotor design, from a rotor's points and from gear options: the
+    wheel, its check and the dresser's files, or one clear refusal."""
+    folder = work()
+    argv = ["grind", *opts, "--json", "--quiet"]
+    if source == "design":
+        argv.insert(1, str(design_file(folder, design, key, value)))
+        argv += ["--rotor", rotor]
+    elif source == "points":
+        path = points_file(folder, "points.csv", rotor, points, 0.5, seed)
+        argv += [f"--{rotor}-points", str(path), "--rotor", rotor]
+        for name, v in SYM_SAMPLE.items():
+            argv += ["--" + name.replace("_", "-"), str(v)]
+    elif source == "gear":
+        argv.insert(1, str(SAMPLES / "gear_pair.toml"))
+    else:
+        argv += [
+            "--teeth",
+            str(17 + key),
+            "--module",
+            "2",
+            "--helix-angle",
+            text_of(value % 40 if math.isfinite(value) else value),
+        ]
+    if "--wheel-radius" not in argv and key % 7:  # mostly given: the command needs it
+        argv += ["--wheel-radius", str(60 + 10 * key)]
+    path = output_path(folder, out, "")
+    if path is not None:
+        argv += ["--out", str(path)]
+    if plot is not None:
+        argv += ["--plot", str(folder / f"wheel{plot}")]
+    run_case(capsys, folder, argv)
+
+
 @fuzz_settings(10)
 @given(kind=st.sampled_from(["binary", "empty", "latin1", "fifo", "folder", "missing", "truncated"]), key=st.integers(0, 9))
 def test_fuzz_sweep_files(capsys, work, kind, key):
@@ -1123,6 +1180,7 @@ KILL_COMMANDS = {
     "rotor": ["rotor", str(SAMPLES / "srm_asymmetric_5_6.toml")],
     "gear": ["gear", "--teeth", "60", "--module", "3", "--mate-teeth", "90"],
     "interfere": ["interfere", str(SAMPLES / "srm_symmetric_4_6.toml"), "--steps", "20"],
+    "grind": ["grind", str(SAMPLES / "srm_asymmetric_5_6.toml"), "--wheel-radius", "120", "--least-cutting-angle", "--quiet"],
 }
 USER_FILE = b"the user's own file\n"
 
@@ -1163,10 +1221,13 @@ def test_fuzz_kills(work, command, sig, delay):
     folder = work()
     marker = f"ROTORCAD_FUZZ_MARK={uuid.uuid4().hex}"
     argv = list(KILL_COMMANDS[command])
-    user = folder / {"export": "out/srm_symmetric_4_6_male.stl", "cut": "user.csv", "rotor": "user.csv"}.get(command, "user.dxf")
+    user = {"export": "out/srm_symmetric_4_6_male.stl", "cut": "user.csv", "rotor": "user.csv", "grind": "user.png"}
+    user = folder / user.get(command, "user.dxf")
     user.parent.mkdir(exist_ok=True)
     user.write_bytes(USER_FILE)
-    option = {"export": "--out", "cut": "--csv", "rotor": "--male-csv", "gear": "--dxf", "interfere": None}[command]
+    option = {"export": "--out", "cut": "--csv", "rotor": "--male-csv", "gear": "--dxf", "interfere": None, "grind": "--plot"}[
+        command
+    ]
     if option == "--out":
         argv += ["--out", str(user.parent)]
     elif option:
@@ -1247,6 +1308,7 @@ BASE_ARGV = {
     + ["--power", "50", "--misalignment-deg", "0.1", "--pressure-viscosity", "2e-8"],
     "export": ["export", str(SAMPLES / "gear_pair.toml"), "--format", "stl", "--tolerance", "0.2", "--quiet"],
     "clearance": ["clearance", "--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100"],
+    "grind": ["grind", str(SAMPLES / "srm_symmetric_4_6.toml"), "--wheel-radius", "100", "--quiet"],
 }
 OPTION_VALUES = ["0", "-1", "-0.0", "1e-12", "1e30", "-1e30", "nan", "inf", "-inf", "1" + "0" * 400, "2", "x", "", "é"]
 SKIP_OPTIONS = {"--help", "--version", "--json", "--quiet", "--out", "--csv", "--dxf", "--plot", "--files", "--male-csv"}

@@ -527,3 +527,40 @@ def test_interfere_self_crossing_dxf_refused(capsys, tmp_path, outlines):
         "2",
     )
     assert re.search(r"crosses itself at \(-?[0-9.]+, -?[0-9.]+\) mm\.$", line)  # where, read from the drawing
+
+
+def test_grind_out_folder_name_too_long_is_refused(capsys, tmp_path):
+    """Found by the fuzz suite's `grind` cases: an --out of 300 characters (beyond the file
+    system's 255) made Path.exists raise ENAMETOOLONG, an internal error (exit 70)."""
+    out = tmp_path / ("n" * 300)
+    line = refused(capsys, "--out", "grind", SAMPLES / "gear_pair.toml", "--wheel-radius", "100", "--quiet", "--out", out)
+    assert "File name too long" in line
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_grind_and_hob_take_the_smoothing_their_refusal_names(capsys, tmp_path):
+    """Found by the fuzz suite's `grind` cases: a noisy female's points were refused naming
+    --smoothing, an option grind did not have; hob and grind now take it as rotor does (the
+    same points reader), and a smoothing given is used: the refusal then quotes other numbers."""
+    import click
+
+    from rotorcad.cli.main import cli
+
+    def options_of(command: str) -> set[str]:
+        return {opt for p in cli.get_command(click.Context(cli), command).params for opt in p.opts}
+
+    for command in ("grind", "hob"):
+        assert "--smoothing" in options_of(command), command
+    sample = tmp_path / "sample.csv"
+    assert run(capsys, "rotor", SAMPLES / "srm_symmetric_4_6.toml", "--female-csv", sample)[0] == 0
+    pts = np.loadtxt(sample, delimiter=",", skiprows=2)
+    pts += np.random.default_rng(7).normal(0, 0.05, pts.shape)  # 50 µm scatter: a mate with folds
+    path = tmp_path / "female.csv"
+    np.savetxt(path, pts, delimiter=",", header="x,y", comments="")
+    dims = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--male-tip-radius", "54"]
+    dims += ["--male-root-radius", "40", "--female-tip-radius", "60", "--female-root-radius", "46"]
+    status, _, err = run(capsys, "grind", "--female-points", path, "--rotor", "female", "--wheel-radius", "100", *dims)
+    assert status == 2 and len(err.strip().splitlines()) == 1, err
+    assert "--smoothing" in err  # the remedy it names is an option of grind
+    mentioned = set(re.findall(r"--[a-z][a-z-]*", err))
+    assert mentioned <= options_of("grind"), (mentioned - options_of("grind"), err)

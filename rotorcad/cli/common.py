@@ -331,10 +331,10 @@ def output_folder(path: Path | None) -> Path | None:
     if path is None:
         return None
     path = Path(path)
-    if path.exists() and not path.is_dir():
-        raise InputError(f"--out must be a folder, but {path} is a file.")
-    missing = [p for p in (path, *path.parents) if not p.exists()]  # deepest first
-    try:
+    try:  # Path.exists raises for a name too long (ENAMETOOLONG) rather than saying False
+        if path.exists() and not path.is_dir():
+            raise InputError(f"--out must be a folder, but {path} is a file.")
+        missing = [p for p in (path, *path.parents) if not p.exists()]  # deepest first
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise InputError(f"--out must be a folder that can be created ({exc.strerror}): {path}.") from None

@@ -43,6 +43,11 @@ ROTOR_INPUT_DECORATORS = [
     click.option("--female-root-radius", type=float, help="Female root radius [mm]."),
     click.option("--lead", type=float, help="Male lead h1 [mm]. Default 300 or the design's."),
     click.option("--length", type=float, help="Rotor length L [mm]. Default 190 or the design's."),
+    click.option(
+        "--smoothing",
+        type=float,
+        help="Spline smoothing of measured points [mm^2], 0 interpolates. Default: n sigma^2 from the points' estimated scatter.",
+    ),
 ]
 
 
@@ -76,11 +81,6 @@ CONTRACT_KEYS = (
 @rotor_input_options
 @click.option("--center-distance", type=float, help="Centre distance a [mm].")
 @click.option("--speed", type=float, help="Male speed [rpm] for sliding velocities. Default 3000 or the design's [operating].")
-@click.option(
-    "--smoothing",
-    type=float,
-    help="Spline smoothing of measured points [mm^2], 0 interpolates. Default: n sigma^2 from the points' estimated scatter.",
-)
 @click.option("--tolerance", type=float, default=1e-3, show_default=True, help="Chord tolerance of written outlines [mm].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option(
@@ -259,12 +259,12 @@ def rotors_of(design: Path | None, data: dict[str, Any] | None, opts: dict[str, 
     """Build the rotor pair that the points options or the design's ``[pair]`` describe, else None.
 
     For a command that takes a rotor pair or something else (``hob``, ``grind``): its options of the
-    pair and the points, without smoothing or speed (:func:`_build` merges them with the design).
+    pair, the points and their smoothing, without speed (:func:`_build` merges them with the design).
     """
     if not (any(opts.get(k) for k in ("male_points", "female_points", "rack_points")) or (data is not None and "pair" in data)):
         return None
     rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer")}
-    rotor_opts.update({"smoothing": None, "speed": None})
+    rotor_opts.update({"smoothing": opts.get("smoothing"), "speed": None})
     settings = None
     if data is not None:
         try:
