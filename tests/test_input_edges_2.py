@@ -564,3 +564,21 @@ def test_grind_and_hob_take_the_smoothing_their_refusal_names(capsys, tmp_path):
     assert "--smoothing" in err  # the remedy it names is an option of grind
     mentioned = set(re.findall(r"--[a-z][a-z-]*", err))
     assert mentioned <= options_of("grind"), (mentioned - options_of("grind"), err)
+
+
+@pytest.mark.parametrize("command", ["gear", "cut"])
+def test_pitch_circle_below_the_root_circle_gives_no_thickness(capsys, command):
+    """Found by the long fuzz run: z = 17, m = 2, x = h_a* = 1.4769 was refused naming "radius"
+    (no option) because the summary asked for the tooth thickness on the pitch circle, which lies
+    below the root circle: r_f = r + (x - h_fP*) m = 17 + (1.4769 - 1.25) 2 = 17.454 mm > 17 mm
+    (ISO 21771 root diameter). The gear is reported, its pitch-circle thickness null."""
+    argv = [command, "--teeth", "17", "--module", "2", "--shift", "1.4768517364325604", "--addendum", "1.4768517364325604"]
+    status, out, err = run(capsys, *argv, *(["--tolerance", "0.02"] if command == "cut" else []), "--json")
+    assert status == 0, err
+    result = json.loads(out)
+    assert result["tooth_thickness_pitch"] is None
+    if command == "gear":
+        assert result["root_radius"] == pytest.approx(17 + (1.4768517364325604 - 1.25) * 2, abs=1e-9)
+    # a gear whose pitch circle is on the tooth keeps the closed form s = m (pi/2 + 2 x tan(alpha))
+    status, out, _ = run(capsys, "gear", "--teeth", "17", "--module", "2", "--shift", "0.3", "--json")
+    assert json.loads(out)["tooth_thickness_pitch"] == pytest.approx(2 * (np.pi / 2 + 0.6 * np.tan(np.radians(20))), abs=1e-6)

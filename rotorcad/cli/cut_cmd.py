@@ -73,6 +73,7 @@ def cut(design: Path | None, **opts: Any) -> None:
     model = kollek_model(
         g.teeth, g.module, g.pressure_angle, g.shift, effective_addendum(g.dedendum, g.tip_radius_factor, g.pressure_angle)
     )
+    exact = g.pitch_thickness()  # None: the reference circle lies below the root circle
     result: dict[str, Any] = {
         "undercut": g.undercut,
         "undercut_radius": _undercut_radius(g, res, tol),
@@ -80,8 +81,8 @@ def cut(design: Path | None, **opts: Any) -> None:
         "undercut_radius_model": model.active_base_radius if model.undercut else None,
         "max_deviation_from_envelope": res.max_deviation,
         "flank_deviation_from_envelope": res.flank_deviation,
-        "tooth_thickness_pitch": 2 * g.pitch_radius * _half_angle(res.tooth, g.pitch_radius),
-        "tooth_thickness_pitch_exact": g.tooth_thickness(g.pitch_radius),
+        "tooth_thickness_pitch": None if exact is None else 2 * g.pitch_radius * _half_angle(res.tooth, g.pitch_radius),
+        "tooth_thickness_pitch_exact": exact,
         "positions": res.positions,
         "tolerance_met": bool(res.max_deviation <= tol),
     }

@@ -298,6 +298,16 @@ class InvoluteGear:
         psi = self.half_angle(at_radius)
         return 2.0 * at_radius * psi
 
+    def pitch_thickness(self) -> float | None:
+        """Arc tooth thickness on the reference (pitch) circle, mm; None where the circle misses the tooth.
+
+        A large positive shift puts the root circle above the reference circle (z = 17, x = 1.48:
+        r_f = r + (x - h_fP*) m = 17.45 mm > r = 17 mm); the tooth then has no thickness there.
+        """
+        if not (self.root_radius <= self.pitch_radius <= self.tip_radius):
+            return None
+        return self.tooth_thickness(self.pitch_radius)
+
     def half_angle(self, at_radius: float) -> float:
         """Polar half-angle psi(R) of the tooth at radius R (0 on the tooth centre line).
 
@@ -342,7 +352,7 @@ class InvoluteGear:
         -------
         dict of str to object
             ``pitch_radius``, ``base_radius``, ``tip_radius``, ``root_radius``,
-            ``tooth_thickness_pitch`` (:meth:`tooth_thickness` on the pitch circle) and
+            ``tooth_thickness_pitch`` (:meth:`pitch_thickness`: None off the tooth) and
             ``form_radius``, mm; ``undercut`` and ``tip_pointed``, bool.
         """
         return {
@@ -350,7 +360,7 @@ class InvoluteGear:
             "base_radius": self.base_radius,
             "tip_radius": self.tip_radius,
             "root_radius": self.root_radius,
-            "tooth_thickness_pitch": self.tooth_thickness(self.pitch_radius),
+            "tooth_thickness_pitch": self.pitch_thickness(),
             "form_radius": self.form_radius,
             "undercut": self.undercut,
             "tip_pointed": self.tip_pointed,
