@@ -11,6 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorcad.curves import Curve
+
+PROBES = 16
+"""Steps per Hermite interval at which the cubic and the exact curve are compared (both ways)."""
+
 
 def hermite_cubic(points: np.ndarray, tangents: np.ndarray, u: np.ndarray) -> np.ndarray:
     """Evaluate the cubic of every interval at the fractions ``u`` of its parameter.
@@ -52,3 +57,118 @@ def distance_to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
     gap = w - foot[..., None] * d
     near = np.sqrt((gap * gap).sum(-1)).min(axis=2)
     return np.nan_to_num(near, nan=0.0).max(axis=1)
+
+
+def _sag(points: np.ndarray, middles: np.ndarray) -> np.ndarray:
+    """Largest distance of the middles of a chain's steps to their chords, (n,) mm (NaN left out).
+
+    Parameters
+    ----------
+    points : (n, k + 1, 2) float array, mm
+        The chain of each interval.
+    middles : (n, k, 2) float array, mm
+        The curve at the middle of every step.
+    """
+    a, b = points[:, :-1], points[:, 1:]
+    d = b - a
+    w = middles - a
+    length2 = np.maximum((d * d).sum(-1), 1e-300)
+    foot = np.clip((w * d).sum(-1) / length2, 0.0, 1.0)
+    gap = w - foot[..., None] * d
+    return np.nan_to_num(np.sqrt((gap * gap).sum(-1)), nan=0.0).max(axis=1)
+
+
+def interval_deviation(curve: Curve, s: np.ndarray, points: np.ndarray, tangents: np.ndarray) -> np.ndarray:
+    """Measure how far the Hermite cubic of every interval strays from the exact curve, both ways.
+
+    In each interval [s_i, s_(i+1)] the exact curve is evaluated at :data:`PROBES` equal steps of
+    its parameter (and the middles of the steps), the cubic at as many equal steps of its own.
+    The deviation is the larger of (a) the distance of the cubic's points to the exact curve's chain
+    plus that chain's sag (the distance of the exact middles to their chords: a point of the chain
+    is within it of the curve) and (b) the distance of the exact points to the cubic's chain plus
+    the cubic chain's own sag. Both are upper estimates of the one-sided Hausdorff distances
+    between the cubic and the exact curve on the interval.
+
+    Parameters
+    ----------
+    curve : Curve
+        The exact curve.
+    s : (n + 1,) float array
+        Parameters of the samples.
+    points, tangents : (n + 1, 2) float arrays
+        The samples (mm) and their exact unit tangents.
+
+    Returns
+    -------
+    (n,) float array, mm
+        The deviation of every interval (exact points without contact are left out).
+    """
+    k = PROBES
+    frac = np.arange(k + 1) / k
+    half = (np.arange(k) + 0.5) / k
+    ds = (s[1:] - s[:-1])[:, None]
+    exact, _ = curve.evaluate((s[:-1, None] + ds * frac).ravel())
+    exact = exact.reshape(len(ds), k + 1, 2)
+    exact[:, 0], exact[:, -1] = points[:-1], points[1:]
+    mid, _ = curve.evaluate((s[:-1, None] + ds * half).ravel())
+    mid = mid.reshape(len(ds), k, 2)
+    cubic = hermite_cubic(points, tangents, frac)
+    cubic_mid = hermite_cubic(points, tangents, half)
+    chain = np.where(np.isfinite(exact), exact, cubic)  # a missing exact point: the chain skips through the cubic
+    sag_exact = _sag(chain, mid)
+    sag_cubic = _sag(cubic, cubic_mid)
+    out = distance_to_chains(cubic, chain) + sag_exact
+    back = distance_to_chains(np.concatenate([exact, mid], axis=1), cubic) + sag_cubic
+    return np.maximum(out, back)
+
+
+def refine_samples(
+    curve: Curve, s: np.ndarray, points: np.ndarray, tangents: np.ndarray, target: float, passes: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Add samples of the exact curve until the Hermite cubic of every interval is within ``target`` of it.
+
+    An interval whose deviation e (:func:`interval_deviation`) exceeds the target is split into
+    ceil((e / target)^(1/4)) + 1 equal parameter parts (the cubic's error falls with the fourth
+    power of the spacing where the curve is smooth; on an arc of radius rho it is about
+    sag^2 / (2 rho), so a chord tolerance alone does not bound it where the curve bends sharply, as
+    near an involute's cusp), the new samples evaluated on the exact curve (points without contact
+    dropped). Both writers use it: the DXF spline (:mod:`exports.dxf_spline`) and the exact STEP
+    (:mod:`exports.step_exact`).
+
+    Parameters
+    ----------
+    curve : Curve
+        The exact curve.
+    s : (n + 1,) float array
+        Parameters of the samples.
+    points, tangents : (n + 1, 2) float arrays
+        The samples (mm) and their exact unit tangents.
+    target : float, mm
+        Largest deviation of the cubic of an interval.
+    passes : int
+        Most refinement passes.
+
+    Returns
+    -------
+    s, points, tangents : arrays as above, refined (the old samples among them)
+    deviation : (n',) float array, mm
+        The measured deviation of every interval after the last pass (it may still exceed the
+        target after ``passes`` passes: the caller decides).
+    """
+    s, p, t = (np.asarray(a, dtype=float) for a in (s, points, tangents))
+    err = interval_deviation(curve, s, p, t)
+    for _ in range(passes):
+        if err.max() <= target:
+            break
+        parts = np.where(err > target, np.ceil((err / target) ** 0.25) + 1, 1).astype(int)
+        j = np.repeat(np.arange(len(err)), parts)  # interval of each new parameter
+        k = np.arange(len(j)) - np.repeat(np.cumsum(parts) - parts, parts)  # its part of the interval
+        s_new = np.append(s[j] + (s[j + 1] - s[j]) * (k / parts[j]), s[-1])
+        fresh = np.append(k > 0, False)
+        p_new, t_new = np.empty((len(s_new), 2)), np.empty((len(s_new), 2))
+        p_new[~fresh], t_new[~fresh] = p, t
+        p_new[fresh], t_new[fresh] = curve.evaluate(s_new[fresh])
+        keep = np.isfinite(p_new).all(axis=1) & np.isfinite(t_new).all(axis=1)
+        s, p, t = s_new[keep], p_new[keep], t_new[keep]
+        err = interval_deviation(curve, s, p, t)
+    return s, p, t, err

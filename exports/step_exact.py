@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exports.hermite import distance_to_chains, hermite_cubic
+from exports.hermite import refine_samples
 from exports.ocp_messages import quiet_ocp
 from rotorcad.geometry import rotate
 
@@ -115,16 +115,10 @@ def _hermite_samples(segment, budget: float, passes: int = 8) -> tuple[np.ndarra
     """Refine a segment's samples until the Hermite cubic between neighbours is within ``budget`` of its curve.
 
     Between samples p0, p1 with unit tangents t0, t1, ``GeomAPI_Interpolate`` (chord-length
-    parameters, tangents scaled to them) makes the cubic Hermite interpolant
-    H(u) = h00 p0 + h10 L t0 + h01 p1 + h11 L t1, L = |p1 - p0|, u in [0, 1] (de Boor, *A Practical
-    Guide to Splines*, ch. IV). Its error is measured from :data:`_PROBES` points of the exact curve
-    inside the interval to H drawn as 32 chords. On a circular arc of radius rho it is about
-    sag^2 / (2 rho) for a chord of sagitta sag, so a chord tolerance does not bound it where the
-    curve bends sharply: an involute used down to its base circle (its cusp, rho -> 0) left 1.9 um
-    between the last two samples at a chord tolerance of 10 um. An interval whose error e exceeds
-    the budget is split into ceil((e / budget)^(1/4)) equal parameter parts (the error falls with
-    the fourth power of the spacing where the curve is smooth), the new samples evaluated on the
-    exact curve (points out of contact dropped).
+    parameters, tangents scaled to them) makes the cubic Hermite interpolant of
+    :func:`exports.hermite.hermite_cubic`; the samples are refined by the DXF spline's rule and
+    measure (:func:`exports.hermite.refine_samples`), so that both files hold the same cubic to the
+    same check.
 
     Parameters
     ----------
@@ -140,31 +134,10 @@ def _hermite_samples(segment, budget: float, passes: int = 8) -> tuple[np.ndarra
     points, tangents : (n, 2) float arrays
         The refined samples, the old ones among them.
     """
-    curve, s, p, t = segment.curve, np.asarray(segment.s, dtype=float), segment.points, segment.tangents
-    probe = np.arange(1, _PROBES + 1) / (_PROBES + 1)
-    u = np.linspace(0.0, 1.0, 33)
-    for _ in range(passes):
-        n = len(s) - 1
-        cubic = hermite_cubic(p, t, u)  # (n, 33, 2)
-        q, _ = curve.evaluate((s[:-1, None] + (s[1:] - s[:-1])[:, None] * probe).ravel())
-        err = distance_to_chains(q.reshape(n, _PROBES, 2), cubic)
-        parts = np.maximum(np.ceil((np.nan_to_num(err, nan=0.0) / budget) ** 0.25), 1.0).astype(int)
-        if (parts == 1).all():
-            break
-        j = np.repeat(np.arange(n), parts)  # interval of each new parameter
-        k = np.arange(len(j)) - np.repeat(np.cumsum(parts) - parts, parts)  # its part of the interval
-        s_new = np.append(s[j] + (s[j + 1] - s[j]) * (k / parts[j]), s[-1])
-        fresh = np.append(k > 0, False)
-        p_new, t_new = np.empty((len(s_new), 2)), np.empty((len(s_new), 2))
-        p_new[~fresh], t_new[~fresh] = p, t
-        p_new[fresh], t_new[fresh] = curve.evaluate(s_new[fresh])
-        keep = np.isfinite(p_new).all(axis=1) & np.isfinite(t_new).all(axis=1)
-        s, p, t = s_new[keep], p_new[keep], t_new[keep]
+    if len(segment.s) < 2:
+        return np.asarray(segment.points, dtype=float), np.asarray(segment.tangents, dtype=float)
+    _, p, t, _ = refine_samples(segment.curve, segment.s, segment.points, segment.tangents, budget, passes)
     return p, t
-
-
-_PROBES = 7
-"""Points of the exact curve inside each interval at which :func:`_hermite_samples` measures the cubic."""
 
 
 def _edge(segment: SectionSegment, tolerance: float):
