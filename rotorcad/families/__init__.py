@@ -26,7 +26,7 @@ The names below are imported on first use (PEP 562).
 
 from __future__ import annotations
 
-import importlib
+from rotorcad.lazy import lazy_names
 
 _API = {
     "FAMILIES": "rotorcad.families.registry",
@@ -41,15 +41,4 @@ _API = {
     "parameters_of": "rotorcad.families.parameters",
 }
 
-
-def __getattr__(name: str) -> object:
-    if name in _API:
-        return getattr(importlib.import_module(_API[name]), name)
-    raise AttributeError(f"module 'rotorcad.families' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_API])
-
-
-__all__ = sorted(_API)
+__getattr__, __dir__, __all__ = lazy_names(__name__, _API)

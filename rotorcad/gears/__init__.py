@@ -24,7 +24,7 @@ does not load the envelope engine.
 
 from __future__ import annotations
 
-import importlib
+from rotorcad.lazy import lazy_names
 
 _API = {
     "DEG": "rotorcad.gears.involute_gear",
@@ -47,15 +47,4 @@ _API = {
     "working_pressure_angle": "rotorcad.gears.formulas",
 }
 
-
-def __getattr__(name: str) -> object:
-    if name in _API:
-        return getattr(importlib.import_module(_API[name]), name)
-    raise AttributeError(f"module 'rotorcad.gears' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_API])
-
-
-__all__ = sorted(_API)
+__getattr__, __dir__, __all__ = lazy_names(__name__, _API)
