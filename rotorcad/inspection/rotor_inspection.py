@@ -2,11 +2,12 @@
 
 Each point's deviation is its distance from the nominal outline (sampled to a chord tolerance: the
 distance is exact to that tolerance), + outside the material (more material: the side of the
-analytic normal of the outline's segment, :attr:`rotorcad.profile.Profile.normals`). The points
-are turned onto the outline by the rotation that minimises the sum of the squared deviations (a coarse scan over one lobe pitch, then Brent's
-method). Along the profile a point is placed by the arc length of its nearest sample from its
-lobe's tip (the outline's farthest point, patterned to every lobe): + towards the left flank
-(counter-clockwise, :class:`rotorcad.roles.ToothFlank`), - towards the right one.
+analytic normal of the outline's segment, :attr:`rotorcad.profile.Profile.normals`). The points are
+turned onto the outline by the rotation that minimises the sum of the squared deviations (a coarse
+scan over one lobe pitch, then Brent's method). Along the profile a point is placed by the arc
+length of its nearest sample from its lobe's tip (the outline's farthest point, patterned to every
+lobe): + towards the left flank (counter-clockwise, :class:`rotorcad.roles.ToothFlank`), - towards
+the right one.
 """
 
 from __future__ import annotations
