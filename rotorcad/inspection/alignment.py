@@ -2,7 +2,8 @@
 
 A CMM measures a gear in its own axis frame but at an arbitrary angular position: the points are
 turned by the one angle delta that minimises the sum of the squared normal deviations of the
-involute points (those between the form and the tip circle) from their nearest nominal flank.
+involute points (those within the radii of the evaluation range L_alpha) from their nearest
+nominal flank.
 With the flank of each point fixed, the normal deviation is linear in delta (left flank
 r_b (u - delta), right flank r_b (delta - u'), :mod:`rotorcad.inspection.nominal`), so the fit is
 the mean of u and u' over all points; flanks are reassigned and the fit repeated until no point
@@ -101,12 +102,13 @@ def align(points: Array, nominal: NominalFlanks, iterations: int = 20) -> FlankP
     Returns
     -------
     FlankPoints
-        The points between the start of the active profile and the tip circle; empty arrays when
-        there are none.
+        The points within the evaluation range's radii (from the start of the active profile to
+        the end of L_alpha: no point of the root or the tip land); empty arrays when there are none.
     """
     pts = np.asarray(points, dtype=float)
     r = np.hypot(pts[:, 0], pts[:, 1])
-    on_involute = np.nonzero((r >= max(nominal.active_start, nominal.base_radius)) & (r <= nominal.tip_radius))[0]
+    top = float(nominal.radius_at(nominal.evaluation_range[1]))  # the tip land and the last 5 % stay out
+    on_involute = np.nonzero((r >= max(nominal.active_start, nominal.base_radius)) & (r <= top))[0]
     theta = np.arctan2(pts[on_involute, 1], pts[on_involute, 0])
     psi = nominal.half_angle(r[on_involute])
     pitch = nominal.pitch_angle

@@ -134,7 +134,7 @@ class GearInspection:
         result: dict[str, Any] = {
             "body": "gear",
             "teeth": self.nominal.teeth,
-            "points": self.points_given,
+            "points_read": self.points_given,
             "points_on_flanks": len(self.fit.deviation),
             "alignment": {
                 "rotation_deg": math.degrees(self.fit.rotation),

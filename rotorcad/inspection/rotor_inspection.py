@@ -74,7 +74,7 @@ class RotorInspection:
             }
         return {
             "lobes": self.lobes,
-            "points": self.points_given,
+            "points_read": self.points_given,
             "lobes_measured": sorted({int(k) for k in self.lobe}),
             "alignment": {
                 "rotation_deg": math.degrees(self.rotation),
