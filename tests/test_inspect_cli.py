@@ -175,3 +175,23 @@ def test_refusals_name_the_option_and_the_range(teeth_csv, tmp_path, capsys):
     )
     err = refused(capsys, tmp_path, [SAMPLES / "rack_involute_5_6.toml", "--points", teeth_csv, "--class", 5])
     assert err.startswith("rotorcad: error: --class is for gears")
+
+
+def test_declared_units_scale_with_the_gear(teeth_csv, tmp_path, capsys):
+    # geometric similarity: the gear and its points scaled by 2 change a quantity by 2^k, k the power
+    # of length in its declared unit (mm 1, deg and counts 0); the tolerance class is left out (the
+    # standard's formulas are not similar)
+    pts = np.loadtxt(teeth_csv, delimiter=",", comments="#", skiprows=2)
+    double = tmp_path / "double.csv"
+    write_points(double, 2 * pts)
+    results = []
+    for m, path in ((4, teeth_csv), (8, double)):
+        code, out, err = run(capsys, ["inspect", "--teeth", 20, "--module", m, "--points", path, "--json"])
+        assert code == 0, err
+        results.append(numbers({k: v for k, v in out.items() if k != "classes"}))
+    power = {"mm": 1, "1": 0, "deg": 0}
+    for key, value in results[0].items():
+        unit = quantities.lookup(key).unit
+        if abs(value) < 1e-9:
+            continue
+        assert math.log2(abs(results[1][key] / value)) == pytest.approx(power[unit], abs=0.05), key
