@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import ezdxf
@@ -195,3 +196,26 @@ def test_declared_units_scale_with_the_gear(teeth_csv, tmp_path, capsys):
         if abs(value) < 1e-9:
             continue
         assert math.log2(abs(results[1][key] / value)) == pytest.approx(power[unit], abs=0.05), key
+
+
+@pytest.mark.parametrize(("moved", "within"), [(-15e-3, True), (-5e-3, False)])
+def test_the_thickness_against_the_designs_allowances(tmp_path, capsys, moved, within):
+    design = tmp_path / "gear.toml"
+    design.write_text("[gear]\nteeth = 20\nmodule = 4.0\nthickness_allowance_upper = -0.02\nthickness_allowance_lower = -0.06\n")
+    roll = np.linspace(2.0, 22.6, 100)
+    path = tmp_path / "teeth.csv"
+    write_points(path, teeth_points(20, 4.0, 20 * DEG, [3, 4], roll, deviation=lambda xi: np.full_like(xi, moved)))
+    code, out, err = run(capsys, ["inspect", design, "--points", path, "--json"])
+    assert code == 0, err
+    # both flanks moved by d along their normals: the normal thickness changes by 2 d / cos(alpha) (ISO 21771):
+    # -31.9 µm within the allowances -60 ... -20 µm (DIN 3967), -10.6 µm above them
+    assert out["thickness_deviation_mean"] == pytest.approx(2 * moved / math.cos(20 * DEG), abs=1e-5)
+    assert out["thickness_allowance"] == {"upper": -0.02, "lower": -0.06}
+    assert out["thickness_within_allowance"] is within
+
+
+def test_the_table_gives_every_number_its_unit(teeth_csv, capsys):
+    assert main(["inspect", "--teeth", "20", "--module", "4", "--points", str(teeth_csv), "--class", "6"]) == 0
+    rows = [line.split("│")[1:4] for line in capsys.readouterr().out.splitlines() if line.count("│") == 4]
+    numeric = [r for r in rows if re.fullmatch(r"\s*-?[\d.]+(e-?\d+)?\s*", r[1]) and "." in r[0]]
+    assert numeric and all(r[2].strip() in ("mm", "deg", "1") for r in numeric), numeric

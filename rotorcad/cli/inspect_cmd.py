@@ -82,8 +82,7 @@ def inspect(design: Path | None, **opts: Any) -> None:
             case = f"{opts['body']} rotor against its outline: {rotor.points_given} points"
             out.add_figure(opts["plot"], lambda: rotor_chart(rotor, case), "--plot")
     else:
-        gear = _inspect_gear(design, data, opts, points)
-        result = gear.summary()
+        gear, result = _inspect_gear(design, data, opts, points)
         if opts["plot"] is not None:
             from rotorcad.inspection.charts import profile_chart
 
@@ -110,9 +109,16 @@ def _read_points(opts: dict[str, Any]) -> np.ndarray:
     return points
 
 
-def _inspect_gear(design: Path | None, data: dict[str, Any] | None, opts: dict[str, Any], points: np.ndarray) -> GearInspection:
-    """Build the nominal gear (with its mate, if any), check the points' place and inspect them."""
-    gear, pair = build_gear(merge_gear_params(design, opts, data), 1e-4)
+def _inspect_gear(
+    design: Path | None, data: dict[str, Any] | None, opts: dict[str, Any], points: np.ndarray
+) -> tuple[GearInspection, dict[str, Any]]:
+    """Build the nominal gear (with its mate, if any), check the points' place and inspect them.
+
+    Returns the inspection and its JSON; with tooth-thickness allowances in the design (DIN 3967)
+    the JSON also has ``thickness_allowance`` and ``thickness_within_allowance``.
+    """
+    params = merge_gear_params(design, opts, data)
+    gear, pair = build_gear(params, 1e-4)
     nominal = nominal_flanks(gear, pair)
     far = FAR_MODULES * gear.module
     r = np.hypot(points[:, 0], points[:, 1])
@@ -141,7 +147,12 @@ def _inspect_gear(design: Path | None, data: dict[str, Any] | None, opts: dict[s
             f"--points must lie within {far:.4g} mm ({FAR_MODULES:g} m) of a nominal tooth flank after the best-fit rotation "
             f"of {math.degrees(result.fit.rotation):.4f} deg; the point ({x:.4f}, {y:.4f}) lies {off.max():.4f} mm off."
         )
-    return result
+    summary = result.summary()
+    upper, lower = params.get("thickness_allowance_upper") or 0.0, params.get("thickness_allowance_lower") or 0.0
+    if (upper or lower) and result.thickness:
+        summary["thickness_allowance"] = {"upper": upper, "lower": lower}
+        summary["thickness_within_allowance"] = all(lower <= d <= upper for d in result.thickness.values())
+    return result, summary
 
 
 def _inspect_rotor(rotors: Any, body: str, points: np.ndarray) -> RotorInspection:
@@ -168,7 +179,7 @@ def _inspect_rotor(rotors: Any, body: str, points: np.ndarray) -> RotorInspectio
 def _print(result: dict[str, Any]) -> None:
     """Print the result as tables: the figures, each side's largest deviations and, for a gear, every flank in µm."""
     flat = {k: v for k, v in result.items() if not isinstance(v, dict | list)}
-    for key in ("alignment", "evaluation_range", "tolerances", "within_tolerance", "classes"):
+    for key in ("alignment", "evaluation_range", "tolerances", "within_tolerance", "classes", "thickness_allowance"):
         flat.update({f"{key}.{k}": v for k, v in result.get(key, {}).items()})
     print_table(f"inspection of the {result['body']}", flat)
     for side in ("left", "right"):
