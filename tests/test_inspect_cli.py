@@ -219,3 +219,25 @@ def test_the_table_gives_every_number_its_unit(teeth_csv, capsys):
     rows = [line.split("│")[1:4] for line in capsys.readouterr().out.splitlines() if line.count("│") == 4]
     numeric = [r for r in rows if re.fullmatch(r"\s*-?[\d.]+(e-?\d+)?\s*", r[1]) and "." in r[0]]
     assert numeric and all(r[2].strip() in ("mm", "deg", "1") for r in numeric), numeric
+
+
+def test_cmm_points_as_dxf_point_entities(tmp_path, capsys):
+    # a CMM's DXF: one POINT entity per probed point (ezdxf writes it); a crowning of 6 µm on two teeth
+    roll = np.linspace(2.0, 22.6, 120)
+    lo, hi = 1.985966, 21.828447  # L_alpha of z 20, m 4 (test_gear_points_in_json_with_the_chart reads them back)
+
+    def crowning(xi: np.ndarray) -> np.ndarray:
+        return 6e-3 * (1.0 - ((xi - (lo + hi) / 2) / ((hi - lo) / 2)) ** 2)
+
+    doc = ezdxf.new()
+    for x, y in teeth_points(20, 4.0, 20 * DEG, [7, 8], roll, deviation=crowning):
+        doc.modelspace().add_point((x, y, 5.0), dxfattribs={"layer": "CMM"})
+    doc.modelspace().add_line((0, 0), (1, 1), dxfattribs={"layer": "AXES"})
+    path = tmp_path / "cmm.dxf"
+    doc.saveas(path)
+    code, out, err = run(capsys, ["inspect", "--teeth", 20, "--module", 4, "--points", path, "--layer", "cmm", "--json"])
+    assert code == 0, err
+    assert out["evaluation_range"]["start_roll_length"] == pytest.approx(lo, abs=1e-5)
+    for f in out["flanks"]:
+        assert f["profile_form_deviation"] == pytest.approx(6e-3, abs=0.1e-3)  # the parabola's height, exact points
+        assert abs(f["profile_slope_deviation"]) < 0.1e-3

@@ -9,7 +9,7 @@ from typing import Any
 import click
 import numpy as np
 
-from exports.dxf_profile import read_profile_points
+from exports.dxf_points import read_measured_points
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.rotor import rotors_of
@@ -100,7 +100,7 @@ def _read_points(opts: dict[str, Any]) -> np.ndarray:
     if not opts["points_files"]:
         raise InputError("--points must be given: a CSV (x,y) or DXF file of the measured points in mm.")
     try:
-        parts = [read_profile_points(p, "--points", opts["layer"]) for p in opts["points_files"]]
+        parts = [read_measured_points(p, "--points", opts["layer"]) for p in opts["points_files"]]
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     points = np.vstack(parts)
