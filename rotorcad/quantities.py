@@ -644,6 +644,8 @@ _declare(
         ("evaluation_range.start_roll_length", "mm", "roll length where L_alpha starts"),
         ("evaluation_range.end_roll_length", "mm", "roll length where L_alpha ends"),
         ("evaluation_range.evaluation_length", "mm", "profile evaluation range L_alpha"),
+        ("evaluation_range.start_roll_angle_deg", "deg", "roll angle where L_alpha starts"),
+        ("evaluation_range.end_roll_angle_deg", "deg", "roll angle where L_alpha ends"),
         ("evaluation_range.tip_form_radius", "mm", "tip form radius"),
         ("evaluation_range.measuring_radius", "mm", "measuring circle of the pitch deviations"),
         ("teeth_measured[]", "1", "tooth measured"),

@@ -98,7 +98,7 @@ class NominalFlanks:
         return float(self.radius_at(0.5 * (lo + hi)))
 
     def summary(self) -> dict[str, Any]:
-        """Return the evaluation range as ``rotorcad inspect`` reports it (radii and roll lengths, mm)."""
+        """Return the evaluation range as ``rotorcad inspect`` reports it (radii, roll lengths mm; roll angles xi / r_b deg)."""
         lo, hi = self.evaluation_range
         return {
             "start_radius": float(self.radius_at(lo)),
@@ -106,6 +106,8 @@ class NominalFlanks:
             "start_roll_length": lo,
             "end_roll_length": hi,
             "evaluation_length": hi - lo,
+            "start_roll_angle_deg": math.degrees(lo / self.base_radius),
+            "end_roll_angle_deg": math.degrees(hi / self.base_radius),
             "tip_form_radius": self.tip_radius,
             "active_start": self.active_start_by,
             "measuring_radius": self.measuring_radius,
