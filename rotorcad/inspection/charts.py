@@ -60,6 +60,8 @@ def profile_chart(result: GearInspection, case: str) -> Figure:
         ax.set_xlabel(f"{ps.label('deviation', 'µm')}\nFα {p.total * 1e3:.1f}  ffα {p.form * 1e3:.1f}\nfHα {p.slope * 1e3:+.1f}")
     axes[0].set_ylabel(ps.label("roll length", "mm"))
     settings = f"L_alpha {hi - lo:.3f} mm from roll length {lo:.3f} mm; + more material"
+    if len(result.flanks) > len(flanks):
+        settings += f"; the first {len(flanks)} of {len(result.flanks)} flanks"
     if tol is not None:
         settings += f"; class {tol.tolerance_class}: F_alphaT {tol.total_profile * 1e3:g} µm (green)"
     ps.title(fig, case, settings)
