@@ -630,3 +630,57 @@ _declare(
         for sep in (".", "_")
     ],
 )
+
+# --- inspection from measured points (rotorcad/inspection/, rotorcad/cli/inspect_cmd.py; ISO 1328-1:2013) ---
+_declare(
+    "rotorcad/inspection",
+    [
+        ("points_read", "1", "points read"),
+        ("points_on_flanks", "1", "points on the involute flanks"),
+        ("alignment.rotation_deg", "deg", "best-fit rotation of the points"),
+        ("alignment.rms_deviation", "mm", "rms normal deviation after the rotation"),
+        ("evaluation_range.start_radius", "mm", "radius where L_alpha starts"),
+        ("evaluation_range.end_radius", "mm", "radius where L_alpha ends"),
+        ("evaluation_range.start_roll_length", "mm", "roll length where L_alpha starts"),
+        ("evaluation_range.end_roll_length", "mm", "roll length where L_alpha ends"),
+        ("evaluation_range.evaluation_length", "mm", "profile evaluation range L_alpha"),
+        ("evaluation_range.start_roll_angle_deg", "deg", "roll angle where L_alpha starts"),
+        ("evaluation_range.end_roll_angle_deg", "deg", "roll angle where L_alpha ends"),
+        ("evaluation_range.tip_form_radius", "mm", "tip form radius"),
+        ("evaluation_range.measuring_radius", "mm", "measuring circle of the pitch deviations"),
+        ("teeth_measured[]", "1", "tooth measured"),
+        ("flanks[].tooth", "1", "tooth"),
+        ("flanks[].points_evaluated", "1", "points within L_alpha"),
+        ("flanks[].position", "mm", "flank position on the measuring circle"),
+        ("total_profile_deviation", "mm", "total profile deviation F_alpha"),
+        ("profile_form_deviation", "mm", "profile form deviation f_falpha"),
+        ("profile_slope_deviation", "mm", "profile slope deviation f_Halpha"),
+        ("single_pitch_deviation", "mm", "single pitch deviation f_pt"),
+        ("cumulative_pitch_deviation", "mm", "cumulative pitch deviation F_p over the teeth measured"),
+        ("thickness_deviation[].tooth", "1", "tooth"),
+        ("thickness_deviation[].deviation", "mm", "normal tooth thickness deviation"),
+        ("thickness_deviation_mean", "mm", "mean normal tooth thickness deviation"),
+        ("tolerance_class", "1", "ISO 1328-1 flank tolerance class"),
+        ("single_pitch_tolerance", "mm", "single pitch tolerance f_pT"),
+        ("cumulative_pitch_tolerance", "mm", "cumulative pitch tolerance F_pT"),
+        ("profile_slope_tolerance", "mm", "profile slope tolerance f_HalphaT"),
+        ("profile_form_tolerance", "mm", "profile form tolerance f_falphaT"),
+        ("total_profile_tolerance", "mm", "total profile tolerance F_alphaT"),
+        *(
+            (f"classes.{key}", "1", f"finest class met by the {label}")
+            for key, label in (
+                ("total_profile_deviation", "total profile deviation"),
+                ("profile_form_deviation", "profile form deviation"),
+                ("profile_slope_deviation", "profile slope deviation"),
+                ("single_pitch_deviation", "single pitch deviation"),
+                ("cumulative_pitch_deviation", "cumulative pitch deviation"),
+            )
+        ),
+        ("lobes", "1", "lobes"),
+        ("lobes_measured[]", "1", "lobe measured"),
+        ("min_normal_deviation", "mm", "smallest normal deviation"),
+        ("normal_deviation_range", "mm", "range of the normal deviation"),
+        ("left.points", "1", "points on the left flanks"),
+        ("right.points", "1", "points on the right flanks"),
+    ],
+)

@@ -83,4 +83,21 @@ class Flank(StrEnum):
     ROOT = "root"
 
 
-__all__ = ["Flank", "PieceRole", "Side"]
+class ToothFlank(StrEnum):
+    """The left or the right flank of a tooth (ISO 1328-1:2013, 3.1.4), as an inspection reports it.
+
+    Seen from the reference face (rotorcad: from +z, the drawing's view) with the tooth's tip
+    pointing up: the left flank is on the left. For tooth 0 of a gear (centred on +x, CONTRACT.md)
+    the left flank is the one on the counter-clockwise side (y > 0), the right flank the clockwise one.
+    """
+
+    LEFT = "left"
+    RIGHT = "right"
+
+    @property
+    def sign(self) -> int:
+        """+1 for the left (counter-clockwise) flank, -1 for the right one: the direction of its outward normal."""
+        return 1 if self is ToothFlank.LEFT else -1
+
+
+__all__ = ["Flank", "PieceRole", "Side", "ToothFlank"]

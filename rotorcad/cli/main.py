@@ -55,6 +55,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "coupling": ("rotorcad.cli.coupling_cmd:coupling", "Oil film of a gear coupling with barrel-shaped teeth (Belkov et al.)."),
     "grind": ("rotorcad.cli.grind_cmd:grind_cmd", "Form-grinding wheel of a rotor or gear, checked; the dresser's files."),
     "report": ("rotorcad.cli.report_cmd:report", "One self-contained HTML page per rotor or gear design, for a design review."),
+    "inspect": ("rotorcad.cli.inspect_cmd:inspect", "Measured gear teeth (ISO 1328-1) or rotor against the nominal part."),
 }
 
 
