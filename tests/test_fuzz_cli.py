@@ -496,7 +496,7 @@ def names_what_was_typed(argv: list[str], line: str) -> str | None:
 
 
 COMMAND_NAMES = ("gear", "rotor", "hob", "cut", "pump", "export", "interfere", "clearance", "deflect", "sweep", "coupling")
-COMMAND_NAMES += ("report", "grind")
+COMMAND_NAMES += ("report", "grind", "inspect")
 
 
 def snapshot(folder: Path) -> dict[str, bytes | None]:
@@ -517,7 +517,10 @@ NOT_NEGATIVE = re.compile(
 )
 """Keys of quantities that cannot be negative (magnitudes); a signed quantity (a clearance that is
 an interference, a shift, an angle, a coordinate) matches none of these or :data:`SIGNED`."""
-SIGNED = re.compile(r"clearance|shift|backlash|_deg$|direction|angle|^[xyz]$|_z$|^apex$|^value$")
+SIGNED = re.compile(
+    r"clearance|shift|backlash|_deg$|direction|angle|^[xyz]$|_z$|^apex$|^value$"
+    r"|slope_deviation|single_pitch_deviation|thickness_deviation|^deviation$|^position$"  # ISO 1328-1: signed
+)
 POSITIVE = re.compile(
     r"^(pitch_radius|base_radius|tip_radius|root_radius|contact_ratio|mean_flow|displacement_per_(male_)?rev"
     r"|chamber_max_volume|[a-z]+_section_area|[a-z]+_flute_area|[a-z]+_equivalent_diameter|pump_frequency_hz)$"
@@ -1098,6 +1101,54 @@ def test_fuzz_grind(capsys, work, source, design, key, value, rotor, points, see
         argv += ["--out", str(path)]
     if plot is not None:
         argv += ["--plot", str(folder / f"wheel{plot}")]
+    run_case(capsys, folder, argv)
+
+
+def _gear_teeth_points(folder: Path, kind: str, teeth: int, seed: int) -> Path:
+    """Points of a spur gear's outline (z = ``teeth``, m = 2, made by ``rotorcad gear --csv``), as a
+    CMM gives them (``clean``, ``scatter`` of 2 µm, ``few-teeth``) or spoilt by ``kind``."""
+    path = folder / "teeth.csv"
+    made = folder / "nominal.csv"
+    status = main(["gear", "--teeth", str(teeth), "--module", "2", "--csv", str(made), "--quiet"])
+    assert status == 0
+    rows = [ln for ln in made.read_text().splitlines() if ln and not ln.startswith(("#", "x"))]
+    pts = np.array([[float(v) for v in ln.split(",")] for ln in rows])
+    made.unlink()
+    rng = np.random.default_rng(seed)
+    if kind == "scatter":
+        pts = pts + rng.normal(0.0, 0.002, pts.shape)
+    elif kind == "few-teeth":
+        pts = pts[np.abs(np.arctan2(pts[:, 1], pts[:, 0])) < 3 * np.pi / teeth]
+    elif kind == "far":
+        pts = pts * 1.2
+    elif kind == "one":
+        pts = pts[:1]
+    elif kind == "nan":
+        pts[rng.integers(len(pts))] = np.nan
+    elif kind == "binary":
+        path.write_bytes(bytes(range(256)) * 8)
+        return path
+    np.savetxt(path, pts, delimiter=",", header="x,y", comments="")
+    return path
+
+
+@fuzz_settings(6)
+@given(
+    kind=st.sampled_from(["clean", "clean", "scatter", "scatter", "few-teeth", "far", "one", "nan", "binary"]),
+    teeth=st.integers(12, 40),
+    seed=st.integers(0, 1000),
+    opts=st.one_of(st.just([]), options(tolerance_class=whole(1, 11)), options(pressure_angle=number(15.0, 25.0))),
+    plot=st.sampled_from([None, None, ".png", ".txt"]),
+)
+def test_fuzz_inspect(capsys, work, kind, teeth, seed, opts, plot):
+    """`inspect`: a gear's measured teeth against its nominal, or one clear refusal."""
+    folder = work()
+    path = _gear_teeth_points(folder, kind, teeth, seed)
+    capsys.readouterr()
+    opts = [o.replace("--tolerance-class", "--class") for o in opts]
+    argv = ["inspect", "--teeth", str(teeth), "--module", "2", "--points", str(path), *opts, "--json"]
+    if plot is not None:
+        argv += ["--plot", str(folder / f"chart{plot}")]
     run_case(capsys, folder, argv)
 
 
