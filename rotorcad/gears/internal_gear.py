@@ -410,7 +410,7 @@ class InternalGear:
             ``internal`` (True), ``pitch_radius``, ``base_radius``, ``tip_radius``, ``root_radius``,
             ``form_radius``, ``outer_radius``, ``tooth_thickness_pitch``, ``space_width_pitch``,
             ``cutting_center_distance`` (mm), ``cutting_pressure_angle_deg``, the cutting checks
-            ``cutting_involute_margin`` (mm) and ``cutting_trochoid_margin`` (rad), and ``cutter``
+            ``cutting_involute_margin`` (mm) and ``cutting_trochoid_margin_deg`` (degrees), and ``cutter``
             (:meth:`ShaperCutter.summary`).
         """
         r = self.pitch_radius
@@ -428,7 +428,7 @@ class InternalGear:
             "cutting_center_distance": self.cutting_center_distance,
             "cutting_pressure_angle_deg": self.cutting_pressure_angle / DEG,
             "cutting_involute_margin": self.involute_interference_cutting,
-            "cutting_trochoid_margin": self.trochoid_margin_cutting,
+            "cutting_trochoid_margin_deg": self.trochoid_margin_cutting / DEG,
             "cutter": self.cutter.summary(),
         }
 

@@ -243,21 +243,56 @@ class InternalPair:
             :meth:`InternalGear.summary` of the internal gear and ``center_distance`` (mm),
             ``working_pressure_angle_deg``, ``contact_ratio``, ``backlash`` (mm),
             ``involute_interference_margin`` and ``root_interference_margin`` (mm),
-            ``trochoid_margin`` (rad), ``min_teeth_difference`` and ``mate`` (the pinion's
+            ``trochoid_margin_deg`` (degrees), ``min_teeth_difference`` and ``mate`` (the pinion's
             :meth:`InvoluteGear.summary`).
         """
         out = self.ring.summary()
         out.update(
             {
-                "center_distance": self.working_center_distance,
+                "center_distance": float(self.working_center_distance),
                 "working_pressure_angle_deg": self.working_pressure_angle / DEG,
-                "contact_ratio": self.contact_ratio,
-                "backlash": self.backlash,
-                "involute_interference_margin": self.involute_interference_margin,
-                "root_interference_margin": self.root_interference_margin,
-                "trochoid_margin": self.trochoid_margin,
+                "contact_ratio": float(self.contact_ratio),
+                "backlash": float(self.backlash),
+                "involute_interference_margin": float(self.involute_interference_margin),
+                "root_interference_margin": float(self.root_interference_margin),
+                "trochoid_margin_deg": self.trochoid_margin / DEG,
                 "min_teeth_difference": self.min_teeth_difference,
                 "mate": self.pinion.summary(),
             }
         )
         return out
+
+
+def internal_mate_shift(ring: InternalGear, pinion_teeth: int, center_distance: float) -> float:
+    """Return the pinion's shift x1 giving zero backlash inside ``ring`` at ``center_distance``.
+
+    x1 = x2 - (inv(alpha_wt) - inv(alpha_t)) (z2 - z1) / (2 tan(alpha_n)), cos(alpha_wt) =
+    (r2 - r1) cos(alpha_t) / a_w (:func:`~rotorcad.gears.internal_formulas.internal_working_pressure_angle`
+    solved for x1).
+
+    Parameters
+    ----------
+    ring : InternalGear
+        The internal gear, with its shift x2.
+    pinion_teeth : int
+        Teeth z1 of the pinion.
+    center_distance : float
+        a_w, mm.
+
+    Returns
+    -------
+    float
+        x1, normal modules.
+
+    Raises
+    ------
+    DesignError
+        A centre distance not above (r2 - r1) cos(alpha_t) (``center_distance``).
+    """
+    at = ring.transverse_pressure_angle
+    ref = ring.pitch_radius - pinion_teeth * ring.transverse_module / 2.0
+    c = ref * math.cos(at) / center_distance
+    if not (0.0 < c < 1.0):
+        raise DesignError("center_distance", f"greater than {ref * math.cos(at):.6g} mm", center_distance)
+    aw = math.acos(c)
+    return ring.shift - (float(inv(aw)) - float(inv(at))) * (ring.teeth - pinion_teeth) / (2.0 * math.tan(ring.pressure_angle))
