@@ -123,9 +123,19 @@ class InternalGear:
         c = self.cutter
         if self.involute_interference_cutting < -1e-9 * self.module:
             least = smallest_ring_teeth(self, "involute")
+            if least is None:  # no tooth count helps: the tip circle must move out
+                along = self._line_offset
+                largest = (self.pitch_radius + self.shift * self.module - math.hypot(self.base_radius, along)) / self.module
+                raise GeometryError(
+                    "addendum",
+                    f"at most {math.floor(largest * 1e4) / 1e4:.4f} for a {c.teeth}-tooth cutter with these shifts",
+                    self.addendum,
+                    "the tip circle lies inside the cutter's base tangency point on the line of action, so the cutter "
+                    "cannot generate the involute down to the tip (involute interference, DIN 3993)",
+                )
             raise GeometryError(
                 "teeth",
-                f"at least {least} for a {c.teeth}-tooth cutter with these shifts" if least else "larger",
+                f"at least {least} for a {c.teeth}-tooth cutter with these shifts",
                 self.teeth,
                 "the tip circle lies inside the cutter's base tangency point on the line of action, so the "
                 "cutter cannot generate the involute down to the tip (involute interference, DIN 3993); raise the "
