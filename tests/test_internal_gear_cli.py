@@ -129,3 +129,12 @@ def test_export_step_stl_dxf_of_a_ring(capsys, tmp_path):
     radii = sorted(float(np.hypot(*np.array([p[:2] for p in e.get_points()]).T).max()) for e in polylines)
     assert len(polylines) == 2 and radii[1] == pytest.approx(20.0, abs=1e-9)  # the bore and the outer circle
     assert radii[0] == pytest.approx(json.loads(out)["root_radius"], abs=1e-6)
+
+
+def test_report_of_an_internal_gear(capsys, tmp_path):
+    rc, out, err = run(capsys, "report", SAMPLE, "--out", tmp_path / "ring.html", "--json")
+    assert rc == 0, err
+    data = json.loads(out)
+    assert data["kind"] == "gear" and data["hobbable"] is False  # shaped, not hobbed: said as the reason
+    page = (tmp_path / "ring.html").read_text(encoding="utf-8")
+    assert "cutting_trochoid_margin_deg" in page and "shaper cutter" in page and "<svg" in page
