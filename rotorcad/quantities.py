@@ -97,6 +97,7 @@ _declare(
         ("cutting_pressure_angle_deg", "deg", "working pressure angle of the shaper cutting"),
         ("cutting_involute_margin", "mm", "involute-interference margin of the cutting"),
         ("cutting_trochoid_margin_deg", "deg", "trochoid-interference margin of the cutter"),
+        ("cutting_radial_feed_margin_deg", "deg", "radial-feed (trimming) margin of the cutter"),
     ]
     + [
         (f"cutter{sep}{key}", unit, f"shaper cutter {label}")
@@ -117,6 +118,7 @@ _declare(
         ("involute_interference_margin", "mm", "involute-interference margin"),
         ("root_interference_margin", "mm", "pinion tip to the ring's form circle"),
         ("trochoid_margin_deg", "deg", "trochoid-interference margin"),
+        ("radial_assembly_margin_deg", "deg", "radial-assembly (trimming) margin"),
         ("min_teeth_difference", "1", "smallest tooth-count difference"),
     ],
 )

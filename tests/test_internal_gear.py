@@ -340,3 +340,26 @@ def test_shaping_simulation_trims_tips_where_the_cutter_trochoid_check_refuses()
     object.__setattr__(bad, "tolerance", 1e-4)
     assert bad.trochoid_margin_cutting < 0.0
     assert tip_width(bad) < 2.0 * bad.tip_half_angle - 5e-3  # margin -0.010 rad: tips cut back
+
+
+def radial_overlap(pair: InternalPair, steps: int = 150) -> float:
+    """Brute force: the pinion pulled from its working centre distance towards the ring's centre by up to 3 m;
+    the largest overlap area (mm^2) of its outline with the ring's teeth (shapely)."""
+    ring, p = pair.ring, pair.pinion
+    a = pair.working_center_distance
+    outer = shapely.Point(0, 0).buffer(ring.root_radius + 2.0, quad_segs=256)
+    teeth = shapely.Polygon(outer.exterior.coords, [ring.outline(1e-3).points[::-1]])
+    pin = p.outline(1e-3).points
+    moved = [shapely.Polygon(pin + [a - s, 0.0]) for s in np.linspace(0.0, 3.0 * ring.module, steps)[1:]]
+    return float(shapely.area(shapely.intersection(teeth, moved)).max())
+
+
+def test_radial_assembly_margin_against_a_brute_force_withdrawal(spur):
+    # KHK's trimming-interference condition (the code's closed form) against pulling the pinion out of
+    # mesh radially: a 44-tooth pinion clears the 60-tooth ring, a 50-tooth one collides with its teeth
+    clear = InternalPair(InvoluteGear(44, 2.0, shift=0.3, addendum=0.8), spur)
+    assert clear.radial_margin > 0.0
+    assert radial_overlap(clear) == 0.0
+    collides = InternalPair(InvoluteGear(50, 2.0, shift=0.3, addendum=0.8), spur)
+    assert collides.radial_margin < 0.0
+    assert radial_overlap(collides) > 0.01  # mm^2

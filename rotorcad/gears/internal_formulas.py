@@ -140,3 +140,41 @@ def trochoid_margin(
     inv_w = float(inv(alpha_wt))
     theta1 = math.acos(c1) + float(inv(alpha_a1)) - inv_w
     return z1 / z2 * theta1 + inv_w - float(inv(alpha_a2)) - math.acos(c2)
+
+
+def radial_margin(z1: int, z2: int, tip_radius1: float, tip_radius2: float, base_radius1: float, alpha_wt: float) -> float:
+    """Return the margin against radial (trimming) interference of an internal pair, rad of the pinion (KHK).
+
+    Moved radially out of mesh (assembly, or a shaper cutter fed radially at one position), the
+    pinion's teeth must clear the internal gear's: theta1 + inv(alpha_a1) - inv(alpha_wt) >=
+    (z2/z1) (theta2 + inv(alpha_a2) - inv(alpha_wt)), sin^2(theta1) = (1 - (cos(alpha_a1) /
+    cos(alpha_a2))^2) / (1 - (z1/z2)^2), sin^2(theta2) = ((cos(alpha_a2) / cos(alpha_a1))^2 - 1) /
+    ((z2/z1)^2 - 1) (KHK Technical Reference, internal gears, trimming interference; checked against
+    a brute-force radial withdrawal with shapely in ``tests/test_internal_gear.py``).
+
+    Parameters
+    ----------
+    z1, z2 : int
+        Teeth of the pinion (cutter) and the internal gear.
+    tip_radius1, tip_radius2 : float, mm
+        r_a1 and r_a2.
+    base_radius1 : float, mm
+        r_b1; r_b2 = r_b1 z2 / z1.
+    alpha_wt : float, rad
+        Working transverse pressure angle.
+
+    Returns
+    -------
+    float, rad
+        The margin (left side minus right side); negative: the teeth collide when moved radially.
+        +inf where the sines fall outside [0, 1] (the tip circles' pressure angles admit no collision point).
+    """
+    rb2 = base_radius1 * z2 / z1
+    ca1, ca2 = base_radius1 / tip_radius1, rb2 / tip_radius2
+    s1 = (1.0 - (ca1 / ca2) ** 2) / (1.0 - (z1 / z2) ** 2)
+    s2 = ((ca2 / ca1) ** 2 - 1.0) / ((z2 / z1) ** 2 - 1.0)
+    if not (0.0 <= s1 <= 1.0 and 0.0 <= s2 <= 1.0):
+        return math.inf
+    inv_w = float(inv(alpha_wt))
+    left = math.asin(math.sqrt(s1)) + float(inv(math.acos(min(ca1, 1.0)))) - inv_w
+    return left - z2 / z1 * (math.asin(math.sqrt(s2)) + float(inv(math.acos(min(ca2, 1.0)))) - inv_w)

@@ -29,6 +29,7 @@ from rotorcad.gears.internal_formulas import (
     internal_center_distance,
     internal_working_pressure_angle,
     involute_interference_margin,
+    radial_margin,
     roll_length,
     trochoid_margin,
 )
@@ -287,6 +288,16 @@ class InternalGear:
             c.base_radius,
         )
 
+    @property
+    def radial_feed_margin(self) -> float:
+        """Margin of the cutter against radial (trimming) interference, rad of the cutter (:func:`radial_margin`).
+
+        Negative: fed radially to depth at one position (without generating), the cutter's teeth
+        would cut the gear's tooth tips; fed while generating, or to a shallower depth first, it does not.
+        """
+        c = self.cutter
+        return radial_margin(c.teeth, self.teeth, c.tip_radius, self.tip_radius, c.base_radius, self.cutting_pressure_angle)
+
     # ----- the generated tooth space ----------------------------------------------------------
     def _roll_at(self, at_radius: float) -> float:
         """Cutter roll angle u that cuts the involute at radius R: (sqrt(R^2 - r_b2^2) - a0 sin(alpha_wt0)) / r_b0."""
@@ -420,7 +431,8 @@ class InternalGear:
             ``internal`` (True), ``pitch_radius``, ``base_radius``, ``tip_radius``, ``root_radius``,
             ``form_radius``, ``outer_radius``, ``tooth_thickness_pitch``, ``space_width_pitch``,
             ``cutting_center_distance`` (mm), ``cutting_pressure_angle_deg``, the cutting checks
-            ``cutting_involute_margin`` (mm) and ``cutting_trochoid_margin_deg`` (degrees), and ``cutter``
+            ``cutting_involute_margin`` (mm), ``cutting_trochoid_margin_deg`` and
+            ``cutting_radial_feed_margin_deg`` (degrees), and ``cutter``
             (:meth:`ShaperCutter.summary`).
         """
         r = self.pitch_radius
@@ -439,6 +451,7 @@ class InternalGear:
             "cutting_pressure_angle_deg": self.cutting_pressure_angle / DEG,
             "cutting_involute_margin": self.involute_interference_cutting,
             "cutting_trochoid_margin_deg": self.trochoid_margin_cutting / DEG,
+            "cutting_radial_feed_margin_deg": self.radial_feed_margin / DEG,
             "cutter": self.cutter.summary(),
         }
 

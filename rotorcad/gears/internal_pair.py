@@ -18,6 +18,7 @@ from rotorcad.gears.internal_formulas import (
     internal_center_distance,
     internal_working_pressure_angle,
     involute_interference_margin,
+    radial_margin,
     roll_length,
     trochoid_margin,
 )
@@ -209,6 +210,15 @@ class InternalPair:
         )
 
     @property
+    def radial_margin(self) -> float:
+        """Margin against radial (trimming) interference, rad of the pinion (:func:`~rotorcad.gears.internal_formulas.radial_margin`).
+
+        Negative: the pinion cannot be moved radially into mesh (it is assembled axially).
+        """
+        p, r = self.pinion, self.ring
+        return radial_margin(p.teeth, r.teeth, p.tip_radius, r.tip_radius, p.base_radius, self.working_pressure_angle)
+
+    @property
     def min_teeth_difference(self) -> int | None:
         """Smallest z2 - z1 for which the pair passes the closed-form checks, the pinion and shifts kept.
 
@@ -243,7 +253,7 @@ class InternalPair:
             :meth:`InternalGear.summary` of the internal gear and ``center_distance`` (mm),
             ``working_pressure_angle_deg``, ``contact_ratio``, ``backlash`` (mm),
             ``involute_interference_margin`` and ``root_interference_margin`` (mm),
-            ``trochoid_margin_deg`` (degrees), ``min_teeth_difference`` and ``mate`` (the pinion's
+            ``trochoid_margin_deg`` and ``radial_assembly_margin_deg`` (degrees), ``min_teeth_difference`` and ``mate`` (the pinion's
             :meth:`InvoluteGear.summary`).
         """
         out = self.ring.summary()
@@ -256,6 +266,7 @@ class InternalPair:
                 "involute_interference_margin": float(self.involute_interference_margin),
                 "root_interference_margin": float(self.root_interference_margin),
                 "trochoid_margin_deg": self.trochoid_margin / DEG,
+                "radial_assembly_margin_deg": self.radial_margin / DEG,
                 "min_teeth_difference": self.min_teeth_difference,
                 "mate": self.pinion.summary(),
             }
