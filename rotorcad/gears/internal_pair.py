@@ -211,7 +211,7 @@ class InternalPair:
 
     @property
     def radial_margin(self) -> float:
-        """Margin against radial (trimming) interference, rad of the pinion (:func:`~rotorcad.gears.internal_formulas.radial_margin`).
+        """Margin against radial (trimming) interference, rad of the pinion (:func:`internal_formulas.radial_margin`).
 
         Negative: the pinion cannot be moved radially into mesh (it is assembled axially).
         """
@@ -253,8 +253,8 @@ class InternalPair:
             :meth:`InternalGear.summary` of the internal gear and ``center_distance`` (mm),
             ``working_pressure_angle_deg``, ``contact_ratio``, ``backlash`` (mm),
             ``involute_interference_margin`` and ``root_interference_margin`` (mm),
-            ``trochoid_margin_deg`` and ``radial_assembly_margin_deg`` (degrees), ``min_teeth_difference`` and ``mate`` (the pinion's
-            :meth:`InvoluteGear.summary`).
+            ``trochoid_margin_deg`` and ``radial_assembly_margin_deg`` (degrees),
+            ``min_teeth_difference`` and ``mate`` (the pinion's :meth:`InvoluteGear.summary`).
         """
         out = self.ring.summary()
         out.update(
