@@ -33,7 +33,9 @@ def run(capsys, *args):
 
 
 def test_gear_json_of_the_sample(capsys, tmp_path):
-    rc, out, err = run(capsys, "gear", SAMPLE, "--json", "--quiet", "--csv", tmp_path / "ring.csv")
+    rc, out, err = run(
+        capsys, "gear", SAMPLE, "--json", "--quiet", "--csv", tmp_path / "ring.csv", "--dxf", tmp_path / "ring.dxf"
+    )
     assert rc == 0, err
     data = json.loads(out)
     assert data["internal"] is True and data["cutter"]["teeth"] == 20 and data["mate"]["pitch_radius"] == 41.0
@@ -45,6 +47,21 @@ def test_gear_json_of_the_sample(capsys, tmp_path):
     r = np.hypot(*pts.T)
     assert r.min() == pytest.approx(data["tip_radius"], abs=1e-9) and r.max() == pytest.approx(data["root_radius"], abs=1e-9)
     assert Path(tmp_path / "ring_mate.csv").exists()
+    msp = ezdxf.readfile(tmp_path / "ring.dxf").modelspace()
+    layers = {e.dxf.layer for e in msp}
+    assert {"GEAR", "OUTER", "MATE", "LINE_OF_ACTION"} <= layers
+    outer = [e for e in msp.query("CIRCLE") if e.dxf.layer == "OUTER"]
+    assert len(outer) == 1 and outer[0].dxf.radius == pytest.approx(70.0)
+    # the line of action runs tangent to both base circles (ISO 21771): T2 on the ring's, T1 on the pinion's
+    line = next(e for e in msp.query("LINE") if e.dxf.layer == "LINE_OF_ACTION")
+    t2, t1 = np.array(line.dxf.start)[:2], np.array(line.dxf.end)[:2]
+    u = (t1 - t2) / np.linalg.norm(t1 - t2)
+
+    def cross(a, b):
+        return a[0] * b[1] - a[1] * b[0]
+
+    assert abs(cross(u, t2)) == pytest.approx(data["base_radius"], abs=1e-9)  # distance of the line from O2
+    assert abs(cross(u, t1 - [data["center_distance"], 0.0])) == pytest.approx(data["mate"]["base_radius"], abs=1e-9)
 
 
 @pytest.mark.parametrize(
@@ -56,6 +73,7 @@ def test_gear_json_of_the_sample(capsys, tmp_path):
         ([*SMALL, "--outer-diameter", 20], "--outer-diameter must be from"),
         ([*SMALL, "--span-teeth", 3], "--span-teeth must not be given for an internal gear"),
         ([*SMALL, "--mate-teeth", 30], "--mate-teeth must be a whole number from 3 to 29"),
+        (["--teeth", 30, "--module", 1, "--cutter-teeth", 15], "--cutter-teeth must be given with --internal"),
         (["--internal", "--teeth", 30, "--module", 1, "--cutter-teeth", 12, "--shift", 0.3, "--addendum", 0.8],
          "--addendum must be at most 0.7013 for a 12-tooth cutter"),
     ],

@@ -16,7 +16,7 @@ from hob.tools import TrapezoidalHob
 from hob.undercut import effective_addendum, kollek_model
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
 from rotorcad.cli.gear import GEAR_OPTION, SPEC, build_gear, gear_options, merge_gear_params
-from rotorcad.cli.gear_internal import internal_options
+from rotorcad.cli.gear_internal import internal_options, refuse_internal_options
 from rotorcad.cli.progress import Steps
 from rotorcad.errors import DesignError
 from rotorcad.gear import RELATIVE_TOLERANCE
@@ -61,6 +61,7 @@ def cut(design: Path | None, **opts: Any) -> None:
 
         run_internal_cut(params[SPEC], opts)
         return
+    refuse_internal_options(opts)
     module = params["module"] if np.isfinite(params["module"]) else 1.0
     if 0 < module and tol > RELATIVE_TOLERANCE[1] * module:
         raise InputError(

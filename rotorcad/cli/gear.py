@@ -20,7 +20,7 @@ from rotorcad.cli.common import (
     print_pair_table,
     print_table,
 )
-from rotorcad.cli.gear_internal import INTERNAL_FIELDS, internal_options, run_internal_gear
+from rotorcad.cli.gear_internal import INTERNAL_FIELDS, internal_options, refuse_internal_options, run_internal_gear
 from rotorcad.cli.progress import Steps
 from rotorcad.design.gears import GEAR_DEFAULTS, VALUE_FIELDS, GearSpec, gear_spec
 from rotorcad.design.gears import build_gear as core_build_gear
@@ -178,6 +178,7 @@ def gear(design: Path | None, **opts: Any) -> None:
     if params["internal"]:
         run_internal_gear(params[SPEC], opts)
         return
+    refuse_internal_options(opts)
     g, pair = build_gear(params, opts["tolerance"])
     result: dict[str, Any] = pair.summary() if pair is not None else g.summary()
     shop, g, pair = shop_gears(params, g, pair)

@@ -62,6 +62,25 @@ def internal_options(fn):
     return fn
 
 
+def refuse_internal_options(opts: dict[str, Any]) -> None:
+    """Refuse the options of an internal gear's cutter and ring given for an external gear.
+
+    Parameters
+    ----------
+    opts : dict
+        The command's options (None: not given).
+
+    Raises
+    ------
+    InputError
+        Naming the first such option.
+    """
+    for field in INTERNAL_FIELDS[1:]:
+        if opts.get(field) is not None:
+            option = "--" + field.replace("_", "-")
+            raise InputError(f"{option} must be given with --internal (or a design with a [shaper] table).")
+
+
 def build_internal_gear(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
     """Build the internal gear and its pinion (:func:`rotorcad.design.gears.build_internal`), refusals as CLI errors.
 
@@ -224,4 +243,11 @@ def line_of_action(pair: Any) -> tuple[tuple[float, float], tuple[float, float]]
     return (float(t1[0]), float(t1[1])), (float(t2[0]), float(t2[1]))
 
 
-__all__ = ["INTERNAL_FIELDS", "build_internal_gear", "internal_options", "ring_drawing", "run_internal_gear"]
+__all__ = [
+    "INTERNAL_FIELDS",
+    "build_internal_gear",
+    "internal_options",
+    "refuse_internal_options",
+    "ring_drawing",
+    "run_internal_gear",
+]

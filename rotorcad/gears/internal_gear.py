@@ -56,9 +56,8 @@ class InternalGear:
     module : float
         Normal module m, mm.
     cutter : ShaperCutter
-        The shaper cutter (same module, pressure angle and helix angle).
-    pressure_angle, helix_angle : float
-        Normal pressure angle alpha_n and helix angle beta, rad (taken from ``cutter`` when None).
+        The shaper cutter (same module); the gear takes its normal pressure angle alpha_n and helix
+        angle beta (a helical gear is shaped by a helical cutter with a helical guide).
     shift : float
         Profile shift x2 (normal modules, > 0 widens the spaces), within :data:`SHIFT_RANGE`.
     addendum : float
