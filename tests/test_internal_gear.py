@@ -363,3 +363,26 @@ def test_radial_assembly_margin_against_a_brute_force_withdrawal(spur):
     collides = InternalPair(InvoluteGear(50, 2.0, shift=0.3, addendum=0.8), spur)
     assert collides.radial_margin < 0.0
     assert radial_overlap(collides) > 0.01  # mm^2
+
+
+def test_reference_thickness_when_the_reference_circle_lies_in_the_bore():
+    # shift 0.9 and addendum 0.8: the tip circle r2 + 0.1 m lies outside the reference circle; the
+    # thickness on it is the involutes' (ISO 21771: s2 = m (pi/2 - 2 x2 tan(alpha)) with the space-widening sign)
+    g = InternalGear(60, 2.0, ShaperCutter(teeth=20, module=2.0, tip_radius_factor=0.2), shift=0.9, addendum=0.8)
+    assert g.tip_radius > g.pitch_radius
+    s = g.summary()["tooth_thickness_pitch"]
+    assert s == pytest.approx(2.0 * (math.pi / 2.0 - 2.0 * 0.9 * math.tan(20.0 * DEG)), abs=1e-9)
+
+
+def test_pointed_cutter_names_the_largest_shift():
+    # ISO 21771 eq. 2.21: the tip land's half-angle (pi/2 + 2 x tan(alpha))/z + inv(alpha) - inv(alpha_a) vanishes at x*
+    z, m, alpha = 5, 2.0, 20.0 * DEG
+
+    def land(x):
+        ra = z * m / 2.0 + (1.25 + x) * m
+        return (math.pi / 2.0 + 2.0 * x * math.tan(alpha)) / z + inv(alpha) - inv(math.acos(z * m / 2.0 * math.cos(alpha) / ra))
+
+    x_star = brentq(land, -1.0, 1.0)
+    with pytest.raises(DesignError, match=r"cutter_shift must be at most (-?\d\.\d+)") as info:
+        ShaperCutter(teeth=z, module=m)
+    assert float(info.value.allowed.split()[2]) == pytest.approx(math.floor(x_star * 1000.0) / 1000.0, abs=1e-12)

@@ -325,14 +325,21 @@ def build_internal(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
     if spec.cutter_teeth is None:
         raise MissingValueError("cutter_teeth", "for an internal gear")
     angles = {"pressure_angle": spec.pressure_angle * DEG, "helix_angle": spec.helix_angle * DEG}
-    cutter = ShaperCutter(
-        teeth=spec.cutter_teeth,
-        module=spec.module,
-        shift=spec.cutter_shift,
-        addendum=spec.dedendum if spec.cutter_addendum is None else spec.cutter_addendum,
-        tip_radius_factor=spec.cutter_tip_radius,
-        **angles,
-    )
+    try:
+        cutter = ShaperCutter(
+            teeth=spec.cutter_teeth,
+            module=spec.module,
+            shift=spec.cutter_shift,
+            addendum=spec.dedendum if spec.cutter_addendum is None else spec.cutter_addendum,
+            tip_radius_factor=spec.cutter_tip_radius,
+            **angles,
+        )
+    except DesignError as exc:
+        if exc.param != "cutter_addendum" or spec.cutter_addendum is not None:
+            raise
+        # the cutter's addendum is the gear's dedendum when not given: name what the user typed
+        detail = exc.detail or "the shaper cutter's addendum is the dedendum when not given"
+        raise type(exc)("dedendum", exc.allowed, spec.dedendum, detail) from None
     ring = InternalGear(
         spec.teeth,
         spec.module,

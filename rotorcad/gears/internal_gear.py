@@ -421,6 +421,17 @@ class InternalGear:
         """Transverse arc tooth thickness 2 R (pi / z2 - eta(R)) at radius R, mm."""
         return 2.0 * at_radius * (math.pi / self.teeth - self.space_half_angle(at_radius))
 
+    def involute_tooth_thickness(self, at_radius: float) -> float:
+        """Tooth thickness of the involute flanks at R >= r_b2, also beyond the teeth (ISO 21771 eq. 2.21), mm.
+
+        The involute's constant eta(R) + inv(alpha_R) is read from the generated flank in the middle of
+        its involute; the reference circle may lie inside the tip circle (large shift, short teeth).
+        """
+        mid = 0.5 * (self.tip_radius + self.form_radius)
+        eta_b = self.space_half_angle(mid) + float(inv(math.acos(self.base_radius / mid)))
+        eta = eta_b - float(inv(math.acos(min(self.base_radius / at_radius, 1.0))))
+        return 2.0 * at_radius * (math.pi / self.teeth - eta)
+
     def summary(self) -> dict[str, object]:
         """Return the CONTRACT.md keys of ``rotorcad gear --internal`` for the internal gear alone.
 
@@ -428,14 +439,15 @@ class InternalGear:
         -------
         dict
             ``internal`` (True), ``pitch_radius``, ``base_radius``, ``tip_radius``, ``root_radius``,
-            ``form_radius``, ``outer_radius``, ``tooth_thickness_pitch``, ``space_width_pitch``,
+            ``form_radius``, ``outer_radius``, ``tooth_thickness_pitch`` and ``space_width_pitch`` (of the
+            involute flanks on the reference circle, :meth:`involute_tooth_thickness`),
             ``cutting_center_distance`` (mm), ``cutting_pressure_angle_deg``, the cutting checks
             ``cutting_involute_margin`` (mm), ``cutting_trochoid_margin_deg`` and
             ``cutting_radial_feed_margin_deg`` (degrees), and ``cutter``
             (:meth:`ShaperCutter.summary`).
         """
         r = self.pitch_radius
-        s = self.tooth_thickness(r)
+        s = self.involute_tooth_thickness(r)
         return {
             "internal": True,
             "pitch_radius": r,

@@ -70,17 +70,43 @@ class ShaperCutter:
             raise DesignError("module", f"a length from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm", self.module)
         if not np.isfinite(self.shift) or not -1.0 <= self.shift <= 1.5:
             raise DesignError("cutter_shift", "between -1 and 1.5 modules", self.shift)
+        if not (1.0 * DEG <= self.pressure_angle < 45.0 * DEG):
+            raise DesignError("pressure_angle", "from 1 to below 45 degrees", float(self.pressure_angle / DEG))
+        if not (-60.0 * DEG < self.helix_angle < 60.0 * DEG):
+            raise DesignError("helix_angle", "between -60 and 60 degrees (exclusive)", round(self.helix_angle / DEG, 6))
         if not (np.isfinite(self.addendum) and 0.5 <= self.addendum <= 2.0):
             raise DesignError("cutter_addendum", "from 0.5 to 2 (factor of the module)", self.addendum)
         if self.tip_half_angle_sharp <= 0.0:
-            raise DesignError(
-                "cutter_shift", "small enough that the cutter's tooth is not pointed below its tip circle", self.shift
-            )
+            largest = self._largest_unpointed_shift()
+            if largest is None:
+                raise DesignError(
+                    "cutter_addendum", "smaller: the cutter's teeth are pointed at the tip for every shift from -1", self.addendum
+                )
+            allowed = f"at most {largest:.3f} so that the cutter's teeth are not pointed below the tip circle"
+            raise DesignError("cutter_shift", allowed, self.shift)
         limit = self.tip_radius_limit
         if not (np.isfinite(self.tip_radius_factor) and 0.0 <= self.tip_radius_factor <= limit):
             raise DesignError(
                 "cutter_tip_radius", f"from 0 to {limit:.4f} for this cutter (the tip roundings meet)", self.tip_radius_factor
             )
+
+    def _largest_unpointed_shift(self) -> float | None:
+        """Largest shift from -1 whose tooth keeps a tip land (bisection to 1e-4, rounded down to 0.001), or None."""
+
+        def land(x: float) -> float:
+            g = object.__new__(ShaperCutter)
+            for name in ("teeth", "module", "pressure_angle", "helix_angle", "addendum", "tip_radius_factor"):
+                object.__setattr__(g, name, getattr(self, name))
+            object.__setattr__(g, "shift", x)
+            return g.tip_half_angle_sharp
+
+        lo, hi = -1.0, float(self.shift)
+        if land(lo) <= 0.0:
+            return None
+        while hi - lo > 1e-4:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if land(mid) > 0.0 else (lo, mid)
+        return math.floor(lo * 1000.0) / 1000.0
 
     # ----- closed forms (ISO 21771) ---------------------------------------------------------
     @property
