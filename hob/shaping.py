@@ -101,6 +101,21 @@ def shaping_plan(ring: InternalGear, scallop: float, positions: int | None = Non
     return positions, turn
 
 
+def coarsest_scallop(ring: InternalGear, scallop: float) -> float:
+    """Return a scallop height (mm, from ``scallop`` up by factors of 1.25, two digits up) whose simulation fits one union.
+
+    Its positions (:func:`shaping_plan`) times the vertices of the cutter's teeth sampled to a quarter
+    of it stay within :data:`hob.cutting.MAX_UNION_VERTICES`.
+    """
+    t = scallop
+    for _ in range(200):
+        if shaping_plan(ring, t)[0] * len(cutter_teeth(ring, t / 4.0)) <= MAX_UNION_VERTICES:
+            break
+        t *= 1.25
+    digits = 1 - math.floor(math.log10(t))
+    return math.ceil(t * 10**digits) / 10**digits  # two significant digits, rounded up
+
+
 def simulate_shaping(ring: InternalGear, scallop: float = 1e-3, positions: int | None = None) -> ShapingResult:
     """Shape tooth space 0 of an internal gear by polygon booleans and compare it with the envelope.
 
@@ -125,9 +140,15 @@ def simulate_shaping(ring: InternalGear, scallop: float = 1e-3, positions: int |
     teeth = cutter_teeth(ring, scallop / 4.0)
     n, turn = shaping_plan(ring, scallop, positions)
     if n * len(teeth) > MAX_UNION_VERTICES:
-        param = "positions" if positions is not None else "tolerance"
         most = MAX_UNION_VERTICES // len(teeth)
-        raise DesignError(param, f"such that at most {most} cutter positions are needed (got {n} positions)", n)
+        if positions is not None:
+            raise DesignError("positions", f"at most {most} for this gear (each cutter position has {len(teeth)} vertices)", n)
+        raise DesignError(
+            "tolerance",
+            f"at least {coarsest_scallop(ring, scallop):.2g} mm for this gear",
+            scallop,
+            f"{n} cutter positions of {len(teeth)} vertices, more than one union of {MAX_UNION_VERTICES} vertices",
+        )
     z2, z0, a0 = ring.teeth, ring.cutter.teeth, ring.cutting_center_distance
     t = np.linspace(-turn, turn, n)
     zc = teeth[:, 0] + 1j * teeth[:, 1]

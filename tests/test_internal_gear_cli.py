@@ -156,3 +156,17 @@ def test_report_of_an_internal_gear(capsys, tmp_path):
     assert data["kind"] == "gear" and data["hobbable"] is False  # shaped, not hobbed: said as the reason
     page = (tmp_path / "ring.html").read_text(encoding="utf-8")
     assert "cutting_trochoid_margin_deg" in page and "shaper cutter" in page and "<svg" in page
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--positions", 100000], "--positions must be at most"),
+        (["--tolerance", 1e-9], "--tolerance must be at least"),
+        (["--tolerance", 0.5], "--tolerance must be at most 0.2 mm"),
+        (["--plot", "x.png"], "--plot must not be given for an internal gear"),
+    ],
+)
+def test_cut_refusals(capsys, args, message):
+    rc, out, err = run(capsys, "cut", SAMPLE, *args)
+    assert rc == 2 and out == "" and message in err and err.count("\n") == 1

@@ -29,6 +29,8 @@ def run_internal_cut(spec: GearSpec, opts: dict[str, Any]) -> None:
         ``dxf``, ``csv``, ``plot``, ``quiet``).
     """
     tol = opts["tolerance"]
+    if tol > 0.1 * spec.module:
+        raise InputError(f"--tolerance must be at most {0.1 * spec.module:.3g} mm (a tenth of the module; got {tol:g}).")
     if opts.get("plot"):
         raise InputError("--plot must not be given for an internal gear (its cut is drawn by --dxf).")
     ring, _ = build_internal_gear(spec, max(min(tol / 4.0, 1e-4), 1e-7 * spec.module))
