@@ -107,7 +107,9 @@ def coarsest_scallop(ring: InternalGear, scallop: float) -> float:
     Its positions (:func:`shaping_plan`) times the vertices of the cutter's teeth sampled to a quarter
     of it stay within :data:`hob.cutting.MAX_UNION_VERTICES`.
     """
-    t = scallop
+    # positions and the cutter's vertices each grow like 1 / sqrt(scallop): their product like 1 / scallop
+    work = shaping_plan(ring, scallop)[0] * len(cutter_teeth(ring, scallop / 4.0))
+    t = scallop * max(1.0, 0.9 * work / MAX_UNION_VERTICES)
     for _ in range(200):
         if shaping_plan(ring, t)[0] * len(cutter_teeth(ring, t / 4.0)) <= MAX_UNION_VERTICES:
             break
