@@ -225,18 +225,21 @@ def test_cutter_rounding_limit():
 # ----- brute-force shaping simulation -----------------------------------------------------------
 
 
-def cutter_teeth_polygon(z0, m, x0, h_a0, rho_star, alpha, n=400):
+def cutter_teeth_polygon(z0, m, x0, h_a0, rho_star, alpha, n=400, beta=0.0):
     """Three teeth (-1, 0, 1) of a shaper cutter about the origin, tooth 0 on +x, from closed forms.
 
-    Involute flanks (ISO 21771 eq. 2.21, sampled in equal roll angles) from the base or root circle to
-    the tip circle, tip arcs, radial flanks below the base circle, then the tip rounded by an opening
-    of radius rho (buffer -rho, +rho: the arc tangent to the tip circle and to the flank).
+    Transverse section of a cutter of normal module m, normal pressure angle alpha and helix angle
+    beta (ISO 21771: m_t = m / cos(beta), tan(alpha_t) = tan(alpha) / cos(beta)). Involute flanks (eq.
+    2.21, sampled in equal roll angles) from the base or root circle to the tip circle, tip arcs,
+    radial flanks below the base circle, then the tip rounded by an opening of radius rho (buffer
+    -rho, +rho: the arc tangent to the tip circle and to the flank).
     """
-    r0 = z0 * m / 2.0
-    rb = r0 * math.cos(alpha)
+    alpha_t = math.atan(math.tan(alpha) / math.cos(beta))
+    r0 = z0 * m / math.cos(beta) / 2.0
+    rb = r0 * math.cos(alpha_t)
     ra = r0 + (h_a0 + x0) * m
     rf = r0 + (x0 - 1.25) * m
-    psi_b = (math.pi / 2.0 + 2.0 * x0 * math.tan(alpha)) / z0 + inv(alpha)
+    psi_b = (math.pi / 2.0 + 2.0 * x0 * math.tan(alpha)) / z0 + inv(alpha_t)
     u = np.linspace(math.sqrt(max(rf * rf - rb * rb, 0.0)) / rb, math.sqrt(ra * ra - rb * rb) / rb, n)
     r = rb * np.sqrt(1.0 + u * u)
     psi = psi_b - (u - np.arctan(u))
@@ -267,7 +270,7 @@ def shaped_ring(g: InternalGear, positions=1000, turn=None, n=300):
     """
     c = g.cutter
     alpha = c.pressure_angle
-    teeth = cutter_teeth_polygon(c.teeth, c.module, c.shift, c.addendum, c.tip_radius_factor, alpha, n)
+    teeth = cutter_teeth_polygon(c.teeth, c.module, c.shift, c.addendum, c.tip_radius_factor, alpha, n, c.helix_angle)
     xy = shapely.get_coordinates(teeth)
     z0, z2, a0 = c.teeth, g.teeth, g.cutting_center_distance
     span = turn if turn is not None else 2.5 * 2.0 * math.pi / z2
@@ -285,10 +288,12 @@ def shaped_ring(g: InternalGear, positions=1000, turn=None, n=300):
     return blank.difference(swept)
 
 
-def test_shaping_simulation_matches_the_envelope(spur):
+@pytest.mark.parametrize("name", ["spur", "helical"])
+def test_shaping_simulation_matches_the_envelope(name, request):
     # brute force: the ring blank minus the cutter at 1000 positions; the envelope's space 0 (root arc,
-    # fillet, involute; both flanks) lies on the simulated boundary within 1 um, and back
-    g = spur
+    # fillet, involute; both flanks) lies on the simulated boundary within 1 um, and back (a helical
+    # gear in its transverse section, shaped by a helical cutter)
+    g = request.getfixturevalue(name)
     sim = shaped_ring(g)
     boundary = sim.boundary
     prof = g.outline()
