@@ -391,3 +391,29 @@ def test_pointed_cutter_names_the_largest_shift():
     with pytest.raises(DesignError, match=r"cutter_shift must be at most (-?\d\.\d+)") as info:
         ShaperCutter(teeth=z, module=m)
     assert float(info.value.allowed.split()[2]) == pytest.approx(math.floor(x_star * 1000.0) / 1000.0, abs=1e-12)
+
+
+def mesh_overlap(pair: InternalPair, turn: float = 0.9, positions: int = 400) -> float:
+    """Brute force: the pinion turned in mesh (ring by t, pinion by t z2/z1 about (a_w, 0)) for |t| <= turn;
+    the largest overlap area (mm^2) of its outline with the ring's teeth (shapely), both sampled to 1 um."""
+    ring, p = pair.ring, pair.pinion
+    outer = shapely.Point(0, 0).buffer(ring.root_radius + 2.0, quad_segs=256)
+    teeth = shapely.Polygon(outer.exterior.coords, [ring.outline(1e-3).points[::-1]])
+    pin = p.outline(1e-3).points
+    t = np.linspace(-turn, turn, positions)[:, None]
+    own = np.exp(1j * t * ring.teeth / p.teeth) * (pin[:, 0] + 1j * pin[:, 1])
+    placed = (own + pair.working_center_distance) * np.exp(-1j * t)  # seen from the ring
+    polys = shapely.polygons(np.stack([placed.real, placed.imag], axis=-1))
+    return float(shapely.area(shapely.intersection(teeth, polys)).max())
+
+
+def test_trochoid_margin_of_the_pair_against_a_brute_force_mesh(spur):
+    # the pair's trochoid check against turning the pinion through the whole mesh: with a margin the
+    # outlines only touch along the conjugate flanks (overlap at the 1 um sampling's level), without one
+    # the pinion's tips cut into the ring's tooth tips as they leave the spaces
+    clear = InternalPair(InvoluteGear(50, 2.0, shift=0.3, addendum=0.8), spur)
+    assert clear.trochoid_margin > 0.0
+    assert mesh_overlap(clear) < 1e-4  # mm^2
+    strikes = InternalPair(InvoluteGear(56, 2.0, shift=0.3, addendum=0.8), spur, check=False)
+    assert strikes.trochoid_margin < 0.0
+    assert mesh_overlap(strikes) > 0.05  # mm^2 (0.31 measured)
