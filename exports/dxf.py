@@ -236,6 +236,8 @@ def _plan_drawing(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: di
     placed = body.placed_points()
     drawing = Drawing(mark_size=body.mark_size)
     drawing.outlines.append((body.name.upper(), placed))
+    for hole in body.section.interiors:  # an internal gear's toothed bore
+        drawing.outlines.append((body.name.upper(), np.asarray(hole.coords)[:-1][::-1] + np.asarray(body.shift)))
     drawing.circles.append(("PITCH", body.shift, body.pitch_radius))
     r12 = fmt.name.endswith("r12")
     if body.kind is BodyKind.ROTOR:

@@ -222,6 +222,17 @@ def _plan_exact_step(fmt: ExportFormat, body: PlacedBody, tolerance: float, row:
     # (section_segments); the face check of the writer refuses any solid that would not be
     sections = [section_segments(body.outline(chord * step_tol), body.turn, step_tol) for chord in body.step_chords]
     exact = rotate(body.outline(step_tol / 100).points, body.turn)
+    if body.outer_radius is not None:  # an internal gear: the outer cylinder minus the swept bore
+        from exports.step_ring import write_ring_step
+
+        area = np.pi * body.outer_radius**2 - shapely.Polygon(exact).area
+        row.update(triangles=0, volume=float(area * body.length), faces=len(sections[0]) + 3, tolerance=step_tol)
+        return BackgroundWriter(
+            write_ring_step,
+            (sections, body.lead, body.length, body.outer_radius, step_tol, body.name, body.shift, exact),
+            done=lambda done: row.update(tolerance=done["deviation"], faces=int(done["faces"])),
+            failed=lambda exc: RefusalError(f"--tolerance {step_tol:g} mm cannot be met by the STEP of the {body.name}: {exc}."),
+        )
     row.update(
         triangles=0,
         volume=float(shapely.Polygon(exact).area * body.length),

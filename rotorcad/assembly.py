@@ -33,6 +33,8 @@ from rotorcad.triangle_mesh import TriangleMesh
 
 if TYPE_CHECKING:
     from rotorcad.gear import GearPair, InvoluteGear
+    from rotorcad.gears.internal_gear import InternalGear
+    from rotorcad.gears.internal_pair import InternalPair
     from rotorcad.profile import Profile
     from rotorcad.rotor_pair import RotorPair
     from rotorcad.screw_rotors import ScrewRotors
@@ -98,6 +100,9 @@ class PlacedBody:
     housing : tuple, optional
         ``(center_distance, male bore radius, female bore radius, length, wall)`` of the housing
         (its exact STEP is made of a box and cylinders).
+    outer_radius : float, mm, optional
+        An internal gear (ring): ``outline`` is its toothed bore and the material lies between it
+        and this circle; ``section`` holds the bore as its hole.
     on_swept : callable, optional
         Called when the solid has been swept (a progress bar's step).
     """
@@ -118,6 +123,7 @@ class PlacedBody:
     solid: MeshedBody | None = None
     exact_volume: float | None = None
     housing: tuple[float, float, float, float, float] | None = None
+    outer_radius: float | None = None
     on_swept: Callable[[], None] | None = field(default=None, repr=False)
     _swept: dict[float, MeshedBody] = field(default_factory=dict, repr=False)
 
@@ -319,6 +325,45 @@ def gear_bodies(gear: InvoluteGear, pair: GearPair | None, width: float, toleran
         )
         for name, g, lead, shift, turn in bodies
     ]
+
+
+def internal_gear_bodies(ring: InternalGear, pair: InternalPair | None, width: float, tolerance: float) -> list[PlacedBody]:
+    """Return an internal gear (a ring with its toothed bore) and its pinion in mesh as placed bodies.
+
+    The ring about the origin, its section the circle of the outer radius with the bore as a hole;
+    the pinion about (a_w, 0), not turned (its tooth 0 stands in the ring's space 0 on the +x axis),
+    swept with the same hand as the ring (an internal pair) and the lead h2 z1 / z2.
+    """
+    lead = gear_lead(ring)
+    # chords of the outer circle within a quarter of the tolerance: sagitta R (1 - cos(pi / n))
+    n = max(720, int(np.ceil(np.pi / np.arccos(1.0 - tolerance / 4 / ring.outer_radius))))
+    angles = 2 * np.pi * np.arange(n) / n
+    outer = ring.outer_radius * np.column_stack([np.cos(angles), np.sin(angles)])
+
+    def ring_section(chord: float) -> shapely.Polygon:
+        return shapely.Polygon(outer, [ring.outline(chord).points[::-1]])
+
+    bodies = [
+        PlacedBody(
+            name="gear",
+            kind=BodyKind.GEAR,
+            length=float(width),
+            section=ring_section(tolerance / 4),
+            section_tolerance=tolerance / 4,
+            lead=float(lead),
+            pitch_radius=float(ring.pitch_radius),
+            mark_size=float(ring.module),
+            section_of=ring_section,
+            outline=ring.outline,
+            step_chords=(10.0, 1.0, 0.1),
+            outer_radius=float(ring.outer_radius),
+        )
+    ]
+    if pair is not None:
+        p = pair.pinion
+        (pinion,) = gear_bodies(p, None, width, tolerance)  # its lead 2 pi r1 / tan(beta) = h2 z1 / z2, the same hand
+        bodies.append(replace(pinion, name="mate", shift=(float(pair.working_center_distance), 0.0)))
+    return bodies
 
 
 def housing_volumes(pair: RotorPair, clearance: float, wall: float | None = None) -> dict[str, float]:

@@ -86,6 +86,43 @@ _declare(
     ],
 )
 
+# --- internal gears and their shaper cutters (rotorcad/gears/internal_gear.py, internal_pair.py,
+# shaper.py; ISO 21771, DIN 3993): the cutter's figures nested under cutter (table rows cutter_...)
+_declare(
+    "rotorcad/gears/internal_gear",
+    [
+        ("outer_radius", "mm", "outer radius of the ring"),
+        ("space_width_pitch", "mm", "space width at the pitch circle"),
+        ("cutting_center_distance", "mm", "centre distance of the shaper cutting"),
+        ("cutting_pressure_angle_deg", "deg", "working pressure angle of the shaper cutting"),
+        ("cutting_involute_margin", "mm", "involute-interference margin of the cutting"),
+        ("cutting_trochoid_margin_deg", "deg", "trochoid-interference margin of the cutter"),
+        ("cutting_radial_feed_margin_deg", "deg", "radial-feed (trimming) margin of the cutter"),
+    ]
+    + [
+        (f"cutter{sep}{key}", unit, f"shaper cutter {label}")
+        for key, unit, label in (
+            ("teeth", "1", "teeth"),
+            ("shift", "1", "profile shift"),
+            ("pitch_radius", "mm", "pitch radius"),
+            ("base_radius", "mm", "base radius"),
+            ("tip_radius", "mm", "tip radius"),
+            ("tip_rounding", "mm", "tip rounding radius"),
+        )
+        for sep in (".", "_")
+    ],
+)
+_declare(
+    "rotorcad/gears/internal_pair",
+    [
+        ("involute_interference_margin", "mm", "involute-interference margin"),
+        ("root_interference_margin", "mm", "pinion tip to the ring's form circle"),
+        ("trochoid_margin_deg", "deg", "trochoid-interference margin"),
+        ("radial_assembly_margin_deg", "deg", "radial-assembly (trimming) margin"),
+        ("min_teeth_difference", "1", "smallest tooth-count difference"),
+    ],
+)
+
 # --- cutting simulation (hob/, rotorcad/cli/cut_cmd.py) -------------------------------------------
 _declare(
     "hob/cutting",

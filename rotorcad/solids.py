@@ -198,7 +198,8 @@ def helical_solid(section: shapely.Polygon, lead: float, length: float, toleranc
     if phase:
         poly = shapely.affinity.rotate(poly, phase, origin=(0, 0), use_radians=True)
     pts = np.asarray(poly.exterior.coords)[:-1]
-    contours = tuple(np.asarray(c, dtype=float) for c in m3.CrossSection([pts], m3.FillRule.Positive).to_polygons())
+    holes = [np.asarray(h.coords)[:-1] for h in poly.interiors]  # clockwise (oriented above): an internal gear's bore
+    contours = tuple(np.asarray(c, dtype=float) for c in m3.CrossSection([pts, *holes], m3.FillRule.Positive).to_polygons())
     wrap = 2.0 * np.pi * length / lead
     r_max = float(np.hypot(*pts.T).max())
     n = layers_for(tolerance, wrap, r_max)

@@ -77,6 +77,12 @@ def test_the_label_table_keeps_the_options_of_the_commands():
         "pin_diameter": "--pin-diameter",
         "rack_length": "--rack",
         "rack_height": "--rack-height",
+        # added with internal gears and their shaper cutters
+        "outer_diameter": "--outer-diameter",
+        "cutter_teeth": "--cutter-teeth",
+        "cutter_shift": "--cutter-shift",
+        "cutter_tip_radius": "--cutter-tip-radius",
+        "cutter_addendum": "--cutter-addendum",
     }
     assert MATE_OPTION == {
         "teeth": "--mate-teeth",

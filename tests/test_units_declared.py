@@ -105,6 +105,8 @@ def work(tmp_path_factory) -> dict[str, list[object]]:
         suffix = "" if k == 1 else "@2"
         design = RACK if k == 1 else scaled_design(RACK, folder, k)
         cases["gear" + suffix] = ["gear", "--teeth", 17, "--module", 3 * k, "--mate-teeth", 29]
+        cases["gear-internal" + suffix] = ["gear", ROOT / "samples" / "internal_gear.toml", "--module", 2 * k]
+        cases["gear-internal" + suffix] += ["--outer-diameter", 140 * k]
         cases["pump" + suffix] = ["pump", "--teeth", 11, "--module", 4 * k, "--shift", 0.3, "--face-width", 20 * k]
         cases["pump" + suffix] += ["--speed", 1500]
         cases["rotor" + suffix] = ["rotor", design]
@@ -117,6 +119,7 @@ def work(tmp_path_factory) -> dict[str, list[object]]:
         cases["deflect" + suffix] = ["deflect", DEFLECT if k == 1 else scaled_design(DEFLECT, folder, k), "--terms", 4]
         cases["grind" + suffix] = ["grind", design, "--wheel-radius", 150 * k, "--worn-radius", 130 * k]
     cases["cut"] = ["cut", "--teeth", 11, "--module", 2]
+    cases["cut-internal"] = ["cut", ROOT / "samples" / "internal_gear.toml"]
     cases["coupling"] = ["coupling", "--teeth", 40, "--module", 4, "--face-width", 32, "--speed", 8000, "--viscosity", 0.02]
     cases["coupling"] += ["--power", 4000, "--pressure-viscosity", 2e-8, "--misalignment-deg", 0.3]
     cases["export"] = ["export", ROOT / "samples" / "gear_pair.toml", "--format", "stl", "--out", folder / "export"]
@@ -149,6 +152,7 @@ def table_of(work: dict[str, list[object]], name: str) -> str:
 
 
 COMMANDS = ["gear", "cut", "pump", "rotor", "hob", "interfere", "clearance", "deflect", "coupling", "export", "sweep", "grind"]
+COMMANDS += ["gear-internal", "cut-internal"]  # an internal gear and its shaping ([shaper])
 TABLES = [c for c in COMMANDS if c != "export"]  # export lists its files, with the units in the headings
 
 
@@ -210,7 +214,7 @@ NOT_SCALED = {
 }
 
 
-@pytest.mark.parametrize("name", ["gear", "pump", "rotor", "hob", "interfere", "clearance", "grind"])
+@pytest.mark.parametrize("name", ["gear", "gear-internal", "pump", "rotor", "hob", "interfere", "clearance", "grind"])
 def test_declared_units_scale_with_the_design(work, name):
     base, twice = numbers(json_of(work, name)), numbers(json_of(work, f"{name}@2"))
     checked = 0

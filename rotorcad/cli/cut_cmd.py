@@ -15,7 +15,8 @@ from hob.cutting import MAX_UNION_VERTICES, cutting_work, simulate_cutting, simu
 from hob.tools import TrapezoidalHob
 from hob.undercut import effective_addendum, kollek_model
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
-from rotorcad.cli.gear import GEAR_OPTION, build_gear, gear_options, merge_gear_params
+from rotorcad.cli.gear import GEAR_OPTION, SPEC, build_gear, gear_options, merge_gear_params
+from rotorcad.cli.gear_internal import internal_options, refuse_internal_options
 from rotorcad.cli.progress import Steps
 from rotorcad.errors import DesignError
 from rotorcad.gear import RELATIVE_TOLERANCE
@@ -27,6 +28,7 @@ if TYPE_CHECKING:
 @click.command()
 @click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
 @gear_options
+@internal_options
 @click.option("--hob-addendum", type=float, help="Hob (tool) addendum factor h_a0* = the gear's dedendum. Default 1.25.")
 @click.option("--positions", type=int, help="Number of tool positions (default: from --tolerance).")
 @click.option("--tolerance", type=float, default=1e-3, show_default=True, help="Scallop height of the simulated profile [mm].")
@@ -41,7 +43,8 @@ def cut(design: Path | None, **opts: Any) -> None:
     """Cut a gear with the ISO 53 basic-rack tool (a trapezoidal hob) by polygon booleans.
 
     The simulated gear is compared with the analytic envelope; the undercut radius comes from the
-    simulation and from Kollek & Osiński's model (eq. 1).
+    simulation and from Kollek & Osiński's model (eq. 1). An internal gear ([shaper] or --internal)
+    is shaped instead by its shaper cutter, and compared with its envelope.
     """
     if opts.get("hob_addendum") is not None:
         if not (np.isfinite(opts["hob_addendum"]) and 0.1 <= opts["hob_addendum"] <= 3.0):
@@ -53,6 +56,12 @@ def cut(design: Path | None, **opts: Any) -> None:
     if opts["positions"] is not None and not 3 <= opts["positions"] <= 100000:
         raise InputError(f"--positions must be a whole number from 3 to 100000 (got {opts['positions']}).")
     params = merge_gear_params(design, opts)
+    if params["internal"]:
+        from rotorcad.cli.cut_internal import run_internal_cut
+
+        run_internal_cut(params[SPEC], opts)
+        return
+    refuse_internal_options(opts)
     module = params["module"] if np.isfinite(params["module"]) else 1.0
     if 0 < module and tol > RELATIVE_TOLERANCE[1] * module:
         raise InputError(

@@ -20,6 +20,7 @@ from rotorcad.cli.common import (
     print_pair_table,
     print_table,
 )
+from rotorcad.cli.gear_internal import INTERNAL_FIELDS, internal_options, refuse_internal_options, run_internal_gear
 from rotorcad.cli.progress import Steps
 from rotorcad.design.gears import GEAR_DEFAULTS, VALUE_FIELDS, GearSpec, gear_spec
 from rotorcad.design.gears import build_gear as core_build_gear
@@ -61,8 +62,10 @@ OPTION_FIELDS = (
     "mate_thickness_allowance_lower",
     "rack_length",
     "rack_height",
+    *INTERNAL_FIELDS,
 )
-"""The fields of :class:`rotorcad.design.gears.GearSpec` that the options of :func:`gear_options` give."""
+"""The fields of :class:`rotorcad.design.gears.GearSpec` that the options of :func:`gear_options` (and
+:func:`rotorcad.cli.gear_internal.internal_options`) give."""
 
 
 GEAR_DECORATORS = [
@@ -139,6 +142,7 @@ def shop_options(fn):
 @click.argument("design", required=False, type=click.Path(path_type=Path, dir_okay=False))
 @gear_options
 @shop_options
+@internal_options
 @click.option("--tolerance", type=float, default=1e-4, show_default=True, help="Chord tolerance of the outline [mm].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--dxf", type=click.Path(path_type=Path, dir_okay=False), help="Write a DXF of the gear (and mate in mesh) [mm].")
@@ -167,9 +171,14 @@ def gear(design: Path | None, **opts: Any) -> None:
     DESIGN is an optional TOML design file with a [gear] table (teeth, module,
     pressure_angle_deg, helix_angle_deg, shift, addendum, dedendum, tip_radius) and an
     optional [mate] table (teeth, shift, center_distance); options given on the command
-    line override it.
+    line override it. With a [shaper] table (or --internal) the gear is an internal gear cut by
+    that shaper cutter and the mate is the pinion inside it.
     """
     params = merge_gear_params(design, opts)
+    if params["internal"]:
+        run_internal_gear(params[SPEC], opts)
+        return
+    refuse_internal_options(opts)
     g, pair = build_gear(params, opts["tolerance"])
     result: dict[str, Any] = pair.summary() if pair is not None else g.summary()
     shop, g, pair = shop_gears(params, g, pair)
@@ -295,6 +304,9 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
     """
     from_design = p[SPEC].from_design if SPEC in p else frozenset()
     spec = GearSpec(**{f: p[f] for f in VALUE_FIELDS if p.get(f) is not None}, from_design=from_design)
+    if spec.internal:
+        what = "[shaper]" if "cutter_teeth" in spec.from_design else "--internal"
+        raise InputError(f"{what} must not be given here: an internal gear is made by rotorcad gear, cut, export and report.")
     try:
         return core_build_gear(spec, tolerance)
     except MissingValueError as exc:

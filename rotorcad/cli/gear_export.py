@@ -51,6 +51,13 @@ def design_gear_bodies(design: Path, tol: float, data: dict[str, Any] | None = N
         width = 10.0 * float(params["module"])
     if not (np.isfinite(width) and 0 < width <= 1e4):
         raise InputError(f"[gear] face_width must be a length from 0 to 10000 mm (got {width}).")
+    if params["internal"]:  # an internal gear ([shaper]): the ring with its outer diameter, and its pinion
+        from rotorcad.assembly import internal_gear_bodies
+        from rotorcad.cli.gear import SPEC
+        from rotorcad.cli.gear_internal import build_internal_gear
+
+        ring, pair = build_internal_gear(params[SPEC], tol / 4)
+        return internal_gear_bodies(ring, pair, width, tol)
     g, pair = build_gear(params, tol / 4)
     _, g, pair = shop_gears(params, g, pair)  # cut at the middle of the tooth-thickness tolerance fields
     return gear_bodies(g, pair, width, tol)

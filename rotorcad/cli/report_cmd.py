@@ -53,6 +53,7 @@ GEAR_INPUT_UNITS = {
     "dedendum": "× m (modules)",
     "tip_radius": "× m (modules)",
     "face_width": "mm",
+    "outer_diameter": "mm",
     "center_distance": "mm",
     "tolerance": "mm",
 }
@@ -100,7 +101,7 @@ def _input_unit(table: str, key: str, family: str | None) -> str:
     str
         The unit as printed.
     """
-    if table in ("gear", "mate"):
+    if table in ("gear", "mate", "shaper"):
         return GEAR_INPUT_UNITS.get(key, report_unit(key))
     if table == "profile" and family is not None:
         from rotorcad.rotor_families import FAMILIES
@@ -146,7 +147,12 @@ def report(design: Path, out_path: Path, files_dir: Path | None, as_json: bool, 
     data = _read_design(design)
     if data is None:  # click makes DESIGN required; kept for a call from Python
         raise InputError("DESIGN must name a design file (a .toml with [pair] or [gear]).")
-    content = _rotor_content(design, data) if "pair" in data else _gear_content(design, data)
+    if "shaper" in data:  # an internal gear, cut by its shaper cutter
+        from rotorcad.cli.report_internal import internal_content
+
+        content = internal_content(design, data, _figure)
+    else:
+        content = _rotor_content(design, data) if "pair" in data else _gear_content(design, data)
     folder = output_folder(files_dir)
     outputs = Outputs()
     planned: list[tuple[Path, str]] = []

@@ -27,6 +27,15 @@ MATE_FIELDS = {
     "thickness_allowance_lower": "mate_thickness_allowance_lower",
 }
 """``[mate]`` key -> field of :class:`GearSpec`."""
+SHAPER_FIELDS = {
+    "teeth": "cutter_teeth",
+    "shift": "cutter_shift",
+    "tip_radius": "cutter_tip_radius",
+    "addendum": "cutter_addendum",
+}
+"""``[shaper]`` key -> field of :class:`GearSpec` (a design with ``[shaper]`` describes an internal gear)."""
+CUTTER_TIP_RADIUS = 0.25
+"""Default tip rounding rho_a0* of a shaper cutter, factor of the module."""
 
 
 @dataclass(frozen=True)
@@ -64,6 +73,17 @@ class GearSpec:
     rack_length, rack_height : float or None, mm
         A gear rack of the gear's basic rack (None: no rack), and its height from the back to the
         datum line (None: h_fP* m + 2 m).
+    internal : bool
+        The gear is an internal (ring) gear cut by a pinion-type shaper cutter (the design's
+        ``[shaper]``, the option ``--internal``); the mate is then the pinion inside it.
+    outer_diameter : float or None, mm
+        The ring's outer diameter (None: the root diameter + 6 m).
+    cutter_teeth : int or None
+        Teeth z0 of the shaper cutter.
+    cutter_shift, cutter_tip_radius : float
+        Its profile shift x0 (modules) and tip rounding rho_a0* (factor of the module).
+    cutter_addendum : float or None
+        Its addendum factor h_a0* (None: the gear's dedendum).
     from_design : frozenset of str
         The fields whose values are the design file's.
     """
@@ -88,6 +108,12 @@ class GearSpec:
     mate_thickness_allowance_lower: float = 0.0
     rack_length: float | None = None
     rack_height: float | None = None
+    internal: bool = False
+    outer_diameter: float | None = None
+    cutter_teeth: int | None = None
+    cutter_shift: float = 0.0
+    cutter_tip_radius: float = CUTTER_TIP_RADIUS
+    cutter_addendum: float | None = None
     from_design: frozenset[str] = frozenset()
 
 
@@ -105,7 +131,8 @@ def gear_spec(design: dict[str, dict[str, Any]] | None = None, given: dict[str, 
     Parameters
     ----------
     design : dict, optional
-        ``{"gear": {...}, "mate": {...}}`` as :func:`rotorcad.design.schema.gear_design` returns it.
+        ``{"gear": {...}, "mate": {...}}`` as :func:`rotorcad.design.schema.gear_design` returns it
+        (with ``"shaper"``: an internal gear).
     given : dict, optional
         Values by field name (None: not given); they override the design's. Angles in degrees.
 
@@ -130,6 +157,11 @@ def gear_spec(design: dict[str, dict[str, Any]] | None = None, given: dict[str, 
         for key, value in design.get("rack", {}).items():
             values[RACK_FIELDS[key]] = value
             from_design.add(RACK_FIELDS[key])
+        for key, value in design.get("shaper", {}).items():
+            values[SHAPER_FIELDS[key]] = value
+            from_design.add(SHAPER_FIELDS[key])
+        if "shaper" in design:
+            values["internal"] = True
     for key, value in (given or {}).items():
         if value is not None and key in VALUE_FIELDS:
             values[key] = value
@@ -254,6 +286,102 @@ def shop_values(spec: GearSpec, gear: Any, pair: Any) -> tuple[dict[str, Any], A
     values["backlash_circumferential"] = backlash["circumferential"]
     values["backlash_normal"] = backlash["normal"]
     return values, made_gear, made_mate
+
+
+def build_internal(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
+    """Build the internal gear of a spec (cut by its shaper cutter), and the pinion in mesh when one is described.
+
+    Parameters
+    ----------
+    spec : GearSpec
+        An internal spec (``internal``; ``cutter_teeth`` required): the internal gear's teeth, shift,
+        addendum and outer diameter, the cutter's; the mate is the pinion (ISO 53 rack-cut, the
+        spec's addendum, dedendum and tool tip radius).
+    tolerance : float, mm
+        Chord tolerance of the outlines.
+
+    Returns
+    -------
+    ring : InternalGear
+    pair : InternalPair or None
+        The pinion inside the ring (its shift given, zero, or for zero backlash at the centre
+        distance), None without a mate.
+
+    Raises
+    ------
+    MissingValueError
+        No ``cutter_teeth``; a centre distance or mate shift without mate teeth (``mate.teeth``).
+    DesignError
+        A cutter, ring or pinion that cannot be made (the pinion's parameters as ``mate.PARAM``);
+        an interfering pair (:class:`rotorcad.gears.internal_pair.InternalPair`); flanks that never
+        meet (``contact_ratio``).
+    """
+    from rotorcad.gears.internal_gear import InternalGear
+    from rotorcad.gears.internal_pair import InternalPair, internal_mate_shift
+    from rotorcad.gears.involute_gear import DEG, InvoluteGear
+    from rotorcad.gears.shaper import ShaperCutter
+    from rotorcad.rotor_pair import LENGTH_RANGE, MAX_LENGTH
+
+    if spec.cutter_teeth is None:
+        raise MissingValueError("cutter_teeth", "for an internal gear")
+    angles = {"pressure_angle": spec.pressure_angle * DEG, "helix_angle": spec.helix_angle * DEG}
+    try:
+        cutter = ShaperCutter(
+            teeth=spec.cutter_teeth,
+            module=spec.module,
+            shift=spec.cutter_shift,
+            addendum=spec.dedendum if spec.cutter_addendum is None else spec.cutter_addendum,
+            tip_radius_factor=spec.cutter_tip_radius,
+            **angles,
+        )
+    except DesignError as exc:
+        if exc.param != "cutter_addendum" or spec.cutter_addendum is not None:
+            raise
+        # the cutter's addendum is the gear's dedendum when not given: name what the user typed
+        detail = exc.detail or "the shaper cutter's addendum is the dedendum when not given"
+        raise type(exc)("dedendum", exc.allowed, spec.dedendum, detail) from None
+    ring = InternalGear(
+        spec.teeth,
+        spec.module,
+        cutter,
+        shift=spec.shift,
+        addendum=spec.addendum,
+        outer_diameter=spec.outer_diameter,
+        tolerance=tolerance,
+    )
+    z1, a = spec.mate_teeth, spec.center_distance
+    if z1 is None:
+        if a is not None or spec.mate_shift is not None:
+            raise MissingValueError("mate.teeth", "given with the centre distance or the mate's shift")
+        return ring, None
+    try:
+        if not isinstance(z1, int) or not 3 <= z1 < spec.teeth:
+            raise DesignError("teeth", f"a whole number from 3 to {spec.teeth - 1} (fewer than the internal gear's)", z1)
+        if a is not None and not (np.isfinite(a) and 0 < a <= MAX_LENGTH):
+            raise DesignError("center_distance", LENGTH_RANGE, a)
+        x1 = spec.mate_shift
+        if x1 is None:
+            x1 = 0.0 if a is None else internal_mate_shift(ring, z1, a)
+        pinion = InvoluteGear(
+            teeth=z1,
+            module=spec.module,
+            shift=x1,
+            addendum=spec.addendum,
+            dedendum=spec.dedendum,
+            tip_radius_factor=spec.tip_radius,
+            tolerance=tolerance,
+            **angles,
+        )
+    except DesignError as exc:
+        raise type(exc)(f"mate.{exc.param}", exc.allowed, exc.value, exc.detail) from None
+    try:
+        pair = InternalPair(pinion, ring, a)
+    except DesignError as exc:
+        if exc.param != "center_distance":
+            raise
+        raise type(exc)("mate.center_distance", exc.allowed, exc.value, exc.detail) from None
+    check_contact(pair.contact_ratio, "contact_ratio")
+    return ring, pair
 
 
 def build_rack(spec: GearSpec, tolerance: float) -> Any:

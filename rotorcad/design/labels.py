@@ -85,6 +85,11 @@ GEAR_LABELS: dict[str, Label] = {
     "pin_diameter": Label("pin_diameter", "--pin-diameter", "[gear] pin_diameter"),
     "rack_length": Label("rack_length", "--rack", "[rack] length"),
     "rack_height": Label("rack_height", "--rack-height", "[rack] height"),
+    "outer_diameter": Label("outer_diameter", "--outer-diameter", "[gear] outer_diameter"),
+    "cutter_teeth": Label("cutter_teeth", "--cutter-teeth", "[shaper] teeth"),
+    "cutter_shift": Label("cutter_shift", "--cutter-shift", "[shaper] shift"),
+    "cutter_tip_radius": Label("cutter_tip_radius", "--cutter-tip-radius", "[shaper] tip_radius"),
+    "cutter_addendum": Label("cutter_addendum", "--cutter-addendum", "[shaper] addendum"),
     "mate.teeth": Label("mate_teeth", "--mate-teeth", "[mate] teeth"),
     "mate.thickness_allowance_upper": Label(
         "mate_thickness_allowance_upper", "--mate-thickness-allowance-upper", "[mate] thickness_allowance_upper"

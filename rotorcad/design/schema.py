@@ -28,6 +28,7 @@ GEAR_KEYS: dict[str, type | tuple[type, ...]] = {
     "thickness_allowance_lower": NUMBER,  # mm, DIN 3967 A_sni
     "span_teeth": int,  # teeth spanned by the span measurement (default: the standard rule)
     "pin_diameter": NUMBER,  # mm, pins or balls of the dimension over pins (default: the standard rule)
+    "outer_diameter": NUMBER,  # mm, outer diameter of an internal gear's ring (with [shaper])
 }
 MATE_KEYS: dict[str, type | tuple[type, ...]] = {
     "teeth": int,
@@ -39,6 +40,9 @@ MATE_KEYS: dict[str, type | tuple[type, ...]] = {
 
 
 RACK_KEYS: dict[str, type | tuple[type, ...]] = {"length": NUMBER, "height": NUMBER}
+SHAPER_KEYS: dict[str, type | tuple[type, ...]] = {"teeth": int, "shift": NUMBER, "tip_radius": NUMBER, "addendum": NUMBER}
+"""``[shaper]`` of a gear design: the pinion-type shaper cutter that makes ``[gear]`` an internal gear
+(teeth z0, shift x0, tip rounding rho_a0* and addendum h_a0*, factors of the module)."""
 """``[rack]`` of a gear design: a gear rack of the gear's basic rack, length and height to the datum line, mm."""
 
 
@@ -126,14 +130,14 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
     Parameters
     ----------
     data : dict
-        The design as a TOML file holds it: ``[gear]`` (required keys teeth, module) and an
-        optional ``[mate]``.
+        The design as a TOML file holds it: ``[gear]`` (required keys teeth, module), an
+        optional ``[mate]``, ``[rack]`` and ``[shaper]`` (an internal gear's cutter).
 
     Returns
     -------
     dict
-        ``{"gear": {...}, "mate": {...}}`` (the mate empty if not given); lengths in mm, angles
-        in degrees as given.
+        ``{"gear": {...}, "mate": {...}}`` (the mate empty if not given), with ``"rack"`` and
+        ``"shaper"`` when given; lengths in mm, angles in degrees as given.
 
     Raises
     ------
@@ -142,13 +146,18 @@ def gear_design(data: dict[str, Any]) -> dict[str, dict[str, Any]]:
     """
     refuse_huge_integers(data)
     for table in data:
-        if table not in ("gear", "mate", "rack"):
-            raise InputFileError(f"table [{table}]", "one of [gear], [mate], [rack] in a gear design", None, "unknown table")
+        if table not in ("gear", "mate", "rack", "shaper"):
+            raise InputFileError(
+                f"table [{table}]", "one of [gear], [mate], [rack], [shaper] in a gear design", None, "unknown table"
+            )
     gear = check_table(data, "gear", GEAR_KEYS, required=("teeth", "module"))
     mate = check_table(data, "mate", MATE_KEYS) if "mate" in data else {}
+    out = {"gear": gear, "mate": mate}
     if "rack" in data:  # a gear rack of the gear's basic rack
-        return {"gear": gear, "mate": mate, "rack": check_table(data, "rack", RACK_KEYS, required=("length",))}
-    return {"gear": gear, "mate": mate}
+        out["rack"] = check_table(data, "rack", RACK_KEYS, required=("length",))
+    if "shaper" in data:  # [gear] is an internal gear cut by this shaper cutter
+        out["shaper"] = check_table(data, "shaper", SHAPER_KEYS, required=("teeth",))
+    return out
 
 
 PAIR_KEYS: dict[str, type | tuple[type, ...]] = {
