@@ -191,6 +191,27 @@ _declare(
     ],
 )
 
+# --- the hob's basic worm (hob/worm.py, rotorcad/cli/hob_worm.py; DIN 3968 / ISO 1122-1 terms) ---------
+_declare(
+    "hob/worm",
+    [
+        ("starts", "1", "thread starts"),
+        ("outside_diameter", "mm", "hob outside diameter"),
+        ("reference_diameter", "mm", "hob reference diameter"),
+        ("root_diameter", "mm", "hob root diameter"),
+        ("thread_depth", "mm", "thread depth"),
+        ("normal_pitch", "mm", "normal pitch"),
+        ("axial_pitch", "mm", "axial pitch"),
+        ("lead", "mm", "lead"),
+        ("lead_angle_deg", "deg", "lead angle"),
+        ("worm_length", "mm", "worm length"),
+        ("gash_count", "1", "gashes"),
+        ("gash_depth", "mm", "gash depth"),
+        ("face_count", "1", "STEP faces"),
+        ("step_deviation", "mm", "STEP faces from the helicoid"),
+    ],
+)
+
 # --- interference (rotorcad/interference.py, rotorcad/cli/export_cmd.py) --------------------------
 _declare(
     "rotorcad/interference",
