@@ -603,6 +603,9 @@ _declare(
         ("max_normal_deviation_compensated", "mm", "largest deviation, compensated"),
         ("rms_normal_deviation_compensated", "mm", "rms deviation, compensated"),
         ("deepest_cut_deviation", "mm", "deepest cut"),
+        ("wheel_width", "mm", "wheel width"),
+        ("bore_radius", "mm", "wheel bore radius"),
+        ("shoulder_radius", "mm", "wheel shoulder radius"),
         # per unit of each setting error (rotorcad.grinding.sensitivity.UNITS): mm per mm, or per degree
         ("sensitivity.crossing_angle.max_normal_deviation_per_unit", "mm/deg", "deviation per degree of crossing angle"),
         ("max_normal_deviation_per_unit", "1", "deviation per mm of the setting error"),
