@@ -138,5 +138,9 @@ def test_wheel_section_closes_the_profile_clear_of_the_rotor(tmp_path, capsys):
     assert beside.sum() > 1000 and dist[beside].min() >= new["shoulder_radius"] - 1e-9
     assert new["shoulder_radius"] == pytest.approx(a - out["tip_radius"])
     doc = ezdxf.readfile(tmp_path / "wheel_male_new_r2000.dxf")
-    (section,) = [e for e in doc.modelspace() if e.dxf.layer == "WHEEL_SECTION"]
-    assert section.closed and np.abs(np.array(section.get_points("xy")) - ring).max() < 1e-9
+    (wheel,) = [e for e in doc.modelspace() if e.dxf.layer == "WHEEL"]
+    (sides,) = [e for e in doc.modelspace() if e.dxf.layer == "WHEEL_SECTION"]
+    # the sides from the profile's first end round to its last, then the profile back: the section
+    drawn = np.vstack([np.array(sides.get_points("xy")), np.array(wheel.get_points("xy"))[::-1][1:-1]])
+    start = int(np.argmin(np.hypot(*(ring - drawn[0]).T)))
+    assert len(drawn) == len(ring) and np.abs(np.roll(ring, -start, axis=0) - drawn).max() < 1e-9

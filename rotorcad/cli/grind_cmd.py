@@ -296,7 +296,7 @@ def _add_files(out: Outputs, folder: Path, stem: str, job: GrindingJob, section:
     for version in ("R12", "R2000"):
         out.add(
             folder / f"{stem}_{version.lower()}.dxf",
-            lambda p, v=version: write_wheel_dxf(p, rows[:, 0], rows[:, 1], label, v, ring),
+            lambda p, v=version: write_wheel_dxf(p, rows[:, 0], rows[:, 1], label, v, section.sides()),
             "--out",
         )
 

@@ -60,11 +60,26 @@ class WheelSection:
         t, r = w.axial[w.valid], w.radius[w.valid]
         if t[0] > t[-1]:
             t, r = t[::-1], r[::-1]
-        h, s, b = 0.5 * self.width, self.shoulder_radius, self.bore_radius
         # the profile runs from -t to +t with the material below it: travelled so, the section is clockwise
-        ring = np.vstack([np.column_stack([t, r]), [[t[-1], s], [h, s], [h, b], [-h, b], [-h, s], [t[0], s]]])
+        ring = np.vstack([np.column_stack([t, r]), self.sides()[::-1][1:-1]])
         keep = np.r_[True, np.hypot(*np.diff(ring, axis=0).T) > 1e-12]  # a zero step where an end lies on the shoulder
         return ring[keep][::-1]
+
+    def sides(self) -> Array:
+        """Return what closes the profile, (k, 2) mm: from its end of least ``t`` round to its other end.
+
+        Counter-clockwise like :meth:`outline`: down to the shoulder, along it to the side face
+        ``t = -W/2``, down to the bore, along it to ``t = W/2``, up to the shoulder and along it, up to
+        the profile's end of largest ``t``. The profile and this chain make the closed section.
+        """
+        w = self.wheel
+        t, r = w.axial[w.valid], w.radius[w.valid]
+        if t[0] > t[-1]:
+            t, r = t[::-1], r[::-1]
+        h, s, b = 0.5 * self.width, self.shoulder_radius, self.bore_radius
+        chain = np.array([[t[0], r[0]], [t[0], s], [-h, s], [-h, b], [h, b], [h, s], [t[-1], s], [t[-1], r[-1]]])
+        keep = np.r_[True, np.hypot(*np.diff(chain, axis=0).T) > 1e-12]
+        return chain[keep]
 
 
 def wheel_section(wheel: WheelProfile, width: float | None = None, bore_radius: float | None = None) -> WheelSection:
