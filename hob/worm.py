@@ -48,8 +48,6 @@ MAX_STARTS = 12
 """Most thread starts accepted."""
 MAX_LEAD_ANGLE = math.radians(45.0)
 """Largest lead angle accepted at the reference cylinder."""
-PERIOD_GAP = 1e-6
-"""Largest distance (mm) between the rack chain's end and its start moved by one period."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -207,20 +205,19 @@ class BasicWorm:
         Raises
         ------
         DesignError
-            A rack whose chain does not repeat after one period (``rack``).
+            A rack whose chain does not repeat after one period within :data:`JOIN_GAP` (``rack``).
         """
         pts, tan = self.normal_rack
         idx = self.rack.piece_index
-        gap = np.abs(np.abs(pts[-1] - pts[0]) - [self.normal_pitch, 0.0]).max()
-        if gap > PERIOD_GAP:
-            raise DesignError("rack", f"a chain that repeats after its period (its ends are {gap:.3g} mm off)", None)
+        period = math.copysign(self.normal_pitch, pts[-1, 0] - pts[0, 0])  # the chain's travel along the pitch line
         twist = 2 * math.pi / self.signed_lead
         scale = 1.0 / math.cos(self.lead_angle)
-        # the copies of the chain follow each other: its end is its start turned by -twist x scale x (x_end - x_start)
-        step = -twist * scale * (pts[-1, 0] - pts[0, 0])
+        # the copies of the chain follow each other: the next start's chain begins where this one ends
+        step = -twist * scale * period
+        pieces = rack_pieces(pts, tan, idx, self.rack.names, pts[0] + [period, 0.0])
         segments = []
         for j in range(self.starts):
-            for name, piece, piece_tangents in rack_pieces(pts, tan, idx, self.rack.names):
+            for name, piece, piece_tangents in pieces:
                 curve = WormThreadCurve(
                     piece, piece_tangents, self.reference_radius + self.datum, scale, twist, j * step, 0.0, len(piece) - 1.0
                 )
@@ -252,15 +249,30 @@ class BasicWorm:
             "worm_length": self.length,
             "gash_count": self.gashes,
             "gash_depth": self.gash_depth,
+            "rack_join_max": self.largest_join,
         }
 
+    @property
+    def largest_join(self) -> float:
+        """Largest gap of the rack chain bridged by a straight join (:func:`rack_pieces`), mm (0 without one)."""
+        pts, tan = self.normal_rack
+        period = math.copysign(self.normal_pitch, pts[-1, 0] - pts[0, 0])
+        pieces = rack_pieces(pts, tan, self.rack.piece_index, self.rack.names, pts[0] + [period, 0.0])
+        return max((float(np.hypot(*(p[1] - p[0]))) for name, p, _ in pieces if name == JOIN), default=0.0)
 
-JOIN_GAP = 0.01
-"""Largest gap (mm) between two pieces of a rack chain that a straight join bridges (the derived rack's
-pieces of a rotor meet to about 1 um where a corner's path meets a land)."""
+
+JOIN = "straight join"
+"""Name of a piece that bridges a gap of the rack chain."""
+JOIN_GAP = 0.1
+"""Largest gap (mm) between two pieces of a rack chain, or between its end and its start moved by
+one period, that a straight join bridges (reported as ``rack_join_max``): the derived rack's pieces
+of a design's rotor meet to about 1 um where a corner's path meets a land; the mate's rack of a
+measured rotor, cut where its loops overshoot the tip circle, leaves gaps of some 30 um."""
 
 
-def rack_pieces(points: Array, tangents: Array, piece_index: Array, names: tuple[str, ...]) -> list[tuple[str, Array, Array]]:
+def rack_pieces(
+    points: Array, tangents: Array, piece_index: Array, names: tuple[str, ...], closing: Array
+) -> list[tuple[str, Array, Array]]:
     """Split a rack chain into its pieces, bridging small gaps between them by straight joins.
 
     Parameters
@@ -271,12 +283,15 @@ def rack_pieces(points: Array, tangents: Array, piece_index: Array, names: tuple
         The piece of each point.
     names : tuple of str
         The pieces' names.
+    closing : (2,) float array, mm
+        Where the chain must end: its start moved by one period (the next period's start).
 
     Returns
     -------
     list of (name, points, tangents)
-        Pieces of two samples or more in chain order, with a piece ``join`` of two samples wherever
-        one piece ends more than 1 nm from where the next starts.
+        Pieces of two samples or more in chain order, with a piece :data:`JOIN` of two samples
+        wherever one piece ends more than 1 nm from where the next starts, and after the last one
+        if it ends more than 1 nm from ``closing``.
 
     Raises
     ------
@@ -284,20 +299,25 @@ def rack_pieces(points: Array, tangents: Array, piece_index: Array, names: tuple
         A gap wider than :data:`JOIN_GAP` (``rack``).
     """
     out: list[tuple[str, Array, Array]] = []
+
+    def join(target: Array) -> None:
+        last = out[-1][1][-1]
+        gap = float(np.hypot(*(target - last)))
+        if gap > JOIN_GAP:
+            raise DesignError("rack", f"a chain whose pieces meet within {JOIN_GAP:g} mm (a gap of {gap:.3g} mm)", None)
+        if gap > 1e-9:
+            chord = (target - last) / gap
+            out.append((JOIN, np.array([last, target]), np.array([chord, chord])))
+
     for k, name in enumerate(names):
         sel = piece_index == k
         if sel.sum() < 2:
             continue
         p, t = points[sel], tangents[sel]
         if out:
-            last = out[-1][1][-1]
-            gap = float(np.hypot(*(p[0] - last)))
-            if gap > JOIN_GAP:
-                raise DesignError("rack", f"a chain whose pieces meet within {JOIN_GAP:g} mm (a gap of {gap:.3g} mm)", None)
-            if gap > 1e-9:
-                chord = (p[0] - last) / gap
-                out.append(("join", np.array([last, p[0]]), np.array([chord, chord])))
+            join(p[0])
         out.append((name, p, t))
+    join(np.asarray(closing, dtype=float))
     return out
 
 

@@ -207,6 +207,7 @@ _declare(
         ("worm_length", "mm", "worm length"),
         ("gash_count", "1", "gashes"),
         ("gash_depth", "mm", "gash depth"),
+        ("rack_join_max", "mm", "largest rack gap bridged"),
         ("face_count", "1", "STEP faces"),
         ("step_deviation", "mm", "STEP faces from the helicoid"),
     ],

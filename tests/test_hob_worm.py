@@ -69,6 +69,7 @@ def test_worm_figures_are_the_din_3968_closed_forms(capsys):
     assert w["root_diameter"] == pytest.approx(da - 2 * 2.25 * m, abs=1e-6)
     assert (w["hand"], w["starts"], w["gash_count"], w["worm_length"]) == ("right", 3, 12, 80.0)
     assert w["gash_depth"] == pytest.approx(1.25 * w["thread_depth"])
+    assert w["rack_join_max"] == 0.0  # the gear's rack is one chain
 
 
 def test_worm_step_reads_back_as_one_valid_solid(worm_step):
@@ -137,6 +138,21 @@ def test_rotor_pair_gets_one_worm_per_rotor(tmp_path, capsys):
         ["hob", str(SAMPLES / "srm_asymmetric_5_6.toml"), "--hob-diameter", "120", "--step", str(tmp_path / "h.step"), "--json"],
     )
     assert sorted(out["files"]) == sorted(str(tmp_path / f"h_{n}.step") for n in ("male", "female"))
+    # the gaps between the derived racks' pieces, measured here on the racks themselves, are what the thread bridges
+    import tomllib
+
+    from hob.rack import rotor_rack
+    from rotorcad.design.rotors import build_pair, pair_spec
+    from rotorcad.design.schema import rotor_design
+
+    rotors = build_pair(pair_spec(rotor_design(tomllib.loads((SAMPLES / "srm_asymmetric_5_6.toml").read_text()))))
+    for name in ("male", "female"):
+        rack = rotor_rack(rotors, name)
+        p, k = rack.normal_section()[0], rack.piece_index
+        ends = [(p[k == i][-1], p[k == i + 1][0]) for i in range(len(rack.names) - 1) if (k == i).any() and (k == i + 1).any()]
+        widest = max(float(np.hypot(*(b - a))) for a, b in ends)
+        assert out["worms"][name]["rack_join_max"] == pytest.approx(widest if widest > 1e-9 else 0.0, abs=1e-9)
+    assert 1e-4 < out["worms"]["female"]["rack_join_max"] < 2e-3  # where the female's corner paths meet its tip land
     for name, w in out["worms"].items():
         assert w["step_deviation"] < 1e-3 and w["face_count"] >= 5
         assert w["hand"] == ("right" if name == "male" else "left")  # the sample's male is right-handed
