@@ -167,6 +167,7 @@ def test_rotor_pair_gets_one_worm_per_rotor(tmp_path, capsys):
     ("extra", "option"),
     [
         (["--step", "W"], "--hob-diameter"),
+        (["--starts", "2"], "--hob-diameter"),
         (["--hob-diameter", "10"], "--hob-diameter"),
         (["--hob-diameter", "80", "--starts", "0"], "--starts"),
         (["--hob-diameter", "80", "--gashes", "1"], "--gashes"),

@@ -50,6 +50,17 @@ WORM_DECORATORS = [
 ]
 
 
+WORM_ONLY = [
+    ("step", "--step", None),
+    ("starts", "--starts", 1),
+    ("hob_hand", "--hob-hand", None),
+    ("hob_length", "--hob-length", None),
+    ("gashes", "--gashes", 0),
+    ("gash_depth", "--gash-depth", None),
+]
+"""The options that describe the worm, by key, flag and the value when not given: none without a diameter."""
+
+
 def worm_options(fn):
     """Add the basic worm's options (:data:`WORM_DECORATORS`) to a command."""
     for deco in reversed(WORM_DECORATORS):
@@ -80,11 +91,13 @@ def worms_of(
     Raises
     ------
     InputError
-        ``--step`` without ``--hob-diameter``, or a figure out of range (naming its option).
+        A worm's option (:data:`WORM_ONLY`) without ``--hob-diameter``, or a figure out of range
+        (naming its option).
     """
     if opts["hob_diameter"] is None:
-        if opts["step"] is not None:
-            raise InputError("--hob-diameter must be given with --step: the hob's outside diameter in mm.")
+        given = [flag for key, flag, unset in WORM_ONLY if opts[key] != unset]
+        if given:
+            raise InputError(f"--hob-diameter must be given with {given[0]}: the hob's outside diameter in mm.")
         return {}
     worms = {}
     for name, rack in racks.items():
