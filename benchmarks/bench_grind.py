@@ -1,7 +1,11 @@
 """Speed of issue 29: the form-grinding wheel of every screw-rotor sample's male and female and of
 the sample gear (spur, and helical at 15 deg): the wheel for the new and the worn radius, each
 checked (stock at the flute and the lobes either side, round trip), and the sensitivities of the new
-wheel (target < 1 s per rotor; the pair's own generation is timed apart, it is not grinding).
+wheel (target < 1 s per rotor; the pair's own generation is timed apart, it is not grinding); then
+the whole command, ``rotorcad grind SAMPLE --rotor BODY --wheel-radius 100 --out DIR --plot PNG``, in
+one process per body after a first run that loads the libraries: its CPU time (process time, so
+that other load on the machine counts little) with the pair's generation, the wheel, its check, the
+sensitivities, the dresser's CSV and DXF and the chart.
 
 Run by hand: ``python benchmarks/bench_grind.py``.
 """
@@ -13,6 +17,9 @@ import os
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+import contextlib
+import io
+import tempfile
 import time
 import tomllib
 from pathlib import Path
@@ -70,5 +77,32 @@ def main() -> None:
     print(f"slowest grinding (new + worn wheel, checked, sensitivities): {worst:.2f} s (target < 1 s per rotor)")
 
 
+def command_seconds() -> list[tuple[str, float]]:
+    """CPU seconds of ``rotorcad grind`` per body of every sample (module docstring)."""
+    from rotorcad.cli.main import main as rotorcad
+
+    rows = []
+    with tempfile.TemporaryDirectory() as folder:
+
+        def run(path: Path, body: str) -> float:
+            out = Path(folder) / f"{path.stem}_{body}"
+            args = ["grind", str(path), "--rotor", body, "--wheel-radius", "100", "--out", str(out), "--plot", f"{out}.png"]
+            with contextlib.redirect_stdout(io.StringIO()):
+                t = time.process_time()
+                assert rotorcad([*args, "--json"]) == 0
+                return time.process_time() - t
+
+        run(SAMPLES / "gear_pair.toml", "gear")  # the libraries loaded once
+        for path in sorted(SAMPLES.glob("*.toml")):
+            data = tomllib.loads(path.read_text())
+            bodies = ("male", "female") if "pair" in data else ("gear", "mate") if "gear" in data else ()
+            rows += [(f"{path.stem} {body}", run(path, body)) for body in bodies]
+    return rows
+
+
 if __name__ == "__main__":
     main()
+    timed = command_seconds()
+    for name, seconds in timed:
+        print(f"rotorcad grind {name:30s} {seconds:6.2f} s CPU")
+    print(f"slowest command (files and chart included): {max(s for _, s in timed):.2f} s CPU, load {os.getloadavg()[0]:.1f}")

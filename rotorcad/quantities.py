@@ -228,6 +228,28 @@ _declare(
     ],
 )
 
+# --- the hob's basic worm (hob/worm.py, rotorcad/cli/hob_worm.py; DIN 3968 / ISO 1122-1 terms) ---------
+_declare(
+    "hob/worm",
+    [
+        ("starts", "1", "thread starts"),
+        ("outside_diameter", "mm", "hob outside diameter"),
+        ("reference_diameter", "mm", "hob reference diameter"),
+        ("root_diameter", "mm", "hob root diameter"),
+        ("thread_depth", "mm", "thread depth"),
+        ("normal_pitch", "mm", "normal pitch"),
+        ("axial_pitch", "mm", "axial pitch"),
+        ("lead", "mm", "lead"),
+        ("lead_angle_deg", "deg", "lead angle"),
+        ("worm_length", "mm", "worm length"),
+        ("gash_count", "1", "gashes"),
+        ("gash_depth", "mm", "gash depth"),
+        ("rack_join_max", "mm", "largest rack gap bridged"),
+        ("face_count", "1", "STEP faces"),
+        ("step_deviation", "mm", "STEP faces from the helicoid"),
+    ],
+)
+
 # --- interference (rotorcad/interference.py, rotorcad/cli/export_cmd.py) --------------------------
 _declare(
     "rotorcad/interference",
@@ -619,6 +641,9 @@ _declare(
         ("max_normal_deviation_compensated", "mm", "largest deviation, compensated"),
         ("rms_normal_deviation_compensated", "mm", "rms deviation, compensated"),
         ("deepest_cut_deviation", "mm", "deepest cut"),
+        ("wheel_width", "mm", "wheel width"),
+        ("bore_radius", "mm", "wheel bore radius"),
+        ("shoulder_radius", "mm", "wheel shoulder radius"),
         # per unit of each setting error (rotorcad.grinding.sensitivity.UNITS): mm per mm, or per degree
         ("sensitivity.crossing_angle.max_normal_deviation_per_unit", "mm/deg", "deviation per degree of crossing angle"),
         ("max_normal_deviation_per_unit", "1", "deviation per mm of the setting error"),

@@ -210,7 +210,7 @@ def test_grind_command_writes_the_dresser_files(tmp_path, capsys):
     assert result["body"] == "male" and np.isclose(result["crossing_angle_deg"], 46.0, atol=1e-4)  # the N4 pair's 46 deg
     assert np.isclose(new["center_distance"] - worn["center_distance"], 20.0)
     assert new["secondary_cutting_point_count"] == 0 and new["round_trip_deviation"] < 1e-9
-    assert len(result["files"]) == 8 and (tmp_path / "chart.svg").read_text().lstrip().startswith("<?xml")
+    assert len(result["files"]) == 10 and (tmp_path / "chart.svg").read_text().lstrip().startswith("<?xml")
     sens = np.loadtxt(out / "wheel_male_sensitivity.csv", delimiter=",", comments="#", skiprows=3)
     for k, name in enumerate(("center_distance", "crossing_angle", "axial_position", "wheel_radius", "wheel_profile")):
         assert result["sensitivity"][name]["unit"] == ("deg" if name == "crossing_angle" else "mm")

@@ -205,7 +205,8 @@ NOT_SCALED = {
     "rotor": {"defect_accuracy"},  # the defect search's set accuracy, 1e-4 mm whatever the size
     # counts of the rotor outline's samples (chords at a set tolerance: more on a larger rotor), and
     # the check's set tolerance (1 um whatever the size)
-    "grind": {f"wheels.{w}.check_tolerance" for w in ("new", "worn")}
+    # and the wheel's default bore (a standard 127 mm bore whatever the size)
+    "grind": {f"wheels.{w}.{k}" for w in ("new", "worn") for k in ("check_tolerance", "bore_radius")}
     | {
         f"wheels.{w}.{k}_point_count"
         for w in ("new", "worn")

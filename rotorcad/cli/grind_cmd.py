@@ -20,12 +20,15 @@ from rotorcad.grinding.job import GrindingJob, cut_depth, grind, least_cutting_a
 from rotorcad.grinding.sensitivity import ERRORS, UNITS, Sensitivity, compensate, normal_deviation, sensitivities
 from rotorcad.grinding.setting import MAX_WHEEL_RADIUS
 from rotorcad.grinding.wheel_profile import WheelProfile as GrindingWheel
+from rotorcad.grinding.wheel_section import STANDARD_BORE_RADIUS, WheelSection, wheel_section
 
 OPTION_NAMES = {
     "wheel_radius": "--wheel-radius",
     "center_distance": "--wheel-center-distance",
     "crossing_angle": "--crossing-angle",
     "setting_radius": "--setting-radius",
+    "wheel_width": "--wheel-width",
+    "bore_radius": "--wheel-bore-radius",
 }
 """The grinding library's parameters as this command's options, for refusals."""
 
@@ -35,7 +38,10 @@ OPTION_NAMES = {
 @gear_options
 @rotor_input_options
 @click.option(
-    "--rotor", "body", type=click.Choice(["male", "female"]), default="male", show_default=True, help="Rotor of a pair to grind."
+    "--rotor",
+    "body",
+    type=click.Choice(["male", "female", "gear", "mate"]),
+    help="Body to grind: male or female of a rotor pair (default male); gear or mate of a gear design (default gear).",
 )
 @click.option("--wheel-radius", type=float, help=f"Outside radius of the new wheel [mm], above 0, at most {MAX_WHEEL_RADIUS:g}.")
 @click.option(
@@ -55,6 +61,18 @@ OPTION_NAMES = {
     type=float,
     help="Distance of the wheel axis from the rotor axis [mm], above the root radius. Default: root radius + wheel radius "
     "(the worn wheel's: this minus the wear).",
+)
+@click.option(
+    "--wheel-width",
+    type=float,
+    help="Width of the wheel between its side faces [mm], at least the profile's. Default: the profile's plus 1 mm "
+    "each side, rounded up to a whole mm.",
+)
+@click.option(
+    "--wheel-bore-radius",
+    type=float,
+    help=f"Radius of the wheel's bore [mm], below the shoulder radius. Default {STANDARD_BORE_RADIUS:g} (a 127 mm bore), "
+    "or half the shoulder radius on a smaller wheel.",
 )
 @click.option(
     "--out", type=click.Path(path_type=Path, file_okay=False), help="Folder for the dresser's CSV and DXF (R12, R2000) files."
@@ -96,6 +114,7 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
                     exc.param, label
                 )
             raise InputError(exc.sentence(label)) from None
+    sections = _sections(jobs, opts)
     result: dict[str, Any] = {
         "body": body["name"],
         "lobe_count": body["lobes"],
@@ -104,7 +123,7 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
         "root_radius": jobs["new"].wheel.flute.root_radius,
         "setting_radius": setting_radius,
         "crossing_angle_deg": math.degrees(jobs["new"].wheel.setting.crossing_angle),
-        "wheels": {state: job.summary() for state, job in jobs.items()},
+        "wheels": {state: job.summary() | _section_summary(sections[state]) for state, job in jobs.items()},
     }
     sens = sensitivities(jobs["new"].wheel)
     result["sensitivity"] = {
@@ -121,7 +140,7 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
         }
     if "worn" in jobs:
         result["worn_with_new_profile"] = _worn_with_new_profile(jobs["new"].wheel, wheel_radius - worn)
-    result["files"] = _write_files(opts, jobs, body, sens)
+    result["files"] = _write_files(opts, jobs, sections, body, sens)
     if opts["as_json"]:
         emit_json(result)
         return
@@ -137,13 +156,37 @@ def grind_cmd(design: Path | None, **opts: Any) -> None:
         click.echo(f"wrote {p}")
 
 
-def _write_files(opts: dict[str, Any], jobs: dict[str, GrindingJob], body: dict[str, Any], sens: Sensitivity) -> list[str]:
+def _sections(jobs: dict[str, GrindingJob], opts: dict[str, Any]) -> dict[str, WheelSection]:
+    """Close each wheel's profile into its section: one width and bore for new and worn wheel.
+
+    By default the widest profile's width and the least default bore of the wheels (the worn wheel's
+    shoulder is lower).
+    """
+    width, bore = opts["wheel_width"], opts["wheel_bore_radius"]
+    try:
+        if width is None or bore is None:
+            defaults = [wheel_section(job.wheel, width, bore) for job in jobs.values()]
+            width = max(d.width for d in defaults) if width is None else width
+            bore = min(d.bore_radius for d in defaults) if bore is None else bore
+        return {state: wheel_section(job.wheel, width, bore) for state, job in jobs.items()}
+    except DesignError as exc:
+        raise InputError(exc.sentence(OPTION_NAMES.get(exc.param))) from None
+
+
+def _section_summary(section: WheelSection) -> dict[str, float]:
+    """Return the section's keys of a wheel in ``rotorcad grind --json`` (mm)."""
+    return {"wheel_width": section.width, "bore_radius": section.bore_radius, "shoulder_radius": section.shoulder_radius}
+
+
+def _write_files(
+    opts: dict[str, Any], jobs: dict[str, GrindingJob], sections: dict[str, WheelSection], body: dict[str, Any], sens: Sensitivity
+) -> list[str]:
     """Write the dresser's files (``--out``) and the chart (``--plot``), all or none; return their paths."""
     out = Outputs()
     if opts["out"] is not None:
         folder = output_folder(opts["out"])
         for state, job in jobs.items():
-            _add_files(out, folder, f"wheel_{body['name']}_{state}", job, body["name"])
+            _add_files(out, folder, f"wheel_{body['name']}_{state}", job, sections[state], body["name"])
         rows = _sensitivity_rows(jobs["new"].wheel, sens)
         header = "rotor_x,rotor_y,flute_arc_length," + ",".join(ERRORS)
         notes = [
@@ -230,8 +273,8 @@ def _sensitivity_rows(wheel: GrindingWheel, sens: Sensitivity) -> np.ndarray:
     return np.column_stack([own, arc, sens.per_unit.T])
 
 
-def _add_files(out: Outputs, folder: Path, stem: str, job: GrindingJob, name: str) -> None:
-    """Add the CSV and the two DXF of one wheel to ``out``."""
+def _add_files(out: Outputs, folder: Path, stem: str, job: GrindingJob, section: WheelSection, name: str) -> None:
+    """Add the profile's CSV, the section's CSV and the two DXF of one wheel to ``out``."""
     s = job.wheel.setting
     rows = job.rows()
     label = (
@@ -244,10 +287,16 @@ def _add_files(out: Outputs, folder: Path, stem: str, job: GrindingJob, name: st
         "normal: outward unit normal; rotor_x, rotor_y: the rotor point ground [mm]",
     ]
     out.add(folder / f"{stem}.csv", lambda p: write_wheel_csv(p, rows, comments), "--out")
+    ring = section.outline()
+    notes = [
+        f"form-grinding wheel section for the {label}: width {section.width:g} mm, bore radius {section.bore_radius:g} mm",
+        "the closed outline counter-clockwise: the profile, the shoulders, the side faces, the bore; axial, radius [mm]",
+    ]
+    out.add(folder / f"{stem}_section.csv", lambda p: write_points(p, ring, notes, header="axial,radius"), "--out")
     for version in ("R12", "R2000"):
         out.add(
             folder / f"{stem}_{version.lower()}.dxf",
-            lambda p, v=version: write_wheel_dxf(p, rows[:, 0], rows[:, 1], label, v),
+            lambda p, v=version: write_wheel_dxf(p, rows[:, 0], rows[:, 1], label, v, section.sides()),
             "--out",
         )
 
@@ -262,9 +311,11 @@ def _body(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
             raise InputError(exc.sentence()) from None
     rotors = rotors_of(design, data, opts)
     if rotors is not None:
+        if opts["body"] in ("gear", "mate"):
+            raise InputError(f"--rotor must be male or female for a rotor pair (got {opts['body']}: that names a gear).")
         pair = rotors.pair
         hand = 1.0 if pair.hand == "right" else -1.0
-        if opts["body"] == "male":
+        if opts["body"] in (None, "male"):
             lead, outline, lobes, pitch = hand * pair.lead, rotors.male_outline(), pair.male_teeth, pair.male_pitch_radius
         else:  # the female's helix is of the other hand
             lead, outline, lobes, pitch = (
@@ -274,18 +325,34 @@ def _body(design: Path | None, opts: dict[str, Any]) -> dict[str, Any]:
                 pair.female_pitch_radius,
             )
         return {
-            "name": opts["body"],
+            "name": opts["body"] or "male",
             "outline": outline,
             "twist": 2 * np.pi / lead,
             "lobes": lobes,
             "lead": lead,
             "pitch_radius": pitch,
         }
-    gear, _ = build_gear(merge_gear_params(design, opts, data), 1e-4)
-    twist = float(np.tan(gear.helix_angle) / gear.pitch_radius)  # right hand for beta > 0 (rotorcad.solids)
+    return _gear_body(design, data, opts)
+
+
+def _gear_body(design: Path | None, data: dict[str, Any] | None, opts: dict[str, Any]) -> dict[str, Any]:
+    """Build the gear or its mate (``--rotor gear|mate``) to grind, as :func:`_body` returns it.
+
+    The mate of an external pair has the helix of the other hand (:func:`rotorcad.assembly.gear_lead`).
+    """
+    which = opts["body"] or "gear"
+    if which in ("male", "female"):
+        raise InputError(f"--rotor must be gear or mate for a gear design (got {which}: that names a screw rotor).")
+    gear, pair = build_gear(merge_gear_params(design, opts, data), 1e-4)
+    hand = 1.0
+    if which == "mate":
+        if pair is None:
+            raise InputError("--rotor mate needs a mating gear: give --mate-teeth (or [mate] teeth in the design).")
+        gear, hand = pair.mate, -1.0
+    twist = hand * float(np.tan(gear.helix_angle) / gear.pitch_radius)  # right hand for beta > 0 (rotorcad.solids)
     lead = 2 * np.pi / twist if twist != 0.0 else None
     return {
-        "name": "gear",
+        "name": which,
         "outline": gear.outline(),
         "twist": twist,
         "lobes": gear.teeth,

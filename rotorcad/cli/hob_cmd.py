@@ -15,6 +15,7 @@ from hob.rack import DerivedRack, gear_rack, hob_tooth, rack_deviation, rotor_ra
 from hob.verdict import HobLimits, judge
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
+from rotorcad.cli.hob_worm import add_worm_steps, body_hands, rack_datum, worm_options, worm_summaries, worms_of
 from rotorcad.cli.rotor import rotor_input_options, rotors_of
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
@@ -42,6 +43,7 @@ from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN
     help="Picture (PNG, SVG or PDF by the suffix): the racks compared, their deviation magnified along the normal, "
     "and the hob teeth.",
 )
+@worm_options
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def hob(design: Path | None, **opts: Any) -> None:
     """Derive the transverse and normal rack of a gear or of both rotors of a pair, and judge them.
@@ -81,6 +83,7 @@ def hob(design: Path | None, **opts: Any) -> None:
         scale = g.module
         body = g
     verdicts, result = judge_racks(racks, deviation, limits, getattr(body, "accuracy", 0.0))
+    worms = worms_of(racks, body_hands(body), opts, rack_datum(body))
     first = next(iter(racks))
     normal = racks[first].normal()
     clearance = opts["root_clearance"] * scale
@@ -89,11 +92,16 @@ def hob(design: Path | None, **opts: Any) -> None:
     out.add(opts["dxf"], lambda p: write_dxf(p, _drawing(racks, clearance)), "--dxf")
     if opts["plot"]:
         out.add_figure(opts["plot"], lambda: _plot(racks, verdicts, clearance, deviation, body), "--plot")
+    steps = add_worm_steps(out, worms, opts["step"])
     result["files"] = [str(p) for p in out.write()]
+    if worms:
+        result["worms"] = worm_summaries(worms, steps)
     if opts["as_json"]:
         emit_json(result)
     else:
-        print_table("hobbability", {k: v for k, v in result.items() if k not in ("reasons", "racks")})
+        print_table("hobbability", {k: v for k, v in result.items() if k not in ("reasons", "racks", "worms")})
+        for name, figures in result.get("worms", {}).items():
+            print_table(f"basic worm of the hob for the {name}", figures)
         for r in result["reasons"]:
             click.echo(f"  - {r}")
 
