@@ -418,12 +418,6 @@ def write_exact_step(
     OSError
         When OpenCASCADE cannot write the file.
     """
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
-    from OCP.gp import gp_Trsf, gp_Vec
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.Interface import Interface_Static
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-
     shape = helical_solid(segments, lead, length, tolerance)
     result = {"faces": float(len(faces(shape)))}
     if exact is not None:
@@ -433,6 +427,35 @@ def write_exact_step(
             raise StepDeviationError(
                 f"the STEP surface is {dev * 1e3:.2f} um from the helicoid, more than the tolerance {tolerance * 1e3:g} um"
             )
+    write_shape(path, shape, body, offset)
+    return result
+
+
+def write_shape(path: Path, shape, body: str, offset: tuple[float, float] = (0.0, 0.0)) -> None:
+    """Write an OpenCASCADE shape as STEP AP214 (product named ``body``), moved by ``offset``.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    shape : OCP.TopoDS.TopoDS_Shape
+        What to write.
+    body : str
+        Product name in the file.
+    offset : (float, float), mm
+        Translation in x and y (e.g. the mate to (a, 0)).
+
+    Raises
+    ------
+    OSError
+        When OpenCASCADE cannot write the file.
+    """
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+    from OCP.gp import gp_Trsf, gp_Vec
+    from OCP.IFSelect import IFSelect_RetDone
+    from OCP.Interface import Interface_Static
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
     if offset != (0.0, 0.0):
         tr = gp_Trsf()
         tr.SetTranslation(gp_Vec(float(offset[0]), float(offset[1]), 0.0))
@@ -443,7 +466,6 @@ def write_exact_step(
     writer.Transfer(shape, STEPControl_AsIs)
     if writer.Write(str(path)) != IFSelect_RetDone:
         raise OSError(f"OpenCASCADE could not write {path}")
-    return result
 
 
 def write_housing_step(
@@ -525,4 +547,5 @@ __all__ = [
     "section_segments",
     "write_exact_step",
     "write_housing_step",
+    "write_shape",
 ]

@@ -64,6 +64,8 @@ class GearSpec:
     rack_length, rack_height : float or None, mm
         A gear rack of the gear's basic rack (None: no rack), and its height from the back to the
         datum line (None: h_fP* m + 2 m).
+    tip_chamfer, tip_rounding, bore_diameter, keyway, hub_diameter, hub_length, herringbone
+        The gear as a part (:class:`rotorcad.gears.features.GearFeatures`; None or False: none).
     from_design : frozenset of str
         The fields whose values are the design file's.
     """
@@ -88,7 +90,20 @@ class GearSpec:
     mate_thickness_allowance_lower: float = 0.0
     rack_length: float | None = None
     rack_height: float | None = None
+    tip_chamfer: float | None = None
+    tip_rounding: float | None = None
+    bore_diameter: float | None = None
+    keyway: bool = False
+    hub_diameter: float | None = None
+    hub_length: float | None = None
+    herringbone: bool = False
     from_design: frozenset[str] = frozenset()
+
+    def features(self) -> Any:
+        """Return the gear's features as a part (:class:`rotorcad.gears.features.GearFeatures`)."""
+        from rotorcad.gears.features import FEATURE_FIELDS, GearFeatures
+
+        return GearFeatures(**{f: getattr(self, f) for f in FEATURE_FIELDS})
 
 
 VALUE_FIELDS = tuple(f.name for f in fields(GearSpec) if f.name != "from_design")

@@ -85,6 +85,8 @@ GEAR_LABELS: dict[str, Label] = {
     "pin_diameter": Label("pin_diameter", "--pin-diameter", "[gear] pin_diameter"),
     "rack_length": Label("rack_length", "--rack", "[rack] length"),
     "rack_height": Label("rack_height", "--rack-height", "[rack] height"),
+    **{f: Label(f, f"[gear] {f}", f"[gear] {f}") for f in ("tip_chamfer", "tip_rounding", "bore_diameter")},
+    **{f: Label(f, f"[gear] {f}", f"[gear] {f}") for f in ("keyway", "hub_diameter", "hub_length", "herringbone")},
     "mate.teeth": Label("mate_teeth", "--mate-teeth", "[mate] teeth"),
     "mate.thickness_allowance_upper": Label(
         "mate_thickness_allowance_upper", "--mate-thickness-allowance-upper", "[mate] thickness_allowance_upper"
