@@ -328,7 +328,7 @@ def test_export_of_a_gear_part(tmp_path, capsys, spur_part):
     design = tmp_path / "part.toml"
     design.write_text(DESIGN)
     capsys.readouterr()
-    args = ["export", str(design), "--format", "stl,step", "--out", str(tmp_path / "o"), "--tolerance", "0.01", "--json"]
+    args = ["export", str(design), "--format", "stl,step,dxf", "--out", str(tmp_path / "o"), "--tolerance", "0.01", "--json"]
     assert main(args) == 0
     rows = {f["format"]: f for f in json.loads(capsys.readouterr().out)["files"]}
     made = spur_part[0]
@@ -338,6 +338,14 @@ def test_export_of_a_gear_part(tmp_path, capsys, spur_part):
     assert info["solids"] == 1 and info["valid"] and step["faces"] == len(spur_part[1]) + 8
     assert info["volume"] == pytest.approx(expected, rel=2e-6) and step["volume"] == pytest.approx(expected, rel=2e-6)
     assert abs(rows["stl"]["volume"] - expected) <= 200.0 * 0.01 * WIDTH  # perimeters < 200 mm at 10 um
+    import ezdxf  # a third-party reader of the drawing: the bore with its keyway on the layer BORE
+
+    doc = ezdxf.readfile(rows["dxf"]["path"])
+    bore = [shapely.Polygon([p[:2] for p in e.get_points()]) for e in doc.modelspace().query('LWPOLYLINE[layer=="BORE"]')]
+    key = key_for_bore(10.0)
+    assert len(bore) == 1 and bore[0].area == pytest.approx(
+        _hole(5.0, key.width, 5.0 + key.hub_depth).area, abs=bore[0].length * 0.01
+    )
 
 
 def _svg_layers(path: Path) -> dict[str, list[np.ndarray]]:
