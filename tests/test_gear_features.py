@@ -376,3 +376,18 @@ def test_svg_holds_the_broken_outline_the_bore_and_the_hub(tmp_path, capsys, spu
     cut = plain.difference(gear)  # the chamfers: 2 z pieces of some 0.01 mm²
     assert len([p for p in shapely.get_parts(cut) if p.area > 1e-3]) == 2 * spur.teeth  # slivers of the chords left out
     assert gear.area < plain.area - 2 * spur.teeth * 1e-3
+
+
+def test_gear_json_reports_the_features(tmp_path, capsys, spur):
+    design = tmp_path / "part.toml"
+    design.write_text(DESIGN)
+    capsys.readouterr()
+    assert main(["gear", str(design), "--json"]) == 0
+    features = json.loads(capsys.readouterr().out)["features"]
+    # DIN 6885-1: a 10 mm bore takes the 3 x 3 key, t1 = 1.8, t2 = 1.4 (8 < d <= 10)
+    assert (features["keyway_width"], features["keyway_height"]) == (3.0, 3.0)
+    assert (features["keyway_shaft_depth"], features["keyway_hub_depth"]) == (1.8, 1.4)
+    # the rim: root radius r_f = m (z/2 - 1.25) (ISO 53 rack, x = 0) less the keyway's bottom d/2 + t2
+    assert features["rim_thickness"] == pytest.approx(2.0 * (13 / 2 - 1.25) - (5.0 + 1.4), abs=1e-9)
+    assert features["tip_break_radius"] == pytest.approx(2.0 * (13 / 2 + 1) - 0.2, abs=1e-9)
+    assert features["tip_chamfer"] == 0.2 and features["tip_rounding"] is None and features["herringbone"] is False
