@@ -243,6 +243,12 @@ def test_spur_part_step_one_face_per_piece_and_its_volume(spur_part, tmp_path):
     write_shape(tmp_path / "p.step", solid, "gear")
     info = read_step(tmp_path / "p.step")
     assert info["solids"] == 1 and info["valid"] and info["volume"] == pytest.approx(expected, rel=2e-6)
+    from OCP.STEPControl import STEPControl_Reader  # the faces of the file as OpenCASCADE reads it back
+
+    reader = STEPControl_Reader()
+    reader.ReadFile(str(tmp_path / "p.step"))
+    reader.TransferRoots()
+    assert len(faces(reader.OneShape())) == len(segments) + 8
 
 
 def test_spur_part_mesh_against_the_step(spur_part):
