@@ -34,8 +34,11 @@ from rotorcad.gears.features import MadeFeatures
 from rotorcad.gears.rack import GearRack
 from rotorcad.plotting import line_of_action, mate_in_mesh, plot_gears
 
-GEAR_OPTION = {param: label.option for param, label in GEAR_LABELS.items() if not param.startswith("mate.")}
-"""Library parameter of a gear's errors -> option (:data:`rotorcad.design.labels.GEAR_LABELS`)."""
+GEAR_OPTION = {
+    param: label.option for param, label in GEAR_LABELS.items() if not param.startswith("mate.") and label.option != label.key
+}
+"""Library parameter of a gear's errors -> option (:data:`rotorcad.design.labels.GEAR_LABELS`; design keys
+without an option, the gear-as-a-part keys, left out)."""
 MATE_OPTION = {param.removeprefix("mate."): label.option for param, label in GEAR_LABELS.items() if param.startswith("mate.")}
 """Library parameter of the mate's errors -> option."""
 DESIGN_PARAM = {"tip_radius": "tip_radius_factor"}
