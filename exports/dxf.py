@@ -239,6 +239,11 @@ def _plan_drawing(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: di
     for hole in body.section.interiors:  # an internal gear's toothed bore
         drawing.outlines.append((body.name.upper(), np.asarray(hole.coords)[:-1][::-1] + np.asarray(body.shift)))
     drawing.circles.append(("PITCH", body.shift, body.pitch_radius))
+    features = body.features  # a gear as a part: its bore with the keyway, its hub (rotorcad/gears/features.py)
+    if features is not None and features.bore_radius > 0:
+        drawing.outlines.append(("BORE", features.hole_points(body.section_tolerance) + np.asarray(body.shift)))
+    if features is not None and features.hub_radius > 0:
+        drawing.circles.append(("HUB", body.shift, features.hub_radius))
     r12 = fmt.name.endswith("r12")
     if body.kind is BodyKind.ROTOR:
         drawing.centers.append(body.shift)

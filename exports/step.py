@@ -239,10 +239,16 @@ def _plan_exact_step(fmt: ExportFormat, body: PlacedBody, tolerance: float, row:
         faces=len(sections[0]) + 2,
         tolerance=step_tol,
     )
+    writer, args = write_exact_step_refined, (sections, body.lead, body.length, step_tol, body.name, body.shift, exact)
+    if body.features is not None:  # a gear as a part: bore, keyway, hub, herringbone (exports/gear_step.py)
+        from exports.gear_step import write_gear_part_step
+
+        row.update(volume=body.features.volume(shapely.Polygon(exact).area, body.length))
+        writer, args = write_gear_part_step, (*args, body.features)
     return BackgroundWriter(
-        write_exact_step_refined,
-        (sections, body.lead, body.length, step_tol, body.name, body.shift, exact),
-        done=lambda done: row.update(tolerance=done["deviation"]),  # measured on the solid's faces
+        writer,
+        args,
+        done=lambda done: row.update(tolerance=done["deviation"], faces=int(done["faces"])),  # measured on the solid
         failed=lambda exc: RefusalError(f"--tolerance {step_tol:g} mm cannot be met by the STEP of the {body.name}: {exc}."),
     )
 

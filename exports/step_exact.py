@@ -391,12 +391,6 @@ def write_exact_step(
     OSError
         When OpenCASCADE cannot write the file.
     """
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
-    from OCP.gp import gp_Trsf, gp_Vec
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.Interface import Interface_Static
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-
     shape = helical_solid(segments, lead, length, tolerance)
     result = {"faces": float(len(faces(shape)))}
     if exact is not None:
@@ -406,6 +400,35 @@ def write_exact_step(
             raise StepDeviationError(
                 f"the STEP surface is {dev * 1e3:.2f} um from the helicoid, more than the tolerance {tolerance * 1e3:g} um"
             )
+    write_shape(path, shape, body, offset)
+    return result
+
+
+def write_shape(path: Path, shape, body: str, offset: tuple[float, float] = (0.0, 0.0)) -> None:
+    """Write an OpenCASCADE shape as STEP AP214 (product named ``body``), moved by ``offset``.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    shape : OCP.TopoDS.TopoDS_Shape
+        What to write.
+    body : str
+        Product name in the file.
+    offset : (float, float), mm
+        Translation in x and y (e.g. the mate to (a, 0)).
+
+    Raises
+    ------
+    OSError
+        When OpenCASCADE cannot write the file.
+    """
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+    from OCP.gp import gp_Trsf, gp_Vec
+    from OCP.IFSelect import IFSelect_RetDone
+    from OCP.Interface import Interface_Static
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
     if offset != (0.0, 0.0):
         tr = gp_Trsf()
         tr.SetTranslation(gp_Vec(float(offset[0]), float(offset[1]), 0.0))
@@ -416,7 +439,48 @@ def write_exact_step(
     writer.Transfer(shape, STEPControl_AsIs)
     if writer.Write(str(path)) != IFSelect_RetDone:
         raise OSError(f"OpenCASCADE could not write {path}")
-    return result
+
+
+def housing_shape(
+    center_distance: float, male_bore: float, female_bore: float, length: float, wall: float = 10.0, body: str = "housing"
+):
+    """Return the housing as an exact OpenCASCADE solid: box and cylinders.
+
+    The block (as :func:`rotorcad.solids.housing_solids` sizes it) minus the two bore cylinders about
+    O1 = (0, 0) and O2 = (a, 0) (``body`` "housing"), or the bores alone ("bores").
+
+    Parameters
+    ----------
+    center_distance : float, mm
+        Centre distance a.
+    male_bore, female_bore : float, mm
+        Bore radii.
+    length : float, mm
+        Length along z, from 0.
+    wall : float, mm
+        Wall beyond the bores.
+    body : {"housing", "bores"}
+        Which solid.
+
+    Returns
+    -------
+    OCP.TopoDS.TopoDS_Shape
+    """
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+
+    quiet_ocp()
+    axis = gp_Dir(0.0, 0.0, 1.0)
+    male = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0.0, 0.0, 0.0), axis), male_bore, length).Shape()
+    female = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(center_distance, 0.0, 0.0), axis), female_bore, length).Shape()
+    bores = BRepAlgoAPI_Fuse(male, female).Shape()
+    if body == "bores":
+        return bores
+    x0, x1 = -male_bore - wall, center_distance + female_bore + wall
+    half = max(male_bore, female_bore) + wall
+    block = BRepPrimAPI_MakeBox(gp_Pnt(x0, -half, 0.0), gp_Pnt(x1, half, length)).Shape()
+    return BRepAlgoAPI_Cut(block, bores).Shape()
 
 
 def write_housing_step(
@@ -428,10 +492,7 @@ def write_housing_step(
     wall: float = 10.0,
     body: str = "housing",
 ) -> float:
-    """Write the housing as exact STEP, by OpenCASCADE's primitives and booleans.
-
-    The block (as :func:`rotorcad.solids.housing_solids` sizes it) minus the two bore cylinders about
-    O1 = (0, 0) and O2 = (a, 0) (``body`` "housing"), or the bores alone ("bores").
+    """Write the housing as exact STEP (:func:`housing_shape`).
 
     Parameters
     ----------
@@ -458,35 +519,13 @@ def write_housing_step(
     OSError
         When OpenCASCADE cannot write the file.
     """
-    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
     from OCP.BRepGProp import BRepGProp
-    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
-    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
     from OCP.GProp import GProp_GProps
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.Interface import Interface_Static
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
 
-    quiet_ocp()
-    axis = gp_Dir(0.0, 0.0, 1.0)
-    male = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0.0, 0.0, 0.0), axis), male_bore, length).Shape()
-    female = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(center_distance, 0.0, 0.0), axis), female_bore, length).Shape()
-    bores = BRepAlgoAPI_Fuse(male, female).Shape()
-    if body == "bores":
-        shape = bores
-    else:
-        x0, x1 = -male_bore - wall, center_distance + female_bore + wall
-        half = max(male_bore, female_bore) + wall
-        block = BRepPrimAPI_MakeBox(gp_Pnt(x0, -half, 0.0), gp_Pnt(x1, half, length)).Shape()
-        shape = BRepAlgoAPI_Cut(block, bores).Shape()
+    shape = housing_shape(center_distance, male_bore, female_bore, length, wall, body)
     props = GProp_GProps()
     BRepGProp.VolumeProperties_s(shape, props)
-    writer = STEPControl_Writer()
-    Interface_Static.SetCVal_s("write.step.schema", "AP214")
-    Interface_Static.SetCVal_s("write.step.product.name", body)
-    writer.Transfer(shape, STEPControl_AsIs)
-    if writer.Write(str(path)) != IFSelect_RetDone:
-        raise OSError(f"OpenCASCADE could not write {path}")
+    write_shape(path, shape, body)
     return float(props.Mass())
 
 
@@ -495,7 +534,9 @@ __all__ = [
     "faces",
     "helical_solid",
     "helicoid_deviation",
+    "housing_shape",
     "section_segments",
     "write_exact_step",
     "write_housing_step",
+    "write_shape",
 ]

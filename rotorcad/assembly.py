@@ -33,6 +33,7 @@ from rotorcad.triangle_mesh import TriangleMesh
 
 if TYPE_CHECKING:
     from rotorcad.gear import GearPair, InvoluteGear
+    from rotorcad.gears.features import MadeFeatures, SolidFeatures
     from rotorcad.gears.internal_gear import InternalGear
     from rotorcad.gears.internal_pair import InternalPair
     from rotorcad.profile import Profile
@@ -105,6 +106,9 @@ class PlacedBody:
         and this circle; ``section`` holds the bore as its hole.
     on_swept : callable, optional
         Called when the solid has been swept (a progress bar's step).
+    features : SolidFeatures, optional
+        A gear's bore, keyway, hub and herringbone (:mod:`rotorcad.gears.features`): its meshes are
+        :func:`rotorcad.gears.part_mesh.part_solid`, its exact STEP :mod:`exports.gear_step`.
     """
 
     name: str
@@ -125,6 +129,7 @@ class PlacedBody:
     housing: tuple[float, float, float, float, float] | None = None
     outer_radius: float | None = None
     on_swept: Callable[[], None] | None = field(default=None, repr=False)
+    features: SolidFeatures | None = None
     _swept: dict[float, MeshedBody] = field(default_factory=dict, repr=False)
 
     @property
@@ -151,6 +156,10 @@ class PlacedBody:
         """Sweep ``section`` along the body's helix (a spur body as a helix of a very long lead)."""
         from rotorcad.solids import helical_solid  # manifold3d: only when a solid is swept
 
+        if self.features is not None:  # a gear as a part: bore, keyway, hub, herringbone
+            from rotorcad.gears.part_mesh import part_solid
+
+            return part_solid(section, self.lead, self.length, tolerance, self.features)
         lead = self.lead if np.isfinite(self.lead) else 1e12 * self.length
         return helical_solid(section, lead, self.length, tolerance)
 
@@ -293,8 +302,14 @@ def gear_lead(g: InvoluteGear) -> float:
     return float("inf") if abs(beta) < 1e-12 else float(2 * np.pi * g.pitch_radius / np.tan(beta))
 
 
-def gear_bodies(gear: InvoluteGear, pair: GearPair | None, width: float, tolerance: float) -> list[PlacedBody]:
+def gear_bodies(
+    gear: InvoluteGear, pair: GearPair | None, width: float, tolerance: float, features: MadeFeatures | None = None
+) -> list[PlacedBody]:
     """Return the gear (and its mate in mesh at the working centre distance) as placed bodies.
+
+    ``features`` (the gear's tip corners, bore, keyway, hub, herringbone) make the gear a part: its
+    section the outline with broken tip corners, its volume the closed form of
+    :meth:`rotorcad.gears.features.SolidFeatures.volume`; a herringbone gear's mate is one too.
 
     The mate is turned by pi + pi/z2 (a tooth space of the mate faces the gear's tooth on the line
     of centres) and swept with the opposite hand and its own lead, -h1 z2/z1. The sections are
@@ -307,7 +322,7 @@ def gear_bodies(gear: InvoluteGear, pair: GearPair | None, width: float, toleran
         mate = pair.mate
         lead2 = -lead * mate.teeth / gear.teeth if np.isfinite(lead) else float("inf")
         bodies.append(("mate", mate, lead2, (float(pair.working_center_distance), 0.0), np.pi + np.pi / mate.teeth))
-    return [
+    placed = [
         PlacedBody(
             name=name,
             kind=BodyKind.GEAR,
@@ -325,6 +340,31 @@ def gear_bodies(gear: InvoluteGear, pair: GearPair | None, width: float, toleran
         )
         for name, g, lead, shift, turn in bodies
     ]
+    if features is not None:
+        placed = [_as_part(placed[0], features), *(_as_part(b, None, features.solid.herringbone) for b in placed[1:])]
+    return placed
+
+
+def _as_part(body: PlacedBody, features: MadeFeatures | None, herringbone: bool = False) -> PlacedBody:
+    """Return a gear body as a part: the gear with its features, or the mate of a herringbone gear."""
+    from rotorcad.gears.features import SolidFeatures
+
+    if features is None:
+        if not herringbone:
+            return body
+        solid = SolidFeatures(herringbone=True, turn=body.turn)
+        return replace(body, features=solid, exact_volume=solid.volume(body.section.area, body.length))
+    tol = body.section_tolerance
+    section = shapely.Polygon(rotate(features.outline(tol).points, body.turn))
+    solid = replace(features.solid, turn=body.turn)
+    return replace(
+        body,
+        section=section,
+        section_of=lambda chord: shapely.Polygon(features.outline(chord).points),
+        outline=features.outline,
+        features=solid,
+        exact_volume=solid.volume(shapely.Polygon(features.outline(tol / 10).points).area, body.length),
+    )
 
 
 def internal_gear_bodies(ring: InternalGear, pair: InternalPair | None, width: float, tolerance: float) -> list[PlacedBody]:

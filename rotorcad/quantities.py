@@ -656,6 +656,29 @@ _declare(
     ],
 )
 
+# --- the gear as a part (rotorcad/gears/features.py, tip_corner.py, keys.py): `rotorcad gear`'s `features`
+_declare(
+    "rotorcad/gears",
+    [
+        (f"features{sep}{key}", unit, label)
+        for key, unit, label in (
+            ("tip_chamfer", "mm", "tip chamfer height h_K"),
+            ("tip_rounding", "mm", "tip rounding radius r_K"),
+            ("tip_land_half_angle_deg", "deg", "half angle of the tip land left"),
+            ("tip_break_radius", "mm", "radius where the tip break meets the flank"),
+            ("bore_diameter", "mm", "bore diameter"),
+            ("rim_thickness", "mm", "rim under the bore or keyway"),
+            ("hub_diameter", "mm", "hub diameter"),
+            ("hub_length", "mm", "hub length"),
+            ("keyway_width", "mm", "keyway width b (DIN 6885-1)"),
+            ("keyway_height", "mm", "key height h (DIN 6885-1)"),
+            ("keyway_shaft_depth", "mm", "keyway depth in the shaft t1 (DIN 6885-1)"),
+            ("keyway_hub_depth", "mm", "keyway depth in the hub t2 (DIN 6885-1)"),
+        )
+        for sep in (".", "_")
+    ],
+)
+
 # --- a gear as the shop makes and checks it (rotorcad/gears/allowances.py, measurements.py, rack.py;
 # DIN 3967 / ISO 21771): nested figures are declared by their path and by the row name of the table
 _SHOP = [

@@ -21,6 +21,7 @@ from rotorcad.cli.common import (
     print_table,
 )
 from rotorcad.cli.gear_internal import INTERNAL_FIELDS, internal_options, refuse_internal_options, run_internal_gear
+from rotorcad.cli.gear_part import draw_features, part_features
 from rotorcad.cli.progress import Steps
 from rotorcad.design.gears import GEAR_DEFAULTS, VALUE_FIELDS, GearSpec, gear_spec
 from rotorcad.design.gears import build_gear as core_build_gear
@@ -30,11 +31,15 @@ from rotorcad.design.gears import shop_values as core_shop_values
 from rotorcad.design.labels import GEAR_FIELD_LABELS, GEAR_LABELS, contact_names, gear_name, required
 from rotorcad.errors import DesignError, GeometryError, MissingValueError
 from rotorcad.gear import GearPair, InvoluteGear
+from rotorcad.gears.features import MadeFeatures
 from rotorcad.gears.rack import GearRack
 from rotorcad.plotting import line_of_action, mate_in_mesh, plot_gears
 
-GEAR_OPTION = {param: label.option for param, label in GEAR_LABELS.items() if not param.startswith("mate.")}
-"""Library parameter of a gear's errors -> option (:data:`rotorcad.design.labels.GEAR_LABELS`)."""
+GEAR_OPTION = {
+    param: label.option for param, label in GEAR_LABELS.items() if not param.startswith("mate.") and label.option != label.key
+}
+"""Library parameter of a gear's errors -> option (:data:`rotorcad.design.labels.GEAR_LABELS`; design keys
+without an option, the gear-as-a-part keys, left out)."""
 MATE_OPTION = {param.removeprefix("mate."): label.option for param, label in GEAR_LABELS.items() if param.startswith("mate.")}
 """Library parameter of the mate's errors -> option."""
 DESIGN_PARAM = {"tip_radius": "tip_radius_factor"}
@@ -185,6 +190,9 @@ def gear(design: Path | None, **opts: Any) -> None:
     if pair is not None:
         result["mate"].update(shop.pop("mate"))
     result.update(shop)
+    part = part_features(params, g)  # tip corners, bore, keyway, hub, herringbone: the [gear] keys
+    if part is not None:
+        result["features"] = part.summary()
     rack = make_rack(params, opts["tolerance"])
     if rack is not None:
         result["rack"] = rack.summary()
@@ -195,14 +203,15 @@ def gear(design: Path | None, **opts: Any) -> None:
     csv_paths = [p for p in (opts["csv"], out and out / "gear.csv") if p]
     png_paths = [p for p in (opts["plot"], out and out / "gear.png") if p]
     for p in dxf_paths:
-        outputs.add(p, lambda path: write_dxf(path, _drawing(g, pair)), "--dxf")
+        outputs.add(p, lambda path: write_dxf(path, _drawing(g, pair, part)), "--dxf")
     if opts["svg"]:
-        outputs.add(opts["svg"], lambda path: write_svg(path, _drawing(g, pair)), "--svg")
+        outputs.add(opts["svg"], lambda path: write_svg(path, _drawing(g, pair, part)), "--svg")
         if rack is not None:
             rack_svg = opts["svg"].with_name(opts["svg"].stem + "_rack.svg")
             outputs.add(rack_svg, lambda path: write_svg(path, _rack_drawing(rack)), "--svg")
     for p in csv_paths:
-        outputs.add(p, lambda path: write_points(path, g.outline().points, _comments(g, "gear")), "--csv")
+        outline = (part or g).outline().points
+        outputs.add(p, lambda path, o=outline: write_points(path, o, _comments(g, "gear")), "--csv")
         if pair is not None:
             mate_path = p.with_name("mate.csv") if out and p == out / "gear.csv" else p.with_name(p.stem + "_mate.csv")
             outputs.add(
@@ -390,7 +399,7 @@ def make_rack(p: dict[str, Any], tolerance: float) -> GearRack | None:
         raise InputError(exc.sentence(gear_name(exc.param, spec.from_design))) from None
 
 
-FLAT_KEYS = ("thickness_allowance", "span", "over_pins", "backlash_circumferential", "backlash_normal", "rack")
+FLAT_KEYS = ("thickness_allowance", "span", "over_pins", "backlash_circumferential", "backlash_normal", "rack", "features")
 """Nested result keys shown in the text table as one row per value (``span_nominal``, ``rack_pitch``, ...)."""
 
 
@@ -435,9 +444,10 @@ def _comments(g: InvoluteGear, body: str) -> list[str]:
     ]
 
 
-def _drawing(g: InvoluteGear, pair: GearPair | None) -> Drawing:
+def _drawing(g: InvoluteGear, pair: GearPair | None, part: MadeFeatures | None = None) -> Drawing:
     d = Drawing(mark_size=g.module)
-    d.outlines.append(("GEAR", g.outline().points))
+    d.outlines.append(("GEAR", (part or g).outline().points))
+    draw_features(d, part)
     d.circles += [("PITCH", (0.0, 0.0), g.pitch_radius), ("BASE", (0.0, 0.0), g.base_radius)]
     d.centers.append((0.0, 0.0))
     if pair is not None:

@@ -18,6 +18,7 @@ from exports.formats import names
 from rotorcad.assembly import BodyKind, PlacedBody, gear_bodies, gear_lead
 from rotorcad.cli.common import InputError, Outputs
 from rotorcad.cli.gear import build_gear, make_rack, merge_gear_params, shop_gears
+from rotorcad.cli.gear_part import part_features
 
 GEAR_FORMATS = names(BodyKind.GEAR)
 """The formats of the built-in table that write gears (:mod:`exports.formats`)."""
@@ -60,7 +61,7 @@ def design_gear_bodies(design: Path, tol: float, data: dict[str, Any] | None = N
         return internal_gear_bodies(ring, pair, width, tol)
     g, pair = build_gear(params, tol / 4)
     _, g, pair = shop_gears(params, g, pair)  # cut at the middle of the tooth-thickness tolerance fields
-    return gear_bodies(g, pair, width, tol)
+    return gear_bodies(g, pair, width, tol, part_features(params, g))  # with its bore, keyway, hub, ...
 
 
 def design_rack_files(

@@ -84,6 +84,8 @@ class GearSpec:
         Its profile shift x0 (modules) and tip rounding rho_a0* (factor of the module).
     cutter_addendum : float or None
         Its addendum factor h_a0* (None: the gear's dedendum).
+    tip_chamfer, tip_rounding, bore_diameter, keyway, hub_diameter, hub_length, herringbone
+        The gear as a part (:class:`rotorcad.gears.features.GearFeatures`; None or False: none).
     from_design : frozenset of str
         The fields whose values are the design file's.
     """
@@ -114,7 +116,20 @@ class GearSpec:
     cutter_shift: float = 0.0
     cutter_tip_radius: float = CUTTER_TIP_RADIUS
     cutter_addendum: float | None = None
+    tip_chamfer: float | None = None
+    tip_rounding: float | None = None
+    bore_diameter: float | None = None
+    keyway: bool = False
+    hub_diameter: float | None = None
+    hub_length: float | None = None
+    herringbone: bool = False
     from_design: frozenset[str] = frozenset()
+
+    def features(self) -> Any:
+        """Return the gear's features as a part (:class:`rotorcad.gears.features.GearFeatures`)."""
+        from rotorcad.gears.features import FEATURE_FIELDS, GearFeatures
+
+        return GearFeatures(**{f: getattr(self, f) for f in FEATURE_FIELDS})
 
 
 VALUE_FIELDS = tuple(f.name for f in fields(GearSpec) if f.name != "from_design")

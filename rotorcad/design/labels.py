@@ -90,6 +90,8 @@ GEAR_LABELS: dict[str, Label] = {
     "cutter_shift": Label("cutter_shift", "--cutter-shift", "[shaper] shift"),
     "cutter_tip_radius": Label("cutter_tip_radius", "--cutter-tip-radius", "[shaper] tip_radius"),
     "cutter_addendum": Label("cutter_addendum", "--cutter-addendum", "[shaper] addendum"),
+    **{f: Label(f, f"[gear] {f}", f"[gear] {f}") for f in ("tip_chamfer", "tip_rounding", "bore_diameter")},
+    **{f: Label(f, f"[gear] {f}", f"[gear] {f}") for f in ("keyway", "hub_diameter", "hub_length", "herringbone")},
     "mate.teeth": Label("mate_teeth", "--mate-teeth", "[mate] teeth"),
     "mate.thickness_allowance_upper": Label(
         "mate_thickness_allowance_upper", "--mate-thickness-allowance-upper", "[mate] thickness_allowance_upper"

@@ -29,6 +29,14 @@ GEAR_KEYS: dict[str, type | tuple[type, ...]] = {
     "span_teeth": int,  # teeth spanned by the span measurement (default: the standard rule)
     "pin_diameter": NUMBER,  # mm, pins or balls of the dimension over pins (default: the standard rule)
     "outer_diameter": NUMBER,  # mm, outer diameter of an internal gear's ring (with [shaper])
+    # the gear as a part (rotorcad/gears/features.py): tip corners, bore, DIN 6885-1 keyway, hub, herringbone
+    "tip_chamfer": NUMBER,  # mm, radial height h_K of a chamfer of the tip corners
+    "tip_rounding": NUMBER,  # mm, radius r_K of a rounding of the tip corners
+    "bore_diameter": NUMBER,  # mm
+    "keyway": bool,  # a hub keyway of the bore's DIN 6885-1 key
+    "hub_diameter": NUMBER,  # mm
+    "hub_length": NUMBER,  # mm, on the face z = 0
+    "herringbone": bool,  # two helical halves of opposite hands
 }
 MATE_KEYS: dict[str, type | tuple[type, ...]] = {
     "teeth": int,
@@ -80,8 +88,9 @@ def check_table(
         if key not in keys:
             raise InputFileError(f"key '{key}' in [{table}]", "one of " + ", ".join(sorted(keys)), None, "unknown key")
         expected = keys[key]
-        if isinstance(value, bool) or not isinstance(value, expected):
-            kind = {int: "a whole number", list: "a list", str: "a text in quotes"}.get(expected, "a number")
+        if (isinstance(value, bool) and expected is not bool) or not isinstance(value, expected):
+            kinds = {int: "a whole number", list: "a list", str: "a text in quotes", bool: "true or false"}
+            kind = kinds.get(expected, "a number")
             raise InputFileError(f"[{table}] {key}", kind, repr(value))
     section = dict(section)
     for key, value in section.items():  # a number as a float: an integer beyond float range is refused

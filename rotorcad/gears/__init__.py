@@ -16,7 +16,10 @@ Modules, one job each:
 * :mod:`rotorcad.gears.allowances` - tooth-thickness allowances (DIN 3967) as the generating rack
   fed in (:func:`~rotorcad.gears.allowances.thinned`) and a pair's backlash from them;
 * :mod:`rotorcad.gears.measurements` - span W_k and dimension over pins or balls M_d (ISO 21771);
-* :mod:`rotorcad.gears.rack` - :class:`GearRack`, a gear rack part of the ISO 53 basic rack.
+* :mod:`rotorcad.gears.rack` - :class:`GearRack`, a gear rack part of the ISO 53 basic rack;
+* :mod:`rotorcad.gears.features` - the gear as a part (:class:`GearFeatures`: tip chamfer or
+  rounding, :mod:`rotorcad.gears.tip_corner`; bore with a DIN 6885-1 keyway,
+  :mod:`rotorcad.gears.keys`; hub; herringbone), its meshes :mod:`rotorcad.gears.part_mesh`.
 
 The names below are imported on first use (PEP 562), so that importing the closed forms alone
 does not load the envelope engine.
@@ -40,6 +43,9 @@ _API = {
     "thinned": "rotorcad.gears.allowances",
     "pair_backlash": "rotorcad.gears.allowances",
     "GearRack": "rotorcad.gears.rack",
+    "GearFeatures": "rotorcad.gears.features",
+    "made_features": "rotorcad.gears.features",
+    "key_for_bore": "rotorcad.gears.keys",
     "inv": "rotorcad.gears.formulas",
     "inv_inverse": "rotorcad.gears.formulas",
     "shift_sum": "rotorcad.gears.formulas",
