@@ -398,12 +398,17 @@ def dxf_file(folder: Path, name: str, rotor: str, kind: str, mutation: str, seed
 GEAR_KEYS = [("gear", "teeth"), ("gear", "module"), ("gear", "pressure_angle_deg"), ("gear", "helix_angle_deg")]
 GEAR_KEYS += [("gear", "shift"), ("gear", "addendum"), ("gear", "dedendum"), ("gear", "tip_radius"), ("gear", "face_width")]
 GEAR_KEYS += [("mate", "teeth"), ("mate", "shift"), ("mate", "center_distance")]
+GEAR_KEYS += [("gear", k) for k in ("tip_chamfer", "tip_rounding", "bore_diameter", "keyway", "hub_diameter", "hub_length")]
+GEAR_KEYS += [("gear", "herringbone"), ("gear", "outer_diameter")]
+GEAR_KEYS += [("shaper", "teeth"), ("shaper", "shift"), ("shaper", "tip_radius"), ("shaper", "addendum")]
+GEAR_SAMPLES = ["gear_pair", "internal_gear", "gear_part"]
+"""The gear samples a spoilt key is put into: a pair, an internal gear with its shaper, a part."""
 GEAR_VALUES = ["0", "-1", "1e-12", "1e30", "nan", "inf", "-inf", "1" + "0" * 30, "1" + "0" * 400, "true", '"20"', "[1]"]
 
 
 def gear_design_file(folder: Path, key: int, value: str | None) -> Path:
-    """The gear sample with one ``[table] key`` set to ``value`` (None: as it is)."""
-    text = (SAMPLES / "gear_pair.toml").read_text()
+    """A gear sample (:data:`GEAR_SAMPLES`, by ``key``) with one ``[table] key`` set to ``value`` (None: as it is)."""
+    text = (SAMPLES / f"{GEAR_SAMPLES[(key // len(GEAR_KEYS)) % len(GEAR_SAMPLES)]}.toml").read_text()
     if value is not None:
         table, name = GEAR_KEYS[key % len(GEAR_KEYS)]
         head, _, tail = text.partition(f"[{table}]\n")
@@ -1203,7 +1208,7 @@ def test_fuzz_dxf_points(capsys, work, command, rotor, kind, mutation, seed):
 @fuzz_settings(12)
 @given(
     command=st.sampled_from(["cut", "gear", "pump", "hob", "export", "report"]),
-    key=st.integers(0, 50),
+    key=st.integers(0, 200),
     value=st.one_of(st.none(), st.sampled_from(GEAR_VALUES), st.sampled_from(GEAR_VALUES)),
 )
 def test_fuzz_gear_designs(capsys, work, command, key, value):
