@@ -86,8 +86,10 @@ from rotorcad.meshing.analysis import MeshingAnalysis
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import (
+    VERDICT_SHARE,
     Defect,
     is_tip_corner,
+    largest_scatter,
     meshline_defects,
     resolution,
     robust_zeros,
@@ -108,6 +110,7 @@ __all__ = [
     "ANGLE_CONVENTION",
     "SHARP_TURN",
     "UNEVEN",
+    "VERDICT_SHARE",
     "Defect",
     "FlankReport",
     "MeshingAnalysis",
@@ -116,6 +119,7 @@ __all__ = [
     "flank_reports",
     "flank_roles",
     "is_tip_corner",
+    "largest_scatter",
     "meshline_defects",
     "meshline_tangents",
     "resolution",

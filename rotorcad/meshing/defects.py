@@ -102,6 +102,35 @@ def resolution(accuracy: float, scale: float) -> float:
     return max(5e-3 * scale, float(np.sqrt(8.0 * scale * accuracy)))
 
 
+VERDICT_SHARE = 0.25
+"""Longest resolution (:func:`resolution`) at which a lobe is judged, as a share of its depth (tip
+minus root radius): a defect is placed on a flank part only when the tests resolve a quarter of the
+lobe's depth of meshline (a flank runs over about one depth)."""
+
+
+def largest_scatter(depth: float, scale: float) -> float:
+    """Return the largest scatter of a rotor's points (mm) at which the defect tests can judge its lobe.
+
+    Points scattering by sigma carry an accuracy of 2 sigma (:func:`rotorcad.measured.outline.accuracy`),
+    which the tests resolve over sqrt(8 a 2 sigma) of meshline (:func:`resolution`); that must stay
+    within :data:`VERDICT_SHARE` of the lobe's depth h: sigma <= (h / 4)^2 / (16 a). A feature
+    smaller than that accuracy is no verdict. At a = 116 mm and h = 14 mm, 6.6 µm (points from a
+    CMM scatter by 1-2 µm).
+
+    Parameters
+    ----------
+    depth : float, mm
+        The lobe's depth, tip radius minus root radius of the rotor the points are of.
+    scale : float, mm
+        The centre distance.
+
+    Returns
+    -------
+    float, mm
+    """
+    return float((VERDICT_SHARE * depth) ** 2 / (16.0 * scale))
+
+
 def _median(values: np.ndarray) -> float:
     """``np.median`` of a 1-d array, the same number, by one partition (np.median's own way, without its overhead)."""
     n = len(values)
