@@ -157,9 +157,11 @@ class MeshingAnalysis:
     def flanks(self) -> dict[Flank, FlankReport]:
         """Per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
-        :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`.
+        :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`. A
+        given profile's working part counts from its resolution (:func:`rotorcad.meshing.defects.resolution`).
         """
-        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance)
+        shortest = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
+        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest)
 
     @property
     def running_reasons(self) -> list[str]:
