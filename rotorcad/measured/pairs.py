@@ -85,6 +85,7 @@ def _mate_corner_runs(
     tolerance: float = 1e-4,
     scattered: bool = False,
     tip: tuple[np.ndarray, float, float] | None = None,
+    shortest: float = 0.0,
 ) -> list[tuple[float, float, bool]]:
     """Split a rack curve derived from one rotor into flank-generating parts and the mate's corner paths.
 
@@ -109,6 +110,9 @@ def _mate_corner_runs(
     centre, tip radius and a tolerance, mm) keeps the runs whose corner lies on the tip circle. The
     samples' tip corner paths lie within 0.02 mm of it at 1 µm of scatter; flanks the rack generates
     slowly (the N rack's female sealing flank, 4-15 % of the rack's speed) 2.5-7.3 mm inside it.
+    A path along which the rack runs less than ``shortest`` (mm, the profile's resolution) is a
+    flank: the independent 4/6 and 5/6 pairs' females with 2 µm of scatter stall the male's point
+    over 0.5-0.8 mm of rack near its tip, which has no corner (their real tip paths: 3-10 mm).
     """
     span = rack_curve.s1 - rack_curve.s0
     s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
@@ -140,6 +144,7 @@ def _mate_corner_runs(
 
     out, last = [], rack_curve.s0
     noise = 10 * tolerance  # how much mate flank beside a corner path is noise near the path's end
+    previous = (np.full(2, np.nan), np.full(2, np.nan))  # the last corner path's corner and rack point (scattered points)
     for i, j in runs:
         # the corner is where most of the run's mate points lie; the path extends exactly as far
         # as the mate's point stays within the tolerance of it (a slowly moving flank next to it
@@ -156,6 +161,11 @@ def _mate_corner_runs(
             lo, hi, wander = _wander_run(pm, i, j)
             noise = max(noise, wander)
             a, b = max(s[lo], last) if span > 0 else min(s[lo], last), s[hi]
+            middle = pr[(i + j) // 2]
+            if out and out[-1][2] and np.hypot(*(corner - previous[0])) <= SCATTERED_STALL * np.hypot(*(middle - previous[1])):
+                a = last  # the same corner again, stalled since the path's first run: what lies between is its path too
+            else:
+                previous = (corner, middle)
         else:
             a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
             b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
@@ -179,6 +189,17 @@ def _mate_corner_runs(
             parts[-1] = [parts[-1][0], b, True, False]
         else:
             parts.append([a, b, c, tiny])
+    if scattered and shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank
+        ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
+        for k, part in enumerate(parts):
+            part[2] = part[2] and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) >= shortest)
+        merged: list[list] = []
+        for part in parts:
+            if merged and not part[2] and not merged[-1][2]:
+                merged[-1][1] = part[1]
+            else:
+                merged.append(part)
+        parts = merged
     return [(a, b, c) for a, b, c, _ in parts]
 
 
@@ -237,6 +258,8 @@ def pair_from_rotor_points(
     own, other = PieceRole.corner_path_of(side), PieceRole.corner_path_of(side.other)
     mate_centre = np.array([pair.center_distance, 0.0]) if side is Side.MALE else np.zeros(2)  # the mate's frame
     mate_tip = (mate_centre, side.pick(pair.female_tip_radius, pair.male_tip_radius), 1e-3 * pair.center_distance)
+    # the resolution of the defect tests (rotorcad.meshing.resolution) at the profile's accuracy
+    shortest = max(5e-3 * pair.center_distance, float(np.sqrt(8.0 * pair.center_distance * acc)))
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
     gap = MEASURED_JOIN_GAP if outline.sigma > 0 else 2e-3  # scattered points' fits leave a corner's ends apart
@@ -249,7 +272,7 @@ def pair_from_rotor_points(
             parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
-        runs = _mate_corner_runs(rack_curve, mate, tolerance=1e-4, scattered=outline.sigma > 0, tip=mate_tip)
+        runs = _mate_corner_runs(rack_curve, mate, tolerance=1e-4, scattered=outline.sigma > 0, tip=mate_tip, shortest=shortest)
         parts.append(
             [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
         )

@@ -443,6 +443,8 @@ def meshline_defects(
             for (x, lo, hi), s_x in zip(crossings, at[k], strict=True):
                 if np.any(np.abs(others - s_x) < reach):
                     continue  # the misses of two centres change sign together: the tangent turned over
+                if given and min(s_x, length - s_x) < reach:
+                    continue  # at a given piece's end, where its smoothed tangent is least known: the hand-over
                 i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
                 if not (judged[i] and judged[i + 1]):
                     continue
