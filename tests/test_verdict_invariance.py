@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import functools
 import json
+import re
 import tomllib
 from collections import Counter
 from pathlib import Path
@@ -406,3 +407,19 @@ def test_clearance_angles_in_the_one_convention(verdicts, written, tmp_path, cap
     away = (dist < 0.02) & (np.abs(contact[:, 1]) > 0.05) & (np.hypot(*(contact - c).T) > 1.0)  # off the lands and C
     assert away.sum() > 1000
     assert np.abs(phi[away] - analysis.kinematics["angle_deg"][idx[away]]).max() < 0.1
+
+
+def test_scatter_report_names_its_accuracy(written, tmp_path, capsys):
+    # issue 21 item 3: the report says at what accuracy it judged. The rack-involute male's own CSV with
+    # 1 um of scatter: the profile's accuracy is twice the scatter (about 2 um), the meshline's normals
+    # are judged to 10 times that, over sqrt(8 a e) of meshline (a = 116 mm, e = 20 um: 4.3 mm)
+    male = read_points(written["male"], "m")
+    path = tmp_path / "scattered.csv"
+    write_points(path, male + np.random.default_rng(0).normal(0.0, SCATTER, male.shape))
+    rc, out, err = run(capsys, "rotor", "--male-points", path, *DIMS_56, *RADII_56)
+    assert rc == 0, err
+    line = next(ln for ln in out.splitlines() if "defects judged to an accuracy of" in ln)
+    profile, normals = (float(v) for v in re.findall(r"([0-9.]+) µm", line))
+    assert profile == pytest.approx(2.0, rel=0.15) and normals == pytest.approx(10 * profile, rel=0.06)
+    reach = float(re.search(r"over ([0-9.]+) mm of meshline", line).group(1))
+    assert reach == pytest.approx(np.sqrt(8 * 116.0 * normals * 1e-3), rel=0.05)
