@@ -63,12 +63,16 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         mesh = pair.mesh
         o2 = np.array([pair.center_distance, 0.0])
+        # inside both bores within 1 µm; a given profile's tip corner may lie outside its tip circle by its
+        # accuracy (the rack-involute male's with 2 µm of scatter: 1 µm out, and its whole path was lost)
+        corner_slack = 1e-3 + (4.0 * self.judged_accuracy if self.is_given else 0.0)
         out = []
         for index, piece in enumerate(self.rotors.rack):
+            slack = corner_slack if piece.kind is not PieceRole.CURVE else 1e-3
             gen = Generated(piece.curve, mesh.rack, mesh.female)
             s = even_meshline_parameters(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
             t, x, rack_pts, tan = gen.meshline_contact(s)  # the rack's points and tangents along its travel
-            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + slack)
             ok = np.isfinite(t) & inside & np.all(np.isfinite(x), axis=1)
             if ok.sum() < 2:
                 continue
