@@ -7,6 +7,10 @@ within the resolution of the input, :func:`rotorcad.meshing.resolution`, of the 
 "runs without timing gears" per flank, and the blow-hole within 1 %. The test is of equality between
 the forms, not of any sample's particular verdict (the samples and the criteria may change).
 
+Points with 1 µm of normal scatter (a CMM's, one seed for every sample) must give the same defects and
+running verdicts too; the blow-hole is compared within 1 % or the area the meshline's accuracy leaves
+open, and the samples whose blow-hole departs by more are named in KNOWN_BLOW_HOLE with the cause.
+
 Plus the findings of the issues, with their exact inputs: the rack-involute male's own CSV (94
 defects, 78 jamming, before), its own DXF polyline (refused before, whatever ``--smoothing``), an
 LWPOLYLINE of arcs within 1.1 µm of the outline (accepted by ``clearance``, refused by ``rotor``
@@ -17,6 +21,7 @@ from __future__ import annotations
 
 import functools
 import json
+import re
 import tomllib
 from collections import Counter
 from pathlib import Path
@@ -33,17 +38,32 @@ from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile
 from rotorcad.cli.main import main
 from rotorcad.design import rotor_design
-from rotorcad.meshing import resolution
+from rotorcad.meshing import MESHLINE_GAIN, resolution
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 from rotorcad.rotor_points import pair_from_rotor_points
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
 ROTOR_SAMPLES = [p.stem for p in sorted(SAMPLES.glob("*.toml")) if "profile" in tomllib.loads(p.read_text())]
-FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense")
+FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense", "scatter-1um")
+SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coordinate of the CSV's points (a CMM's)
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
 KNOWN: dict[tuple[str, str], str] = {}
-KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {}
+_APEX = (
+    "1 um of scatter moves the blow-hole's apex (where the male tip corner's path hands over to the "
+    "flank's) by 0.03-0.3 mm along the male tip circle: the flank's tangent at the corner, fitted through "
+    "scattered points, is 0.6-2.2 mrad off, and the narrow-tip's apex moves 0.13 mm per mrad"
+)
+KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
+    (name, "scatter-1um"): f"{change} ({_APEX})"
+    for name, change in (
+        ("n_rack_5_6", "-9.5 %"),
+        ("rinder_deix_5_6", "-9.5 %"),
+        ("narrow_tip_5_6", "-16.3 %"),
+        ("srm_asymmetric_5_6", "+2.0 %"),
+        ("srm_symmetric_4_6", "-6.8 %"),
+    )
+}
 
 
 def _exterior(polygon: shapely.Polygon) -> np.ndarray:
@@ -77,6 +97,8 @@ def verdicts(tmp_path_factory) -> dict[tuple[str, str], dict]:
             out[(name, form)] = _given(spec, read_profile(path, "--male-points", "MALE"), "--male-points")
         dense = np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments])  # exact, 0.01 um chord
         out[(name, "dense")] = _given(spec, dense, "--male-points")
+        scattered = male + np.random.default_rng(0).normal(0.0, SCATTER, male.shape)  # one seed for every sample
+        out[(name, "scatter-1um")] = _given(spec, scattered, "--male-points")
     return out
 
 
@@ -112,7 +134,20 @@ def test_same_defects_and_running(verdicts, name, form):
 @pytest.mark.parametrize(("name", "form"), [_case(n, f, {**KNOWN, **KNOWN_BLOW_HOLE}) for n in ROTOR_SAMPLES for f in FORMS])
 def test_same_blow_hole(verdicts, name, form):
     design, given = verdicts[(name, "design")]["blow_hole_area"], verdicts[(name, form)]["blow_hole_area"]
-    assert given == pytest.approx(design, rel=0.01, abs=1e-3)  # 1 % (1e-3 mm² where the meshline closes)
+    floor = 1e-3  # mm², where the meshline closes
+    if form.startswith("scatter"):
+        # a closed meshline read from scattered points ends within the meshline's accuracy (MESHLINE_GAIN
+        # times the points') of the cusp, over the stretch the tests resolve: an area below that is no verdict
+        acc = verdicts[(name, form)]["defect_accuracy"]
+        floor = max(floor, MESHLINE_GAIN * acc * resolution(acc, verdicts[(name, form)]["center_distance"]))
+    assert given == pytest.approx(design, rel=0.01, abs=floor)  # 1 %
+
+
+def test_scatter_judged_to_its_accuracy(verdicts):
+    # the points with 1 um of scatter are judged to twice the scatter estimated from them (2 sigma,
+    # rotorcad.measured.outline.accuracy), not to the chords' sagitta of the exact CSV: 2 um within 15 %
+    for name in ROTOR_SAMPLES:
+        assert verdicts[(name, "scatter-1um")]["defect_accuracy"] == pytest.approx(2 * SCATTER, rel=0.15), name
 
 
 def test_accuracy_is_reported(verdicts):
@@ -372,3 +407,19 @@ def test_clearance_angles_in_the_one_convention(verdicts, written, tmp_path, cap
     away = (dist < 0.02) & (np.abs(contact[:, 1]) > 0.05) & (np.hypot(*(contact - c).T) > 1.0)  # off the lands and C
     assert away.sum() > 1000
     assert np.abs(phi[away] - analysis.kinematics["angle_deg"][idx[away]]).max() < 0.1
+
+
+def test_scatter_report_names_its_accuracy(written, tmp_path, capsys):
+    # issue 21 item 3: the report says at what accuracy it judged. The rack-involute male's own CSV with
+    # 1 um of scatter: the profile's accuracy is twice the scatter (about 2 um), the meshline's normals
+    # are judged to 10 times that, over sqrt(8 a e) of meshline (a = 116 mm, e = 20 um: 4.3 mm)
+    male = read_points(written["male"], "m")
+    path = tmp_path / "scattered.csv"
+    write_points(path, male + np.random.default_rng(0).normal(0.0, SCATTER, male.shape))
+    rc, out, err = run(capsys, "rotor", "--male-points", path, *DIMS_56, *RADII_56)
+    assert rc == 0, err
+    line = next(ln for ln in out.splitlines() if "defects judged to an accuracy of" in ln)
+    profile, normals = (float(v) for v in re.findall(r"([0-9.]+) µm", line))
+    assert profile == pytest.approx(2.0, rel=0.15) and normals == pytest.approx(10 * profile, rel=0.06)
+    reach = float(re.search(r"over ([0-9.]+) mm of meshline", line).group(1))
+    assert reach == pytest.approx(np.sqrt(8 * 116.0 * normals * 1e-3), rel=0.05)

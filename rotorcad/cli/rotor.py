@@ -18,6 +18,7 @@ from rotorcad.design.labels import PAIR_FIELDS, PAIR_LABELS, PairNames, required
 from rotorcad.design.rotors import analyse_pair, build_pair, merge_pair
 from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError, MissingValueError
+from rotorcad.meshing import MESHLINE_GAIN, resolution
 from rotorcad.profile import Segment
 from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
@@ -181,7 +182,12 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
         f"{rotors.family} {result['male_teeth']}/{result['female_teeth']} rotor pair",
         {k: v for k, v in result.items() if k != "angle_convention"},  # a sentence, printed below
     )
-    click.echo(f"  defects judged to an accuracy of {1e3 * result['defect_accuracy']:.2g} µm of the profile")
+    acc = result["defect_accuracy"]
+    line = f"  defects judged to an accuracy of {1e3 * acc:.2g} µm of the profile"
+    if rotors.accuracy > 0:  # a given profile: its meshline's normals to the meshline's accuracy, over the resolution
+        reach = resolution(MESHLINE_GAIN * acc, result["center_distance"])
+        line += f" (the meshline's normals to {1e3 * MESHLINE_GAIN * acc:.2g} µm, over {reach:.2g} mm of meshline)"
+    click.echo(line)
     for d in result["defects"]:
         click.echo(
             f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['angle_deg']:+.1f}°, "

@@ -17,7 +17,8 @@ import numpy as np
 from rotorcad.design.labels import PAIR_FIELDS
 from rotorcad.design.schema import POINT_FAMILIES, rotor_design
 from rotorcad.errors import DesignError, GeometryError, MissingValueError
-from rotorcad.meshing import MeshingAnalysis
+from rotorcad.measured.outline import read_outline
+from rotorcad.meshing import MeshingAnalysis, largest_scatter, resolution
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Side
 from rotorcad.rotor_families import build_family
@@ -192,10 +193,39 @@ def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
         return pair_from_rack_points(spec.pair, spec.points, spec.smoothing or 0.0)
     if spec.family in ("male-points", "female-points"):
         measured = Side(spec.family.split("-")[0])  # the design's text read once: "male-points" -> Side.MALE
-        rotors = pair_from_rotor_points(spec.pair, spec.points, measured, spec.smoothing, label=label)
+        points = spec.points
+        if spec.smoothing is None:  # the fit follows the estimated scatter: refuse one no verdict can be judged to
+            points = _judgeable(spec.pair, points, measured, label or f"[profile] points ({spec.family})")
+        rotors = pair_from_rotor_points(spec.pair, points, measured, spec.smoothing, label=label)
         _check_generated(rotors, measured, label or f"[profile] points ({spec.family})")
         return rotors
     return build_family(spec.pair, spec.family, spec.params)
+
+
+def _judgeable(pair: RotorPair, points: Any, rotor: Side, label: str) -> Any:
+    """Read a rotor's points once and refuse them when they scatter more than a verdict allows.
+
+    The scatter is estimated from the points' third differences (:func:`rotorcad.measured.outline.scatter`)
+    and compared with :func:`rotorcad.meshing.largest_scatter` of the rotor's lobe depth: beyond it
+    the numbers that came out were the noise's (0.1 mm on the symmetric SRM's female: accepted, a
+    contact line of the noise). Returns the outline read (:class:`rotorcad.measured.outline.Outline`),
+    which the fit takes as it is. Raises :class:`GeometryError` naming ``label``.
+    """
+    teeth = rotor.pick(pair.male_teeth, pair.female_teeth)
+    outline = read_outline(points, teeth, label)
+    depth = rotor.pick(pair.male_tip_radius - pair.male_root_radius, pair.female_tip_radius - pair.female_root_radius)
+    most = largest_scatter(depth, pair.center_distance)
+    if outline.sigma > most:
+        reach = resolution(2 * outline.sigma, pair.center_distance)  # the accuracy the points carry: 2 sigma
+        raise GeometryError(
+            label,
+            f"points that scatter by at most {most * 1e3:.3g} µm about a smooth outline",
+            f"a scatter of {outline.sigma * 1e3:.3g} µm, estimated from the points' third differences",
+            f"the defect tests would resolve no stretch shorter than {reach:.3g} mm "
+            f"of meshline, over a quarter of the {rotor}'s lobe depth {depth:g} mm, and the numbers would be the noise's; "
+            "measure more accurately, or give --smoothing (or [profile] smoothing) to fit through the scatter",
+        )
+    return outline
 
 
 MAX_LOBE_POINTS = 50_000

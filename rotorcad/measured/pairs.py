@@ -15,7 +15,7 @@ import numpy as np
 from rotorcad.curves import Curve, Mapped, Spline
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
-from rotorcad.inverse_rack import MEASURED_MIN_TURN, with_corner_fans
+from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
 from rotorcad.measured.fit import fit_residual, lobe_pieces
 from rotorcad.measured.outline import read_outline
 from rotorcad.roles import PieceRole, Side
@@ -56,8 +56,36 @@ def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float 
     return ScrewRotors(pair, (RackPiece(spline, "flank", "flank"),), "rack-points")
 
 
+SCATTERED_STALL = 0.15
+"""Of scattered points: the mate's point moving less than this share of the rack point's motion over
+1/40 of a rack curve stands still (:func:`_mate_corner_runs`): 0.01-0.11 along the samples' mate
+tip corner paths at 1-2 µm of scatter, 0.35-1 along the flanks their racks generate."""
+
+
+def _wander_run(pm: np.ndarray, i: int, j: int) -> tuple[int, int, float]:
+    """Return the samples around a stalled run ``pm[i:j]`` of the mate's point that stay as near its corner.
+
+    The corner is the median of the run's points, the wander three times the 90th percentile of
+    their distances from it; the result is the first and last sample of the contiguous stretch
+    within that wander (a scattered profile's corner path, :func:`_mate_corner_runs`), and the
+    wander (mm).
+    """
+    corner = np.nanmedian(pm[i:j], axis=0)
+    dist = np.nan_to_num(np.hypot(*(pm - corner).T), nan=np.inf)
+    wander = 3.0 * float(np.quantile(dist[i:j][np.isfinite(dist[i:j])], 0.9)) if np.isfinite(dist[i:j]).any() else 0.0
+    far = np.flatnonzero(dist > wander)
+    centre = i + int(np.argmin(dist[i:j]))
+    return int(far[far < centre].max(initial=-1)) + 1, int(far[far > centre].min(initial=len(pm))) - 1, wander
+
+
 def _mate_corner_runs(
-    rack_curve: Curve, mate: Generated, threshold: float = 0.02, tolerance: float = 1e-4
+    rack_curve: Curve,
+    mate: Generated,
+    threshold: float = 0.02,
+    tolerance: float = 1e-4,
+    scattered: bool = False,
+    tip: tuple[np.ndarray, float, float] | None = None,
+    shortest: float = 0.0,
 ) -> list[tuple[float, float, bool]]:
     """Split a rack curve derived from one rotor into flank-generating parts and the mate's corner paths.
 
@@ -69,12 +97,29 @@ def _mate_corner_runs(
     point moves less than ``threshold`` times the rack point; a part stalled so over at least 1/100
     of the curve is a corner path. Its ends are where the mate's point leaves that corner by more
     than ``tolerance`` (mm), found by bisection.
+
+    Of ``scattered`` points (a scatter estimated, :func:`rotorcad.measured.outline.scatter`), the
+    mate's point does not stand still: 1 µm of scatter on a male flank that the female tip corner
+    generates lets the female's generated point wander by 0.1-0.4 mm while the rack runs 10-14 mm
+    (4-6 % of its speed, against 35-100 % along a flank the rack generates; measured on the
+    Krigar, Lysholm and asymmetric SRM samples), and the path fell apart into corners 0.1 µm long
+    and flanks between them, each a cusp. There the stall is judged over a stencil of 1/40 of the
+    curve, below :data:`SCATTERED_STALL` of the rack point's motion, and a stalled part ends where
+    the stall does (the mate's point never stays within ``tolerance``). And only the mate's tip
+    corner stands so (Rinder sec. 2.2.2: at a tip only a corner is possible): ``tip`` (the mate's
+    centre, tip radius and a tolerance, mm) keeps the runs whose corner lies on the tip circle. The
+    samples' tip corner paths lie within 0.02 mm of it at 1 µm of scatter; flanks the rack generates
+    slowly (the N rack's female sealing flank, 4-15 % of the rack's speed) 2.5-7.3 mm inside it.
+    A path along which the rack runs less than ``shortest`` (mm, the profile's resolution) is a
+    flank: the independent 4/6 and 5/6 pairs' females with 2 µm of scatter stall the male's point
+    over 0.5-0.8 mm of rack near its tip, which has no corner (their real tip paths: 3-10 mm).
     """
     span = rack_curve.s1 - rack_curve.s0
     s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
     pr, _ = rack_curve.evaluate(s)
     pm, _ = mate.evaluate(s)
-    k = 4  # stencil of 4 samples either side (1/200 of the curve)
+    k = 20 if scattered else 4  # stencil of k samples either side (1/40, 1/200 of the curve)
+    threshold = SCATTERED_STALL if scattered else threshold
     dr = np.hypot(*(pr[2 * k :] - pr[: -2 * k]).T)
     dm = np.hypot(*(pm[2 * k :] - pm[: -2 * k]).T)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -98,6 +143,8 @@ def _mate_corner_runs(
         return float(0.5 * (inside + outside))
 
     out, last = [], rack_curve.s0
+    noise = 10 * tolerance  # how much mate flank beside a corner path is noise near the path's end
+    previous = (np.full(2, np.nan), np.full(2, np.nan))  # the last corner path's corner and rack point (scattered points)
     for i, j in runs:
         # the corner is where most of the run's mate points lie; the path extends exactly as far
         # as the mate's point stays within the tolerance of it (a slowly moving flank next to it
@@ -108,8 +155,20 @@ def _mate_corner_runs(
         far = np.flatnonzero(~near)
         lo = int(far[far < centre].max(initial=-1)) + 1  # the run of near samples around the centre
         hi = int(far[far > centre].min(initial=len(s))) - 1
-        a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
-        b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
+        if scattered and tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]:
+            continue  # not the mate's tip corner: a flank generated slowly
+        if scattered:  # as far as the mate's point stays within its own wander of the corner
+            lo, hi, wander = _wander_run(pm, i, j)
+            noise = max(noise, wander)
+            a, b = max(s[lo], last) if span > 0 else min(s[lo], last), s[hi]
+            middle = pr[(i + j) // 2]
+            if out and out[-1][2] and np.hypot(*(corner - previous[0])) <= SCATTERED_STALL * np.hypot(*(middle - previous[1])):
+                a = last  # the same corner again, stalled since the path's first run: what lies between is its path too
+            else:
+                previous = (corner, middle)
+        else:
+            a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
+            b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
         if (b - a) * span <= 0:
             continue
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
@@ -123,13 +182,24 @@ def _mate_corner_runs(
         if abs(b - a) <= 1e-12 * abs(span):
             continue
         tiny = False
-        if not c:  # a flank part beside a corner path that gives the mate under 10 um of flank
-            ends, _ = mate.evaluate(np.array([a, b]))  # is noise near the path's end: part of it
-            tiny = bool(np.all(np.isfinite(ends)) and np.hypot(*(ends[1] - ends[0])) < 10 * tolerance)
+        if not c:  # a flank part beside a corner path that gives the mate under 10 um of flank (of
+            ends, _ = mate.evaluate(np.array([a, b]))  # scattered points: the wander) is noise near the path's end
+            tiny = bool(np.all(np.isfinite(ends)) and np.hypot(*(ends[1] - ends[0])) < noise)
         if parts and ((c and (parts[-1][2] or parts[-1][3])) or (parts[-1][2] and tiny)):
             parts[-1] = [parts[-1][0], b, True, False]
         else:
             parts.append([a, b, c, tiny])
+    if scattered and shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank
+        ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
+        for k, part in enumerate(parts):
+            part[2] = part[2] and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) >= shortest)
+        merged: list[list] = []
+        for part in parts:
+            if merged and not part[2] and not merged[-1][2]:
+                merged[-1][1] = part[1]
+            else:
+                merged.append(part)
+        parts = merged
     return [(a, b, c) for a, b, c, _ in parts]
 
 
@@ -186,9 +256,14 @@ def pair_from_rotor_points(
         pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve in pieces]
         body, mate_body, centre, teeth = mesh.female, mesh.male, np.array(shift), pair.female_teeth
     own, other = PieceRole.corner_path_of(side), PieceRole.corner_path_of(side.other)
+    mate_centre = np.array([pair.center_distance, 0.0]) if side is Side.MALE else np.zeros(2)  # the mate's frame
+    mate_tip = (mate_centre, side.pick(pair.female_tip_radius, pair.male_tip_radius), 1e-3 * pair.center_distance)
+    # the resolution of the defect tests (rotorcad.meshing.resolution) at the profile's accuracy
+    shortest = max(5e-3 * pair.center_distance, float(np.sqrt(8.0 * pair.center_distance * acc)))
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
-    for _name, curve in with_corner_fans(pieces, centre, 2 * np.pi / teeth, MEASURED_MIN_TURN):
+    gap = MEASURED_JOIN_GAP if outline.sigma > 0 else 2e-3  # scattered points' fits leave a corner's ends apart
+    for _name, curve in with_corner_fans(pieces, centre, 2 * np.pi / teeth, MEASURED_MIN_TURN, gap):
         gen = Generated(curve, body, mesh.rack, limits=depth)
         rack_curve = gen.reversed() if side is Side.MALE else gen  # travelled in +y (the rack's +x)
         ok = np.isfinite(rack_curve.evaluate(np.linspace(rack_curve.s0, rack_curve.s1, 400))[0]).all(axis=1)
@@ -197,7 +272,7 @@ def pair_from_rotor_points(
             parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
-        runs = _mate_corner_runs(rack_curve, mate, tolerance=1e-4)
+        runs = _mate_corner_runs(rack_curve, mate, tolerance=1e-4, scattered=outline.sigma > 0, tip=mate_tip, shortest=shortest)
         parts.append(
             [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
         )

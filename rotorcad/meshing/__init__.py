@@ -65,6 +65,18 @@ SRM profile runs "bei ausreichender Verschraubung der Zähne in beiden Drehricht
 sec. 2.1); Lysholm's profile, whose sealing flank has no working part, needs them ("ohne
 Koppelgetriebe nicht einwandfrei verwendbar").
 
+Judged to the input's accuracy
+------------------------------
+A profile given by points or a drawing carries an accuracy e (:attr:`MeshingAnalysis.judged_accuracy`,
+reported as ``defect_accuracy``); a feature smaller than it is no verdict. A sign change of a normal's
+miss counts only beyond its band and when it persists over the resolution sqrt(8 a e)
+(:func:`resolution`); the normals of a meshline generated from scattered points are judged to
+:data:`MESHLINE_GAIN` times e (the normal's error moves the contact along the meshline); a working
+part shorter than the resolution is none. A cusp of the design survives: a given profile's corner
+path on a rotor's tip circle is that tip corner's point-generated flank by construction (found from
+positions in :mod:`rotorcad.measured.pairs`, not from the noisy tangent). Points whose scatter would
+put the resolution over a quarter of the lobe's depth are refused (:func:`largest_scatter`).
+
 Angle convention
 ----------------
 Every angle a user reads (JSON ``angle_deg`` keys, tables, pictures, report, README) is
@@ -86,8 +98,11 @@ from rotorcad.meshing.analysis import MeshingAnalysis
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import (
+    MESHLINE_GAIN,
+    VERDICT_SHARE,
     Defect,
     is_tip_corner,
+    largest_scatter,
     meshline_defects,
     resolution,
     robust_zeros,
@@ -106,8 +121,10 @@ from rotorcad.meshing.meshline import (
 
 __all__ = [
     "ANGLE_CONVENTION",
+    "MESHLINE_GAIN",
     "SHARP_TURN",
     "UNEVEN",
+    "VERDICT_SHARE",
     "Defect",
     "FlankReport",
     "MeshingAnalysis",
@@ -116,6 +133,7 @@ __all__ = [
     "flank_reports",
     "flank_roles",
     "is_tip_corner",
+    "largest_scatter",
     "meshline_defects",
     "meshline_tangents",
     "resolution",

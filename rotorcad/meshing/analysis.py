@@ -63,12 +63,16 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         mesh = pair.mesh
         o2 = np.array([pair.center_distance, 0.0])
+        # inside both bores within 1 µm; a given profile's tip corner may lie outside its tip circle by its
+        # accuracy (the rack-involute male's with 2 µm of scatter: 1 µm out, and its whole path was lost)
+        corner_slack = 1e-3 + (4.0 * self.judged_accuracy if self.is_given else 0.0)
         out = []
         for index, piece in enumerate(self.rotors.rack):
+            slack = corner_slack if piece.kind is not PieceRole.CURVE else 1e-3
             gen = Generated(piece.curve, mesh.rack, mesh.female)
             s = even_meshline_parameters(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
             t, x, rack_pts, tan = gen.meshline_contact(s)  # the rack's points and tangents along its travel
-            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + slack)
             ok = np.isfinite(t) & inside & np.all(np.isfinite(x), axis=1)
             if ok.sum() < 2:
                 continue
@@ -157,9 +161,11 @@ class MeshingAnalysis:
     def flanks(self) -> dict[Flank, FlankReport]:
         """Per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
-        :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`.
+        :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`. A
+        given profile's working part counts from its resolution (:func:`rotorcad.meshing.defects.resolution`).
         """
-        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance)
+        shortest = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
+        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest)
 
     @property
     def running_reasons(self) -> list[str]:
@@ -204,12 +210,16 @@ class MeshingAnalysis:
     def cusp(self) -> np.ndarray:
         """The housing cusp that the meshline comes nearest, (2,) float, mm.
 
-        The intersection of the tip circles above O1O2, or its mirror image below.
+        The intersection of the tip circles above O1O2, or its mirror image below (the upper one
+        when the meshline comes as near both, for a given profile within its resolution).
         """
         k = self.rotors.pair.housing_cusp
         pts = self.meshline
         lower = k * np.array([1.0, -1.0])
-        return k if np.hypot(*(pts - k).T).min() <= np.hypot(*(pts - lower).T).min() else lower
+        # of a given profile, a preference within its resolution is a tie, which goes to the upper cusp
+        # as the design's does (the symmetric SRM's meshline comes as near both; 1 µm of scatter chose either)
+        tie = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
+        return k if np.hypot(*(pts - k).T).min() <= np.hypot(*(pts - lower).T).min() + tie else lower
 
     @cached_property
     def meshline_end(self) -> np.ndarray:
