@@ -593,7 +593,7 @@ def test_clearance_of_points_whose_contacts_jump_is_bounded(capsys):
     not shrink the gap and at 20 rack periods of meshline."""
     data = ROOT / "tests" / "reference_data" / "fuzz"
     start = time.process_time()
-    status, out, err = run(
+    status, _, err = run(
         capsys,
         "clearance",
         "--male-points",
