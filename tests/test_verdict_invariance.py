@@ -425,6 +425,10 @@ def test_scatter_report_names_its_accuracy(written, tmp_path, capsys):
     assert profile == pytest.approx(2.0, rel=0.15) and normals == pytest.approx(10 * profile, rel=0.06)
     reach = float(re.search(r"over ([0-9.]+) mm of meshline", line).group(1))
     assert reach == pytest.approx(np.sqrt(8 * 116.0 * normals * 1e-3), rel=0.05)
+    # and the blow-hole with the uncertainty its apex has from the points' tangents (blow_hole_uncertainty)
+    hole = next(ln for ln in out.splitlines() if ln.strip().startswith("blow-hole") and "±" in ln)
+    area, plus = (float(v) for v in re.findall(r"([0-9.]+)", hole)[:2])
+    assert 0.0 < plus < area
 
 
 @pytest.mark.parametrize("name", ROTOR_SAMPLES)
