@@ -57,8 +57,8 @@ _TIP = (
     "points, is 0.6-2.2 mrad off, and the apex moves 0.12-0.13 mm, the area 7.2-7.4 % per mrad"
 )
 _FLANK = (
-    "the apex lies on the flank 0.2 mm inside the male tip circle and moves 0.03-0.16 mm; the scattered "
-    "points' meshline passes 0.36-0.39 mm from the design's apex (ends short of it)"
+    "the apex lies 0.2 mm inside the male tip circle, found between the scattered points' meshline samples "
+    "(the nearest 0.36-0.44 mm away) as a turn of the path, and moves 0.03-0.16 mm"
 )
 _FLAT = (
     "the apex (r = 45.4 mm) is the meshline point nearest the cusp where the meshline runs within 50 um "
