@@ -82,6 +82,10 @@ def main(argv: list[str]) -> None:
                 closes = design["blow_hole_area"] <= 1e-9
                 hole = f"{change:.4f} mm² (design 0)" if closes else f"{100 * change:+.2f} %"
                 within = change <= 1e-3 if closes else abs(change) <= 0.01
+                # the design's area within the stated uncertainty of the points' (blow_hole_uncertainty)
+                gap = abs(given["blow_hole_area"] - design["blow_hole_area"])
+                inside = gap <= given["blow_hole_uncertainty"] + (1e-3 if closes else 0.01 * design["blow_hole_area"])
+                hole += f" ± {given['blow_hole_uncertainty']:.3g} mm² ({'holds' if inside else 'MISSES'})"
                 print(
                     f"{head}: defects {'same' if same else 'DIFFER'} ({len(given['defects'])}/{len(design['defects'])}), "
                     f"runs {'same' if runs else 'DIFFER'}, blow-hole {hole}{'' if within else ' (off)'}, "

@@ -175,6 +175,7 @@ _declare(
         ("male_teeth", "1", "male teeth"),
         ("female_teeth", "1", "female teeth"),
         ("blow_hole_area", "mm²", "blow-hole area"),
+        ("blow_hole_uncertainty", "mm²", "blow-hole area uncertainty from the input's accuracy"),
         ("contact_line_length", "mm", "contact line length"),
         ("male_flute_area", "mm²", "male flute area"),
         ("female_flute_area", "mm²", "female flute area"),

@@ -122,6 +122,11 @@ class ScrewRotors:
         (exact curves), the estimated scatter and fit error for a profile given by points
         (:func:`rotorcad.rotor_points.pair_from_rotor_points`). The meshing analysis judges its
         defects to this accuracy (:attr:`rotorcad.meshing.MeshingAnalysis.accuracy`).
+    tangent_accuracy : float, rad
+        How far the tangent of the given profile's fit may turn from the true one: 0 for a design or
+        exact points; for scattered points the accuracy over one point spacing (a flank's end tangent
+        is fitted through points that each lie within that accuracy). The blow-hole's uncertainty
+        follows from it (:attr:`rotorcad.meshing.MeshingAnalysis.blow_hole_uncertainty`).
     """
 
     pair: RotorPair
@@ -130,6 +135,7 @@ class ScrewRotors:
     tolerance: float = 1e-3
     rack_loss: float = 0.0  # per cent of a measured lobe without a rack point (normal misses the pitch circle)
     accuracy: float = 0.0  # mm: of the given profile (0 for a design's exact curves)
+    tangent_accuracy: float = 0.0  # rad: of the given profile's tangents (0 for a design or exact points)
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:

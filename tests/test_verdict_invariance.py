@@ -9,7 +9,9 @@ the forms, not of any sample's particular verdict (the samples and the criteria 
 
 Points with 1 µm of normal scatter (a CMM's, one seed for every sample) must give the same defects and
 running verdicts too; the blow-hole is compared within 1 % or the area the meshline's accuracy leaves
-open, and the samples whose blow-hole departs by more are named in KNOWN_BLOW_HOLE with the cause.
+open, and the samples whose blow-hole departs by more are named in KNOWN_BLOW_HOLE with the cause;
+for every sample the design's blow-hole lies within the uncertainty the points state
+(``blow_hole_uncertainty``, from their tangents' accuracy).
 
 Plus the findings of the issues, with their exact inputs: the rack-involute male's own CSV (94
 defects, 78 jamming, before), its own DXF polyline (refused before, whatever ``--smoothing``), an
@@ -49,19 +51,27 @@ SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coo
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
 KNOWN: dict[tuple[str, str], str] = {}
-_APEX = (
+_TIP = (
     "1 um of scatter moves the blow-hole's apex (where the male tip corner's path hands over to the "
-    "flank's) by 0.03-0.3 mm along the male tip circle: the flank's tangent at the corner, fitted through "
-    "scattered points, is 0.6-2.2 mrad off, and the narrow-tip's apex moves 0.13 mm per mrad"
+    "flank's) along the male tip circle: the flank's tangent at the corner, fitted through scattered "
+    "points, is 0.6-2.2 mrad off, and the apex moves 0.12-0.13 mm, the area 7.2-7.4 % per mrad"
+)
+_FLANK = (
+    "the apex lies 0.2 mm inside the male tip circle, found between the scattered points' meshline samples "
+    "(the nearest 0.36-0.44 mm away) as a turn of the path, and moves 0.03-0.16 mm"
+)
+_FLAT = (
+    "the apex (r = 45.4 mm) is the meshline point nearest the cusp where the meshline runs within 50 um "
+    "of one distance from it over 0.9 mm: the scattered points' meshline, 16-42 um off, moves it 0.84-0.89 mm"
 )
 KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
-    (name, "scatter-1um"): f"{change} ({_APEX})"
-    for name, change in (
-        ("n_rack_5_6", "-9.5 %"),
-        ("rinder_deix_5_6", "-9.5 %"),
-        ("narrow_tip_5_6", "-16.3 %"),
-        ("srm_asymmetric_5_6", "+2.0 %"),
-        ("srm_symmetric_4_6", "-6.8 %"),
+    (name, "scatter-1um"): f"{change} ({why}; within blow_hole_uncertainty)"
+    for name, change, why in (
+        ("n_rack_5_6", "-9.5 %", _FLANK),
+        ("rinder_deix_5_6", "-9.5 %", _FLANK),
+        ("narrow_tip_5_6", "-16.3 %", _TIP),
+        ("srm_asymmetric_5_6", "+2.0 %", _TIP),
+        ("srm_symmetric_4_6", "-6.8 %", _FLAT),
     )
 }
 
@@ -78,8 +88,8 @@ def _given(spec: PairSpec, data, label: str) -> dict:
 
 
 @pytest.fixture(scope="module")
-def verdicts(tmp_path_factory) -> dict[tuple[str, str], dict]:
-    """The summaries of every sample's design and of its male in every form (built once)."""
+def verdicts(tmp_path_factory) -> dict:
+    """The summaries of every sample's design and of its male in every form (built once), its spec and male."""
     folder = tmp_path_factory.mktemp("forms")
     out: dict[tuple[str, str], dict] = {}
     for name in ROTOR_SAMPLES:
@@ -97,6 +107,7 @@ def verdicts(tmp_path_factory) -> dict[tuple[str, str], dict]:
             out[(name, form)] = _given(spec, read_profile(path, "--male-points", "MALE"), "--male-points")
         dense = np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments])  # exact, 0.01 um chord
         out[(name, "dense")] = _given(spec, dense, "--male-points")
+        out[(name, "spec")], out[(name, "male")] = spec, male  # for more seeds (test_blow_hole_within_uncertainty)
         scattered = male + np.random.default_rng(0).normal(0.0, SCATTER, male.shape)  # one seed for every sample
         out[(name, "scatter-1um")] = _given(spec, scattered, "--male-points")
     return out
@@ -423,3 +434,71 @@ def test_scatter_report_names_its_accuracy(written, tmp_path, capsys):
     assert profile == pytest.approx(2.0, rel=0.15) and normals == pytest.approx(10 * profile, rel=0.06)
     reach = float(re.search(r"over ([0-9.]+) mm of meshline", line).group(1))
     assert reach == pytest.approx(np.sqrt(8 * 116.0 * normals * 1e-3), rel=0.05)
+    # and the blow-hole with the uncertainty its apex has from the points' tangents (blow_hole_uncertainty)
+    hole = next(ln for ln in out.splitlines() if ln.strip().startswith("blow-hole") and "±" in ln)
+    area, plus = (float(v) for v in re.findall(r"([0-9.]+)", hole)[:2])
+    assert 0.0 < plus < area
+
+
+@pytest.mark.parametrize("name", ROTOR_SAMPLES)
+def test_design_blow_hole_within_stated_uncertainty(verdicts, name):
+    # reference: the design's blow-hole from its exact curves. Points with 1 um of scatter state how far
+    # their blow-hole may be off (blow_hole_uncertainty, from the tangent accuracy over one point spacing);
+    # the design's value must lie within it (plus the 1 % or closed-meshline floor of test_same_blow_hole)
+    design, given = verdicts[(name, "design")], verdicts[(name, "scatter-1um")]
+    floor = 1e-3 if design["blow_hole_area"] <= 1e-9 else 0.01 * design["blow_hole_area"]
+    gap = abs(given["blow_hole_area"] - design["blow_hole_area"])
+    assert gap <= given["blow_hole_uncertainty"] + floor, (gap, given["blow_hole_uncertainty"])
+    assert design["blow_hole_uncertainty"] == 0.0  # exact curves: no input accuracy to propagate
+
+
+@pytest.mark.parametrize("form", ["csv", "dense"])
+def test_exact_points_state_no_blow_hole_uncertainty(verdicts, form):
+    # exact points (no scatter): the tangents of their interpolating fit carry no scatter, and their
+    # blow-hole is within 1 % of the design's already (test_same_blow_hole)
+    assert all(verdicts[(n, form)]["blow_hole_uncertainty"] == 0.0 for n in ROTOR_SAMPLES)
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("name", ROTOR_SAMPLES)
+def test_blow_hole_within_uncertainty_other_seeds(verdicts, name, seed):
+    # every sample at two more seeds of 1 um scatter (seed 0 above): the design's blow-hole (reference: its
+    # exact curves) within the points' stated uncertainty plus the floor of test_same_blow_hole, and where
+    # the design has a blow-hole the uncertainty is less than the area itself (not vacuous)
+    design = verdicts[(name, "design")]
+    male = verdicts[(name, "male")]
+    noisy = male + np.random.default_rng(seed).normal(0.0, SCATTER, male.shape)
+    given = _given(verdicts[(name, "spec")], noisy, "--male-points")
+    closed = design["blow_hole_area"] <= 1e-9
+    floor = 1e-3 if closed else 0.01 * design["blow_hole_area"]
+    gap = abs(given["blow_hole_area"] - design["blow_hole_area"])
+    assert gap <= given["blow_hole_uncertainty"] + floor
+    assert closed or 0.0 < given["blow_hole_uncertainty"] < design["blow_hole_area"]
+
+
+def test_blow_hole_apex_moves_with_tangent_as_stated():
+    # independent method: turn the normal of the male point at the design's apex by 1 mrad (in the rotor)
+    # and find by bisection the male angle where that normal passes through the pitch point C again; the
+    # apex's move along its circle must match r delta / |beta' - 1| used by blow_hole_uncertainty
+    # (0.13 mm per mrad measured on the narrow-tip by the verdict-noise benchmark), within 2 %
+    from rotorcad.roots import bracket_root
+
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "narrow_tip_5_6.toml").read_text()), SAMPLES))
+    analysis, _ = analyse_pair(build_pair(spec), spec.speed_rpm)
+    e = analysis.meshline_end
+    r, phi0 = float(np.hypot(*e)), float(np.arctan2(e[1], e[0]))
+    c = np.array([spec.pair.male_pitch_radius, 0.0])
+    psi0 = float(np.arctan2(*(c - e)[::-1])) - phi0  # the normal through C, in the rotor's frame
+
+    def miss(phi: float, delta: float) -> float:
+        x = r * np.array([np.cos(phi), np.sin(phi)])
+        n = np.array([np.cos(psi0 + delta + phi), np.sin(psi0 + delta + phi)])
+        v = c - x
+        return float(n[0] * v[1] - n[1] * v[0])
+
+    phi1 = bracket_root(lambda p: miss(p, 1e-3), (phi0 - 0.02, phi0 + 0.02), xtol=1e-14)
+    moved = r * abs(phi1 - phi0)
+    v, dx = c - e, r * np.array([-np.sin(phi0), np.cos(phi0)])
+    rate = (v[0] * -dx[1] - v[1] * -dx[0]) / (v @ v)
+    assert moved == pytest.approx(r * 1e-3 / abs(rate - 1.0), rel=0.02)
+    assert moved == pytest.approx(0.13, rel=0.1)  # the benchmark's measured figure (mm per mrad)

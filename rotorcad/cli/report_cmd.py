@@ -470,7 +470,9 @@ def _summary(content: dict[str, Any], verdict: str) -> str:
             hr.verdict_box(
                 bool(result.get("meshline_closed")),
                 f"Meshline {'closed' if result.get('meshline_closed') else 'open'}; blow-hole "
-                f"{hr.number_text(result.get('blow_hole_area'))} mm²",
+                f"{hr.number_text(result.get('blow_hole_area'))}"
+                + (f" ± {hr.number_text(result['blow_hole_uncertainty'])}" if result.get("blow_hole_uncertainty") else "")
+                + " mm²",
             )
         )
     else:

@@ -188,6 +188,11 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
         reach = resolution(MESHLINE_GAIN * acc, result["center_distance"])
         line += f" (the meshline's normals to {1e3 * MESHLINE_GAIN * acc:.2g} µm, over {reach:.2g} mm of meshline)"
     click.echo(line)
+    if result.get("blow_hole_uncertainty", 0.0) > 0:  # scattered points: their tangents move the apex
+        click.echo(
+            f"  blow-hole {result['blow_hole_area']:.3f} ± {result['blow_hole_uncertainty']:.3f} mm² "
+            "(the uncertainty of its apex from the accuracy of the profile's tangents)"
+        )
     for d in result["defects"]:
         click.echo(
             f"  {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['angle_deg']:+.1f}°, "

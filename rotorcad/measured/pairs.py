@@ -286,7 +286,10 @@ def pair_from_rotor_points(
             None,
             f"{lost_share:.1f} % of the lobe has no rack point",
         )
-    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share, accuracy=acc)
+    # a flank's tangent through scattered points each within acc is known to acc over one point spacing
+    spacing = float(np.median(np.hypot(*np.diff(outline.whole, axis=0).T))) if outline.whole is not None else 0.0
+    turn = acc / spacing if outline.sigma > 0 and spacing > 0 else 0.0
+    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share, accuracy=acc, tangent_accuracy=turn)
 
 
 __all__ = ["pair_from_rack_points", "pair_from_rotor_points"]

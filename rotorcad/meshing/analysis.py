@@ -272,8 +272,12 @@ class MeshingAnalysis:
     @cached_property
     def blow_hole(self) -> shapely.Geometry:
         """Projected blow-hole polygon (see the module docstring)."""
+        return self._blow_hole_at(self.meshline_end)
+
+    def _blow_hole_at(self, e: np.ndarray) -> shapely.Geometry:
+        """Return the projected blow-hole polygon with its apex at ``e`` ((2,) float, mm, fixed frame)."""
         pair = self.rotors.pair
-        k, e = self.cusp, self.meshline_end
+        k = self.cusp
         if np.hypot(*(e - k)) < 1e-3:
             return shapely.Polygon()
         o2 = np.array([pair.center_distance, 0.0])
@@ -295,6 +299,41 @@ class MeshingAnalysis:
     def blow_hole_area(self) -> float:
         """Area of the projected blow-hole :attr:`blow_hole`, mm²."""
         return float(self.blow_hole.area)
+
+    @cached_property
+    def blow_hole_uncertainty(self) -> float:
+        """How far the blow-hole area may lie from the true profile's, from the input's accuracy (mm²).
+
+        The apex E (:attr:`meshline_end`) is where the normal of a male point at radius r = |E| passes
+        through the pitch point C (Rinder sec. 2.1, the law of gearing). With the male turned by phi
+        the point is X = r (cos phi, sin phi) and its normal, fixed in the rotor, turns with it: the
+        contact holds where beta(phi) - phi = psi, beta the direction of C - X. A normal turned by
+        delta moves the contact along that circle by ds = r delta / |beta' - 1|, with
+        beta' = ((C - X) x (-X')) / |C - X|², X' = dX/dphi. The profile's tangents are known to
+        :attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy` (its accuracy over one point
+        spacing); the uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
+        with the apex moved by ds either way. 0 for a design or exact points.
+
+        Returns
+        -------
+        float, mm²
+        """
+        delta = float(getattr(self.rotors, "tangent_accuracy", 0.0))
+        e = self.meshline_end
+        r = float(np.hypot(*e))
+        if delta <= 0.0 or r < 1e-9:
+            return 0.0
+        c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
+        v = c - e
+        if np.hypot(*v) < 1e-6:
+            return 0.0
+        phi = float(np.arctan2(e[1], e[0]))
+        dx = r * np.array([-np.sin(phi), np.cos(phi)])
+        rate = float((v[0] * -dx[1] - v[1] * -dx[0]) / (v @ v))  # beta'
+        turn = delta / max(abs(rate - 1.0), 1e-9)  # dphi, rad
+        area = self.blow_hole_area
+        moved = [self._blow_hole_at(r * np.array([np.cos(phi + t), np.sin(phi + t)])).area for t in (turn, -turn)]
+        return float(max(abs(m - area) for m in moved))
 
     @cached_property
     def spatial_blow_hole(self) -> SpatialBlowHole:
@@ -517,6 +556,7 @@ class MeshingAnalysis:
             "family": self.rotors.family,
             "meshline_closed": self.meshline_closed,
             "blow_hole_area": self.blow_hole_area,
+            "blow_hole_uncertainty": self.blow_hole_uncertainty,
             "blow_hole_spatial": self.spatial_blow_hole.as_dict(),
             "contact_line_length": self.contact_line_length,
             "male_flute_area": self.male_flute_area,
