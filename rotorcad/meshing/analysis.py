@@ -21,7 +21,7 @@ from rotorcad.geometry import cross, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import Defect, is_tip_corner, meshline_defects, resolution
-from rotorcad.meshing.meshline import MeshlinePiece, even_meshline_parameters, flank_roles, turn_corner
+from rotorcad.meshing.meshline import MeshlinePiece, even_meshline_contact, flank_roles, turn_corner
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
@@ -66,8 +66,9 @@ class MeshingAnalysis:
         out = []
         for index, piece in enumerate(self.rotors.rack):
             gen = Generated(piece.curve, mesh.rack, mesh.female)
-            s = even_meshline_parameters(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
-            t, x, rack_pts, tan = gen.meshline_contact(s)  # the rack's points and tangents along its travel
+            # the contact (and the rack's points and tangents along its travel) of the evaluation that placed the samples
+            s, contact = even_meshline_contact(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
+            t, x, rack_pts, tan = contact
             inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
             ok = np.isfinite(t) & inside & np.all(np.isfinite(x), axis=1)
             if ok.sum() < 2:
@@ -234,9 +235,8 @@ class MeshingAnalysis:
         best, lo, hi = pts[i], piece.s[max(local - 1, 0)], piece.s[min(local + 1, len(piece.s) - 1)]
         for _ in range(2):
             s = np.linspace(lo, hi, 201)
-            c = gen.contact(s)
-            x = c.meshline
-            ok = c.in_contact & np.all(np.isfinite(x), axis=1)
+            t, x = gen.meshline_contact(s)[:2]  # the meshline alone (the full conjugate's numbers)
+            ok = np.isfinite(t) & np.all(np.isfinite(x), axis=1)
             ok &= (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
             if not ok.any():
                 break

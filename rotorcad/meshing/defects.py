@@ -359,8 +359,11 @@ def meshline_defects(
             for i, j in stretches:
                 if kind == "jamming":
                     continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
-                ramp = _ramps(f[i : j + 1] / band[i : j + 1], arclen[i : j + 1])  # f runs through the band: no arc
-                if not whole and ramp and np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale:
+                if (
+                    not whole
+                    and np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale
+                    and _ramps(f[i : j + 1] / band[i : j + 1], arclen[i : j + 1])  # f runs through the band: no arc
+                ):
                     continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once
                 mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
                 found.append(

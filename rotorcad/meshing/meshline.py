@@ -124,18 +124,44 @@ def even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int,
     (n,) float array
         Monotonic from ``s0`` to ``s1``.
     """
+    return even_meshline_contact(gen, s0, s1, samples, scale)[0]
+
+
+def even_meshline_contact(
+    gen: Generated, s0: float, s1: float, samples: int, scale: float
+) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """Return the parameters of :func:`even_meshline_parameters` and the contact at them.
+
+    The contact is :meth:`rotorcad.envelope.Generated.meshline_contact` at the returned
+    parameters (the meshline alone, the numbers of the full conjugate), the one evaluation that
+    placed them: a caller needs no second one.
+
+    Parameters
+    ----------
+    gen, s0, s1, samples, scale
+        As for :func:`even_meshline_parameters`.
+
+    Returns
+    -------
+    s : (n,) float array
+        Monotonic from ``s0`` to ``s1``.
+    contact : tuple of (n,) and three (n, 2) float arrays
+        ``t`` (rad), ``meshline`` (mm), the rack's points (mm) and unit tangents along its travel
+        at ``s``.
+    """
     s = np.linspace(s0, s1, samples)
     for _ in range(2):
-        x = gen.contact(s).meshline
+        contact = gen.meshline_contact(s)
+        x = contact[1]
         step = np.hypot(*np.diff(x, axis=0).T)
         step = np.where(np.isfinite(step), step, 0.0)
         length = float(step.sum())
         if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
-            return s
+            return s, contact
         measure = np.concatenate([[0.0], np.cumsum(step + 0.25 * length / (len(s) - 1))])
         n = int(np.clip(np.ceil(2000.0 * length / scale), samples, 8 * samples))
         s = np.interp(np.linspace(0.0, measure[-1], n), measure, s)
-    return s
+    return s, gen.meshline_contact(s)
 
 
 SHARP_TURN = np.pi / 4
