@@ -17,11 +17,11 @@ import shapely
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
-from rotorcad.geometry import cross, wrap_angle
+from rotorcad.geometry import cross, row_norms, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import Defect, is_tip_corner, meshline_defects, resolution
-from rotorcad.meshing.meshline import MeshlinePiece, even_meshline_contact, flank_roles, turn_corner
+from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
@@ -60,36 +60,7 @@ class MeshingAnalysis:
 
         A list of :class:`MeshlinePiece`; pieces with fewer than two contacts are left out.
         """
-        pair = self.rotors.pair
-        mesh = pair.mesh
-        o2 = np.array([pair.center_distance, 0.0])
-        out = []
-        for index, piece in enumerate(self.rotors.rack):
-            gen = Generated(piece.curve, mesh.rack, mesh.female)
-            # the contact (and the rack's points and tangents along its travel) of the evaluation that placed the samples
-            s, contact = even_meshline_contact(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
-            t, x, rack_pts, tan = contact
-            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
-            ok = np.isfinite(t) & inside & np.all(np.isfinite(x), axis=1)
-            if ok.sum() < 2:
-                continue
-            tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
-            roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, pair.center_distance)
-            out.append(
-                MeshlinePiece(
-                    piece.male_name,
-                    piece.kind,
-                    s[ok],
-                    t[ok],
-                    x[ok],
-                    tan_fixed[ok],
-                    piece.male_name,
-                    piece.female_name,
-                    roles,
-                    index,
-                )
-            )
-        return out
+        return meshline_pieces(self.rotors.rack, self.rotors.pair, self.samples)  # one pass over all rack pieces
 
     @property
     def meshline(self) -> np.ndarray:
@@ -317,7 +288,7 @@ class MeshingAnalysis:
     def contact_line_length(self) -> float:
         """Length of the polyline :attr:`contact_line`, mm."""
         line = self.contact_line
-        return float(np.linalg.norm(np.diff(line, axis=0), axis=1).sum())
+        return float(row_norms(np.diff(line, axis=0)).sum())  # np.linalg.norm(..., axis=1), the same numbers
 
     # ---- areas and displacement ------------------------------------------------------------
     @cached_property

@@ -10,12 +10,15 @@ the corner of a turn that a fit through points rounds (:func:`turn_corner`).
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from rotorcad.envelope import Generated
+from rotorcad.envelope import Generated, meshline_contacts
+from rotorcad.geometry import row_norms
 from rotorcad.roles import Flank, PieceRole
+from rotorcad.rotor_pair import RotorPair
 from rotorcad.spline_slopes import makima_slopes
 
 
@@ -128,7 +131,12 @@ def even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int,
 
 
 def even_meshline_contact(
-    gen: Generated, s0: float, s1: float, samples: int, scale: float
+    gen: Generated,
+    s0: float,
+    s1: float,
+    samples: int,
+    scale: float,
+    first: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
     """Return the parameters of :func:`even_meshline_parameters` and the contact at them.
 
@@ -140,6 +148,9 @@ def even_meshline_contact(
     ----------
     gen, s0, s1, samples, scale
         As for :func:`even_meshline_parameters`.
+    first : tuple of arrays, optional
+        The contact at the even parameters ``linspace(s0, s1, samples)``, already evaluated
+        (:func:`rotorcad.envelope.meshline_contacts` of all the pieces at once).
 
     Returns
     -------
@@ -150,18 +161,82 @@ def even_meshline_contact(
         at ``s``.
     """
     s = np.linspace(s0, s1, samples)
+    contact = gen.meshline_contact(s) if first is None else first
     for _ in range(2):
+        spread = _spread_along_meshline(s, contact[1], samples, scale)
+        if spread is None:
+            break
+        s = spread
         contact = gen.meshline_contact(s)
-        x = contact[1]
-        step = np.hypot(*np.diff(x, axis=0).T)
-        step = np.where(np.isfinite(step), step, 0.0)
-        length = float(step.sum())
-        if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
-            return s, contact
-        measure = np.concatenate([[0.0], np.cumsum(step + 0.25 * length / (len(s) - 1))])
-        n = int(np.clip(np.ceil(2000.0 * length / scale), samples, 8 * samples))
-        s = np.interp(np.linspace(0.0, measure[-1], n), measure, s)
-    return s, gen.meshline_contact(s)
+    return s, contact
+
+
+def _spread_along_meshline(s: np.ndarray, x: np.ndarray, samples: int, scale: float) -> np.ndarray | None:
+    """Parameters that spread a piece's contacts evenly along its meshline, or None where they are even.
+
+    One round of :func:`even_meshline_parameters`: ``s`` the parameters, ``x`` their meshline
+    points ((n, 2), mm), ``samples`` and ``scale`` (mm) as there.
+    """
+    step = np.hypot(*np.diff(x, axis=0).T)
+    step = np.where(np.isfinite(step), step, 0.0)
+    length = float(step.sum())
+    if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
+        return None
+    measure = np.concatenate([[0.0], np.cumsum(step + 0.25 * length / (len(s) - 1))])
+    n = int(np.clip(np.ceil(2000.0 * length / scale), samples, 8 * samples))
+    return np.interp(np.linspace(0.0, measure[-1], n), measure, s)
+
+
+def meshline_pieces(rack: list, pair: RotorPair, samples: int) -> list[MeshlinePiece]:
+    """Return the meshline of a rack-generated pair, piece by piece: one pass over all the rack's pieces.
+
+    The contacts of every rack piece inside both bores (within 1 µm), ``samples`` evenly over each
+    piece's parameter, or resampled along the meshline where that is uneven
+    (:func:`even_meshline_contact`); the contacts of the even samples are solved for all the
+    pieces at once (:func:`rotorcad.envelope.meshline_contacts`) and the points' lobe parts read
+    off the rack at once (:func:`flank_roles`). Pieces with fewer than two contacts are left out.
+
+    Parameters
+    ----------
+    rack : list of RackPiece
+        The rack chain (:attr:`rotorcad.screw_rotors.ScrewRotors.rack`).
+    pair : RotorPair
+        The pair (its mesh, radii and centre distance; mm).
+    samples : int
+        Samples of an even piece.
+
+    Returns
+    -------
+    list of MeshlinePiece
+    """
+    mesh = pair.mesh
+    a = pair.center_distance
+    gens = [Generated(piece.curve, mesh.rack, mesh.female) for piece in rack]
+    even = [np.linspace(piece.curve.s0, piece.curve.s1, samples) for piece in rack]
+    firsts = meshline_contacts(gens, even)
+    placed = [
+        even_meshline_contact(g, piece.curve.s0, piece.curve.s1, samples, a, first)
+        for g, piece, first in zip(gens, rack, firsts, strict=True)
+    ]
+    if not placed:
+        return []
+    s = np.concatenate([p[0] for p in placed])
+    t, x, rack_pts, tan = (np.concatenate([p[1][k] for p in placed]) for k in range(4))
+    o2 = np.array([a, 0.0])
+    inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+    ok = np.isfinite(t) & inside & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
+    tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
+    roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, a)
+    s, t, x, tan_fixed = s[ok], t[ok], x[ok], tan_fixed[ok]
+    ends = np.cumsum([0] + [len(p[0]) for p in placed]).tolist()
+    kept = np.cumsum([0] + [int(ok[i:j].sum()) for i, j in itertools.pairwise(ends)]).tolist()  # contacts kept per piece
+    out = []
+    for index, (piece, (i, j)) in enumerate(zip(rack, itertools.pairwise(kept), strict=True)):
+        if j - i < 2:
+            continue
+        names = (piece.male_name, piece.kind, s[i:j], t[i:j], x[i:j], tan_fixed[i:j])
+        out.append(MeshlinePiece(*names, piece.male_name, piece.female_name, roles[i:j], index))
+    return out
 
 
 SHARP_TURN = np.pi / 4
@@ -304,4 +379,4 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
                 pass  # too few distinct samples for a smoothing cubic: the interpolating one below
     tau = np.empty_like(pts)
     tau[order] = makima_slopes(piece.s[order], pts[order])
-    return tau / np.linalg.norm(tau, axis=1, keepdims=True)
+    return tau / row_norms(tau)[:, None]
