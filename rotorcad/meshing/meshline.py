@@ -131,12 +131,7 @@ def even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int,
 
 
 def even_meshline_contact(
-    gen: Generated,
-    s0: float,
-    s1: float,
-    samples: int,
-    scale: float,
-    first: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None,
+    gen: Generated, s0: float, s1: float, samples: int, scale: float
 ) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
     """Return the parameters of :func:`even_meshline_parameters` and the contact at them.
 
@@ -148,9 +143,6 @@ def even_meshline_contact(
     ----------
     gen, s0, s1, samples, scale
         As for :func:`even_meshline_parameters`.
-    first : tuple of arrays, optional
-        The contact at the even parameters ``linspace(s0, s1, samples)``, already evaluated
-        (:func:`rotorcad.envelope.meshline_contacts` of all the pieces at once).
 
     Returns
     -------
@@ -161,7 +153,7 @@ def even_meshline_contact(
         at ``s``.
     """
     s = np.linspace(s0, s1, samples)
-    contact = gen.meshline_contact(s) if first is None else first
+    contact = gen.meshline_contact(s)
     for _ in range(2):
         spread = _spread_along_meshline(s, contact[1], samples, scale)
         if spread is None:
@@ -191,10 +183,10 @@ def meshline_pieces(rack: list, pair: RotorPair, samples: int) -> list[MeshlineP
     """Return the meshline of a rack-generated pair, piece by piece: one pass over all the rack's pieces.
 
     The contacts of every rack piece inside both bores (within 1 µm), ``samples`` evenly over each
-    piece's parameter, or resampled along the meshline where that is uneven
-    (:func:`even_meshline_contact`); the contacts of the even samples are solved for all the
-    pieces at once (:func:`rotorcad.envelope.meshline_contacts`) and the points' lobe parts read
-    off the rack at once (:func:`flank_roles`). Pieces with fewer than two contacts are left out.
+    piece's parameter, or resampled along the meshline where that is uneven (the rounds of
+    :func:`even_meshline_contact`); the contacts of each round are solved for all its pieces at
+    once (:func:`rotorcad.envelope.meshline_contacts`) and the points' lobe parts read off the
+    rack at once (:func:`flank_roles`). Pieces with fewer than two contacts are left out.
 
     Parameters
     ----------
@@ -212,23 +204,29 @@ def meshline_pieces(rack: list, pair: RotorPair, samples: int) -> list[MeshlineP
     mesh = pair.mesh
     a = pair.center_distance
     gens = [Generated(piece.curve, mesh.rack, mesh.female) for piece in rack]
-    even = [np.linspace(piece.curve.s0, piece.curve.s1, samples) for piece in rack]
-    firsts = meshline_contacts(gens, even)
-    placed = [
-        even_meshline_contact(g, piece.curve.s0, piece.curve.s1, samples, a, first)
-        for g, piece, first in zip(gens, rack, firsts, strict=True)
-    ]
-    if not placed:
+    params = [np.linspace(piece.curve.s0, piece.curve.s1, samples) for piece in rack]
+    contacts = meshline_contacts(gens, params)
+    todo = list(range(len(gens)))
+    for _ in range(2):  # the rounds of even_meshline_contact, for the uneven pieces together
+        spread = {i: _spread_along_meshline(params[i], contacts[i][1], samples, a) for i in todo}
+        todo = [i for i, new in spread.items() if new is not None]
+        if not todo:
+            break
+        for i in todo:
+            params[i] = spread[i]
+        for i, contact in zip(todo, meshline_contacts([gens[i] for i in todo], [params[i] for i in todo]), strict=True):
+            contacts[i] = contact
+    if not gens:
         return []
-    s = np.concatenate([p[0] for p in placed])
-    t, x, rack_pts, tan = (np.concatenate([p[1][k] for p in placed]) for k in range(4))
+    s = np.concatenate(params)
+    t, x, rack_pts, tan = (np.concatenate([c[k] for c in contacts]) for k in range(4))
     o2 = np.array([a, 0.0])
     inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
     ok = np.isfinite(t) & inside & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
     tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
     roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, a)
     s, t, x, tan_fixed = s[ok], t[ok], x[ok], tan_fixed[ok]
-    ends = np.cumsum([0] + [len(p[0]) for p in placed]).tolist()
+    ends = np.cumsum([0] + [len(p) for p in params]).tolist()
     kept = np.cumsum([0] + [int(ok[i:j].sum()) for i, j in itertools.pairwise(ends)]).tolist()  # contacts kept per piece
     out = []
     for index, (piece, (i, j)) in enumerate(zip(rack, itertools.pairwise(kept), strict=True)):
