@@ -344,7 +344,7 @@ def meshline_defects(
         tau = meshline_tangents(piece, arclen, acc if given else 0.0)
         # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
         # through O1, O2 and C at once), and C itself lies on every meshline
-        judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
+        judged = None  # (n,) bool, made where a crossing needs it
         turns = reversals(pts, arclen, longest if given else 0.0)
         tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
         misses = []
@@ -354,7 +354,7 @@ def meshline_defects(
             band = acc + max(tol, acc / longest) * np.hypot(*to_q.T)
             whole = bool(_median(np.abs(f)) < tol * max(1.0, np.abs(to_q).max()))
             misses.append((f, band, whole, *robust_zeros(f, band, arclen, longest, whole, turns)))
-        at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) for m in misses]
+        at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
         for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
             for i, j in stretches:
                 if kind == "jamming":
@@ -379,11 +379,13 @@ def meshline_defects(
                     )
                 )
                 spans[id(found[-1])] = pts[i : j + 1 : max(1, (j - i) // 200)]
-            others = np.concatenate([at[m] for m in range(len(tests)) if m != k])
+            others = np.concatenate([at[m] for m in range(len(tests)) if m != k]) if crossings else None
             for (x, lo, hi), s_x in zip(crossings, at[k], strict=True):
                 if np.any(np.abs(others - s_x) < longest):
                     continue  # the misses of two centres change sign together: the tangent turned over
                 i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
+                if judged is None:
+                    judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
                 if not (judged[i] and judged[i + 1]):
                     continue
                 p = pts[i] + w * (pts[i + 1] - pts[i])
