@@ -189,7 +189,9 @@ def _persistent(
     than that to a stretch is where the stretch ends; one nearer than that to a reversal of the
     meshline (``turns``, arc lengths) is the reversal.
     """
-    at = np.interp([c[0] for c in crossings], np.arange(len(arclen)), arclen) if crossings else np.zeros(0)
+    if not crossings:
+        return []  # nothing to keep (the usual case: no test of the stretches and turns needed)
+    at = np.interp([c[0] for c in crossings], np.arange(len(arclen)), arclen)
     near_stretch = np.zeros(len(at), dtype=bool)
     for r in turns if turns is not None else ():
         near_stretch |= np.abs(at - r) < longest

@@ -155,7 +155,7 @@ def even_meshline_contact(
     s = np.linspace(s0, s1, samples)
     contact = gen.meshline_contact(s)
     for _ in range(2):
-        spread = _spread_along_meshline(s, contact[1], samples, scale)
+        spread = _spread_along_meshline(s, _meshline_steps(contact[1]), samples, scale)
         if spread is None:
             break
         s = spread
@@ -163,14 +163,19 @@ def even_meshline_contact(
     return s, contact
 
 
-def _spread_along_meshline(s: np.ndarray, x: np.ndarray, samples: int, scale: float) -> np.ndarray | None:
+def _meshline_steps(x: np.ndarray) -> np.ndarray:
+    """Lengths of the steps between meshline points ((n, 2), mm), 0 where not finite: (n - 1,) float, mm."""
+    step = np.hypot(*np.diff(x, axis=0).T)
+    return np.where(np.isfinite(step), step, 0.0)
+
+
+def _spread_along_meshline(s: np.ndarray, step: np.ndarray, samples: int, scale: float) -> np.ndarray | None:
     """Parameters that spread a piece's contacts evenly along its meshline, or None where they are even.
 
-    One round of :func:`even_meshline_parameters`: ``s`` the parameters, ``x`` their meshline
-    points ((n, 2), mm), ``samples`` and ``scale`` (mm) as there.
+    One round of :func:`even_meshline_parameters`: ``s`` the parameters, ``step`` the steps
+    between their meshline points (:func:`_meshline_steps`, mm), ``samples`` and ``scale`` (mm)
+    as there.
     """
-    step = np.hypot(*np.diff(x, axis=0).T)
-    step = np.where(np.isfinite(step), step, 0.0)
     length = float(step.sum())
     if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
         return None
@@ -201,14 +206,23 @@ def meshline_pieces(rack: list, pair: RotorPair, samples: int) -> list[MeshlineP
     -------
     list of MeshlinePiece
     """
+    if not rack:
+        return []
     mesh = pair.mesh
     a = pair.center_distance
     gens = [Generated(piece.curve, mesh.rack, mesh.female) for piece in rack]
     params = [np.linspace(piece.curve.s0, piece.curve.s1, samples) for piece in rack]
     contacts = meshline_contacts(gens, params)
     todo = list(range(len(gens)))
-    for _ in range(2):  # the rounds of even_meshline_contact, for the uneven pieces together
-        spread = {i: _spread_along_meshline(params[i], contacts[i][1], samples, a) for i in todo}
+    # the first round's steps of all pieces at once (a piece's are those between its own points)
+    ends = np.cumsum([0] + [len(p) for p in params]).tolist()
+    steps = _meshline_steps(np.concatenate([c[1] for c in contacts]))
+    first = [steps[i : j - 1] for i, j in itertools.pairwise(ends)]
+    for round_ in range(2):  # the rounds of even_meshline_contact, for the uneven pieces together
+        spread = {
+            i: _spread_along_meshline(params[i], first[i] if round_ == 0 else _meshline_steps(contacts[i][1]), samples, a)
+            for i in todo
+        }
         todo = [i for i, new in spread.items() if new is not None]
         if not todo:
             break
@@ -216,8 +230,6 @@ def meshline_pieces(rack: list, pair: RotorPair, samples: int) -> list[MeshlineP
             params[i] = spread[i]
         for i, contact in zip(todo, meshline_contacts([gens[i] for i in todo], [params[i] for i in todo]), strict=True):
             contacts[i] = contact
-    if not gens:
-        return []
     s = np.concatenate(params)
     t, x, rack_pts, tan = (np.concatenate([c[k] for c in contacts]) for k in range(4))
     o2 = np.array([a, 0.0])
@@ -227,7 +239,7 @@ def meshline_pieces(rack: list, pair: RotorPair, samples: int) -> list[MeshlineP
     roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, a)
     s, t, x, tan_fixed = s[ok], t[ok], x[ok], tan_fixed[ok]
     ends = np.cumsum([0] + [len(p) for p in params]).tolist()
-    kept = np.cumsum([0] + [int(ok[i:j].sum()) for i, j in itertools.pairwise(ends)]).tolist()  # contacts kept per piece
+    kept = [0, *np.cumsum(np.add.reduceat(ok, ends[:-1])).tolist()]  # contacts kept per piece (each has samples)
     out = []
     for index, (piece, (i, j)) in enumerate(zip(rack, itertools.pairwise(kept), strict=True)):
         if j - i < 2:
