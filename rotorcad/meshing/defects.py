@@ -114,6 +114,17 @@ def _median(values: np.ndarray) -> float:
     return float((part[k - 1] + part[k]) / 2)
 
 
+def _median_below(values: np.ndarray, bound: float) -> bool:
+    """``_median(values) < bound``, the same answer, the median only where a count cannot tell.
+
+    Fewer than n // 2 values below the bound put both middle values (one for an odd n) at or
+    above it, and so their mean: the median is not below. Else the median decides.
+    """
+    if int(np.count_nonzero(values < bound)) < len(values) // 2:
+        return False
+    return bool(_median(values) < bound)
+
+
 def robust_zeros(
     f: np.ndarray,
     band: np.ndarray,
@@ -354,7 +365,7 @@ def meshline_defects(
             to_q = q - pts
             f = np.einsum("ij,ij->i", to_q, tau)  # zero: the meshline normal passes through q
             band = acc + max(tol, acc / longest) * np.hypot(*to_q.T)
-            whole = bool(_median(np.abs(f)) < tol * max(1.0, np.abs(to_q).max()))
+            whole = _median_below(np.abs(f), tol * max(1.0, np.abs(to_q).max()))
             misses.append((f, band, whole, *robust_zeros(f, band, arclen, longest, whole, turns)))
         at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
         for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
