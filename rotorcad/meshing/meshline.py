@@ -19,6 +19,7 @@ from rotorcad.envelope import Generated, meshline_contacts
 from rotorcad.geometry import row_norms
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
+from rotorcad.screw_rotors import RackPiece
 from rotorcad.spline_slopes import makima_slopes
 
 
@@ -184,7 +185,7 @@ def _spread_along_meshline(s: np.ndarray, step: np.ndarray, samples: int, scale:
     return np.interp(np.linspace(0.0, measure[-1], n), measure, s)
 
 
-def meshline_pieces(rack: list, pair: RotorPair, samples: int) -> list[MeshlinePiece]:
+def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int) -> list[MeshlinePiece]:
     """Return the meshline of a rack-generated pair, piece by piece: one pass over all the rack's pieces.
 
     The contacts of every rack piece inside both bores (within 1 µm), ``samples`` evenly over each
