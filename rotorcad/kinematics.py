@@ -158,9 +158,15 @@ class Translation:
     rate: float = 0.0
 
     @cached_property
-    def _velocity(self) -> Array:
-        """``velocity`` as a (2,) float array, mm per unit t."""
+    def velocity_array(self) -> Array:
+        """``velocity`` as a (2,) float array, mm per unit t (do not modify: it is kept)."""
         return np.asarray(self.velocity, dtype=float)
+
+    @cached_property
+    def speed(self) -> float:
+        """|``velocity``|, mm per unit t: ``sqrt(v . v)``, as np.linalg.norm computes it for a vector."""
+        v = self.velocity_array
+        return float(np.sqrt(v.dot(v)))
 
     def to_fixed(self, points: Array, t: Array | float) -> Array:
         """Carry body-frame points into the fixed frame at motion parameter ``t``.
@@ -177,7 +183,7 @@ class Translation:
         (n, 2) float array, mm
             ``points + t * velocity``.
         """
-        shift = np.multiply.outer(np.asarray(t, dtype=float), self._velocity)
+        shift = np.multiply.outer(np.asarray(t, dtype=float), self.velocity_array)
         return as_points(points) + shift
 
     def to_body(self, points: Array, t: Array | float) -> Array:
@@ -195,7 +201,7 @@ class Translation:
         (n, 2) float array, mm
             ``points - t * velocity``.
         """
-        shift = np.multiply.outer(np.asarray(t, dtype=float), self._velocity)
+        shift = np.multiply.outer(np.asarray(t, dtype=float), self.velocity_array)
         return as_points(points) - shift
 
     def vectors_to_fixed(self, vectors: Array, t: Array | float) -> Array:
@@ -246,7 +252,7 @@ class Translation:
             ``velocity`` repeated for every point.
         """
         out = np.empty_like(as_points(points))
-        out[...] = self._velocity
+        out[...] = self.velocity_array
         return out
 
 

@@ -205,7 +205,7 @@ class ScrewRotors:
             seg = cut_segment(name, curve, piece.curve, side, r1, a, tol, rotor)  # closed form (rotorcad.rotor_cut)
             if seg is None:
                 seg = Segment.sample(name, curve, tol)
-            if len(seg.points) == 0 or np.ptp(seg.points, axis=0).max() < 1e-9:  # degenerate piece (none or one point)
+            if _degenerate(seg.points):  # none or one point
                 continue
             segs.append(seg)
         return Profile(tuple(segs), closed=False)
@@ -312,3 +312,16 @@ class ScrewRotors:
         if isinstance(clipped, shapely.MultiPolygon | shapely.GeometryCollection):
             clipped = max((g for g in clipped.geoms if isinstance(g, shapely.Polygon)), key=lambda g: g.area)
         return clipped
+
+
+def _degenerate(points: np.ndarray) -> bool:
+    """Tell whether sampled points are none or one: ``np.ptp(points, axis=0).max() < 1e-9`` (mm).
+
+    A piece whose ends lie 1e-9 mm apart or more in x or y spans at least that much: its range is not
+    computed (the usual case).
+    """
+    if len(points) == 0:
+        return True
+    if abs(points[-1, 0] - points[0, 0]) >= 1e-9 or abs(points[-1, 1] - points[0, 1]) >= 1e-9:
+        return False
+    return bool(np.ptp(points, axis=0).max() < 1e-9)

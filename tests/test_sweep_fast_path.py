@@ -146,3 +146,114 @@ def test_tip_check_refuses_exactly_where_the_lobe_made_valid_falls_short(driving
             check_tips(rotors)
     else:
         check_tips(rotors)  # the sample's 1.25 passes, test_families' 0.3 is refused: both branches run
+
+
+def _sample_racks():
+    """The racks of a few samples' pairs (straight, circular and point-path pieces), built once."""
+    from rotorcad.design.rotors import build_pair, pair_spec
+    from rotorcad.design.schema import rotor_design
+
+    names = ("rack_involute_5_6", "lysholm_4_6", "n_rack_5_6", "srm_asymmetric_5_6")
+    return [build_pair(pair_spec(rotor_design(load_toml(SAMPLES / f"{name}.toml"), None))) for name in names]
+
+
+def test_one_pass_contacts_are_those_of_each_piece():
+    # envelope.meshline_contacts solves the contact of all rack pieces in one pass; reference: the
+    # engine's own per-piece Generated.meshline_contact, element for element (bit for bit)
+    import numpy as np
+
+    from rotorcad.envelope import Generated, meshline_contacts
+
+    for rotors in _sample_racks():
+        mesh = rotors.pair.mesh
+        gens = [Generated(piece.curve, mesh.rack, mesh.female) for piece in rotors.rack]
+        params = [np.linspace(g.parent.s0, g.parent.s1, 37 + 5 * k) for k, g in enumerate(gens)]
+        for joint, (g, s) in zip(meshline_contacts(gens, params), zip(gens, params, strict=True), strict=True):
+            for got, ref in zip(joint, g.meshline_contact(s), strict=True):
+                np.testing.assert_array_equal(got, ref)
+
+
+def test_one_pass_meshline_is_that_of_piece_by_piece():
+    # meshing.meshline_pieces resamples and masks all pieces together; reference: the per-piece
+    # way written out here (even_meshline_contact of each piece, its contacts inside both bores
+    # within 1 um, the lobe part of each kept point), compared bit for bit
+    import numpy as np
+
+    from rotorcad.envelope import Generated
+    from rotorcad.meshing.meshline import even_meshline_contact, flank_roles, meshline_pieces
+
+    for rotors in _sample_racks():
+        pair = rotors.pair
+        mesh, o2 = pair.mesh, np.array([pair.center_distance, 0.0])
+        reference = []
+        for index, piece in enumerate(rotors.rack):
+            gen = Generated(piece.curve, mesh.rack, mesh.female)
+            s, (t, x, rack_pts, tan) = even_meshline_contact(gen, piece.curve.s0, piece.curve.s1, 600, pair.center_distance)
+            inside = (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            ok = np.isfinite(t) & inside & np.all(np.isfinite(x), axis=1)
+            if ok.sum() >= 2:
+                roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, pair.center_distance)
+                reference.append((index, s[ok], t[ok], x[ok], tan[ok], roles))
+        got = meshline_pieces(rotors.rack, pair, 600)
+        assert [p.rack_index for p in got] == [r[0] for r in reference]
+        for piece, (_, s, t, x, tan, roles) in zip(got, reference, strict=True):
+            for a, b in ((piece.s, s), (piece.t, t), (piece.points, x), (piece.tangents, tan)):
+                np.testing.assert_array_equal(a, b)
+            assert list(piece.roles) == list(roles)
+
+
+def test_scalar_rack_line_contact_is_the_engines():
+    # envelope.rack_line_meshline_point (the tip-corner root search's function) against the
+    # engine's array evaluation Generated.meshline_contact at the same parameter, bit for bit,
+    # inside and beyond every straight piece, both ways of travel
+    import numpy as np
+
+    from rotorcad.envelope import Generated, rack_line_meshline_point
+
+    rng = np.random.default_rng(5)
+    checked = 0
+    for rotors in _sample_racks():
+        mesh = rotors.pair.mesh
+        for piece in rotors.rack:
+            for curve in (piece.curve, piece.curve.reversed()):
+                for generated in (mesh.female, mesh.male):
+                    gen = Generated(curve, mesh.rack, generated)
+                    point = rack_line_meshline_point(gen)
+                    if point is None:
+                        continue
+                    lo, hi = sorted((curve.s0, curve.s1))
+                    for v in rng.uniform(lo - 1.0, hi + 1.0, 40):
+                        np.testing.assert_array_equal(np.array(point(float(v))), gen.meshline_contact(float(v))[1][0])
+                        checked += 1
+    assert checked > 500
+
+
+def test_row_norms_are_numpys():
+    # geometry.row_norms replaces np.linalg.norm(v, axis=1) in the meshline tangents and the
+    # contact line; numpy the reference, bit for bit, over magnitudes from 1e-8 to 1e3
+    import numpy as np
+
+    from rotorcad.geometry import row_norms
+
+    rng = np.random.default_rng(7)
+    for k in (2, 3):
+        v = rng.normal(size=(20000, k)) * 10.0 ** rng.integers(-8, 4, size=(20000, 1))
+        np.testing.assert_array_equal(row_norms(v), np.linalg.norm(v, axis=1))
+
+
+def test_the_median_bound_of_the_defect_tests_is_numpys():
+    # meshing.defects._median_below answers "median < bound" by a count where it can; numpy's
+    # median the reference, at bounds on and either side of the median, with NaNs
+    import numpy as np
+
+    from rotorcad.meshing.defects import _median_below
+
+    rng = np.random.default_rng(11)
+    for n in (*range(1, 12), 600, 601):
+        for _ in range(40):
+            values = np.abs(rng.normal(size=n)) * rng.choice([1e-9, 1.0, 1e3])
+            if rng.random() < 0.2:
+                values[rng.integers(n)] = np.nan
+            middle = float(np.median(values[np.isfinite(values)])) if np.isfinite(values).any() else 1.0
+            for bound in (middle, np.nextafter(middle, 0.0), np.nextafter(middle, np.inf), float(rng.random())):
+                assert _median_below(values, bound) == bool(np.median(values) < bound)

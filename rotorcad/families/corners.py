@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorcad.curves import Curve, PointPath
-from rotorcad.envelope import Generated
+from rotorcad.envelope import Generated, rack_line_meshline_point
 from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.roles import PieceRole
 from rotorcad.roots import bracket_root
@@ -69,9 +69,13 @@ def female_tip_corner(pair: RotorPair, flank: Curve, at_end: bool) -> tuple[Curv
     if len(k) == 0:
         return None
     i = k[-1] if at_end else k[0]
-    s_n = bracket_root(
-        lambda v: np.hypot(*(gen.meshline_contact(v)[1][0] - o2)) - pair.female_tip_radius, (s[i], s[i + 1]), xtol=1e-14
-    )
+    line = rack_line_meshline_point(gen)  # the same numbers as meshline_contact, without its arrays
+    if line is not None:
+        s_n = bracket_root(lambda v: np.hypot(*np.subtract(line(v), o2)) - pair.female_tip_radius, (s[i], s[i + 1]), xtol=1e-14)
+    else:
+        s_n = bracket_root(
+            lambda v: np.hypot(*(gen.meshline_contact(v)[1][0] - o2)) - pair.female_tip_radius, (s[i], s[i + 1]), xtol=1e-14
+        )
     t_n, x_n = gen.meshline_contact(s_n)[:2]
     path, x_foot = female_corner_path(pair, x_n[0], float(t_n[0]), at_end)
     trimmed = flank.trimmed(flank.s0, s_n) if at_end else flank.trimmed(s_n, flank.s1)
@@ -204,9 +208,13 @@ def male_tip_corner(pair: RotorPair, flank: Curve, rising: bool = False) -> tupl
     if len(k) == 0:
         return None
     i = k[0] if rising else k[-1]
-    s_m = bracket_root(
-        lambda v: float(np.hypot(*gen.meshline_contact(v)[1][0]) - r1t), (float(s[i]), float(s[i + 1])), xtol=1e-14
-    )
+    line = rack_line_meshline_point(gen)  # the same numbers as meshline_contact, without its arrays
+    if line is not None:
+        s_m = bracket_root(lambda v: float(np.hypot(*line(v)) - r1t), (float(s[i]), float(s[i + 1])), xtol=1e-14)
+    else:
+        s_m = bracket_root(
+            lambda v: float(np.hypot(*gen.meshline_contact(v)[1][0]) - r1t), (float(s[i]), float(s[i + 1])), xtol=1e-14
+        )
     if s_m is None:  # the sample before lies within 1e-9 r1t outside the tip circle: it is the root
         s_m = float(s[i] if rising else s[i + 1])
     t_c, x_c = gen.meshline_contact(s_m)[:2]

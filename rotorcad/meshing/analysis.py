@@ -17,11 +17,11 @@ import shapely
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
-from rotorcad.geometry import cross, wrap_angle
+from rotorcad.geometry import cross, row_norms, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import Defect, is_tip_corner, meshline_defects, resolution
-from rotorcad.meshing.meshline import MeshlinePiece, even_meshline_parameters, flank_roles, turn_corner
+from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
@@ -60,39 +60,10 @@ class MeshingAnalysis:
 
         A list of :class:`MeshlinePiece`; pieces with fewer than two contacts are left out.
         """
-        pair = self.rotors.pair
-        mesh = pair.mesh
-        o2 = np.array([pair.center_distance, 0.0])
         # inside both bores within 1 µm; a given profile's tip corner may lie outside its tip circle by its
         # accuracy (the rack-involute male's with 2 µm of scatter: 1 µm out, and its whole path was lost)
         corner_slack = 1e-3 + (4.0 * self.judged_accuracy if self.is_given else 0.0)
-        out = []
-        for index, piece in enumerate(self.rotors.rack):
-            slack = corner_slack if piece.kind is not PieceRole.CURVE else 1e-3
-            gen = Generated(piece.curve, mesh.rack, mesh.female)
-            s = even_meshline_parameters(gen, piece.curve.s0, piece.curve.s1, self.samples, pair.center_distance)
-            t, x, rack_pts, tan = gen.meshline_contact(s)  # the rack's points and tangents along its travel
-            inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + slack)
-            ok = np.isfinite(t) & inside & np.all(np.isfinite(x), axis=1)
-            if ok.sum() < 2:
-                continue
-            tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
-            roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, pair.center_distance)
-            out.append(
-                MeshlinePiece(
-                    piece.male_name,
-                    piece.kind,
-                    s[ok],
-                    t[ok],
-                    x[ok],
-                    tan_fixed[ok],
-                    piece.male_name,
-                    piece.female_name,
-                    roles,
-                    index,
-                )
-            )
-        return out
+        return meshline_pieces(self.rotors.rack, self.rotors.pair, self.samples, corner_slack)  # one pass over all rack pieces
 
     @property
     def meshline(self) -> np.ndarray:
@@ -244,9 +215,8 @@ class MeshingAnalysis:
         best, lo, hi = pts[i], piece.s[max(local - 1, 0)], piece.s[min(local + 1, len(piece.s) - 1)]
         for _ in range(2):
             s = np.linspace(lo, hi, 201)
-            c = gen.contact(s)
-            x = c.meshline
-            ok = c.in_contact & np.all(np.isfinite(x), axis=1)
+            t, x = gen.meshline_contact(s)[:2]  # the meshline alone (the full conjugate's numbers)
+            ok = np.isfinite(t) & np.all(np.isfinite(x), axis=1)
             ok &= (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
             if not ok.any():
                 break
@@ -366,7 +336,7 @@ class MeshingAnalysis:
     def contact_line_length(self) -> float:
         """Length of the polyline :attr:`contact_line`, mm."""
         line = self.contact_line
-        return float(np.linalg.norm(np.diff(line, axis=0), axis=1).sum())
+        return float(row_norms(np.diff(line, axis=0)).sum())  # np.linalg.norm(..., axis=1), the same numbers
 
     # ---- areas and displacement ------------------------------------------------------------
     @cached_property

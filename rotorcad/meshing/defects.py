@@ -171,6 +171,17 @@ def _median(values: np.ndarray) -> float:
     return float((part[k - 1] + part[k]) / 2)
 
 
+def _median_below(values: np.ndarray, bound: float) -> bool:
+    """``_median(values) < bound``, the same answer, the median only where a count cannot tell.
+
+    Fewer than n // 2 values below the bound put both middle values (one for an odd n) at or
+    above it, and so their mean: the median is not below. Else the median decides.
+    """
+    if int(np.count_nonzero(values < bound)) < len(values) // 2:
+        return False
+    return bool(_median(values) < bound)
+
+
 def robust_zeros(
     f: np.ndarray,
     band: np.ndarray,
@@ -246,7 +257,9 @@ def _persistent(
     than that to a stretch is where the stretch ends; one nearer than that to a reversal of the
     meshline (``turns``, arc lengths) is the reversal.
     """
-    at = np.interp([c[0] for c in crossings], np.arange(len(arclen)), arclen) if crossings else np.zeros(0)
+    if not crossings:
+        return []  # nothing to keep (the usual case: no test of the stretches and turns needed)
+    at = np.interp([c[0] for c in crossings], np.arange(len(arclen)), arclen)
     near_stretch = np.zeros(len(at), dtype=bool)
     for r in turns if turns is not None else ():
         near_stretch |= np.abs(at - r) < longest
@@ -403,7 +416,7 @@ def meshline_defects(
         tau = meshline_tangents(piece, arclen, mesh_acc if given else 0.0)
         # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
         # through O1, O2 and C at once), and C itself lies on every meshline
-        judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
+        judged = None  # (n,) bool, made where a crossing needs it
         turns = reversals(pts, arclen, reach if given else 0.0)
         tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
         path_of = _tip_path(piece, pair, max(20.0 * acc, 0.1 * longest)) if given else -1
@@ -412,15 +425,18 @@ def meshline_defects(
             to_q = q - pts
             f = np.einsum("ij,ij->i", to_q, tau)  # zero: the meshline normal passes through q
             band = mesh_acc + max(tol, mesh_acc / reach) * np.hypot(*to_q.T)
-            whole = m == path_of or bool(_median(np.abs(f)) < tol * max(1.0, np.abs(to_q).max()))
+            whole = m == path_of or _median_below(np.abs(f), tol * max(1.0, np.abs(to_q).max()))
             misses.append((f, band, whole, *robust_zeros(f, band, arclen, reach, whole, turns)))
-        at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) for m in misses]
+        at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
         for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
             for i, j in stretches:
                 if kind == "jamming":
                     continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
-                ramp = _ramps(f[i : j + 1] / band[i : j + 1], arclen[i : j + 1])  # f runs through the band: no arc
-                if not whole and ramp and (given or np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale):
+                if (
+                    not whole
+                    and (given or np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale)
+                    and _ramps(f[i : j + 1] / band[i : j + 1], arclen[i : j + 1])  # f runs through the band: no arc
+                ):
                     continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once; of
                     # a given profile anywhere: its wider band holds a normal that passes q slowly or nearby
                 if given and np.hypot(*(pts[i : j + 1] - c).T).max() < on_line:
@@ -439,13 +455,15 @@ def meshline_defects(
                     )
                 )
                 spans[id(found[-1])] = pts[i : j + 1 : max(1, (j - i) // 200)]
-            others = np.concatenate([at[m] for m in range(len(tests)) if m != k])
+            others = np.concatenate([at[m] for m in range(len(tests)) if m != k]) if crossings else None
             for (x, lo, hi), s_x in zip(crossings, at[k], strict=True):
                 if np.any(np.abs(others - s_x) < reach):
                     continue  # the misses of two centres change sign together: the tangent turned over
                 if given and min(s_x, length - s_x) < reach:
                     continue  # at a given piece's end, where its smoothed tangent is least known: the hand-over
                 i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
+                if judged is None:
+                    judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
                 if not (judged[i] and judged[i + 1]):
                     continue
                 p = pts[i] + w * (pts[i + 1] - pts[i])

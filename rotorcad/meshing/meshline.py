@@ -10,12 +10,16 @@ the corner of a turn that a fit through points rounds (:func:`turn_corner`).
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from rotorcad.envelope import Generated
+from rotorcad.envelope import Generated, meshline_contacts
+from rotorcad.geometry import row_norms
 from rotorcad.roles import Flank, PieceRole
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.screw_rotors import RackPiece
 from rotorcad.spline_slopes import makima_slopes
 
 
@@ -124,18 +128,131 @@ def even_meshline_parameters(gen: Generated, s0: float, s1: float, samples: int,
     (n,) float array
         Monotonic from ``s0`` to ``s1``.
     """
+    return even_meshline_contact(gen, s0, s1, samples, scale)[0]
+
+
+def even_meshline_contact(
+    gen: Generated, s0: float, s1: float, samples: int, scale: float
+) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """Return the parameters of :func:`even_meshline_parameters` and the contact at them.
+
+    The contact is :meth:`rotorcad.envelope.Generated.meshline_contact` at the returned
+    parameters (the meshline alone, the numbers of the full conjugate), the one evaluation that
+    placed them: a caller needs no second one.
+
+    Parameters
+    ----------
+    gen, s0, s1, samples, scale
+        As for :func:`even_meshline_parameters`.
+
+    Returns
+    -------
+    s : (n,) float array
+        Monotonic from ``s0`` to ``s1``.
+    contact : tuple of (n,) and three (n, 2) float arrays
+        ``t`` (rad), ``meshline`` (mm), the rack's points (mm) and unit tangents along its travel
+        at ``s``.
+    """
     s = np.linspace(s0, s1, samples)
+    contact = gen.meshline_contact(s)
     for _ in range(2):
-        x = gen.contact(s).meshline
-        step = np.hypot(*np.diff(x, axis=0).T)
-        step = np.where(np.isfinite(step), step, 0.0)
-        length = float(step.sum())
-        if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
-            return s
-        measure = np.concatenate([[0.0], np.cumsum(step + 0.25 * length / (len(s) - 1))])
-        n = int(np.clip(np.ceil(2000.0 * length / scale), samples, 8 * samples))
-        s = np.interp(np.linspace(0.0, measure[-1], n), measure, s)
-    return s
+        spread = _spread_along_meshline(s, _meshline_steps(contact[1]), samples, scale)
+        if spread is None:
+            break
+        s = spread
+        contact = gen.meshline_contact(s)
+    return s, contact
+
+
+def _meshline_steps(x: np.ndarray) -> np.ndarray:
+    """Lengths of the steps between meshline points ((n, 2), mm), 0 where not finite: (n - 1,) float, mm."""
+    step = np.hypot(*np.diff(x, axis=0).T)
+    return np.where(np.isfinite(step), step, 0.0)
+
+
+def _spread_along_meshline(s: np.ndarray, step: np.ndarray, samples: int, scale: float) -> np.ndarray | None:
+    """Parameters that spread a piece's contacts evenly along its meshline, or None where they are even.
+
+    One round of :func:`even_meshline_parameters`: ``s`` the parameters, ``step`` the steps
+    between their meshline points (:func:`_meshline_steps`, mm), ``samples`` and ``scale`` (mm)
+    as there.
+    """
+    length = float(step.sum())
+    if length <= 0 or step.max() <= UNEVEN * length / (len(s) - 1):
+        return None
+    measure = np.concatenate([[0.0], np.cumsum(step + 0.25 * length / (len(s) - 1))])
+    n = int(np.clip(np.ceil(2000.0 * length / scale), samples, 8 * samples))
+    return np.interp(np.linspace(0.0, measure[-1], n), measure, s)
+
+
+def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int, corner_slack: float = 1e-3) -> list[MeshlinePiece]:
+    """Return the meshline of a rack-generated pair, piece by piece: one pass over all the rack's pieces.
+
+    The contacts of every rack piece inside both bores (within 1 µm), ``samples`` evenly over each
+    piece's parameter, or resampled along the meshline where that is uneven (the rounds of
+    :func:`even_meshline_contact`); the contacts of each round are solved for all its pieces at
+    once (:func:`rotorcad.envelope.meshline_contacts`) and the points' lobe parts read off the
+    rack at once (:func:`flank_roles`). Pieces with fewer than two contacts are left out.
+
+    Parameters
+    ----------
+    rack : list of RackPiece
+        The rack chain (:attr:`rotorcad.screw_rotors.ScrewRotors.rack`).
+    pair : RotorPair
+        The pair (its mesh, radii and centre distance; mm).
+    samples : int
+        Samples of an even piece.
+    corner_slack : float, mm
+        How far outside the bores a contact of a corner's path (a piece that is not a curve) still
+        counts: 1 µm, or more for a profile given by points, whose tip corner may lie outside its
+        tip circle by its accuracy.
+
+    Returns
+    -------
+    list of MeshlinePiece
+    """
+    if not rack:
+        return []
+    mesh = pair.mesh
+    a = pair.center_distance
+    gens = [Generated(piece.curve, mesh.rack, mesh.female) for piece in rack]
+    params = [np.linspace(piece.curve.s0, piece.curve.s1, samples) for piece in rack]
+    contacts = meshline_contacts(gens, params)
+    todo = list(range(len(gens)))
+    # the first round's steps of all pieces at once (a piece's are those between its own points)
+    ends = np.cumsum([0] + [len(p) for p in params]).tolist()
+    steps = _meshline_steps(np.concatenate([c[1] for c in contacts]))
+    first = [steps[i : j - 1] for i, j in itertools.pairwise(ends)]
+    for round_ in range(2):  # the rounds of even_meshline_contact, for the uneven pieces together
+        spread = {
+            i: _spread_along_meshline(params[i], first[i] if round_ == 0 else _meshline_steps(contacts[i][1]), samples, a)
+            for i in todo
+        }
+        todo = [i for i, new in spread.items() if new is not None]
+        if not todo:
+            break
+        for i in todo:
+            params[i] = spread[i]
+        for i, contact in zip(todo, meshline_contacts([gens[i] for i in todo], [params[i] for i in todo]), strict=True):
+            contacts[i] = contact
+    s = np.concatenate(params)
+    t, x, rack_pts, tan = (np.concatenate([c[k] for c in contacts]) for k in range(4))
+    o2 = np.array([a, 0.0])
+    slack = np.repeat([corner_slack if piece.kind is not PieceRole.CURVE else 1e-3 for piece in rack], [len(p) for p in params])
+    inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + slack)
+    ok = np.isfinite(t) & inside & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
+    tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
+    roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, a)
+    s, t, x, tan_fixed = s[ok], t[ok], x[ok], tan_fixed[ok]
+    ends = np.cumsum([0] + [len(p) for p in params]).tolist()
+    kept = [0, *np.cumsum(np.add.reduceat(ok, ends[:-1])).tolist()]  # contacts kept per piece (each has samples)
+    out = []
+    for index, (piece, (i, j)) in enumerate(zip(rack, itertools.pairwise(kept), strict=True)):
+        if j - i < 2:
+            continue
+        names = (piece.male_name, piece.kind, s[i:j], t[i:j], x[i:j], tan_fixed[i:j])
+        out.append(MeshlinePiece(*names, piece.male_name, piece.female_name, roles[i:j], index))
+    return out
 
 
 SHARP_TURN = np.pi / 4
@@ -278,4 +395,4 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
                 pass  # too few distinct samples for a smoothing cubic: the interpolating one below
     tau = np.empty_like(pts)
     tau[order] = makima_slopes(piece.s[order], pts[order])
-    return tau / np.linalg.norm(tau, axis=1, keepdims=True)
+    return tau / row_norms(tau)[:, None]
