@@ -147,13 +147,13 @@ def test_iso_1328_tolerances_against_values_worked_by_hand():
     # ISO 1328-1:2013 eqs. 5 to 9, class 5, m_n = 2 mm, d = 40 mm:
     # f_pT = 0.001*40 + 0.4*2 + 5 = 5.84 -> 6.0 (5 to 10 µm: to 0.5 µm)
     # F_pT = 0.002*40 + 0.55*sqrt(40) + 0.7*2 + 12 = 16.958 -> 17 (above 10 µm: whole µm)
-    # f_HaT = 0.4*2 + 4 = 4.8 -> 4.8 (below 5 µm: to 0.1 µm; eq. 7 has no term in d)
-    # f_faT = 0.55*2 + 5 = 6.1 -> 6.0; F_aT = sqrt(4.8^2 + 6.1^2) = 7.762 -> 8.0
+    # f_HaT = 0.4*2 + 0.001*40 + 4 = 4.84 -> 4.8 (below 5 µm: to 0.1 µm)
+    # f_faT = 0.55*2 + 5 = 6.1 -> 6.0; F_aT = sqrt(4.84^2 + 6.1^2) = 7.787 -> 8.0
     t = flank_tolerances(5, 2.0, 40.0)
     assert (t.single_pitch, t.cumulative_pitch, t.profile_slope, t.profile_form, t.total_profile) == pytest.approx(
         (6.0e-3, 17e-3, 4.8e-3, 6.0e-3, 8.0e-3)
     )
-    # class 7 is class 5 times sqrt(2)^2 = 2: f_faT 12.2 -> 12, f_HaT 9.6 -> 9.5, F_aT 15.52 -> 16,
+    # class 7 is class 5 times sqrt(2)^2 = 2: f_faT 12.2 -> 12, f_HaT 9.68 -> 9.5, F_aT 15.57 -> 16,
     # f_pT 11.68 -> 12, F_pT 33.92 -> 34
     t = flank_tolerances(7, 2.0, 40.0)
     assert (t.single_pitch, t.cumulative_pitch, t.profile_slope, t.profile_form, t.total_profile) == pytest.approx(
@@ -166,8 +166,8 @@ def test_the_class_is_judged_from_the_worst_flank(spur):
     _gear, nominal, _, roll = spur
     pts = teeth_points(Z, M, ALPHA, [0, 1], roll, alpha_actual=ALPHA + 0.15 * DEG)
     summary = inspect_gear(pts, nominal, tolerance_class=5).summary()
-    # f_Halpha ~ -19 µm against f_HaT of class 5 for m = 4: 0.4*4 + 4 = 5.6 -> 5.5 µm
+    # f_Halpha ~ -19 µm against f_HaT of class 5 for m = 4, d = 80: 0.4*4 + 0.08 + 4 = 5.68 -> 5.5 µm
     assert summary["tolerances"]["profile_slope_tolerance"] == pytest.approx(5.5e-3)
     assert summary["within_tolerance"]["profile_slope_deviation"] is False
-    # the finest class it meets: 5.6 * sqrt(2)^(A - 5) >= 19 first for A = 9 (22.4 -> 22 µm)
+    # the finest class it meets: 5.68 * sqrt(2)^(A - 5) >= 19 first for A = 9 (22.72 -> 23 µm)
     assert summary["classes"]["profile_slope_deviation"] == 9

@@ -116,7 +116,7 @@ def flank_tolerances(tolerance_class: int, module: float, diameter: float) -> Fl
     d, m = diameter, module
     f_pt = (0.001 * d + 0.4 * m + 5.0) * step  # eq. (5)
     f_p = (0.002 * d + 0.55 * math.sqrt(d) + 0.7 * m + 12.0) * step  # eq. (6)
-    f_h = (0.4 * m + 4.0) * step  # eq. (7): no term in d
+    f_h = (0.4 * m + 0.001 * d + 4.0) * step  # eq. (7)
     f_f = (0.55 * m + 5.0) * step  # eq. (8)
     f_total = math.hypot(f_h, f_f)  # eq. (9), of the unrounded values
     in_scope = SCOPE["module"][0] <= m <= SCOPE["module"][1] and SCOPE["diameter"][0] <= d <= SCOPE["diameter"][1]
