@@ -612,3 +612,24 @@ def test_clearance_of_points_whose_contacts_jump_is_bounded(capsys):
     assert status in (0, 2), err
     assert status == 0 or len(err.strip().splitlines()) == 1
     assert time.process_time() - start < 30.0  # CPU seconds (was over 100; 2 s alone on an idle core)
+
+
+def test_internal_gear_refusals_point_the_right_way(capsys):
+    """A new user's findings: (1) the involute interference of cutting a 40-tooth ring (h_a* = 0.8)
+    with a 16-tooth shaper advised "a cutter with fewer teeth", but a 12-tooth cutter is worse and a
+    20-tooth one passes (DIN 3993: the cutter's base tangency point moves out with its tooth count);
+    (2) a centre distance the pinion cannot meet was blamed on --mate-shift, which was not typed."""
+    line = refused(
+        capsys, "--teeth", "gear", "--internal", "--teeth", "40", "--module", "2", "--addendum", "0.8", "--cutter-teeth", "16"
+    )
+    assert "more teeth" in line and "fewer teeth" not in line
+    for cutter, code in (("12", 2), ("20", 0)):
+        argv = ["gear", "--internal", "--teeth", "40", "--module", "2", "--addendum", "0.8", "--cutter-teeth", cutter, "--json"]
+        assert run(capsys, *argv)[0] == code, cutter
+    line = refused(
+        capsys,
+        "--center-distance",
+        *("gear", "--internal", "--teeth", "60", "--module", "2", "--addendum", "0.8", "--cutter-teeth", "20"),
+        *("--mate-teeth", "41", "--center-distance", "30"),
+    )
+    assert "--mate-shift" not in line

@@ -377,6 +377,12 @@ def build_internal(spec: GearSpec, tolerance: float) -> tuple[Any, Any]:
         x1 = spec.mate_shift
         if x1 is None:
             x1 = 0.0 if a is None else internal_mate_shift(ring, z1, a)
+            if a is not None and not -2.0 <= x1 <= 3.0:  # the pinion's shift the centre distance asks for
+                raise DesignError(
+                    "center_distance",
+                    f"one that a pinion with a shift from -2 to 3 modules meets at zero backlash (this one needs {x1:.4g})",
+                    a,
+                )
         pinion = InvoluteGear(
             teeth=z1,
             module=spec.module,

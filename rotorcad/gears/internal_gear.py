@@ -139,7 +139,7 @@ class InternalGear:
                 self.teeth,
                 "the tip circle lies inside the cutter's base tangency point on the line of action, so the "
                 "cutter cannot generate the involute down to the tip (involute interference, DIN 3993); raise the "
-                "shift or the teeth, or use a cutter with fewer teeth",
+                "shift or the teeth, or use a cutter with more teeth",
             )
         if self.trochoid_margin_cutting < 0.0:
             least = smallest_ring_teeth(self, "trochoid")
