@@ -633,3 +633,10 @@ def test_internal_gear_refusals_point_the_right_way(capsys):
         *("--mate-teeth", "41", "--center-distance", "30"),
     )
     assert "--mate-shift" not in line
+
+
+def test_inspect_refuses_a_rotor_side_for_a_gear(capsys, tmp_path):
+    """A new user's finding: `inspect --rotor female` with a gear was silently ignored (exit 0)."""
+    points = tmp_path / "teeth.csv"
+    assert run(capsys, "gear", "--teeth", "20", "--module", "2", "--csv", points, "--quiet")[0] == 0
+    refused(capsys, "--rotor", "inspect", "--teeth", "20", "--module", "2", "--points", points, "--rotor", "female")

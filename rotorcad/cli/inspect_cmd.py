@@ -42,7 +42,7 @@ radius) is no point of the rotor."""
 )
 @click.option("--layer", help="Layer of the points in DXF files (default: their only layer).")
 @click.option(
-    "--rotor", "body", type=click.Choice(["male", "female"]), default="male", show_default=True, help="Rotor of a pair design."
+    "--rotor", "body", type=click.Choice(["male", "female"]), help="Rotor of a pair design (default: male); not for a gear."
 )
 @click.option(
     "--class",
@@ -74,6 +74,7 @@ def inspect(design: Path | None, **opts: Any) -> None:
     if rotors is not None:
         if opts["tolerance_class"] is not None:
             raise InputError("--class is for gears (ISO 1328-1); a rotor is judged by its normal deviation only.")
+        opts["body"] = opts["body"] or "male"
         rotor = _inspect_rotor(rotors, opts["body"], points)
         result = {"body": opts["body"], **rotor.summary()}
         if opts["plot"] is not None:
@@ -82,6 +83,8 @@ def inspect(design: Path | None, **opts: Any) -> None:
             case = f"{opts['body']} rotor against its outline: {rotor.points_given} points"
             out.add_figure(opts["plot"], lambda: rotor_chart(rotor, case), "--plot")
     else:
+        if opts["body"] is not None:
+            raise InputError(f"--rotor is for a screw-rotor pair design ([pair]); a gear has no {opts['body']} rotor.")
         gear, result = _inspect_gear(design, data, opts, points)
         if opts["plot"] is not None:
             from rotorcad.inspection.charts import profile_chart
