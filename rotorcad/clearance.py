@@ -248,7 +248,9 @@ class MeshingClearance:
         corner = self._near_corner(rack)
         # a sharp male corner below its tip that the fit smoothed over (the crossing of an undercut
         # flank's two generated parts): the male's points stall there as at a corner's fan
-        for a, b, _ in stalls(rack, measured=True):  # and what is generated within the corner's reach of it
+        # (a turn of 3 deg is enough here: a slow generation taken for a corner only moves the female
+        # facing it from the contact zone to the gaps, measured there by the closest approach)
+        for a, b, _ in stalls(rack, measured=True, min_turn=np.radians(3.0)):  # and within the corner's reach
             at = rack.profile[a:b]
             near = distance_to_polyline(rack.profile, at) if len(at) > 1 else np.hypot(*(rack.profile - at[0]).T)
             corner |= near <= self.corner_reach

@@ -40,9 +40,10 @@ STALL_LENGTH = 0.25
 a corner where two generated parts of the flank cross at 10 deg holds its stall over 0.4-0.9 mm of the
 rack (the 5/6 arc-flank male of tests/independent_pairs.py, from 300 to 2000 points a lobe), a
 point-generated flank's single slow point a few hundredths of a millimetre."""
-STALL_TURN = np.radians(3.0)
+STALL_TURN = np.radians(8.0)
 """rad: the smallest turn of the rotor's profile across a stall for it to be a sharp corner (the 5/6
-arc-flank male's crossing turns by 10 deg)."""
+arc-flank male's crossing turns by 10 deg, read 12-14 deg across its stall; the rack-involute 5/6
+female's sealing flank, a slow but smooth generation, 6.4 deg from its own points)."""
 TIP_MARGIN = 0.05
 """Share of the rack depth below the rotor's tip (above its root) within which a stall is the rotor's tip
 corner (its root fillet, whose curvature a measured rack gives no better), not an undercut."""
@@ -207,7 +208,7 @@ def _profile_turn(profile: np.ndarray, a: int, b: int) -> float:
     return float(abs(np.arctan2(u[0] * v[1] - u[1] * v[0], u @ v)))
 
 
-def stalls(rack: DerivedRack, measured: bool = False) -> list[tuple[int, int, bool]]:
+def stalls(rack: DerivedRack, measured: bool = False, min_turn: float = STALL_TURN) -> list[tuple[int, int, bool]]:
     """Find where a rotor's generation stalls or turns back: its undercut, or a sharp corner below its tip.
 
     Runs of rack points at least :data:`STALL_LENGTH` long along which the generation factor
@@ -216,7 +217,7 @@ def stalls(rack: DerivedRack, measured: bool = False) -> list[tuple[int, int, bo
     the fan of a sharp corner the profile was given with (a designed point-generating corner,
     whose path the rack carries). A run counts when the envelope turns back in it (f < 0), or, for
     a profile given by points (``measured``, whose fit smooths a sharp corner over the point
-    spacing), when the profile turns by :data:`STALL_TURN` across it: a sharp corner below the tip
+    spacing), when the profile turns by ``min_turn`` (rad, :data:`STALL_TURN`) across it: a sharp corner below the tip
     (a design's slowly generated small rounding, the N rack female's tip, stalls too).
 
     Parameters
@@ -225,6 +226,8 @@ def stalls(rack: DerivedRack, measured: bool = False) -> list[tuple[int, int, bo
         A rotor's rack with its ``profile`` points.
     measured : bool
         Whether the profile was given by points.
+    min_turn : float, rad
+        Smallest turn of the profile across a stall of a measured profile.
 
     Returns
     -------
@@ -245,7 +248,7 @@ def stalls(rack: DerivedRack, measured: bool = False) -> list[tuple[int, int, bo
         if arc[b - 1] - arc[a] < STALL_LENGTH:
             continue
         back = bool(np.nanmin(f[a:b]) < 0)
-        if back or (measured and _profile_turn(rack.profile, a, b) >= STALL_TURN):
+        if back or (measured and _profile_turn(rack.profile, a, b) >= min_turn):
             out.append((int(a), int(b), back))
     return out
 
