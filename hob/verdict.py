@@ -28,6 +28,7 @@ import numpy as np
 import shapely
 
 from hob.rack import DerivedRack
+from rotorcad.inverse_rack import stalls
 from rotorcad.roles import PieceRole
 
 FOLD_TOLERANCE = 5e-4  # mm: folds and zigzags of a measured rack below this are not loops
@@ -200,6 +201,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
     if 0 < root_r < lim.min_root_radius:
         i = int(np.argmin(kappa))
         reasons.append(f"the hob root radius is {root_r:.4f} mm {at(i)}, below the minimum {lim.min_root_radius:g} mm.")
+    reasons += undercut_reasons(rack, measured=accuracy > 0)
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
         reasons.append(
@@ -207,6 +209,29 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
             f"{lim.min_tip_thickness:g} mm."
         )
     return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness)
+
+
+def undercut_reasons(rack: DerivedRack, measured: bool = False) -> list[str]:
+    """Return the undercut of a rotor by its rack, one sentence per stretch (none for a gear's rack).
+
+    The stretches of :func:`rotorcad.inverse_rack.stalls`: the rotor's envelope turns back there
+    (its flank undercut by its rack), or, for a profile given by points (``measured``), its points
+    stand still across a sharp corner below its tip (two generated parts of its flank cross: a
+    rotor that was undercut when it was cut).
+    """
+    if rack.side is None or rack.profile is None:
+        return []
+    radius = np.hypot(*rack.profile.T)
+    out = []
+    for a, b, back in stalls(rack, measured):
+        r = radius[a:b]
+        how = "its envelope turns back there" if back else "its points stand still there (a sharp corner)"
+        out.append(
+            f"the {rack.side.value} is undercut at r = {r.min():.2f}-{r.max():.2f} mm, {radius.max() - r.max():.2f} mm below "
+            f"its tip: {how} while the rack runs from x = {rack.points[a, 0]:.3f} to {rack.points[b - 1, 0]:.3f} mm, so two "
+            "generated parts of its flank cross and a hob makes only their outer envelope."
+        )
+    return out
 
 
 def _tip_thickness(pts: np.ndarray, period: float, fold: float = FOLD_TOLERANCE) -> float:

@@ -47,7 +47,9 @@ from rotorcad.inverse_rack import (
     DerivedRack,
     contact_of_rack_points,
     rotor_rack,
+    stalls,
 )
+from rotorcad.measured.pairs import CONFIDENCE, max_factor
 from rotorcad.roles import Side
 from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
@@ -98,13 +100,17 @@ def points_quality(points: Array) -> tuple[float, float]:
     return scatter(p), float(np.median(np.hypot(*np.diff(p, axis=0).T)))
 
 
-def estimated_accuracy(sigma: float, spacing: float) -> float:
-    """Return the estimated accuracy of the contact-zone clearance from the points' scatter and spacing.
+def estimated_accuracy(sigma: float, spacing: float, count: float = 1.0) -> float:
+    """Return the stated accuracy of the contact-zone clearance from the points' scatter and spacing.
 
-    The bound measured on independent pairs cut by brute force (``benchmarks/bench_clearance_accuracy.py``,
-    README): 1 µm for exact points (fits and racks' sampling), plus 2.5 sigma (the smoothing fits
-    of both rotors and the alignment), plus 0.004 h^2 / mm (a cubic through points h apart misses
-    the outline's curvature jumps, where a rounding meets a flank, by about h^2 dk / 8).
+    A bound on the largest error of the normal clearance over the contact zone, which holds with
+    95 % confidence (:data:`CONFIDENCE`): 1 µm for exact points (the fits' and the racks'
+    sampling), plus sqrt(2) k sigma for the scatter (the female's and the male's fitted outlines
+    each off by at most the scatter's own standard deviation sigma, independently; k from
+    :func:`max_factor` for the ``count`` independent points the contact zone is measured by), plus
+    0.004 h^2 / mm (a cubic through points h apart misses the outline's curvature jumps, where a
+    rounding meets a flank, by about h^2 dk / 8). Measured on independent pairs cut by brute force
+    (``benchmarks/bench_clearance_accuracy.py``, README).
 
     Parameters
     ----------
@@ -112,13 +118,16 @@ def estimated_accuracy(sigma: float, spacing: float) -> float:
         The larger scatter of the two rotors' points (0 for exact curves).
     spacing : float, mm
         The larger point spacing of the two rotors (0 for exact curves).
+    count : float
+        Number of measured points along the contact zone (its length over the spacing).
 
     Returns
     -------
     float, mm
         The stated accuracy.
     """
-    return float(ACCURACY_FLOOR + 2.5 * sigma + 0.004 * spacing**2)
+    scatter = np.sqrt(2.0) * max_factor(count) * sigma if sigma > 0 else 0.0
+    return float(ACCURACY_FLOOR + scatter + 0.004 * spacing**2)
 
 
 def _running_mean(values: Array, arc: Array, width: float) -> Array:
@@ -228,11 +237,24 @@ class MeshingClearance:
 
     @cached_property
     def _transverse_compared(self) -> tuple[Array, Array, Array]:
-        """The male transverse rack over three periods: points (3m, 2), mm, unit tangents and corner flags (3m,)."""
+        """The male transverse rack over three periods: points (3m, 2), mm, unit tangents and corner flags (3m,).
+
+        A corner flag marks a sharp male corner's path (:meth:`_near_corner`) and a stall of the male's
+        generation below its tip (:func:`rotorcad.inverse_rack.stalls`).
+        """
         rack = self.male_rack
         shift = np.array([self.pair.rack_period, 0.0])
         pts = np.vstack([rack.points - shift, rack.points, rack.points + shift])
-        return pts, np.vstack([rack.tangents] * 3), np.tile(self._near_corner(rack), 3)
+        corner = self._near_corner(rack)
+        # a sharp male corner below its tip that the fit smoothed over (the crossing of an undercut
+        # flank's two generated parts): the male's points stall there as at a corner's fan
+        # (a turn of 3 deg is enough here: a slow generation taken for a corner only moves the female
+        # facing it from the contact zone to the gaps, measured there by the closest approach)
+        for a, b, _ in stalls(rack, measured=True, min_turn=np.radians(3.0)):  # and within the corner's reach
+            at = rack.profile[a:b]
+            near = distance_to_polyline(rack.profile, at) if len(at) > 1 else np.hypot(*(rack.profile - at[0]).T)
+            corner |= near <= self.corner_reach
+        return pts, np.vstack([rack.tangents] * 3), np.tile(corner, 3)
 
     @property
     def corner_reach(self) -> float:
@@ -512,8 +534,18 @@ class MeshingClearance:
 
     @property
     def accuracy(self) -> float:
-        """The stated accuracy of the contact-zone clearance, mm (:func:`estimated_accuracy`)."""
-        return estimated_accuracy(self.scatter, self.spacing)
+        """The stated accuracy of the contact-zone clearance, mm (:func:`estimated_accuracy`).
+
+        A bound on the largest error over the contact zone with 95 % confidence, for as many
+        independent points as the contact zone's length on the female rack over the point spacing.
+        """
+        if self.scatter <= 0 or self.spacing <= 0:
+            return estimated_accuracy(self.scatter, self.spacing)
+        pts = self.female_rack.points
+        on = self.contact_zone
+        step = np.hypot(*np.diff(pts, axis=0).T)
+        length = float(step[on[:-1] & on[1:]].sum())
+        return estimated_accuracy(self.scatter, self.spacing, max(length / self.spacing, 1.0))
 
     def _refuse_a_lead_past_the_contact_zone(self) -> None:
         """Refuse a lead so long that the contact zone of the bores falls outside the rotor length.
@@ -720,11 +752,13 @@ class MeshingClearance:
 
 __all__ = [
     "ACCURACY_FLOOR",
+    "CONFIDENCE",
     "CONTACT_SIDES",
     "ClearanceZone",
     "MeshingClearance",
     "ThermalState",
     "estimated_accuracy",
+    "max_factor",
     "normal_clearance",
     "normal_crossing",
     "points_quality",

@@ -31,6 +31,22 @@ from rotorcad.roots import bracket_root
 
 MEASURED_MIN_TURN = np.radians(0.5)  # rad: the smallest corner between measured pieces
 MEASURED_JOIN_GAP = 0.02  # mm: measured pieces' fits (2 µm scatter) leave their ends this far apart at a corner
+GENERATION_BASE = 0.1  # mm: half the arc length over which the curvature of the generation factor is taken
+STALL_FACTOR = 0.2
+"""Generation factor (:func:`generation_factor`) below which the rotor's generated point stands nearly
+still while the rack point moves: a sharp corner of the rotor (or, below 0, its envelope turning back)."""
+STALL_LENGTH = 0.25
+"""mm: the shortest run of the rack along which a rotor's point stalls for an undercut below its tip:
+a corner where two generated parts of the flank cross at 10 deg holds its stall over 0.4-0.9 mm of the
+rack (the 5/6 arc-flank male of tests/independent_pairs.py, from 300 to 2000 points a lobe), a
+point-generated flank's single slow point a few hundredths of a millimetre."""
+STALL_TURN = np.radians(8.0)
+"""rad: the smallest turn of the rotor's profile across a stall for it to be a sharp corner (the 5/6
+arc-flank male's crossing turns by 10 deg, read 12-14 deg across its stall; the rack-involute 5/6
+female's sealing flank, a slow but smooth generation, 6.4 deg from its own points)."""
+TIP_MARGIN = 0.05
+"""Share of the rack depth below the rotor's tip (above its root) within which a stall is the rotor's tip
+corner (its root fillet, whose curvature a measured rack gives no better), not an undercut."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,6 +149,108 @@ class DerivedRack:
     def normal_period(self) -> float:
         """Period of the normal rack, mm: the transverse period times cos(beta)."""
         return self.period * np.cos(self.helix_angle)
+
+
+def generation_factor(rack: DerivedRack) -> np.ndarray:
+    """Return the generation factor f = ds_rotor / ds_rack of every rack point, (n,) float.
+
+    In the rotor's transverse rack frame (y > 0 away from its centre, x along the pitch line), a rack
+    point at height y with unit tangent t and curvature kappa (dpsi/ds, the tangent's turn per arc
+    length) touches the rotor when its normal passes the pitch point, u = x - y n_x / n_y; the rotor
+    rolls about that point at 1 / r_w rad per mm of travel, so the generated point moves along the
+    common tangent at
+
+        f = 1 + y / (r_w t_x^2) + y^2 kappa / (r_w t_x^3)
+
+    mm per mm of the rack (envelope condition, Litvin, *Gear Geometry and Applied Theory*, sec. 6.3 and
+    10.4: a straight flank of pressure angle alpha has t_x = sin(alpha) and f = 0 at y = -r_w sin^2(alpha),
+    the classical undercut limit). f < 0: the envelope turns back (undercut: the rotor keeps only the
+    outer branch); f near 0 over a stretch of the rack: the rotor's point stands still there, a sharp
+    corner. f is independent of the direction of travel. The curvature is the tangent's turn over
+    :data:`GENERATION_BASE` either side (exact tangents, not differences of points). NaN where the
+    rack runs within 3 deg of perpendicular to the pitch line (|t_x| < 0.05).
+    """
+    pts, tan = rack.points.copy(), rack.tangents.copy()
+    if rack.contract_frame and rack.side is Side.FEMALE:  # back to the rotor's own rack frame
+        pts[:, 1] *= -1.0
+        tan[:, 1] *= -1.0
+    psi = np.unwrap(np.arctan2(tan[:, 1], tan[:, 0]))
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    # the window stays within the point's piece (pieces meet at corners, where the tangent jumps)
+    idx = rack.piece_index
+    first = np.searchsorted(idx, idx, side="left") if np.all(np.diff(idx) >= 0) else np.zeros(len(idx), dtype=int)
+    last = np.searchsorted(idx, idx, side="right") - 1 if np.all(np.diff(idx) >= 0) else np.full(len(idx), len(idx) - 1)
+    hi = np.minimum(np.searchsorted(arc, arc + GENERATION_BASE), last)
+    lo = np.maximum(np.searchsorted(arc, arc - GENERATION_BASE, side="right") - 1, first)
+    kappa = (psi[hi] - psi[lo]) / np.maximum(arc[hi] - arc[lo], 1e-12)
+    tx, y, rw = tan[:, 0], pts[:, 1], rack.pitch_radius
+    steep = np.abs(tx) < 0.05
+    tx = np.where(steep, 1.0, tx)
+    f = 1.0 + y / (rw * tx**2) + y**2 * kappa / (rw * tx**3)
+    return np.where(steep, np.nan, f)
+
+
+def _profile_turn(profile: np.ndarray, a: int, b: int) -> float:
+    """Angle (rad) between the profile's chords just before point ``a`` and just after point ``b - 1``.
+
+    The chords span the stall's own length of profile either side, so that the turn of a sharp
+    corner smoothed by a fit over the stall is measured whole; 0 where a side has no points.
+    """
+    span = max(float(np.hypot(*(profile[b - 1] - profile[a]))), 1e-3)
+    d = np.hypot(*(profile - profile[a]).T)
+    before = np.flatnonzero((np.arange(len(profile)) < a) & (d >= span))
+    d = np.hypot(*(profile - profile[b - 1]).T)
+    after = np.flatnonzero((np.arange(len(profile)) >= b) & (d >= span))
+    if not len(before) or not len(after):
+        return 0.0
+    u = profile[a] - profile[before[-1]]
+    v = profile[after[0]] - profile[b - 1]
+    return float(abs(np.arctan2(u[0] * v[1] - u[1] * v[0], u @ v)))
+
+
+def stalls(rack: DerivedRack, measured: bool = False, min_turn: float = STALL_TURN) -> list[tuple[int, int, bool]]:
+    """Find where a rotor's generation stalls or turns back: its undercut, or a sharp corner below its tip.
+
+    Runs of rack points at least :data:`STALL_LENGTH` long along which the generation factor
+    (:func:`generation_factor`) stays below :data:`STALL_FACTOR`, where the rotor's generated point
+    lies below its tip and above its root by more than :data:`TIP_MARGIN` of the rack depth, not on
+    the fan of a sharp corner the profile was given with (a designed point-generating corner,
+    whose path the rack carries). A run counts when the envelope turns back in it (f < 0), or, for
+    a profile given by points (``measured``, whose fit smooths a sharp corner over the point
+    spacing), when the profile turns by ``min_turn`` (rad, :data:`STALL_TURN`) across it: a sharp corner below the tip
+    (a design's slowly generated small rounding, the N rack female's tip, stalls too).
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        A rotor's rack with its ``profile`` points.
+    measured : bool
+        Whether the profile was given by points.
+    min_turn : float, rad
+        Smallest turn of the profile across a stall of a measured profile.
+
+    Returns
+    -------
+    list of (int, int, bool)
+        Each run's first and one-past-last point index, and whether the envelope turns back there.
+    """
+    if rack.profile is None or len(rack.points) < 3:
+        return []
+    f = generation_factor(rack)
+    radius = np.hypot(*rack.profile.T)
+    depth = float(np.ptp(rack.points[:, 1]))
+    between = (radius < radius.max() - TIP_MARGIN * depth) & (radius > radius.min() + TIP_MARGIN * depth)
+    low = np.isfinite(f) & (f < STALL_FACTOR) & between & ~rack.corner_path
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(rack.points, axis=0).T))])
+    edges = np.diff(np.concatenate([[0], low.astype(int), [0]]))
+    out = []
+    for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True):
+        if arc[b - 1] - arc[a] < STALL_LENGTH:
+            continue
+        back = bool(np.nanmin(f[a:b]) < 0)
+        if back or (measured and _profile_turn(rack.profile, a, b) >= min_turn):
+            out.append((int(a), int(b), back))
+    return out
 
 
 def contact_of_rack_points(pitch_radius: float, points: np.ndarray, tangents: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

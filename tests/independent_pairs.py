@@ -484,3 +484,15 @@ def distance_to_line(points: np.ndarray, line: shapely.LineString | shapely.Line
     out = np.full(len(points), np.inf)
     np.minimum.at(out, which, dist)
     return out
+
+
+def true_gap(
+    pair: Pair, female_ring: np.ndarray, male_ring: np.ndarray, female_points: np.ndarray, positions: int = 1500
+) -> np.ndarray:
+    """Brute force: the true transverse gap at fitted female points (n, 2) (own frame): each point
+    moved onto the true female outline (its nearest point on ``female_ring``, shapely), then its
+    closest approach to the true male outline ``male_ring`` over the mesh (``closest_approach``).
+    What a clearance read from scattered points of these rotors should give there."""
+    ring = shapely.LinearRing(female_ring)
+    on = shapely.line_interpolate_point(ring, shapely.line_locate_point(ring, shapely.points(female_points)))
+    return closest_approach(pair, shapely.get_coordinates(on), male_ring, positions=positions)

@@ -22,6 +22,42 @@ from rotorcad.roles import PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
+CONFIDENCE = 0.95
+"""Confidence with which a stated accuracy bounds the largest error over the points it is stated for."""
+
+
+def max_factor(count: float, confidence: float = CONFIDENCE) -> float:
+    """Return k such that the largest |e| of ``count`` independent N(0, 1) errors stays below k with ``confidence``.
+
+    P(max |e_i| > k) <= count P(|e| > k) = 2 count (1 - Phi(k)) (Boole's inequality), so
+    k = Phi^-1(1 - (1 - confidence) / (2 count)): 1.96 for one error, 3.42 for 80, 3.76 for 300, 4.21 for 2000
+    at 95 %. Not 2: the largest of hundreds of Gaussian errors lies beyond 2 sigma almost surely.
+
+    Parameters
+    ----------
+    count : float
+        Number of independent errors (at least 1).
+    confidence : float
+        Probability that the bound holds.
+
+    Returns
+    -------
+    float
+    """
+    from scipy.stats import norm
+
+    return float(norm.isf((1.0 - confidence) / (2.0 * max(count, 1.0))))
+
+
+def scatter_bound(sigma: float, count: float) -> float:
+    """Return the bound (mm) on the largest deviation of a fitted outline caused by the points' scatter.
+
+    k sigma (:func:`max_factor`, 95 % confidence) for ``count`` points of scatter ``sigma`` (mm): the
+    smoothing fit's own error at a point has a standard deviation of at most the scatter's, and the
+    largest over the lobe is that of ``count`` of them. 0 for exact points.
+    """
+    return max_factor(count) * sigma if sigma > 0 else 0.0
+
 
 def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float = 0.0) -> ScrewRotors:
     """Generate a pair from points of one rack period.
@@ -247,7 +283,9 @@ def pair_from_rotor_points(
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     outline = read_outline(points, teeth, label or f"{side.value} points")  # the one reading of the points
     pieces = lobe_pieces(pair, outline, rotor, smoothing)
-    acc = max(outline.accuracy, fit_residual(pair, outline, pieces, rotor))
+    # the accuracy bounds the largest deviation over the lobe's points, not one point's (2 sigma)
+    per_lobe = (len(outline.whole) if outline.whole is not None else 0) / max(teeth, 1)
+    acc = max(outline.accuracy, fit_residual(pair, outline, pieces, rotor), scatter_bound(outline.sigma, per_lobe))
     rotor = side.value
     if side is Side.MALE:
         body, mate_body, centre, teeth = mesh.male, mesh.female, np.zeros(2), pair.male_teeth
@@ -292,4 +330,4 @@ def pair_from_rotor_points(
     return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share, accuracy=acc, tangent_accuracy=turn)
 
 
-__all__ = ["pair_from_rack_points", "pair_from_rotor_points"]
+__all__ = ["CONFIDENCE", "max_factor", "pair_from_rack_points", "pair_from_rotor_points", "scatter_bound"]
