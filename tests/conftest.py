@@ -1,4 +1,4 @@
-"""What every test file shares: how many processes run the suite.
+"""What every test file shares: how many processes run the suite, one BLAS thread in each.
 
 The suite runs on pytest-xdist's worker processes (``-n auto`` in pyproject's pytest options, with
 ``--dist worksteal``: each worker starts on its own contiguous half of the tests, so that a module's
@@ -7,6 +7,14 @@ decided here: one worker per CPU this process may use, none (the tests in this p
 and none in a pytest started by a test inside a worker (tests/test_fuzz_cli.py runs one), which
 would otherwise start workers of its own. ``PYTEST_XDIST_AUTO_NUM_WORKERS`` overrides it, as in
 pytest-xdist; ``-n 0`` runs everything in this process.
+
+Each test process (and each command a test starts, which inherits the environment) does its linear
+algebra on one thread: the workers already take every CPU, and OpenBLAS's threads waiting for work
+on top of them cost more than they save on this suite's small systems (the coupling film test
+tests/test_coupling.py::test_ehl_capacity_rises_with_viscosity_and_speed took 32 s of CPU with
+OpenBLAS's default threads on a loaded 2-core machine, 0.5 s with one). The benchmarks set the same
+variables. Set before numpy is imported (this file is read before any test module); a variable the
+user set is kept.
 """
 
 from __future__ import annotations
@@ -14,6 +22,9 @@ from __future__ import annotations
 import os
 
 import pytest
+
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
 
 
 def _usable_cpus() -> int:
