@@ -107,7 +107,7 @@ def command_targets(out: Path) -> dict[str, tuple[list[str], float]]:
     }
 
 
-SUITE = "the test suite: python -m pytest -q (wall time; goal on an idle 2-core machine)"
+SUITE = "the test suite: python -m pytest -q (wall time)"
 SUITE_GOAL = 180.0  # s of wall time
 
 
