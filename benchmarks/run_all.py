@@ -7,10 +7,15 @@ commands, ``time.process_time`` for the library calls), so that other processes 
 disturb them less than wall time. Printed per target: the median figure, the median baseline of
 the same rounds, their ratio and the goal (a ratio for the commands, milliseconds for the calls).
 
-Run by hand: ``python benchmarks/run_all.py [--rounds N] [--scripts] [--only TEXT]``; ``--scripts``
-also runs every other ``benchmarks/bench_*.py`` and says whether each ran to its end; ``--only``
-measures the targets whose name contains TEXT (e.g. ``--only "rotor outlines"``). The byte code of the
-package is compiled first (``compileall``) so that a first run does not pay for it.
+The test suite's target is wall time on an idle machine (3 min on 2 cores, the suite spread over a
+pytest-xdist worker per CPU), so ``--suite`` runs ``python -m pytest -q`` once, in the last round
+(its CPU time too, and the load before and after it, since wall time is what a loaded machine
+stretches).
+
+Run by hand: ``python benchmarks/run_all.py [--rounds N] [--scripts] [--suite] [--only TEXT]``;
+``--scripts`` also runs every other ``benchmarks/bench_*.py`` and says whether each ran to its end;
+``--only`` measures the targets whose name contains TEXT (e.g. ``--only "rotor outlines"``). The byte
+code of the package is compiled first (``compileall``) so that a first run does not pay for it.
 """
 
 from __future__ import annotations
@@ -102,6 +107,28 @@ def command_targets(out: Path) -> dict[str, tuple[list[str], float]]:
     }
 
 
+SUITE = "the test suite: python -m pytest -q (wall time)"
+SUITE_GOAL = 180.0  # s of wall time
+
+
+def suite_run() -> tuple[float, float, str]:
+    """Wall time (s) and CPU time (s, the workers included) of the whole test suite, and its closing line."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    cmd = [PY, "-m", "pytest", "-q", "-p", "no:cacheprovider"]
+    proc = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    lines = proc.stdout.strip().splitlines()
+    return wall, cpu, (lines[-1] if lines else f"no output (exit {proc.returncode})")
+
+
+def load() -> str:
+    """The machine's load averages (1, 5, 15 min) and its CPU count."""
+    return f"{', '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores"
+
+
 def run_scripts() -> None:
     """Run every other benchmark script and say whether it ran to its end."""
     for script in sorted((ROOT / "benchmarks").glob("bench_*.py")):
@@ -117,23 +144,28 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=5, help="interleaved rounds (medians are printed)")
     parser.add_argument("--scripts", action="store_true", help="also run every benchmarks/bench_*.py")
+    parser.add_argument("--suite", action="store_true", help="also run the whole test suite once, in the last round")
     parser.add_argument("--only", default="", help="measure only the targets whose name contains this text")
     args = parser.parse_args()
     for package in ("rotorcad", "exports", "hob"):
         compileall.compile_dir(str(ROOT / package), quiet=1)
-    print(f"machine load (1, 5, 15 min): {', '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores")
+    print(f"machine load (1, 5, 15 min): {load()}")
     baseline_cmd = [PY, "-c", "import numpy, scipy"]
     with tempfile.TemporaryDirectory() as tmp:
         commands = {k: v for k, v in command_targets(Path(tmp) / "out").items() if args.only in k}
         library = {k: v for k, v in library_targets().items() if args.only in k}
         base: list[float] = []
         figures: dict[str, list[float]] = {name: [] for name in (*commands, *library)}
-        for _ in range(args.rounds):
+        suite: tuple[float, float, str, str, str] | None = None
+        for i in range(args.rounds):
             base.append(cpu_of(baseline_cmd, ROOT))
             for name, (cmd, _) in commands.items():
                 figures[name].append(cpu_of(cmd, ROOT))
             for name, (fn, repeat, _) in library.items():
                 figures[name].append(cpu_in_process(fn, repeat))
+            if args.suite and i == args.rounds - 1:
+                at_start = load()
+                suite = (*suite_run(), at_start, load())
     b = statistics.median(base)
     print(f"baseline python -c 'import numpy, scipy': {b * 1e3:.0f} ms CPU (median of {args.rounds} rounds)")
     print(f"{'target':<75} {'measured':>10} {'baseline':>9} {'ratio':>7} {'goal':>9}  met")
@@ -146,7 +178,12 @@ def main() -> None:
             goal = library[name][2]
             met = "yes" if m * 1e3 <= goal else "NO"
             print(f"{name:<75} {m * 1e3:8.2f}ms {b * 1e3:7.0f}ms {m / b:6.3f}x {goal:7.1f}ms  {met}")
-    print(f"machine load (1, 5, 15 min): {', '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores")
+    if suite is not None:
+        wall, cpu, closing, at_start, at_end = suite
+        met = "yes" if wall <= SUITE_GOAL else "NO"
+        print(f"{SUITE:<75} {wall:9.0f}s {b * 1e3:7.0f}ms {cpu / b:6.0f}x {SUITE_GOAL:8.0f}s  {met}")
+        print(f"    {closing}; {cpu:.0f} s CPU (the ratio is CPU to the baseline); load {at_start} before, {at_end} after")
+    print(f"machine load (1, 5, 15 min): {load()}")
     if args.scripts:
         run_scripts()
 

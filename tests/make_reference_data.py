@@ -13,13 +13,19 @@ import sys
 from pathlib import Path
 
 TESTS = Path(__file__).resolve().parent
-USERS = ("test_inverse_independent.py", "test_deflection.py", "test_n_rack_cut.py")  # the files that use stored cuts
+USERS = (  # the files that use stored cuts
+    "test_inverse_independent.py",
+    "test_deflection.py",
+    "test_n_rack_cut.py",
+    "test_racks_from_points.py",
+    "test_clearance_zones.py",
+)
 
 
 def main() -> int:
     env = {**os.environ, "ROTORCAD_WRITE_REFERENCES": "1"}
     files = [str(TESTS / name) for name in USERS]
-    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:xdist", *files], cwd=TESTS.parent, env=env).returncode
+    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-n", "0", *files], cwd=TESTS.parent, env=env).returncode
 
 
 if __name__ == "__main__":

@@ -1,0 +1,47 @@
+"""What every test file shares: how many processes run the suite, one BLAS thread in each.
+
+The suite runs on pytest-xdist's worker processes (``-n auto`` in pyproject's pytest options, with
+``--dist worksteal``: each worker starts on its own contiguous half of the tests, so that a module's
+fixtures are mostly built once, and takes tests from the other's end when it runs out). ``auto`` is
+decided here: one worker per CPU this process may use, none (the tests in this process) on one CPU,
+and none in a pytest started by a test inside a worker (tests/test_fuzz_cli.py runs one), which
+would otherwise start workers of its own. ``PYTEST_XDIST_AUTO_NUM_WORKERS`` overrides it, as in
+pytest-xdist; ``-n 0`` runs everything in this process.
+
+Each test process (and each command a test starts, which inherits the environment) does its linear
+algebra on one thread: the workers already take every CPU, and OpenBLAS's threads waiting for work
+on top of them cost more than they save on this suite's small systems (the coupling film test
+tests/test_coupling.py::test_ehl_capacity_rises_with_viscosity_and_speed took 32 s of CPU with
+OpenBLAS's default threads on a loaded 2-core machine, 0.5 s with one). The benchmarks set the same
+variables. Set before numpy is imported (this file is read before any test module); a variable the
+user set is kept.
+"""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+
+def _usable_cpus() -> int:
+    """The CPUs this process may run on (its affinity, e.g. a container's limit), else all."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+@pytest.hookimpl(tryfirst=True, optionalhook=True)
+def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
+    """The number of workers for ``-n auto`` (pytest-xdist's hook; 0 runs the tests in this process)."""
+    given = os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS")
+    if given:
+        return int(given)
+    if os.environ.get("PYTEST_XDIST_WORKER"):  # a pytest run by a test inside a worker
+        return 0
+    cpus = _usable_cpus()
+    return cpus if cpus > 1 else 0
