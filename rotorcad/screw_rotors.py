@@ -127,6 +127,11 @@ class ScrewRotors:
         exact points; for scattered points the accuracy over one point spacing (a flank's end tangent
         is fitted through points that each lie within that accuracy). The blow-hole's uncertainty
         follows from it (:attr:`rotorcad.meshing.MeshingAnalysis.blow_hole_uncertainty`).
+    point_accuracy : float or None, mm
+        The accuracy of one point of the given profile (2 sigma of its scatter, or the fit's
+        residual): the meshing analysis judges the defects to it, since a defect is a local feature
+        of the meshline. ``accuracy`` is the bound on the largest error over a whole lobe (95 %
+        confidence), which the racks, the hob and the clearance state. None: ``accuracy``.
     """
 
     pair: RotorPair
@@ -136,6 +141,7 @@ class ScrewRotors:
     rack_loss: float = 0.0  # per cent of a measured lobe without a rack point (normal misses the pitch circle)
     accuracy: float = 0.0  # mm: of the given profile (0 for a design's exact curves)
     tangent_accuracy: float = 0.0  # rad: of the given profile's tangents (0 for a design or exact points)
+    point_accuracy: float | None = None  # mm: of one point of the given profile (None: ``accuracy``)
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:

@@ -285,7 +285,8 @@ def pair_from_rotor_points(
     pieces = lobe_pieces(pair, outline, rotor, smoothing)
     # the accuracy bounds the largest deviation over the lobe's points, not one point's (2 sigma)
     per_lobe = (len(outline.whole) if outline.whole is not None else 0) / max(teeth, 1)
-    acc = max(outline.accuracy, fit_residual(pair, outline, pieces, rotor), scatter_bound(outline.sigma, per_lobe))
+    point_acc = max(outline.accuracy, fit_residual(pair, outline, pieces, rotor))  # one point's: 2 sigma
+    acc = max(point_acc, scatter_bound(outline.sigma, per_lobe))
     rotor = side.value
     if side is Side.MALE:
         body, mate_body, centre, teeth = mesh.male, mesh.female, np.zeros(2), pair.male_teeth
@@ -326,8 +327,16 @@ def pair_from_rotor_points(
         )
     # a flank's tangent through scattered points each within acc is known to acc over one point spacing
     spacing = float(np.median(np.hypot(*np.diff(outline.whole, axis=0).T))) if outline.whole is not None else 0.0
-    turn = acc / spacing if outline.sigma > 0 and spacing > 0 else 0.0
-    return ScrewRotors(pair, tuple(rack), f"{rotor}-points", rack_loss=lost_share, accuracy=acc, tangent_accuracy=turn)
+    turn = point_acc / spacing if outline.sigma > 0 and spacing > 0 else 0.0
+    return ScrewRotors(
+        pair,
+        tuple(rack),
+        f"{rotor}-points",
+        rack_loss=lost_share,
+        accuracy=acc,
+        tangent_accuracy=turn,
+        point_accuracy=point_acc,
+    )
 
 
 __all__ = ["CONFIDENCE", "max_factor", "pair_from_rack_points", "pair_from_rotor_points", "scatter_bound"]

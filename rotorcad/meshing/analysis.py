@@ -85,13 +85,15 @@ class MeshingAnalysis:
     def judged_accuracy(self) -> float:
         """The accuracy (mm) to which the defects are judged (``defect_accuracy`` of the summary).
 
-        :attr:`accuracy` when given, else that of the profile the pair was generated from
-        (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), at least the design's chord tolerance
+        :attr:`accuracy` when given, else that of one point of the profile the pair was generated
+        from (:attr:`rotorcad.screw_rotors.ScrewRotors.point_accuracy`), at least the design's chord tolerance
         :data:`rotorcad.profile.DEFAULT_TOLERANCE`.
         """
         if self.accuracy is not None:
             return float(self.accuracy)
-        return max(float(getattr(self.rotors, "accuracy", 0.0)), DEFAULT_TOLERANCE)
+        point = getattr(self.rotors, "point_accuracy", None)
+        given = float(getattr(self.rotors, "accuracy", 0.0) if point is None else point)
+        return max(given, DEFAULT_TOLERANCE)
 
     @cached_property
     def defects(self) -> list[Defect]:
