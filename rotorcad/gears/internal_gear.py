@@ -24,7 +24,8 @@ import numpy as np
 from rotorcad.curves import Arc, Curve, Mapped
 from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError, GeometryError
-from rotorcad.gears.formulas import inv, transverse_pressure_angle
+from rotorcad.gears.dimensions import ReferenceDimensions
+from rotorcad.gears.formulas import inv
 from rotorcad.gears.internal_formulas import (
     internal_center_distance,
     internal_working_pressure_angle,
@@ -46,7 +47,7 @@ SHIFT_RANGE = (-1.0, 2.0)
 
 
 @dataclass(frozen=True, eq=False)
-class InternalGear:
+class InternalGear(ReferenceDimensions):
     """An internal involute gear cut by a pinion-type shaper cutter.
 
     Parameters
@@ -175,26 +176,6 @@ class InternalGear:
     def helix_angle(self) -> float:
         """Helix angle beta (the cutter's), rad."""
         return self.cutter.helix_angle
-
-    @property
-    def transverse_module(self) -> float:
-        """m_t = m / cos(beta), mm."""
-        return self.module / math.cos(self.helix_angle)
-
-    @property
-    def transverse_pressure_angle(self) -> float:
-        """alpha_t = atan(tan(alpha_n) / cos(beta)), rad (ISO 21771 eq. 2.5)."""
-        return transverse_pressure_angle(self.pressure_angle, self.helix_angle)
-
-    @property
-    def pitch_radius(self) -> float:
-        """Reference radius r2 = z2 m_t / 2, mm."""
-        return self.teeth * self.transverse_module / 2.0
-
-    @property
-    def base_radius(self) -> float:
-        """r_b2 = r2 cos(alpha_t), mm."""
-        return self.pitch_radius * math.cos(self.transverse_pressure_angle)
 
     @property
     def base_pitch(self) -> float:

@@ -26,7 +26,8 @@ import numpy as np
 from rotorcad.curves import Curve
 from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
-from rotorcad.gears.formulas import tool_tip_radius_limit, transverse_pressure_angle
+from rotorcad.gears.dimensions import ReferenceDimensions
+from rotorcad.gears.formulas import tool_tip_radius_limit
 from rotorcad.gears.sampling import sample_tooth
 from rotorcad.gears.tool import RackTool, ToolCut, ToolPiece
 from rotorcad.gears.tooth import HalfTooth, ToothPiece, half_tooth, severed, severed_allowed, tooth_pieces
@@ -46,7 +47,7 @@ tooth, coarser loses the tooth's shape."""
 
 
 @dataclass(frozen=True, eq=False)
-class InvoluteGear:
+class InvoluteGear(ReferenceDimensions):
     """An external involute gear cut by the basic-rack tool.
 
     Lengths in mm, angles in radians. The defaults are the ISO 53 profile A basic rack.
@@ -129,26 +130,6 @@ class InvoluteGear:
             raise DesignError("shift", severed_allowed(self), self.shift, why)
 
     # ----- closed-form dimensions (ISO 21771) ---------------------------------------------
-    @property
-    def transverse_module(self) -> float:
-        """Transverse module m_t = m / cos(beta), mm (ISO 21771)."""
-        return self.module / np.cos(self.helix_angle)
-
-    @property
-    def transverse_pressure_angle(self) -> float:
-        """Transverse pressure angle alpha_t = atan(tan(alpha_n) / cos(beta)), rad (ISO 21771 eq. 2.5)."""
-        return transverse_pressure_angle(self.pressure_angle, self.helix_angle)
-
-    @property
-    def pitch_radius(self) -> float:
-        """Pitch (reference) radius r = z m_t / 2, mm (ISO 21771)."""
-        return self.teeth * self.transverse_module / 2.0
-
-    @property
-    def base_radius(self) -> float:
-        """Base radius r_b = r cos(alpha_t), mm (ISO 21771)."""
-        return self.pitch_radius * np.cos(self.transverse_pressure_angle)
-
     @property
     def nominal_tip_radius(self) -> float:
         """r_a = r + (h_aP* + x) m (no tip shortening)."""

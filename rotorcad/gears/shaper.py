@@ -20,7 +20,8 @@ import numpy as np
 
 from rotorcad.curves import Arc, Curve, Involute
 from rotorcad.errors import DesignError
-from rotorcad.gears.formulas import inv, transverse_pressure_angle
+from rotorcad.gears.dimensions import ReferenceDimensions
+from rotorcad.gears.formulas import inv
 from rotorcad.gears.involute_gear import DEG, MAX_TEETH, MODULE_RANGE
 
 CUTTER_TEETH_RANGE = (5, MAX_TEETH)
@@ -28,7 +29,7 @@ CUTTER_TEETH_RANGE = (5, MAX_TEETH)
 
 
 @dataclass(frozen=True, eq=False)
-class ShaperCutter:
+class ShaperCutter(ReferenceDimensions):
     """A pinion-type shaper cutter (Schneidrad) with a rounded tooth tip.
 
     Parameters
@@ -109,26 +110,6 @@ class ShaperCutter:
         return math.floor(lo * 1000.0) / 1000.0
 
     # ----- closed forms (ISO 21771) ---------------------------------------------------------
-    @property
-    def transverse_module(self) -> float:
-        """m_t = m / cos(beta), mm."""
-        return self.module / math.cos(self.helix_angle)
-
-    @property
-    def transverse_pressure_angle(self) -> float:
-        """alpha_t = atan(tan(alpha_n) / cos(beta)), rad (ISO 21771 eq. 2.5)."""
-        return transverse_pressure_angle(self.pressure_angle, self.helix_angle)
-
-    @property
-    def pitch_radius(self) -> float:
-        """r0 = z0 m_t / 2, mm."""
-        return self.teeth * self.transverse_module / 2.0
-
-    @property
-    def base_radius(self) -> float:
-        """r_b0 = r0 cos(alpha_t), mm."""
-        return self.pitch_radius * math.cos(self.transverse_pressure_angle)
-
     @property
     def tip_radius(self) -> float:
         """r_a0 = r0 + (h_a0* + x0) m, mm."""
