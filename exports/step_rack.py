@@ -101,24 +101,11 @@ def write_rack_step(path: Path, rack: Any, face_width: float, body: str = "rack"
     OSError
         When OpenCASCADE cannot write the file.
     """
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.Interface import Interface_Static
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-    from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
+    from exports.step_exact import faces, write_shape
 
     shape = rack_shape(rack, face_width)
-    count = 0
-    explorer = TopExp_Explorer(shape, TopAbs_FACE)
-    while explorer.More():
-        count += 1
-        explorer.Next()
-    writer = STEPControl_Writer()
-    Interface_Static.SetCVal_s("write.step.schema", "AP214")
-    Interface_Static.SetCVal_s("write.step.product.name", body)
-    writer.Transfer(shape, STEPControl_AsIs)
-    if writer.Write(str(path)) != IFSelect_RetDone:
-        raise OSError(f"OpenCASCADE could not write {path}")
+    write_shape(path, shape, body)
+    count = len(faces(shape))
     return {"faces": float(count)}
 
 

@@ -80,23 +80,8 @@ def write_ring_step(
     dict of float
         ``faces`` and ``deviation`` (mm, the bore's faces from the helicoid).
     """
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
-    from OCP.gp import gp_Trsf, gp_Vec
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.Interface import Interface_Static
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-
-    from exports.step_exact import faces
+    from exports.step_exact import faces, write_shape
 
     shape, dev = ring_solid(sections, lead, length, outer_radius, tolerance, exact)
-    if tuple(offset) != (0.0, 0.0):
-        tr = gp_Trsf()
-        tr.SetTranslation(gp_Vec(float(offset[0]), float(offset[1]), 0.0))
-        shape = BRepBuilderAPI_Transform(shape, tr, True).Shape()
-    writer = STEPControl_Writer()
-    Interface_Static.SetCVal_s("write.step.schema", "AP214")
-    Interface_Static.SetCVal_s("write.step.product.name", body)
-    writer.Transfer(shape, STEPControl_AsIs)
-    if writer.Write(str(path)) != IFSelect_RetDone:
-        raise OSError(f"OpenCASCADE could not write {path}")
+    write_shape(path, shape, body, tuple(offset))
     return {"faces": float(len(faces(shape))), "deviation": dev}
