@@ -640,3 +640,14 @@ def test_inspect_refuses_a_rotor_side_for_a_gear(capsys, tmp_path):
     points = tmp_path / "teeth.csv"
     assert run(capsys, "gear", "--teeth", "20", "--module", "2", "--csv", points, "--quiet")[0] == 0
     refused(capsys, "--rotor", "inspect", "--teeth", "20", "--module", "2", "--points", points, "--rotor", "female")
+
+
+def test_hob_says_it_does_not_make_a_tip_chamfer(capsys):
+    """A new user's finding: `hob samples/gear_part.toml` wrote the rack of the same gear without its
+    0.3 mm tip chamfer, byte for byte, and said nothing; a hob of the ISO 53 basic rack cannot break
+    the tip corners (a semi-topping hob does). Now a note says so; the plain gear has none."""
+    status, out, _ = run(capsys, "hob", SAMPLES / "gear_part.toml", "--json")
+    notes = json.loads(out)["notes"]
+    assert status == 0 and len(notes) == 1 and "tip_chamfer" in notes[0] and "0.3 mm" in notes[0]
+    status, out, _ = run(capsys, "hob", SAMPLES / "gear_pair.toml", "--json")
+    assert status == 0 and json.loads(out)["notes"] == []

@@ -77,12 +77,15 @@ def hob(design: Path | None, **opts: Any) -> None:
         scale = rotors.pair.male_addendum
         body: Any = rotors
     else:
-        g, _ = build_gear(merge_gear_params(design, opts, data), 1e-4)
+        spec = merge_gear_params(design, opts, data)
+        g, _ = build_gear(spec, 1e-4)
+        notes = _not_hobbed(spec)
         racks = {"gear": gear_rack(g)}
         deviation = _basic_rack_deviation(g, racks["gear"])
         scale = g.module
         body = g
     verdicts, result = judge_racks(racks, deviation, limits, getattr(body, "accuracy", 0.0))
+    result["notes"] = notes if rotors is None else []
     worms = worms_of(racks, body_hands(body), opts, rack_datum(body))
     first = next(iter(racks))
     normal = racks[first].normal()
@@ -102,8 +105,25 @@ def hob(design: Path | None, **opts: Any) -> None:
         print_table("hobbability", {k: v for k, v in result.items() if k not in ("reasons", "racks", "worms")})
         for name, figures in result.get("worms", {}).items():
             print_table(f"basic worm of the hob for the {name}", figures)
-        for r in result["reasons"]:
+        for r in result["reasons"] + result["notes"]:
             click.echo(f"  - {r}")
+
+
+def _not_hobbed(spec: dict[str, Any]) -> list[str]:
+    """Say what of a gear design's part features the hob of its basic rack does not make.
+
+    A new user's finding: the rack, and so the hob, of a gear with a tip chamfer was the plain
+    gear's, without a word.
+    """
+    notes = []
+    for key, what in (("tip_chamfer", "tip chamfer"), ("tip_rounding", "tip rounding")):
+        value = spec.get(key)
+        if value:
+            notes.append(
+                f"the {what} ([gear] {key} = {value:g} mm) is not made by this hob (the basic rack's): "
+                "a semi-topping hob or a separate chamfering operation makes it"
+            )
+    return notes
 
 
 def judge_racks(
