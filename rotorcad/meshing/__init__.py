@@ -8,7 +8,8 @@ The package, one job a module (every name importable from ``rotorcad.meshing`` a
 :mod:`~rotorcad.meshing.meshline` (the meshline's pieces, their sampling, tangents, turns and
 corners), :mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's
 accuracy), :mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per
-flank), :mod:`~rotorcad.meshing.angles` (the one angle convention) and
+flank), :mod:`~rotorcad.meshing.angles` (the one angle convention), :mod:`~rotorcad.meshing.apex` (the
+blow-hole's apex of a given profile from the closed-form meshline of a fitted arc) and
 :mod:`~rotorcad.meshing.analysis` (:class:`MeshingAnalysis`: the verdict and the summary).
 
 The meshline is the set of contact points in the fixed transverse frame: for a rack-generated
@@ -96,6 +97,7 @@ to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear)
 
 from rotorcad.meshing.analysis import MeshingAnalysis
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
+from rotorcad.meshing.apex import arc_at, circle_meshline_apex, fit_circle
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import (
     MESHLINE_GAIN,
@@ -129,7 +131,10 @@ __all__ = [
     "FlankReport",
     "MeshingAnalysis",
     "MeshlinePiece",
+    "arc_at",
+    "circle_meshline_apex",
     "even_meshline_parameters",
+    "fit_circle",
     "flank_reports",
     "flank_roles",
     "is_tip_corner",

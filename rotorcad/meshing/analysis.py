@@ -17,10 +17,11 @@ import shapely
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
-from rotorcad.geometry import cross, row_norms, wrap_angle
+from rotorcad.geometry import cross, rotate, row_norms, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
+from rotorcad.meshing.apex import arc_at, circle_meshline_apex
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
-from rotorcad.meshing.defects import Defect, is_tip_corner, meshline_defects, resolution
+from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
@@ -215,6 +216,7 @@ class MeshingAnalysis:
         gen = Generated(self.rotors.rack[piece.rack_index].curve, pair.mesh.rack, pair.mesh.female)
         o2 = np.array([pair.center_distance, 0.0])
         best, lo, hi = pts[i], piece.s[max(local - 1, 0)], piece.s[min(local + 1, len(piece.s) - 1)]
+        best_t = float(piece.t[local])  # the male rotation at ``best``
         for _ in range(2):
             s = np.linspace(lo, hi, 201)
             t, x = gen.meshline_contact(s)[:2]  # the meshline alone (the full conjugate's numbers)
@@ -225,7 +227,7 @@ class MeshingAnalysis:
             d = np.where(ok, np.hypot(*(x - k).T), np.inf)
             m = int(np.argmin(d))
             if d[m] < np.hypot(*(best - k)):
-                best = x[m]
+                best, best_t = x[m], float(t[m])
             lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
         if self.is_given:
             arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece.points, axis=0).T))])
@@ -234,7 +236,32 @@ class MeshingAnalysis:
             corner = turn_corner(piece.points, arclen, local, reach, tips, self.judged_accuracy)
             if corner is not None:
                 return corner
+            on_arc = self._arc_apex(best, best_t, tips)
+            if on_arc is not None:
+                return on_arc
         return best
+
+    def _arc_apex(self, end: np.ndarray, t: float, bores: tuple[tuple[np.ndarray, float], ...]) -> np.ndarray | None:
+        """Return the apex from the closed-form meshline of a male arc (:mod:`rotorcad.meshing.apex`), or None.
+
+        ``end`` (mm, fixed frame) is the meshline end found from the samples, ``t`` (rad) the male
+        rotation at it. Where the male point that touches there lies on a circular arc of the fitted
+        profile (all its samples within :attr:`judged_accuracy` of one circle over at least four
+        resolutions, :func:`rotorcad.meshing.defects.resolution`), the apex is that circle's
+        meshline point nearest the cusp, within the meshline's resolution of ``end``.
+        """
+        pair = self.rotors.pair
+        acc = self.judged_accuracy
+        lobe = np.vstack([seg.resampled(DEFAULT_TOLERANCE).points for seg in self.rotors.male_lobe().segments])
+        point = rotate(end, -t)  # the male point touching at ``end`` (fixed = R(t) male)
+        if shapely.distance(shapely.Point(point), shapely.LineString(lobe)) > MESHLINE_GAIN * acc:
+            return None  # the contact is not on this lobe (a corner path's point off the fitted profile)
+        arc = arc_at(lobe, point, acc, 4.0 * resolution(acc, pair.center_distance))
+        if arc is None:
+            return None
+        c = np.array([pair.male_pitch_radius, 0.0])
+        reach = resolution(MESHLINE_GAIN * acc, pair.center_distance)
+        return circle_meshline_apex(arc[0], arc[1], c, self.cusp, end, reach, bores)
 
     @property
     def meshline_closed(self) -> bool:
