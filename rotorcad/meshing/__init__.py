@@ -97,7 +97,7 @@ to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear)
 
 from rotorcad.meshing.analysis import MeshingAnalysis
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
-from rotorcad.meshing.apex import arc_at, circle_meshline_apex, fit_circle
+from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex, fit_circle
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import (
     MESHLINE_GAIN,
@@ -132,6 +132,7 @@ __all__ = [
     "MeshingAnalysis",
     "MeshlinePiece",
     "arc_at",
+    "circle_bounds",
     "circle_meshline_apex",
     "even_meshline_parameters",
     "fit_circle",

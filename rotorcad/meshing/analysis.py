@@ -9,6 +9,7 @@ prints. The criteria are stated in :mod:`rotorcad.meshing`.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -19,7 +20,7 @@ from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, rotate, row_norms, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
-from rotorcad.meshing.apex import arc_at, circle_meshline_apex
+from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner
@@ -202,7 +203,18 @@ class MeshingAnalysis:
         The nearest sample, then the nearest contact between its neighbours along the rack piece
         (two rounds of 200 contacts): where the meshline turns sharply inside one piece (a rack
         fitted through points carries the design's piece ends inside it), the turn's point lies
-        between samples.
+        between samples. Of a given profile whose touching point there lies on a circular arc, the
+        point of that arc's closed-form meshline (:meth:`_arc_apex`).
+        """
+        return self._apex[0]
+
+    @cached_property
+    def _apex(self) -> tuple[np.ndarray, tuple | None]:
+        """The apex (:attr:`meshline_end`) and, where it comes from a male arc, the arguments of its search.
+
+        The second item is None or (centre, radius, window, near, reach, bores) of
+        :func:`rotorcad.meshing.apex.circle_meshline_apex` with the arc's fitted window
+        (:func:`rotorcad.meshing.apex.arc_at`), for :attr:`blow_hole_uncertainty`.
         """
         pts = self.meshline
         k = self.cusp
@@ -211,7 +223,7 @@ class MeshingAnalysis:
         j = int(np.searchsorted(sizes, i, side="right"))
         piece, local = self.pieces[j], i - (int(sizes[j - 1]) if j else 0)
         if piece.rack_index < 0:
-            return pts[i]
+            return pts[i], None
         pair = self.rotors.pair
         gen = Generated(self.rotors.rack[piece.rack_index].curve, pair.mesh.rack, pair.mesh.female)
         o2 = np.array([pair.center_distance, 0.0])
@@ -235,20 +247,21 @@ class MeshingAnalysis:
             reach = resolution(self.judged_accuracy, pair.center_distance)
             corner = turn_corner(piece.points, arclen, local, reach, tips, self.judged_accuracy)
             if corner is not None:
-                return corner
+                return corner, None
             on_arc = self._arc_apex(best, best_t, tips)
             if on_arc is not None:
                 return on_arc
-        return best
+        return best, None
 
-    def _arc_apex(self, end: np.ndarray, t: float, bores: tuple[tuple[np.ndarray, float], ...]) -> np.ndarray | None:
+    def _arc_apex(self, end: np.ndarray, t: float, bores: tuple) -> tuple[np.ndarray, tuple] | None:
         """Return the apex from the closed-form meshline of a male arc (:mod:`rotorcad.meshing.apex`), or None.
 
         ``end`` (mm, fixed frame) is the meshline end found from the samples, ``t`` (rad) the male
         rotation at it. Where the male point that touches there lies on a circular arc of the fitted
         profile (all its samples within :attr:`judged_accuracy` of one circle over at least four
         resolutions, :func:`rotorcad.meshing.defects.resolution`), the apex is that circle's
-        meshline point nearest the cusp, within the meshline's resolution of ``end``.
+        meshline point nearest the cusp, within the meshline's resolution of ``end``; with it the
+        search's arguments (:attr:`_apex`).
         """
         pair = self.rotors.pair
         acc = self.judged_accuracy
@@ -261,7 +274,8 @@ class MeshingAnalysis:
             return None
         c = np.array([pair.male_pitch_radius, 0.0])
         reach = resolution(MESHLINE_GAIN * acc, pair.center_distance)
-        return circle_meshline_apex(arc[0], arc[1], c, self.cusp, end, reach, bores)
+        apex = circle_meshline_apex(arc[0], arc[1], c, self.cusp, end, reach, bores)
+        return None if apex is None else (apex, (arc[0], arc[1], arc[2], end, reach, bores))
 
     @property
     def meshline_closed(self) -> bool:
@@ -313,14 +327,32 @@ class MeshingAnalysis:
         spacing); the uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
         with the apex moved by ds either way. 0 for a design or exact points.
 
+        Where the apex comes from a male arc's closed-form meshline (:meth:`_arc_apex`) no tangent
+        enters: the arc's centre and radius move by at most :func:`rotorcad.meshing.apex.circle_bounds`
+        when its samples may each be :attr:`judged_accuracy` off, and the uncertainty is the largest
+        change of the area over the eight corners of that box.
+
         Returns
         -------
         float, mm²
         """
         delta = float(getattr(self.rotors, "tangent_accuracy", 0.0))
+        if delta <= 0.0:
+            return 0.0  # a design or exact points: no scatter to propagate
+        arc = self._apex[1]
+        if arc is not None:
+            centre, radius, window, near, reach, bores = arc
+            bound = circle_bounds(window, centre, radius, self.judged_accuracy)
+            c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
+            moved = []
+            for sign in itertools.product((-1.0, 1.0), repeat=3):
+                step = np.asarray(sign) * bound
+                apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, self.cusp, near, reach, bores)
+                moved.append(np.inf if apex is None else self._blow_hole_at(apex).area)
+            return float(max(abs(m - self.blow_hole_area) for m in moved))
         e = self.meshline_end
         r = float(np.hypot(*e))
-        if delta <= 0.0 or r < 1e-9:
+        if r < 1e-9:
             return 0.0
         c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
         v = c - e

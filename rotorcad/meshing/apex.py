@@ -60,7 +60,7 @@ def fit_circle(points: np.ndarray) -> tuple[np.ndarray, float]:
     return centre, radius
 
 
-def arc_at(lobe: np.ndarray, point: np.ndarray, accuracy: float, shortest: float) -> tuple[np.ndarray, float] | None:
+def arc_at(lobe: np.ndarray, point: np.ndarray, accuracy: float, shortest: float) -> tuple[np.ndarray, float, np.ndarray] | None:
     """Return the circle that the profile follows beside ``point``, or None.
 
     The profile's samples are taken evenly by arc length; windows that start 1/8 of ``shortest``
@@ -82,8 +82,8 @@ def arc_at(lobe: np.ndarray, point: np.ndarray, accuracy: float, shortest: float
 
     Returns
     -------
-    ((2,) float array, float) or None
-        Centre and radius (mm).
+    ((2,) float array, float, (m, 2) float array) or None
+        Centre and radius (mm), and the window's samples it was fitted to (mm).
     """
     arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(lobe, axis=0).T))])
     keep = np.concatenate([[True], np.diff(arclen) > 0])
@@ -106,10 +106,38 @@ def arc_at(lobe: np.ndarray, point: np.ndarray, accuracy: float, shortest: float
             if np.abs(np.hypot(*(pts[m] - centre).T) - radius).max() > accuracy:
                 break
             if hi - lo >= max(shortest, longest):
-                best, longest = (centre, radius), hi - lo
+                best, longest = (centre, radius, pts[m]), hi - lo
             if hi >= even[-1] if side > 0 else lo <= even[0]:
                 break  # the window reached the lobe's end
     return best
+
+
+def circle_bounds(window: np.ndarray, centre: np.ndarray, radius: float, accuracy: float) -> np.ndarray:
+    """Return how far a circle fitted to ``window`` may move when each sample may move by ``accuracy``.
+
+    The least-squares fit (:func:`fit_circle`) is, to first order, p = p0 + J^+ e for a change e of
+    the samples' distances from the circle (J the (m, 3) Jacobian of the distances by centre and
+    radius): with every |e_i| <= ``accuracy`` the parameter j moves by at most
+    ``accuracy`` sum_i |J^+_ji| (the worst case, not a standard deviation).
+
+    Parameters
+    ----------
+    window : (m, 2) float array, mm
+        The samples the circle was fitted to.
+    centre : (2,) float array, mm
+    radius : float, mm
+    accuracy : float, mm
+        How far each sample may lie from the true profile.
+
+    Returns
+    -------
+    (3,) float array, mm
+        Bounds on the moves of the centre's x, y and of the radius.
+    """
+    d = window - centre
+    dist = np.hypot(*d.T)
+    jac = np.column_stack([-d / dist[:, None], -np.ones(len(window))])
+    return accuracy * np.abs(np.linalg.pinv(jac)).sum(axis=1)
 
 
 def circle_meshline_apex(
@@ -192,4 +220,4 @@ def circle_meshline_apex(
     return x[0] if allowed(x)[0] and np.hypot(*(x[0] - cusp)) <= d[b, i] else cand[b, i]
 
 
-__all__ = ["arc_at", "circle_meshline_apex", "fit_circle"]
+__all__ = ["arc_at", "circle_bounds", "circle_meshline_apex", "fit_circle"]
