@@ -274,7 +274,7 @@ class MeshingAnalysis:
             return None
         c = np.array([pair.male_pitch_radius, 0.0])
         reach = resolution(MESHLINE_GAIN * acc, pair.center_distance)
-        apex = circle_meshline_apex(arc[0], arc[1], c, self.cusp, end, reach, bores)
+        apex = circle_meshline_apex(arc[0], arc[1], c, self.cusp, end, reach, bores, arc[2])
         return None if apex is None else (apex, (arc[0], arc[1], arc[2], end, reach, bores))
 
     @property
@@ -347,7 +347,7 @@ class MeshingAnalysis:
             moved = []
             for sign in itertools.product((-1.0, 1.0), repeat=3):
                 step = np.asarray(sign) * bound
-                apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, self.cusp, near, reach, bores)
+                apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, self.cusp, near, reach, bores, window)
                 moved.append(np.inf if apex is None else self._blow_hole_at(apex).area)
             return float(max(abs(m - self.blow_hole_area) for m in moved))
         e = self.meshline_end

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.geometry import rotate
+from rotorcad.geometry import rotate, wrap_angle
 
 
 def fit_circle(points: np.ndarray) -> tuple[np.ndarray, float]:
@@ -148,13 +148,15 @@ def circle_meshline_apex(
     near: np.ndarray,
     reach: float,
     bores: tuple[tuple[np.ndarray, float], ...],
+    window: np.ndarray | None = None,
 ) -> np.ndarray | None:
     """Return the point of a male circle's meshline nearest the housing cusp, near a given point.
 
     The circle (male frame, centre Q, radius rho) touches the mate where its normal passes through
     the pitch point C: X = Q_t +- rho (C - Q_t) / |C - Q_t| with Q_t = R(t) Q. Sampled by the
     direction of C - Q_t (a circle centred near the pitch circle sweeps every direction while its
-    centre passes C), both signs, inside both bores and within ``reach`` of ``near``.
+    centre passes C), both signs, inside both bores, within ``reach`` of ``near`` and, given the
+    arc's ``window``, touching with a point of the arc (not of the circle beyond it).
 
     Parameters
     ----------
@@ -172,6 +174,8 @@ def circle_meshline_apex(
         How far from ``near`` the apex may lie (the meshline's resolution).
     bores : tuple of ((2,) float array, float)
         Centres and tip radii of the two bores (mm).
+    window : (m, 2) float array, mm, optional
+        The arc's samples (male frame, in order); None: the whole circle.
 
     Returns
     -------
@@ -195,16 +199,30 @@ def circle_meshline_apex(
         about_c = pitch_point + radius * np.column_stack([np.cos(2 * theta), np.sin(2 * theta)])
         return np.stack([q_t + radius * u, q_t - radius * u, about_c if whole else np.full_like(u, np.nan)])
 
-    def allowed(x: np.ndarray) -> np.ndarray:
+    span = None
+    if window is not None:  # the arc's polar angles about its centre, from its first sample's
+        ang = np.unwrap(np.arctan2(*(window - centre).T[::-1]))
+        span = (float(ang[0]), float(ang[-1] - ang[0]))
+
+    def allowed(x: np.ndarray, turn: np.ndarray) -> np.ndarray:
         ok = np.hypot(*(x - near).T) <= reach
         for o, r in bores:
             ok &= np.hypot(*(x - o).T) <= r + 1e-9
+        if span is not None:  # the male point touching (fixed = R(t) male) lies on the arc
+            m = rotate(x, -turn) - centre
+            rel = wrap_angle(np.arctan2(m[:, 1], m[:, 0]) - span[0], 0.5 * span[1])
+            ok &= (rel >= min(0.0, span[1]) - 1e-9) & (rel <= max(0.0, span[1]) + 1e-9)
         return ok
 
+    def turns(theta: np.ndarray) -> np.ndarray:
+        """(3, n) male rotations of the contacts of :func:`contacts`."""
+        t = t0 + off * np.tan(theta)
+        return np.stack([t, t, np.full_like(t, t0)])
+
     theta = np.linspace(-np.pi / 2, np.pi / 2, 20001)[1:-1]
-    cand = contacts(theta)
+    cand, cand_t = contacts(theta), turns(theta)
     with np.errstate(invalid="ignore"):
-        d = np.stack([np.where(allowed(x), np.hypot(*(x - cusp).T), np.inf) for x in cand])
+        d = np.stack([np.where(allowed(x, t), np.hypot(*(x - cusp).T), np.inf) for x, t in zip(cand, cand_t, strict=True)])
     d = np.nan_to_num(d, nan=np.inf)
     if not np.isfinite(d).any():
         return None
@@ -217,7 +235,8 @@ def circle_meshline_apex(
 
     found = minimize_scalar(gap, bounds=(lo, hi), method="bounded", options={"xatol": 1e-14})
     x = contacts(np.array([found.x]))[b]
-    return x[0] if allowed(x)[0] and np.hypot(*(x[0] - cusp)) <= d[b, i] else cand[b, i]
+    ok = allowed(x, turns(np.array([found.x]))[b])[0]
+    return x[0] if ok and np.hypot(*(x[0] - cusp)) <= d[b, i] else cand[b, i]
 
 
 __all__ = ["arc_at", "circle_bounds", "circle_meshline_apex", "fit_circle"]
