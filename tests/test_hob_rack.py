@@ -132,3 +132,31 @@ def test_corner_on_the_pitch_circle_gives_its_cycloid_down_to_the_cusp():
     # cycloid with its cusp at (x_c, 0): x - x_c = r (phi - sin phi), -y = r (1 - cos phi)
     phi = np.arccos(1.0 + pts[:, 1] / r2)
     np.testing.assert_allclose(np.abs(pts[:, 0] - cusp[0]), r2 * (phi - np.sin(phi)), atol=1e-6)
+
+
+def test_tip_thickness_of_a_self_crossing_rack_is_bounded():
+    # A measured rack that folds back and crosses itself hundreds of times (a cosine rack of 3 695
+    # points, 2-5 um of scatter: noise steps larger than the spacing). Reference: shapely's
+    # make_valid of the rack's polygon cut by the line at 5 % of the depth (the former method, 1.2 s
+    # on 8 000 such points, 20 s on a user's 3 695-point rack); the even-odd crossings give the same
+    # width in a bounded time.
+    import time
+
+    from hob.verdict import _tip_thickness
+
+    rng = np.random.default_rng(0)
+    period = 20.0
+    for n, noise in ((3695, 2e-3), (3695, 5e-3)):
+        x = np.linspace(0.0, period, n, endpoint=False)
+        pts = np.column_stack([x, 5.0 * np.cos(2 * np.pi * x / period)]) + rng.normal(0.0, noise, (n, 2))
+        assert not shapely.LineString(pts).is_simple
+        y0, y1 = pts[:, 1].min(), pts[:, 1].max()
+        level = y0 + 0.05 * (y1 - y0)
+        chain = np.vstack([pts - [period, 0.0], pts, pts + [period, 0.0]])
+        top = y1 + (y1 - y0)
+        poly = shapely.make_valid(shapely.Polygon(np.vstack([chain, [[chain[-1, 0], top], [chain[0, 0], top]]])))
+        cut = poly.intersection(shapely.LineString([(pts[0, 0], level), (pts[0, 0] + period, level)]))
+        reference = min(g.length for g in shapely.get_parts(cut) if g.length > 5e-4)
+        start = time.process_time()
+        assert _tip_thickness(pts, period, 5e-4) == pytest.approx(reference, abs=1e-9)
+        assert time.process_time() - start < 0.1  # CPU seconds (1 ms alone)
