@@ -469,8 +469,9 @@ def test_gear_design_keys_are_named_by_their_table(capsys, tmp_path):
 @pytest.fixture(scope="module")
 def symmetric_design_outlines():
     """The srm-symmetric sample's design male and female, whole, as shapely lines (0.1 um chord)."""
-    import shapely
     import tomllib
+
+    import shapely
 
     from rotorcad.design import rotor_design
     from rotorcad.geometry import rotate
