@@ -245,8 +245,8 @@ def _tip_thickness(pts: np.ndarray, period: float, fold: float = FOLD_TOLERANCE)
     The material is the polygon of the rack (three periods) closed a depth above it; the line at
     that height crosses its edges at points whose even-odd pairs bound the material (a loop of a
     self-crossing rack is a hole, as shapely's ``make_valid`` makes it: 20 s on a 3 695-point
-    measured rack, this O(n log n)). Of the pieces within one period, those wider than ``fold``
-    count (not a fold's sliver).
+    measured rack, this O(n log n)). Of the pieces, one period's, whole whatever the rack's phase,
+    those wider than ``fold`` count (not a fold's sliver).
 
     Parameters
     ----------
@@ -271,9 +271,12 @@ def _tip_thickness(pts: np.ndarray, period: float, fold: float = FOLD_TOLERANCE)
     crosses = (a[:, 1] <= level) != (b[:, 1] <= level)  # half-open: a vertex on the line counts once
     u = (level - a[crosses, 1]) / (b[crosses, 1] - a[crosses, 1])
     x = np.sort(a[crosses, 0] + u * (b[crosses, 0] - a[crosses, 0]))
-    lo, hi = pts[0, 0], pts[0, 0] + period
-    start, end = np.maximum(x[0::2], lo), np.minimum(x[1::2], hi)  # inside between even-odd pairs, within the period
-    widths = (end - start)[end - start > fold]
+    start, end = x[0::2], x[1::2]  # inside between even-odd pairs
+    # each piece once, whole: the one starting within the middle period (a piece cut at the period's
+    # ends read half the width or less by the rack's phase: the rack-involute male's hob tooth 13.25 mm
+    # from the design, 26.52 mm from the female's points)
+    once = (start >= pts[0, 0]) & (start < pts[0, 0] + period)
+    widths = (end - start)[once & (end - start > fold)]
     return float(widths.min()) if len(widths) else 0.0
 
 
