@@ -464,3 +464,58 @@ def test_gear_design_keys_are_named_by_their_table(capsys, tmp_path):
     refused(capsys, "--shift", "gear", str(path), "--shift", "-0.6")
     path.write_text("[gear]\nteeth = 20\nmodule = 2.0\n[mate]\nteeth = 30\nshift = 9.0\n")
     refused(capsys, "[mate] shift", "gear", str(path))
+
+
+@pytest.fixture(scope="module")
+def symmetric_design_outlines():
+    """The srm-symmetric sample's design male and female, whole, as shapely lines (0.1 um chord)."""
+    import tomllib
+
+    import shapely
+
+    from rotorcad.design import rotor_design
+    from rotorcad.geometry import rotate
+    from rotorcad.rotor_build import build_pair, pair_spec
+
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "srm_symmetric_4_6.toml").read_text()), SAMPLES))
+    rotors = build_pair(spec)
+    out = {}
+    for side, teeth in (("male", 4), ("female", 6)):
+        lobe = np.vstack([seg.resampled(1e-4).points for seg in getattr(rotors, f"{side}_lobe")().segments])
+        out[side] = shapely.MultiLineString([rotate(lobe, k * 2 * np.pi / teeth) for k in range(teeth)])
+    return out
+
+
+def test_near_duplicate_points_keep_their_corners(capsys, symmetric_design_outlines):
+    """The long fuzz run's case wq7zryhc: the symmetric sample's male and female, the female with 0.5 um
+    of normal scatter and its points in pairs 0.3-3 um apart on its tip land. The chords across such a
+    pair point anywhere (0.5 um of scatter over 0.3 um), and they were read as four more sharp
+    corners (16 where there are 12): `clearance --contact driving` refused ("the racks never touch
+    there"), `--contact sealing` read -3.55 mm of interference. Reference: the design pair is
+    conjugate (Rinder Fig. 3's rack, a semicircle, generates both rotors: no clearance on the contact
+    zone), and the given points lie within d_max of the design's outlines (shapely, measured here):
+    each contact reads within d_max of 0, without interference; the female has two sharp corners a
+    lobe (where its circular flanks meet its tip circle, the pitch circle: 12)."""
+    import shapely
+
+    from rotorcad.measured.outline import corners, read_outline
+
+    data = Path(__file__).resolve().parent / "reference_data" / "fuzz"
+    male, female = (data / f"clearance_wq7zryhc_{side}.csv" for side in ("male", "female"))
+    given = np.loadtxt(female, delimiter=",", skiprows=1)
+    outline = read_outline(given, 6, "--female-points")
+    assert len(corners(outline.whole, outline.sigma)[0]) == 12
+    d_max = max(
+        float(
+            shapely.distance(shapely.points(np.loadtxt(path, delimiter=",", skiprows=1)), symmetric_design_outlines[side]).max()
+        )
+        for side, path in (("male", male), ("female", female))
+    )
+    assert d_max < 1.5e-3  # the points as the fuzz run kept them
+    pair = ["--male-teeth", "4", "--female-teeth", "6", "--center-distance", "100", "--json", "--quiet"]
+    for contact in ("driving", "sealing", "as-given"):
+        status, out, err = run(capsys, "clearance", "--male-points", male, "--female-points", female, *pair, "--contact", contact)
+        assert status == 0, (contact, err)
+        result = json.loads(out)
+        assert not result["interference"], contact
+        assert -d_max <= result["min_normal_clearance"] <= result["max_normal_clearance"] <= d_max, (contact, result)

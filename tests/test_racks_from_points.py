@@ -171,10 +171,12 @@ def test_the_verdict_and_the_flank_angle_agree_with_the_generating_rack(name, ro
     assert smallest == pytest.approx(angle[carried].min(), abs=tol)
 
 
-@pytest.mark.parametrize("form", ["exact", "dense"])
+@pytest.mark.parametrize("form", ["exact", "dense", "medium", "scatter"])
 def test_the_verdict_is_the_same_from_the_male_and_from_the_female(form):
     # Issue 22 item 3 on the 4/6 pair: the smallest flank angle from the male's points and from
-    # the female's within 0.1 deg, and the same verdict.
+    # the female's within 0.1 deg, and the same verdict, exact or with 2 um of scatter (300 points
+    # a lobe: 0.30 deg apart before, 0.05 now; the female's tip corner was taken where the chords
+    # cross, 0.5 um off where the fits beside it cross, which bent its flank's end by 0.35 deg).
     a, b = hob_view("4/6", "male", form)[3], hob_view("4/6", "female", form)[3]
     angle = {k: min(v.normal_pressure_angle_min_deg for v in d.values()) for k, d in (("m", a), ("f", b))}
     assert abs(angle["m"] - angle["f"]) < 0.1
@@ -312,3 +314,74 @@ def test_no_undercut_is_read_where_there_is_none(name):
             sides = verdicts if name == "4/6" else {"female": verdicts["female"]}
             for side, v in sides.items():
                 assert undercut_where(v.reasons) is None, (rotor, form, side, v.reasons)
+
+
+RACK_INVOLUTE_DIMS = ["--male-teeth", "5", "--female-teeth", "6", "--center-distance", "116", "--lead", "300"]
+RACK_INVOLUTE_DIMS += ["--male-tip-radius", "69.51066515617151", "--male-root-radius", "51.72727272727273"]
+RACK_INVOLUTE_DIMS += ["--female-tip-radius", "64.27272727272728", "--female-root-radius", "46.48933484382849"]
+
+
+@pytest.fixture(scope="module")
+def rack_involute(tmp_path_factory):
+    """The rack-involute sample's CSVs as `rotor` writes them, one groove of the female (tip land to
+    tip land, as a CMM measures it), one tooth of the male (root land to root land) and the design's
+    `hob` verdict (the reference: from its exact curves)."""
+    from pathlib import Path
+
+    from exports.csv_points import read_points
+
+    sample = Path(__file__).resolve().parents[1] / "samples" / "rack_involute_5_6.toml"
+    folder = tmp_path_factory.mktemp("rack_involute")
+    files = {"sample": sample, "male": folder / "male.csv", "female": folder / "female.csv"}
+    assert main(["rotor", str(sample), "--male-csv", str(files["male"]), "--female-csv", str(files["female"]), "--quiet"]) == 0
+    for name, rotor, extreme in (("groove", "female", np.max), ("tooth", "male", np.min)):
+        pts = read_points(files[rotor], rotor)
+        r = np.hypot(*pts.T)
+        land = np.flatnonzero(np.abs(r - extreme(r)) <= 1e-4)
+        k = int(np.argmax(np.diff(land)))
+        part = pts[land[k] : land[k + 1] + 1]
+        span = np.degrees(np.ptp(np.unwrap(np.arctan2(part[:, 1], part[:, 0]))))
+        assert 20 < span < (60 if rotor == "female" else 72)  # less than the lobe pitch: not one lobe
+        files[name] = folder / f"{name}.csv"
+        write_points(files[name], part)
+    return files
+
+
+def hob_json(capsys, *argv) -> dict:
+    capsys.readouterr()
+    assert main(["hob", *map(str, argv), "--json", "--quiet"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("given", ["female", "groove", "tooth"])
+def test_hob_of_the_rack_involute_points_gives_the_design_verdict(rack_involute, capsys, given):
+    # Issue 22 items 3 and 4 on a rotorcad sample: `hob --female-points` of the female CSV that `rotor`
+    # writes of the rack-involute sample read "the rack has a sharp corner (hob tip radius 0)" at the
+    # female's tip land (y = 1 mm, the female addendum): the spline fitted next to the land met the
+    # land's exact arc with a kink of 1.6 mrad. One groove of the female or one tooth of the male is
+    # enough too. Reference: the design's own verdict from its exact curves (hobbable, no reasons).
+    design = hob_json(capsys, rack_involute["sample"])
+    assert design["hobbable"] and design["reasons"] == []
+    option = "--male-points" if given == "tooth" else "--female-points"
+    result = hob_json(capsys, option, rack_involute[given], *RACK_INVOLUTE_DIMS)
+    assert result["hobbable"] == design["hobbable"] and result["reasons"] == design["reasons"], result["reasons"]
+    # and the smallest flank angle within the one-tooth reading's 0.2 deg (a rack derived from points)
+    assert result["normal_pressure_angle_min_deg"] == pytest.approx(design["normal_pressure_angle_min_deg"], abs=0.2)
+
+
+@pytest.mark.parametrize("given", ["groove", "tooth"])
+def test_clearance_of_one_groove_or_one_tooth(rack_involute, capsys, given):
+    # Issue 22 item 4: clearance takes one groove of the female or one tooth of the male with the
+    # other rotor's CSV. Reference: the design pair is conjugate (no clearance designed), so the
+    # clearance reads 0 on the contact zone within the accuracy the points state, without interference.
+    male, female = (
+        (rack_involute["tooth"], rack_involute["female"])
+        if given == "tooth"
+        else (rack_involute["male"], rack_involute["groove"])
+    )
+    capsys.readouterr()
+    argv = ["clearance", "--male-points", str(male), "--female-points", str(female), *RACK_INVOLUTE_DIMS[:6], "--json", "--quiet"]
+    assert main(argv) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert not result["interference"]
+    assert -result["accuracy"] <= result["min_normal_clearance"] <= result["max_normal_clearance"] <= result["accuracy"]

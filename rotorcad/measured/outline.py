@@ -231,16 +231,36 @@ def accuracy(whole: np.ndarray, sigma: float) -> float:
     return max(2.0 * sigma, sagitta)
 
 
+def _chord_reach(p: np.ndarray, length: float) -> tuple[np.ndarray, np.ndarray]:
+    """Return, for each edge (i, i + 1) of a closed outline, where the chords beside it start and end.
+
+    The chord before the edge runs from point ``back[i]`` to point i, the one after it from point
+    i + 1 to point ``ahead[i]`` (indices into the outline repeated three times, the edge's own
+    copy the middle one): each the fewest points (one at least) that span ``length`` of outline.
+    By length, not by a count of points: a measured outline's spacing is not even (a CMM's points
+    in pairs 0.3 µm apart at a land, among points 0.3 mm apart), and a chord across two points
+    closer than the scatter points anywhere.
+    """
+    n = len(p)
+    step = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
+    s = np.concatenate([[0.0], np.cumsum(np.tile(step, 3))])  # arc length at the points of three copies
+    i = np.arange(n) + n
+    back = np.minimum(np.searchsorted(s, s[i] - length, side="right") - 1, i - 1)
+    ahead = np.maximum(np.searchsorted(s, s[i + 1] + length, side="left"), i + 2)
+    return back, np.minimum(ahead, 3 * n - 1)
+
+
 def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[np.ndarray, np.ndarray]:
     """Find the sharp corners of a closed outline: the edges across which it turns by more than ``angle_deg``.
 
-    The turn across edge i (from point i to point i + 1) is the angle between the chord from point
-    i - k to point i and the chord from point i + 1 to point i + 1 + k, so a corner shows in full
-    whether it falls on a point or between two (a resampled or measured outline). k is chosen so
-    that the chords are 40 scatters long at least (their directions then wander by 2 deg at most,
-    however dense the points), but at most 0.1 mm. Of the edges within k of each
-    other only the one of largest turn is kept, and the corner's point is where the lines of its two
-    chords cross (on the points for an exact corner vertex, between them otherwise).
+    The turn across edge i (from point i to point i + 1) is the angle between the chord that ends
+    at point i and the chord that starts at point i + 1, so a corner shows in full whether it falls
+    on a point or between two (a resampled or measured outline). Each chord spans the fewest points
+    whose outline is 40 scatters long at least (its direction then wanders by 2 deg at most,
+    however dense or uneven the points), but at most 0.1 mm (:func:`_chord_reach`); of exact points
+    it is the one neighbouring edge. Of the edges within the chords' reach of each other only the
+    one of largest turn is kept, and the corner's point is where the lines of its two chords cross
+    (on the points for an exact corner vertex, between them otherwise).
 
     Parameters
     ----------
@@ -260,44 +280,47 @@ def corners(whole: np.ndarray, sigma: float, angle_deg: float = 30.0) -> tuple[n
     """
     p = np.asarray(whole, dtype=float)
     n = len(p)
-    h = float(np.median(np.hypot(*np.diff(p, axis=0).T)))
-    k = 1 if sigma <= 0 else int(np.clip(np.ceil(40 * sigma / h), 1, max(1, int(0.1 / h))))
-    a0, a1 = np.roll(p, k, axis=0), p  # chord before the edge
-    b0, b1 = np.roll(p, -1, axis=0), np.roll(p, -1 - k, axis=0)  # chord after it
-    back, ahead = a1 - a0, b1 - b0
-    signed = np.arctan2(cross(back, ahead), np.einsum("ij,ij->i", back, ahead))
+    ring = np.vstack([p, p, p])
+    back, ahead = _chord_reach(p, min(40.0 * sigma, 0.1) if sigma > 0 else 0.0)
+    i = np.arange(n)
+    a0, a1 = ring[back], p  # chord before the edge
+    b0, b1 = np.roll(p, -1, axis=0), ring[ahead]  # chord after it
+    before, after = a1 - a0, b1 - b0
+    signed = np.arctan2(cross(before, after), np.einsum("ij,ij->i", before, after))
     turn = np.abs(signed)
-    if k == 1:
-        # a concave turn (to the right of the counter-clockwise outline) across one edge is a corner
-        # when it happens at the edge alone: where two generated flanks meet at a root (Lysholm,
-        # Krigar, SRM-B males: 58-88 deg, the vertices beside it turn by 2.4 % of that at most). A
-        # root fillet that sparse points do not resolve turns as much over the edge, but the vertices
-        # beside it turn too (the independent females at 80 points a lobe: 42-46 deg, 19-43 % beside);
-        # the spline keeps it smooth (a kink there would send the rack's normals anywhere)
-        dv = np.roll(p, -1, axis=0) - p
-        hv = np.arctan2(dv[:, 1], dv[:, 0])
-        vt = np.abs(wrap_angle(hv - np.roll(hv, 1)))  # turn at each vertex
-        beside = np.maximum(np.roll(vt, 1), np.roll(vt, -2))  # at the vertices before and after the edge's two
-        turn = np.where((signed < 0) & (beside > 0.1 * turn), 0.0, turn)
-    from scipy.ndimage import maximum_filter1d
-
-    peak = maximum_filter1d(turn, size=2 * k + 1, mode="wrap")
+    reach_before, reach_after = i + n - back, ahead - (i + n + 1)  # points each chord spans
+    d = np.roll(p, -1, axis=0) - p
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    vertex_turn = np.abs(wrap_angle(heading - np.roll(heading, 1)))  # turn at each vertex
+    # a concave turn (to the right of the counter-clockwise outline) across one edge between chords
+    # of one edge each is a corner when it happens at the edge alone: where two generated flanks meet
+    # at a root (Lysholm, Krigar, SRM-B males: 58-88 deg, the vertices beside it turn by 2.4 % of that
+    # at most). A root fillet that sparse points do not resolve turns as much over the edge, but the
+    # vertices beside it turn too (the independent females at 80 points a lobe: 42-46 deg, 19-43 %
+    # beside); the spline keeps it smooth (a kink there would send the rack's normals anywhere)
+    beside = np.maximum(np.roll(vertex_turn, 1), np.roll(vertex_turn, -2))  # at the vertices before and after the edge's two
+    single = (reach_before == 1) & (reach_after == 1)
+    turn = np.where(single & (signed < 0) & (beside > 0.1 * turn), 0.0, turn)
+    # a peak: no larger turn across the edges within its chords' reach (a corner shows on each of them)
+    reach = np.maximum(reach_before, reach_after)
+    peak = turn.copy()
+    for off in range(1, int(reach.max()) + 1):
+        within = reach >= off
+        peak = np.where(within, np.maximum(peak, np.maximum(np.roll(turn, off), np.roll(turn, -off))), peak)
     idx = np.flatnonzero((turn > np.radians(angle_deg)) & (turn >= peak))
     if len(idx) > 1:  # a plateau of equal turns: its first edge (also across the ring's seam)
         gaps = np.diff(np.concatenate([idx, [idx[0] + n]]))
-        idx = idx[np.roll(gaps, 1) > k] if np.any(gaps > k) else idx[:1]
-    den = cross(back[idx], ahead[idx])
-    u = cross(b0[idx] - a0[idx], ahead[idx]) / np.where(np.abs(den) > 0, den, 1.0)
-    point = a0[idx] + u[:, None] * back[idx]
+        idx = idx[np.roll(gaps, 1) > reach[idx]] if np.any(gaps > reach[idx]) else idx[:1]
+    den = cross(before[idx], after[idx])
+    u = cross(b0[idx] - a0[idx], after[idx]) / np.where(np.abs(den) > 0, den, 1.0)
+    point = a0[idx] + u[:, None] * before[idx]
     # a crossing far from the edge (nearly parallel chords): the edge's middle
     mid = 0.5 * (a1[idx] + b0[idx])
-    far = np.hypot(*(point - mid).T) > 2 * k * h
+    span = np.maximum(np.hypot(*before[idx].T), np.hypot(*after[idx].T))
+    far = np.hypot(*(point - mid).T) > 2 * span
     point[far] = mid[far]
     # a corner on a point of exact data is that point (the chords' lines of curved pieces cross
     # a little off it): the end of the edge that turns by more than the threshold on its own
-    d = np.roll(p, -1, axis=0) - p
-    heading = np.arctan2(d[:, 1], d[:, 0])
-    vertex_turn = np.abs(wrap_angle(heading - np.roll(heading, 1)))
     if sigma <= 0:  # on a point when that point turns by (nearly) the whole corner; between two points (a
         # resampled outline: the corner's chord) it turns by a share of it, and the chords' crossing is the corner
         whole = np.maximum(turn[idx], np.radians(angle_deg))
