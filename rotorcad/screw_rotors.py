@@ -127,6 +127,10 @@ class ScrewRotors:
         exact points; for scattered points the accuracy over one point spacing (a flank's end tangent
         is fitted through points that each lie within that accuracy). The blow-hole's uncertainty
         follows from it (:attr:`rotorcad.meshing.MeshingAnalysis.blow_hole_uncertainty`).
+    tip_corner_tangent_accuracy : float or None, rad
+        How far a given male's fitted flank may turn at its tip corners, from the fitted spline's
+        least-squares sensitivity to the scatter (:func:`rotorcad.measured.tangent.tip_tangent_accuracy`);
+        the blow-hole's apex on the male tip circle moves with it. None: ``tangent_accuracy``.
     point_accuracy : float or None, mm
         The accuracy of one point of the given profile (2 sigma of its scatter, or the fit's
         residual): the meshing analysis judges the defects to it, since a defect is a local feature
@@ -141,6 +145,7 @@ class ScrewRotors:
     rack_loss: float = 0.0  # per cent of a measured lobe without a rack point (normal misses the pitch circle)
     accuracy: float = 0.0  # mm: of the given profile (0 for a design's exact curves)
     tangent_accuracy: float = 0.0  # rad: of the given profile's tangents (0 for a design or exact points)
+    tip_corner_tangent_accuracy: float | None = None  # rad: of a given male's tangent at its tip corners
     point_accuracy: float | None = None  # mm: of one point of the given profile (None: ``accuracy``)
 
     @cached_property

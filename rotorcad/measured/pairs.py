@@ -18,6 +18,7 @@ from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
 from rotorcad.measured.fit import fit_residual, lobe_pieces
 from rotorcad.measured.outline import read_outline
+from rotorcad.measured.tangent import tip_tangent_accuracy
 from rotorcad.roles import PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
@@ -283,6 +284,7 @@ def pair_from_rotor_points(
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     outline = read_outline(points, teeth, label or f"{side.value} points")  # the one reading of the points
     pieces = lobe_pieces(pair, outline, rotor, smoothing)
+    tip_pieces = pieces  # in the rotor's own frame
     # the accuracy bounds the largest deviation over the lobe's points, not one point's (2 sigma)
     per_lobe = (len(outline.whole) if outline.whole is not None else 0) / max(teeth, 1)
     point_acc = max(outline.accuracy, fit_residual(pair, outline, pieces, rotor))  # one point's: 2 sigma
@@ -325,9 +327,11 @@ def pair_from_rotor_points(
             None,
             f"{lost_share:.1f} % of the lobe has no rack point",
         )
-    # a flank's tangent through scattered points each within acc is known to acc over one point spacing
+    # a flank's tangent through scattered points each within acc is known to acc over one point spacing;
+    # at a male tip corner, from its spline's least-squares sensitivity to the scatter (measured.tangent)
     spacing = float(np.median(np.hypot(*np.diff(outline.whole, axis=0).T))) if outline.whole is not None else 0.0
     turn = point_acc / spacing if outline.sigma > 0 and spacing > 0 else 0.0
+    corner_turn = tip_tangent_accuracy(tip_pieces, outline.whole, outline.sigma) if side is Side.MALE else 0.0
     return ScrewRotors(
         pair,
         tuple(rack),
@@ -335,6 +339,7 @@ def pair_from_rotor_points(
         rack_loss=lost_share,
         accuracy=acc,
         tangent_accuracy=turn,
+        tip_corner_tangent_accuracy=min(corner_turn, turn) if corner_turn > 0.0 else None,
         point_accuracy=point_acc,
     )
 

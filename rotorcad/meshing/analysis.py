@@ -324,7 +324,9 @@ class MeshingAnalysis:
         delta moves the contact along that circle by ds = r delta / |beta' - 1|, with
         beta' = ((C - X) x (-X')) / |C - X|², X' = dX/dphi. The profile's tangents are known to
         :attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy` (its accuracy over one point
-        spacing); the uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
+        spacing; at a given male's tip corner, when the apex lies on the male tip circle,
+        :attr:`rotorcad.screw_rotors.ScrewRotors.tip_corner_tangent_accuracy` from the fitted spline);
+        the uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
         with the apex moved by ds either way. 0 for a design or exact points.
 
         Where the apex comes from a male arc's closed-form meshline (:meth:`_arc_apex`) no tangent
@@ -354,6 +356,9 @@ class MeshingAnalysis:
         r = float(np.hypot(*e))
         if r < 1e-9:
             return 0.0
+        corner = getattr(self.rotors, "tip_corner_tangent_accuracy", None)
+        if corner is not None and r >= self.rotors.pair.male_tip_radius - 1e-3 * self.rotors.pair.center_distance:
+            delta = float(corner)  # the apex on the male tip circle: where the tip corner's path hands over
         c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
         v = c - e
         if np.hypot(*v) < 1e-6:
