@@ -131,6 +131,8 @@ class ClearanceDistribution:
             if set(values) == {"blend"}:
                 raise DesignError("clearance", "a value or driving=, sealing=, lands= (and blend=) values in mm", text)
             return ClearanceDistribution(**values)
+        except DesignError:
+            raise
         except ValueError:
             raise DesignError("clearance", "a value or driving=, sealing=, lands= (and blend=) values in mm", text) from None
 

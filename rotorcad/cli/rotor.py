@@ -135,7 +135,7 @@ def rotor(design: Path | None, **opts: Any) -> None:
     female_pts = lambda: _exterior(rotors.section(Side.FEMALE, tol))  # noqa: E731
     if designed is not None:
         result["designed_clearance"] = (
-            {"driving": designed.driving, "sealing": designed.sealing, "lands": designed.lands}
+            {"driving": designed.driving, "sealing": designed.sealing, "lands": designed.lands, "blend": designed.blend}
             if designed.table is None
             else {"table": str(opts["clearance_table"])}
         )
