@@ -189,14 +189,13 @@ def corrected_female(rotors: ScrewRotors, clearance: ClearanceDistribution, tole
     """
     pair, blend = rotors.pair, clearance.blend
     lobe = [s for s in rotors.female_lobe(tolerance).segments if len(s.points) > 1]
-    pts, tan, delta_n, factor = _lobe_clearance(rotors, clearance, lobe, blend)
-    rise = delta_n - _lobe_clearance(rotors, clearance, lobe, 0.0)[2] if clearance.table is None else np.zeros(0)
-    if rise.size and rise.max() > 0:  # the rises of the blends bend the outline: finer chords there
+    pts, tan, delta_n, factor, rise = _lobe_clearance(rotors, clearance, lobe, blend)
+    if rise.max() > 0:  # the rises of the blends bend the outline: finer chords there
         bend = 6.0 * float(rise.max()) * float(factor.max()) / blend**2  # curvature of the quintic rise, 1/mm
         owner = np.repeat(np.arange(len(lobe)), [len(s.points) for s in lobe])
         spacing = np.sqrt(8.0 * tolerance / bend)
         lobe = [_refined(s, spacing) if np.any(rise[owner == k] > 0) else s for k, s in enumerate(lobe)]
-        pts, tan, delta_n, factor = _lobe_clearance(rotors, clearance, lobe, blend)
+        pts, tan, delta_n, factor, _ = _lobe_clearance(rotors, clearance, lobe, blend)
     delta_t = delta_n * factor
     sizes = np.cumsum([len(s.points) for s in lobe])[:-1]
     turns = 2 * np.pi * np.arange(pair.female_teeth) / pair.female_teeth
@@ -218,7 +217,7 @@ def _refined(segment: Segment, spacing: float) -> Segment:
 
 def _lobe_clearance(
     rotors: ScrewRotors, clearance: ClearanceDistribution, lobe: list[Segment], blend: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Return one female lobe's samples and their designed clearance, per-flank steps blended over ``blend`` mm.
 
     The lobe repeats around the female, so the outline's arc length is taken around one lobe's
@@ -232,14 +231,17 @@ def _lobe_clearance(
         The normal clearance there (0 where a point has no rack point).
     factor : (n,) float array
         delta_t / delta_n (module docstring; 1 where a point has no rack point).
+    rise : (n,) float array, mm
+        What the blends add to the designed clearance (>= 0).
     """
     pts = np.vstack([s.points for s in lobe])
     tan = np.vstack([s.tangents for s in lobe])
-    delta_n, factor = _normal_clearance(rotors, clearance, pts, tan)
+    designed, factor = _normal_clearance(rotors, clearance, pts, tan)
+    delta_n = designed
     if clearance.table is None:
         chord = np.hypot(*np.diff(pts, axis=0).T)
-        delta_n = blended(delta_n, np.concatenate([[0.0], np.cumsum(chord)]), float(chord.sum()), blend)
-    return pts, tan, delta_n, factor
+        delta_n = blended(designed, np.concatenate([[0.0], np.cumsum(chord)]), float(chord.sum()), blend)
+    return pts, tan, delta_n, factor, delta_n - designed
 
 
 def _normal_clearance(
