@@ -13,8 +13,13 @@ delta_t moves the normal rack by delta_t / norm along its own normal.
 
 The distribution is uniform, per flank (the driving flank where the rack rises, the sealing flank
 where it falls, and the lands where the rack is flatter than 30 degrees to the pitch line, each
-with its own value: a step where they meet, as a ground correction leaves it), or a table of
-clearance over the datum rack's x (one rack period, interpolated periodically).
+with its own value; where two values meet, the smaller rises smoothly to the larger over
+``blend`` mm of the female outline, so that no point gets less than its flank's clearance), or a
+table of clearance over the datum rack's x (one rack period, interpolated periodically).
+
+The offset is the erosion of the female by delta_t (:mod:`rotorcad.outline_offset`): each analytic
+piece moves along its own normal and sharp corners are re-cut where the moved pieces cross, so the
+thinned female lies inside the designed one by at least the clearance, corners included.
 """
 
 from __future__ import annotations
@@ -25,9 +30,12 @@ import numpy as np
 
 from rotorcad.envelope import conjugate, rack_frame
 from rotorcad.errors import DesignError
-from rotorcad.geometry import perp_cw
+from rotorcad.geometry import rotate
+from rotorcad.outline_offset import offset_inward
+from rotorcad.profile import Segment
 from rotorcad.screw_rotors import ScrewRotors
 
+BLEND = 1.0  # mm along the female outline: a per-flank clearance step becomes a smooth rise this long
 LAND_SLOPE = 0.5  # |sin| of the rack tangent's angle to the pitch line below which a point is a land's image
 
 
@@ -44,19 +52,26 @@ class ClearanceDistribution:
         Rows (x, clearance), mm: x along the pitch line of the transverse rack in the rack frame of
         CONTRACT.md, over one rack period (interpolated periodically). When given, it replaces the
         per-flank values.
+    blend : float, mm
+        Length along the female outline over which a smaller per-flank clearance rises to a
+        neighbouring larger one (0 to 10 mm; 0: a step).
 
     Raises
     ------
     DesignError
-        A clearance outside [0, 1] mm, or a table with fewer than two finite rows.
+        A clearance outside [0, 1] mm, a blend outside [0, 10] mm, or a table with fewer than two
+        finite rows.
     """
 
     driving: float = 0.0
     sealing: float = 0.0
     lands: float = 0.0
     table: tuple[tuple[float, float], ...] | None = None
+    blend: float = BLEND
 
     def __post_init__(self) -> None:
+        if not (np.isfinite(self.blend) and 0.0 <= self.blend <= 10.0):
+            raise DesignError("clearance blend", "a blend length from 0 to 10 mm", self.blend)
         for name in ("driving", "sealing", "lands"):
             v = getattr(self, name)
             if not (np.isfinite(v) and 0.0 <= v <= 1.0):
@@ -90,7 +105,8 @@ class ClearanceDistribution:
         Parameters
         ----------
         text : str
-            ``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (missing flanks 0), mm.
+            ``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (missing flanks 0), mm;
+            either may add ``blend=`` (mm, default :data:`BLEND`).
 
         Returns
         -------
@@ -109,12 +125,16 @@ class ClearanceDistribution:
             for part in text.split(","):
                 key, _, value = part.partition("=")
                 key = key.strip()
-                if key not in ("driving", "sealing", "lands"):
-                    raise DesignError("clearance", "a value or driving=, sealing=, lands= values in mm", text)
+                if key not in ("driving", "sealing", "lands", "blend"):
+                    raise DesignError("clearance", "a value or driving=, sealing=, lands= (and blend=) values in mm", text)
                 values[key] = float(value)
+            if set(values) == {"blend"}:
+                raise DesignError("clearance", "a value or driving=, sealing=, lands= (and blend=) values in mm", text)
             return ClearanceDistribution(**values)
+        except DesignError:
+            raise
         except ValueError:
-            raise DesignError("clearance", "a value or driving=, sealing=, lands= values in mm", text) from None
+            raise DesignError("clearance", "a value or driving=, sealing=, lands= (and blend=) values in mm", text) from None
 
     def at(self, x: np.ndarray, tangents: np.ndarray, period: float) -> np.ndarray:
         """Return the normal clearance at datum rack points.
@@ -144,9 +164,14 @@ class ClearanceDistribution:
 def corrected_female(rotors: ScrewRotors, clearance: ClearanceDistribution, tolerance: float = 1e-3) -> np.ndarray:
     """Thin the female outline by the designed normal clearance (module docstring).
 
-    Each outline point's rack point (inverse generation by the envelope engine) gives its flank, its
-    transverse flank angle alpha and its x on the datum rack; the point moves into the female by
-    delta_t along its exact normal. Points without a rack point are left as they are.
+    Each sample of each analytic piece of the female outline gets its rack point (inverse
+    generation by the envelope engine), hence its flank, its transverse flank angle alpha and its x
+    on the datum rack, and moves into the female by delta_t along its piece's exact normal. Where
+    per-flank clearances differ they are blended (:func:`blended`) along the outline; at sharp
+    corners the moved pieces are joined as the erosion of the female by delta_t joins them
+    (:func:`rotorcad.outline_offset.offset_inward`): the thinned female lies inside the designed
+    one by at least the clearance everywhere, corners included. Points without a rack point keep
+    the clearance 0.
 
     Parameters
     ----------
@@ -162,9 +187,85 @@ def corrected_female(rotors: ScrewRotors, clearance: ClearanceDistribution, tole
     (n, 2) float array, mm
         The thinned female outline, own frame at the mesh position, closed counter-clockwise.
     """
+    pair, blend = rotors.pair, clearance.blend
+    lobe = [s for s in rotors.female_lobe(tolerance).segments if len(s.points) > 1]
+    pts, tan, delta_n, factor, rise = _lobe_clearance(rotors, clearance, lobe, blend)
+    if rise.max() > 0:  # the rises of the blends bend the outline: finer chords there
+        bend = 6.0 * float(rise.max()) * float(factor.max()) / blend**2  # curvature of the quintic rise, 1/mm
+        owner = np.repeat(np.arange(len(lobe)), [len(s.points) for s in lobe])
+        spacing = np.sqrt(8.0 * tolerance / bend)
+        lobe = [_refined(s, spacing) if np.any(rise[owner == k] > 0) else s for k, s in enumerate(lobe)]
+        pts, tan, delta_n, factor, _ = _lobe_clearance(rotors, clearance, lobe, blend)
+    delta_t = delta_n * factor
+    sizes = np.cumsum([len(s.points) for s in lobe])[:-1]
+    turns = 2 * np.pi * np.arange(pair.female_teeth) / pair.female_teeth
+    points = [rotate(p, t) for t in turns for p in np.split(pts, sizes)]
+    tangents = [rotate(v, t) for t in turns for v in np.split(tan, sizes)]
+    moved = np.split(np.tile(delta_t, len(turns)), np.cumsum([len(p) for p in points])[:-1])
+    return offset_inward(points, tangents, moved, tolerance)
+
+
+def _refined(segment: Segment, spacing: float) -> Segment:
+    """Return a piece re-evaluated on its exact curve with samples at most ``spacing`` (mm) apart."""
+    chord = np.hypot(*np.diff(segment.points, axis=0).T)
+    parts = np.maximum(1, np.ceil(chord / spacing).astype(int))
+    start = np.repeat(segment.s[:-1], parts)
+    step = np.repeat(np.diff(segment.s) / parts, parts)
+    k = np.arange(parts.sum()) - np.repeat(np.cumsum(parts) - parts, parts)
+    return Segment.at(segment.name, segment.curve, np.append(start + k * step, segment.s[-1]))
+
+
+def _lobe_clearance(
+    rotors: ScrewRotors, clearance: ClearanceDistribution, lobe: list[Segment], blend: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Return one female lobe's samples and their designed clearance, per-flank steps blended over ``blend`` mm.
+
+    The lobe repeats around the female, so the outline's arc length is taken around one lobe's
+    length (its end is the next lobe's start).
+
+    Returns
+    -------
+    points, tangents : (n, 2) float arrays
+        The lobe's samples (mm) and exact unit tangents, pieces end to end.
+    delta_n : (n,) float array, mm
+        The normal clearance there (0 where a point has no rack point).
+    factor : (n,) float array
+        delta_t / delta_n (module docstring; 1 where a point has no rack point).
+    rise : (n,) float array, mm
+        What the blends add to the designed clearance (>= 0).
+    """
+    pts = np.vstack([s.points for s in lobe])
+    tan = np.vstack([s.tangents for s in lobe])
+    designed, factor = _normal_clearance(rotors, clearance, pts, tan)
+    delta_n = designed
+    if clearance.table is None:
+        chord = np.hypot(*np.diff(pts, axis=0).T)
+        delta_n = blended(designed, np.concatenate([[0.0], np.cumsum(chord)]), float(chord.sum()), blend)
+    return pts, tan, delta_n, factor, delta_n - designed
+
+
+def _normal_clearance(
+    rotors: ScrewRotors, clearance: ClearanceDistribution, pts: np.ndarray, tan: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Return the designed normal clearance at female points and its transverse factor (module docstring).
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair as designed.
+    clearance : ClearanceDistribution
+        The normal clearance to give.
+    pts, tan : (n, 2) float arrays
+        Female points (own frame, mm) and their exact unit tangents.
+
+    Returns
+    -------
+    delta_n : (n,) float array, mm
+        The normal clearance (0 where a point has no rack point).
+    factor : (n,) float array
+        delta_t / delta_n = sqrt(cos^2(alpha) / cos^2(beta) + sin^2(alpha)) (1 where no rack point).
+    """
     pair = rotors.pair
-    outline = rotors.female_outline(tolerance)
-    pts, tan = outline.points, outline.tangents
     mesh = pair.mesh
     shift = np.array([pair.center_distance, 0.0])
     contact = conjugate(pts + shift, tan, mesh.female, mesh.rack, limits=(-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6))
@@ -176,9 +277,51 @@ def corrected_female(rotors: ScrewRotors, clearance: ClearanceDistribution, tole
     sin_a = np.abs(rack_tan[:, 0])  # the flank's angle to the normal of the pitch line: sin = |t_x|
     cos_a = np.abs(rack_tan[:, 1])
     delta_n = clearance.at(rack_pts[:, 0], rack_tan, pair.rack_period)
-    delta_t = delta_n * np.sqrt(cos_a**2 / np.cos(beta) ** 2 + sin_a**2)
-    delta_t = np.where(np.isfinite(delta_t), delta_t, 0.0)  # no rack point: left as it is
-    return pts - delta_t[:, None] * perp_cw(tan)
+    factor = np.sqrt(cos_a**2 / np.cos(beta) ** 2 + sin_a**2)
+    found = np.isfinite(delta_n) & np.isfinite(factor)  # no rack point: left as it is
+    return np.where(found, delta_n, 0.0), np.where(found, factor, 1.0)
 
 
-__all__ = ["ClearanceDistribution", "corrected_female"]
+def blended(delta: np.ndarray, s: np.ndarray, perimeter: float, length: float) -> np.ndarray:
+    """Blend the steps of a piecewise-constant clearance smoothly, on the side of the smaller one.
+
+    At a step between delta_lo and delta_hi at arc length s_k, a point on the smaller side at a
+    distance d along the outline gets delta_lo + (delta_hi - delta_lo) w(d / length), with the
+    quintic fall w(u) = 1 - (10 u^3 - 15 u^4 + 6 u^5) for u < 1, else 0 (w(0) = 1 and w' = w'' = 0 at
+    both ends: the outline's tangent and curvature stay continuous). Of several steps within reach
+    the largest rise counts. No point gets less than its designed clearance, so the blend only
+    removes material; the larger clearance keeps its value up to the step.
+
+    Parameters
+    ----------
+    delta : (n,) float array, mm
+        Clearance at the outline's points, in travel order (a closed outline).
+    s : (n,) float array, mm
+        Arc length of the points along the outline.
+    perimeter : float, mm
+        The closed outline's length (distances are taken around it).
+    length : float, mm
+        Length of the blend (> 0); 0 leaves the steps as they are.
+
+    Returns
+    -------
+    (n,) float array, mm
+        The blended clearance, >= ``delta`` everywhere.
+    """
+    if length <= 0:
+        return delta
+    nxt = np.roll(np.arange(len(delta)), -1)
+    steps = np.flatnonzero(np.abs(delta[nxt] - delta) > 1e-12)
+    if steps.size == 0:
+        return delta
+    ds = np.mod(s[nxt[steps]] - s[steps], perimeter)
+    where = s[steps] + 0.5 * ds  # the step sits between two samples (or at a corner's two samples)
+    high = np.maximum(delta[steps], delta[nxt[steps]])
+    d = np.abs(s[None, :] - where[:, None])
+    u = np.minimum(np.minimum(d, perimeter - d) / length, 1.0)
+    w = 1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2)
+    rise = np.clip(high[:, None] - delta[None, :], 0.0, None) * w
+    return delta + rise.max(axis=0)
+
+
+__all__ = ["BLEND", "ClearanceDistribution", "blended", "corrected_female"]

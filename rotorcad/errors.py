@@ -16,6 +16,34 @@ sentence of its parent and is caught by ``except DesignError``:
 from __future__ import annotations
 
 
+def limit_text(limit: float, value: object) -> str:
+    """Write a limit with enough digits to differ from the refused value (6 significant at least).
+
+    A value refused for missing its limit by less than the sixth digit would otherwise read as if
+    it met it ("at least 63.2727 (got 63.2727272)").
+
+    Parameters
+    ----------
+    limit : float
+        The limit in the sentence.
+    value : object
+        The value given (a number; anything else gets 6 digits).
+
+    Returns
+    -------
+    str
+        ``f"{limit:.{n}g}"`` for the least n from 6 to 17 at which limit and value differ.
+    """
+    try:
+        given = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        return f"{limit:.6g}"
+    for digits in range(6, 18):
+        if f"{limit:.{digits}g}" != f"{given:.{digits}g}":
+            return f"{limit:.{digits}g}"
+    return repr(float(limit))
+
+
 class DesignError(ValueError):
     """An input value or a combination of values that cannot describe a real part.
 

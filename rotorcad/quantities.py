@@ -503,6 +503,17 @@ _declare(
     ],
 )
 
+# --- the clearance designed into the female by rotor --clearance (rotorcad/clearance_design.py) ----
+_declare(
+    "rotorcad/clearance_design",
+    [
+        ("designed_clearance.driving", "mm", "designed clearance, driving flank"),
+        ("designed_clearance.sealing", "mm", "designed clearance, sealing flank"),
+        ("designed_clearance.lands", "mm", "designed clearance, lands"),
+        ("designed_clearance.blend", "mm", "length of the blend between flank clearances"),
+    ],
+)
+
 
 def csv_units_line(columns: Iterable[str]) -> str | None:
     """Return the words naming each CSV column's unit, ``units: x mm, y mm`` (None if one is not declared).

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.errors import DesignError
+from rotorcad.errors import DesignError, limit_text
 from rotorcad.kinematics import Mesh, rotor_mesh
 from rotorcad.roles import Side
 
@@ -89,27 +89,29 @@ class RotorPair:
                 break  # an assembled or measured pair: its radii need not straddle these pitch circles
             tip, root = getattr(self, f"{rotor}_tip_radius"), getattr(self, f"{rotor}_root_radius")
             if not root < pitch + 1e-9:
-                raise DesignError(f"{rotor}_root_radius", f"at most the {rotor} pitch radius {pitch:.6g} mm", root)
+                raise DesignError(f"{rotor}_root_radius", f"at most the {rotor} pitch radius {limit_text(pitch, root)} mm", root)
             if not tip > pitch - 1e-9:
-                raise DesignError(f"{rotor}_tip_radius", f"at least the {rotor} pitch radius {pitch:.6g} mm", tip)
+                raise DesignError(f"{rotor}_tip_radius", f"at least the {rotor} pitch radius {limit_text(pitch, tip)} mm", tip)
             if not tip < a:
-                raise DesignError(f"{rotor}_tip_radius", f"less than the centre distance {a:.6g} mm", tip)
+                raise DesignError(f"{rotor}_tip_radius", f"less than the centre distance {limit_text(a, tip)} mm", tip)
         if not self.male_tip_radius + self.female_tip_radius > a:
             raise DesignError(
                 "female_tip_radius",
-                f"greater than {a - self.male_tip_radius:.6g} mm so that the tip circles overlap",
+                f"greater than {limit_text(a - self.male_tip_radius, self.female_tip_radius)} mm so that the tip circles overlap",
                 self.female_tip_radius,
             )
         if self.strict and self.male_tip_radius + self.female_root_radius > a + 1e-9:
             raise DesignError(
                 "female_root_radius",
-                f"at most {a - self.male_tip_radius:.6g} mm (centre distance minus male tip radius)",
+                f"at most {limit_text(a - self.male_tip_radius, self.female_root_radius)} mm "
+                "(centre distance minus male tip radius)",
                 self.female_root_radius,
             )
         if self.strict and self.female_tip_radius + self.male_root_radius > a + 1e-9:
             raise DesignError(
                 "male_root_radius",
-                f"at most {a - self.female_tip_radius:.6g} mm (centre distance minus female tip radius)",
+                f"at most {limit_text(a - self.female_tip_radius, self.male_root_radius)} mm "
+                "(centre distance minus female tip radius)",
                 self.male_root_radius,
             )
 

@@ -308,7 +308,8 @@ def test_a_designed_clearance_is_made_and_measured_back(tmp_path, capsys):
     out = ["--male-csv", str(tmp_path / "m.csv"), "--female-csv", str(tmp_path / "f.csv"), "--json"]
     capsys.readouterr()
     assert main(["rotor", "--rack-points", str(tmp_path / "rack.csv"), *dims, "--clearance", "sealing=0.04", *out]) == 0
-    assert json.loads(capsys.readouterr().out)["designed_clearance"] == {"driving": 0.0, "sealing": 0.04, "lands": 0.0}
+    designed = json.loads(capsys.readouterr().out)["designed_clearance"]
+    assert designed == {"driving": 0.0, "sealing": 0.04, "lands": 0.0, "blend": 1.0}
     made = np.loadtxt(tmp_path / "f.csv", delimiter=",", comments="#", skiprows=2)
     reference = shapely.LinearRing(female(delta_t))
     r = np.hypot(*made.T)

@@ -131,11 +131,11 @@ def rotor(design: Path | None, **opts: Any) -> None:
     out = Outputs()
     _add_plots(out, opts, analysis, clearance)
     designed = _designed_clearance(opts)
-    male_pts = lambda: _exterior(analysis.sections[0])  # noqa: E731
-    female_pts = lambda: _exterior(analysis.sections[1])  # noqa: E731
+    male_pts = lambda: _exterior(rotors.section(Side.MALE, tol))  # noqa: E731  (--tolerance: the written chords)
+    female_pts = lambda: _exterior(rotors.section(Side.FEMALE, tol))  # noqa: E731
     if designed is not None:
         result["designed_clearance"] = (
-            {"driving": designed.driving, "sealing": designed.sealing, "lands": designed.lands}
+            {"driving": designed.driving, "sealing": designed.sealing, "lands": designed.lands, "blend": designed.blend}
             if designed.table is None
             else {"table": str(opts["clearance_table"])}
         )

@@ -28,6 +28,34 @@ from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
+SLIP_ZERO = 1e-9  # a tangential velocity below this share of the rotor's largest one is zero to rounding
+
+
+def slip(sliding: np.ndarray, tangential: np.ndarray) -> np.ndarray:
+    """Return the slip v_g / v_t of a rotor at the contacts (Rinder eq. 4), infinite where v_t vanishes.
+
+    v_t is judged zero relative to its own scale: at most :data:`SLIP_ZERO` times the rotor's largest
+    tangential velocity (a zero of v_t on the meshline computes as 1e-15 m/s and would give a slip of
+    1e15). Where v_g vanishes too (to the same share of its largest), the slip is nan: pure rolling.
+
+    Parameters
+    ----------
+    sliding : (n,) float array, m/s
+        The sliding velocity v_g.
+    tangential : (n,) float array, m/s
+        The rotor's velocity v_t along the common tangent.
+
+    Returns
+    -------
+    (n,) float array
+        The slip, +-inf where v_t is zero and v_g is not, nan where both are.
+    """
+    zero_t = np.abs(tangential) <= SLIP_ZERO * (np.abs(tangential).max(initial=0.0))
+    zero_g = np.abs(sliding) <= SLIP_ZERO * (np.abs(sliding).max(initial=0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = sliding / np.where(zero_t, 1.0, tangential)
+    return np.where(zero_t, np.where(zero_g, np.nan, np.copysign(np.inf, sliding)), ratio)
+
 
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
@@ -466,9 +494,7 @@ class MeshingAnalysis:
         v1t = np.einsum("ij,ij->i", v1, tau) * 1e-3
         v2t = np.einsum("ij,ij->i", v2, tau) * 1e-3
         vg = v1t - v2t
-        with np.errstate(divide="ignore", invalid="ignore"):
-            z1 = vg / v1t
-            z2 = vg / v2t
+        z1, z2 = slip(vg, v1t), slip(vg, v2t)
         return {"v1t": v1t, "v2t": v2t, "sliding": vg, "slip_male": z1, "slip_female": z2, "normal_check": cross(tau, v1 - v2)}
 
     @cached_property
@@ -536,12 +562,14 @@ class MeshingAnalysis:
         """
         k = self.kinematics
         v = np.abs(k[key])
-        v = np.where(np.isfinite(v), v, -1.0)
+        v = np.where(np.isfinite(v) | np.isinf(v), v, -1.0)  # an infinite slip is the largest (nan: 0 / 0 left out)
         i = int(np.argmax(v))
         p = self.meshline[i]
         pair = self.rotors.pair
         roles = np.concatenate([piece.roles for piece in self.pieces])
+        infinite = {"value_infinite": bool(np.isinf(v[i]))} if key.startswith("slip") else {}  # JSON null and this flag
         return {
+            **infinite,
             "value": float(v[i]),
             "x": float(p[0]),
             "y": float(p[1]),

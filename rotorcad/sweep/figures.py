@@ -81,7 +81,7 @@ def sweep_figures(analysis: MeshingAnalysis) -> dict[str, Any]:
         ``meshline_closed``, ``blow_hole_area`` (mm²), ``contact_line_length`` (mm),
         ``male_flute_area`` and ``female_flute_area`` (mm², to :data:`FLUTE_AREA_RTOL`),
         ``displacement_per_rev`` (mm³), ``area_utilisation``, ``max_sliding_velocity`` (m/s),
-        ``max_slip_male`` and ``max_slip_female`` (the largest finite slips, eq. 4),
+        ``max_slip_male`` and ``max_slip_female`` (the largest slips, eq. 4; inf at a zero of v_t),
         ``runs_without_timing_gears``, ``wrap_angle_deg``, ``rack_loss_percent`` and
         ``defect_kinds`` (the kind of every defect, as ``defects`` of the JSON lists them).
     """
@@ -112,7 +112,7 @@ def sweep_figures(analysis: MeshingAnalysis) -> dict[str, Any]:
 
 
 def _largest(values: np.ndarray) -> float:
-    """Largest finite magnitude (-1 when none is finite), as ``value`` of the summary's maxima."""
+    """Largest magnitude, infinite ones included (-1 when all are nan), as ``value`` of the summary's maxima."""
     v = np.abs(values)
-    v = np.where(np.isfinite(v), v, -1.0)
+    v = np.where(np.isnan(v), -1.0, v)  # an infinite slip is the largest, as in rotor --json
     return float(v[int(np.argmax(v))])

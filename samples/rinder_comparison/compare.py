@@ -66,7 +66,7 @@ def extremes(name: str) -> dict[str, dict[str, object]]:
         ("slip_female", "largest female slip"),
     ):
         v = np.abs(k[key])
-        v = np.where(np.isfinite(v), v, -1.0)
+        v = np.where(np.isnan(v), -1.0, v)  # an infinite slip (a zero of v_t) is the largest
         i = int(np.argmax(v))
         out[label] = {
             "value": float(v[i]),
@@ -93,7 +93,7 @@ def table() -> str:
             d = data[label][quantity]
             if "flank" in d:
                 unit = " m/s" if "sliding" in quantity else ""
-                value = "infinite" if d["value"] > 1e9 else f"{d['value']:.2f}{unit}"  # v_t = 0 to rounding
+                value = "infinite" if np.isinf(d["value"]) else f"{d['value']:.2f}{unit}"  # v_t = 0 (meshing.analysis.slip)
                 cells.append(f"{value}, {d['flank']} flank, {d['place']}, {d['angle_deg']:+.1f}°")
             elif isinstance(d["value"], list):
                 cells.append(f"{d['value'][0]:+.1f}° to {d['value'][1]:+.1f}°")

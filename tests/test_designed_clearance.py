@@ -1,0 +1,147 @@
+"""The designed clearance written by ``rotor --clearance`` (rotorcad.clearance_design) against
+references it did not make: shapely's negative buffer (the erosion of the design female by a disc,
+Serra 1982), and the brute-force closest approach of the design male to the thinned female over
+1500 mesh positions of one male lobe pitch (per female point: the least distance to the male over
+the positions; a female point inside the male counts negative)."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from scipy.spatial import cKDTree
+
+from rotorcad.clearance_design import ClearanceDistribution, corrected_female
+from rotorcad.design import rotor_design
+from rotorcad.geometry import rotate
+from rotorcad.rotor_build import build_pair, pair_spec
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+C = 0.03  # mm, the designed normal clearance of the findings
+TOL = 1e-4  # mm, chord tolerance of the thinned female in these tests
+POSITIONS = 1500
+
+
+def rotors_of(name: str, **pair):
+    data = tomllib.loads((SAMPLES / f"{name}.toml").read_text())
+    data["pair"].update(pair)
+    return build_pair(pair_spec(rotor_design(data, SAMPLES)))
+
+
+@pytest.fixture(scope="module")
+def narrow_tip():
+    return rotors_of("narrow_tip_5_6")
+
+
+@pytest.fixture(scope="module")
+def n_rack():
+    return rotors_of("n_rack_5_6")
+
+
+def densified(ring: np.ndarray, spacing: float) -> np.ndarray:
+    """Points along a closed polyline at most ``spacing`` apart (its vertices included)."""
+    seg = np.roll(ring, -1, axis=0) - ring
+    parts = np.maximum(1, np.ceil(np.hypot(*seg.T) / spacing).astype(int))
+    k = np.arange(parts.sum()) - np.repeat(np.cumsum(parts) - parts, parts)
+    return np.repeat(ring, parts, axis=0) + (k / np.repeat(parts, parts))[:, None] * np.repeat(seg, parts, axis=0)
+
+
+def closest_approach(rotors, female: np.ndarray) -> float:
+    """Brute force: the least distance of the design male to the female points over one male lobe pitch.
+
+    The male turns by phi, the female by -phi z1 / z2 about (a, 0); in the male's frame the female
+    points are turned back by -phi. Distances to the male outline densified to 2 um (a nearest point
+    off by at most 2^2 / (8 * 30) um = 0.02 um at a 30 um gap); negative inside the male.
+    """
+    pair = rotors.pair
+    male = rotors.male_outline(1e-5).points
+    tree = cKDTree(densified(male, 2e-3))
+    body = shapely.Polygon(male)
+    shapely.prepare(body)
+    pts = densified(female, 0.05)  # the least gap between two samples is off by 0.05^2 / (8 * 5) mm = 0.06 um
+    best = np.inf
+    for phi in np.linspace(-np.pi / pair.male_teeth, np.pi / pair.male_teeth, POSITIONS, endpoint=False):
+        q = rotate(rotate(pts, -phi * pair.male_teeth / pair.female_teeth) + [pair.center_distance, 0.0], -phi)
+        near = q[np.hypot(*q.T) < pair.male_tip_radius + 0.2]
+        if len(near) == 0:
+            continue
+        d = tree.query(near, distance_upper_bound=0.1)[0]  # farther points do not matter
+        inside = shapely.contains_xy(body, near[:, 0], near[:, 1])
+        best = min(best, float(np.where(inside, -d, d).min()))
+    return best
+
+
+def turning_deg(ring: np.ndarray) -> np.ndarray:
+    """The turn of a closed polyline at each vertex, degrees."""
+    a = np.roll(ring, -1, axis=0) - ring
+    b = np.roll(a, -1, axis=0)
+    return np.degrees(np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], (a * b).sum(axis=1))))
+
+
+def test_sharp_tip_corners_are_thinned_like_the_rest(narrow_tip):
+    # Finding 5: the narrow-tip female's tip corners (inner angle 80.7 deg) stood 4.8 um outside
+    # the design female and the pair interfered. Reference: shapely's buffer by -c of the design
+    # female (1e-5 mm chords) holds every point of a female thinned by at least c; the clearance's
+    # transverse offset is c or more (module docstring), so every point lies in it.
+    thinned = corrected_female(narrow_tip, ClearanceDistribution.uniform(C), TOL)
+    design = shapely.Polygon(narrow_tip.female_outline(1e-5).points)
+    eroded = design.buffer(-(C - 2e-4), quad_segs=256)
+    assert shapely.contains_xy(eroded, thinned[:, 0], thinned[:, 1]).all()
+    corner_radius = narrow_tip.pair.female_tip_radius - C  # the corners sit on the thinned tip arc
+    assert np.hypot(*thinned.T).max() == pytest.approx(corner_radius, abs=1e-6)
+
+
+def test_sharp_corners_match_the_erosion_when_the_helix_is_straight():
+    # With a lead of 100 m (beta = 0.002 deg) the transverse offset is the normal clearance
+    # everywhere, so the thinned female is the erosion of the design female by c: shapely's
+    # negative buffer, corners included, within the chords.
+    rotors = rotors_of("narrow_tip_5_6", lead=1e5)
+    thinned = corrected_female(rotors, ClearanceDistribution.uniform(C), TOL)
+    eroded = shapely.Polygon(rotors.female_outline(1e-5).points).buffer(-C, quad_segs=256)
+    ring = np.asarray(eroded.exterior.coords)
+    assert shapely.distance(shapely.points(thinned), eroded.exterior).max() < 2e-4  # both ways: Hausdorff
+    assert shapely.distance(shapely.points(ring), shapely.LinearRing(thinned)).max() < 2e-4
+
+
+def test_no_mesh_position_brings_the_male_closer_than_the_clearance(narrow_tip):
+    # Findings 5: 2D brute force found 4.2-4.8 um penetration at male angles -13.5..-11.5 deg.
+    # The closest approach over 1500 positions is the designed c (on the lands, where the
+    # transverse offset is c), never less than c less the chords.
+    thinned = corrected_female(narrow_tip, ClearanceDistribution.uniform(C), TOL)
+    gap = closest_approach(narrow_tip, thinned)
+    assert C - 3e-4 <= gap <= C + 2e-3
+
+
+def test_per_flank_clearance_blends_without_a_step(n_rack):
+    # Finding 6: driving 0, sealing and lands 30 um wrote a 33 um step into the female. Now the
+    # smaller clearance rises smoothly to the larger: no vertex of the female turns more than the
+    # design female's own chords do (1 um chords, away from its sharp corners), while the stepped
+    # female (blend 0) turns by 12 deg at its steps; the blend only removes material (inside the
+    # design female and inside the stepped one, within the chords).
+    blended = corrected_female(n_rack, ClearanceDistribution.parse("driving=0,sealing=0.03,lands=0.03"), 1e-3)
+    stepped = corrected_female(n_rack, ClearanceDistribution.parse("driving=0,sealing=0.03,lands=0.03,blend=0"), 1e-3)
+    own = turning_deg(n_rack.female_outline(1e-3).points)
+    smooth = own[own < 30].max()
+    assert turning_deg(blended)[turning_deg(blended) < 30].max() < smooth + 0.5
+    assert turning_deg(stepped)[turning_deg(stepped) < 30].max() > smooth + 3  # the test sees a step
+    design = shapely.Polygon(n_rack.female_outline(1e-5).points).buffer(1e-5)  # its chords
+    assert shapely.contains_xy(design, blended[:, 0], blended[:, 1]).all()
+    assert shapely.contains_xy(shapely.Polygon(stepped).buffer(1e-3), blended[:, 0], blended[:, 1]).all()
+
+
+def test_per_flank_clearance_keeps_the_smallest_clearance_at_every_mesh_position(n_rack):
+    # driving 10, sealing 30, lands 20 um (finding 6 read 47.1 um max): the brute-force closest
+    # approach over 1500 positions is the smallest designed clearance, 10 um, less the chords.
+    thinned = corrected_female(n_rack, ClearanceDistribution.parse("driving=0.01,sealing=0.03,lands=0.02"), TOL)
+    gap = closest_approach(n_rack, thinned)
+    assert 0.01 - 3e-4 <= gap <= 0.01 + 2e-3
+
+
+def test_a_blend_length_out_of_range_is_refused():
+    with pytest.raises(Exception, match="blend"):
+        ClearanceDistribution.parse("driving=0,sealing=0.03,blend=-1")
+    with pytest.raises(Exception, match="clearance"):
+        ClearanceDistribution.parse("blend=1")
