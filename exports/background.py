@@ -15,6 +15,7 @@ environment, or when no worker can be started, every job runs here, in order, wi
 
 from __future__ import annotations
 
+import gc
 import importlib
 import multiprocessing
 import os
@@ -148,6 +149,11 @@ class WorkerPool:
     def __init__(self, background: bool = True, preload: tuple[str, ...] = ()) -> None:
         self._executor: ProcessPoolExecutor | None = None
         if background and worker_count():
+            # the objects made so far are frozen for the fork (gc.freeze, as the gc module's docs
+            # advise before a fork without exec): the worker's collections, many while it imports
+            # OpenCASCADE, then leave them alone instead of touching, and so copying, every page
+            # of the inherited heap; this process takes them back at once
+            gc.freeze()
             try:
                 self._executor = ProcessPoolExecutor(
                     max_workers=1,
@@ -158,6 +164,8 @@ class WorkerPool:
                 self._executor.submit(int)  # forks now, while this is the only thread
             except (OSError, NotImplementedError, ValueError, BrokenProcessPool):  # e.g. no /dev/shm: run here
                 self._executor = None
+            finally:
+                gc.unfreeze()
 
     def __enter__(self) -> WorkerPool:
         return self
