@@ -39,6 +39,18 @@ def hermite_cubic(points: np.ndarray, tangents: np.ndarray, u: np.ndarray) -> np
     return np.einsum("ku,nkd->nud", basis, poles)
 
 
+def _gap_to_chords(px: np.ndarray, py: np.ndarray, ax: np.ndarray, ay: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
+    """Distance of points p to the chords from a along d, by components (broadcast arrays), mm.
+
+    The foot of p on each chord is clipped to its ends. By x and y arrays rather than a last axis of
+    2, whose sums numpy makes as many tiny reductions (the same sums, a few times slower).
+    """
+    wx, wy = px - ax, py - ay
+    foot = np.clip((wx * dx + wy * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0.0, 1.0)
+    gx, gy = wx - foot * dx, wy - foot * dy
+    return np.sqrt(gx * gx + gy * gy)
+
+
 def distance_to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
     """Largest distance of each interval's points to its own chain of chords, (n,) mm.
 
@@ -49,13 +61,9 @@ def distance_to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
     chains : (n, k, 2) float array, mm
         The vertices of each interval's chain (no NaN).
     """
-    a, b = chains[:, None, :-1], chains[:, None, 1:]  # (n, 1, k - 1, 2)
-    d = b - a
-    w = points[:, :, None] - a  # (n, m, k - 1, 2)
-    length2 = np.maximum((d * d).sum(-1), 1e-300)
-    foot = np.clip((w * d).sum(-1) / length2, 0.0, 1.0)
-    gap = w - foot[..., None] * d
-    near = np.sqrt((gap * gap).sum(-1)).min(axis=2)
+    ax, ay = chains[:, None, :-1, 0], chains[:, None, :-1, 1]  # (n, 1, k - 1)
+    dx, dy = chains[:, None, 1:, 0] - ax, chains[:, None, 1:, 1] - ay
+    near = _gap_to_chords(points[:, :, None, 0], points[:, :, None, 1], ax, ay, dx, dy).min(axis=2)
     return np.nan_to_num(near, nan=0.0).max(axis=1)
 
 
@@ -69,13 +77,9 @@ def _sag(points: np.ndarray, middles: np.ndarray) -> np.ndarray:
     middles : (n, k, 2) float array, mm
         The curve at the middle of every step.
     """
-    a, b = points[:, :-1], points[:, 1:]
-    d = b - a
-    w = middles - a
-    length2 = np.maximum((d * d).sum(-1), 1e-300)
-    foot = np.clip((w * d).sum(-1) / length2, 0.0, 1.0)
-    gap = w - foot[..., None] * d
-    return np.nan_to_num(np.sqrt((gap * gap).sum(-1)), nan=0.0).max(axis=1)
+    ax, ay = points[:, :-1, 0], points[:, :-1, 1]
+    dx, dy = points[:, 1:, 0] - ax, points[:, 1:, 1] - ay
+    return np.nan_to_num(_gap_to_chords(middles[..., 0], middles[..., 1], ax, ay, dx, dy), nan=0.0).max(axis=1)
 
 
 def interval_deviation(curve: Curve, s: np.ndarray, points: np.ndarray, tangents: np.ndarray) -> np.ndarray:
