@@ -49,15 +49,21 @@ def _normals(mesh) -> np.ndarray:
 
 
 def write_stl(path: Path, mesh) -> None:
-    """Write a binary STL: 80-byte header, uint32 triangle count, 50 bytes per triangle (float32)."""
+    """Write a binary STL: 80-byte header, uint32 triangle count, 50 bytes per triangle (float32).
+
+    The vertices are rounded to float32 once and gathered straight into the packed triangles (the
+    same bytes as gathering the float64 corners and rounding them), and the packed array is written
+    from its own buffer, without a copy.
+    """
     faces = np.asarray(mesh.faces)
-    packed = np.zeros(len(faces), dtype=_STL_TRIANGLE)
+    packed = np.empty(len(faces), dtype=_STL_TRIANGLE)
     packed["normals"] = _normals(mesh)
-    packed["vertices"] = np.asarray(mesh.vertices, dtype=float)[faces]
+    np.take(np.asarray(mesh.vertices, dtype="<f4"), faces, axis=0, out=packed["vertices"], mode="clip")  # indices valid
+    packed["attributes"] = 0
     with open(path, "wb") as f:
         f.write(bytes(80))
         f.write(np.uint32(len(faces)).astype("<u4").tobytes())
-        f.write(packed.tobytes())
+        f.write(memoryview(packed).cast("B"))
 
 
 def _rows(fmt: str, values: np.ndarray) -> str:
