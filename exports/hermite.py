@@ -108,21 +108,21 @@ def interval_deviation(curve: Curve, s: np.ndarray, points: np.ndarray, tangents
         The deviation of every interval (exact points without contact are left out).
     """
     k = PROBES
-    frac = np.arange(k + 1) / k
-    half = (np.arange(k) + 0.5) / k
+    # the steps' ends (k + 1) and their middles (k) of every interval, evaluated in one call each
+    # on the exact curve and on the cubic (the same values as two calls: both act point by point)
+    steps = np.concatenate([np.arange(k + 1) / k, (np.arange(k) + 0.5) / k])
     ds = (s[1:] - s[:-1])[:, None]
-    exact, _ = curve.evaluate((s[:-1, None] + ds * frac).ravel())
-    exact = exact.reshape(len(ds), k + 1, 2)
+    both, _ = curve.evaluate((s[:-1, None] + ds * steps).ravel())
+    both = both.reshape(len(ds), 2 * k + 1, 2)
+    exact, mid = both[:, : k + 1], both[:, k + 1 :]
     exact[:, 0], exact[:, -1] = points[:-1], points[1:]
-    mid, _ = curve.evaluate((s[:-1, None] + ds * half).ravel())
-    mid = mid.reshape(len(ds), k, 2)
-    cubic = hermite_cubic(points, tangents, frac)
-    cubic_mid = hermite_cubic(points, tangents, half)
+    cubic_both = hermite_cubic(points, tangents, steps)
+    cubic, cubic_mid = cubic_both[:, : k + 1], cubic_both[:, k + 1 :]
     chain = np.where(np.isfinite(exact), exact, cubic)  # a missing exact point: the chain skips through the cubic
     sag_exact = _sag(chain, mid)
     sag_cubic = _sag(cubic, cubic_mid)
     out = distance_to_chains(cubic, chain) + sag_exact
-    back = distance_to_chains(np.concatenate([exact, mid], axis=1), cubic) + sag_cubic
+    back = distance_to_chains(both, cubic) + sag_cubic  # the exact points: the steps' ends and middles
     return np.maximum(out, back)
 
 
