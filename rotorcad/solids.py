@@ -246,9 +246,16 @@ def twisted_extrusion(contours: tuple[np.ndarray, ...], length: float, layers: i
     j[starts[1:] - 1] = starts[:-1]  # each ring closes on its own first vertex
     base = (np.arange(layers) * m)[:, None]
     a, b, up_b, up_a = base + i, base + j, base + m + j, base + m + i
-    side = np.stack([np.stack([a, b, up_a], axis=-1), np.stack([b, up_b, up_a], axis=-1)], axis=2).reshape(-1, 3)
     cap = np.asarray(m3.triangulate(list(contours)), dtype=np.int64)
-    faces = np.concatenate([side, cap[:, ::-1], cap + layers * m])
+    # the faces filled in place (layer, edge, its two triangles, their corners), then the caps:
+    # no stacked copies of the 0.5 million side triangles of a rotor
+    faces = np.empty((2 * layers * m + 2 * len(cap), 3), dtype=np.int64)
+    side = faces[: 2 * layers * m].reshape(layers, m, 2, 3)
+    side[:, :, 0, 0], side[:, :, 0, 1], side[:, :, 0, 2] = a, b, up_a
+    side[:, :, 1, 0], side[:, :, 1, 1], side[:, :, 1, 2] = b, up_b, up_a
+    side = faces[: 2 * layers * m]
+    faces[2 * layers * m : 2 * layers * m + len(cap)] = cap[:, ::-1]
+    faces[2 * layers * m + len(cap) :] = cap + layers * m
     vertices = vertices.reshape(-1, 3)
     # the side triangles of layer k are those of layer 0 turned by phi_k about z, and so are their
     # normals: computed on layer 0 and turned, without gathering the corners of every triangle
