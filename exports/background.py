@@ -178,6 +178,7 @@ class WorkerPool:
             # advise before a fork without exec): the worker's collections, many while it imports
             # OpenCASCADE, then leave them alone instead of touching, and so copying, every page
             # of the inherited heap; this process takes them back at once
+            frozen = gc.get_freeze_count()  # a caller's own frozen objects stay frozen
             gc.freeze()
             try:
                 self._executor = ProcessPoolExecutor(
@@ -190,7 +191,8 @@ class WorkerPool:
             except (OSError, NotImplementedError, ValueError, BrokenProcessPool):  # e.g. no /dev/shm: run here
                 self._executor = None
             finally:
-                gc.unfreeze()
+                if not frozen:
+                    gc.unfreeze()
         if background and self._executor is None:  # the jobs run here: their libraries imported as the worker would
             import_without_collections(preload)
 

@@ -71,7 +71,7 @@ def write_stl(path: Path, mesh) -> None:
         for start in range(0, len(faces), STL_CHUNK):
             part = packed[: min(STL_CHUNK, len(faces) - start)]
             part["normals"] = normals[start : start + len(part)]
-            np.take(vertices, faces[start : start + len(part)], axis=0, out=part["vertices"], mode="clip")  # indices valid
+            np.take(vertices, faces[start : start + len(part)], axis=0, out=part["vertices"])  # a bad index raises
             f.write(memoryview(part).cast("B"))
 
 
