@@ -6,11 +6,18 @@ Run by hand from the project folder: ``python benchmarks/bench_export.py``. Prin
 load, best and median of 7 runs of the command as a user types it (a fresh process each: start-up,
 imports and the forked worker included), the peak memory of the process tree (benchmarks/peak_tree.py)
 and the exact STEP of the male alone, in process (best and median of 7).
+
+``python benchmarks/bench_export.py --parts [ROUNDS]`` prints instead where the job's CPU time goes
+(issue 26), in an interleaved loop as ``benchmarks/run_all.py`` measures it (medians of ROUNDS, 5 by
+default, and their ratio to the baseline ``python -c "import numpy, scipy"``): the command's own
+process and its writer process apart, and the imports that bound it from below, each in a fresh
+interpreter (OpenCASCADE, ezdxf, the command's own).
 """
 
 from __future__ import annotations
 
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -69,5 +76,58 @@ def step_of_one_rotor() -> None:
     )
 
 
+SPLIT = """
+import atexit, resource, runpy, sys
+def report():
+    s, c = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    print(s.ru_utime + s.ru_stime, c.ru_utime + c.ru_stime, file=open({record!r}, "w"))
+atexit.register(report)
+sys.argv = ["rotorcad", *{args!r}]
+runpy.run_module("rotorcad.cli.main", run_name="__main__")
+"""
+
+
+def _cpu(cmd: list[str], env: dict[str, str]) -> float:
+    """CPU time (s) of a command and the processes it waited for."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(cmd, env=env, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def parts(rounds: int) -> None:
+    """Print the README job's CPU time by part (module docstring), medians of ``rounds`` interleaved rounds."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    py = sys.executable
+    fixed = {
+        "baseline: python -c 'import numpy, scipy'": [py, "-c", "import numpy, scipy"],
+        "python -c pass (the interpreter's start)": [py, "-c", "pass"],
+        "import OCP.STEPControl (OpenCASCADE, one extension module)": [py, "-c", "import OCP.STEPControl"],
+        "import numpy, ezdxf": [py, "-c", "import numpy, ezdxf"],
+        "the command's imports (rotorcad.cli.main, export_cmd)": [py, "-c", "import rotorcad.cli.main, rotorcad.cli.export_cmd"],
+    }
+    times: dict[str, list[float]] = {name: [] for name in (*fixed, "README job", "  its own process", "  its writer process")}
+    print(f"load average {os.getloadavg()[0]:.2f}, {os.cpu_count()} cores")
+    with tempfile.TemporaryDirectory() as tmp:
+        record = Path(tmp) / "split.txt"
+        job = [py, "-c", SPLIT.format(record=str(record), args=["export", str(SAMPLE), "--out", str(Path(tmp) / "o"), "--quiet"])]
+        for _ in range(rounds):
+            for name, cmd in fixed.items():
+                times[name].append(_cpu(cmd, env))
+            times["README job"].append(_cpu(job, env))
+            own, writer = map(float, record.read_text().split())
+            times["  its own process"].append(own)
+            times["  its writer process"].append(writer)
+    base = statistics.median(times["baseline: python -c 'import numpy, scipy'"])
+    for name, values in times.items():
+        median = statistics.median(values)
+        print(f"{name:62s} {median * 1e3:6.0f} ms  {median / base:5.2f}x")
+    print(f"load average {os.getloadavg()[0]:.2f}")
+
+
 if __name__ == "__main__":
-    main()
+    if "--parts" in sys.argv:
+        rest = sys.argv[sys.argv.index("--parts") + 1 :]
+        parts(int(rest[0]) if rest else 5)
+    else:
+        main()

@@ -15,6 +15,7 @@ environment, or when no worker can be started, every job runs here, in order, wi
 
 from __future__ import annotations
 
+import gc
 import importlib
 import multiprocessing
 import os
@@ -126,8 +127,31 @@ def _start_worker(preload: tuple[str, ...], parent: int | None = None) -> None:
         _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the command's handler, inherited by the fork
-    for module in preload:
-        importlib.import_module(module)
+    import_without_collections(preload)
+    gc.freeze()  # what the worker has imported stays for its life: its later collections leave it alone
+
+
+def import_without_collections(modules: tuple[str, ...]) -> None:
+    """Import ``modules`` with the cyclic garbage collector paused.
+
+    Importing OpenCASCADE makes some hundred thousand objects (its classes and functions), none of
+    them garbage, and each few hundred of them start a collection that walks the younger ones
+    again: measured on 2 cores, ``import OCP.STEPControl, ezdxf`` took 0.9 s of CPU with the
+    collector paused and 1.1 s with it running. Garbage made meanwhile is collected once it runs again.
+
+    Parameters
+    ----------
+    modules : tuple of str
+        Module names (``"OCP.STEPControl"``).
+    """
+    running = gc.isenabled()
+    gc.disable()
+    try:
+        for module in modules:
+            importlib.import_module(module)
+    finally:
+        if running:
+            gc.enable()
 
 
 class WorkerPool:
@@ -142,12 +166,20 @@ class WorkerPool:
     background
         False runs every job here (e.g. when nothing will be written in the background).
     preload
-        Modules the worker imports as soon as it starts (e.g. ``"OCP.STEPControl"``, 0.6 s).
+        Modules the worker imports as soon as it starts (e.g. ``"OCP.STEPControl"``, 0.6 s), with
+        the garbage collector paused (:func:`import_without_collections`); imported here when the
+        jobs run here.
     """
 
     def __init__(self, background: bool = True, preload: tuple[str, ...] = ()) -> None:
         self._executor: ProcessPoolExecutor | None = None
         if background and worker_count():
+            # the objects made so far are frozen for the fork (gc.freeze, as the gc module's docs
+            # advise before a fork without exec): the worker's collections, many while it imports
+            # OpenCASCADE, then leave them alone instead of touching, and so copying, every page
+            # of the inherited heap; this process takes them back at once
+            frozen = gc.get_freeze_count()  # a caller's own frozen objects stay frozen
+            gc.freeze()
             try:
                 self._executor = ProcessPoolExecutor(
                     max_workers=1,
@@ -158,6 +190,11 @@ class WorkerPool:
                 self._executor.submit(int)  # forks now, while this is the only thread
             except (OSError, NotImplementedError, ValueError, BrokenProcessPool):  # e.g. no /dev/shm: run here
                 self._executor = None
+            finally:
+                if not frozen:
+                    gc.unfreeze()
+        if background and self._executor is None:  # the jobs run here: their libraries imported as the worker would
+            import_without_collections(preload)
 
     def __enter__(self) -> WorkerPool:
         return self

@@ -299,7 +299,7 @@ def helicoid_deviation(shape, exact: np.ndarray, lead: float, length: float, per
         surface = BRep_Tool.Surface_s(face)
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
         us, vs = _face_parameters(surface, u0, u1, v0, v1, per_face)
-        pts = np.array([[c.X(), c.Y(), c.Z()] for c in (surface.Value(u, v) for u in us for v in vs)])
+        pts = np.array([surface.Value(u, v).Coord() for u in us for v in vs])  # (x, y, z) in one call
         if np.ptp(pts[:, 2]) < 1e-9 * max(length, 1.0):  # an end cap
             continue
         batches.append(rotate(pts[:, :2], -2 * np.pi * pts[:, 2] / lead))  # each point by its own turn

@@ -48,6 +48,24 @@ def test_mesh_formats_read_back_with_the_same_volume(tmp_path, solid, fmt):
     assert back.volume == pytest.approx(solid.volume, rel=rel)
 
 
+def test_binary_stl_written_in_parts_reads_back_triangle_for_triangle(tmp_path, rotors):
+    # more triangles than exports.meshes.STL_CHUNK, so the file is packed and written part by part;
+    # reference: trimesh's binary STL parser (third party) reads every triangle's corners and the
+    # normal stored with it, in order: our corners and normals rounded to float32
+    from exports.meshes import STL_CHUNK, write_stl
+
+    mesh = helical_solid(rotors.section("male", 0.002), PAIR.lead, PAIR.length, 0.004).triangle_mesh
+    assert len(mesh.faces) > STL_CHUNK * 1.5
+    path = tmp_path / "m.stl"
+    write_stl(path, mesh)
+    with open(path, "rb") as f:
+        back = trimesh.exchange.stl.load_stl_binary(f)
+    corners = back["vertices"][back["faces"]]
+    assert corners.shape == (len(mesh.faces), 3, 3)
+    assert np.array_equal(corners, mesh.vertices[mesh.faces].astype(np.float32))
+    assert np.array_equal(back["face_normals"], mesh.face_normals.astype(np.float32))
+
+
 def test_dxf_profiles(tmp_path, solid, rotors):
     from exports.dxf_spline import profile_splines
 

@@ -58,6 +58,50 @@ def loaded_modules(args: list[str], cwd: Path) -> set[str]:
     return set(json.loads(line.removeprefix("MODULES ")))
 
 
+RUN_WITH_WORKER = """
+import json, sys
+import multiprocessing.util
+import exports.background as background
+start = background._start_worker
+
+def start_and_record(*args):
+    # the worker writes the modules it holds when it ends (after its jobs)
+    def record():
+        with open({record!r}, "w") as f:
+            json.dump(sorted(sys.modules), f)
+    multiprocessing.util.Finalize(None, record, exitpriority=100)
+    start(*args)
+
+background._start_worker = start_and_record
+from rotorcad.cli.main import main
+try:
+    main({args!r})
+except SystemExit:
+    pass
+sys.stdout.flush()
+print("\\nMODULES", json.dumps(sorted(sys.modules)))
+"""
+
+
+def command_and_worker_modules(args: list[str], cwd: Path) -> tuple[set[str], set[str] | None]:
+    """Run ``rotorcad ARGS`` in a fresh interpreter; return the modules it loaded and those its writer process held at its end.
+
+    The second is None when the command had no writer process (one core).
+    """
+    record = cwd / "worker_modules.json"
+    proc = subprocess.run(
+        [sys.executable, "-c", RUN_WITH_WORKER.format(args=args, record=str(record))],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=True,
+    )
+    line = next(x for x in proc.stdout.splitlines() if x.startswith("MODULES "))
+    worker = set(json.loads(record.read_text())) if record.exists() else None
+    return set(json.loads(line.removeprefix("MODULES "))), worker
+
+
 def heavy_in(modules: set[str]) -> set[str]:
     return {h for h in HEAVY if h in modules}
 
@@ -80,13 +124,20 @@ def test_export_of_numpy_mesh_formats_imports_no_trimesh_meshio_or_ocp(short_des
 def test_readme_export_leaves_opencascade_to_the_writer_process(short_design, tmp_path):
     # the README's main job: the design's formats stl, step and dxf; with a worker (two cores or
     # more) OpenCASCADE and ezdxf load there only, without one (one core) here, and the files are the same
-    modules = loaded_modules(
+    modules, worker = command_and_worker_modules(
         ["export", str(short_design), "--out", str(tmp_path / "o"), "--tolerance", "0.1", "--quiet"], tmp_path
     )
     assert (tmp_path / "o" / "short_male.step").exists() and (tmp_path / "o" / "short_female.dxf").exists()
-    if worker_count():
+    # a rotor design imports none of the gear commands' modules (exports.svg pulled xml.sax,
+    # urllib.request, http.client and ssl)
+    assert "rotorcad.cli.gear" not in modules and "http.client" not in modules
+    assert (worker is not None) == bool(worker_count())
+    if worker is not None:
         assert heavy_in(modules) == set()
         assert "ezdxf" not in modules  # the DXF is written in the worker too
+        # the worker, forked from the command (it holds what the command had imported), adds
+        # OpenCASCADE and ezdxf for the STEP and DXF files and nothing else heavy
+        assert heavy_in(worker) == {"OCP"} and "ezdxf" in worker and "rotorcad.cli.gear" not in worker
     else:
         assert "ezdxf" in modules and any(m.startswith("OCP") for m in modules)
 

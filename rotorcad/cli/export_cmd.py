@@ -18,10 +18,10 @@ from exports.dxf_profile import read_profile_points
 from exports.formats import ExportFormat, check_limits, names, plan_files, preload, table
 from rotorcad.assembly import BodyKind, PlacedBody, assemble, check_section_work, check_solid_work, housing_bodies, rotor_bodies
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, output_folder
-from rotorcad.cli.gear_export import design_gear_bodies, design_rack_files, is_gear_design
 from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
+from rotorcad.design.files import is_gear_design
 from rotorcad.errors import DesignError
 from rotorcad.interference import interference_2d, intersection_3d
 from rotorcad.measured_outline import whole_outline
@@ -132,6 +132,8 @@ def export(
     """
     data = _read_design(design)
     if is_gear_design(data):  # formats default to stl, step and dxf, the tolerance to 5 µm
+        from rotorcad.cli.gear_export import design_gear_bodies  # the gear commands' modules, for a gear only
+
         fmts = _asked_formats(formats, ["stl", "step", "dxf"], BodyKind.GEAR)
         tol = _surface_tolerance(0.005 if tolerance is None else tolerance)
         result: dict[str, Any] = {"tolerance": tol}
@@ -166,6 +168,8 @@ def export(
             outputs.add(path, writer, "--out")
             rows.append(row)
         if is_gear_design(data):  # a gear design's rack ([rack]), in its own frame
+            from rotorcad.cli.gear_export import design_rack_files
+
             rows += design_rack_files(design, [f.name for f in fmts], folder, tol, outputs, data)
         outputs.write(pool)
     progress.stop()

@@ -19,14 +19,10 @@ from rotorcad.assembly import BodyKind, PlacedBody, gear_bodies, gear_lead
 from rotorcad.cli.common import InputError, Outputs
 from rotorcad.cli.gear import build_gear, make_rack, merge_gear_params, shop_gears
 from rotorcad.cli.gear_part import part_features
+from rotorcad.design.files import is_gear_design
 
 GEAR_FORMATS = names(BodyKind.GEAR)
 """The formats of the built-in table that write gears (:mod:`exports.formats`)."""
-
-
-def is_gear_design(data: dict[str, Any]) -> bool:
-    """Tell whether a design mapping is a gear design (it has a ``[gear]`` table)."""
-    return "gear" in data
 
 
 def design_gear_bodies(design: Path, tol: float, data: dict[str, Any] | None = None) -> list[PlacedBody]:

@@ -24,6 +24,7 @@ def _interrupted_hook(kind, value, tb):  # pragma: no cover - exercised by a rea
 
 sys.excepthook = _interrupted_hook
 
+import gc  # noqa: E402
 import importlib  # noqa: E402
 import re  # noqa: E402
 import signal  # noqa: E402
@@ -71,7 +72,13 @@ class LazyGroup(click.Group):
         if cmd_name not in COMMANDS:
             return None
         module, _, attr = COMMANDS[cmd_name][0].partition(":")
-        return getattr(importlib.import_module(module), attr)
+        running = gc.isenabled()
+        gc.disable()  # imports make many objects and no garbage: no collection walks them meanwhile
+        try:
+            return getattr(importlib.import_module(module), attr)
+        finally:
+            if running:
+                gc.enable()
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         """Write the command list from the one-line summaries of :data:`COMMANDS` (no module is imported)."""

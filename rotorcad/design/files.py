@@ -48,6 +48,11 @@ def load_toml(path: Path, label: str = "design file") -> dict[str, Any]:
         raise InputFileError(label, "valid TOML", str(path), str(exc)) from None
 
 
+def is_gear_design(data: dict[str, Any]) -> bool:
+    """Tell whether a design mapping is a gear design (it has a ``[gear]`` table)."""
+    return "gear" in data
+
+
 def load_gear_design(path: Path, data: dict[str, Any] | None = None) -> dict[str, dict[str, Any]]:
     """Read a gear design file and check it (:func:`rotorcad.design.schema.gear_design`).
 
