@@ -15,13 +15,27 @@ tests/test_coupling.py::test_ehl_capacity_rises_with_viscosity_and_speed took 32
 OpenBLAS's default threads on a loaded 2-core machine, 0.5 s with one). The benchmarks set the same
 variables. Set before numpy is imported (this file is read before any test module); a variable the
 user set is kept.
+
+An expensive fixture that a module's tests need on both workers (a module split between them, as
+the last one is when a worker takes the other's last tests) is built once per run through
+``built_once``: the first worker builds it and leaves it pickled in the run's temporary folder, the
+other waits for it and reads it. Nothing is kept from one run to the next.
 """
 
 from __future__ import annotations
 
 import os
+import pickle
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
 
 import pytest
+
+try:
+    import fcntl
+except ImportError:  # not on POSIX: each worker builds its own
+    fcntl = None
 
 for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
@@ -45,3 +59,30 @@ def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
         return 0
     cpus = _usable_cpus()
     return cpus if cpus > 1 else 0
+
+
+def _built_once(root: Path, name: str, build: Callable[[], Any]) -> Any:
+    """``build()``, made by the first worker that asks and read from ``root`` by the others."""
+    path = root / f"{name}.pickle"
+    with open(root / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # the other worker waits while this one builds
+        try:
+            if path.exists():
+                return pickle.loads(path.read_bytes())
+            value = build()
+            partial = path.with_suffix(".partial")
+            partial.write_bytes(pickle.dumps(value))
+            partial.replace(path)
+            return value
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
+@pytest.fixture(scope="session")
+def built_once(tmp_path_factory: pytest.TempPathFactory) -> Callable[[str, Callable[[], Any]], Any]:
+    """``built_once(name, build)``: ``build()`` made once in this run for all the workers (pickled
+    in the run's temporary folder); without workers, or without POSIX file locks, just ``build()``."""
+    if fcntl is None or not os.environ.get("PYTEST_XDIST_WORKER"):
+        return lambda name, build: build()
+    root = tmp_path_factory.getbasetemp().parent  # the run's folder, above each worker's own
+    return lambda name, build: _built_once(root, name, build)

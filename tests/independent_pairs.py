@@ -21,8 +21,10 @@ from __future__ import annotations
 
 import functools
 import hashlib
+import inspect
 import itertools
 import os
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -286,13 +288,68 @@ def stored(kind: str, key: str, compute: Callable[[], np.ndarray]) -> np.ndarray
     written there. The files hold what the functions below compute (a test regenerates one and
     compares); they save seconds to minutes of shapely booleans per run of the suite."""
     path = REFERENCE_DATA / f"{kind}_{hashlib.sha256(key.encode()).hexdigest()[:16]}.npy"
+    writing = os.environ.get("ROTORCAD_WRITE_REFERENCES") == "1"
     if path.exists():
+        if writing:
+            _note_used(path)
         return np.load(path)
+    if not writing:
+        warnings.warn(
+            f"tests/reference_data has no {path.name} ({kind}): computed here; python tests/make_reference_data.py stores it",
+            stacklevel=2,
+        )
     result = compute()
-    if os.environ.get("ROTORCAD_WRITE_REFERENCES") == "1":
+    if writing:
         REFERENCE_DATA.mkdir(exist_ok=True)
         np.save(path, result)
+        _note_used(path)
     return result
+
+
+def _note_used(path: Path) -> None:
+    """Add a stored file's name to tests/reference_data/.used (tests/make_reference_data.py --prune keeps those)."""
+    with open(REFERENCE_DATA / ".used", "a") as used:
+        used.write(path.name + "\n")
+
+
+def _digest(value: object) -> str:
+    """The text of one input in a stored result's key: an array by its shape and its bytes' SHA-256."""
+    if isinstance(value, np.ndarray):
+        data = np.ascontiguousarray(value, dtype=float)
+        return f"array{data.shape}:{hashlib.sha256(data.tobytes()).hexdigest()}"
+    return repr(value)
+
+
+_STORING: list[str] = []  # the stored brute forces being computed now (one inside another is not stored apart)
+
+
+def stored_by_inputs(kind: str, *uses: Callable) -> Callable[[Callable[..., np.ndarray]], Callable[..., np.ndarray]]:
+    """Decorator: the brute force's result through :func:`stored`, keyed by every argument (arrays by
+    their bytes) and by the source text of the function and of the functions it ``uses``: a stored
+    result is read only for the very inputs and code that computed it (an edited brute force or
+    other points compute anew). The undecorated function is the wrapper's ``brute_force``."""
+
+    def wrap(func: Callable[..., np.ndarray]) -> Callable[..., np.ndarray]:
+        signature = inspect.signature(func)
+        code = hashlib.sha256("".join(inspect.getsource(f) for f in (func, *uses)).encode()).hexdigest()
+
+        @functools.wraps(func)
+        def read_or_compute(*args: object, **kwargs: object) -> np.ndarray:
+            if _STORING:  # inside another stored brute force: that one's result is stored
+                return func(*args, **kwargs)
+            bound = signature.bind(*args, **kwargs)
+            bound.apply_defaults()
+            key = repr((code, [(name, _digest(value)) for name, value in bound.arguments.items()]))
+            _STORING.append(kind)
+            try:
+                return stored(kind, key, lambda: func(*args, **kwargs))
+            finally:
+                _STORING.pop()
+
+        read_or_compute.brute_force = func  # type: ignore[attr-defined]
+        return read_or_compute
+
+    return wrap
 
 
 @functools.lru_cache(maxsize=8)
@@ -438,6 +495,7 @@ def write_drawing(path: str, ring: np.ndarray, radii: tuple[float, float], flank
     doc.saveas(path)
 
 
+@stored_by_inputs("closest_approach", _rot)
 def closest_approach(
     pair: Pair, female: np.ndarray, male: np.ndarray, positions: int = 2000, window_deg: float = 40.0
 ) -> np.ndarray:
@@ -486,6 +544,7 @@ def distance_to_line(points: np.ndarray, line: shapely.LineString | shapely.Line
     return out
 
 
+@stored_by_inputs("true_gap", _rot, closest_approach.brute_force)
 def true_gap(
     pair: Pair, female_ring: np.ndarray, male_ring: np.ndarray, female_points: np.ndarray, positions: int = 1500
 ) -> np.ndarray:

@@ -92,9 +92,12 @@ def _given(spec: PairSpec, data, label: str) -> dict:
 
 
 @pytest.fixture(scope="module")
-def verdicts(tmp_path_factory) -> dict:
+def verdicts(tmp_path_factory, built_once) -> dict:
     """The summaries of every sample's design and of its male in every form (built once), its spec and male."""
-    folder = tmp_path_factory.mktemp("forms")
+    return built_once("test_verdict_invariance.verdicts", lambda: _verdicts(tmp_path_factory.mktemp("forms")))
+
+
+def _verdicts(folder) -> dict:
     out: dict[tuple[str, str], dict] = {}
     for name in ROTOR_SAMPLES:
         spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
