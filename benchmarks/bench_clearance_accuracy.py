@@ -16,8 +16,9 @@ how many seeds raise the interference flag (truth: never, the contact zone is no
 and the largest share of the contact line left out of the contact zone as unresolved (the flank
 beside the 5/6 male's undercut corner that sparse points round over, ``ClearanceZone.UNRESOLVED``).
 
-Run by hand: ``python benchmarks/bench_clearance_accuracy.py [seeds] [densities]`` (about 10 minutes for 5
-seeds; densities a comma-separated list of points a lobe, default 2000,300,80).
+Run by hand: ``python benchmarks/bench_clearance_accuracy.py [seeds] [densities] [pair]`` (about 10 minutes
+for 5 seeds on an idle machine; densities a comma-separated list of points a lobe, default 2000,300,80;
+pair ``4/6`` or ``5/6``, default both).
 """
 
 from __future__ import annotations
@@ -73,7 +74,8 @@ def main() -> None:
     head = "| pair | points a lobe | scatter | error on the contact zone | error / accuracy | stated accuracy | alignment |"
     print(head + " interference | unresolved |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for label, rack_pair in (("4/6 trapezoid", trapezoid_4_6()), ("5/6 arc flank", arc_flank_5_6())):
+    pairs = (("4/6 trapezoid", trapezoid_4_6()), ("5/6 arc flank", arc_flank_5_6()))
+    for label, rack_pair in [p for p in pairs if len(sys.argv) < 4 or p[0].startswith(sys.argv[3])]:
         male, female = cut_rotor(rack_pair, "male"), cut_rotor(rack_pair, "female")
         z1, z2 = rack_pair.male_teeth, rack_pair.female_teeth
         pair = RotorPair(z1, z2, 100.0, **rack_pair.radii(), lead=1e5, length=1e5, strict=False)
