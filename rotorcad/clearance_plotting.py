@@ -149,12 +149,13 @@ def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
     on = zone == ClearanceZone.CONTACT
     gap_um = 1e3 * mc.gap
     bx.plot(length, np.where(on, um, np.nan), "-", color=ps.BLUE, lw=1.1, label="normal clearance δ (contact zone)")
-    for code, colour, text in (
-        (ClearanceZone.GAP, ps.ORANGE, "gap where the male never touches (root below a sharp tip)"),
-        (ClearanceZone.CORNER, ps.GREEN, "gap of a sharp female corner's path"),
+    for code, colour, text, value in (
+        (ClearanceZone.GAP, ps.ORANGE, "gap where the male never touches (root below a sharp tip)", gap_um),
+        (ClearanceZone.CORNER, ps.GREEN, "gap of a sharp female corner's path", gap_um),
+        (ClearanceZone.UNRESOLVED, ps.PURPLE, "δ the points cannot resolve (beside a rounded-over corner)", um),
     ):
         if (zone == code).any():
-            bx.plot(length, np.where(zone == code, gap_um, np.nan), "-", color=colour, lw=1.1, label=text)
+            bx.plot(length, np.where(zone == code, value, np.nan), "-", color=colour, lw=1.1, label=text)
     bx.fill_between(length, um, 0.0, where=ok & (um < 0), color=ps.VERMILLION, alpha=0.35, lw=0, label="interference (δ < 0)")
     bx.axhline(0.0, color=ps.BLACK, lw=0.6)
     bx.set_xlabel(ps.label("arc length along the datum rack", "mm"))
@@ -166,12 +167,13 @@ def plot_clearance(mc: MeshingClearance, state: str) -> Figure:
     angle = dist["male_angle_deg"]
     c_um = 1e3 * dist["clearance"]
     dx.plot(angle[on], c_um[on], ".", color=ps.BLUE, ms=1.8, label="normal clearance δ (contact zone)")
-    for code, colour, text in (
-        (ClearanceZone.GAP, ps.ORANGE, "gap, never touched"),
-        (ClearanceZone.CORNER, ps.GREEN, "corner path gap"),
+    for code, colour, text, value in (
+        (ClearanceZone.GAP, ps.ORANGE, "gap, never touched", gap_um),
+        (ClearanceZone.CORNER, ps.GREEN, "corner path gap", gap_um),
+        (ClearanceZone.UNRESOLVED, ps.PURPLE, "δ, unresolved", c_um),
     ):
         if (zone == code).any():
-            dx.plot(angle[zone == code], gap_um[zone == code], ".", color=colour, ms=1.8, label=text)
+            dx.plot(angle[zone == code], value[zone == code], ".", color=colour, ms=1.8, label=text)
     neg = on & (c_um < 0)
     if neg.any():
         dx.plot(angle[neg], c_um[neg], ".", color=ps.VERMILLION, ms=2.2, label="interference (δ < 0)")

@@ -44,6 +44,11 @@ STALL_TURN = np.radians(8.0)
 """rad: the smallest turn of the rotor's profile across a stall for it to be a sharp corner (the 5/6
 arc-flank male's crossing turns by 10 deg, read 12-14 deg across its stall; the rack-involute 5/6
 female's sealing flank, a slow but smooth generation, 6.4 deg from its own points)."""
+SMOOTHED_STALL_FACTOR = 0.4
+"""Generation factor below which a measured rotor's smoothed corner still stalls: a fit through points
+0.9 mm apart (80 a lobe) rounds the 5/6 arc-flank male's 10 deg crossing over a millimetre, which lifts its
+stall to f = 0.25 (0.03 from 2000 points a lobe); with the profile turning by :data:`STALL_TURN` across it
+(11-12 deg read there at 80 and 300 points a lobe, exact or 2 µm scatter; nothing on the 4/6 pair)."""
 TIP_MARGIN = 0.05
 """Share of the rack depth below the rotor's tip (above its root) within which a stall is the rotor's tip
 corner (its root fillet, whose curvature a measured rack gives no better), not an undercut."""
@@ -208,11 +213,17 @@ def _profile_turn(profile: np.ndarray, a: int, b: int) -> float:
     return float(abs(np.arctan2(u[0] * v[1] - u[1] * v[0], u @ v)))
 
 
-def stalls(rack: DerivedRack, measured: bool = False, min_turn: float = STALL_TURN) -> list[tuple[int, int, bool]]:
+def stalls(
+    rack: DerivedRack,
+    measured: bool = False,
+    min_turn: float = STALL_TURN,
+    factor: float = STALL_FACTOR,
+    max_turn: float = np.pi,
+) -> list[tuple[int, int, bool]]:
     """Find where a rotor's generation stalls or turns back: its undercut, or a sharp corner below its tip.
 
     Runs of rack points at least :data:`STALL_LENGTH` long along which the generation factor
-    (:func:`generation_factor`) stays below :data:`STALL_FACTOR`, where the rotor's generated point
+    (:func:`generation_factor`) stays below ``factor`` (:data:`STALL_FACTOR`), where the rotor's generated point
     lies below its tip and above its root by more than :data:`TIP_MARGIN` of the rack depth, not on
     the fan of a sharp corner the profile was given with (a designed point-generating corner,
     whose path the rack carries). A run counts when the envelope turns back in it (f < 0), or, for
@@ -228,6 +239,11 @@ def stalls(rack: DerivedRack, measured: bool = False, min_turn: float = STALL_TU
         Whether the profile was given by points.
     min_turn : float, rad
         Smallest turn of the profile across a stall of a measured profile.
+    factor : float
+        Generation factor below which the rotor's point stalls (:data:`STALL_FACTOR`; a fit through
+        sparse points lifts a smoothed corner's stall, :data:`SMOOTHED_STALL_FACTOR`).
+    max_turn : float, rad
+        Largest turn of the profile across a stall that does not turn back (a measured one).
 
     Returns
     -------
@@ -240,7 +256,7 @@ def stalls(rack: DerivedRack, measured: bool = False, min_turn: float = STALL_TU
     radius = np.hypot(*rack.profile.T)
     depth = float(np.ptp(rack.points[:, 1]))
     between = (radius < radius.max() - TIP_MARGIN * depth) & (radius > radius.min() + TIP_MARGIN * depth)
-    low = np.isfinite(f) & (f < STALL_FACTOR) & between & ~rack.corner_path
+    low = np.isfinite(f) & (f < factor) & between & ~rack.corner_path
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(rack.points, axis=0).T))])
     edges = np.diff(np.concatenate([[0], low.astype(int), [0]]))
     out = []
@@ -248,7 +264,7 @@ def stalls(rack: DerivedRack, measured: bool = False, min_turn: float = STALL_TU
         if arc[b - 1] - arc[a] < STALL_LENGTH:
             continue
         back = bool(np.nanmin(f[a:b]) < 0)
-        if back or (measured and _profile_turn(rack.profile, a, b) >= min_turn):
+        if back or (measured and min_turn <= _profile_turn(rack.profile, a, b) <= max_turn):
             out.append((int(a), int(b), back))
     return out
 

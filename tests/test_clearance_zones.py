@@ -156,16 +156,13 @@ def test_cmm_density_and_scatter_on_a_conjugate_pair(points, noise):
     assert s["min_normal_clearance"] > -s["accuracy"]  # the CLI's interference flag stays off
 
 
-@pytest.mark.parametrize("points,noise,seed", [(300, 2e-3, 1), (2000, 1e-3, 3)])
-def test_cmm_points_of_the_undercut_pair_against_the_brute_force(points, noise, seed):
-    # The 5/6 arc-flank pair (its male undercut at r = 42.3-42.7 mm, a sharp 10 deg corner where
-    # the two generated parts of its flank cross), straight rotors so that the normal clearance is
-    # the transverse gap: on the contact zone (every 4th row and the 20 largest) the clearance
-    # read from CMM-like points within the stated accuracy of the brute-force closest approach of
-    # the cut outlines at the same female point (independent_pairs.true_gap) (measured: 5.7 um at
-    # 300 points a lobe with 2 um scatter, stated 12.5 um; 2.0 um at 2000 with 1 um, stated 7.0 um);
-    # the alignment on the driving flank (truth 0: both cut at one rack phase) within 2 um; no
-    # interference beyond the accuracy (truth: none).
+@functools.cache
+def undercut_pair_from_points(
+    points: int, noise: float, seed: int
+) -> tuple[MeshingClearance, np.ndarray, np.ndarray, np.ndarray]:
+    """The 5/6 arc-flank pair's clearance from CMM-like points (straight rotors), and the brute-force
+    truth (independent_pairs.true_gap) at the female points of its contact zone (every 6th row and
+    the 20 largest |clearance|) and of its unresolved rows (every 3rd), cached for the tests below."""
     rack_pair = arc_flank_5_6()
     male, female = cut_rotor(rack_pair, "male"), cut_rotor(rack_pair, "female")
     m = resample(male, per_lobe(male, 5, points), noise, seed=seed)
@@ -175,16 +172,59 @@ def test_cmm_points_of_the_undercut_pair_against_the_brute_force(points, noise, 
     mc = MeshingClearance(
         pair, lobe_pieces(pair, m, "male"), lobe_pieces(pair, f, "female"), scatter=max(qm[0], qf[0]), spacing=max(qm[1], qf[1])
     )
-    s = mc.summary()
     d = mc.distribution()
     on = np.flatnonzero(mc.contact_zone)
-    c = mc.clearance[on]
-    pick = np.union1d(np.arange(0, len(on), 4), np.argsort(-np.abs(c))[:20])
-    truth = true_gap(rack_pair, female, male, np.column_stack([d["female_x"], d["female_y"]])[on[pick]])
-    worst = float(np.abs(c[pick] - truth).max())
+    pick = on[np.union1d(np.arange(0, len(on), 6), np.argsort(-np.abs(mc.clearance[on]))[:20])]
+    unresolved = np.flatnonzero(mc.zones == ClearanceZone.UNRESOLVED)[::3]
+    rows = np.concatenate([pick, unresolved])
+    truth = true_gap(rack_pair, female, male, np.column_stack([d["female_x"], d["female_y"]])[rows])
+    return mc, rows, np.where(mc.contact_zone[rows], truth, np.nan), np.where(mc.contact_zone[rows], np.nan, truth)
+
+
+@pytest.mark.parametrize("points,noise,seed", [(80, 0.0, 0), (80, 2e-3, 1), (300, 2e-3, 1), (2000, 1e-3, 3)])
+def test_cmm_points_of_the_undercut_pair_against_the_brute_force(points, noise, seed):
+    # The 5/6 arc-flank pair (its male undercut at r = 42.3-42.7 mm, a sharp 10 deg corner where
+    # the two generated parts of its flank cross), straight rotors so that the normal clearance is
+    # the transverse gap: on the contact zone (every 6th row and the 20 largest) the clearance
+    # read from CMM-like points within the stated accuracy of the brute-force closest approach of
+    # the cut outlines at the same female point (independent_pairs.true_gap), and so are the
+    # reported largest and smallest values (measured: 1.5 / 4.6 um at 80 points a lobe with 0 / 2
+    # um scatter, stated 6.5 / 19.0 um; 5.7 um at 300 points a lobe with 2 um scatter, stated
+    # 12.5 um; 2.0 um at 2000 with 1 um, stated 7.0 um), within the issue's 10 um at 80 points a
+    # lobe; the alignment on the driving flank (truth 0: both cut at one rack phase) within 2 um; no
+    # interference beyond the accuracy (truth: none).
+    mc, rows, truth, _ = undercut_pair_from_points(points, noise, seed)
+    s = mc.summary()
+    on = np.isfinite(truth)
+    c = mc.clearance[rows][on]
+    worst = float(np.abs(c - truth[on]).max())
     assert worst <= s["accuracy"], (worst, s["accuracy"])
+    if points == 80:
+        assert worst < 10e-3
+    assert abs(s["max_normal_clearance"] - truth[on][np.argmax(c)]) <= s["accuracy"]
+    assert abs(s["min_normal_clearance"] - truth[on][np.argmin(c)]) <= s["accuracy"]
     assert abs(s["female_rack_shift"]) < 2e-3
     assert s["min_normal_clearance"] > -s["accuracy"]
+
+
+@pytest.mark.parametrize("noise,seed", [(0.0, 0), (2e-3, 1)])
+def test_the_contact_that_sparse_points_cannot_resolve_is_left_out(noise, seed):
+    # At 80 points a lobe (0.9 mm apart) the 5/6 male's fit rounds its undercut's 0.4 mm crossing
+    # off: the female rows facing the flank beside it read up to 25-31 um of clearance where the
+    # brute force (independent_pairs.true_gap) gives under 1 um. They are the unresolved zone (4),
+    # not the contact zone: a small share of the contact line, and there the error the brute force
+    # shows exceeds the issue's 10 um at 80 points a lobe, and for exact points the accuracy stated
+    # for the rest (the exclusion is needed, not a guess; measured 25.6 um, stated 6.5 um; 18.9 um
+    # with 2 um scatter, stated 19.0 um).
+    mc, rows, _, truth = undercut_pair_from_points(80, noise, seed)
+    s = mc.summary()
+    off = np.isfinite(truth)
+    assert 0.0 < s["unresolved_share"] < 0.06
+    assert s["max_unresolved_clearance"] == pytest.approx(np.nanmax(mc.clearance[mc.zones == ClearanceZone.UNRESOLVED]))
+    excluded = float(np.abs(mc.clearance[rows][off] - truth[off]).max())
+    assert excluded > 10e-3
+    if noise == 0:
+        assert excluded > s["accuracy"]
 
 
 def test_cli_states_the_accuracy_and_the_zones(tmp_path, capsys):

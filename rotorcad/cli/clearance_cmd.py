@@ -111,10 +111,10 @@ def clearance(**opts: Any) -> None:
         ok = np.isfinite(np.column_stack([v for k, v in dist.items() if k != "gap"])).all(axis=1)
         notes = [
             "meshing clearance (Wu & Chi) per female normal rack point (datum): x, y [mm], clearance along its normal [mm],",
-            "male angle [deg, rotation to go until the nearest male tip's middle reaches O1O2, within +-180/z1] and z [mm]",
-            "of the contact (0: first inside both bores), contact point (fixed frame), female and",
-            "male profile points there [mm, own frames], in_contact 1 inside both bores and length, zone 1 contact zone, 2 never",
-            "touches (root below a sharp tip), 3 a sharp female corner's path, 0 outside; gap [mm] transverse, of zones 2 and 3",
+            "male angle [deg, rotation to go until the nearest male tip's middle reaches O1O2, within +-180/z1] and z [mm] of",
+            "the contact (0: first inside both bores), contact point (fixed frame), female and male profile points there [mm,",
+            "own frames], in_contact 1 inside both bores and length, zone 1 contact zone, 2 never touches (root below a sharp",
+            "tip), 3 a sharp female corner's path, 4 a contact the points cannot resolve (not judged), 0 outside; gap [mm] 2, 3",
         ]
         out.add(opts["csv_path"], lambda p: write_points(p, rows[ok], notes, header=",".join(dist)), "--csv")
     result["files"] = [str(p) for p in out.write()]
