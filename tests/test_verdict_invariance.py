@@ -46,7 +46,8 @@ from rotorcad.rotor_points import pair_from_rotor_points
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
 ROTOR_SAMPLES = [p.stem for p in sorted(SAMPLES.glob("*.toml")) if "profile" in tomllib.loads(p.read_text())]
-FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense", "scatter-1um")
+FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense", "even-300", "scatter-1um")
+EVEN_PER_LOBE = 300  # a CMM's even spacing along the outline: the corners fall between the points
 SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coordinate of the CSV's points (a CMM's)
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
@@ -82,6 +83,16 @@ def _exterior(polygon: shapely.Polygon) -> np.ndarray:
     return pts if area > 0 else pts[::-1]
 
 
+def _evenly(lobe: np.ndarray, teeth: int, per_lobe: int, phase: float = 0.37) -> np.ndarray:
+    """Points evenly spaced along the whole outline of a dense exact lobe (root to root), ``per_lobe`` a
+    lobe, the first ``phase`` of a spacing past the lobe's start: the sharp corners fall between the
+    points, as in a CMM's scan (the lobe's own samples hold every corner as a point)."""
+    turns = [np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]) for a in 2 * np.pi * np.arange(teeth) / teeth]
+    ring = shapely.LinearRing(np.vstack([lobe[:-1] @ m.T for m in turns]))
+    count = per_lobe * teeth
+    return shapely.get_coordinates(shapely.line_interpolate_point(ring, (np.arange(count) + phase) * ring.length / count))
+
+
 def _given(spec: PairSpec, data, label: str) -> dict:
     rotors = build_pair(PairSpec(spec.pair, "male-points", {}, data, None, spec.speed_rpm, 0.0), label=label)
     return analyse_pair(rotors, spec.speed_rpm)[1]
@@ -107,6 +118,7 @@ def verdicts(tmp_path_factory) -> dict:
             out[(name, form)] = _given(spec, read_profile(path, "--male-points", "MALE"), "--male-points")
         dense = np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments])  # exact, 0.01 um chord
         out[(name, "dense")] = _given(spec, dense, "--male-points")
+        out[(name, "even-300")] = _given(spec, _evenly(dense, spec.pair.male_teeth, EVEN_PER_LOBE), "--male-points")
         out[(name, "spec")], out[(name, "male")] = spec, male  # for more seeds (test_blow_hole_within_uncertainty)
         scattered = male + np.random.default_rng(0).normal(0.0, SCATTER, male.shape)  # one seed for every sample
         out[(name, "scatter-1um")] = _given(spec, scattered, "--male-points")
