@@ -127,6 +127,10 @@ class ScrewRotors:
         exact points; for scattered points the accuracy over one point spacing (a flank's end tangent
         is fitted through points that each lie within that accuracy). The blow-hole's uncertainty
         follows from it (:attr:`rotorcad.meshing.MeshingAnalysis.blow_hole_uncertainty`).
+    tangent_spread : (radii, turns) of two (m,) float arrays (mm, rad), optional
+        Of exact points: each point's radius about its rotor's centre and how far the fit's tangent
+        may turn there (:func:`rotorcad.measured.fit.tangent_spread`); the blow-hole's uncertainty
+        takes it at its apex's radius. None for a design or scattered points.
     point_accuracy : float or None, mm
         The accuracy of one point of the given profile (2 sigma of its scatter, or the fit's
         residual): the meshing analysis judges the defects to it, since a defect is a local feature
@@ -142,6 +146,7 @@ class ScrewRotors:
     accuracy: float = 0.0  # mm: of the given profile (0 for a design's exact curves)
     tangent_accuracy: float = 0.0  # rad: of the given profile's tangents (0 for a design or exact points)
     point_accuracy: float | None = None  # mm: of one point of the given profile (None: ``accuracy``)
+    tangent_spread: tuple[np.ndarray, np.ndarray] | None = None  # exact points: (radii mm, turns rad) per point
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:

@@ -26,6 +26,11 @@ from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
+APEX_POINTS = 4
+"""How many of exact points, nearest the blow-hole apex's radius about their rotor's centre, set its
+tangent's accuracy (:attr:`MeshingAnalysis.blow_hole_uncertainty`): near a tip the radius changes
+slowly, and these are the two points either side of the apex's radius on each flank."""
+
 
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
@@ -283,8 +288,12 @@ class MeshingAnalysis:
         delta moves the contact along that circle by ds = r delta / |beta' - 1|, with
         beta' = ((C - X) x (-X')) / |C - X|², X' = dX/dphi. The profile's tangents are known to
         :attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy` (its accuracy over one point
-        spacing); the uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
-        with the apex moved by ds either way. 0 for a design or exact points.
+        spacing); of exact points, the largest turn of their fit's tangent
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.tangent_spread`) at the :data:`APEX_POINTS` points
+        nearest the apex's radius and above it, up to the tip, whose fit sets where the flank hands over
+        (the N rack male's tip rounding with 2-3 of 300 points a lobe on it: the apex 78 µm off in
+        radius). The uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
+        with the apex moved by ds either way. 0 for a design.
 
         Returns
         -------
@@ -293,6 +302,13 @@ class MeshingAnalysis:
         delta = float(getattr(self.rotors, "tangent_accuracy", 0.0))
         e = self.meshline_end
         r = float(np.hypot(*e))
+        spread = getattr(self.rotors, "tangent_spread", None)
+        if spread is not None and len(spread[0]) >= APEX_POINTS:  # exact points: their fit's tangent at the apex's radius
+            female = self.rotors.family.startswith("female")
+            r_own = float(np.hypot(*(e - np.array([self.rotors.pair.center_distance if female else 0.0, 0.0]))))
+            nearest = np.argpartition(np.abs(spread[0] - r_own), APEX_POINTS - 1)[:APEX_POINTS]
+            beyond = spread[1][spread[0] >= r_own]  # up to the tip, whose fit hands the flank over at the apex
+            delta = max(delta, float(spread[1][nearest].max()), float(beyond.max(initial=0.0)))
         if delta <= 0.0 or r < 1e-9:
             return 0.0
         c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
