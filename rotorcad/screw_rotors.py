@@ -129,8 +129,12 @@ class ScrewRotors:
         follows from it (:attr:`rotorcad.meshing.MeshingAnalysis.blow_hole_uncertainty`).
     tip_corner_tangent_accuracy : float or None, rad
         How far a given male's fitted flank may turn at its tip corners, from the fitted spline's
-        least-squares sensitivity to the scatter (:func:`rotorcad.measured.tangent.tip_tangent_accuracy`);
+        parametric bootstrap (:func:`rotorcad.measured.tangent.tip_tangent_accuracy`);
         the blow-hole's apex on the male tip circle moves with it. None: ``tangent_accuracy``.
+    tangent_spread : (radii, turns) of two (m,) float arrays (mm, rad), optional
+        Of exact points: each point's radius about its rotor's centre and how far the fit's tangent
+        may turn there (:func:`rotorcad.measured.fit.tangent_spread`); the blow-hole's uncertainty
+        takes it at its apex's radius. None for a design or scattered points.
     point_accuracy : float or None, mm
         The accuracy of one point of the given profile (2 sigma of its scatter, or the fit's
         residual): the meshing analysis judges the defects to it, since a defect is a local feature
@@ -147,6 +151,7 @@ class ScrewRotors:
     tangent_accuracy: float = 0.0  # rad: of the given profile's tangents (0 for a design or exact points)
     tip_corner_tangent_accuracy: float | None = None  # rad: of a given male's tangent at its tip corners
     point_accuracy: float | None = None  # mm: of one point of the given profile (None: ``accuracy``)
+    tangent_spread: tuple[np.ndarray, np.ndarray] | None = None  # exact points: (radii mm, turns rad) per point
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:

@@ -1,17 +1,20 @@
 """Rinder's verdicts do not depend on how the profile is given (issue 21 item 3, issue 22 item 4).
 
-Reference: the design's own verdict, from its exact curves. The same male, given as the CSV and
-the DXF drawings rotorcad writes of it (read back by the readers a user's file goes through) and
-as dense exact points, must give the same defects (kind, rotor, flank part, point-generated; each
-within the resolution of the input, :func:`rotorcad.meshing.resolution`, of the design's), the same
-"runs without timing gears" per flank, and the blow-hole within 1 %. The test is of equality between
-the forms, not of any sample's particular verdict (the samples and the criteria may change).
+Reference: the design's own verdict, from its exact curves. The same male, given as the CSV and the
+DXF drawings rotorcad writes of it (read back by the readers a user's file goes through) and as
+dense exact points and as exact points evenly spaced along the outline at 300 a lobe (a CMM's scan:
+the sharp corners fall between the points; two phases), must give the same defects (kind, rotor,
+flank part, point-generated; each within the resolution of the input,
+:func:`rotorcad.meshing.resolution`, of the design's), the same "runs without timing gears" per
+flank, and the blow-hole within 1 %. The test is of equality between the forms, not of any sample's
+particular verdict (the samples and the criteria may change).
 
 Points with 1 µm of normal scatter (a CMM's, one seed for every sample) must give the same defects and
 running verdicts too; the blow-hole is compared within 1 % or the area the meshline's accuracy leaves
 open, and the samples whose blow-hole departs by more are named in KNOWN_BLOW_HOLE with the cause;
 for every sample the design's blow-hole lies within the uncertainty the points state
-(``blow_hole_uncertainty``, from their tangents' accuracy).
+(``blow_hole_uncertainty``, from their tangents' accuracy), and so it does for exact points, whose
+fit's tangent is off where they do not resolve the outline (a tip rounding with 2-3 points on it).
 
 Plus the findings of the issues, with their exact inputs: the rack-involute male's own CSV (94
 defects, 78 jamming, before), its own DXF polyline (refused before, whatever ``--smoothing``), an
@@ -46,11 +49,20 @@ from rotorcad.rotor_points import pair_from_rotor_points
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
 ROTOR_SAMPLES = [p.stem for p in sorted(SAMPLES.glob("*.toml")) if "profile" in tomllib.loads(p.read_text())]
-FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense", "scatter-1um")
+FORMS = ("csv", "dxf-polyline", "dxf-spline", "dense", "even-300", "even-300-b", "scatter-1um")
+EVEN_PER_LOBE = 300  # a CMM's even spacing along the outline: the corners fall between the points
+EVEN_PHASES = {"even-300": 0.37, "even-300-b": 0.8}  # where the first point falls, in spacings past the lobe's start
 SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coordinate of the CSV's points (a CMM's)
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
+_ARC_ABOUT_C = (
+    "the female tip path (14.03 mm of meshline in the design, 12.19 from the CSV) is recognised over 9.4-9.6 mm "
+    "only: the interpolating fit smooths the 1.07 deg tangent step where it meets the lobe arc (an arc about "
+    "C), the mate's point leaves the tip corner by more than 0.1 um there, and the lobe arc's meshline piece, "
+    "holding the rest of the path, has its normals cross C (jamming) where the design's is Rinder's exception"
+)
 KNOWN: dict[tuple[str, str], str] = {}
+KNOWN_VERDICTS: dict[tuple[str, str], str] = {("srm_symmetric_4_6", form): _ARC_ABOUT_C for form in ("even-300", "even-300-b")}
 _TIP = (
     "1 um of scatter moves the blow-hole's apex (where the male tip corner's path hands over to the "
     "flank's) along the male tip circle: the flank's tangent at the corner, fitted through scattered "
@@ -67,15 +79,29 @@ _DRAW = (
     "(rms {rms}; before issue 22's corner fix for near-duplicate points {before}), so that seed 0 read within "
     "1 % was chance"
 )
+_ROUND = (
+    "the apex is where the male's 0.67 mm tip rounding (radius about 1.04 mm) meets the sealing flank; 300 points a "
+    "lobe put 2-3 points on it, the fit's tangent there is 28-29 mrad off the design's, and the apex moves "
+    "78 um in radius and along the tip circle by where the points fall"
+)
 KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
-    (name, "scatter-1um"): f"{change} ({why}; within blow_hole_uncertainty)"
-    for name, change, why in (
-        ("rack_involute_5_6", "+1.9 %", _DRAW.format(spread="-3.1..+1.9 %", rms="1.6 %", before="-3.2..+0.7 %, rms 1.5 %")),
-        ("srm_b_5_6", "-3.2 %", _DRAW.format(spread="-12..+6.1 %", rms="6.1 %", before="-11..+3.0 %, rms 5.5 %")),
-        ("n_rack_5_6", "-9.5 %", _FLANK),
-        ("rinder_deix_5_6", "-9.5 %", _FLANK),
-        ("narrow_tip_5_6", "-16.3 %", _TIP),
-        ("srm_asymmetric_5_6", "+2.0 %", _TIP),
+    (name, form): f"{change} ({why}; within blow_hole_uncertainty)"
+    for name, form, change, why in (
+        (
+            "rack_involute_5_6",
+            "scatter-1um",
+            "+1.9 %",
+            _DRAW.format(spread="-3.1..+1.9 %", rms="1.6 %", before="-3.2..+0.7 %, rms 1.5 %"),
+        ),
+        ("srm_b_5_6", "scatter-1um", "-3.2 %", _DRAW.format(spread="-12..+6.1 %", rms="6.1 %", before="-11..+3.0 %, rms 5.5 %")),
+        ("n_rack_5_6", "scatter-1um", "-9.5 %", _FLANK),
+        ("rinder_deix_5_6", "scatter-1um", "-9.5 %", _FLANK),
+        ("narrow_tip_5_6", "scatter-1um", "-16.3 %", _TIP),
+        ("srm_asymmetric_5_6", "scatter-1um", "+2.0 %", _TIP),
+        ("n_rack_5_6", "even-300", "+13.7 %", _ROUND),
+        ("rinder_deix_5_6", "even-300", "+13.7 %", _ROUND),
+        ("n_rack_5_6", "even-300-b", "-74.9 %", _ROUND),
+        ("rinder_deix_5_6", "even-300-b", "-74.9 %", _ROUND),
     )
 }
 
@@ -84,6 +110,16 @@ def _exterior(polygon: shapely.Polygon) -> np.ndarray:
     pts = np.asarray(polygon.exterior.coords)[:-1]
     area = 0.5 * np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1])
     return pts if area > 0 else pts[::-1]
+
+
+def _evenly(lobe: np.ndarray, teeth: int, per_lobe: int, phase: float = 0.37) -> np.ndarray:
+    """Points evenly spaced along the whole outline of a dense exact lobe (root to root), ``per_lobe`` a
+    lobe, the first ``phase`` of a spacing past the lobe's start: the sharp corners fall between the
+    points, as in a CMM's scan (the lobe's own samples hold every corner as a point)."""
+    turns = [np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]) for a in 2 * np.pi * np.arange(teeth) / teeth]
+    ring = shapely.LinearRing(np.vstack([lobe[:-1] @ m.T for m in turns]))
+    count = per_lobe * teeth
+    return shapely.get_coordinates(shapely.line_interpolate_point(ring, (np.arange(count) + phase) * ring.length / count))
 
 
 def _given(spec: PairSpec, data, label: str) -> dict:
@@ -114,6 +150,8 @@ def _verdicts(folder) -> dict:
             out[(name, form)] = _given(spec, read_profile(path, "--male-points", "MALE"), "--male-points")
         dense = np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments])  # exact, 0.01 um chord
         out[(name, "dense")] = _given(spec, dense, "--male-points")
+        for form, phase in EVEN_PHASES.items():
+            out[(name, form)] = _given(spec, _evenly(dense, spec.pair.male_teeth, EVEN_PER_LOBE, phase), "--male-points")
         out[(name, "spec")], out[(name, "male")] = spec, male  # for more seeds (test_blow_hole_within_uncertainty)
         scattered = male + np.random.default_rng(0).normal(0.0, SCATTER, male.shape)  # one seed for every sample
         out[(name, "scatter-1um")] = _given(spec, scattered, "--male-points")
@@ -144,7 +182,7 @@ def _case(name: str, form: str, known: dict):
     return pytest.param(name, form, marks=pytest.mark.xfail(strict=True, reason=reason)) if reason else (name, form)
 
 
-@pytest.mark.parametrize(("name", "form"), [_case(n, f, KNOWN) for n in ROTOR_SAMPLES for f in FORMS])
+@pytest.mark.parametrize(("name", "form"), [_case(n, f, {**KNOWN, **KNOWN_VERDICTS}) for n in ROTOR_SAMPLES for f in FORMS])
 def test_same_defects_and_running(verdicts, name, form):
     assert_same_verdicts(verdicts[(name, "design")], verdicts[(name, form)])
 
@@ -459,11 +497,21 @@ def test_design_blow_hole_within_stated_uncertainty(verdicts, name):
     assert design["blow_hole_uncertainty"] == 0.0  # exact curves: no input accuracy to propagate
 
 
-@pytest.mark.parametrize("form", ["csv", "dense"])
-def test_exact_points_state_no_blow_hole_uncertainty(verdicts, form):
-    # exact points (no scatter): the tangents of their interpolating fit carry no scatter, and their
-    # blow-hole is within 1 % of the design's already (test_same_blow_hole)
-    assert all(verdicts[(n, form)]["blow_hole_uncertainty"] == 0.0 for n in ROTOR_SAMPLES)
+@pytest.mark.parametrize("form", ["csv", "dense", *EVEN_PHASES])
+@pytest.mark.parametrize("name", ROTOR_SAMPLES)
+def test_exact_points_state_their_blow_hole_uncertainty(verdicts, name, form):
+    # reference: the design's blow-hole from its exact curves. Exact points carry no scatter, but their
+    # interpolating fit's tangent is off where the points do not resolve the outline (a tip rounding with
+    # 2-3 points on it, KNOWN_BLOW_HOLE): the uncertainty they state holds the design's value there and
+    # everywhere, and the 0.01 um chord's (which resolves the outline) states less than 300 points a lobe
+    design, given = verdicts[(name, "design")], verdicts[(name, form)]
+    floor = 1e-3 if design["blow_hole_area"] <= 1e-9 else 0.01 * design["blow_hole_area"]
+    gap = abs(given["blow_hole_area"] - design["blow_hole_area"])
+    assert gap <= given["blow_hole_uncertainty"] + floor, (gap, given["blow_hole_uncertainty"])
+    if form == "dense" and design["blow_hole_area"] > 1e-9:
+        assert 0.0 < given["blow_hole_uncertainty"] < min(verdicts[(name, f)]["blow_hole_uncertainty"] for f in EVEN_PHASES)
+    if (name, form) in KNOWN_BLOW_HOLE:  # the departure is stated, not hidden: the uncertainty exceeds it
+        assert given["blow_hole_uncertainty"] > gap > 0.01 * design["blow_hole_area"]
 
 
 @pytest.mark.parametrize("seed", [1, 2])

@@ -149,15 +149,30 @@ from it on the flank's side of the corner's edge, bent that fit's end (its mate 
 against a 63 mm tip)."""
 
 
+ON_POINT = 0.025
+"""A corner found on one of exact points is that point when the splines beside it cross within this share
+of the spacing of it. The design's CSV (corners on points, 0.3-0.5 mm apart): the crossing 0.8-6.6 µm
+(0.017 spacing at most) from the corner point, the splines' error over their extension; evenly spaced
+points (the corner between two, 0.28-0.33 mm apart) whose point next to a corner turned by nearly the
+whole corner: 11-40 µm (0.036 spacing at least) from it. Taking that point for the corner put the SRM
+symmetric male's root corner 11 µm outside its root circle (the points' accuracy: 0.7 µm); the
+splines' crossing lies on it."""
+
+
 def _refined_corners(
     whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float, smoothing: float | None
 ) -> np.ndarray:
-    """Locate the corners of scattered points where the splines beside each corner cross.
+    """Locate the corners of an outline's points where the splines beside each corner cross.
 
-    The smoothing splines of the two runs beside a corner, extended past their ends, are crossed by
-    Newton on both parameters: the chords' crossing is off by a sample spacing when the corner falls
-    between scattered points, which moves the corner's path on the rack by as much. A crossing not
-    found within two spacings keeps the chords' one.
+    The splines of the two runs beside a corner (smoothing splines of scattered points,
+    interpolating ones of exact points), extended past their ends, are crossed by Newton on both
+    parameters. The chords' crossing is off by a sample spacing when the corner falls between
+    scattered points, which moves the corner's path on the rack by as much; of exact points it is off
+    by the chords' angle to the flank (half the flank's turn over a spacing), and the tip corner's
+    tangent sets the blow-hole's apex: exact points of the narrow-tip male at 300 a lobe, whose
+    corner fell between two points, gave a blow-hole of 0.69-2.81 mm² by where the points fell
+    (design 2.778), 2.7777-2.7779 with the splines' crossing. A crossing not found within two
+    spacings keeps the chords' one.
     """
     n = len(whole)
     ring = np.vstack([whole, whole, whole])
@@ -171,36 +186,23 @@ def _refined_corners(
         fits.append(Spline.fit(inner, smoothing=_smoothing(inner, sigma, smoothing)) if len(inner) >= 4 else None)
     h = float(np.median(np.hypot(*np.diff(whole, axis=0).T)))
     out = np.array(points, dtype=float)
+    # an exact outline's corner that is one of its points (a design's CSV) stays that point
+    ends = np.stack([whole[edges], whole[(edges + 1) % n]], axis=1)  # (m, 2, 2): each corner edge's points
+    on_point = np.min(np.linalg.norm(out[:, None, :] - ends, axis=2), axis=1) < 1e-9
     for j in range(len(edges)):
         before, after = fits[j - 1], fits[j]  # the run ending at corner j, and the one starting there
         if before is None or after is None:
             continue
         with np.errstate(all="ignore"):  # a diverging Newton step is refused below, not reported
             p = _cross_ends(before, after, before.s1, after.s0)
-        if p is not None and np.hypot(*(p - out[j])) < 2 * h:
+        if p is None:
+            continue
+        moved = np.hypot(*(p - out[j]))
+        if sigma <= 0 and on_point[j] and moved < ON_POINT * h:
+            continue  # the corner is that point: the splines' extensions cross off it by their own error
+        if moved < 2 * h:
             out[j] = p
     return out
-
-
-def _located_corners(
-    whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float, smoothing: float | None
-) -> np.ndarray:
-    """Locate each corner: on its point, or where the fits beside it cross (:func:`_refined_corners`).
-
-    A corner of exact points found on one of them (:func:`rotorcad.measured.outline.corners`) is
-    that point (a design's CSV holds its corner points: the fits' crossing, extrapolated over a
-    0.6 mm spacing, moved the rack-involute male's tip corner by 2 µm and its blow-hole from
-    22.7 mm² to 0). A corner found between two points, the chords' crossing, is off by a few
-    micrometres where the pieces beside it are curved; the fits' crossing is not (the 4/6 female of
-    tests/independent_pairs.py at 300 points a lobe: its rack's smallest flank angle read 0.35 deg
-    low beside its tip corner). So is every corner of scattered points.
-    """
-    ends = np.stack([whole[edges], whole[(edges + 1) % len(whole)]])  # the edge's two points
-    held = np.any(np.all(ends == points, axis=2), axis=0) & (sigma <= 0)
-    if held.all():
-        return points
-    refined = _refined_corners(whole, edges, points, sigma, smoothing)
-    return np.where(held[:, None], points, refined)
 
 
 def _cross_ends(before: Curve, after: Curve, u: float, v: float) -> np.ndarray | None:
@@ -282,7 +284,7 @@ def lobe_pieces(
     sigma = outline.sigma if smoothing is None else 0.0
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
     if len(edges):
-        corner_points = _located_corners(whole, edges, corner_points, sigma, smoothing)
+        corner_points = _refined_corners(whole, edges, corner_points, sigma, smoothing)
         runs = _runs_between_corners(whole, edges, corner_points, sigma)
     else:  # no corners: cut the ring in the middle of a land, if it has one
         found = lands(np.vstack([whole, whole[:1]]), sigma)
@@ -385,6 +387,68 @@ def _fit_run(run: np.ndarray, sigma: float, smoothing: float | None) -> list[tup
     return out
 
 
+def tangent_spread(
+    points: np.ndarray | Outline, teeth: int, label: str, corner_angle_deg: float = 30.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """Estimate how far the fit's tangent may turn from the true one at each point of exact points (rad).
+
+    Between its sharp corners the outline is fitted with interpolating cubics (:func:`lobe_pieces`),
+    whose tangent is accurate to O(h^3) along a smooth flank but only to O(h k) where the curvature
+    jumps by k between two points h apart (a tip rounding meeting a flank): evenly spaced exact
+    points of the N rack male (a tip rounding of about 1.04 mm radius, 0.67 mm long, 2-3 points on it at 300 a lobe)
+    turn the fit's tangent there by 28-29 mrad, and the blow-hole's apex with it. The estimate is the
+    angle between the cubic's tangent and that of the shape-preserving (modified Akima) cubic through
+    the same points over the same chord-length parameter: two interpolants of different form agree to
+    the smaller of their errors where the points resolve the outline and part where they do not
+    (there 65-70 mrad at the N rack's tip, above the cubic's own error).
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm, or Outline
+        The profile's points (one lobe or the whole outline), own frame.
+    teeth : int
+        Its lobe count.
+    label : str
+        How the points are named in errors.
+    corner_angle_deg : float, deg
+        Turn above which a vertex is a sharp corner (:func:`rotorcad.measured.outline.corners`).
+
+    Returns
+    -------
+    radii : (m,) float array, mm
+        The radius of each point of the whole outline about the rotor's centre.
+    spread : (m,) float array, rad
+        The estimate at each point (0 at a corner's own point and on runs too short for both cubics).
+    """
+    from scipy.interpolate import Akima1DInterpolator  # here: exact points only
+
+    outline = read_outline(points, teeth, label, corner_angle_deg, False)
+    whole = outline.whole
+    if whole is None:
+        return np.zeros(0), np.zeros(0)
+    edges, corner_points = corners(whole, 0.0, corner_angle_deg)
+    if len(edges):
+        corner_points = _refined_corners(whole, edges, corner_points, 0.0, None)
+        runs = _runs_between_corners(whole, edges, corner_points, 0.0)
+    else:
+        runs = [np.vstack([whole, whole[:3]])]  # closed: the seam's points see both sides
+    pts, spread = [], []
+    for run in runs:
+        u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
+        keep = np.concatenate([[True], np.diff(u) > 1e-12])
+        run, u = run[keep], u[keep]
+        if len(run) < 5:
+            continue
+        _, cubic = Spline.fit(run, smoothing=0.0).frame(u)
+        akima = Akima1DInterpolator(u, run, method="makima")(u, 1)
+        turn = np.abs(np.arctan2(cubic[:, 0] * akima[:, 1] - cubic[:, 1] * akima[:, 0], np.einsum("ij,ij->i", cubic, akima)))
+        pts.append(run)
+        spread.append(turn)
+    if not pts:
+        return np.zeros(0), np.zeros(0)
+    return np.hypot(*np.vstack(pts).T), np.concatenate(spread)
+
+
 def fit_residual(
     pair: RotorPair, points: np.ndarray | list[Curve] | Outline, pieces: list[tuple[str, Curve]], rotor: Side
 ) -> float:
@@ -420,4 +484,4 @@ def fit_residual(
     return float(np.quantile(gaps, 0.9))
 
 
-__all__ = ["fit_residual", "lobe_curve", "lobe_pieces"]
+__all__ = ["fit_residual", "lobe_curve", "lobe_pieces", "tangent_spread"]

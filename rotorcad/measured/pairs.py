@@ -16,7 +16,7 @@ from rotorcad.curves import Curve, Mapped, Spline
 from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
-from rotorcad.measured.fit import fit_residual, lobe_pieces
+from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.tangent import tip_tangent_accuracy
 from rotorcad.roles import PieceRole, Side
@@ -99,6 +99,16 @@ SCATTERED_STALL = 0.15
 tip corner paths at 1-2 µm of scatter, 0.35-1 along the flanks their racks generate."""
 
 
+EXACT_CORNER_WANDER = 10.0
+"""Of exact points, how far (in multiples of the profile's accuracy) the mate's point generated along
+one tip corner's path may wander (:func:`_mate_corner_runs`). The interpolating fit of points 0.3 mm
+apart (Krigar, Lysholm males, 300 points a lobe evenly spaced) lets it leave the corner by more than
+0.1 µm: the path fell apart into 4-11 stalled parts with flanks between them, each a cusp, and the
+flanks' geometric contact ran without timing gears where the design does not. The parts' corners lie
+0.1-3.3 µm apart at an accuracy of 0.66 µm; ten times the accuracy is the meshline's own
+(:data:`rotorcad.meshing.MESHLINE_GAIN`)."""
+
+
 def _wander_run(pm: np.ndarray, i: int, j: int) -> tuple[int, int, float]:
     """Return the samples around a stalled run ``pm[i:j]`` of the mate's point that stay as near its corner.
 
@@ -123,6 +133,7 @@ def _mate_corner_runs(
     scattered: bool = False,
     tip: tuple[np.ndarray, float, float] | None = None,
     shortest: float = 0.0,
+    same_corner: float = 0.0,
 ) -> list[tuple[float, float, bool]]:
     """Split a rack curve derived from one rotor into flank-generating parts and the mate's corner paths.
 
@@ -150,6 +161,9 @@ def _mate_corner_runs(
     A path along which the rack runs less than ``shortest`` (mm, the profile's resolution) is a
     flank: the independent 4/6 and 5/6 pairs' females with 2 µm of scatter stall the male's point
     over 0.5-0.8 mm of rack near its tip, which has no corner (their real tip paths: 3-10 mm).
+
+    Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other are
+    one corner's path, with what lies between them (:data:`EXACT_CORNER_WANDER`).
     """
     span = rack_curve.s1 - rack_curve.s0
     s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
@@ -180,8 +194,8 @@ def _mate_corner_runs(
         return float(0.5 * (inside + outside))
 
     out, last = [], rack_curve.s0
-    noise = 10 * tolerance  # how much mate flank beside a corner path is noise near the path's end
-    previous = (np.full(2, np.nan), np.full(2, np.nan))  # the last corner path's corner and rack point (scattered points)
+    noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
+    previous = (np.full(2, np.nan), np.full(2, np.nan))  # the last corner path's corner and rack point
     for i, j in runs:
         # the corner is where most of the run's mate points lie; the path extends exactly as far
         # as the mate's point stays within the tolerance of it (a slowly moving flank next to it
@@ -198,14 +212,15 @@ def _mate_corner_runs(
             lo, hi, wander = _wander_run(pm, i, j)
             noise = max(noise, wander)
             a, b = max(s[lo], last) if span > 0 else min(s[lo], last), s[hi]
-            middle = pr[(i + j) // 2]
-            if out and out[-1][2] and np.hypot(*(corner - previous[0])) <= SCATTERED_STALL * np.hypot(*(middle - previous[1])):
-                a = last  # the same corner again, stalled since the path's first run: what lies between is its path too
-            else:
-                previous = (corner, middle)
         else:
             a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
             b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
+        middle = pr[(i + j) // 2]
+        same = SCATTERED_STALL * np.hypot(*(middle - previous[1])) if scattered else same_corner
+        if out and out[-1][2] and np.hypot(*(corner - previous[0])) <= same:
+            a = last  # the same corner again, stalled since the path's first run: what lies between is its path too
+        else:
+            previous = (corner, middle)
         if (b - a) * span <= 0:
             continue
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
@@ -301,6 +316,7 @@ def pair_from_rotor_points(
     mate_tip = (mate_centre, side.pick(pair.female_tip_radius, pair.male_tip_radius), 1e-3 * pair.center_distance)
     # the resolution of the defect tests (rotorcad.meshing.resolution) at the profile's accuracy
     shortest = max(5e-3 * pair.center_distance, float(np.sqrt(8.0 * pair.center_distance * acc)))
+    same = EXACT_CORNER_WANDER * acc if outline.sigma <= 0 else 0.0  # of exact points: one corner's path
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
     gap = MEASURED_JOIN_GAP if outline.sigma > 0 else 2e-3  # scattered points' fits leave a corner's ends apart
@@ -313,7 +329,9 @@ def pair_from_rotor_points(
             parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
-        runs = _mate_corner_runs(rack_curve, mate, tolerance=1e-4, scattered=outline.sigma > 0, tip=mate_tip, shortest=shortest)
+        runs = _mate_corner_runs(
+            rack_curve, mate, tolerance=1e-4, scattered=outline.sigma > 0, tip=mate_tip, shortest=shortest, same_corner=same
+        )
         parts.append(
             [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
         )
@@ -328,10 +346,15 @@ def pair_from_rotor_points(
             f"{lost_share:.1f} % of the lobe has no rack point",
         )
     # a flank's tangent through scattered points each within acc is known to acc over one point spacing;
-    # at a male tip corner, from its spline's least-squares sensitivity to the scatter (measured.tangent)
+    # at a male tip corner, from a parametric bootstrap of its fitted spline (measured.tangent)
     spacing = float(np.median(np.hypot(*np.diff(outline.whole, axis=0).T))) if outline.whole is not None else 0.0
     turn = point_acc / spacing if outline.sigma > 0 and spacing > 0 else 0.0
     corner_turn = tip_tangent_accuracy(tip_pieces, outline.whole, outline.sigma) if side is Side.MALE else 0.0
+    spread = (
+        tangent_spread(outline, teeth, label or f"{side.value} points")
+        if outline.sigma <= 0 and outline.whole is not None
+        else None
+    )
     return ScrewRotors(
         pair,
         tuple(rack),
@@ -341,6 +364,7 @@ def pair_from_rotor_points(
         tangent_accuracy=turn,
         tip_corner_tangent_accuracy=min(corner_turn, turn) if corner_turn > 0.0 else None,
         point_accuracy=point_acc,
+        tangent_spread=spread,
     )
 
 

@@ -57,6 +57,12 @@ def slip(sliding: np.ndarray, tangential: np.ndarray) -> np.ndarray:
     return np.where(zero_t, np.where(zero_g, np.nan, np.copysign(np.inf, sliding)), ratio)
 
 
+APEX_POINTS = 4
+"""How many of exact points, nearest the blow-hole apex's radius about their rotor's centre, set its
+tangent's accuracy (:attr:`MeshingAnalysis.blow_hole_uncertainty`): near a tip the radius changes
+slowly, and these are the two points either side of the apex's radius on each flank."""
+
+
 @dataclass(frozen=True, eq=False)
 class MeshingAnalysis:
     """Everything Rinder reads off a toothing, for one pair at a design speed.
@@ -354,8 +360,12 @@ class MeshingAnalysis:
         :attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy` (its accuracy over one point
         spacing; at a given male's tip corner, when the apex lies on the male tip circle,
         :attr:`rotorcad.screw_rotors.ScrewRotors.tip_corner_tangent_accuracy` from the fitted spline);
-        the uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
-        with the apex moved by ds either way. 0 for a design or exact points.
+        of exact points, the largest turn of their fit's tangent
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.tangent_spread`) at the :data:`APEX_POINTS` points
+        nearest the apex's radius and above it, up to the tip, whose fit sets where the flank hands over
+        (the N rack male's tip rounding with 2-3 of 300 points a lobe on it: the apex 78 µm off in
+        radius). The uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
+        with the apex moved by ds either way. 0 for a design.
 
         Where the apex comes from a male arc's closed-form meshline (:meth:`_arc_apex`) no tangent
         enters: the arc's centre and radius move by at most :func:`rotorcad.meshing.apex.circle_bounds`
@@ -367,10 +377,11 @@ class MeshingAnalysis:
         float, mm²
         """
         delta = float(getattr(self.rotors, "tangent_accuracy", 0.0))
-        if delta <= 0.0:
-            return 0.0  # a design or exact points: no scatter to propagate
+        spread = getattr(self.rotors, "tangent_spread", None)
+        if delta <= 0.0 and spread is None:
+            return 0.0  # a design: no input accuracy to propagate
         arc = self._apex[1]
-        if arc is not None:
+        if arc is not None and delta > 0.0:
             centre, radius, window, near, reach, bores = arc
             bound = circle_bounds(window, centre, radius, self.judged_accuracy)
             c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
@@ -382,7 +393,13 @@ class MeshingAnalysis:
             return float(max(abs(m - self.blow_hole_area) for m in moved))
         e = self.meshline_end
         r = float(np.hypot(*e))
-        if r < 1e-9:
+        if spread is not None and len(spread[0]) >= APEX_POINTS:  # exact points: their fit's tangent at the apex's radius
+            female = self.rotors.family.startswith("female")
+            r_own = float(np.hypot(*(e - np.array([self.rotors.pair.center_distance if female else 0.0, 0.0]))))
+            nearest = np.argpartition(np.abs(spread[0] - r_own), APEX_POINTS - 1)[:APEX_POINTS]
+            beyond = spread[1][spread[0] >= r_own]  # up to the tip, whose fit hands the flank over at the apex
+            delta = max(delta, float(spread[1][nearest].max()), float(beyond.max(initial=0.0)))
+        if delta <= 0.0 or r < 1e-9:
             return 0.0
         corner = getattr(self.rotors, "tip_corner_tangent_accuracy", None)
         if corner is not None and r >= self.rotors.pair.male_tip_radius - 1e-3 * self.rotors.pair.center_distance:
