@@ -228,10 +228,11 @@ class MeshingAnalysis:
                 best = x[m]
             lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
         if self.is_given:
-            arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece.points, axis=0).T))])
             tips = ((np.zeros(2), pair.male_tip_radius), (o2, pair.female_tip_radius))
             reach = resolution(self.judged_accuracy, pair.center_distance)
-            corner = turn_corner(piece.points, arclen, local, reach, tips, self.judged_accuracy)
+            run, at = _with_neighbours(self.pieces, j, local, reach)  # a turn at a piece's end too
+            arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
+            corner = turn_corner(run, arclen, at, reach, tips, self.judged_accuracy)
             if corner is not None:
                 return corner
         return best
@@ -551,3 +552,20 @@ class MeshingAnalysis:
             "running_reasons": self.running_reasons,
             "wrap_angle_deg": float(np.degrees(pair.wrap_angle)),
         }
+
+
+def _with_neighbours(pieces: list[MeshlinePiece], j: int, local: int, reach: float) -> tuple[np.ndarray, int]:
+    """Return piece ``j``'s meshline samples joined with the neighbours that continue it, and sample ``local``'s index.
+
+    A profile given by points may end a corner's path exactly where the meshline turns (the
+    narrow-tip male tip corner's path handing over to the sealing flank, from rotorcad's own rack
+    CSV): the turn then lies at the end of a piece, and :func:`turn_corner` needs both branches.
+    A neighbour continues the piece when its end lies within ``reach`` (mm) of the piece's end.
+    """
+    run, at = pieces[j].points, local
+    if j > 0 and len(pieces[j - 1].points) and np.hypot(*(pieces[j - 1].points[-1] - run[0])) <= reach:
+        before = pieces[j - 1].points[:-1]
+        run, at = np.vstack([before, run]), at + len(before)
+    if j + 1 < len(pieces) and len(pieces[j + 1].points) and np.hypot(*(pieces[j + 1].points[0] - run[-1])) <= reach:
+        run = np.vstack([run, pieces[j + 1].points[1:]])
+    return run, at
