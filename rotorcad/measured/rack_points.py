@@ -3,11 +3,10 @@
 One rack period as points (``rotor --rack-points``, ``hob --rack-points``, the CSV that
 ``rotor --rack-csv`` writes) is fitted as the rotors' points are (:mod:`rotorcad.measured.fit`):
 cubic splines between its sharp corners (interpolating exact points, smoothing scattered ones by
-n sigma^2, Dierckx sec. 5.2), so that a tangent is never carried across a corner. One spline
-through the whole period, as before, carried the kinks of the design's rack (where a corner's path
-meets a flank or the pitch line: 37-90 deg) into its neighbours' tangents, and the pair from
-rotorcad's own rack read "jamming on the male" (narrow-tip) and "cusp on the female"
-(rack-involute) where the design runs.
+n sigma^2, Dierckx sec. 5.2), so that a tangent is never carried across a corner (the narrow-tip
+rack's 90 deg where its female tip corner's path meets the pitch line). One spline through the
+whole period and no corner paths, as before, read rotorcad's own rack CSV as "jamming on the male"
+(narrow-tip) and "cusp on the female" (rack-involute) where the design runs.
 
 A part of the rack along which one rotor's generated point stands still is the path of that
 rotor's sharp corner (Rinder sec. 2.2.2, Fig. 1-4): that rotor receives it as its corner only, the
@@ -34,8 +33,8 @@ from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
 CORNER_DEG = 20.0
 """deg: the smallest turn of the rack between two points' chords that is a corner of the rack (the
-samples' racks turn by 37-90 deg where a corner's path meets a flank or the pitch line, their
-smooth parts by under 3 deg between the chords of a 1 um-tolerance CSV)."""
+narrow-tip rack's CSV turns by 89.6 deg where the female tip corner's path meets the pitch line,
+elsewhere by 2.1 deg at most between neighbouring chords; the rack-involute's by 2.3 deg at most)."""
 
 
 def _period_points(pair: RotorPair, points: np.ndarray) -> np.ndarray:
@@ -175,6 +174,9 @@ def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float 
     rack: list[RackPiece] = []
     for run in rack_runs(pair, pts, sigma):
         spline = Spline.fit(from_rack_frame(run, r1), smoothing=_smoothing(run, sigma, smoothing))
+        # a corner's path reaches as far as the generated point stays within 10 times the points'
+        # accuracy of the corner (the narrow-tip rack CSV's sealing contact ratio: 0.233 at 1 time,
+        # 0.176 at 10 and 0.172 at 30, the design's 0.175)
         for s0, s1, role in _roles(spline, pair, sigma > 0, shortest, max(1e-4, 10 * point_acc)):
             rack.append(RackPiece(spline.trimmed(s0, s1), "flank", "flank", kind=role))
     spacing = float(np.median(np.hypot(*np.diff(pts, axis=0).T)))
