@@ -215,3 +215,16 @@ def test_contact_ratios_from_own_rack_csv_are_the_design_ratios(from_rack, reque
     *_, design, given = from_rack
     _known(request, KNOWN_RATIOS_RACK)
     assert_design_contact_ratios(design, given)
+
+
+def test_angles_from_female_points_in_the_design_count(from_female):
+    # finding 13: from the female's points the male tip's slipping read +72.1 deg (one male pitch on)
+    # for the design's +0.2. Reference: the design's slipping angle; every angle within +-180/z1.
+    spec, *_, design, given = from_female
+    half = 180.0 / spec.pair.male_teeth
+    angles = [d["angle_deg"] for d in given["defects"]] + [f["angle_deg"] for f in given["slip_singularities"]]
+    assert all(-half <= a < half for a in angles), angles
+    slipping = {d["rotor"]: d["angle_deg"] for d in design["defects"] if d["kind"] == "slipping"}
+    for d in given["defects"]:
+        if d["kind"] == "slipping" and d["rotor"] in slipping:
+            assert d["angle_deg"] == pytest.approx(slipping[d["rotor"]], abs=1.0)

@@ -178,6 +178,17 @@ class MeshingAnalysis:
         """
         return np.degrees(self.angle_reference - np.asarray(t, dtype=float))
 
+    def lobe_angle(self, t: float) -> float:
+        """Return the :meth:`rinder_angle` of one contact, taken within half a male pitch of zero (deg).
+
+        A point of the meshline is in contact once per male pitch; the count that names it (a
+        defect's, an infinite slip's) is the one nearest the instant the male tip's middle passes O1O2,
+        within +-180/z1 (every design's lies there). A rack derived from a female's points runs a
+        period on from the design's, and the male tip's slipping read +72.1 deg for the design's +0.2.
+        """
+        half = 180.0 / self.rotors.pair.male_teeth
+        return float((self.rinder_angle(t) + half) % (2.0 * half) - half)
+
     # ---- tightness (2.2.2) -----------------------------------------------------------------
     @cached_property
     def cusp(self) -> np.ndarray:
@@ -458,7 +469,7 @@ class MeshingAnalysis:
                             "rotor": rotor,
                             "x": float(p[0]),
                             "y": float(p[1]),
-                            "angle_deg": float(self.rinder_angle(t)),
+                            "angle_deg": self.lobe_angle(t),
                             "flank": str(piece.roles[i]),
                             "male_radius": float(np.hypot(*p)),
                             "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
@@ -502,7 +513,7 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         for d in self.defects:
             row = d.as_dict()
-            row["angle_deg"] = float(self.rinder_angle(np.radians(d.angle_deg)))
+            row["angle_deg"] = self.lobe_angle(np.radians(d.angle_deg))
             row["tip_corner"] = is_tip_corner(d, pair, self.tip_corner_tolerance)
             out.append(row)
         return out
