@@ -6,7 +6,8 @@ re-exports its names for code that imports them from here.
 
 from rotorcad.measured.fit import fit_residual, lobe_curve, lobe_pieces
 from rotorcad.measured.outline import DRAWN_SPANS, SMOOTH_JOINT, as_given, drawing_points, points_accuracy, profile_points
-from rotorcad.measured.pairs import pair_from_rack_points, pair_from_rotor_points
+from rotorcad.measured.pairs import pair_from_rotor_points
+from rotorcad.measured.rack_points import pair_from_rack_points
 
 __all__ = [
     "DRAWN_SPANS",

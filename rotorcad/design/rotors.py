@@ -190,7 +190,7 @@ def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
         smooth rotor (noise left in by the smoothing).
     """
     if spec.family == "rack-points":
-        return pair_from_rack_points(spec.pair, spec.points, spec.smoothing or 0.0)
+        return pair_from_rack_points(spec.pair, spec.points, spec.smoothing)
     if spec.family in ("male-points", "female-points"):
         measured = Side(spec.family.split("-")[0])  # the design's text read once: "male-points" -> Side.MALE
         points = spec.points
@@ -281,7 +281,8 @@ def _check_generated(rotors: ScrewRotors, given: Side, label: str) -> None:
             "a smooth profile that generates a mate",
             None,
             f"the {mate} generated from it has {len(pts)} points in a lobe (a smooth lobe has at most {most}) and reaches "
-            f"{reach:.4g} mm against its tip radius {tip:g} mm; noise in the points? (raise --smoothing or [profile] smoothing)",
+            f"{reach:.4g} mm against its tip radius {tip:g} mm; noise in the points? (raise --smoothing or [profile] "
+            "smoothing, which acts on points and on drawings read as points; a drawing's exact curves are used as drawn)",
         )
 
 

@@ -8,7 +8,7 @@ The calls run one way, each stage using only the ones before it:
 2. :mod:`rotorcad.measured.fit` -- the lobe facing the mate as fitted curves with exact tangents
    (splines between corners, lands as arcs), and how far the fit leaves the points;
 3. :mod:`rotorcad.measured.pairs` -- the rack of that lobe by inverse generation and the pair
-   generated from it (or a pair from rack points).
+   generated from it; :mod:`rotorcad.measured.rack_points` -- a pair from rack points.
 
 ``rotorcad.rotor_points`` and ``rotorcad.measured_outline`` re-export these names for code that
 imports them from there.
@@ -32,7 +32,8 @@ from rotorcad.measured.outline import (
     scatter,
     whole_outline,
 )
-from rotorcad.measured.pairs import pair_from_rack_points, pair_from_rotor_points
+from rotorcad.measured.pairs import pair_from_rotor_points
+from rotorcad.measured.rack_points import pair_from_rack_points
 
 __all__ = [
     "DRAWN_SPANS",

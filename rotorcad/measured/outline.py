@@ -118,6 +118,7 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
     if span < pitch - max(3 * spacing, 0.02 * pitch) and _one_groove(pts, span, pitch):
         return _patterned_groove(pts, teeth)
     if abs(span - pitch) > max(3 * spacing, 0.02 * pitch):
+        _refuse_off_centre(pts, label)
         fits = 2 * np.pi / span if span > 0 else float("inf")
         raise DesignError(
             label,
@@ -131,6 +132,29 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
     keep = ang < pitch - 1e-9 * pitch
     lobe = pts[keep]
     return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
+
+
+def _refuse_off_centre(pts: np.ndarray, label: str) -> None:
+    """Refuse a whole outline that winds around another point than the origin, saying where it lies.
+
+    rotorcad's pair drawing (``rotor --dxf``) places the female at the centre distance (a, 0); read
+    back as the female's points it does not wind around the origin, and was refused as a lobe
+    spanning 0.0004 deg (a new user's finding). Raises :class:`DesignError` naming ``label`` when
+    the points close around their own centroid (winding once) and that lies away from the origin.
+    """
+    c = pts.mean(axis=0)
+    rel = pts - c
+    ang = np.unwrap(np.arctan2(rel[:, 1], rel[:, 0]))
+    closing = np.arctan2(cross(rel[-1], rel[0]), np.dot(rel[-1], rel[0]))
+    winding = (ang[-1] - ang[0] + closing) / (2 * np.pi)
+    if abs(abs(winding) - 1.0) < 0.25 and np.hypot(*c) > np.hypot(*rel.T).min():
+        raise DesignError(
+            label,
+            "points in the rotor's own frame, its centre at the origin",
+            None,
+            f"the outline winds around ({c[0]:.4g}, {c[1]:.4g}) mm, {np.hypot(*c):.4g} mm off the origin "
+            "(rotorcad's pair drawing places the female at the centre distance (a, 0): move it by (-a, 0))",
+        )
 
 
 GROOVE_ENDS = 0.1

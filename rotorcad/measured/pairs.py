@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.curves import Curve, Mapped, Spline
-from rotorcad.envelope import Generated, from_rack_frame
+from rotorcad.curves import Curve, Mapped
+from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
+from rotorcad.measured.corner_paths import corner_point_path
 from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.tangent import tip_tangent_accuracy
@@ -58,39 +59,6 @@ def scatter_bound(sigma: float, count: float) -> float:
     largest over the lobe is that of ``count`` of them. 0 for exact points.
     """
     return max_factor(count) * sigma if sigma > 0 else 0.0
-
-
-def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float = 0.0) -> ScrewRotors:
-    """Generate a pair from points of one rack period.
-
-    Parameters
-    ----------
-    pair : RotorPair
-        Dimensions of the pair.
-    points : (n, 2) float array, mm
-        One rack period in the rack frame of CONTRACT.md (x along the motion, y > 0 towards the
-        female), in either direction.
-    smoothing : float, mm²
-        scipy's spline smoothing; 0 interpolates.
-
-    Returns
-    -------
-    ScrewRotors
-        The pair generated from the fitted rack (family ``"rack-points"``).
-
-    Raises
-    ------
-    DesignError
-        Points that do not span one rack period p = 2 pi r1w / z1 in x (within 0.1 %).
-    """
-    pts = np.asarray(points, dtype=float)
-    if pts[-1, 0] < pts[0, 0]:
-        pts = pts[::-1]
-    span = pts[-1, 0] - pts[0, 0]
-    if abs(span - pair.rack_period) > 1e-3 * pair.rack_period:
-        raise DesignError("rack points", f"one rack period long in x ({pair.rack_period:.6g} mm)", f"{span:.6g} mm")
-    spline = Spline.fit(from_rack_frame(pts, pair.male_pitch_radius), smoothing=smoothing)
-    return ScrewRotors(pair, (RackPiece(spline, "flank", "flank"),), "rack-points")
 
 
 SCATTERED_STALL = 0.15
@@ -255,6 +223,23 @@ def _mate_corner_runs(
     return [(a, b, c) for a, b, c, _ in parts]
 
 
+def _joints(racks: list[Curve], k: int, side: Side, period: float) -> list[np.ndarray]:
+    """Return where the rack pieces beside corner ``k`` end, in the rack's travel: the corner path's targets.
+
+    The male's pieces follow the rack's travel, the female's run against it; a neighbour across the
+    lobe's ends (the first or last piece, turned by one pitch) is one rack period away, either way.
+    """
+    n = len(racks)
+    before, after = (k - 1, k + 1) if side is Side.MALE else (k + 1, k - 1)
+    shift = np.array([[0.0, 0.0], [0.0, period], [0.0, -period]])
+    out = []
+    for j, end in ((before, "end"), (after, "start")):
+        curve = racks[j % n]
+        point = curve.end if end == "end" else curve.start
+        out.append(point + shift if not 0 <= j < n else point[None, :])
+    return out
+
+
 def pair_from_rotor_points(
     pair: RotorPair, points: np.ndarray | list[Curve], rotor: Side | str, smoothing: float | None = None, label: str | None = None
 ) -> ScrewRotors:
@@ -320,13 +305,20 @@ def pair_from_rotor_points(
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
     gap = MEASURED_JOIN_GAP if outline.sigma > 0 else 2e-3  # scattered points' fits leave a corner's ends apart
-    for _name, curve in with_corner_fans(pieces, centre, 2 * np.pi / teeth, MEASURED_MIN_TURN, gap):
+    fans = with_corner_fans(pieces, centre, 2 * np.pi / teeth, MEASURED_MIN_TURN, gap)
+    racks = []
+    for _name, curve in fans:
         gen = Generated(curve, body, mesh.rack, limits=depth)
         rack_curve = gen.reversed() if side is Side.MALE else gen  # travelled in +y (the rack's +x)
         ok = np.isfinite(rack_curve.evaluate(np.linspace(rack_curve.s0, rack_curve.s1, 400))[0]).all(axis=1)
         lost, total = lost + int((~ok).sum()), total + len(ok)
-        if curve.is_corner():
-            parts.append([RackPiece(rack_curve, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
+        racks.append(rack_curve)
+    for k, (_name, curve) in enumerate(fans):
+        rack_curve = racks[k]
+        if curve.is_corner():  # its path as the corner's own point path (the mate cut in closed form)
+            path = corner_point_path(curve, body, mesh.rack, _joints(racks, k, side, pair.rack_period), gap)
+            piece = rack_curve if path is None else path
+            parts.append([RackPiece(piece, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
         runs = _mate_corner_runs(
@@ -368,4 +360,4 @@ def pair_from_rotor_points(
     )
 
 
-__all__ = ["CONFIDENCE", "max_factor", "pair_from_rack_points", "pair_from_rotor_points", "scatter_bound"]
+__all__ = ["CONFIDENCE", "max_factor", "pair_from_rotor_points", "scatter_bound"]

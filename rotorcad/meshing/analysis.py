@@ -214,6 +214,17 @@ class MeshingAnalysis:
         """
         return np.degrees(self.angle_reference - np.asarray(t, dtype=float))
 
+    def lobe_angle(self, t: float) -> float:
+        """Return the :meth:`rinder_angle` of one contact, taken within half a male pitch of zero (deg).
+
+        A point of the meshline is in contact once per male pitch; the count that names it (a
+        defect's, an infinite slip's) is the one nearest the instant the male tip's middle passes O1O2,
+        within +-180/z1 (every design's lies there). A rack derived from a female's points runs a
+        period on from the design's, and the male tip's slipping read +72.1 deg for the design's +0.2.
+        """
+        half = 180.0 / self.rotors.pair.male_teeth
+        return float((self.rinder_angle(t) + half) % (2.0 * half) - half)
+
     # ---- tightness (2.2.2) -----------------------------------------------------------------
     @cached_property
     def cusp(self) -> np.ndarray:
@@ -276,10 +287,11 @@ class MeshingAnalysis:
                 best, best_t = x[m], float(t[m])
             lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
         if self.is_given:
-            arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece.points, axis=0).T))])
             tips = ((np.zeros(2), pair.male_tip_radius), (o2, pair.female_tip_radius))
             reach = resolution(self.judged_accuracy, pair.center_distance)
-            corner = turn_corner(piece.points, arclen, local, reach, tips, self.judged_accuracy)
+            run, at = _with_neighbours(self.pieces, j, local, reach)  # a turn at a piece's end too
+            arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
+            corner = turn_corner(run, arclen, at, reach, tips, self.judged_accuracy)
             if corner is not None:
                 return corner, None
             on_arc = self._arc_apex(best, best_t, tips)
@@ -564,7 +576,7 @@ class MeshingAnalysis:
                             "rotor": rotor,
                             "x": float(p[0]),
                             "y": float(p[1]),
-                            "angle_deg": float(self.rinder_angle(t)),
+                            "angle_deg": self.lobe_angle(t),
                             "flank": str(piece.roles[i]),
                             "male_radius": float(np.hypot(*p)),
                             "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
@@ -610,7 +622,7 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         for d in self.defects:
             row = d.as_dict()
-            row["angle_deg"] = float(self.rinder_angle(np.radians(d.angle_deg)))
+            row["angle_deg"] = self.lobe_angle(np.radians(d.angle_deg))
             row["tip_corner"] = is_tip_corner(d, pair, self.tip_corner_tolerance)
             out.append(row)
         return out
@@ -660,3 +672,20 @@ class MeshingAnalysis:
             "running_reasons": self.running_reasons,
             "wrap_angle_deg": float(np.degrees(pair.wrap_angle)),
         }
+
+
+def _with_neighbours(pieces: list[MeshlinePiece], j: int, local: int, reach: float) -> tuple[np.ndarray, int]:
+    """Return piece ``j``'s meshline samples joined with the neighbours that continue it, and sample ``local``'s index.
+
+    A profile given by points may end a corner's path exactly where the meshline turns (the
+    narrow-tip male tip corner's path handing over to the sealing flank, from rotorcad's own rack
+    CSV): the turn then lies at the end of a piece, and :func:`turn_corner` needs both branches.
+    A neighbour continues the piece when its end lies within ``reach`` (mm) of the piece's end.
+    """
+    run, at = pieces[j].points, local
+    if j > 0 and len(pieces[j - 1].points) and np.hypot(*(pieces[j - 1].points[-1] - run[0])) <= reach:
+        before = pieces[j - 1].points[:-1]
+        run, at = np.vstack([before, run]), at + len(before)
+    if j + 1 < len(pieces) and len(pieces[j + 1].points) and np.hypot(*(pieces[j + 1].points[0] - run[-1])) <= reach:
+        run = np.vstack([run, pieces[j + 1].points[1:]])
+    return run, at

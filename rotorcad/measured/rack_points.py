@@ -1,0 +1,187 @@
+"""A rotor pair from points of its rack: the rack fitted piecewise, its corner paths found.
+
+One rack period as points (``rotor --rack-points``, ``hob --rack-points``, the CSV that
+``rotor --rack-csv`` writes) is fitted as the rotors' points are (:mod:`rotorcad.measured.fit`):
+cubic splines between its sharp corners (interpolating exact points, smoothing scattered ones by
+n sigma^2, Dierckx sec. 5.2), so that a tangent is never carried across a corner (the narrow-tip
+rack's 90 deg where its female tip corner's path meets the pitch line). One spline through the
+whole period and no corner paths, as before, read rotorcad's own rack CSV as "jamming on the male"
+(narrow-tip) and "cusp on the female" (rack-involute) where the design runs.
+
+A part of the rack along which one rotor's generated point stands still is the path of that
+rotor's sharp corner (Rinder sec. 2.2.2, Fig. 1-4): that rotor receives it as its corner only, the
+other rotor a point-generated flank, exactly as the profile families build their racks
+(:class:`rotorcad.screw_rotors.RackPiece`); the parts are found as for a rotor's points
+(:func:`rotorcad.measured.pairs._mate_corner_runs`), against each rotor in turn.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from rotorcad.curves import Curve, Spline
+from rotorcad.envelope import Generated, from_rack_frame
+from rotorcad.errors import DesignError
+from rotorcad.measured.fit import _smoothing
+from rotorcad.measured.outline import accuracy, corners, scatter
+from rotorcad.measured.pairs import _mate_corner_runs, scatter_bound
+from rotorcad.roles import PieceRole, Side
+from rotorcad.rotor_pair import RotorPair
+from rotorcad.screw_rotors import RackPiece, ScrewRotors
+
+CORNER_DEG = 20.0
+"""deg: the smallest turn of the rack between two points' chords that is a corner of the rack (the
+narrow-tip rack's CSV turns by 89.6 deg where the female tip corner's path meets the pitch line,
+elsewhere by 2.1 deg at most between neighbouring chords; the rack-involute's by 2.3 deg at most)."""
+
+
+def _period_points(pair: RotorPair, points: np.ndarray) -> np.ndarray:
+    """Return the points of one rack period, x ascending, without a last point one period after the first (mm).
+
+    Raises :class:`DesignError` for points that do not span one period in x (within 0.1 %).
+    """
+    pts = np.asarray(points, dtype=float)
+    if pts[-1, 0] < pts[0, 0]:
+        pts = pts[::-1]
+    span = pts[-1, 0] - pts[0, 0]
+    period = pair.rack_period
+    if abs(span - period) > 1e-3 * period:
+        raise DesignError("rack points", f"one rack period long in x ({period:.6g} mm)", f"{span:.6g} mm")
+    if np.hypot(pts[-1, 0] - pts[0, 0] - period, pts[-1, 1] - pts[0, 1]) <= 1e-6:
+        pts = pts[:-1]  # the next period's first point
+    keep = np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 1e-9])
+    return pts[keep]
+
+
+def rack_runs(pair: RotorPair, points: np.ndarray, sigma: float) -> list[np.ndarray]:
+    """Split one rack period's points at the rack's sharp corners into runs, each from corner to corner.
+
+    The period is tiled three times (x shifted by the period either way) so that the corners near its
+    ends are found as in its middle (:func:`rotorcad.measured.outline.corners`, with the tiled chain
+    read as a ring whose seam lies a period away); the runs cover exactly one period, from the first
+    corner at or after the period's start to the same corner one period later.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        The pair (its rack period).
+    points : (n, 2) float array, mm
+        One period in the rack frame, x ascending, without the next period's first point.
+    sigma : float, mm
+        The points' scatter (0: exact).
+
+    Returns
+    -------
+    list of (m, 2) float arrays, mm
+        The runs in order of x, each starting and ending on a corner point; one run of the whole
+        period (its last point the first one period on) when the rack has no corner.
+    """
+    p = pair.rack_period
+    n = len(points)
+    tiled = np.vstack([points - [p, 0.0], points, points + [p, 0.0]])
+    edges, where = corners(tiled, sigma, CORNER_DEG)
+    middle = (edges >= n) & (edges < 2 * n)
+    edges, where = edges[middle], where[middle]
+    if len(edges) == 0:
+        return [np.vstack([points, points[:1] + [p, 0.0]])]
+    edges = np.append(edges, edges[0] + n)
+    where = np.vstack([where, where[:1] + [p, 0.0]])
+    runs = []
+    for k in range(len(edges) - 1):
+        run = np.vstack([where[k], tiled[edges[k] + 1 : edges[k + 1] + 1], where[k + 1]])
+        keep = np.concatenate([[True], np.hypot(*np.diff(run, axis=0).T) > 1e-9])
+        runs.append(run[keep])
+    return runs
+
+
+def _roles(
+    curve: Curve, pair: RotorPair, scattered: bool, shortest: float, tolerance: float
+) -> list[tuple[float, float, PieceRole]]:
+    """Label the parts of one rack piece: a male corner's path, a female corner's path, or a curve both rotors receive.
+
+    The parts along which the male's (the female's) generated point stands still are the male's
+    (the female's) corner path (:func:`rotorcad.measured.pairs._mate_corner_runs`, with that rotor
+    as the mate), when that point lies on the rotor's tip circle (Rinder sec. 2.2.2: at a tip only
+    a corner is possible; the rack-involute female's generated cusp on its base circle, 7 mm inside,
+    stalls too and is a flank's end); where both would claim a part (the pitch line, which both
+    rotors' corners on their pitch circles touch) the male's is taken.
+    """
+    mesh = pair.mesh
+    a = pair.center_distance
+    marks = []
+    for body, centre, tip in (
+        (mesh.male, np.zeros(2), pair.male_tip_radius),
+        (mesh.female, np.array([a, 0.0]), pair.female_tip_radius),
+    ):
+        mate = Generated(curve, mesh.rack, body)
+        tip_circle = (centre, tip, 1e-3 * a)
+        runs = _mate_corner_runs(curve, mate, tolerance=tolerance, scattered=scattered, tip=tip_circle, shortest=shortest)
+        corner_runs = [(s0, s1) for s0, s1, c in runs if c]
+        if corner_runs:  # only a tip corner stands so (Rinder sec. 2.2.2); a stall inside is the envelope's cusp
+            mid, _ = mate.evaluate(np.array([0.5 * (s0 + s1) for s0, s1 in corner_runs]))
+            on_tip = np.abs(np.hypot(*(mid - centre).T) - tip) <= tip_circle[2]
+            corner_runs = [run for run, keep in zip(corner_runs, on_tip, strict=True) if keep]
+        marks.append(corner_runs)
+    cuts = sorted({curve.s0, curve.s1, *(s for m in marks for run in m for s in run)}, reverse=curve.s1 < curve.s0)
+    out: list[tuple[float, float, PieceRole]] = []
+    for s0, s1 in itertools.pairwise(cuts):
+        mid = 0.5 * (s0 + s1)
+        role = PieceRole.CURVE
+        for side, runs in zip((Side.MALE, Side.FEMALE), marks, strict=True):
+            if role is PieceRole.CURVE and any(min(r) <= mid <= max(r) for r in runs):
+                role = PieceRole.corner_path_of(side)
+        if out and out[-1][2] is role:
+            out[-1] = (out[-1][0], s1, role)
+        else:
+            out.append((s0, s1, role))
+    return out
+
+
+def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float | None = None) -> ScrewRotors:
+    """Generate a pair from points of one rack period.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        Dimensions of the pair.
+    points : (n, 2) float array, mm
+        One rack period in the rack frame of CONTRACT.md (x along the motion, y > 0 towards the
+        female), in either direction; a last point one period after the first may be given.
+    smoothing : float, mm², optional
+        scipy's spline smoothing of each run between corners; 0 interpolates; None: n sigma^2 from
+        the points' estimated scatter (:func:`rotorcad.measured.outline.scatter`), 0 for exact points.
+
+    Returns
+    -------
+    ScrewRotors
+        The pair generated from the fitted rack (family ``"rack-points"``), its accuracy that of the
+        points (the chords' sagitta or 2 sigma; over the period, the 95 % bound of
+        :func:`rotorcad.measured.pairs.scatter_bound`).
+
+    Raises
+    ------
+    DesignError
+        Points that do not span one rack period p = 2 pi r1w / z1 in x (within 0.1 %).
+    """
+    pts = _period_points(pair, points)
+    sigma = scatter(pts)
+    point_acc = accuracy(pts, sigma)
+    acc = max(point_acc, scatter_bound(sigma, len(pts)))
+    shortest = max(5e-3 * pair.center_distance, float(np.sqrt(8.0 * pair.center_distance * acc)))
+    r1 = pair.male_pitch_radius
+    rack: list[RackPiece] = []
+    for run in rack_runs(pair, pts, sigma):
+        spline = Spline.fit(from_rack_frame(run, r1), smoothing=_smoothing(run, sigma, smoothing))
+        # a corner's path reaches as far as the generated point stays within 10 times the points'
+        # accuracy of the corner (the narrow-tip rack CSV's sealing contact ratio: 0.233 at 1 time,
+        # 0.176 at 10 and 0.172 at 30, the design's 0.175)
+        for s0, s1, role in _roles(spline, pair, sigma > 0, shortest, max(1e-4, 10 * point_acc)):
+            rack.append(RackPiece(spline.trimmed(s0, s1), "flank", "flank", kind=role))
+    spacing = float(np.median(np.hypot(*np.diff(pts, axis=0).T)))
+    turn = point_acc / spacing if sigma > 0 and spacing > 0 else 0.0
+    return ScrewRotors(pair, tuple(rack), "rack-points", accuracy=acc, tangent_accuracy=turn, point_accuracy=point_acc)
+
+
+__all__ = ["CORNER_DEG", "pair_from_rack_points", "rack_runs"]

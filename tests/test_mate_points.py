@@ -1,0 +1,230 @@
+"""The mate generated from one rotor's points or from the rack's points is the design's mate, with its verdicts.
+
+A new user's findings: ``rotor --female-points`` of a female with sharp tips (narrow-tip, asymmetric
+SRM; exact, 300 points a lobe) generated a male 17-21 mm off the design with thin fins and read a
+closed meshline with no blow-hole; ``rotor --rack-points`` of the CSV that ``rotor --rack-csv``
+writes read "jamming on the male" (narrow-tip) and "cusp on the female" (rack-involute) where the
+design runs, a blow-hole of 3.45 mm² for 2.78 and a driving contact ratio of 0.98 for 0.629.
+
+References (not made by the code under test): the male as the brute-force envelope of the given
+female's positions (shapely: the male tip disk less the union of the female polygon, placed at 1501
+mesh positions over one male pitch, in the male's frame; 1.9 µm from the design's exact male), and
+the design's own pair and verdicts from its exact curves.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from rotorcad.design import rotor_design
+from rotorcad.envelope import rack_frame
+from rotorcad.profile import Segment
+from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+PER_LOBE = 300  # points a lobe, as a CMM measures
+BLOW_HOLE = 0.01  # the blow-hole within 1 % (issue 21 item 3)
+CONTACT_RATIO = 0.05  # transverse contact ratios within 0.05 (the asymmetric SRM's driving flank: 0.034 for 0)
+
+
+def _spec(name: str):
+    return pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
+
+
+def _even(outline: np.ndarray, teeth: int, per_lobe: int, phase: float = 0.37) -> np.ndarray:
+    """Points evenly spaced along a closed outline, ``per_lobe`` a lobe, from ``phase`` of a spacing (the user's gen.py)."""
+    ring = np.vstack([outline, outline[:1]])
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(ring, axis=0).T))])
+    at = (np.arange(per_lobe * teeth) + phase) * s[-1] / (per_lobe * teeth)
+    return np.column_stack([np.interp(at, s, ring[:, 0]), np.interp(at, s, ring[:, 1])])
+
+
+def _exterior(polygon: shapely.Polygon) -> np.ndarray:
+    pts = np.asarray(polygon.exterior.coords)[:-1]
+    area = 0.5 * np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1])
+    return pts if area > 0 else pts[::-1]
+
+
+def brute_force_male(pair, female: np.ndarray) -> shapely.Geometry:
+    """The male the female cuts: its tip disk less the female at 1501 mesh positions over one male pitch (male frame)."""
+    a, z1, z2 = pair.center_distance, pair.male_teeth, pair.female_teeth
+    polys = []
+    for phi in np.linspace(-np.pi / z1, np.pi / z1, 1501):
+        th2 = -phi * z1 / z2  # the female turns the other way at z1/z2 of the male's rate
+        f = female @ np.array([[np.cos(th2), np.sin(th2)], [-np.sin(th2), np.cos(th2)]]) + [a, 0.0]
+        polys.append(shapely.Polygon(f @ np.array([[np.cos(phi), -np.sin(phi)], [np.sin(phi), np.cos(phi)]])))
+    return shapely.Point(0.0, 0.0).buffer(pair.male_tip_radius, quad_segs=2048).difference(shapely.union_all(polys))
+
+
+def _facing(outline: np.ndarray, pair) -> np.ndarray:
+    """The outline's points on the male lobe facing the female (0.8 of a half pitch about +x): every female position cut there."""
+    return outline[np.abs(np.arctan2(outline[:, 1], outline[:, 0])) <= 0.8 * np.pi / pair.male_teeth]
+
+
+def _kinds(summary: dict) -> tuple[Counter, set]:
+    """The defects that judge a flank (kind, rotor), and the rotors whose tip corner shows as a cusp (not a defect)."""
+    flank = Counter((d["kind"], d["rotor"]) for d in summary["defects"] if not d.get("tip_corner"))
+    return flank, {d["rotor"] for d in summary["defects"] if d.get("tip_corner")}
+
+
+def assert_design_verdicts(design: dict, given: dict) -> None:
+    """Closed or not, defects (kind, rotor; tip corners by rotor), running per flank and the blow-hole: the design's."""
+    assert given["meshline_closed"] == design["meshline_closed"]
+    assert _kinds(given) == _kinds(design), (given["defects"], design["defects"])
+    assert given["runs_without_timing_gears"] == design["runs_without_timing_gears"]
+    for flank, report in design["flanks"].items():
+        mine = given["flanks"][flank]
+        assert mine["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
+    assert given["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=BLOW_HOLE)
+
+
+# case id -> the cause of a known departure (strict xfail: a fix makes it fail until removed here)
+_HEAD = (
+    "the male tip corner's path from the female's points starts 3.6 mm of rack after the piece does (the fit's "
+    "0.8 um residual moves the male's generated point by 10-120 um at the female's root, beyond the 0.1 um that "
+    "bounds a corner's path), and that part counts as working contact: sealing ratio {0} for the design's {1}"
+)
+KNOWN_RATIOS_FEMALE: dict[str, str] = {
+    "narrow_tip_5_6": _HEAD.format(0.343, 0.175),
+    "srm_asymmetric_5_6": _HEAD.format(0.364, 0.184),
+}
+KNOWN_RATIOS_RACK: dict[str, str] = {
+    "rack_involute_5_6": (
+        "the rack's root and tip lands, fitted inside a spline through the rack's points, are not flat to the 1e-9 "
+        "of flank_roles and count as flank contact: driving and sealing ratios 0.683 and 0.696 for 0.484 and 0.497"
+    ),
+}
+
+
+@pytest.fixture(scope="module", params=["narrow_tip_5_6", "srm_asymmetric_5_6"])
+def from_female(request) -> tuple:
+    """The design, the female's points (300 a lobe, exact) and the pair generated from them, with both summaries."""
+    spec = _spec(request.param)
+    design = build_pair(spec)
+    female = _exterior(design.section("female", tolerance=1e-5))  # exact curves to a 0.01 um chord
+    points = _even(female, spec.pair.female_teeth, PER_LOBE)  # exact points (no scatter), 300 a lobe
+    given = build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points")
+    return spec, design, points, given, analyse_pair(design, spec.speed_rpm)[1], analyse_pair(given, spec.speed_rpm)[1]
+
+
+def _known(request, known: dict[str, str]) -> None:
+    """Mark the test an expected failure (strict) where ``known`` names its case, with the cause."""
+    reason = known.get(request.node.callspec.id)
+    if reason:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=reason))
+
+
+def test_male_from_female_points_is_the_envelope_of_the_female(from_female):
+    # finding 1: 17-21 mm off with thin fins before; the male the female's own positions cut (brute force)
+    spec, design, _, given, _, _ = from_female
+    # the female whose points were given, to a 0.01 um chord (300 points a lobe blunt its sharp tips by 37 um)
+    reference = brute_force_male(spec.pair, _exterior(design.section("female", tolerance=1e-5)))
+    male = _exterior(given.section("male"))
+    cut = (
+        reference.boundary if isinstance(reference, shapely.Polygon) else shapely.union_all([g.boundary for g in reference.geoms])
+    )
+    away = shapely.distance(shapely.points(_facing(male, spec.pair)), cut)
+    back = shapely.distance(
+        shapely.points(_facing(np.asarray(shapely.get_coordinates(cut)), spec.pair)), given.section("male").boundary
+    )
+    # the brute force's scallops (1.9 um from the design's exact male) plus the points' stated accuracy and the outline's chord
+    bound = 2e-3 + given.accuracy + given.tolerance
+    assert max(away.max(), back.max()) <= bound, (away.max(), back.max())
+
+
+def test_male_from_female_points_is_the_design_male(from_female):
+    _, design, _, given, _, _ = from_female
+    gap = given.section("male").exterior.hausdorff_distance(design.section("male").exterior)
+    assert gap <= given.accuracy + 2 * given.tolerance
+
+
+def test_verdicts_from_female_points_are_the_design_verdicts(from_female):
+    # finding 1: "meshline closed, blow-hole 0, runs" before, for the design's 2.78 mm² (narrow-tip)
+    *_, design, given = from_female
+    assert_design_verdicts(design, given)
+
+
+def _rack_csv_points(rotors, tolerance: float = 1e-3) -> np.ndarray:
+    """One rack period as ``rotor --rack-csv`` writes it (its pieces sampled to the chord tolerance, rack frame)."""
+    pts = np.vstack([Segment.sample("rack", piece.curve, tolerance).points for piece in rotors.rack])
+    keep = np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 1e-9])
+    return rack_frame(pts[keep], rotors.pair.male_pitch_radius)
+
+
+@pytest.fixture(scope="module", params=["narrow_tip_5_6", "rack_involute_5_6"])
+def from_rack(request) -> tuple:
+    spec = _spec(request.param)
+    design = build_pair(spec)
+    given = build_pair(PairSpec(spec.pair, "rack-points", {}, _rack_csv_points(design), None, spec.speed_rpm, 0.0))
+    return design, given, analyse_pair(design, spec.speed_rpm)[1], analyse_pair(given, spec.speed_rpm)[1]
+
+
+def test_pair_from_own_rack_csv_is_the_design_pair(from_rack):
+    design, given, _, _ = from_rack
+    for side in ("male", "female"):
+        gap = given.section(side).exterior.hausdorff_distance(design.section(side).exterior)
+        assert gap <= given.accuracy + 2 * given.tolerance, (side, gap)
+
+
+def test_verdicts_from_own_rack_csv_are_the_design_verdicts(from_rack):
+    # finding 3: "jamming on the male" (narrow-tip), "cusp on the female" (rack-involute), blow-hole
+    # 3.45 for 2.78 mm², driving contact ratio 0.98 for 0.629 before
+    *_, design, given = from_rack
+    assert_design_verdicts(design, given)
+
+
+def test_female_drawn_at_the_centre_distance_is_refused_saying_so(tmp_path, capsys):
+    # finding 11: rotorcad's pair drawing places the female at (a, 0); read back it was refused as
+    # "the points span 0.0004 deg, which fits 8.71e+05 lobes". Reference: the shift applied here.
+    from exports.csv_points import write_points
+    from rotorcad.cli.main import main
+
+    spec = _spec("narrow_tip_5_6")
+    points = _exterior(build_pair(spec).section("female"))
+    a = spec.pair.center_distance
+    path = tmp_path / "female_at_a.csv"
+    write_points(path, points + [a, 0.0])
+    dims = ["--male-teeth", spec.pair.male_teeth, "--female-teeth", spec.pair.female_teeth, "--center-distance", a]
+    radii = ["--male-tip-radius", spec.pair.male_tip_radius, "--male-root-radius", spec.pair.male_root_radius]
+    radii += ["--female-tip-radius", spec.pair.female_tip_radius, "--female-root-radius", spec.pair.female_root_radius]
+    assert main([str(v) for v in ["rotor", "--female-points", path, *dims, *radii]]) == 2
+    err = capsys.readouterr().err
+    assert f"winds around ({a:.4g}, " in err and "move it by (-a, 0)" in err, err
+    assert "lobes" not in err and "Traceback" not in err
+
+
+def assert_design_contact_ratios(design: dict, given: dict) -> None:
+    for flank, report in design["flanks"].items():
+        mine = given["flanks"][flank]["transverse_contact_ratio"]
+        assert mine == pytest.approx(report["transverse_contact_ratio"], abs=CONTACT_RATIO), flank
+
+
+def test_contact_ratios_from_female_points_are_the_design_ratios(from_female, request):
+    *_, design, given = from_female
+    _known(request, KNOWN_RATIOS_FEMALE)
+    assert_design_contact_ratios(design, given)
+
+
+def test_contact_ratios_from_own_rack_csv_are_the_design_ratios(from_rack, request):
+    *_, design, given = from_rack
+    _known(request, KNOWN_RATIOS_RACK)
+    assert_design_contact_ratios(design, given)
+
+
+def test_angles_from_female_points_in_the_design_count(from_female):
+    # finding 13: from the female's points the male tip's slipping read +72.1 deg (one male pitch on)
+    # for the design's +0.2. Reference: the design's slipping angle; every angle within +-180/z1.
+    spec, *_, design, given = from_female
+    half = 180.0 / spec.pair.male_teeth
+    angles = [d["angle_deg"] for d in given["defects"]] + [f["angle_deg"] for f in given["slip_singularities"]]
+    assert all(-half <= a < half for a in angles), angles
+    slipping = {d["rotor"]: d["angle_deg"] for d in design["defects"] if d["kind"] == "slipping"}
+    for d in given["defects"]:
+        if d["kind"] == "slipping" and d["rotor"] in slipping:
+            assert d["angle_deg"] == pytest.approx(slipping[d["rotor"]], abs=1.0)
