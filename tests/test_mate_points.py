@@ -92,8 +92,9 @@ _HEAD = (
 )
 KNOWN_RATIOS_FEMALE: dict[str, str] = {
     "narrow_tip_5_6": _HEAD.format(0.343, 0.175),
-    "srm_asymmetric_5_6": _HEAD.format(0.364, 0.184),
 }
+# srm_asymmetric_5_6 read 0.364 for 0.184 too, until the corners of evenly spaced exact points were placed
+# where the fits beside them cross (rotorcad.measured.fit): now the design's ratios
 KNOWN_RATIOS_RACK: dict[str, str] = {
     "rack_involute_5_6": (
         "the rack's root and tip lands, fitted inside a spline through the rack's points, are not flat to the 1e-9 "
