@@ -17,7 +17,7 @@ import shapely
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
-from rotorcad.geometry import cross, row_norms, wrap_angle
+from rotorcad.geometry import cross, dots, row_norms, shifted, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import Defect, is_tip_corner, meshline_defects, resolution
@@ -192,7 +192,7 @@ class MeshingAnalysis:
         # of a given profile, a preference within its resolution is a tie, which goes to the upper cusp
         # as the design's does (the symmetric SRM's meshline comes as near both; 1 µm of scatter chose either)
         tie = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
-        return k if np.hypot(*(pts - k).T).min() <= np.hypot(*(pts - lower).T).min() + tie else lower
+        return k if np.hypot(*shifted(pts, k, -1.0).T).min() <= np.hypot(*shifted(pts, lower, -1.0).T).min() + tie else lower
 
     @cached_property
     def meshline_end(self) -> np.ndarray:
@@ -205,7 +205,7 @@ class MeshingAnalysis:
         """
         pts = self.meshline
         k = self.cusp
-        i = int(np.argmin(np.hypot(*(pts - k).T)))
+        i = int(np.argmin(np.hypot(*shifted(pts, k, -1.0).T)))
         sizes = np.cumsum([len(p.points) for p in self.pieces])
         j = int(np.searchsorted(sizes, i, side="right"))
         piece, local = self.pieces[j], i - (int(sizes[j - 1]) if j else 0)
@@ -218,11 +218,12 @@ class MeshingAnalysis:
         for _ in range(2):
             s = np.linspace(lo, hi, 201)
             t, x = gen.meshline_contact(s)[:2]  # the meshline alone (the full conjugate's numbers)
-            ok = np.isfinite(t) & np.all(np.isfinite(x), axis=1)
-            ok &= (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            ok = np.isfinite(t) & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
+            ok &= np.hypot(*x.T) <= pair.male_tip_radius + 1e-3
+            ok &= np.hypot(x[:, 0] - o2[0], x[:, 1]) <= pair.female_tip_radius + 1e-3  # x - O2 by columns
             if not ok.any():
                 break
-            d = np.where(ok, np.hypot(*(x - k).T), np.inf)
+            d = np.where(ok, np.hypot(*shifted(x, k, -1.0).T), np.inf)
             m = int(np.argmin(d))
             if d[m] < np.hypot(*(best - k)):
                 best = x[m]
@@ -397,10 +398,10 @@ class MeshingAnalysis:
         tau = np.concatenate([p.tangents for p in self.pieces])
         o2 = np.array([pair.center_distance, 0.0])
         v1 = w1 * np.stack([-pts[:, 1], pts[:, 0]], axis=1)
-        d2 = pts - o2
+        d2 = shifted(pts, o2, -1.0)
         v2 = w2 * np.stack([-d2[:, 1], d2[:, 0]], axis=1)
-        v1t = np.einsum("ij,ij->i", v1, tau) * 1e-3
-        v2t = np.einsum("ij,ij->i", v2, tau) * 1e-3
+        v1t = dots(v1, tau) * 1e-3
+        v2t = dots(v2, tau) * 1e-3
         vg = v1t - v2t
         with np.errstate(divide="ignore", invalid="ignore"):
             z1 = vg / v1t

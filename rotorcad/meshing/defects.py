@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from rotorcad.geometry import dots, shifted, to_point
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_tangents, reversals
 from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
@@ -422,8 +423,8 @@ def meshline_defects(
         path_of = _tip_path(piece, pair, max(20.0 * acc, 0.1 * longest)) if given else -1
         misses = []
         for m, (q, _kind, _) in enumerate(tests):
-            to_q = q - pts
-            f = np.einsum("ij,ij->i", to_q, tau)  # zero: the meshline normal passes through q
+            to_q = to_point(pts, q)  # q - pts
+            f = dots(to_q, tau)  # zero: the meshline normal passes through q
             band = mesh_acc + max(tol, mesh_acc / reach) * np.hypot(*to_q.T)
             whole = m == path_of or _median_below(np.abs(f), tol * max(1.0, np.abs(to_q).max()))
             misses.append((f, band, whole, *robust_zeros(f, band, arclen, reach, whole, turns)))
@@ -439,7 +440,7 @@ def meshline_defects(
                 ):
                     continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once; of
                     # a given profile anywhere: its wider band holds a normal that passes q slowly or nearby
-                if given and np.hypot(*(pts[i : j + 1] - c).T).max() < on_line:
+                if given and np.hypot(*shifted(pts[i : j + 1], c, -1.0).T).max() < on_line:
                     continue  # a stretch within the resolution of C: the contact at the pitch point, no arc
                 mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
                 found.append(
@@ -463,7 +464,7 @@ def meshline_defects(
                     continue  # at a given piece's end, where its smoothed tangent is least known: the hand-over
                 i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
                 if judged is None:
-                    judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
+                    judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*shifted(pts, c, -1.0).T) > 1e-6 * scale)
                 if not (judged[i] and judged[i + 1]):
                     continue
                 p = pts[i] + w * (pts[i + 1] - pts[i])

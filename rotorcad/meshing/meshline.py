@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rotorcad.envelope import Generated, meshline_contacts
-from rotorcad.geometry import row_norms
+from rotorcad.geometry import dots, row_norms, take_rows
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece
@@ -237,13 +237,13 @@ def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int, corner
             contacts[i] = contact
     s = np.concatenate(params)
     t, x, rack_pts, tan = (np.concatenate([c[k] for c in contacts]) for k in range(4))
-    o2 = np.array([a, 0.0])
     slack = np.repeat([corner_slack if piece.kind is not PieceRole.CURVE else 1e-3 for piece in rack], [len(p) for p in params])
-    inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + slack)
+    # about O2 = (a, 0): x - O2 by columns (y - 0 is y)
+    inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(x[:, 0] - a, x[:, 1]) <= pair.female_tip_radius + slack)
     ok = np.isfinite(t) & inside & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
     tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
-    roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, a)
-    s, t, x, tan_fixed = s[ok], t[ok], x[ok], tan_fixed[ok]
+    roles = flank_roles(take_rows(rack_pts, ok), take_rows(tan, ok), pair.male_pitch_radius, a)
+    s, t, x, tan_fixed = s[ok], t[ok], take_rows(x, ok), take_rows(tan_fixed, ok)
     ends = np.cumsum([0] + [len(p) for p in params]).tolist()
     kept = [0, *np.cumsum(np.add.reduceat(ok, ends[:-1])).tolist()]  # contacts kept per piece (each has samples)
     out = []
@@ -270,7 +270,7 @@ def reversals(points: np.ndarray, arclen: np.ndarray, longest: float = 0.0) -> n
     centre.
     """
     d = np.diff(points, axis=0)
-    back = np.flatnonzero(np.einsum("ij,ij->i", d[:-1], d[1:]) < 0) + 1
+    back = np.flatnonzero(dots(d[:-1], d[1:]) < 0) + 1
     if longest <= 0 or len(d) < 2:
         return arclen[back]
     heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
@@ -393,6 +393,13 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
                     return tau / norm
             except (ValueError, TypeError):
                 pass  # too few distinct samples for a smoothing cubic: the interpolating one below
-    tau = np.empty_like(pts)
-    tau[order] = makima_slopes(piece.s[order], pts[order])
-    return tau / row_norms(tau)[:, None]
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(len(order))
+    # the slopes in the order of s, put back in the samples' order (rows by take: numpy 2 indexes
+    # the rows of a 2-d array by an index array an order of magnitude slower)
+    tau = makima_slopes(piece.s[order], pts.take(order, axis=0)).take(inverse, axis=0)
+    norm = row_norms(tau)
+    out = np.empty_like(tau)  # tau / norm[:, None], the same numbers, by columns
+    np.divide(tau[:, 0], norm, out=out[:, 0])
+    np.divide(tau[:, 1], norm, out=out[:, 1])
+    return out
