@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -21,6 +22,10 @@ from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece
 from rotorcad.spline_slopes import makima_slopes
+
+_FLANKS = np.array(list(Flank), dtype=object)
+FLANK_CODE = {flank: i for i, flank in enumerate(Flank)}
+"""Index of each lobe part in :data:`_FLANKS`."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,11 +64,19 @@ class MeshlinePiece:
         default_factory=lambda: np.zeros(0, dtype=object)
     )  # (n,) Flank per point: the lobe part (read off the rack)
     rack_index: int = -1  # the rack piece (index into ScrewRotors.rack) whose contacts these are
+    role_codes: np.ndarray | None = None  # (n,) int: roles as indices into _FLANKS (FLANK_CODE), when known
 
+    @cached_property
+    def steps(self) -> np.ndarray:
+        """Lengths of the chords between consecutive points, (n - 1,) float, mm (computed once)."""
+        d = self.points[1:] - self.points[:-1]  # np.diff(points, axis=0), the same numbers
+        return np.hypot(d[:, 0], d[:, 1])
 
-_FLANKS = np.array(list(Flank), dtype=object)
-_FLANK_CODE = {flank: i for i, flank in enumerate(Flank)}
-"""Index of each lobe part in :data:`_FLANKS`."""
+    def flank_mask(self, flank: Flank) -> np.ndarray:
+        """Return ``roles == flank``, (n,) bool (from :attr:`role_codes` when known: no object comparison)."""
+        if self.role_codes is not None:
+            return self.role_codes == FLANK_CODE[flank]
+        return self.roles == flank
 
 
 def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
@@ -84,15 +97,19 @@ def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, s
         DRIVING where the rack rises towards the male tip (x grows along the chain), SEALING
         where it falls, TIP / ROOT on a land above / below the pitch line (Rinder sec. 1.2).
     """
+    return _FLANKS[flank_codes(points, tangents, pitch_radius, scale)]
+
+
+def flank_codes(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
+    """Return :func:`flank_roles` as indices into the lobe parts (:data:`FLANK_CODE`), (n,) int."""
     rise = tangents[:, 0]
     flat = np.abs(rise) <= 1e-9
     above = points[:, 0] > pitch_radius + 1e-9 * scale
-    code = np.where(
+    return np.where(
         flat,
-        np.where(above, _FLANK_CODE[Flank.TIP], _FLANK_CODE[Flank.ROOT]),
-        np.where(rise > 0, _FLANK_CODE[Flank.DRIVING], _FLANK_CODE[Flank.SEALING]),
+        np.where(above, FLANK_CODE[Flank.TIP], FLANK_CODE[Flank.ROOT]),
+        np.where(rise > 0, FLANK_CODE[Flank.DRIVING], FLANK_CODE[Flank.SEALING]),
     )
-    return _FLANKS[code]
 
 
 UNEVEN = 4.0
@@ -166,7 +183,8 @@ def even_meshline_contact(
 
 def _meshline_steps(x: np.ndarray) -> np.ndarray:
     """Lengths of the steps between meshline points ((n, 2), mm), 0 where not finite: (n - 1,) float, mm."""
-    step = np.hypot(*np.diff(x, axis=0).T)
+    d = x[1:] - x[:-1]  # np.diff(x, axis=0), the same numbers
+    step = np.hypot(d[:, 0], d[:, 1])
     return np.where(np.isfinite(step), step, 0.0)
 
 
@@ -242,7 +260,8 @@ def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int, corner
     inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(x[:, 0] - a, x[:, 1]) <= pair.female_tip_radius + slack)
     ok = np.isfinite(t) & inside & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
     tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
-    roles = flank_roles(take_rows(rack_pts, ok), take_rows(tan, ok), pair.male_pitch_radius, a)
+    codes = flank_codes(take_rows(rack_pts, ok), take_rows(tan, ok), pair.male_pitch_radius, a)
+    roles = _FLANKS[codes]
     s, t, x, tan_fixed = s[ok], t[ok], take_rows(x, ok), take_rows(tan_fixed, ok)
     ends = np.cumsum([0] + [len(p) for p in params]).tolist()
     kept = [0, *np.cumsum(np.add.reduceat(ok, ends[:-1])).tolist()]  # contacts kept per piece (each has samples)
@@ -251,7 +270,7 @@ def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int, corner
         if j - i < 2:
             continue
         names = (piece.male_name, piece.kind, s[i:j], t[i:j], x[i:j], tan_fixed[i:j])
-        out.append(MeshlinePiece(*names, piece.male_name, piece.female_name, roles[i:j], index))
+        out.append(MeshlinePiece(*names, piece.male_name, piece.female_name, roles[i:j], index, codes[i:j]))
     return out
 
 
@@ -269,7 +288,7 @@ def reversals(points: np.ndarray, arclen: np.ndarray, longest: float = 0.0) -> n
     only, no tangents. A sign change of a normal's miss there is the turn, not a normal through a
     centre.
     """
-    d = np.diff(points, axis=0)
+    d = points[1:] - points[:-1]  # np.diff(points, axis=0), the same numbers
     back = np.flatnonzero(dots(d[:-1], d[1:]) < 0) + 1
     if longest <= 0 or len(d) < 2:
         return arclen[back]
