@@ -172,6 +172,73 @@ def take_rows(a: Array, keep: Array) -> Array:
     return np.compress(keep, a, axis=0)
 
 
+_SURE = 1e-9
+"""Relative margin of a squared length beyond which its hypot's side of a bound is certain: hypot is
+within an ulp of the true length and the sum of squares within two, far inside 1e-9."""
+
+
+def hypot_within(x: Array, y: Array, bound: float | Array) -> Array:
+    """Return ``np.hypot(x, y) <= bound``, the same answer, computing hypot only near the bound.
+
+    Where the sum of squares lies beyond the square of the bound by more than :data:`_SURE`
+    (relative), the answer is certain; only the rest (a point within 1e-9 of the bound, a NaN)
+    takes numpy's hypot, which costs as much as ten multiplications.
+
+    Parameters
+    ----------
+    x, y : (n,) float arrays
+        Coordinates (mm).
+    bound : float or (n,) float array
+        The largest length (mm), at least 0.
+
+    Returns
+    -------
+    (n,) bool array
+    """
+    square = x * x
+    square += y * y
+    limit = np.square(bound)
+    if np.min(limit) < 1e-290:  # a bound near underflow, where squares lose their relative accuracy
+        return np.hypot(x, y) <= bound
+    inside = square <= limit * (1.0 - _SURE)
+    unsure = ~inside & ~(square > limit * (1.0 + _SURE))
+    if unsure.any():
+        k = np.flatnonzero(unsure)
+        b = bound if np.ndim(bound) == 0 else np.asarray(bound)[k]
+        inside[k] = np.hypot(x[k], y[k]) <= b
+    return inside
+
+
+def nearest_hypot(x: Array, y: Array) -> tuple[int, float]:
+    """Return the index and value of the smallest ``np.hypot(x, y)``: ``argmin`` and ``min``, the same numbers.
+
+    The smallest sum of squares picks the candidates (those within :data:`_SURE` of it, relative:
+    any point farther has a larger hypot); numpy's hypot is taken of these only, and the first of
+    its minima is returned, as ``np.argmin`` does. Non-finite sums take hypot everywhere.
+
+    Parameters
+    ----------
+    x, y : (n,) float arrays, n >= 1
+        Coordinates of vectors (mm).
+
+    Returns
+    -------
+    index : int
+    length : float
+    """
+    square = x * x
+    square += y * y
+    least = square.min()
+    if not np.isfinite(least) or least < 1e-290:  # a NaN, or squares near underflow: hypot everywhere
+        h = np.hypot(x, y)
+        i = int(np.argmin(h))
+        return i, float(h[i])
+    k = np.flatnonzero(square <= least * (1.0 + _SURE))
+    h = np.hypot(x[k], y[k])
+    j = int(np.argmin(h))
+    return int(k[j]), float(h[j])
+
+
 def wrap_angle(angle: float | Array, reference: float | Array = 0.0, period: float = 2.0 * np.pi) -> float | Array:
     """Angle brought into the turn centred on ``reference``: the one angle wrap of the package.
 

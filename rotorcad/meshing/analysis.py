@@ -17,7 +17,7 @@ import shapely
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
-from rotorcad.geometry import cross, dots, row_norms, shifted, wrap_angle
+from rotorcad.geometry import cross, dots, nearest_hypot, row_norms, shifted, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
 from rotorcad.meshing.defects import Defect, is_tip_corner, meshline_defects, resolution
@@ -192,7 +192,9 @@ class MeshingAnalysis:
         # of a given profile, a preference within its resolution is a tie, which goes to the upper cusp
         # as the design's does (the symmetric SRM's meshline comes as near both; 1 µm of scatter chose either)
         tie = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
-        return k if np.hypot(*shifted(pts, k, -1.0).T).min() <= np.hypot(*shifted(pts, lower, -1.0).T).min() + tie else lower
+        upper_gap = nearest_hypot(pts[:, 0] - k[0], pts[:, 1] - k[1])[1]  # np.hypot(*(pts - k).T).min()
+        lower_gap = nearest_hypot(pts[:, 0] - lower[0], pts[:, 1] - lower[1])[1]
+        return k if upper_gap <= lower_gap + tie else lower
 
     @cached_property
     def meshline_end(self) -> np.ndarray:
@@ -205,7 +207,7 @@ class MeshingAnalysis:
         """
         pts = self.meshline
         k = self.cusp
-        i = int(np.argmin(np.hypot(*shifted(pts, k, -1.0).T)))
+        i = nearest_hypot(pts[:, 0] - k[0], pts[:, 1] - k[1])[0]  # np.argmin(np.hypot(*(pts - k).T))
         sizes = np.cumsum([len(p.points) for p in self.pieces])
         j = int(np.searchsorted(sizes, i, side="right"))
         piece, local = self.pieces[j], i - (int(sizes[j - 1]) if j else 0)

@@ -17,7 +17,7 @@ from functools import cached_property
 import numpy as np
 
 from rotorcad.envelope import Generated, meshline_contacts
-from rotorcad.geometry import dots, row_norms, take_rows
+from rotorcad.geometry import dots, hypot_within, row_norms, take_rows
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece
@@ -256,8 +256,9 @@ def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int, corner
     s = np.concatenate(params)
     t, x, rack_pts, tan = (np.concatenate([c[k] for c in contacts]) for k in range(4))
     slack = np.repeat([corner_slack if piece.kind is not PieceRole.CURVE else 1e-3 for piece in rack], [len(p) for p in params])
-    # about O2 = (a, 0): x - O2 by columns (y - 0 is y)
-    inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(x[:, 0] - a, x[:, 1]) <= pair.female_tip_radius + slack)
+    # within both bores (np.hypot(...) <= bound, hypot only near the bound); about O2 = (a, 0) by columns
+    inside = hypot_within(x[:, 0], x[:, 1], pair.male_tip_radius + slack)
+    inside &= hypot_within(x[:, 0] - a, x[:, 1], pair.female_tip_radius + slack)
     ok = np.isfinite(t) & inside & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
     tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
     codes = flank_codes(take_rows(rack_pts, ok), take_rows(tan, ok), pair.male_pitch_radius, a)
