@@ -147,7 +147,8 @@ def filled(n: int, vector: object) -> Array:
 def dots(a: Array, b: Array) -> Array:
     """Return the row-wise dot products of (n, 2) arrays: ``np.einsum("ij,ij->i", a, b)``, the same numbers.
 
-    ``a_x b_x + a_y b_y`` (einsum forms the same products and sum, without fusing them), by columns.
+    ``a_x b_x + a_y b_y`` by columns, plus 0: einsum adds the products to a sum that starts at +0
+    (without fusing them), so that a sum of two -0 products is +0.
 
     Parameters
     ----------
@@ -160,6 +161,7 @@ def dots(a: Array, b: Array) -> Array:
     """
     out = a[:, 0] * b[:, 0]
     out += a[:, 1] * b[:, 1]
+    out += 0.0  # -0 -> +0, every other value as it is
     return out
 
 

@@ -427,6 +427,7 @@ def meshline_defects(
         to_y = np.subtract.outer(centres[:, 1], pts[:, 1])
         fs = to_x * tau[:, 0]  # zero: the meshline normal passes through q (q - p) . tau
         fs += to_y * tau[:, 1]
+        fs += 0.0  # as np.einsum's sum, which starts at +0 (geometry.dots)
         bands = mesh_acc + max(tol, mesh_acc / reach) * np.hypot(to_x, to_y)
         reach_q = np.maximum(np.abs(to_x).max(axis=1), np.abs(to_y).max(axis=1))  # max |q - p| over both coordinates
         misses = []

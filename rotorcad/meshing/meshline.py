@@ -398,7 +398,6 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
     length that stays within that accuracy of the samples (scipy's s = n e^2, Dierckx sec. 5.2):
     the samples wobble by the profile's error, far more than their spacing resolves.
     """
-    order = np.argsort(piece.s)
     pts = piece.points
     if accuracy > 0:
         from scipy import interpolate  # a given profile only: points come through scipy's fits anyway
@@ -413,11 +412,18 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
                     return tau / norm
             except (ValueError, TypeError):
                 pass  # too few distinct samples for a smoothing cubic: the interpolating one below
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(len(order))
-    # the slopes in the order of s, put back in the samples' order (rows by take: numpy 2 indexes
-    # the rows of a 2-d array by an index array an order of magnitude slower)
-    tau = makima_slopes(piece.s[order], pts.take(order, axis=0)).take(inverse, axis=0)
+    step = piece.s[1:] - piece.s[:-1]
+    if (step > 0).all():  # the usual order: argsort's is the identity
+        tau = makima_slopes(piece.s, pts)
+    elif (step < 0).all():  # its reverse
+        tau = makima_slopes(piece.s[::-1], pts[::-1])[::-1]
+    else:
+        order = np.argsort(piece.s)
+        inverse = np.empty_like(order)
+        inverse[order] = np.arange(len(order))
+        # the slopes in the order of s, put back in the samples' order (rows by take: numpy 2 indexes
+        # the rows of a 2-d array by an index array an order of magnitude slower)
+        tau = makima_slopes(piece.s[order], pts.take(order, axis=0)).take(inverse, axis=0)
     norm = row_norms(tau)
     out = np.empty_like(tau)  # tau / norm[:, None], the same numbers, by columns
     np.divide(tau[:, 0], norm, out=out[:, 0])
