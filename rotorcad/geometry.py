@@ -111,7 +111,7 @@ def shifted(points: Array, by: object, sign: float = 1.0) -> Array:
         A new array.
     """
     p = np.asarray(points, dtype=float)
-    if p.ndim != 2 or p.shape[1] != 2:
+    if p.ndim != 2 or p.shape[1] != 2 or np.shape(by) != (2,):  # not one vector over (n, 2): numpy's broadcast
         return p + np.asarray(by, dtype=float) if sign > 0 else p - np.asarray(by, dtype=float)
     bx, by_ = float(by[0]), float(by[1])  # type: ignore[index]
     out = np.empty(p.shape)
@@ -130,6 +130,8 @@ def to_point(points: Array, q: object) -> Array:
     The numbers of numpy's broadcast (see :func:`shifted`).
     """
     p = np.asarray(points, dtype=float)
+    if p.ndim != 2 or p.shape[1] != 2 or np.shape(q) != (2,):  # not one point and (n, 2) points: numpy's broadcast
+        return np.asarray(q, dtype=float) - p
     out = np.empty(p.shape)
     np.subtract(float(q[0]), p[:, 0], out=out[:, 0])  # type: ignore[index]
     np.subtract(float(q[1]), p[:, 1], out=out[:, 1])  # type: ignore[index]

@@ -49,6 +49,9 @@ def test_shifted_and_to_point_are_numpys_broadcast():
         _same(to_point(p, q), q - p)
     stack = RNG.normal(size=(3, 10, 2))  # any other shape keeps the broadcast
     _same(shifted(stack, np.array([1.0, 2.0])), stack + np.array([1.0, 2.0]))
+    centres = RNG.normal(size=(5000, 2))  # a centre per point
+    _same(shifted(p, centres, -1.0), p - centres)
+    _same(to_point(p, centres), centres - p)
 
 
 def test_dots_filled_and_take_rows_are_numpys():
