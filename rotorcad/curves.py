@@ -21,7 +21,7 @@ from functools import cached_property
 
 import numpy as np
 
-from rotorcad.geometry import Array, as_points, cross, normalize, perp_cw
+from rotorcad.geometry import Array, as_points, cross, dots, filled, normalize, perp_cw
 from rotorcad.kinematics import Body
 
 
@@ -165,10 +165,15 @@ class Line(Curve):
             ``d`` at every point.
         """
         a, d = self._start_and_direction
-        p = a + np.multiply.outer(s, d)
-        t = np.empty_like(p)
-        t[...] = d
-        return p, t
+        if np.ndim(s) != 1:
+            p = a + np.multiply.outer(s, d)
+            t = np.empty_like(p)
+            t[...] = d
+            return p, t
+        p = np.empty((len(s), 2))  # a + outer(s, d), the same numbers, by columns
+        np.add(a[0], s * d[0], out=p[:, 0])
+        np.add(a[1], s * d[1], out=p[:, 1])
+        return p, filled(len(s), d)
 
 
 @dataclass(frozen=True)
@@ -546,7 +551,7 @@ class Spline(Curve):
 
 def turning_angle(t0: Array, t1: Array) -> Array:
     """Signed angle from unit tangents ``t0`` to ``t1``."""
-    return np.arctan2(cross(t0, t1), np.einsum("ij,ij->i", t0, t1))
+    return np.arctan2(cross(t0, t1), dots(t0, t1))
 
 
 def sample_curve(curve: Curve, tolerance: float, minimum: int = 2, passes: int = 5) -> tuple[Array, Array, Array]:

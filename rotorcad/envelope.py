@@ -45,7 +45,7 @@ from typing import Literal
 import numpy as np
 
 from rotorcad.curves import Curve, Line
-from rotorcad.geometry import Array, as_points, cross, perp_cw, wrap_angle
+from rotorcad.geometry import Array, as_points, cross, perp_cw, shifted, wrap_angle
 from rotorcad.kinematics import Body, Rotation, Translation, pitch_point
 
 Branch = Literal["A", "B"]
@@ -126,7 +126,7 @@ def contact_parameter(
         den = cross(n, v)
         ok = np.abs(den) > 1e-12 * generating.speed
         with np.errstate(divide="ignore", invalid="ignore"):
-            t = np.where(ok, -cross(n, p - c) / np.where(ok, den, 1.0), np.nan)
+            t = np.where(ok, -cross(n, shifted(p, c, -1.0)) / np.where(ok, den, 1.0), np.nan)
         return t
     o = np.asarray(generating.center, dtype=float)
     w = c - o
@@ -139,7 +139,7 @@ def contact_parameter(
         if abs(np.hypot(*k) - r_w) <= 1e-9 * r_w:
             theta = wrap_angle(np.array(beta - np.arctan2(k[1], k[0])), reference)
             return np.full(len(p), theta / generating.rate)
-    q = cross(n, p - o) / r_w
+    q = cross(n, shifted(p, o, -1.0)) / r_w
     psi = np.arctan2(n[:, 1], n[:, 0])
     with np.errstate(invalid="ignore"):
         phi = np.arcsin(q)
@@ -151,7 +151,7 @@ def contact_parameter(
     if corner:
         # a corner on the pitch circle touches trivially, for every normal of its fan, at the
         # instant it passes C; the path it cuts comes from the other root
-        d = p - o
+        d = shifted(p, o, -1.0)
         trivial = beta - np.arctan2(d[:, 1], d[:, 0])
         on_circle = np.abs(np.hypot(*d.T) - r_w) <= 1e-9 * r_w
         same = np.abs(wrap_angle(theta - trivial)) < 1e-9

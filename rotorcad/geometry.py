@@ -55,7 +55,7 @@ def rotate(points: Array, angle: float | Array, center: object = ORIGIN) -> Arra
     about_origin = center is ORIGIN or (type(center) is tuple and center == ORIGIN)
     if not about_origin:
         ctr = np.asarray(center, dtype=float)
-        p = p - ctr
+        p = shifted(p, ctr, -1.0)
     c, s = np.cos(angle), np.sin(angle)
     x, y = p[:, 0], p[:, 1]
     if np.ndim(c) <= 1:
@@ -64,7 +64,7 @@ def rotate(points: Array, angle: float | Array, center: object = ORIGIN) -> Arra
         np.add(s * x, c * y, out=out[:, 1])
     else:
         out = np.stack([c * x - s * y, s * x + c * y], axis=-1)
-    return out if about_origin else out + ctr
+    return out if about_origin else shifted(out, ctr) if out.ndim == 2 else out + ctr
 
 
 def row_norms(v: Array) -> Array:
@@ -88,6 +88,159 @@ def row_norms(v: Array) -> Array:
     if v.shape[1] == 3:
         total += sq[:, 2]
     return np.sqrt(total)
+
+
+def shifted(points: Array, by: object, sign: float = 1.0) -> Array:
+    """Return ``points + by`` (``sign`` 1) or ``points - by`` (``sign`` -1) for one vector ``by``.
+
+    The numbers of numpy's broadcast ``points + by``, taken column by column: numpy 2 broadcasts
+    a (2,) row over an (n, 2) array a row at a time, ten times slower than the two columns.
+
+    Parameters
+    ----------
+    points : (n, 2) float array
+        Points or vectors (any other shape takes numpy's broadcast).
+    by : (2,) float
+        The vector added (or subtracted).
+    sign : {1.0, -1.0}
+        Add or subtract.
+
+    Returns
+    -------
+    (n, 2) float array
+        A new array.
+    """
+    p = np.asarray(points, dtype=float)
+    if p.ndim != 2 or p.shape[1] != 2 or np.shape(by) != (2,):  # not one vector over (n, 2): numpy's broadcast
+        return p + np.asarray(by, dtype=float) if sign > 0 else p - np.asarray(by, dtype=float)
+    bx, by_ = float(by[0]), float(by[1])  # type: ignore[index]
+    out = np.empty(p.shape)
+    if sign > 0:
+        np.add(p[:, 0], bx, out=out[:, 0])
+        np.add(p[:, 1], by_, out=out[:, 1])
+    else:
+        np.subtract(p[:, 0], bx, out=out[:, 0])
+        np.subtract(p[:, 1], by_, out=out[:, 1])
+    return out
+
+
+def to_point(points: Array, q: object) -> Array:
+    """Return ``q - points``, the vectors from (n, 2) points to one point ``q`` ((2,) float), by columns.
+
+    The numbers of numpy's broadcast (see :func:`shifted`).
+    """
+    p = np.asarray(points, dtype=float)
+    if p.ndim != 2 or p.shape[1] != 2 or np.shape(q) != (2,):  # not one point and (n, 2) points: numpy's broadcast
+        return np.asarray(q, dtype=float) - p
+    out = np.empty(p.shape)
+    np.subtract(float(q[0]), p[:, 0], out=out[:, 0])  # type: ignore[index]
+    np.subtract(float(q[1]), p[:, 1], out=out[:, 1])  # type: ignore[index]
+    return out
+
+
+def filled(n: int, vector: object) -> Array:
+    """Return an (n, 2) float array whose every row is ``vector`` ((2,) float), column by column."""
+    out = np.empty((n, 2))
+    out[:, 0] = float(vector[0])  # type: ignore[index]
+    out[:, 1] = float(vector[1])  # type: ignore[index]
+    return out
+
+
+def dots(a: Array, b: Array) -> Array:
+    """Return the row-wise dot products of (n, 2) arrays: ``np.einsum("ij,ij->i", a, b)``, the same numbers.
+
+    ``a_x b_x + a_y b_y`` by columns, plus 0: einsum adds the products to a sum that starts at +0
+    (without fusing them), so that a sum of two -0 products is +0.
+
+    Parameters
+    ----------
+    a, b : (n, 2) float arrays
+        Vectors.
+
+    Returns
+    -------
+    (n,) float array
+    """
+    out = a[:, 0] * b[:, 0]
+    out += a[:, 1] * b[:, 1]
+    out += 0.0  # -0 -> +0, every other value as it is
+    return out
+
+
+def take_rows(a: Array, keep: Array) -> Array:
+    """Return ``a[keep]`` for a boolean ``keep`` over the rows of an (n, 2) array, the same rows.
+
+    By :func:`numpy.compress`: numpy 2 indexes the rows of a 2-d array by a mask an order of
+    magnitude slower.
+    """
+    return np.compress(keep, a, axis=0)
+
+
+_SURE = 1e-9
+"""Relative margin of a squared length beyond which its hypot's side of a bound is certain: hypot is
+within an ulp of the true length and the sum of squares within two, far inside 1e-9."""
+
+
+def hypot_within(x: Array, y: Array, bound: float | Array) -> Array:
+    """Return ``np.hypot(x, y) <= bound``, the same answer, computing hypot only near the bound.
+
+    Where the sum of squares lies beyond the square of the bound by more than :data:`_SURE`
+    (relative), the answer is certain; only the rest (a point within 1e-9 of the bound, a NaN)
+    takes numpy's hypot, which costs as much as ten multiplications.
+
+    Parameters
+    ----------
+    x, y : (n,) float arrays
+        Coordinates (mm).
+    bound : float or (n,) float array
+        The largest length (mm), at least 0.
+
+    Returns
+    -------
+    (n,) bool array
+    """
+    square = x * x
+    square += y * y
+    limit = np.square(bound)
+    if np.min(limit) < 1e-290:  # a bound near underflow, where squares lose their relative accuracy
+        return np.hypot(x, y) <= bound
+    inside = square <= limit * (1.0 - _SURE)
+    unsure = ~inside & ~(square > limit * (1.0 + _SURE))
+    if unsure.any():
+        k = np.flatnonzero(unsure)
+        b = bound if np.ndim(bound) == 0 else np.asarray(bound)[k]
+        inside[k] = np.hypot(x[k], y[k]) <= b
+    return inside
+
+
+def nearest_hypot(x: Array, y: Array) -> tuple[int, float]:
+    """Return the index and value of the smallest ``np.hypot(x, y)``: ``argmin`` and ``min``, the same numbers.
+
+    The smallest sum of squares picks the candidates (those within :data:`_SURE` of it, relative:
+    any point farther has a larger hypot); numpy's hypot is taken of these only, and the first of
+    its minima is returned, as ``np.argmin`` does. Non-finite sums take hypot everywhere.
+
+    Parameters
+    ----------
+    x, y : (n,) float arrays, n >= 1
+        Coordinates of vectors (mm).
+
+    Returns
+    -------
+    index : int
+    length : float
+    """
+    square = x * x
+    square += y * y
+    least = square.min()
+    if not np.isfinite(least) or least < 1e-290:  # a NaN, or squares near underflow: hypot everywhere
+        h = np.hypot(x, y)
+        i = int(np.argmin(h))
+        return i, float(h[i])
+    k = np.flatnonzero(square <= least * (1.0 + _SURE))
+    h = np.hypot(x[k], y[k])
+    j = int(np.argmin(h))
+    return int(k[j]), float(h[j])
 
 
 def wrap_angle(angle: float | Array, reference: float | Array = 0.0, period: float = 2.0 * np.pi) -> float | Array:
@@ -167,7 +320,16 @@ def normalize(v: Array) -> Array:
         ``v / |v|``, zero where ``|v| = 0``.
     """
     v = np.asarray(v, dtype=float)
-    if v.shape[-1] == 2:
+    if v.ndim == 2 and v.shape[1] == 2:
+        x, y = v[:, 0], v[:, 1]
+        length = np.sqrt(x * x + y * y)  # the sum np.linalg.norm forms, without its overhead
+        if length.min(initial=np.inf) > 0.0:  # no zero (nor NaN) length: a plain division, by columns
+            out = np.empty(v.shape)
+            np.divide(x, length, out=out[:, 0])
+            np.divide(y, length, out=out[:, 1])
+            return out
+        norm = length[:, None]
+    elif v.shape[-1] == 2:
         x, y = v[..., 0], v[..., 1]
         norm = np.sqrt(x * x + y * y)[..., None]  # the sum np.linalg.norm forms, without its overhead
     else:

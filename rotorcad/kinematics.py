@@ -18,7 +18,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-from rotorcad.geometry import Array, as_points, rotate
+from rotorcad.geometry import Array, as_points, filled, rotate, shifted
 
 
 @dataclass(frozen=True)
@@ -134,7 +134,7 @@ class Rotation:
         (n, 2) float array, mm per rad
             ``rate * (-(y - y_O), x - x_O)`` with O = ``center``.
         """
-        d = as_points(points) - np.asarray(self.center, dtype=float)
+        d = shifted(as_points(points), self.center, -1.0)
         v = np.empty_like(d)
         v[:, 0] = -d[:, 1]
         v[:, 1] = d[:, 0]
@@ -183,8 +183,7 @@ class Translation:
         (n, 2) float array, mm
             ``points + t * velocity``.
         """
-        shift = np.multiply.outer(np.asarray(t, dtype=float), self.velocity_array)
-        return as_points(points) + shift
+        return self._moved(points, t, 1.0)
 
     def to_body(self, points: Array, t: Array | float) -> Array:
         """Carry fixed-frame points into the body frame at motion parameter ``t``.
@@ -201,8 +200,20 @@ class Translation:
         (n, 2) float array, mm
             ``points - t * velocity``.
         """
-        shift = np.multiply.outer(np.asarray(t, dtype=float), self.velocity_array)
-        return as_points(points) - shift
+        return self._moved(points, t, -1.0)
+
+    def _moved(self, points: Array, t: Array | float, sign: float) -> Array:
+        """``points + sign * outer(t, velocity)``: the numbers of numpy's broadcast, by columns for (n,) ``t``."""
+        p, t = as_points(points), np.asarray(t, dtype=float)
+        if t.ndim != 1 or p.ndim != 2 or len(t) != len(p):
+            shift = np.multiply.outer(t, self.velocity_array)
+            return p + shift if sign > 0 else p - shift
+        vx, vy = self.velocity
+        out = np.empty(p.shape)
+        op = np.add if sign > 0 else np.subtract
+        op(p[:, 0], t * float(vx), out=out[:, 0])
+        op(p[:, 1], t * float(vy), out=out[:, 1])
+        return out
 
     def vectors_to_fixed(self, vectors: Array, t: Array | float) -> Array:
         """Return body-frame vectors in the fixed frame (a translation leaves them as they are).
@@ -251,9 +262,7 @@ class Translation:
         (n, 2) float array, mm per rad
             ``velocity`` repeated for every point.
         """
-        out = np.empty_like(as_points(points))
-        out[...] = self.velocity_array
-        return out
+        return filled(len(as_points(points)), self.velocity_array)
 
 
 Body = Rotation | Translation

@@ -39,10 +39,11 @@ class Segment:
     def sample(name: str, curve: Curve, tolerance: float = DEFAULT_TOLERANCE) -> Segment:
         """Sample ``curve`` so that chords deviate from it by at most ``tolerance`` (mm)."""
         s, p, t = sample_curve(curve, tolerance)
-        ok = np.isfinite(p).all(axis=1) & np.isfinite(t).all(axis=1)  # no-contact points are dropped
+        # no-contact points are dropped (the rows' test by columns, the rows by compress: faster)
+        ok = np.isfinite(p[:, 0]) & np.isfinite(p[:, 1]) & np.isfinite(t[:, 0]) & np.isfinite(t[:, 1])
         if ok.all():
             return Segment(name, curve, s, p, t)
-        return Segment(name, curve, s[ok], p[ok], t[ok])
+        return Segment(name, curve, s[ok], np.compress(ok, p, axis=0), np.compress(ok, t, axis=0))
 
     @staticmethod
     def at(name: str, curve: Curve, s: Array) -> Segment:

@@ -35,7 +35,7 @@ import numpy as np
 from rotorcad.curves import Arc, Curve, Line, Mapped, PointPath, sample_curve
 from rotorcad.gears.sampling import SAMPLING_MARGIN, arc_intervals, chord_counts, grid_parameters, involute_parameters, span
 from rotorcad.gears.tool import ToolCut
-from rotorcad.geometry import Array, normalize, perp_cw
+from rotorcad.geometry import Array, normalize, perp_cw, take_rows
 from rotorcad.kinematics import Body, Translation
 from rotorcad.profile import Segment
 from rotorcad.roles import Side
@@ -230,8 +230,8 @@ def _path_segment(name: str, curve: Curve, path: PointPath, generated: Body, tol
     s, p, t = sample_curve(fast, tolerance)
     if isinstance(curve, Mapped):  # the female, about its own centre
         p = p + np.asarray(curve.shift, dtype=float)
-    ok = np.isfinite(p).all(axis=1) & np.isfinite(t).all(axis=1)
-    return Segment(name, curve, s, p, t) if ok.all() else Segment(name, curve, s[ok], p[ok], t[ok])
+    ok = np.isfinite(p[:, 0]) & np.isfinite(p[:, 1]) & np.isfinite(t[:, 0]) & np.isfinite(t[:, 1])  # by columns: faster
+    return Segment(name, curve, s, p, t) if ok.all() else Segment(name, curve, s[ok], take_rows(p, ok), take_rows(t, ok))
 
 
 def _few(counts: tuple[Array, Array], tolerance: float) -> bool:

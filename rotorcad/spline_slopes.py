@@ -38,7 +38,11 @@ def makima_slopes(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
-    chord = np.diff(y, axis=0) / np.diff(x)[:, None]
+    step = np.diff(x)
+    rise = np.diff(y, axis=0)
+    chord = np.empty_like(rise)  # rise / step[:, None], the same numbers, by columns
+    for k in range(rise.shape[1]):
+        np.divide(rise[:, k], step, out=chord[:, k])
     if len(x) == 2:
         return np.repeat(chord, 2, axis=0)
     m = np.empty((len(x) + 3, y.shape[1]))

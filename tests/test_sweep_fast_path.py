@@ -257,3 +257,27 @@ def test_the_median_bound_of_the_defect_tests_is_numpys():
             middle = float(np.median(values[np.isfinite(values)])) if np.isfinite(values).any() else 1.0
             for bound in (middle, np.nextafter(middle, 0.0), np.nextafter(middle, np.inf), float(rng.random())):
                 assert _median_below(values, bound) == bool(np.median(values) < bound)
+
+
+def test_local_cluster_workers_start_lean_and_keep_the_users_settings():
+    # sweep.run._lean_workers: what the local cluster's nanny hands its workers (dask's config, read
+    # back through dask.config.get, the reference): no per-task stack profiler, a 1 s tick, no
+    # MALLOC_TRIM_THRESHOLD_ before spawning; the other pre-spawn variables and the user's own
+    # settings kept, and everything as it was afterwards
+    import dask
+    import distributed  # noqa: F401 - loads distributed's defaults into dask.config
+
+    from rotorcad.sweep.run import LEAN_WORKERS, _lean_workers
+
+    before = dask.config.get("distributed.nanny.pre-spawn-environ")
+    profiled = dask.config.get("distributed.worker.profile.enabled")
+    assert "MALLOC_TRIM_THRESHOLD_" in before
+    with dask.config.set({"distributed.nanny.pre-spawn-environ.MY_SETTING": "kept"}), _lean_workers():
+        spawn = dask.config.get("distributed.nanny.pre-spawn-environ")
+        assert "MALLOC_TRIM_THRESHOLD_" not in spawn
+        assert spawn["MY_SETTING"] == "kept" and spawn["OMP_NUM_THREADS"] == before["OMP_NUM_THREADS"]
+        assert dask.config.get("distributed.worker.profile.enabled") is False
+        for key, value in LEAN_WORKERS.items():
+            assert dask.config.get(key) == value
+    assert dask.config.get("distributed.nanny.pre-spawn-environ") == before
+    assert dask.config.get("distributed.worker.profile.enabled") == profiled

@@ -6,6 +6,7 @@ import numpy as np
 import shapely
 
 from rotorcad.errors import DesignError
+from rotorcad.geometry import hypot_within
 from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -40,8 +41,14 @@ def check_tips(rotors: ScrewRotors, tolerance: float | None = None) -> None:
         # within 1e-9 mm: such a pair is a sliver that makes the polygon invalid at a sharp corner)
         pts = np.vstack([[0.0, 0.0], lobe.points])
         polygon = shapely.Polygon(pts)
+        tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
         if shapely.is_valid(polygon):  # the body itself (make_valid would return it as it is)
-            reach = float(np.hypot(*pts.T).max())
+            # reach < tip - 1e-3 where no point lies as far: each hypot below it (<= the float before
+            # it), hypot only near it; the reach itself only for the refusal's sentence
+            if hypot_within(pts[:, 0], pts[:, 1], np.nextafter(tip - 1e-3, 0.0)).all():
+                reach = float(np.hypot(*pts.T).max())
+            else:
+                continue
         else:
             parts = shapely.get_parts(shapely.make_valid(polygon))
             while any(g.geom_type in ("MultiPolygon", "GeometryCollection") for g in parts):  # a collection of multi-parts
@@ -51,7 +58,6 @@ def check_tips(rotors: ScrewRotors, tolerance: float | None = None) -> None:
                 continue  # a degenerate lobe: nothing to measure here, the section's own checks refuse it
             body = max(polygons, key=lambda g: g.area)
             reach = float(np.hypot(*np.asarray(body.exterior.coords).T).max())
-        tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
         if reach < tip - 1e-3:
             raise DesignError(
                 f"[profile] parameters of the {rotors.family} family",

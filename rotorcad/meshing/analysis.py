@@ -18,7 +18,7 @@ import shapely
 
 from rotorcad.blow_hole import SpatialBlowHole
 from rotorcad.envelope import Generated
-from rotorcad.geometry import cross, rotate, row_norms, wrap_angle
+from rotorcad.geometry import cross, dots, nearest_hypot, rotate, row_norms, shifted, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
@@ -239,7 +239,9 @@ class MeshingAnalysis:
         # of a given profile, a preference within its resolution is a tie, which goes to the upper cusp
         # as the design's does (the symmetric SRM's meshline comes as near both; 1 µm of scatter chose either)
         tie = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
-        return k if np.hypot(*(pts - k).T).min() <= np.hypot(*(pts - lower).T).min() + tie else lower
+        upper_gap = nearest_hypot(pts[:, 0] - k[0], pts[:, 1] - k[1])[1]  # np.hypot(*(pts - k).T).min()
+        lower_gap = nearest_hypot(pts[:, 0] - lower[0], pts[:, 1] - lower[1])[1]
+        return k if upper_gap <= lower_gap + tie else lower
 
     @cached_property
     def meshline_end(self) -> np.ndarray:
@@ -263,7 +265,7 @@ class MeshingAnalysis:
         """
         pts = self.meshline
         k = self.cusp
-        i = int(np.argmin(np.hypot(*(pts - k).T)))
+        i = nearest_hypot(pts[:, 0] - k[0], pts[:, 1] - k[1])[0]  # np.argmin(np.hypot(*(pts - k).T))
         sizes = np.cumsum([len(p.points) for p in self.pieces])
         j = int(np.searchsorted(sizes, i, side="right"))
         piece, local = self.pieces[j], i - (int(sizes[j - 1]) if j else 0)
@@ -277,11 +279,12 @@ class MeshingAnalysis:
         for _ in range(2):
             s = np.linspace(lo, hi, 201)
             t, x = gen.meshline_contact(s)[:2]  # the meshline alone (the full conjugate's numbers)
-            ok = np.isfinite(t) & np.all(np.isfinite(x), axis=1)
-            ok &= (np.hypot(*x.T) <= pair.male_tip_radius + 1e-3) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + 1e-3)
+            ok = np.isfinite(t) & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
+            ok &= np.hypot(*x.T) <= pair.male_tip_radius + 1e-3
+            ok &= np.hypot(x[:, 0] - o2[0], x[:, 1]) <= pair.female_tip_radius + 1e-3  # x - O2 by columns
             if not ok.any():
                 break
-            d = np.where(ok, np.hypot(*(x - k).T), np.inf)
+            d = np.where(ok, np.hypot(*shifted(x, k, -1.0).T), np.inf)
             m = int(np.argmin(d))
             if d[m] < np.hypot(*(best - k)):
                 best, best_t = x[m], float(t[m])
@@ -518,10 +521,10 @@ class MeshingAnalysis:
         tau = np.concatenate([p.tangents for p in self.pieces])
         o2 = np.array([pair.center_distance, 0.0])
         v1 = w1 * np.stack([-pts[:, 1], pts[:, 0]], axis=1)
-        d2 = pts - o2
+        d2 = shifted(pts, o2, -1.0)
         v2 = w2 * np.stack([-d2[:, 1], d2[:, 0]], axis=1)
-        v1t = np.einsum("ij,ij->i", v1, tau) * 1e-3
-        v2t = np.einsum("ij,ij->i", v2, tau) * 1e-3
+        v1t = dots(v1, tau) * 1e-3
+        v2t = dots(v2, tau) * 1e-3
         vg = v1t - v2t
         z1, z2 = slip(vg, v1t), slip(vg, v2t)
         return {"v1t": v1t, "v2t": v2t, "sliding": vg, "slip_male": z1, "slip_female": z2, "normal_check": cross(tau, v1 - v2)}

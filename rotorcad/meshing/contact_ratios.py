@@ -152,12 +152,12 @@ def flank_reports(
     overlap = float(pair.wrap_angle / pitch_angle)  # Sprungüberdeckung: wrap angle per angular pitch
     tol = tip_tolerance
     out = {}
-    steps = [np.hypot(*np.diff(piece.points, axis=0).T) for piece in pieces]  # chord lengths, once
+    steps = [piece.steps for piece in pieces]  # chord lengths, once (shared with the defect rules)
     for flank in (Flank.DRIVING, Flank.SEALING):
         total = geometric = 0.0
         t_geo: list[np.ndarray] = []
         for piece, seg in zip(pieces, steps, strict=True):
-            mask = piece.roles == flank
+            mask = piece.flank_mask(flank)
             if mask.sum() < 2:
                 continue
             length = float(seg[mask[:-1] & mask[1:]].sum())

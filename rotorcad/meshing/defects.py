@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from rotorcad.geometry import shifted
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_tangents, reversals
 from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
@@ -398,6 +399,7 @@ def meshline_defects(
     """
     o1, o2 = np.zeros(2), np.array([pair.center_distance, 0.0])
     c = np.array([pair.male_pitch_radius, 0.0])
+    centres = np.array([o1, o2, c])  # the q of the three tests below, in their order
     tol, acc = tolerance, accuracy
     scale = pair.center_distance
     longest = resolution(acc, scale)
@@ -408,7 +410,7 @@ def meshline_defects(
     on_line = max(1e-3 * scale, longest if given else 0.0)  # through a centre or on O1O2 within the resolution
     for piece in pieces:
         pts = piece.points
-        steps = np.hypot(*np.diff(pts, axis=0).T)
+        steps = piece.steps  # the chord lengths (shared with the flank reports)
         arclen = np.concatenate([[0.0], np.cumsum(steps)])
         length = float(arclen[-1])
         if len(pts) < 4 or length < 1e-6 * scale:
@@ -420,12 +422,18 @@ def meshline_defects(
         turns = reversals(pts, arclen, reach if given else 0.0)
         tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
         path_of = _tip_path(piece, pair, max(20.0 * acc, 0.1 * longest)) if given else -1
+        # q - pts of the three centres at once, (3, n) by coordinate: the numbers of one centre at a time
+        to_x = np.subtract.outer(centres[:, 0], pts[:, 0])
+        to_y = np.subtract.outer(centres[:, 1], pts[:, 1])
+        fs = to_x * tau[:, 0]  # zero: the meshline normal passes through q (q - p) . tau
+        fs += to_y * tau[:, 1]
+        fs += 0.0  # as np.einsum's sum, which starts at +0 (geometry.dots)
+        bands = mesh_acc + max(tol, mesh_acc / reach) * np.hypot(to_x, to_y)
+        reach_q = np.maximum(np.abs(to_x).max(axis=1), np.abs(to_y).max(axis=1))  # max |q - p| over both coordinates
         misses = []
-        for m, (q, _kind, _) in enumerate(tests):
-            to_q = q - pts
-            f = np.einsum("ij,ij->i", to_q, tau)  # zero: the meshline normal passes through q
-            band = mesh_acc + max(tol, mesh_acc / reach) * np.hypot(*to_q.T)
-            whole = m == path_of or _median_below(np.abs(f), tol * max(1.0, np.abs(to_q).max()))
+        for m in range(len(tests)):
+            f, band = fs[m], bands[m]
+            whole = m == path_of or _median_below(np.abs(f), tol * max(1.0, reach_q[m]))
             misses.append((f, band, whole, *robust_zeros(f, band, arclen, reach, whole, turns)))
         at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
         for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
@@ -439,7 +447,7 @@ def meshline_defects(
                 ):
                     continue  # a slow crossing on O1O2, where the normal passes through O1, O2 and C at once; of
                     # a given profile anywhere: its wider band holds a normal that passes q slowly or nearby
-                if given and np.hypot(*(pts[i : j + 1] - c).T).max() < on_line:
+                if given and np.hypot(*shifted(pts[i : j + 1], c, -1.0).T).max() < on_line:
                     continue  # a stretch within the resolution of C: the contact at the pitch point, no arc
                 mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
                 found.append(
@@ -463,7 +471,7 @@ def meshline_defects(
                     continue  # at a given piece's end, where its smoothed tangent is least known: the hand-over
                 i, w = min(int(x), len(pts) - 2), x - min(int(x), len(pts) - 2)
                 if judged is None:
-                    judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*(pts - c).T) > 1e-6 * scale)
+                    judged = (np.abs(pts[:, 1]) > 1e-6 * scale) & (np.hypot(*shifted(pts, c, -1.0).T) > 1e-6 * scale)
                 if not (judged[i] and judged[i + 1]):
                     continue
                 p = pts[i] + w * (pts[i + 1] - pts[i])

@@ -12,15 +12,20 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from rotorcad.envelope import Generated, meshline_contacts
-from rotorcad.geometry import row_norms
+from rotorcad.geometry import dots, hypot_within, row_norms, take_rows
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece
 from rotorcad.spline_slopes import makima_slopes
+
+_FLANKS = np.array(list(Flank), dtype=object)
+FLANK_CODE = {flank: i for i, flank in enumerate(Flank)}
+"""Index of each lobe part in :data:`_FLANKS`."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,11 +64,19 @@ class MeshlinePiece:
         default_factory=lambda: np.zeros(0, dtype=object)
     )  # (n,) Flank per point: the lobe part (read off the rack)
     rack_index: int = -1  # the rack piece (index into ScrewRotors.rack) whose contacts these are
+    role_codes: np.ndarray | None = None  # (n,) int: roles as indices into _FLANKS (FLANK_CODE), when known
 
+    @cached_property
+    def steps(self) -> np.ndarray:
+        """Lengths of the chords between consecutive points, (n - 1,) float, mm (computed once)."""
+        d = self.points[1:] - self.points[:-1]  # np.diff(points, axis=0), the same numbers
+        return np.hypot(d[:, 0], d[:, 1])
 
-_FLANKS = np.array(list(Flank), dtype=object)
-_FLANK_CODE = {flank: i for i, flank in enumerate(Flank)}
-"""Index of each lobe part in :data:`_FLANKS`."""
+    def flank_mask(self, flank: Flank) -> np.ndarray:
+        """Return ``roles == flank``, (n,) bool (from :attr:`role_codes` when known: no object comparison)."""
+        if self.role_codes is not None:
+            return self.role_codes == FLANK_CODE[flank]
+        return self.roles == flank
 
 
 def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
@@ -84,15 +97,19 @@ def flank_roles(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, s
         DRIVING where the rack rises towards the male tip (x grows along the chain), SEALING
         where it falls, TIP / ROOT on a land above / below the pitch line (Rinder sec. 1.2).
     """
+    return _FLANKS[flank_codes(points, tangents, pitch_radius, scale)]
+
+
+def flank_codes(points: np.ndarray, tangents: np.ndarray, pitch_radius: float, scale: float) -> np.ndarray:
+    """Return :func:`flank_roles` as indices into the lobe parts (:data:`FLANK_CODE`), (n,) int."""
     rise = tangents[:, 0]
     flat = np.abs(rise) <= 1e-9
     above = points[:, 0] > pitch_radius + 1e-9 * scale
-    code = np.where(
+    return np.where(
         flat,
-        np.where(above, _FLANK_CODE[Flank.TIP], _FLANK_CODE[Flank.ROOT]),
-        np.where(rise > 0, _FLANK_CODE[Flank.DRIVING], _FLANK_CODE[Flank.SEALING]),
+        np.where(above, FLANK_CODE[Flank.TIP], FLANK_CODE[Flank.ROOT]),
+        np.where(rise > 0, FLANK_CODE[Flank.DRIVING], FLANK_CODE[Flank.SEALING]),
     )
-    return _FLANKS[code]
 
 
 UNEVEN = 4.0
@@ -166,7 +183,8 @@ def even_meshline_contact(
 
 def _meshline_steps(x: np.ndarray) -> np.ndarray:
     """Lengths of the steps between meshline points ((n, 2), mm), 0 where not finite: (n - 1,) float, mm."""
-    step = np.hypot(*np.diff(x, axis=0).T)
+    d = x[1:] - x[:-1]  # np.diff(x, axis=0), the same numbers
+    step = np.hypot(d[:, 0], d[:, 1])
     return np.where(np.isfinite(step), step, 0.0)
 
 
@@ -237,13 +255,15 @@ def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int, corner
             contacts[i] = contact
     s = np.concatenate(params)
     t, x, rack_pts, tan = (np.concatenate([c[k] for c in contacts]) for k in range(4))
-    o2 = np.array([a, 0.0])
     slack = np.repeat([corner_slack if piece.kind is not PieceRole.CURVE else 1e-3 for piece in rack], [len(p) for p in params])
-    inside = (np.hypot(*x.T) <= pair.male_tip_radius + slack) & (np.hypot(*(x - o2).T) <= pair.female_tip_radius + slack)
+    # within both bores (np.hypot(...) <= bound, hypot only near the bound); about O2 = (a, 0) by columns
+    inside = hypot_within(x[:, 0], x[:, 1], pair.male_tip_radius + slack)
+    inside &= hypot_within(x[:, 0] - a, x[:, 1], pair.female_tip_radius + slack)
     ok = np.isfinite(t) & inside & np.isfinite(x[:, 0]) & np.isfinite(x[:, 1])
     tan_fixed = mesh.rack.vectors_to_fixed(tan, t)
-    roles = flank_roles(rack_pts[ok], tan[ok], pair.male_pitch_radius, a)
-    s, t, x, tan_fixed = s[ok], t[ok], x[ok], tan_fixed[ok]
+    codes = flank_codes(take_rows(rack_pts, ok), take_rows(tan, ok), pair.male_pitch_radius, a)
+    roles = _FLANKS[codes]
+    s, t, x, tan_fixed = s[ok], t[ok], take_rows(x, ok), take_rows(tan_fixed, ok)
     ends = np.cumsum([0] + [len(p) for p in params]).tolist()
     kept = [0, *np.cumsum(np.add.reduceat(ok, ends[:-1])).tolist()]  # contacts kept per piece (each has samples)
     out = []
@@ -251,7 +271,7 @@ def meshline_pieces(rack: list[RackPiece], pair: RotorPair, samples: int, corner
         if j - i < 2:
             continue
         names = (piece.male_name, piece.kind, s[i:j], t[i:j], x[i:j], tan_fixed[i:j])
-        out.append(MeshlinePiece(*names, piece.male_name, piece.female_name, roles[i:j], index))
+        out.append(MeshlinePiece(*names, piece.male_name, piece.female_name, roles[i:j], index, codes[i:j]))
     return out
 
 
@@ -269,8 +289,8 @@ def reversals(points: np.ndarray, arclen: np.ndarray, longest: float = 0.0) -> n
     only, no tangents. A sign change of a normal's miss there is the turn, not a normal through a
     centre.
     """
-    d = np.diff(points, axis=0)
-    back = np.flatnonzero(np.einsum("ij,ij->i", d[:-1], d[1:]) < 0) + 1
+    d = points[1:] - points[:-1]  # np.diff(points, axis=0), the same numbers
+    back = np.flatnonzero(dots(d[:-1], d[1:]) < 0) + 1
     if longest <= 0 or len(d) < 2:
         return arclen[back]
     heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
@@ -378,7 +398,6 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
     length that stays within that accuracy of the samples (scipy's s = n e^2, Dierckx sec. 5.2):
     the samples wobble by the profile's error, far more than their spacing resolves.
     """
-    order = np.argsort(piece.s)
     pts = piece.points
     if accuracy > 0:
         from scipy import interpolate  # a given profile only: points come through scipy's fits anyway
@@ -393,6 +412,20 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
                     return tau / norm
             except (ValueError, TypeError):
                 pass  # too few distinct samples for a smoothing cubic: the interpolating one below
-    tau = np.empty_like(pts)
-    tau[order] = makima_slopes(piece.s[order], pts[order])
-    return tau / row_norms(tau)[:, None]
+    step = piece.s[1:] - piece.s[:-1]
+    if (step > 0).all():  # the usual order: argsort's is the identity
+        tau = makima_slopes(piece.s, pts)
+    elif (step < 0).all():  # its reverse
+        tau = makima_slopes(piece.s[::-1], pts[::-1])[::-1]
+    else:
+        order = np.argsort(piece.s)
+        inverse = np.empty_like(order)
+        inverse[order] = np.arange(len(order))
+        # the slopes in the order of s, put back in the samples' order (rows by take: numpy 2 indexes
+        # the rows of a 2-d array by an index array an order of magnitude slower)
+        tau = makima_slopes(piece.s[order], pts.take(order, axis=0)).take(inverse, axis=0)
+    norm = row_norms(tau)
+    out = np.empty_like(tau)  # tau / norm[:, None], the same numbers, by columns
+    np.divide(tau[:, 0], norm, out=out[:, 0])
+    np.divide(tau[:, 1], norm, out=out[:, 1])
+    return out

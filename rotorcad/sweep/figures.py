@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 import shapely
 
+from rotorcad.geometry import hypot_within
 from rotorcad.meshing import MeshingAnalysis
 from rotorcad.roles import Side
 from rotorcad.screw_rotors import ScrewRotors
@@ -60,7 +61,8 @@ def section_area(rotors: ScrewRotors, side: Side) -> float:
         points = (rotors.male_outline() if side is Side.MALE else rotors.female_outline()).points
         tip = side.pick(pair.male_tip_radius, pair.female_tip_radius)
         polygon = shapely.Polygon(points)
-        if len(points) and float(np.hypot(*points.T).max()) <= tip + 1e-6 and shapely.is_valid(polygon):
+        # every point within the tip circle + 1 um: np.hypot(*points.T).max() <= tip + 1e-6, hypot only near it
+        if len(points) and hypot_within(points[:, 0], points[:, 1], tip + 1e-6).all() and shapely.is_valid(polygon):
             kept[side] = float(polygon.area)
         else:
             kept[side] = float(rotors.section(side).area)

@@ -19,6 +19,7 @@ Like any Dask program, a script that starts a sweep with the local cluster needs
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import logging
 import os
@@ -278,7 +279,7 @@ def _client(scheduler: str | None, workers: int | None):
     main = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), _lean_workers():
             # without a dashboard the scheduler still serves its health check over HTTP, on port 8787
             # or, when another dashboard holds it, any free port: its 4-line warning about the port
             # is not the user's business (nothing of the sweep listens there)
@@ -296,6 +297,30 @@ def _client(scheduler: str | None, workers: int | None):
         if main:
             signal.signal(signal.SIGINT, previous)
     return Client(cluster), cluster
+
+
+LEAN_WORKERS = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+}
+"""Dask settings of the local cluster's workers (dask.config keys): no statistical profiler sampling
+the task's stack every 10 ms (a sweep's tasks are its own code, profiled by cProfile when needed),
+the event loop's health tick every second instead of every 20 ms; and the workers started without
+the nanny's ``MALLOC_TRIM_THRESHOLD_=65536`` (:func:`_lean_workers`), which returns every freed
+64 kB to the system: a variant allocates and frees arrays of that size by the hundred (8 % more CPU
+measured in one process). Inside the workers, 1000 new profiles at load 12: the worker processes
+took 12.18 ms of CPU a variant with dask's settings (its compute thread 10.30), 9.89 with these (9.56)."""
+
+
+@contextlib.contextmanager
+def _lean_workers() -> Iterator[None]:
+    """Start the local cluster's workers with :data:`LEAN_WORKERS` (the user's own dask settings otherwise kept)."""
+    import dask
+
+    spawn = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
+    spawn.pop("MALLOC_TRIM_THRESHOLD_", None)
+    with dask.config.set({**LEAN_WORKERS, "distributed.nanny.pre-spawn-environ": spawn}):
+        yield
 
 
 def _batches(plan: SweepPlan, done: set[str], size: int) -> Iterator[list[Variant]]:
