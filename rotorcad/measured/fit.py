@@ -149,16 +149,6 @@ from it on the flank's side of the corner's edge, bent that fit's end (its mate 
 against a 63 mm tip)."""
 
 
-ON_POINT = 0.025
-"""A corner found on one of exact points is that point when the splines beside it cross within this share
-of the spacing of it. The design's CSV (corners on points, 0.3-0.5 mm apart): the crossing 0.8-6.6 µm
-(0.017 spacing at most) from the corner point, the splines' error over their extension; evenly spaced
-points (the corner between two, 0.28-0.33 mm apart) whose point next to a corner turned by nearly the
-whole corner: 11-40 µm (0.036 spacing at least) from it. Taking that point for the corner put the SRM
-symmetric male's root corner 11 µm outside its root circle (the points' accuracy: 0.7 µm); the
-splines' crossing lies on it."""
-
-
 def _refined_corners(
     whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float, smoothing: float | None
 ) -> np.ndarray:
@@ -198,7 +188,7 @@ def _refined_corners(
         if p is None:
             continue
         moved = np.hypot(*(p - out[j]))
-        if sigma <= 0 and on_point[j] and moved < ON_POINT * h:
+        if sigma <= 0 and on_point[j]:  # the corner is that point: the splines' extensions cross off it by their own error
             continue  # the corner is that point: the splines' extensions cross off it by their own error
         if moved < 2 * h:
             out[j] = p
