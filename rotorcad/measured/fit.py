@@ -188,7 +188,7 @@ def _refined_corners(
         if p is None:
             continue
         moved = np.hypot(*(p - out[j]))
-        if sigma <= 0 and on_point[j]:  # the corner is that point: the splines' extensions cross off it by their own error
+        if sigma <= 0 and on_point[j]:
             continue  # the corner is that point: the splines' extensions cross off it by their own error
         if moved < 2 * h:
             out[j] = p
