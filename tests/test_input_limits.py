@@ -106,6 +106,7 @@ def test_pump_face_width_and_speed_bounded(capsys, option, value, expected):
 # start: 28 of 60 runs printed Python's traceback, from typing, click, rotorcad.cli.main, ...).
 _INTERRUPT_AT_IMPORT = """
 import os, signal, sys
+signal.signal(signal.SIGINT, signal.default_int_handler)  # as from a shell, whatever the test runner's process ignores
 class Interrupt:
     def find_spec(self, name, path=None, target=None):
         if name == {module!r}:
