@@ -396,15 +396,31 @@ def cut_rotor_brute_force(pair: Pair, rotor: str, positions: int = 3000) -> np.n
     return ring
 
 
-def resample(ring: np.ndarray, spacing: float, noise: float = 0.0, seed: int = 0) -> np.ndarray:
-    """The closed ring resampled at about ``spacing`` mm along its length (linear interpolation
-    on the ring, whose chords are fine enough for this), with Gaussian noise of standard deviation
-    ``noise`` mm along the ring's normals (a CMM's scatter)."""
+def scan(ring: np.ndarray, count: int, phase: float = 0.0) -> np.ndarray:
+    """``count`` points evenly spaced along the closed ring (linear interpolation on it, whose chords
+    are fine enough for this), the first ``phase`` of a spacing past the ring's first point: as a
+    CMM scans, so that sharp corners fall between the points unless ``phase`` puts one on them."""
     closed = np.vstack([ring, ring[:1]])
     u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
-    n = round(float(u[-1]) / spacing)
-    v = np.arange(n) * u[-1] / n
-    pts = np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
+    v = (np.arange(count) + phase) * u[-1] / count
+    return np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
+
+
+def patterned(lobe: np.ndarray, teeth: int) -> np.ndarray:
+    """The whole outline of one lobe (root to root, its last point the next lobe's first) turned
+    round the rotor ``teeth`` times."""
+    turns = 2 * np.pi * np.arange(teeth) / teeth
+    c, s = np.cos(turns), np.sin(turns)
+    x, y = lobe[:-1, 0], lobe[:-1, 1]
+    return np.column_stack([(np.outer(c, x) - np.outer(s, y)).ravel(), (np.outer(s, x) + np.outer(c, y)).ravel()])
+
+
+def resample(ring: np.ndarray, spacing: float, noise: float = 0.0, seed: int = 0) -> np.ndarray:
+    """The closed ring resampled at about ``spacing`` mm along its length (:func:`scan`), with
+    Gaussian noise of standard deviation ``noise`` mm along the ring's normals (a CMM's scatter)."""
+    closed = np.vstack([ring, ring[:1]])
+    n = round(float(np.cumsum(np.hypot(*np.diff(closed, axis=0).T))[-1]) / spacing)
+    pts = scan(ring, n)
     if noise:
         d = np.roll(pts, -1, axis=0) - np.roll(pts, 1, axis=0)
         normal = np.column_stack([d[:, 1], -d[:, 0]]) / np.hypot(*d.T)[:, None]

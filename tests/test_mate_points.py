@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from independent_pairs import scan
 
 from rotorcad.design import rotor_design
 from rotorcad.envelope import rack_frame
@@ -35,14 +36,6 @@ CONTACT_RATIO = 0.05  # transverse contact ratios within 0.05 (the asymmetric SR
 
 def _spec(name: str):
     return pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
-
-
-def _even(outline: np.ndarray, teeth: int, per_lobe: int, phase: float = 0.37) -> np.ndarray:
-    """Points evenly spaced along a closed outline, ``per_lobe`` a lobe, from ``phase`` of a spacing (the user's gen.py)."""
-    ring = np.vstack([outline, outline[:1]])
-    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(ring, axis=0).T))])
-    at = (np.arange(per_lobe * teeth) + phase) * s[-1] / (per_lobe * teeth)
-    return np.column_stack([np.interp(at, s, ring[:, 0]), np.interp(at, s, ring[:, 1])])
 
 
 def _exterior(polygon: shapely.Polygon) -> np.ndarray:
@@ -109,7 +102,7 @@ def from_female(request) -> tuple:
     spec = _spec(request.param)
     design = build_pair(spec)
     female = _exterior(design.section("female", tolerance=1e-5))  # exact curves to a 0.01 um chord
-    points = _even(female, spec.pair.female_teeth, PER_LOBE)  # exact points (no scatter), 300 a lobe
+    points = scan(female, spec.pair.female_teeth * PER_LOBE, 0.37)  # exact points (no scatter), 300 a lobe
     given = build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points")
     return spec, design, points, given, analyse_pair(design, spec.speed_rpm)[1], analyse_pair(given, spec.speed_rpm)[1]
 

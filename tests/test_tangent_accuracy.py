@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import shapely
+from independent_pairs import patterned, scan
 
 from rotorcad.curves import Spline
 from rotorcad.design import rotor_design
@@ -43,11 +43,10 @@ def test_end_tangent_bound_holds_the_monte_carlo_spread(spacing: float) -> None:
 
 
 def _evenly(lobe: np.ndarray, teeth: int, per_lobe: int, phase: float = 0.37) -> np.ndarray:
-    """Points evenly spaced along the whole outline (the corners between them, as a CMM scans)."""
-    turns = [np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]) for a in 2 * np.pi * np.arange(teeth) / teeth]
-    ring = shapely.LinearRing(np.vstack([lobe[:-1] @ m.T for m in turns]))
-    count = per_lobe * teeth
-    return shapely.get_coordinates(shapely.line_interpolate_point(ring, (np.arange(count) + phase) * ring.length / count))
+    """Points evenly spaced along the whole outline of a dense exact lobe (root to root), ``per_lobe`` a
+    lobe, the first ``phase`` of a spacing past the lobe's start: the sharp corners fall between the
+    points, as in a CMM's scan (the lobe's own samples hold every corner as a point)."""
+    return scan(patterned(lobe, teeth), per_lobe * teeth, phase)
 
 
 @pytest.mark.parametrize("seed", [1, 2])

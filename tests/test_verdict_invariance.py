@@ -37,6 +37,7 @@ import numpy as np
 import pytest
 import shapely
 import shapely.affinity
+from independent_pairs import patterned, scan
 
 from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
@@ -118,10 +119,7 @@ def _evenly(lobe: np.ndarray, teeth: int, per_lobe: int, phase: float = 0.37) ->
     """Points evenly spaced along the whole outline of a dense exact lobe (root to root), ``per_lobe`` a
     lobe, the first ``phase`` of a spacing past the lobe's start: the sharp corners fall between the
     points, as in a CMM's scan (the lobe's own samples hold every corner as a point)."""
-    turns = [np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]) for a in 2 * np.pi * np.arange(teeth) / teeth]
-    ring = shapely.LinearRing(np.vstack([lobe[:-1] @ m.T for m in turns]))
-    count = per_lobe * teeth
-    return shapely.get_coordinates(shapely.line_interpolate_point(ring, (np.arange(count) + phase) * ring.length / count))
+    return scan(patterned(lobe, teeth), per_lobe * teeth, phase)
 
 
 def _given(spec: PairSpec, data, label: str) -> dict:
