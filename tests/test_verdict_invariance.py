@@ -56,12 +56,6 @@ EVEN_PHASES = {"even-300": 0.37, "even-300-b": 0.8}  # where the first point fal
 SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coordinate of the CSV's points (a CMM's)
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
-_ARC_ABOUT_C = (
-    "the female tip path (14.03 mm of meshline in the design, 12.19 from the CSV) is recognised over 9.4-9.6 mm "
-    "only: the interpolating fit smooths the 1.07 deg tangent step where it meets the lobe arc (an arc about "
-    "C), the mate's point leaves the tip corner by more than 0.1 um there, and the lobe arc's meshline piece, "
-    "holding the rest of the path, has its normals cross C (jamming) where the design's is Rinder's exception"
-)
 KNOWN: dict[tuple[str, str], str] = {}
 _TIP_CENTRE = (
     "the male cusp at the tip's centre (a point-generated path of 70 mm) is named by the side of the tip's middle "
@@ -69,7 +63,6 @@ _TIP_CENTRE = (
     "turn apart, within the points' resolution; kind, rotor and place agree"
 )
 KNOWN_VERDICTS: dict[tuple[str, str], str] = {
-    **{("srm_symmetric_4_6", form): _ARC_ABOUT_C for form in ("even-300", "even-300-b")},
     ("krigar_4_6", "even-300-b"): _TIP_CENTRE,
 }
 _TIP = (
@@ -658,3 +651,32 @@ def test_symmetric_srm_blow_hole_from_scatter(verdicts, seed):
     design = verdicts[(name, "design")]["blow_hole_area"]
     assert given["blow_hole_area"] == pytest.approx(design, rel=0.01)
     assert abs(given["blow_hole_area"] - design) <= given["blow_hole_uncertainty"] < 0.05 * design
+
+
+# ---- an arc about C recognised from positions (rotorcad.meshing.defects.arcs_about) ----------------
+
+
+def test_arcs_about_finds_the_arc_and_not_a_crossing():
+    # reference, a closed form: a meshline that follows a circle of radius rho about q for s in [0, 20] mm
+    # (its normal through q all along: Rinder's exception at C) and then a straight tangent line, whose
+    # distance from q grows as sqrt(rho^2 + s^2) - rho (about s^2 / (2 rho)), gives one stretch, from the
+    # arc's start to where that growth reaches the spread. A normal that passes q at one point only
+    # (a meshline of curvature kappa off the circle's) leaves the distance by kappa w^2 / 8 over a window w
+    # centred on it: no arc for kappa above 8 spread / span^2, an arc below
+    from rotorcad.meshing.defects import arcs_about
+
+    q, rho, span, spread = np.array([40.0, 0.0]), 14.0, 2.0, 5e-3
+    th = np.linspace(0.0, 20.0 / rho, 2001)
+    arc = q + rho * np.column_stack([np.cos(th), np.sin(th)])
+    tangent = np.array([-np.sin(th[-1]), np.cos(th[-1])])
+    line = arc[-1] + np.outer(np.linspace(0.01, 10.0, 1000), tangent)
+    pts = np.vstack([arc, line])
+    arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    stretches = arcs_about(np.hypot(*(pts - q).T), arclen, span, spread)
+    assert len(stretches) == 1 and stretches[0][0] == 0
+    s_end = np.sqrt((rho + spread) ** 2 - rho**2)  # where the line leaves the circle by the spread
+    assert arclen[stretches[0][1]] == pytest.approx(20.0 + s_end, abs=0.02)
+    for kappa, expected in ((16 * spread / span**2, 0), (2 * spread / span**2, 1)):
+        s = np.linspace(-10.0, 10.0, 2001)
+        distance = rho + 0.5 * kappa * s**2  # the distance from q near the point whose normal passes q
+        assert len(arcs_about(distance, s + 10.0, span, spread)) == expected, kappa

@@ -190,6 +190,7 @@ def robust_zeros(
     longest: float,
     whole: bool = False,
     reversals: np.ndarray | None = None,
+    arcs: list[tuple[int, int]] | None = None,
 ) -> tuple[list[tuple[float, int, int]], list[tuple[int, int]]]:
     """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
 
@@ -214,6 +215,10 @@ def robust_zeros(
         Arc lengths where the meshline turns back (:func:`reversals`): the tangent's half turn there
         changes the sign of every miss at once, which is no normal through a centre; sign changes
         within ``longest`` of them do not count.
+    arcs : list of (int, int), optional
+        First and last sample of stretches known from the positions alone to be arcs about the
+        centre (:func:`arcs_about`): sign changes inside them or within ``longest`` of them are the
+        wobble of a fitted tangent along the arc, not a normal through the centre.
 
     Returns
     -------
@@ -242,7 +247,68 @@ def robust_zeros(
             k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
             i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
             crossings.append((float(i + f[i] / (f[i] - f[i + 1])), int(a) - 1, int(b) + 1))
-    return _persistent(sorted(crossings), stretches, arclen, longest, reversals), stretches
+    return _persistent(sorted(crossings), stretches + list(arcs or ()), arclen, longest, reversals), stretches
+
+
+def arcs_about(distance: np.ndarray, arclen: np.ndarray, span: float, spread: float) -> list[tuple[int, int]]:
+    """Return the stretches of a sampled meshline that are arcs about a centre, from the positions alone.
+
+    A meshline whose normal passes through a centre q all along keeps one distance from q; a normal
+    that passes q at one point only leaves that distance quadratically, by kappa s^2 / 2 (kappa the
+    meshline's curvature less that of the circle about q). A stretch is an arc about q where every
+    window of ``span`` mm of it keeps its distance from q within ``spread`` mm: with the resolution L
+    (:func:`resolution`) of the meshline's accuracy e, ``span`` = 2 L and ``spread`` = e call an arc what
+    turns by less than kappa <= 1 / (4 a) from the circle (a the centre distance), the limit at which a
+    normal's miss stays within its tangent band over L (:func:`robust_zeros`), but with no tangent:
+    a fit through points turns its tangent by 3-4 mrad along the symmetric SRM's lobe-arc meshline (an
+    arc about C, Rinder sec. 2.2.1) where its points keep their distance from C to 1.6 µm.
+
+    Parameters
+    ----------
+    distance : (n,) float array, mm
+        Distance of each sample from q.
+    arclen : (n,) float array, mm
+        Arc length of the samples along the meshline (non-decreasing).
+    span : float, mm
+        Length of the windows.
+    spread : float, mm
+        Largest change of the distance within a window.
+
+    Returns
+    -------
+    list of (int, int)
+        First and last sample of each stretch (each at least ``span`` long), in order.
+    """
+    n = len(distance)
+    if n < 2 or arclen[-1] - arclen[0] < span:
+        return []
+    start = np.arange(n)
+    end = np.searchsorted(arclen, arclen + span, side="left")  # the first sample ``span`` on
+    start, end = start[end < n], end[end < n]
+    # range of the distance over each window [start, end], by a sparse table of maxima and minima
+    levels = int(np.log2(max(int((end - start).max()) + 1, 1))) + 1
+    hi, lo = [distance], [distance]
+    for k in range(1, levels):
+        w = 1 << (k - 1)
+        hi.append(np.maximum(hi[-1][:-w], hi[-1][w:]))
+        lo.append(np.minimum(lo[-1][:-w], lo[-1][w:]))
+    k = np.log2(end - start + 1).astype(int)
+    top = np.empty(len(start))
+    low = np.empty(len(start))
+    for level in np.unique(k):  # a few levels, each at once
+        m = k == level
+        w = 1 << level
+        top[m] = np.maximum(hi[level][start[m]], hi[level][end[m] - w + 1])
+        low[m] = np.minimum(lo[level][start[m]], lo[level][end[m] - w + 1])
+    ok = top - low <= spread
+    if not ok.any():
+        return []
+    cover = np.zeros(n + 1, dtype=int)
+    np.add.at(cover, start[ok], 1)
+    np.add.at(cover, end[ok] + 1, -1)
+    inside = np.concatenate([[False], np.cumsum(cover[:-1]) > 0, [False]])
+    edges = np.flatnonzero(inside[1:] != inside[:-1])
+    return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2], strict=True)]
 
 
 def _persistent(
@@ -434,7 +500,9 @@ def meshline_defects(
         for m in range(len(tests)):
             f, band = fs[m], bands[m]
             whole = m == path_of or _median_below(np.abs(f), tol * max(1.0, reach_q[m]))
-            misses.append((f, band, whole, *robust_zeros(f, band, arclen, reach, whole, turns)))
+            # an arc about C (Rinder's exception) known from the points' distance from C, not from the tangent
+            arcs = arcs_about(np.hypot(to_x[m], to_y[m]), arclen, 2.0 * reach, mesh_acc) if m == 2 else None
+            misses.append((f, band, whole, *robust_zeros(f, band, arclen, reach, whole, turns, arcs)))
         at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
         for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
             for i, j in stretches:
