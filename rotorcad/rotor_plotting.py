@@ -28,6 +28,8 @@ def defect_label(analysis: MeshingAnalysis, defect) -> str:
     not as a defect of the flank (Rinder sec. 2.2.2).
     """
     role = "" if defect.role is None else f", {defect.role} flank"
+    if defect.role in (Flank.TIP, Flank.ROOT) and defect.kind == "cusp":
+        role = ", both flanks"  # a corner's path across O1O2: the corner of both flanks
     pair = analysis.rotors.pair
     if defect.kind == "cusp" and is_tip_corner(defect, pair, analysis.tip_corner_tolerance):
         if defect.point_generated:

@@ -14,7 +14,9 @@ running verdicts too; the blow-hole is compared within 1 % or the area the meshl
 open, and the samples whose blow-hole departs by more are named in KNOWN_BLOW_HOLE with the cause;
 for every sample the design's blow-hole lies within the uncertainty the points state
 (``blow_hole_uncertainty``, from their tangents' accuracy), and so it does for exact points, whose
-fit's tangent is off where they do not resolve the outline (a tip rounding with 2-3 points on it).
+fit's tangent is off where they do not resolve the outline (a tip rounding with 2-3 points on it);
+where that uncertainty exceeds the area the input says it does not resolve the blow-hole
+(``blow_hole_resolved``, the forms named in UNRESOLVED_BLOW_HOLE with the cause).
 
 Plus the findings of the issues, with their exact inputs: the rack-involute male's own CSV (94
 defects, 78 jamming, before), its own DXF polyline (refused before, whatever ``--smoothing``), an
@@ -57,14 +59,7 @@ SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coo
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
 KNOWN: dict[tuple[str, str], str] = {}
-_TIP_CENTRE = (
-    "the male cusp at the tip's centre (a point-generated path of 70 mm) is named by the side of the tip's middle "
-    "it falls on: the design's at y = +0.06 mm (sealing), these points' at y = -0.17 mm (driving), 0.16 deg of male "
-    "turn apart, within the points' resolution; kind, rotor and place agree"
-)
-KNOWN_VERDICTS: dict[tuple[str, str], str] = {
-    ("krigar_4_6", "even-300-b"): _TIP_CENTRE,
-}
+KNOWN_VERDICTS: dict[tuple[str, str], str] = {}
 _TIP = (
     "1 um of scatter moves the blow-hole's apex (where the male tip corner's path hands over to the "
     "flank's) along the male tip circle: the flank's tangent at the corner, fitted through scattered "
@@ -81,11 +76,29 @@ _DRAW = (
     "(rms {rms}; before issue 22's corner fix for near-duplicate points {before}), so that seed 0 read within "
     "1 % was chance"
 )
-_ROUND = (
-    "the apex is where the male's 0.67 mm tip rounding (radius about 1.04 mm) meets the sealing flank; 300 points a "
-    "lobe put 2-3 points on it, the fit's tangent there is 28-29 mrad off the design's, and the apex moves "
-    "78 um in radius and along the tip circle by where the points fall"
-)
+UNRESOLVED_BLOW_HOLE: dict[tuple[str, str], str] = {
+    **{
+        (name, form): (
+            f"{change}: the apex is where the male's 0.67 mm tip rounding (radius about 1.04 mm) meets the sealing "
+            "flank with a common tangent (a curvature step alone), 30.8 mm of meshline for 0.67 mm of rounding; 300 "
+            "points a lobe put 2-3 points on it, which do not place that step, and the apex moves 78 um in radius and "
+            "along the tip circle by where the points fall"
+        )
+        for name in ("n_rack_5_6", "rinder_deix_5_6")
+        for form, change in (("even-300", "+13.7 %"), ("even-300-b", "-74.9 %"))
+    },
+    **{
+        (name, form): (
+            "the area within 1 % (the drawing holds the rounding's ends as points), but the uncertainty stated from "
+            "the fit's tangent where the rounding meets the flanks (cubic and shape-preserving fits 10-30 mrad apart "
+            "at the curvature steps) is 8 mm², over the area: a conservative bound, said as no verdict"
+        )
+        for name in ("n_rack_5_6", "rinder_deix_5_6")
+        for form in ("csv", "dxf-polyline", "dxf-spline")
+    },
+}
+"""The blow-holes the input does not resolve, and says so: the area is no verdict there (the design's lies
+within the stated uncertainty, test_exact_points_state_their_blow_hole_uncertainty)."""
 KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
     (name, form): f"{change} ({why}; within blow_hole_uncertainty)"
     for name, form, change, why in (
@@ -94,10 +107,6 @@ KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
         ("rinder_deix_5_6", "scatter-1um", "-9.5 %", _FLANK),
         ("narrow_tip_5_6", "scatter-1um", "-16.3 %", _TIP),
         ("srm_asymmetric_5_6", "scatter-1um", "+2.0 %", _TIP),
-        ("n_rack_5_6", "even-300", "+13.7 %", _ROUND),
-        ("rinder_deix_5_6", "even-300", "+13.7 %", _ROUND),
-        ("n_rack_5_6", "even-300-b", "-74.9 %", _ROUND),
-        ("rinder_deix_5_6", "even-300-b", "-74.9 %", _ROUND),
     )
 }
 
@@ -183,6 +192,14 @@ def test_same_defects_and_running(verdicts, name, form):
 @pytest.mark.parametrize(("name", "form"), [_case(n, f, {**KNOWN, **KNOWN_BLOW_HOLE}) for n in ROTOR_SAMPLES for f in FORMS])
 def test_same_blow_hole(verdicts, name, form):
     design, given = verdicts[(name, "design")]["blow_hole_area"], verdicts[(name, form)]["blow_hole_area"]
+    # the input resolves the blow-hole, or says it does not (only where named, with the cause)
+    assert verdicts[(name, form)]["blow_hole_resolved"] == ((name, form) not in UNRESOLVED_BLOW_HOLE)
+    assert verdicts[(name, "design")]["blow_hole_resolved"]
+    if (name, form) in UNRESOLVED_BLOW_HOLE:  # no verdict: the design's area within the stated uncertainty
+        assert abs(given - design) <= verdicts[(name, form)]["blow_hole_uncertainty"]
+        if not form.startswith("even"):
+            assert given == pytest.approx(design, rel=0.01)
+        return
     floor = 1e-3  # mm², where the meshline closes
     if form.startswith("scatter"):
         # a closed meshline read from scattered points ends within the meshline's accuracy (MESHLINE_GAIN
@@ -495,7 +512,7 @@ def test_design_blow_hole_within_stated_uncertainty(verdicts, name):
 def test_exact_points_state_their_blow_hole_uncertainty(verdicts, name, form):
     # reference: the design's blow-hole from its exact curves. Exact points carry no scatter, but their
     # interpolating fit's tangent is off where the points do not resolve the outline (a tip rounding with
-    # 2-3 points on it, KNOWN_BLOW_HOLE): the uncertainty they state holds the design's value there and
+    # 2-3 points on it, UNRESOLVED_BLOW_HOLE): the uncertainty they state holds the design's value there and
     # everywhere, and the 0.01 um chord's (which resolves the outline) states less than 300 points a lobe
     design, given = verdicts[(name, "design")], verdicts[(name, form)]
     floor = 1e-3 if design["blow_hole_area"] <= 1e-9 else 0.01 * design["blow_hole_area"]
@@ -503,7 +520,8 @@ def test_exact_points_state_their_blow_hole_uncertainty(verdicts, name, form):
     assert gap <= given["blow_hole_uncertainty"] + floor, (gap, given["blow_hole_uncertainty"])
     if form == "dense" and design["blow_hole_area"] > 1e-9:
         assert 0.0 < given["blow_hole_uncertainty"] < min(verdicts[(name, f)]["blow_hole_uncertainty"] for f in EVEN_PHASES)
-    if (name, form) in KNOWN_BLOW_HOLE:  # the departure is stated, not hidden: the uncertainty exceeds it
+    departs = (name, form) in KNOWN_BLOW_HOLE or ((name, form) in UNRESOLVED_BLOW_HOLE and form.startswith("even"))
+    if departs:  # the departure is stated, not hidden
         assert given["blow_hole_uncertainty"] > gap > 0.01 * design["blow_hole_area"]
 
 
@@ -680,3 +698,65 @@ def test_arcs_about_finds_the_arc_and_not_a_crossing():
         s = np.linspace(-10.0, 10.0, 2001)
         distance = rho + 0.5 * kappa * s**2  # the distance from q near the point whose normal passes q
         assert len(arcs_about(distance, s + 10.0, span, spread)) == expected, kappa
+
+
+# ---- a corner's path across O1O2, and a corner between exact points (issue 21 item 3) --------------
+
+
+def test_tip_corner_across_o1o2_is_the_tip_of_both_flanks(verdicts):
+    # reference: Rinder sec. 2.2.2 ("Am Haupt- bzw. Nebenläuferkopf ist demnach nur eine Spitze oder Ecke
+    # als Flanke denkbar") and the Krigar profile's symmetry: its male tip corner's path runs along the male
+    # tip circle equally far either side of O1O2, so it is the corner of both flanks, named by the lobe part
+    # it crosses O1O2 on (the tip), not by the side of O1O2 its middle falls on (y = +0.06 mm in the design,
+    # -0.17 mm from 300 exact points a lobe at phase 0.8, which read "driving" before)
+    for form in ("design", *EVEN_PHASES):
+        s = verdicts[("krigar_4_6", form)]
+        (tip,) = [d for d in s["defects"] if d["kind"] == "cusp" and d["rotor"] == "male"]
+        assert tip["flank_role"] == "tip" and tip["point_generated"] and tip["tip_corner"], form
+        assert tip["extent"] == pytest.approx(2 * 35.14, rel=0.01), form  # both halves of the path
+        for flank in ("driving", "sealing"):
+            assert s["flanks"][flank]["tip_corners"] == ["female", "male"], (form, flank)
+
+
+def test_corner_between_exact_points_is_found_between_them():
+    # reference: the design's exact male (shapely distance to its curves). 300 exact points a lobe at phase
+    # 0.8 put Krigar's male tip corner 0.2 of a spacing from the nearest point, which turns by over 90 % of
+    # the corner: kept as the corner, it left the fit 25 um inside the tip at the tip and 7.8 um at 0.1-0.5 mm
+    # below it (and the rounded tip meshed as a flank over 22 mm of meshline). Where the fits beside it cross,
+    # the fit follows the design within 0.1 um to the tip
+    from rotorcad.curves import sample_curve
+    from rotorcad.measured.fit import lobe_pieces
+
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "krigar_4_6.toml").read_text()), SAMPLES))
+    rotors = build_pair(spec)
+    dense = np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments])
+    z = spec.pair.male_teeth
+    points = _evenly(dense, z, EVEN_PER_LOBE, EVEN_PHASES["even-300-b"])
+    fitted = np.vstack([sample_curve(curve, 1e-5)[1] for _, curve in lobe_pieces(spec.pair, points, "male")])
+    exact = shapely.MultiLineString([shapely.LineString(patterned(dense, z))])
+    near_tip = np.hypot(*fitted.T) > spec.pair.male_tip_radius - 1.0
+    assert near_tip.sum() > 20
+    gap = shapely.distance(shapely.points(fitted[near_tip]), exact).max()
+    assert gap < 1e-4, gap
+
+
+def test_unresolved_blow_hole_is_said(verdicts, tmp_path, capsys):
+    # issue 21 item 3: where the points do not resolve the blow-hole (the N rack male's tip rounding with 2-3 of
+    # 300 points a lobe on it: 0.44 mm² read for the design's 1.74, reference its exact curves), the JSON says
+    # so and the text names it; the design's value lies within the stated uncertainty
+    name = "n_rack_5_6"
+    spec = verdicts[(name, "spec")]
+    dense = np.vstack([seg.resampled(1e-5).points for seg in build_pair(spec).male_lobe().segments])
+    path = tmp_path / "even.csv"
+    write_points(path, _evenly(dense, spec.pair.male_teeth, EVEN_PER_LOBE, EVEN_PHASES["even-300-b"]))
+    pair = tomllib.loads((SAMPLES / f"{name}.toml").read_text())["pair"]
+    dims = []
+    for key in ("male_teeth", "female_teeth", "center_distance", *(k for k in pair if k.endswith("_radius"))):
+        dims += [f"--{key.replace('_', '-')}", repr(pair[key])]
+    rc, out, err = run(capsys, "rotor", "--male-points", path, *dims)
+    assert rc == 0, err
+    line = next(ln for ln in out.splitlines() if ln.strip().startswith("blow-hole") and "±" in ln)
+    assert "not resolved" in line and "closer together" in line
+    area, plus = (float(v) for v in re.findall(r"([0-9.]+)", line)[:2])
+    design = verdicts[(name, "design")]["blow_hole_area"]
+    assert abs(area - design) <= plus and plus > area

@@ -26,6 +26,12 @@ from rotorcad.screw_rotors import ScrewRotors
 PAIR_OPTIONS = PAIR_FIELDS
 """The pair's dimensions, each an option of the same name (``--male-teeth``)."""
 
+_UNRESOLVED = (
+    "; not resolved: the points do not resolve the male's profile where it touches at the apex "
+    "(r = {:.2f} mm), give them closer together there"
+)
+"""What the text output adds to the blow-hole when the input does not resolve it (``blow_hole_resolved``)."""
+
 
 def _points_option(name: str, text: str):
     return click.option(name, type=click.Path(path_type=Path, dir_okay=False), help=text)
@@ -192,6 +198,11 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
         click.echo(
             f"  blow-hole {result['blow_hole_area']:.3f} ± {result['blow_hole_uncertainty']:.3f} mm² "
             "(the uncertainty of its apex from the accuracy of the profile's tangents)"
+            + (
+                ""
+                if result.get("blow_hole_resolved", True)
+                else _UNRESOLVED.format(np.hypot(*result["blow_hole_spatial"]["apex"][:2]))
+            )
         )
     for d in result["defects"]:
         click.echo(

@@ -39,13 +39,18 @@ Ecke als Flanke denkbar" (sec. 2.2.2). So a cusp that is a rotor's tip corner is
 point-generated piece (the corner's path, its normal through the centre all along) and a cusp on
 either tip circle, where the working flank hands over to a tip corner's path (a smooth flank touches
 its tip circle only on O1O2), end the working part (:func:`is_tip_corner`; the JSON says
-``tip_corner``). A cusp inside a working part, off the tip circles, is a defect: the flank reverses
-(an undercut). The rack-involute pair shows it: its female sealing involute is used down to its
-base circle, where its cusp meets the male tip corner.
+``tip_corner``). A corner's path that runs across O1O2 (Krigar's male tip corner) is the corner of
+both flanks: its lobe part is the tip (the root below C), not the side its middle falls on. A cusp
+inside a working part, off the tip circles, is a defect: the flank reverses (an undercut). The
+rack-involute pair shows it: its female sealing involute is used down to its base circle, where its
+cusp meets the male tip corner.
 
 *Jamming* (Klemmen): the meshline normal passes through the pitch point C, except where "beide
 Flankenkrümmungsmittelpunkte mit dem Wälzpunkt zusammenfallen" (Lysholm's circular driving flank and
-the symmetric SRM flanks, circles about C: their meshline is an arc about C).
+the symmetric SRM flanks, circles about C: their meshline is an arc about C). Such an arc is known
+from its normals or from its positions alone (:func:`~rotorcad.meshing.defects.arcs_about`: every
+stretch of twice the resolution keeps its distance from C within the meshline's accuracy), since a
+tangent fitted through a given profile's meshline wobbles along it.
 
 *Slipping* (Durchrutschen): the meshline crosses O1O2 away from C; no flank drives the other there,
 but "durch die verschraubten Zähne stellt diese Bedingung aber keine Einschränkung ... dar": it
@@ -73,7 +78,10 @@ reported as ``defect_accuracy``); a feature smaller than it is no verdict. A sig
 miss counts only beyond its band and when it persists over the resolution sqrt(8 a e)
 (:func:`resolution`); the normals of a meshline generated from scattered points are judged to
 :data:`MESHLINE_GAIN` times e (the normal's error moves the contact along the meshline); a working
-part shorter than the resolution is none. A cusp of the design survives: a given profile's corner
+part shorter than the meshline's resolution (at that accuracy) is none. The blow-hole carries the
+uncertainty the input leaves it, and where that exceeds the area (or 0.1 % of the female flute's,
+:data:`~rotorcad.meshing.analysis.BLOW_HOLE_RESOLUTION`) the input does not resolve it
+(:attr:`MeshingAnalysis.blow_hole_resolved`). A cusp of the design survives: a given profile's corner
 path on a rotor's tip circle is that tip corner's point-generated flank by construction (found from
 positions in :mod:`rotorcad.measured.pairs`, not from the noisy tangent). Points whose scatter would
 put the resolution over a quarter of the lobe's depth are refused (:func:`largest_scatter`).
@@ -95,7 +103,7 @@ to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear)
 :class:`rotorcad.blow_hole.SpatialBlowHole` (:attr:`MeshingAnalysis.spatial_blow_hole`).
 """
 
-from rotorcad.meshing.analysis import MeshingAnalysis
+from rotorcad.meshing.analysis import BLOW_HOLE_RESOLUTION, MeshingAnalysis
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex, fit_circle
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
@@ -103,6 +111,7 @@ from rotorcad.meshing.defects import (
     MESHLINE_GAIN,
     VERDICT_SHARE,
     Defect,
+    arcs_about,
     is_tip_corner,
     largest_scatter,
     meshline_defects,
@@ -123,6 +132,7 @@ from rotorcad.meshing.meshline import (
 
 __all__ = [
     "ANGLE_CONVENTION",
+    "BLOW_HOLE_RESOLUTION",
     "MESHLINE_GAIN",
     "SHARP_TURN",
     "UNEVEN",
@@ -132,6 +142,7 @@ __all__ = [
     "MeshingAnalysis",
     "MeshlinePiece",
     "arc_at",
+    "arcs_about",
     "circle_bounds",
     "circle_meshline_apex",
     "even_meshline_parameters",

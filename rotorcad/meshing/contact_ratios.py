@@ -168,7 +168,9 @@ def flank_reports(
                 geometric += length
                 t_geo.append(piece.t[mask])
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
-        corners = tuple(sorted({d.rotor for d in mine if is_tip_corner(d, pair, tol)}))
+        # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
+        across = [d for d in defects if d.role in (Flank.TIP, Flank.ROOT) and d.kind == "cusp"]
+        corners = tuple(sorted({d.rotor for d in mine + across if is_tip_corner(d, pair, tol)}))
         kinds = tuple(sorted({d.kind for d in mine if not is_tip_corner(d, pair, tol)}))
         ratio = _covered(t_geo) / pitch_angle
         out[flank] = FlankReport(
