@@ -718,6 +718,16 @@ def test_tip_corner_across_o1o2_is_the_tip_of_both_flanks(verdicts):
             assert s["flanks"][flank]["tip_corners"] == ["female", "male"], (form, flank)
 
 
+@pytest.mark.parametrize("seed", [3, 4])
+def test_tip_corner_across_o1o2_from_scatter(verdicts, seed):
+    # the same rule through 1 um of scatter (reference: the design's defects, its exact curves): seeds 3 and 4
+    # named Krigar's male tip corner "driving" before (its middle 0.1-0.2 mm below O1O2), the design "sealing"
+    male = verdicts[("krigar_4_6", "male")]
+    noisy = male + np.random.default_rng(seed).normal(0.0, SCATTER, male.shape)
+    given = _given(verdicts[("krigar_4_6", "spec")], noisy, "--male-points")
+    assert Counter(map(_key, given["defects"])) == Counter(map(_key, verdicts[("krigar_4_6", "design")]["defects"]))
+
+
 def test_corner_between_exact_points_is_found_between_them():
     # reference: the design's exact male (shapely distance to its curves). 300 exact points a lobe at phase
     # 0.8 put Krigar's male tip corner 0.2 of a spacing from the nearest point, which turns by over 90 % of

@@ -456,8 +456,11 @@ def meshline_defects(
     :func:`resolution`), so a sign change of f counts only where f leaves that band on both
     sides (:func:`robust_zeros`), and a stretch of the meshline longer than L along which f
     stays in the band is an arc about q (Rinder's exception at C, a point-generated flank at O1
-    or O2), whichever pieces it spans. A sign change within L (of a given profile; 0.1 % of the
-    centre distance for the design) of a centre or of O1O2 is judged by the slipping rule; one
+    or O2), whichever pieces it spans; about C also a stretch whose points keep their distance from
+    C within the meshline's accuracy over twice its resolution (:func:`arcs_about`: positions, no
+    tangent). A point-generated stretch across O1O2 is the tip's or the root's (both flanks'). A
+    sign change within L (of a given profile; 0.1 % of the centre distance for the design) of a
+    centre or of O1O2 is judged by the slipping rule; one
     within L of another, of such a stretch, of a reversal of the meshline or of a sign change
     of another centre's miss (both flip when the tangent turns over; the normals through two
     centres meet only on O1O2) is not robust and counts for nothing. Defects of one kind, rotor
