@@ -17,7 +17,7 @@ import numpy as np
 from rotorcad.design.labels import PAIR_FIELDS
 from rotorcad.design.schema import POINT_FAMILIES, rotor_design
 from rotorcad.errors import DesignError, GeometryError, MissingValueError
-from rotorcad.measured.outline import read_outline
+from rotorcad.measured.outline import own_frame, read_outline
 from rotorcad.meshing import MeshingAnalysis, largest_scatter, resolution
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Side
@@ -193,7 +193,7 @@ def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
         return pair_from_rack_points(spec.pair, spec.points, spec.smoothing)
     if spec.family in ("male-points", "female-points"):
         measured = Side(spec.family.split("-")[0])  # the design's text read once: "male-points" -> Side.MALE
-        points = spec.points
+        points = own_frame(spec.points, measured, spec.pair.center_distance, label or f"[profile] points ({spec.family})")
         if spec.smoothing is None:  # the fit follows the estimated scatter: refuse one no verdict can be judged to
             points = _judgeable(spec.pair, points, measured, label or f"[profile] points ({spec.family})")
         rotors = pair_from_rotor_points(spec.pair, points, measured, spec.smoothing, label=label)
