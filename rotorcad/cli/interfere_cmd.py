@@ -151,7 +151,8 @@ def _read_built(
 
     teeth = pair.male_teeth if side == "male" else pair.female_teeth
     try:
-        points = own_frame(read_profile_points(path, option, layer), Side(side), pair.center_distance, option)
+        radii = (pair.female_root_radius, pair.female_tip_radius)
+        points = own_frame(read_profile_points(path, option, layer), Side(side), pair.center_distance, option, radii)
         ring = whole_outline(points, teeth, option)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None

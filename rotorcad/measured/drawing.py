@@ -37,7 +37,13 @@ def _translated(curve: Curve, shift: np.ndarray) -> Curve:
     return Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), (dx, dy))
 
 
-def own_frame(profile: np.ndarray | list[Curve], rotor: Side, center_distance: float, label: str) -> np.ndarray | list[Curve]:
+def own_frame(
+    profile: np.ndarray | list[Curve],
+    rotor: Side,
+    center_distance: float,
+    label: str,
+    radii: tuple[float, float] | None = None,
+) -> np.ndarray | list[Curve]:
     """Move a female drawn at its place in the pair (its axis at (a, 0)) into its own frame.
 
     ``rotor --dxf`` and ``export`` draw the female at the centre distance (a, 0), as the pair
@@ -58,6 +64,10 @@ def own_frame(profile: np.ndarray | list[Curve], rotor: Side, center_distance: f
         The pair's centre distance a.
     label : str
         How the profile is named in the note.
+    radii : (float, float) or None, mm
+        The female's root and tip radii, when known: the profile is moved only when its points lie
+        between them about (a, 0), within a tenth of the lobe depth (a female drawn a few mm beside
+        its place is refused later, naming where it winds, not moved by a).
 
     Returns
     -------
@@ -75,6 +85,11 @@ def own_frame(profile: np.ndarray | list[Curve], rotor: Side, center_distance: f
     there = np.hypot(*(pts - (a, 0.0)).T).max()
     if not (here >= a > there):
         return profile
+    if radii is not None:
+        root, tip = sorted(radii)
+        r = np.hypot(*(pts - (a, 0.0)).T)
+        if r.min() < root - 0.1 * (tip - root) or r.max() > tip + 0.1 * (tip - root):
+            return profile
     import warnings
 
     from rotorcad.errors import InputNote
