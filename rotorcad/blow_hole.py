@@ -36,10 +36,10 @@ def apex_height(angle: float, reference: float, lead: float, teeth: int) -> floa
     of centres O1O2 (the zero of the one angle convention, :mod:`rotorcad.meshing.angles`): alpha is the
     male rotation since that tip's passage, within +-pi/z1, so z lies within +-h1/(2 z1). The contact
     line's own start (its lowest contact) is no reference: it is where the lobe was cut, which the
-    family, a drawing or points place differently (the narrow-tip apex read 43.16 mm from the design,
-    30.78 from its DXF polyline, 42.26 from its DXF splines, 80.63 from its female's DXF: one
-    contact, 20.92 mm above the meshline's first sample each time, the first sample 22.24, 18.17,
-    -1.49... mm down where the root arc's stationary contact was cut).
+    family, a drawing or points place differently. The narrow-tip apex lies 20.92 mm of z past the
+    meshing engine's zero in every form, but the design's contact line started 22.24 mm below that
+    (where its root arc's stationary contact was cut) and the one of its DXF splines 18.17 mm below,
+    so the apex read 43.16 and 39.09 mm (30.78 from its polyline, 80.63 from its female's drawing).
 
     Parameters
     ----------
