@@ -131,7 +131,8 @@ def as_given(
     """Return a profile as it is to be fitted: a drawing's exact curves, or points.
 
     A drawing stays its curves when they are the outline's own (:func:`drawing_points` finds no
-    approximation) and span one lobe or more; a drawing that approximates the outline is read as
+    approximation) and span one lobe or more, its splines of a land made exact arcs about the
+    centre (:func:`_land_arc`); a drawing that approximates the outline is read as
     its points (with ``drawn_as_points``: the rack generation needs them), and one of a single
     groove or tooth (less than the lobe pitch) as points sampled at 0.1 µm chord, which
     :func:`rotorcad.measured.outline.whole_outline` patterns.
@@ -206,12 +207,13 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
     A drawing is read as the points it was drawn through when its curves meet at kinks (tangents
     turning by more than :data:`SMOOTH_JOINT` and less than ``corner_angle_deg``: a polyline, arcs
     fitted to points), or when it holds a spline of more than :data:`DRAWN_SPANS` polynomial pieces
-    (a spline through points, as CAD draws one on measured points): the rack of a
+    that does not carry its tangents (:func:`carries_tangents`: a spline through points, as CAD
+    draws one on measured points; export's Hermite splines of 16-25 pieces are exact curves): the rack of a
     straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
     rings. The points are each line's start, each arc sampled to 0.1 µm chord (at least its
     start and middle, the bulge's point) and a spline's points at its knots; they are then
     fitted, smoothed and cut at corners as measured points are, to the accuracy they carry
-    (:func:`points_accuracy`).
+    (:func:`rotorcad.measured.outline.points_accuracy`).
 
     Parameters
     ----------
@@ -264,7 +266,7 @@ def _polygonal(curves: list[Curve], corner_angle_deg: float) -> bool:
 
 DRAWN_SPANS = 16
 """A drawing's spline of more polynomial pieces than this was drawn through points (a designed curve
-needs a few)."""
+needs a few), unless it carries its tangents (:func:`carries_tangents`)."""
 
 
 def carries_tangents(spline: Spline) -> bool:
