@@ -29,6 +29,39 @@ from rotorcad.geometry import wrap_angle
 from rotorcad.rotor_pair import RotorPair
 
 
+def apex_height(angle: float, reference: float, lead: float, teeth: int) -> float:
+    """Return the height z of a contact at male rotation ``angle`` (Rinder eq. 1: z = h1 alpha / 2 pi), mm.
+
+    Measured from the transverse section in which the middle of the nearest male tip lies on the line
+    of centres O1O2 (the zero of the one angle convention, :mod:`rotorcad.meshing.angles`): alpha is the
+    male rotation since that tip's passage, within +-pi/z1, so z lies within +-h1/(2 z1). The contact
+    line's own start (its lowest contact) is no reference: it is where the lobe was cut, which the
+    family, a drawing or points place differently. The narrow-tip apex lies 20.92 mm of z past the
+    meshing engine's zero in every form, but the design's contact line started 22.24 mm below that
+    (where its root arc's stationary contact was cut) and the one of its DXF splines 18.17 mm below,
+    so the apex read 43.16 and 39.09 mm (30.78 from its polyline, 80.63 from its female's drawing).
+
+    Parameters
+    ----------
+    angle : float, rad
+        Male rotation of the contact (the meshing engine's count).
+    reference : float, rad
+        Male rotation at which the middle of a male tip lies on O1O2
+        (:attr:`rotorcad.meshing.MeshingAnalysis.angle_reference`).
+    lead : float, mm
+        Male lead h1.
+    teeth : int
+        Male lobe count z1.
+
+    Returns
+    -------
+    float, mm
+    """
+    pitch = 2 * np.pi / teeth
+    alpha = float(wrap_angle(angle - reference, 0.0, pitch))
+    return lead * alpha / (2 * np.pi)
+
+
 @dataclass(frozen=True)
 class SpatialBlowHole:
     """The blow-hole triangle in 3D of a pair, from the meshline end next to a housing cusp.
@@ -40,7 +73,8 @@ class SpatialBlowHole:
     apex : (2,) float, mm
         Meshline end E nearest the cusp, fixed frame.
     apex_z : float, mm
-        Its height on the contact line (Rinder eq. 1).
+        Its height (Rinder eq. 1), from the section where the nearest male tip's middle lies on O1O2
+        (:func:`apex_height`).
     cusp : (2,) float, mm
         The housing cusp K the meshline comes nearest (upper or lower).
     samples : int
@@ -146,4 +180,4 @@ class SpatialBlowHole:
         }
 
 
-__all__ = ["SpatialBlowHole"]
+__all__ = ["SpatialBlowHole", "apex_height"]

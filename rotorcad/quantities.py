@@ -251,7 +251,7 @@ _declare(
     ],
 )
 
-# --- interference (rotorcad/interference.py, rotorcad/cli/export_cmd.py) --------------------------
+# --- interference (rotorcad/interference.py, rotorcad/cli/interfere_cmd.py) -----------------------
 _declare(
     "rotorcad/interference",
     [

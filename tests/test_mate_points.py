@@ -14,6 +14,7 @@ the design's own pair and verdicts from its exact curves.
 
 from __future__ import annotations
 
+import json
 import tomllib
 from collections import Counter
 from pathlib import Path
@@ -173,9 +174,10 @@ def test_verdicts_from_own_rack_csv_are_the_design_verdicts(from_rack):
     assert_design_verdicts(design, given)
 
 
-def test_female_drawn_at_the_centre_distance_is_refused_saying_so(tmp_path, capsys):
+def test_female_drawn_at_the_centre_distance_is_moved_saying_so(tmp_path, capsys):
     # finding 11: rotorcad's pair drawing places the female at (a, 0); read back it was refused as
-    # "the points span 0.0004 deg, which fits 8.71e+05 lobes". Reference: the shift applied here.
+    # "the points span 0.0004 deg, which fits 8.71e+05 lobes", then as off-centre; now it is recognised
+    # (its points lie between its root and tip radii about (a, 0)) and moved. Reference: the shift applied here.
     from exports.csv_points import write_points
     from rotorcad.cli.main import main
 
@@ -187,10 +189,12 @@ def test_female_drawn_at_the_centre_distance_is_refused_saying_so(tmp_path, caps
     dims = ["--male-teeth", spec.pair.male_teeth, "--female-teeth", spec.pair.female_teeth, "--center-distance", a]
     radii = ["--male-tip-radius", spec.pair.male_tip_radius, "--male-root-radius", spec.pair.male_root_radius]
     radii += ["--female-tip-radius", spec.pair.female_tip_radius, "--female-root-radius", spec.pair.female_root_radius]
-    assert main([str(v) for v in ["rotor", "--female-points", path, *dims, *radii]]) == 2
-    err = capsys.readouterr().err
-    assert f"winds around ({a:.4g}, " in err and "move it by (-a, 0)" in err, err
-    assert "lobes" not in err and "Traceback" not in err
+    assert main([str(v) for v in ["rotor", "--female-points", path, *dims, *radii, "--json"]]) == 0
+    out = capsys.readouterr()
+    assert f"moved by ({-a:g}, 0) mm into its own frame" in out.err, out.err
+    assert "lobes" not in out.err and "Traceback" not in out.err
+    design = analyse_pair(build_pair(spec), spec.speed_rpm)[1]
+    assert json.loads(out.out)["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01)
 
 
 def assert_design_contact_ratios(design: dict, given: dict) -> None:

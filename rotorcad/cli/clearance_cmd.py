@@ -14,6 +14,8 @@ from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, po
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
+from rotorcad.measured.outline import own_frame
+from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import as_given, lobe_pieces, profile_points
 from rotorcad.work import clearance_seconds, long_run_note
@@ -48,6 +50,10 @@ A conjugate pair given by exact points measures 0 within 1 µm (README), so less
     help="Spline smoothing of the points [mm^2], 0 interpolates. Default: n sigma^2 from the points' estimated scatter.",
 )
 @click.option("--layer", help="Layer of the profile in DXF points files (default: their only layer).")
+@click.option("--male-layer", help="Layer of the male in its DXF file, e.g. MALE_SPLINE as export writes it (default: --layer).")
+@click.option(
+    "--female-layer", help="Layer of the female in its DXF file, e.g. FEMALE_SPLINE as export writes it (default: --layer)."
+)
 @click.option(
     "--suction-temperature", type=float, help="Suction temperature [degC]: evaluate the pair hot (with --discharge-temperature)."
 )
@@ -133,10 +139,11 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
     if opts["smoothing"] is not None and not (np.isfinite(opts["smoothing"]) and opts["smoothing"] >= 0):
         raise InputError(f"--smoothing must be at least 0 mm^2 (got {opts['smoothing']}).")
     try:
-        male = read_profile(opts["male_points"], "--male-points", opts["layer"])
-        female = read_profile(opts["female_points"], "--female-points", opts["layer"])
+        male = read_profile(opts["male_points"], "--male-points", opts.get("male_layer") or opts["layer"])
+        female = read_profile(opts["female_points"], "--female-points", opts.get("female_layer") or opts["layer"])
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    female = own_frame(female, Side.FEMALE, opts["center_distance"], "--female-points")  # drawn at (a, 0), as export does
     rm, rf = np.hypot(*profile_points(male).T), np.hypot(*profile_points(female).T)
     # a note before the work when the points would take over a minute (no option makes it faster: fewer points would)
     say_long_run(long_run_note(clearance_seconds(len(rm) + len(rf)), None), opts["quiet"])

@@ -1,4 +1,4 @@
-"""``rotorcad export`` and ``rotorcad interfere``: helical solids, files, interference (CONTRACT.md)."""
+"""``rotorcad export``: helical solids and files (CONTRACT.md); ``rotorcad interfere`` is :mod:`rotorcad.cli.interfere_cmd`."""
 
 from __future__ import annotations
 
@@ -8,26 +8,20 @@ from typing import Any
 
 import click
 import numpy as np
-import shapely
-import shapely.validation
 from rich.console import Console
 from rich.table import Table
 
 from exports.background import WorkerPool
-from exports.dxf_profile import read_profile_points
 from exports.formats import ExportFormat, check_limits, names, plan_files, preload, table
-from rotorcad.assembly import BodyKind, PlacedBody, assemble, check_section_work, check_solid_work, housing_bodies, rotor_bodies
+from rotorcad.assembly import BodyKind, PlacedBody, assemble, check_solid_work, housing_bodies, rotor_bodies
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, output_folder
 from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design.files import is_gear_design
 from rotorcad.errors import DesignError
-from rotorcad.interference import interference_2d, intersection_3d
-from rotorcad.measured_outline import whole_outline
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import ScrewRotors
-from rotorcad.solids import helical_solid
 
 FORMATS = names()
 """The formats of the built-in table (:mod:`exports.formats`); ``--help`` and the check read the table itself."""
@@ -266,125 +260,4 @@ def _assemble(pair: RotorPair, center_distance: float | None, phase_deg: float, 
         raise InputError(exc.sentence(LABELS.get(exc.param, exc.param))) from None
 
 
-@click.command()
-@click.argument("design", type=click.Path(path_type=Path, dir_okay=False))
-@click.option("--steps", type=int, default=72, show_default=True, help="Male angles over one lobe pitch.")
-@click.option(
-    "--tolerance", type=float, default=0.005, show_default=True, help="Section tolerance [mm]; sets the touching threshold."
-)
-@click.option(
-    "--check-3d", is_flag=True, help="Also intersect the 3D solids at the angle of the maximum (slow at fine tolerance)."
-)
-@ASSEMBLY_OPTIONS[0]
-@ASSEMBLY_OPTIONS[1]
-@click.option(
-    "--male-points",
-    type=click.Path(path_type=Path, dir_okay=False),
-    help="The male as built: measured outline (CSV or DXF, own frame, one lobe or whole) in place of the design's.",
-)
-@click.option(
-    "--female-points",
-    type=click.Path(path_type=Path, dir_okay=False),
-    help="The female as built: measured outline (CSV or DXF, own frame, one lobe or whole) in place of the design's.",
-)
-@click.option("--layer", help="Layer of the outline in DXF points files.")
-@click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
-@click.option("--quiet", is_flag=True, help="No progress bar.")
-def interfere(
-    design: Path,
-    steps: int,
-    tolerance: float,
-    check_3d: bool,
-    center_distance: float | None,
-    phase_deg: float,
-    male_points: Path | None,
-    female_points: Path | None,
-    layer: str | None,
-    as_json: bool,
-    quiet: bool,
-) -> None:
-    """Interference of the rotor pair over one lobe pitch and of the rotors with the housing bores.
-
-    The pair's interference is the integral of 2D section intersections along the helix. As
-    assembled: at --center-distance and with the female turned by --phase-deg from its mesh position
-    (the rotors keep their profiles; the bores follow the centre distance).
-
-    Exit status: 0 when clean, 1 when the rotors interfere with each other or with the housing by
-    more than the touching threshold (key touching_threshold, mm³, set by --tolerance), 2 on bad
-    input.
-    """
-    if not 1 <= steps <= 100_000:
-        raise InputError(f"--steps must be a whole number from 1 to 100000 (got {steps}).")
-    if not (np.isfinite(tolerance) and 0 < tolerance <= 1.0):
-        raise InputError(f"--tolerance must be between 0 and 1 mm (got {tolerance}).")
-    rotors, _, clearance = build_rotors(design, _rotor_options(design))
-    try:
-        check_section_work(rotors, tolerance, "--tolerance")
-    except DesignError as exc:
-        raise InputError(exc.sentence()) from None
-    if check_3d:
-        _check_solid_work(rotors, tolerance, "--tolerance")
-    male = _as_built(rotors.section("male", tolerance / 2), "--male-points", male_points, layer, rotors.pair.male_teeth)
-    female = _as_built(rotors.section("female", tolerance / 2), "--female-points", female_points, layer, rotors.pair.female_teeth)
-    pair, phase = _assemble(rotors.pair, center_distance, phase_deg, clearance)
-    progress = Steps("interference: 2-D sweep", 4 if check_3d else 1, quiet).start()
-    result_2d = interference_2d(pair, male, female, steps, tolerance, female_phase=phase, clearance=clearance)
-    progress.advance(description="interference: male solid")
-    result: dict[str, Any] = {
-        "center_distance": pair.center_distance,
-        "phase_deg": float(np.degrees(phase)),
-        "max_intersection_volume": result_2d.max_volume if result_2d.interferes else 0.0,
-        "max_intersection_volume_raw": result_2d.max_volume,
-        "angle_deg": float(np.degrees(result_2d.angle_of_max)),
-        "housing_intersection_volume": result_2d.housing_volume,
-        "steps": steps,
-        "touching_threshold": result_2d.threshold,
-        "max_penetration": result_2d.max_penetration,
-        "interferes": result_2d.interferes or result_2d.housing_volume > result_2d.threshold,
-    }
-    if check_3d:
-        result["check_3d"] = _intersection_3d(pair, male, female, tolerance, result_2d, progress)
-    progress.stop()
-    if as_json:
-        emit_json(result)
-    else:
-        from rotorcad.cli.common import print_table
-
-        print_table(f"interference of {Path(design).stem}", {k: v for k, v in result.items() if k != "check_3d"})
-    if result["interferes"]:
-        click.get_current_context().exit(1)  # a finding, not an error: pipelines test the status
-
-
-def _as_built(section: shapely.Polygon, option: str, path: Path | None, layer: str | None, teeth: int) -> shapely.Polygon:
-    """Return the rotor's section as built: the measured outline of ``path`` (own frame) or else ``section``.
-
-    A file that cannot be read, or an outline that crosses itself (GEOS fails on it in the sweep,
-    exit 70), is refused in one sentence naming ``option``.
-    """
-    if path is None:
-        return section
-    try:
-        outline = shapely.Polygon(whole_outline(read_profile_points(path, option, layer), teeth, option))
-    except DesignError as exc:
-        raise InputError(exc.sentence()) from None
-    if not outline.is_valid:
-        why = shapely.validation.explain_validity(outline)
-        raise InputError(f"{option} must be an outline that does not cross itself (got {path}): {why}.")
-    return outline
-
-
-def _intersection_3d(
-    pair: RotorPair, male: shapely.Polygon, female: shapely.Polygon, tolerance: float, result_2d: Any, progress: Steps
-) -> dict[str, Any]:
-    """Sweep both solids and intersect them at the male angle of the 2-D maximum (``--check-3d``)."""
-    lead = pair.lead if pair.hand == "right" else -pair.lead
-    m = helical_solid(male, lead, pair.length, tolerance)
-    progress.advance(description="interference: female solid")
-    f = helical_solid(female, -np.sign(lead) * pair.female_lead, pair.length, tolerance)
-    progress.advance(description="interference: 3-D intersection")
-    found = intersection_3d(pair, m, f, result_2d.angle_of_max, result_2d.threshold)
-    progress.advance()
-    return found
-
-
-__all__ = ["export", "interfere"]
+__all__ = ["export"]

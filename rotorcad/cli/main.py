@@ -47,7 +47,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "pump": ("rotorcad.cli.pump_cmd:pump", "Delivery, irregularity and harmonics of an external gear pump."),
     "export": ("rotorcad.cli.export_cmd:export", "Solids of a rotor pair or gear design in every format (STL, STEP, DXF, ...)."),
     "interfere": (
-        "rotorcad.cli.export_cmd:interfere",
+        "rotorcad.cli.interfere_cmd:interfere",
         "Interference of the rotor pair and with the housing, as designed or assembled.",
     ),
     "clearance": ("rotorcad.cli.clearance_cmd:clearance", "Meshing clearance (Wu & Chi) of a pair from measured points."),

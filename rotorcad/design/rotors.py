@@ -17,7 +17,7 @@ import numpy as np
 from rotorcad.design.labels import PAIR_FIELDS
 from rotorcad.design.schema import POINT_FAMILIES, rotor_design
 from rotorcad.errors import DesignError, GeometryError, MissingValueError
-from rotorcad.measured.outline import read_outline
+from rotorcad.measured.outline import as_given, own_frame, read_outline
 from rotorcad.meshing import MeshingAnalysis, largest_scatter, resolution
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Side
@@ -193,13 +193,38 @@ def build_pair(spec: PairSpec, label: str | None = None) -> ScrewRotors:
         return pair_from_rack_points(spec.pair, spec.points, spec.smoothing)
     if spec.family in ("male-points", "female-points"):
         measured = Side(spec.family.split("-")[0])  # the design's text read once: "male-points" -> Side.MALE
-        points = spec.points
+        radii = (spec.pair.female_root_radius, spec.pair.female_tip_radius)
+        points = own_frame(spec.points, measured, spec.pair.center_distance, label or f"[profile] points ({spec.family})", radii)
+        _note_unused_smoothing(spec, points, measured, label)
         if spec.smoothing is None:  # the fit follows the estimated scatter: refuse one no verdict can be judged to
             points = _judgeable(spec.pair, points, measured, label or f"[profile] points ({spec.family})")
         rotors = pair_from_rotor_points(spec.pair, points, measured, spec.smoothing, label=label)
         _check_generated(rotors, measured, label or f"[profile] points ({spec.family})")
         return rotors
     return build_family(spec.pair, spec.family, spec.params)
+
+
+def _note_unused_smoothing(spec: PairSpec, points: Any, rotor: Side, label: str | None) -> None:
+    """Say that a smoothing given for a drawing read as its exact curves is not used (an InputNote).
+
+    Smoothing fits points (:mod:`rotorcad.measured.fit`); a drawing whose curves are the outline's own
+    (:func:`rotorcad.measured.outline.as_given`: export's splines, lines and arcs meeting smoothly or at
+    corners) is used as drawn, so ``--smoothing`` changes nothing there, and the user is told so.
+    """
+    if spec.smoothing is None or not (isinstance(points, list) and points):
+        return
+    teeth = rotor.pick(spec.pair.male_teeth, spec.pair.female_teeth)
+    if isinstance(as_given(points, teeth), list):
+        import warnings
+
+        from rotorcad.errors import InputNote
+
+        warnings.warn(
+            f"{label or 'the points'}: the drawing is read as its exact curves (they are the outline's own), which "
+            f"no smoothing changes; the smoothing of {spec.smoothing:g} mm^2 is not used",
+            InputNote,
+            stacklevel=2,
+        )
 
 
 def _judgeable(pair: RotorPair, points: Any, rotor: Side, label: str) -> Any:

@@ -23,9 +23,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.curves import Curve, Line, Spline, sample_curve
+from rotorcad.curves import Curve, Spline
 from rotorcad.errors import DesignError
 from rotorcad.geometry import cross, rotate, wrap_angle
+from rotorcad.measured.drawing import (
+    DRAWN_SPANS,
+    SMOOTH_JOINT,
+    as_given,
+    carries_tangents,
+    drawing_points,
+    hermite_accuracy,
+    own_frame,
+    profile_points,
+)
 from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 
@@ -408,146 +418,6 @@ def lands(run: np.ndarray, sigma: float, min_angle_deg: float = 0.5, min_points:
     return out
 
 
-def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -> np.ndarray:
-    """Return the points of a profile given by points or by exact curves.
-
-    Parameters
-    ----------
-    profile : (n, 2) float array or list of Curve, mm
-        Points (returned as they are) or exact curves.
-    tolerance : float, mm
-        Chord tolerance for sampling curves.
-
-    Returns
-    -------
-    (n, 2) float array, mm
-    """
-    if isinstance(profile, list | tuple):
-        return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
-    return np.asarray(profile, dtype=float)
-
-
-def as_given(
-    points: np.ndarray | list[Curve], teeth: int, corner_angle_deg: float = 30.0, drawn_as_points: bool = True
-) -> np.ndarray | list[Curve]:
-    """Return a profile as it is to be fitted: a drawing's exact curves, or points.
-
-    A drawing stays its curves when they are the outline's own (:func:`drawing_points` finds no
-    approximation) and span one lobe or more; a drawing that approximates the outline is read as
-    its points (with ``drawn_as_points``: the rack generation needs them), and one of a single
-    groove or tooth (less than the lobe pitch) as points sampled at 0.1 µm chord, which
-    :func:`rotorcad.measured.outline.whole_outline` patterns.
-
-    Parameters
-    ----------
-    points : (n, 2) float array or list of Curve, mm
-        The profile.
-    teeth : int
-        Lobe count of the rotor.
-    corner_angle_deg : float, deg
-        Turn above which a joint is a sharp corner.
-    drawn_as_points : bool
-        Read a drawing that approximates the outline as its points (:func:`drawing_points`);
-        False keeps its curves (the clearance measures distances between them as drawn).
-
-    Returns
-    -------
-    (n, 2) float array or list of Curve
-    """
-    if not (isinstance(points, list | tuple) and points and isinstance(points[0], Curve)):
-        return np.asarray(points, dtype=float)
-    curves = list(points)
-    drawn = drawing_points(curves, corner_angle_deg) if drawn_as_points or _polygonal(curves, corner_angle_deg) else None
-    if drawn is not None:
-        return drawn
-    pts = np.vstack([sample_curve(c, 1e-4)[1] for c in curves])
-    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
-    if abs(ang[-1] - ang[0]) < 0.98 * 2 * np.pi / teeth:  # one groove or tooth: patterned as points
-        return pts
-    return curves
-
-
-SMOOTH_JOINT = 1e-3
-"""rad: consecutive curves of a drawing whose tangents differ by more than this (and less than a
-corner's angle) meet at a kink: the drawing approximates the outline (a polyline, a chain of arcs
-fitted to points) and is read as its points."""
-
-
-def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.ndarray | None:
-    """Return the points of a drawing that approximates an outline, or None for an exact drawing.
-
-    A drawing is read as the points it was drawn through when its curves meet at kinks (tangents
-    turning by more than :data:`SMOOTH_JOINT` and less than ``corner_angle_deg``: a polyline, arcs
-    fitted to points), or when it holds a spline of more than :data:`DRAWN_SPANS` polynomial pieces
-    (a spline through points, as CAD draws one on measured points): the rack of a
-    straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
-    rings. The points are each line's start, each arc sampled to 0.1 µm chord (at least its
-    start and middle, the bulge's point) and a spline's points at its knots; they are then
-    fitted, smoothed and cut at corners as measured points are, to the accuracy they carry
-    (:func:`points_accuracy`).
-
-    Parameters
-    ----------
-    curves : list of Curve
-        The drawing's curves, chained (:func:`exports.dxf_profile.read_profile_dxf`).
-    corner_angle_deg : float, deg
-        Turn above which a joint is a sharp corner (kept as a corner by the points' fit).
-
-    Returns
-    -------
-    (n, 2) float array, mm, or None
-    """
-    kinks = _kinks(curves, corner_angle_deg)
-    drawn = [c for c in curves if isinstance(c, Spline) and _knot_parameters(c).size > DRAWN_SPANS + 1]
-    if not kinks[:-1].any() and not drawn:  # the last joint closes a lobe (a corner or nothing)
-        return None
-    pts = []
-    for c in curves:
-        if isinstance(c, Spline):
-            u = _knot_parameters(c)
-            pts.append(c.evaluate(u[:-1])[0])
-        elif isinstance(c, Line):
-            pts.append(c.start[None, :])
-        else:  # an arc to 0.1 um chord, at least its middle (a land stays a land of many points)
-            pts.append(sample_curve(c, 1e-4, minimum=3)[1][:-1])
-    return np.vstack(pts)
-
-
-def _kinks(curves: list[Curve], corner_angle_deg: float) -> np.ndarray:
-    """(n,) bool: the joint after each curve turns by more than :data:`SMOOTH_JOINT` and less than a corner."""
-    ends = np.array([c.evaluate(np.array([c.s1]))[1][0] for c in curves])
-    starts = np.array([c.evaluate(np.array([c.s0]))[1][0] for c in curves])
-    following = np.roll(starts, -1, axis=0)
-    turn = np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
-    return (turn > SMOOTH_JOINT) & (turn < np.radians(corner_angle_deg))
-
-
-def _polygonal(curves: list[Curve], corner_angle_deg: float) -> bool:
-    """Tell whether a drawing is a polyline through points: straight lines meeting at kinks.
-
-    Such a drawing (``rotor --dxf`` writes one) is read as its points even where curves are kept as
-    drawn (the clearance): as drawn, the rack of a straight piece is a single point and each kink
-    a corner's fan, which leave no flank to bring into contact (``clearance`` refused rotorcad's
-    own male drawing naming ``--contact``, after 29 s and 1.6 GB).
-    """
-    straight = np.array([isinstance(c, Line) for c in curves])
-    between_lines = straight & np.roll(straight, -1)
-    return bool((_kinks(curves, corner_angle_deg) & between_lines)[:-1].any())
-
-
-DRAWN_SPANS = 16
-"""A drawing's spline of more polynomial pieces than this was drawn through points (a designed curve
-needs a few)."""
-
-
-def _knot_parameters(spline: Spline) -> np.ndarray:
-    """Return the spline's distinct knots within its range, in the direction of travel (both ends included)."""
-    lo, hi = sorted((spline.s0, spline.s1))
-    knots = np.unique(spline.knots[0])
-    u = np.concatenate([[lo], knots[(knots > lo) & (knots < hi)], [hi]])
-    return u if spline.s1 >= spline.s0 else u[::-1]
-
-
 @dataclass(frozen=True, eq=False)
 class Outline:
     """A rotor outline as given, read once: what the fit and the accuracy statements start from.
@@ -612,10 +482,13 @@ def read_outline(
         return points
     given = as_given(points, teeth, corner_angle_deg, drawn_as_points)
     if isinstance(given, list):
-        # a drawing's splines are as accurate as the points they were drawn through: their knots
-        knots = [c.evaluate(np.unique(np.clip(c.knots[0], *sorted((c.s0, c.s1)))))[0] for c in given if isinstance(c, Spline)]
+        # a drawing's splines are as accurate as the points they were drawn through: their knots; a
+        # spline that carries its tangents (a Hermite interpolant of an exact curve) is exact as given
+        splines = [c for c in given if isinstance(c, Spline)]
+        knots = [c.evaluate(np.unique(np.clip(c.knots[0], *sorted((c.s0, c.s1)))))[0] for c in splines if not carries_tangents(c)]
         pts = np.vstack(knots) if knots else np.zeros((0, 2))
         acc = max(accuracy(pts, 0.0), 1e-9) if len(pts) >= 8 else 1e-9
+        acc = max([acc, *(hermite_accuracy(c) for c in splines if carries_tangents(c))])
         return Outline(given, None, 0.0, acc, teeth, label)
     whole = whole_outline(given, teeth, label)
     sigma = scatter(whole)
@@ -642,10 +515,13 @@ __all__ = [
     "Outline",
     "accuracy",
     "as_given",
+    "carries_tangents",
     "corners",
     "drawing_points",
+    "hermite_accuracy",
     "lands",
     "lobe_count",
+    "own_frame",
     "points_accuracy",
     "profile_points",
     "read_outline",

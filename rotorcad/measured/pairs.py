@@ -316,7 +316,12 @@ def pair_from_rotor_points(
     for k, (_name, curve) in enumerate(fans):
         rack_curve = racks[k]
         if curve.is_corner():  # its path as the corner's own point path (the mate cut in closed form)
-            path = corner_point_path(curve, body, mesh.rack, _joints(racks, k, side, pair.rack_period), gap)
+            targets = _joints(racks, k, side, pair.rack_period)
+            path = corner_point_path(curve, body, mesh.rack, targets, gap)
+            if path is None and np.hypot(*(targets[0][:, None, :] - targets[1][None, :, :]).T).min() <= gap:
+                # the racks beside the corner meet: it turns no rack point (a corner on the pitch circle, as
+                # the narrow-tip female's tip drawn exactly), and its fan's own rack curve jumps to the far root
+                continue
             piece = rack_curve if path is None else path
             parts.append([RackPiece(piece, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue

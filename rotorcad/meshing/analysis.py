@@ -16,7 +16,7 @@ from functools import cached_property
 import numpy as np
 import shapely
 
-from rotorcad.blow_hole import SpatialBlowHole
+from rotorcad.blow_hole import SpatialBlowHole, apex_height
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, dots, nearest_hypot, rotate, row_norms, shifted, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
@@ -467,13 +467,15 @@ class MeshingAnalysis:
         """The blow-hole triangle in 3D (:mod:`rotorcad.blow_hole`).
 
         Its apex is the meshline end nearest the cusp (:attr:`meshline_end`, the apex of the projected
-        blow-hole), at the height on the contact line of the meshline sample nearest it (z measured
-        as in :attr:`contact_line`, from the contact line's start).
+        blow-hole), at the height of the meshline sample nearest it (:func:`rotorcad.blow_hole.apex_height`:
+        from the section where the nearest male tip's middle lies on O1O2, not from the contact line's
+        start, which moves with where the lobe was cut).
         """
         pts, end = self.meshline, self.meshline_end
         i = int(np.argmin(np.hypot(*(pts - end).T)))
-        z = self.rotors.pair.lead * self.contact_angles / (2 * np.pi)
-        return SpatialBlowHole(self.rotors.pair, end, float(z[i] - z.min()), self.cusp)
+        pair = self.rotors.pair
+        z = apex_height(float(self.contact_angles[i]), self.angle_reference, pair.lead, pair.male_teeth)
+        return SpatialBlowHole(pair, end, z, self.cusp)
 
     # ---- contact line (eq. 1) ------------------------------------------------------------
     @cached_property
