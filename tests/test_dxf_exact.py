@@ -63,11 +63,6 @@ _ROUND = (
 KNOWN: dict[tuple[str, str, str], str] = {
     ("krigar_4_6", "female", "spline"): _FEMALE_ROUTE,
     ("krigar_4_6", "female", "polyline"): _FEMALE_ROUTE,
-    ("lysholm_4_6", "female", "polyline"): (
-        "the male sealing cusp at -0.95 deg (design -16.8 deg) and the sealing flank read as running (the design's "
-        "has no geometric contact anywhere): the points route of a female, fitted through the polyline's vertices "
-        "at 2.2 um accuracy (issue 21 item 3, the female-points and even-points work); its splines give the design's"
-    ),
 }
 """Cases whose verdicts (defects or running) depart from the design, with the cause: strict xfails."""
 
