@@ -192,7 +192,11 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
     tip_r = float(1.0 / kappa[kappa > 0].max()) if np.any(kappa > 0) else np.inf
     root_r = float(-1.0 / kappa[kappa < 0].min()) if np.any(kappa < 0) else np.inf
     corners = np.nonzero(jumps)[0]
-    for kind, chosen in (("tip", corners[np.diff(psi)[corners] > 0]), ("root", corners[np.diff(psi)[corners] < 0])):
+    turns = np.diff(psi)[corners]
+    seam = _seam_turn(pts, tan, cutting, rack.normal_period, kink)
+    if seam:  # the corner where one period of the rack meets the next
+        corners, turns = np.append(corners, len(pts) - 1), np.append(turns, seam)
+    for kind, chosen in (("tip", corners[turns > 0]), ("root", corners[turns < 0])):
         if len(chosen):
             if kind == "tip":
                 tip_r = 0.0
@@ -214,6 +218,25 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
             f"{lim.min_tip_thickness:g} mm."
         )
     return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness)
+
+
+def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: float, kink: float) -> float:
+    """Return the turn (rad) of the rack where its last point meets its first one period on, 0 for none.
+
+    A rack of one whole period (its last point one normal period after its first) continues into the
+    next period there: a corner between two cutting pieces at that seam is a corner of the rack like
+    any other. Where the seam falls depends on where the lobe's pieces start: the narrow-tip
+    design's rack put its seam exactly on the corner where its root land meets the driving flank
+    (the female tip on the pitch circle, Rinder Fig. 5) and read no corner there, the same rack from
+    its own points (the lobe starting elsewhere) read one.
+    """
+    if len(pts) < 2 or not (cutting[0] and cutting[-1]):
+        return 0.0
+    if np.hypot(pts[-1, 0] - pts[0, 0] - period, pts[-1, 1] - pts[0, 1]) > 1e-6 * period:
+        return 0.0
+    a, b = tan[-1], tan[0]
+    turn = float(np.arctan2(a[0] * b[1] - a[1] * b[0], a @ b))
+    return turn if abs(turn) > kink else 0.0
 
 
 def undercut_reasons(rack: DerivedRack, measured: bool = False) -> list[str]:
