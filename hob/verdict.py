@@ -83,7 +83,7 @@ class Verdict:
     tip_thickness: float
 
 
-def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 0.0) -> Verdict:
+def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 0.0, measured: bool | None = None) -> Verdict:
     """Judge a derived rack in its normal section (module docstring).
 
     Parameters
@@ -97,6 +97,11 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
         measured points: :attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`; 0 for a design). A
         loop of the rack narrower than this (or than :data:`FOLD_TOLERANCE`) is a fold of the fit,
         not an undercut the points can show.
+    measured : bool, optional
+        Whether the rotor's profile was fitted to its own points (``male-points``, ``female-points``),
+        so that a sharp corner below its tip shows as a stall across which the fit turns
+        (:func:`undercut_reasons`); default ``accuracy > 0``. A pair generated from a rack's points
+        has envelopes for its rotors, whose undercut is their envelope turning back, as a design's.
 
     Returns
     -------
@@ -210,7 +215,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
     if 0 < root_r < lim.min_root_radius:
         i = int(np.argmin(kappa))
         reasons.append(f"the hob root radius is {root_r:.4f} mm {at(i)}, below the minimum {lim.min_root_radius:g} mm.")
-    reasons += undercut_reasons(rack, measured=accuracy > 0)
+    reasons += undercut_reasons(rack, measured=accuracy > 0 if measured is None else measured)
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
         reasons.append(

@@ -117,28 +117,44 @@ def corner_positions(pair: RotorPair, side: Side, points: np.ndarray) -> tuple[n
     return dx, u, gain
 
 
-def find_lands(points: np.ndarray, tol: float, shortest: float) -> list[tuple[int, int, float]]:
-    """Find runs of consecutive points at one height within ``tol`` (mm), at least ``shortest`` long in x.
+GAP_POINTS = 2
+"""Points of a run beyond the tolerance that do not end it when the run goes on after them: the
+tolerance of scattered points bounds their largest error over the period with 95 % confidence only."""
 
-    Returns (first, last, height) of each, the height the runs' median.
+
+def _close_gaps(mask: np.ndarray, gap: int = GAP_POINTS) -> np.ndarray:
+    """Return ``mask`` with runs of at most ``gap`` False entries between True entries set True."""
+    out = mask.copy()
+    idx = np.flatnonzero(mask)
+    if len(idx) < 2:
+        return out
+    jumps = np.flatnonzero((np.diff(idx) > 1) & (np.diff(idx) <= gap + 1))
+    for j in jumps:
+        out[idx[j] + 1 : idx[j + 1]] = True
+    return out
+
+
+def find_lands(points: np.ndarray, tol: float, shortest: float) -> list[tuple[int, int, float]]:
+    """Find the lands: runs of consecutive points at the rack's top or bottom height within ``tol`` (mm).
+
+    The lands of a rack are the images of the rotors' tip and root arcs, at its top (the male
+    addendum) and its bottom (the dedendum) line (Rinder sec. 1.2). Each height is the median of the
+    points within 3 ``tol`` of the extreme one; a land is a run of at least :data:`LAND_POINTS`
+    points within ``tol`` of it, ``shortest`` (mm) long at least in x, its height their mean.
+
+    Returns (first, last, height) of each, in the chain's order.
     """
     y = points[:, 1]
     out = []
-    i, n = 0, len(points)
-    while i < n:
-        j = i
-        while (
-            j + 1 < n
-            and abs(y[j + 1] - np.median(y[i : j + 2])) <= tol
-            and np.all(np.abs(y[i : j + 2] - np.median(y[i : j + 2])) <= tol)
-        ):
-            j += 1
-        if j - i + 1 >= LAND_POINTS and points[j, 0] - points[i, 0] >= shortest:
-            out.append((i, j, float(np.median(y[i : j + 1]))))
-            i = j + 1
-        else:
-            i += 1
-    return out
+    for extreme in (y.max(), y.min()):
+        near = np.abs(y - extreme) <= 3 * tol
+        level = float(np.median(y[near]))
+        on = _close_gaps(np.abs(y - level) <= tol)
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], on.astype(int), [0]])))
+        for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
+            if b - a + 1 >= LAND_POINTS and points[b, 0] - points[a, 0] >= shortest:
+                out.append((int(a), int(b), float(np.mean(y[a : b + 1]))))
+    return sorted(out)
 
 
 def find_paths(
@@ -175,7 +191,7 @@ def find_paths(
             i += 1
             continue
         # refine the position on the window's steepest points and grow the run
-        on = np.nanmin(np.abs(dx - found) * gain, axis=1) <= tol
+        on = _close_gaps(np.nanmin(np.nan_to_num(np.abs(dx - found) * gain, nan=np.inf), axis=1) <= tol) & free
         a, z = i, i + m - 1
         while a > 0 and free[a - 1] and on[a - 1]:
             a -= 1
@@ -183,11 +199,11 @@ def find_paths(
             z += 1
         if np.hypot(*(points[z] - points[a])) >= shortest:
             # the run's own best corner position: the median over its steepest half
-            k = np.nanargmin(np.abs(dx[a : z + 1] - found), axis=1)
-            vals = dx[np.arange(a, z + 1), k]
-            g = gain[np.arange(a, z + 1), k]
-            steep = g >= np.median(g)
-            out.append((a, z, float(np.median(vals[steep]))))
+            # the run's own corner position: least squares of the normal distances (weights gain^2)
+            rows = np.arange(a, z + 1)
+            k = np.nanargmin(np.nan_to_num(np.abs(dx[rows] - found), nan=np.inf), axis=1)
+            vals, g = dx[rows, k], gain[rows, k]
+            out.append((a, z, float(np.sum(g**2 * vals) / max(float(np.sum(g**2)), 1e-300))))
             covered[a : z + 1] = True
             i = z + 1
         else:
@@ -195,7 +211,9 @@ def find_paths(
     return out
 
 
-def exact_pieces(pair: RotorPair, points: np.ndarray, tol: float, shortest: float) -> list[ExactPiece]:
+def exact_pieces(
+    pair: RotorPair, points: np.ndarray, tol: float, shortest: float, land: float = 0.0, paths: bool = True
+) -> list[ExactPiece]:
     """Find the lands and tip-corner paths of a chain of rack points, in the chain's order.
 
     Parameters
@@ -208,12 +226,18 @@ def exact_pieces(pair: RotorPair, points: np.ndarray, tol: float, shortest: floa
         How far a point may lie from an exact piece it belongs to.
     shortest : float, mm
         The shortest corner path recognised (the profile's resolution).
+    land : float, mm
+        The shortest land recognised.
+    paths : bool
+        Whether to look for tip-corner paths too (of exact points only: 2 um of scatter let a stretch
+        of 2.7 mm of the N rack's tip-circle envelopes pass for a tip corner's trochoid within the
+        8 um the scatter allows).
     """
-    pieces = [ExactPiece(PieceRole.CURVE, y0, a, b) for a, b, y0 in find_lands(points, tol, 0.0)]
+    pieces = [ExactPiece(PieceRole.CURVE, y0, a, b) for a, b, y0 in find_lands(points, tol, land)]
     free = np.ones(len(points), dtype=bool)
     for p in pieces:
         free[p.first : p.last + 1] = False
-    for side in (Side.MALE, Side.FEMALE):
+    for side in (Side.MALE, Side.FEMALE) if paths else ():
         for a, b, dx in find_paths(pair, side, points, free, tol, shortest):
             pieces.append(ExactPiece(PieceRole.corner_path_of(side), dx, a, b))
             free[a : b + 1] = False
@@ -243,19 +267,29 @@ def piece_frame(pair: RotorPair, piece: ExactPiece, s: np.ndarray) -> tuple[np.n
     return path_points(pair, piece.side, piece.value, s), d / np.maximum(np.hypot(*d.T), 1e-300)[:, None]
 
 
-def meeting(pair: RotorPair, a: ExactPiece, b: ExactPiece, sa: float, sb: float, tol: float) -> tuple[float, float] | None:
+def meeting(
+    pair: RotorPair, a: ExactPiece, b: ExactPiece, sa: float, sb: float, tol: float, reach: float = np.inf
+) -> tuple[float, float] | None:
     """Return the parameters where two exact pieces cross or touch, near ``sa`` on ``a`` and ``sb`` on ``b``.
 
-    None where they come no nearer than ``tol`` (mm) within reach: a spline joins them.
+    None where they come no nearer than ``tol`` (mm), or meet farther than ``reach`` (mm) from the
+    points at ``sa`` and ``sb``: a spline joins them.
     """
     from scipy.optimize import least_squares
 
     def gap(v: np.ndarray) -> np.ndarray:
         return piece_frame(pair, a, v[:1])[0][0] - piece_frame(pair, b, v[1:])[0][0]
 
+    start = np.array([sa, sb])
+    if not np.all(np.isfinite(gap(start))):
+        return None
     scale = np.array([1.0 if a.role is PieceRole.CURVE else 0.05, 1.0 if b.role is PieceRole.CURVE else 0.05])
-    fit = least_squares(gap, np.array([sa, sb]), x_scale=scale, xtol=1e-15, ftol=1e-15, gtol=1e-15)
-    if not fit.success or np.hypot(*gap(fit.x)) > tol:
+    fit = least_squares(gap, start, x_scale=scale, xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    if not fit.success or not np.all(np.isfinite(gap(fit.x))) or np.hypot(*gap(fit.x)) > tol:
+        return None
+    met = piece_frame(pair, a, fit.x[:1])[0][0]
+    ends = np.vstack([piece_frame(pair, a, start[:1])[0], piece_frame(pair, b, start[1:])[0]])
+    if np.hypot(*(ends - met).T).max() > reach:
         return None
     return float(fit.x[0]), float(fit.x[1])
 
@@ -286,24 +320,62 @@ def rack_curve(pair: RotorPair, piece: ExactPiece, s0: float, s1: float) -> Curv
 
 
 def clamped_spline(points: np.ndarray, start: np.ndarray | None, end: np.ndarray | None, smoothing: float) -> Spline:
-    """Fit a cubic spline through rack points (fixed frame), its end tangents ``start`` / ``end`` where given.
+    """Fit a cubic spline through (or near) rack points (fixed frame), its end tangents ``start`` / ``end`` where given.
 
     An interpolating spline (``smoothing`` 0) takes the given unit tangents as its end derivatives
-    along the chord length (scipy's ``make_interp_spline``, clamped ends); a smoothing spline
-    (scipy's ``splprep``, Dierckx sec. 5.2) keeps its own ends.
+    along the chord length (scipy's ``make_interp_spline``, clamped ends). A smoothing spline takes
+    the knots of scipy's ``splprep`` for that smoothing (Dierckx sec. 5.2) and is the least-squares
+    spline on them that passes through the first and last point (the exact pieces' ends) with the
+    given end tangents (the equality-constrained least squares solved by its KKT system, Golub & Van
+    Loan sec. 6.2), so that it meets the exact pieces as the interpolating one does.
     """
     pts = np.asarray(points, dtype=float)
     keep = np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 1e-9])
     pts = pts[keep]
-    if smoothing > 0 or len(pts) < 3 or (start is None and end is None):
-        return Spline.fit(pts, smoothing=smoothing)
+    if len(pts) < 3:
+        return Spline.fit(pts)
+    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    if smoothing > 0:
+        return _constrained_smoothing(pts, u, start, end, smoothing)
+    if start is None and end is None:
+        return Spline.fit(pts)
     from scipy.interpolate import make_interp_spline
 
-    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
     left = [(1, np.asarray(start, dtype=float))] if start is not None else [(2, np.zeros(2))]
     right = [(1, np.asarray(end, dtype=float))] if end is not None else [(2, np.zeros(2))]
     spline = make_interp_spline(u, pts, k=3, bc_type=(left, right))
     knots, coef = spline.t, spline.c
+    return Spline(knots=(knots, (coef[:, 0], coef[:, 1]), 3), s0=0.0, s1=float(u[-1]))
+
+
+def _constrained_smoothing(
+    pts: np.ndarray, u: np.ndarray, start: np.ndarray | None, end: np.ndarray | None, smoothing: float
+) -> Spline:
+    """Fit the least-squares cubic spline on ``splprep``'s knots through the end points, with the given end tangents.
+
+    (:func:`clamped_spline`.)
+    """
+    from scipy.interpolate import BSpline, splprep
+
+    knots = np.asarray(splprep(pts.T, u=u, s=smoothing, k=3, quiet=2)[0][0], dtype=float)
+    inner = knots[4:-4]
+    if len(inner) < 4:  # room for the data beside the four end conditions
+        inner = np.linspace(u[0], u[-1], 6)[1:-1]
+    knots = np.concatenate([[u[0]] * 4, inner, [u[-1]] * 4])
+    nc = len(knots) - 4
+    basis = BSpline(knots, np.eye(nc), 3)
+    design = basis(u)
+    ends = np.array([u[0], u[-1]])
+    rows, rhs = list(basis(ends)), [pts[0], pts[-1]]
+    slope = basis.derivative()(ends)
+    for k, t in ((0, start), (1, end)):
+        if t is not None:
+            rows.append(slope[k])
+            rhs.append(np.asarray(t, dtype=float))
+    c, d = np.array(rows), np.array(rhs)
+    kkt = np.block([[2 * design.T @ design, c.T], [c, np.zeros((len(c), len(c)))]])
+    sol = np.linalg.lstsq(kkt, np.vstack([2 * design.T @ pts, d]), rcond=None)[0]
+    coef = sol[:nc]
     return Spline(knots=(knots, (coef[:, 0], coef[:, 1]), 3), s0=0.0, s1=float(u[-1]))
 
 
@@ -346,6 +418,7 @@ def curvature_breaks(run: np.ndarray, sigma: float) -> np.ndarray:
 
 __all__ = [
     "EXACT_TOLERANCE",
+    "GAP_POINTS",
     "LAND_POINTS",
     "PATH_POINTS",
     "ExactPiece",

@@ -168,13 +168,13 @@ def _exact_rack_piece(pair: RotorPair, piece: ExactPiece, s0: float, s1: float) 
     return RackPiece(curve, *_land_names(pair, piece.value), kind=PieceRole.CURVE)
 
 
-def _chain(pair: RotorPair, tiled: np.ndarray, n: int, tol: float, shortest: float) -> list[ExactPiece] | None:
+def _chain(pair: RotorPair, tiled: np.ndarray, n: int, tol: float, shortest: float, land: float) -> list[ExactPiece] | None:
     """Find the exact pieces of one period of the tiled points, in order, from the first one in the middle period.
 
     Returns the pieces (their indices into the tiled chain; the last entry the first piece one period
     on), or None when the rack has no land and no tip-corner path.
     """
-    found = exact_pieces(pair, tiled, tol, shortest)
+    found = exact_pieces(pair, tiled, tol, shortest, land, paths=land <= 0)
     start = [p for p in found if n <= p.first < 2 * n]
     if not start:
         return None
@@ -209,16 +209,18 @@ def _exact_rack(
     """
     n, p = len(pts), pair.rack_period
     tiled = np.vstack([pts - [p, 0.0], pts, pts + [p, 0.0]])
-    chain = _chain(pair, tiled, n, tol, 0.0 if sigma <= 0 else shortest)
+    chain = _chain(pair, tiled, n, tol, shortest, 0.0 if sigma <= 0 else 0.5 * shortest)
     if chain is None:
         return None
+    spacing = float(np.median(np.hypot(*np.diff(pts, axis=0).T)))
     params = [piece_parameters(pair, e, tiled[[e.first, e.last]]) for e in chain]
     bounds = [[float(s[0]), float(s[1])] for s in params]
     joins: list[np.ndarray | None] = []  # between exact piece k and k + 1: the free points (or None: they meet)
     for k in range(len(chain) - 1):
         a, b = chain[k], chain[k + 1]
         free = tiled[a.last + 1 : b.first]
-        met = meeting(pair, a, b, bounds[k][1], bounds[k + 1][0], 10 * tol + 1e-9) if len(free) <= 1 else None
+        reach = 3.0 * spacing + 10 * tol  # where the two pieces' last and first points lie
+        met = meeting(pair, a, b, bounds[k][1], bounds[k + 1][0], 10 * tol + 1e-9, reach) if len(free) <= 1 else None
         if met is not None:
             bounds[k][1], bounds[k + 1][0] = met
             joins.append(None)
@@ -283,7 +285,13 @@ def _spline_pieces(
             None if d1 is None else from_rack_frame(d1[None, :], 0.0)[0],
             _smoothing(part, sigma, smoothing),
         )
-        pieces.append(RackPiece(spline, "flank", "flank"))
+        if sigma <= 0:
+            pieces.append(RackPiece(spline, "flank", "flank"))
+            continue
+        # of scattered points the tip corners' paths are found as the parts their rotor's point stalls on
+        shortest = max(5e-3 * pair.center_distance, float(np.sqrt(8.0 * pair.center_distance * 2 * sigma)))
+        for s0, s1, role in _roles(spline, pair, True, shortest, max(1e-4, 20 * sigma)):
+            pieces.append(RackPiece(spline.trimmed(s0, s1), "flank", "flank", kind=role))
     return pieces
 
 
