@@ -25,9 +25,10 @@ Each point of one period is tested against both: a land where at least :data:`LA
 consecutive points lie within the points' tolerance of the rack's top or bottom height; a corner path
 where consecutive points give one corner position dx within the tolerance, over at least
 :data:`PATH_POINTS` points and the profile's resolution (exact points only: within the 8 um that
-2 um of scatter allows, the N rack's tip-circle envelopes passed for tip corners' trochoids). Adjacent exact pieces meet where they cross (or touch); the points between
-exact pieces are splines whose ends are clamped to the exact piece's tangent where the two meet
-smoothly (the flank that runs into a tip corner's path is tangent to it).
+2 um of scatter allows, the N rack's tip-circle envelopes passed for tip corners' trochoids).
+Adjacent exact pieces meet where they cross (or touch); the points between exact pieces are splines
+whose ends are clamped to the exact piece's tangent where the two meet smoothly (the flank that runs
+into a tip corner's path is tangent to it).
 """
 
 from __future__ import annotations
