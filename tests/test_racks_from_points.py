@@ -578,10 +578,10 @@ def test_the_verdict_from_the_rack_points_is_the_verdict_from_either_rotor(name)
 
 @pytest.mark.xfail(
     strict=True,
-    reason="rack points with 2 um scatter (1500 a period): the smoothing splines between the lands wobble "
-    "in tangent, the smallest flank angle reads 22.81 deg for 23.87 (4/6) and the 4/6 male reads undercut "
-    "at r = 35.2 mm; the tip-corner trochoids are not recognised within the scatter's 8 um bound (the N "
-    "rack's tip-circle envelopes passed for them), so their paths are found from stalls, 0.3-0.5 mm off",
+    reason="rack points with 2 um scatter (1500 a period) are fitted by one smoothing spline between the "
+    "rack's sharp corners (their lands and tip-corner trochoids are taken exactly from exact points only: within "
+    "the scatter's 8 um bound the N rack's tip-circle envelopes passed for trochoids): the 4/6 male reads "
+    "undercut at r = 35.2 mm and 23.17 deg for 23.87, the rack deviation 8.8-10.5 mm",
 )
 def test_the_verdict_from_scattered_rack_points_is_the_generating_racks():
     # Issue 22 item 3 with 2 um scatter. Reference: the exact rack's verdict and the closed form.

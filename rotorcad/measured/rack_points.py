@@ -15,10 +15,13 @@ verdicts, contact ratios within 0.002, blow-hole within 0.02 % and hob verdict; 
 the whole period (before) read Krigar and Lysholm as running, a rack deviation of 0.99-9.8 mm and the
 rack-involute female as undercut.
 
-Of scattered points only the lands are taken exactly (a tip corner's trochoid is not told from a
-curve near it within the scatter's bound); the parts along which one rotor's generated point stands
-still are that rotor's corner path (:func:`rotorcad.measured.pairs._mate_corner_runs`, against each
-rotor in turn). A rack without lands is fitted by splines between its sharp corners so.
+Scattered points are fitted as before, by splines between the rack's sharp corners, the parts along
+which one rotor's generated point stands still taken as that rotor's corner path
+(:func:`rotorcad.measured.pairs._mate_corner_runs`, against each rotor in turn): within the 8 um
+that 2 um of scatter allows a tip corner's trochoid is not told from a curve near it (the N rack's
+tip-circle envelopes passed for them), and lands taken exactly with smoothing splines between them
+made the scattered Krigar rack's male take minutes to derive back. A rack without lands or tip-corner
+paths is fitted so too.
 """
 
 from __future__ import annotations
@@ -180,7 +183,7 @@ def _chain(pair: RotorPair, tiled: np.ndarray, n: int, tol: float, shortest: flo
     Returns the pieces (their indices into the tiled chain; the last entry the first piece one period
     on), or None when the rack has no land and no tip-corner path.
     """
-    found = exact_pieces(pair, tiled, tol, shortest, land, paths=land <= 0)
+    found = exact_pieces(pair, tiled, tol, shortest, land)
     start = [p for p in found if n <= p.first < 2 * n]
     if not start:
         return None
@@ -215,7 +218,7 @@ def _exact_rack(
     """
     n, p = len(pts), pair.rack_period
     tiled = np.vstack([pts - [p, 0.0], pts, pts + [p, 0.0]])
-    chain = _chain(pair, tiled, n, tol, shortest, 0.0 if sigma <= 0 else 0.5 * shortest)
+    chain = _chain(pair, tiled, n, tol, shortest, 0.0)
     if chain is None:
         return None
     spacing = float(np.median(np.hypot(*np.diff(pts, axis=0).T)))
@@ -291,13 +294,7 @@ def _spline_pieces(
             None if d1 is None else from_rack_frame(d1[None, :], 0.0)[0],
             _smoothing(part, sigma, smoothing),
         )
-        if sigma <= 0:
-            pieces.append(RackPiece(spline, "flank", "flank"))
-            continue
-        # of scattered points the tip corners' paths are found as the parts their rotor's point stalls on
-        shortest = max(5e-3 * pair.center_distance, float(np.sqrt(8.0 * pair.center_distance * 2 * sigma)))
-        for s0, s1, role in _roles(spline, pair, True, shortest, max(1e-4, 20 * sigma)):
-            pieces.append(RackPiece(spline.trimmed(s0, s1), "flank", "flank", kind=role))
+        pieces.append(RackPiece(spline, "flank", "flank"))
     return pieces
 
 
@@ -337,7 +334,8 @@ def pair_from_rack_points(pair: RotorPair, points: np.ndarray, smoothing: float 
     acc = max(point_acc, scatter_bound(sigma, len(pts)))
     shortest = max(5e-3 * pair.center_distance, float(np.sqrt(8.0 * pair.center_distance * acc)))
     tol = max(EXACT_TOLERANCE * pair.center_distance, scatter_bound(sigma, len(pts)))
-    rack = _exact_rack(pair, pts, sigma, tol, shortest, smoothing)
+    # of scattered points the splines between corners (exact pieces are not told within the scatter)
+    rack = _exact_rack(pair, pts, sigma, tol, shortest, smoothing) if sigma <= 0 else None
     if rack is None:
         rack = _spline_rack(pair, pts, sigma, point_acc, shortest, smoothing)
     spacing = float(np.median(np.hypot(*np.diff(pts, axis=0).T)))
