@@ -83,7 +83,7 @@ class Verdict:
     tip_thickness: float
 
 
-def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 0.0) -> Verdict:
+def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 0.0, measured: bool | None = None) -> Verdict:
     """Judge a derived rack in its normal section (module docstring).
 
     Parameters
@@ -97,6 +97,11 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
         measured points: :attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`; 0 for a design). A
         loop of the rack narrower than this (or than :data:`FOLD_TOLERANCE`) is a fold of the fit,
         not an undercut the points can show.
+    measured : bool, optional
+        Whether the rotor's profile was fitted to its own points (``male-points``, ``female-points``),
+        so that a sharp corner below its tip shows as a stall across which the fit turns
+        (:func:`undercut_reasons`); default ``accuracy > 0``. A pair generated from a rack's points
+        has envelopes for its rotors, whose undercut is their envelope turning back, as a design's.
 
     Returns
     -------
@@ -192,7 +197,11 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
     tip_r = float(1.0 / kappa[kappa > 0].max()) if np.any(kappa > 0) else np.inf
     root_r = float(-1.0 / kappa[kappa < 0].min()) if np.any(kappa < 0) else np.inf
     corners = np.nonzero(jumps)[0]
-    for kind, chosen in (("tip", corners[np.diff(psi)[corners] > 0]), ("root", corners[np.diff(psi)[corners] < 0])):
+    turns = np.diff(psi)[corners]
+    seam = _seam_turn(pts, tan, cutting, rack.normal_period, kink)
+    if seam:  # the corner where one period of the rack meets the next
+        corners, turns = np.append(corners, len(pts) - 1), np.append(turns, seam)
+    for kind, chosen in (("tip", corners[turns > 0]), ("root", corners[turns < 0])):
         if len(chosen):
             if kind == "tip":
                 tip_r = 0.0
@@ -206,7 +215,7 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
     if 0 < root_r < lim.min_root_radius:
         i = int(np.argmin(kappa))
         reasons.append(f"the hob root radius is {root_r:.4f} mm {at(i)}, below the minimum {lim.min_root_radius:g} mm.")
-    reasons += undercut_reasons(rack, measured=accuracy > 0)
+    reasons += undercut_reasons(rack, measured=accuracy > 0 if measured is None else measured)
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
         reasons.append(
@@ -214,6 +223,25 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
             f"{lim.min_tip_thickness:g} mm."
         )
     return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness)
+
+
+def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: float, kink: float) -> float:
+    """Return the turn (rad) of the rack where its last point meets its first one period on, 0 for none.
+
+    A rack of one whole period (its last point one normal period after its first) continues into the
+    next period there: a corner between two cutting pieces at that seam is a corner of the rack like
+    any other. Where the seam falls depends on where the lobe's pieces start: the narrow-tip
+    design's rack put its seam exactly on the corner where its root land meets the driving flank
+    (the female tip on the pitch circle, Rinder Fig. 5) and read no corner there, the same rack from
+    its own points (the lobe starting elsewhere) read one.
+    """
+    if len(pts) < 2 or not (cutting[0] and cutting[-1]):
+        return 0.0
+    if np.hypot(pts[-1, 0] - pts[0, 0] - period, pts[-1, 1] - pts[0, 1]) > 1e-6 * period:
+        return 0.0
+    a, b = tan[-1], tan[0]
+    turn = float(np.arctan2(a[0] * b[1] - a[1] * b[0], a @ b))
+    return turn if abs(turn) > kink else 0.0
 
 
 def undercut_reasons(rack: DerivedRack, measured: bool = False) -> list[str]:

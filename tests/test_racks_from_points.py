@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import functools
 import json
+from collections import Counter
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -369,6 +371,23 @@ def test_hob_of_the_rack_involute_points_gives_the_design_verdict(rack_involute,
     assert result["normal_pressure_angle_min_deg"] == pytest.approx(design["normal_pressure_angle_min_deg"], abs=0.2)
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="the spline through the rotor's points is carried across the curvature step where the rack's root "
+    "rounding meets its straight driving flank (y = 0.25 mm): the rack derived from it turns 3 mrad off the "
+    "straight flank 0.4 mm above (y = 0.66 mm), smallest flank angle 17.96 deg from the male's and from the "
+    "female's exact CSV for the design's 18.13 (the rack's own points split there: rack_pieces.curvature_breaks)",
+)
+@pytest.mark.parametrize("given", ["male", "female"])
+def test_hob_of_the_rack_involute_rotor_points_within_a_tenth_of_a_degree(rack_involute, capsys, given):
+    # Issue 22 item 3: the smallest flank angle from either rotor's points within 0.1 deg of the
+    # design's (reference: `hob` of the design from its exact curves; from the rack's own points it
+    # is 18.127 for 18.127, test_cli_hob_of_the_rack_involute_from_its_own_rack_csv).
+    design = hob_json(capsys, rack_involute["sample"])
+    result = hob_json(capsys, f"--{given}-points", rack_involute[given], *RACK_INVOLUTE_DIMS)
+    assert result["normal_pressure_angle_min_deg"] == pytest.approx(design["normal_pressure_angle_min_deg"], abs=0.1)
+
+
 @pytest.mark.parametrize("given", ["groove", "tooth"])
 def test_clearance_of_one_groove_or_one_tooth(rack_involute, capsys, given):
     # Issue 22 item 4: clearance takes one groove of the female or one tooth of the male with the
@@ -385,3 +404,189 @@ def test_clearance_of_one_groove_or_one_tooth(rack_involute, capsys, given):
     result = json.loads(capsys.readouterr().out)
     assert not result["interference"]
     assert -result["accuracy"] <= result["min_normal_clearance"] <= result["max_normal_clearance"] <= result["accuracy"]
+
+
+# --- a pair and a hob verdict from the rack's points: the design's (issues 21 item 3, 22 item 3) ---------------
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+
+
+def _rotor_samples() -> list[str]:
+    """Every rotor design in samples/ (not the gears, not the sweeps)."""
+    import tomllib
+
+    names = []
+    for path in sorted(SAMPLES.glob("*.toml")):
+        data = tomllib.loads(path.read_text())
+        if "gear" not in data and "sweep" not in data:
+            names.append(path.stem)
+    return names
+
+
+ROTOR_SAMPLES = _rotor_samples()
+
+
+@functools.cache
+def own_rack(name: str) -> tuple:
+    """The sample's design pair, its rack CSV as `rotor --rack-csv` writes it (read back), and the pair from those points."""
+    import tempfile
+
+    from exports.csv_points import read_points
+    from rotorcad.design.files import load_rotor_design
+    from rotorcad.rotor_build import PairSpec, build_pair, pair_spec
+
+    path = SAMPLES / f"{name}.toml"
+    spec = pair_spec(load_rotor_design(path))
+    with tempfile.TemporaryDirectory() as folder:
+        csv = Path(folder) / "rack.csv"
+        assert main(["rotor", str(path), "--rack-csv", str(csv), "--quiet"]) == 0
+        pts = read_points(csv)
+    given = build_pair(PairSpec(spec.pair, "rack-points", {}, pts, None, spec.speed_rpm, 0.0))
+    return spec, build_pair(spec), given
+
+
+@functools.cache
+def own_rack_summaries(name: str) -> tuple[dict, dict]:
+    from rotorcad.rotor_build import analyse_pair
+
+    spec, design, given = own_rack(name)
+    return analyse_pair(design, spec.speed_rpm)[1], analyse_pair(given, spec.speed_rpm)[1]
+
+
+def _defects(summary: dict) -> Counter:
+    return Counter((d["kind"], d["rotor"], bool(d.get("tip_corner"))) for d in summary["defects"])
+
+
+@pytest.mark.parametrize("name", ROTOR_SAMPLES)
+def test_every_sample_from_its_own_rack_csv_has_the_design_verdicts(name):
+    # Issue 21 item 3 on the rack's points. Reference: the design's own analysis from its exact
+    # curves. Before (the rack one spline between its sharp corners, its corner paths found where a
+    # rotor's generated point stalled within 10 times the points' accuracy): Krigar and Lysholm read
+    # "runs" where the design has no geometric contact (contact ratio 0.032 for 0), the rack-involute's
+    # ratios 0.683/0.696 for 0.484/0.497, the N rack's 0.987/0.985 for 0.628/0.746 (its lands were
+    # not flat, its corner paths' ends 0.3-0.5 mm off). Now the lands and tip-corner paths are exact:
+    # the ratios within 0.0011 (N rack), the blow-hole within 0.02 %.
+    design, given = own_rack_summaries(name)
+    assert given["meshline_closed"] == design["meshline_closed"]
+    assert _defects(given) == _defects(design), (given["defects"], design["defects"])
+    assert given["runs_without_timing_gears"] == design["runs_without_timing_gears"], given["running_reasons"]
+    for flank, report in design["flanks"].items():
+        mine = given["flanks"][flank]
+        assert mine["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
+        assert mine["geometric_contact"] == report["geometric_contact"], flank
+        assert mine["transverse_contact_ratio"] == pytest.approx(report["transverse_contact_ratio"], abs=0.005), flank
+    assert given["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01, abs=1e-3)
+
+
+def _reason_kinds(verdict) -> Counter:
+    """What each reason says, without where (a corner of the rack is found at either of its periods' copies)."""
+    import re
+
+    return Counter(re.split(r" (?:at|near) x = | at r = ", r)[0] for r in verdict.reasons)
+
+
+@pytest.mark.parametrize("name", ROTOR_SAMPLES)
+def test_hob_of_every_sample_from_its_own_rack_csv_is_the_design_hob(name):
+    # Issue 22 item 3 on the samples: `hob <design> --rack-points <its own rack CSV>` read a rack
+    # deviation of 0.99 mm (rack-involute), 1.32 (narrow-tip), 1.64 (SRM), 2.13 (Lysholm), 9.84 mm
+    # (Krigar) where the rack is the generating rack (truth 0), and "female undercut" on the
+    # rack-involute and the N rack, which the design hobs. Reference: the design's racks and verdicts
+    # from its exact curves: the same verdict and reasons, the smallest flank angle within 0.1 deg
+    # (0.02 deg on the N rack), the rack deviation within the points' accuracy.
+    _, design, given = own_rack(name)
+    for side in ("male", "female"):
+        mine = judge(rotor_rack(given, side), accuracy=given.accuracy, measured=False)
+        truth = judge(rotor_rack(design, side))
+        assert mine.hobbable == truth.hobbable, (side, mine.reasons, truth.reasons)
+        assert _reason_kinds(mine) == _reason_kinds(truth), (side, mine.reasons, truth.reasons)
+        assert mine.normal_pressure_angle_min_deg == pytest.approx(truth.normal_pressure_angle_min_deg, abs=0.1), side
+    assert rack_deviation(given) <= max(2e-3, given.accuracy)
+
+
+def test_cli_hob_of_the_rack_involute_from_its_own_rack_csv(tmp_path, capsys):
+    # The user's path: `rotorcad hob samples/rack_involute_5_6.toml --rack-points rack.csv` (the
+    # rack that `rotor --rack-csv` wrote): hobbable as the design (was "not hobbable: the female is
+    # undercut", rack deviation 0.99 mm). Reference: `hob` of the design itself.
+    sample = SAMPLES / "rack_involute_5_6.toml"
+    assert main(["rotor", str(sample), "--rack-csv", str(tmp_path / "rack.csv"), "--quiet"]) == 0
+    design = hob_json(capsys, sample)
+    given = hob_json(capsys, sample, "--rack-points", tmp_path / "rack.csv")
+    assert given["hobbable"] and given["reasons"] == design["reasons"] == []
+    assert given["normal_pressure_angle_min_deg"] == pytest.approx(design["normal_pressure_angle_min_deg"], abs=0.1)
+    assert given["rack_deviation"] <= max(2e-3, given["accuracy"])
+
+
+def closed_form_rack_points(name: str, spacing: float = 0.02, noise: float = 0.0, count: int = 0) -> np.ndarray:
+    """One period of the closed-form generating rack as points (rack frame), with its next period's
+    first point; with ``noise``: ``count`` points evenly along it, Gaussian scatter along the normals."""
+    rp = PAIRS[name]()
+    pts, nrm = rp.rack.sample(spacing if not noise else 0.001)
+    period = rp.rack.period
+    if noise:
+        chain = np.vstack([pts, pts[:1] + [period, 0.0]])
+        s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(chain, axis=0).T))])
+        u = (np.arange(count) + 0.37) * s[-1] / count
+        q = np.column_stack([np.interp(u, s, chain[:, 0]), np.interp(u, s, chain[:, 1])])
+        n = np.column_stack([np.interp(u, s[:-1], nrm[:, 0]), np.interp(u, s[:-1], nrm[:, 1])])
+        pts = q + np.random.default_rng(11).normal(0.0, noise, count)[:, None] * n / np.hypot(*n.T)[:, None]
+    return np.vstack([pts, pts[:1] + [period, 0.0]])
+
+
+@functools.cache
+def rack_view(name: str, noise: float = 0.0) -> dict:
+    from rotorcad.rotor_points import pair_from_rack_points
+
+    pts = closed_form_rack_points(name) if not noise else closed_form_rack_points(name, noise=noise, count=1500)
+    rotors = pair_from_rack_points(rotor_pair(name), pts)
+    return {side: judge(rotor_rack(rotors, side), accuracy=rotors.accuracy, measured=False) for side in ("male", "female")}
+
+
+def carried_angle(name: str, side: str) -> float:
+    """The closed-form smallest normal flank angle (deg) over the flank parts of the generating rack that
+    one rotor carries: their contact inside its tip circle (Wu & Chi sec. 2 eq. 4 and eq. 7)."""
+    reference, _, angle = closed_form(name)
+    rp = PAIRS[name]()
+    _, nrm = rp.rack.sample(0.001)
+    flank = (np.abs(nrm[:, 1]) > 1e-9) & (np.abs(nrm[:, 0]) > 1e-9)
+    r_w = rp.male_pitch_radius if side == "male" else rp.female_pitch_radius
+    y = reference[:, 1] if side == "male" else -reference[:, 1]
+    off = reference[:, 1] * nrm[:, 0] / np.where(flank, nrm[:, 1], 1.0)
+    return float(angle[flank & (np.hypot(off, r_w + y) <= r_w + rp.rack.height)].min())
+
+
+@pytest.mark.parametrize("name", ["4/6", "5/6"])
+def test_the_verdict_from_the_rack_points_is_the_verdict_from_either_rotor(name):
+    # Issue 22 item 3: from the rack's points (0.02 mm apart, exact) each rotor's rack has the
+    # smallest flank angle of the closed-form generating rack over the part that rotor carries,
+    # within 0.1 deg (an independent reference: Wu & Chi eq. 7, not the code under test; measured
+    # 0.001 deg); the 5/6 male is undercut (brute force: test_the_undercut_male_reads_undercut), the
+    # female and the 4/6 pair hobbable. The same verdicts and smallest angles as from the male's and
+    # the female's exact points (the 5/6 female's: its own rack, as the female carries it).
+    rack = rack_view(name)
+    for side, v in rack.items():
+        assert v.normal_pressure_angle_min_deg == pytest.approx(carried_angle(name, side), abs=0.1), side
+        assert v.hobbable == (side == "female" or name == "4/6"), (side, v.reasons)
+    rotors = ("male", "female") if name == "4/6" else ("female",)  # the undercut male's own points: UNDERCUT_CASES
+    for rotor in rotors:
+        other = hob_view(name, rotor, "exact")[3]
+        sides = ("male", "female") if name == "4/6" else ("female",)
+        for side in sides:
+            assert other[side].hobbable == rack[side].hobbable, (rotor, side, other[side].reasons)
+        smallest = min(other[side].normal_pressure_angle_min_deg for side in sides)
+        assert smallest == pytest.approx(min(rack[side].normal_pressure_angle_min_deg for side in sides), abs=0.1), rotor
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="rack points with 2 um scatter (1500 a period) are fitted by one smoothing spline between the "
+    "rack's sharp corners (their lands and tip-corner trochoids are taken exactly from exact points only: within "
+    "the scatter's 8 um bound the N rack's tip-circle envelopes passed for trochoids): the 4/6 male reads "
+    "undercut at r = 35.2 mm and 23.17 deg for 23.87, the rack deviation 8.8-10.5 mm",
+)
+def test_the_verdict_from_scattered_rack_points_is_the_generating_racks():
+    # Issue 22 item 3 with 2 um scatter. Reference: the exact rack's verdict and the closed form.
+    for name in ("4/6", "5/6"):
+        exact, noisy = rack_view(name), rack_view(name, 2e-3)
+        for side in ("male", "female"):
+            assert noisy[side].hobbable == exact[side].hobbable, (name, side, noisy[side].reasons)
+            assert noisy[side].normal_pressure_angle_min_deg == pytest.approx(exact[side].normal_pressure_angle_min_deg, abs=0.1)

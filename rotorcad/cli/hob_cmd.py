@@ -84,7 +84,7 @@ def hob(design: Path | None, **opts: Any) -> None:
         deviation = _basic_rack_deviation(g, racks["gear"])
         scale = g.module
         body = g
-    verdicts, result = judge_racks(racks, deviation, limits, getattr(body, "accuracy", 0.0))
+    verdicts, result = judge_racks(racks, deviation, limits, getattr(body, "accuracy", 0.0), _fitted_sides(body))
     result["notes"] = notes if rotors is None else []
     worms = worms_of(racks, body_hands(body), opts, rack_datum(body))
     first = next(iter(racks))
@@ -127,7 +127,11 @@ def _not_hobbed(spec: dict[str, Any]) -> list[str]:
 
 
 def judge_racks(
-    racks: dict[str, DerivedRack], deviation: float, limits: HobLimits, accuracy: float = 0.0
+    racks: dict[str, DerivedRack],
+    deviation: float,
+    limits: HobLimits,
+    accuracy: float = 0.0,
+    measured: dict[str, bool] | None = None,
 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
 
@@ -143,6 +147,11 @@ def judge_racks(
         Limits of a producible hob.
     accuracy : float, mm
         Accuracy of a profile given by points (:func:`hob.verdict.judge`; 0 for a design).
+    measured : dict of bool, optional
+        Per rack, whether that rotor's profile was fitted to its own points (:func:`hob.verdict.judge`);
+        default ``accuracy > 0`` for every rack. False for the mate generated from a rotor's points and
+        for both rotors of a pair generated from a rack's points: they are envelopes, undercut only
+        where they turn back, as a design's.
 
     Returns
     -------
@@ -152,7 +161,10 @@ def judge_racks(
         ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg``,
         ``accuracy`` (mm) and per rack its figures (radii and tip thickness in mm, angles in deg).
     """
-    verdicts = {name: judge(rack, limits, accuracy) for name, rack in racks.items()}
+    verdicts = {
+        name: judge(rack, limits, accuracy, None if measured is None else measured.get(name, False))
+        for name, rack in racks.items()
+    }
     result: dict[str, Any] = {
         "hobbable": all(v.hobbable for v in verdicts.values()),
         "reasons": [f"{name}: {r}" if len(verdicts) > 1 else r for name, v in verdicts.items() for r in v.reasons],
@@ -175,6 +187,15 @@ def judge_racks(
         },
     }
     return verdicts, result
+
+
+def _fitted_sides(body: Any) -> dict[str, bool]:
+    """Tell per rack whether its rotor's profile was fitted to its own points.
+
+    The ``male-points`` or ``female-points`` rotor; none of a design, of a rack's points or of a gear.
+    """
+    family = str(getattr(body, "family", ""))
+    return {"male": family == "male-points", "female": family == "female-points", "gear": False}
 
 
 def _measured(rotors: Any) -> bool:

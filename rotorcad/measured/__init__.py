@@ -8,7 +8,8 @@ The calls run one way, each stage using only the ones before it:
 2. :mod:`rotorcad.measured.fit` -- the lobe facing the mate as fitted curves with exact tangents
    (splines between corners, lands as arcs), and how far the fit leaves the points;
 3. :mod:`rotorcad.measured.pairs` -- the rack of that lobe by inverse generation and the pair
-   generated from it; :mod:`rotorcad.measured.rack_points` -- a pair from rack points.
+   generated from it; :mod:`rotorcad.measured.rack_points` -- a pair from rack points, whose lands
+   and tip-corner paths :mod:`rotorcad.measured.rack_pieces` recognises and takes exactly.
 
 ``rotorcad.rotor_points`` and ``rotorcad.measured_outline`` re-export these names for code that
 imports them from there.
