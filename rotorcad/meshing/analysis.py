@@ -171,10 +171,13 @@ class MeshingAnalysis:
         """Per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
         :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`. A
-        given profile's working part counts from its resolution (:func:`rotorcad.meshing.defects.resolution`).
+        given profile's working part counts from its resolution (:func:`rotorcad.meshing.defects.resolution`),
+        its contacts within the meshline's accuracy (:data:`MESHLINE_GAIN` times its own) of a tip corner or
+        a land from none (:func:`rotorcad.meshing.contact_ratios.unresolved_contacts`).
         """
         shortest = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
-        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest)
+        band = MESHLINE_GAIN * self.judged_accuracy if self.is_given else 0.0
+        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest, band)
 
     @property
     def running_reasons(self) -> list[str]:
