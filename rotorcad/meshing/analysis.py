@@ -173,7 +173,7 @@ class MeshingAnalysis:
         :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`. A
         given profile's working part counts from its resolution (:func:`rotorcad.meshing.defects.resolution`),
         its contacts within the meshline's accuracy (:data:`MESHLINE_GAIN` times its own) of a tip corner or
-        a land from none (:func:`rotorcad.meshing.contact_ratios.unresolved_contacts`).
+        a land from none (:func:`rotorcad.meshing.contact_ratios.resolved_steps`).
         """
         shortest = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
         band = MESHLINE_GAIN * self.judged_accuracy if self.is_given else 0.0

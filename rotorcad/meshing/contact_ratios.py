@@ -9,10 +9,14 @@ The rotation is the union of the rotations between consecutive samples of the wo
 range of its samples' angles: one stray sample of a land at C, labelled a flank, stretched the N
 rack's ratios from given points from 0.63 and 0.75 to 0.96). Of a profile given to an accuracy e,
 contacts that cannot be told from a point-generated part or a land at that accuracy are none of the
-working part (:func:`unresolved_contacts`): the mate's contact point, the meshline point seen from
+working part (:func:`resolved_steps`): the mate's contact point, the meshline point seen from
 the mate, is known to the meshline's accuracy :data:`~rotorcad.meshing.defects.MESHLINE_GAIN` e, and
 where it lies that near a tip corner the contact is that corner's path (Rinder sec. 2.2.2: "Radlinien
-der Punkte"); a contact that near the line O1O2 is a land's (a land touches there only).
+der Punkte"); a contact that near the line O1O2 is a land's (a land touches there only); a stretch
+whose contacts all stay within the resolution sqrt(8 a e) of a tip corner is that corner, rounded by
+the fit. So judged, the ratio from every form of the samples' males lies within 2 sqrt(8 a e) / p_t of
+the design's (p_t the transverse pitch; tests/test_contact_ratio_invariance.py). The working length
+(and with it the overlap ratio and running) still counts every geometric contact of a piece.
 """
 
 from __future__ import annotations
