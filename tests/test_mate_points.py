@@ -78,20 +78,17 @@ def assert_design_verdicts(design: dict, given: dict) -> None:
     assert given["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=BLOW_HOLE)
 
 
-# case id -> the cause of a known departure (strict xfail: a fix makes it fail until removed here)
-_HEAD = (
-    "the male tip corner's path from the female's points starts 3.6 mm of rack after the piece does (the fit's "
-    "0.8 um residual moves the male's generated point by 10-120 um at the female's root, beyond the 0.1 um that "
-    "bounds a corner's path), and that part counts as working contact: sealing ratio {0} for the design's {1}"
-)
-KNOWN_RATIOS_FEMALE: dict[str, str] = {
-    "narrow_tip_5_6": _HEAD.format(0.343, 0.175),
-}
+# case id -> the cause of a known departure (strict xfail: a fix makes it fail until removed here).
+# narrow_tip_5_6 read 0.343 for the design's sealing 0.175 (the male tip corner's path from the female's points
+# started 3.6 mm of rack late and that part counted as working contact), until rotorcad.meshing.contact_ratios
+# judged the working part to the input's accuracy: now the design's ratios
+KNOWN_RATIOS_FEMALE: dict[str, str] = {}
 # srm_asymmetric_5_6 read 0.364 for 0.184 too, until the corners of evenly spaced exact points were placed
-# where the fits beside them cross (rotorcad.measured.fit): now the design's ratios
+# where the fits beside them cross (rotorcad.measured.fit): now the design's ratios. rack_involute_5_6 read 0.683
+# and 0.696 for 0.484 and 0.497 (the rack's fitted lands, not flat to the 1e-9 of flank_roles, counted as flank
+# contact), until the rack's lands were taken as exact lines (rotorcad.measured.rack_pieces) and
+# rotorcad.meshing.contact_ratios counted a land's contact on O1O2 as none
 KNOWN_RATIOS_RACK: dict[str, str] = {}
-# rack_involute_5_6 read 0.683/0.696 for 0.484/0.497 until the rack's lands were taken as exact lines
-# (rotorcad.measured.rack_pieces): a land fitted inside a spline was not flat and counted as flank contact
 
 
 @pytest.fixture(scope="module", params=["narrow_tip_5_6", "srm_asymmetric_5_6"])

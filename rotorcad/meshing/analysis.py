@@ -183,11 +183,12 @@ class MeshingAnalysis:
         (:func:`rotorcad.meshing.defects.resolution`, the reach of its defect tests): Krigar's male at
         300 exact points a lobe, the corner between two, had 1.04 mm of meshline where the male tip
         corner's path hands over to the female's (the design: none), 1.4 times the profile's
-        resolution and 0.46 times the meshline's.
+        resolution and 0.46 times the meshline's. Its contacts within the meshline's accuracy of a tip
+        corner or a land count as none (:func:`rotorcad.meshing.contact_ratios.resolved_steps`).
         """
-        acc = MESHLINE_GAIN * self.judged_accuracy
-        shortest = resolution(acc, self.rotors.pair.center_distance) if self.is_given else 0.0
-        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest)
+        band = MESHLINE_GAIN * self.judged_accuracy if self.is_given else 0.0
+        shortest = resolution(band, self.rotors.pair.center_distance) if self.is_given else 0.0
+        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest, band)
 
     @property
     def running_reasons(self) -> list[str]:

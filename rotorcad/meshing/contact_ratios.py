@@ -4,6 +4,19 @@ The transverse contact ratio (male rotation over which the working part is in co
 pitch), the overlap ratio (Sprungüberdeckung, z1 L / h1) and their sum; a flank runs with a working
 part, no cusp or jamming inside it and a total ratio of at least 1 (:class:`FlankReport`). The
 criteria are stated in :mod:`rotorcad.meshing`.
+
+The rotation is the union of the rotations between consecutive samples of the working part (not the
+range of its samples' angles: one stray sample of a land at C, labelled a flank, stretched the N
+rack's ratios from given points from 0.63 and 0.75 to 0.96). Of a profile given to an accuracy e,
+contacts that cannot be told from a point-generated part or a land at that accuracy are none of the
+working part (:func:`resolved_steps`): the mate's contact point, the meshline point seen from
+the mate, is known to the meshline's accuracy :data:`~rotorcad.meshing.defects.MESHLINE_GAIN` e, and
+where it lies that near a tip corner the contact is that corner's path (Rinder sec. 2.2.2: "Radlinien
+der Punkte"); a contact that near the line O1O2 is a land's (a land touches there only); a stretch
+whose contacts all stay within the resolution sqrt(8 a e) of a tip corner is that corner, rounded by
+the fit. So judged, the ratio from every form of the samples' males lies within 2 sqrt(8 a e) / p_t of
+the design's (p_t the transverse pitch; tests/test_contact_ratio_invariance.py). The working length
+(and with it the overlap ratio and running) still counts every geometric contact of a piece.
 """
 
 from __future__ import annotations
@@ -100,24 +113,147 @@ class FlankReport:
         }
 
 
-def _covered(intervals: list[np.ndarray]) -> float:
-    """Measure the union of the ranges of the given sets of angles (rad).
+def covered_rotation(lo: np.ndarray, hi: np.ndarray) -> float:
+    """Return the measure of the union of the intervals ``[lo, hi]`` (rad): the rotation they cover.
 
-    The result is the rotation over which at least one of them is in contact. A piece touching at one
-    instant adds nothing.
+    Parameters
+    ----------
+    lo, hi : (n,) float array, rad
+        Each interval's ends (``lo <= hi``): a flank's contact between two consecutive samples.
+
+    Returns
+    -------
+    float, rad
+        The rotation over which at least one interval holds; 0 for none (an interval of one instant,
+        a circle about C touching all along at once, adds nothing).
     """
-    spans = sorted((float(t.min()), float(t.max())) for t in intervals if len(t))
-    total, reach = 0.0, -np.inf
-    for lo, hi in spans:
-        lo = max(lo, reach)
-        if hi > lo:
-            total += hi - lo
-            reach = hi
-    return total
+    if len(lo) == 0:
+        return 0.0
+    order = np.argsort(lo, kind="stable")
+    lo, hi = lo[order], hi[order]
+    reach = np.concatenate([[-np.inf], np.maximum.accumulate(hi)[:-1]])  # the farthest end of the intervals before
+    return float(np.maximum(hi - np.maximum(lo, reach), 0.0).sum())
+
+
+def _tip_corners(pieces: list[MeshlinePiece], pair: RotorPair) -> dict[PieceRole, np.ndarray]:
+    """Return the tip corners (rotor frame, mm, (k, 2)) of each rotor whose corner path is on the meshline.
+
+    A corner path's contact is the corner itself: its samples, turned back into the corner's rotor
+    (:meth:`rotorcad.kinematics.Rotation.to_body`), stand at one point; their median is taken.
+    """
+    mesh = pair.mesh
+    bodies = {PieceRole.MALE_CORNER_PATH: mesh.male, PieceRole.FEMALE_CORNER_PATH: mesh.female}
+    out: dict[PieceRole, list[np.ndarray]] = {}
+    for piece in pieces:
+        if piece.kind in bodies and len(piece.t):
+            out.setdefault(piece.kind, []).append(np.median(bodies[piece.kind].to_body(piece.points, piece.t), axis=0))
+    return {kind: np.array(corners) for kind, corners in out.items()}
+
+
+def corner_gaps(pieces: list[MeshlinePiece], pair: RotorPair) -> list[np.ndarray]:
+    """Return, per sample of each curve piece, how far its contact lies from a tip corner on either rotor.
+
+    The contact point on the male (the female), the meshline point seen from that rotor
+    (:meth:`rotorcad.kinematics.Rotation.to_body`), against that rotor's tip corners of
+    :func:`_tip_corners` on every lobe (compared by radius and by angle modulo the angular pitch).
+
+    Parameters
+    ----------
+    pieces : list of MeshlinePiece
+        The meshline.
+    pair : RotorPair
+        The pair (its mesh, lobe counts, centre distance).
+
+    Returns
+    -------
+    list of (n, 2) float arrays, mm
+        One per piece: the distances on the male and on the female; inf for a rotor without a corner
+        path on the meshline and for the samples of corner paths.
+    """
+    mesh = pair.mesh
+    rotors = (
+        (PieceRole.MALE_CORNER_PATH, mesh.male, np.zeros(2), pair.male_teeth),
+        (PieceRole.FEMALE_CORNER_PATH, mesh.female, np.array([pair.center_distance, 0.0]), pair.female_teeth),
+    )
+    corners = _tip_corners(pieces, pair)
+    out = []
+    for piece in pieces:
+        gaps = np.full((len(piece.t), 2), np.inf)
+        out.append(gaps)
+        if piece.kind is not PieceRole.CURVE:
+            continue
+        for k, (kind, body, centre, teeth) in enumerate(rotors):
+            if kind not in corners:
+                continue
+            own = body.to_body(piece.points, piece.t) - centre  # (n, 2): the contact on that rotor
+            radius, angle = np.hypot(own[:, 0], own[:, 1]), np.arctan2(own[:, 1], own[:, 0])
+            q = corners[kind] - centre  # (m, 2)
+            rq, aq = np.hypot(q[:, 0], q[:, 1]), np.arctan2(q[:, 1], q[:, 0])
+            pitch = 2 * np.pi / teeth
+            turn = (angle[:, None] - aq[None, :] + 0.5 * pitch) % pitch - 0.5 * pitch  # to the nearest lobe's corner
+            gaps[:, k] = np.hypot(radius[:, None] - rq[None, :], rq[None, :] * turn).min(axis=1)
+    return out
+
+
+def _runs(mask: np.ndarray) -> np.ndarray:
+    """Return the first and one-past-last index of each run of True in ``mask``, (m, 2) int."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
+    return edges.reshape(-1, 2)
+
+
+def resolved_steps(piece: MeshlinePiece, steps: np.ndarray, gaps: np.ndarray, band: float, reach: float) -> np.ndarray:
+    """Return which of a curve piece's steps (True in ``steps``, (n - 1,) bool) are working contact at the input's accuracy.
+
+    Of a profile given to an accuracy e, the mate's contact point (the meshline point seen from the
+    mate) is known to the meshline's accuracy ``band`` (:data:`~rotorcad.meshing.defects.MESHLINE_GAIN`
+    e), and the working part's flank to the resolution ``reach`` (sqrt(8 a e),
+    :func:`~rotorcad.meshing.defects.resolution`). A step is no working contact
+
+    - where either end's contact lies within ``band`` of a tip corner (``gaps``, :func:`corner_gaps`):
+      near its corner a flank generated from a fitted profile hands over to the corner's path along a
+      rounding the fit makes (the Lysholm male's own CSV, accuracy 1 µm, gave a female whose contact
+      stays within 5 µm of its tip corner while the male turns 2.5 deg: 1.5 mm of meshline along the
+      female tip circle, read as a working part of ratio 0.028 for the design's 0);
+    - where both ends lie within ``band`` of the line O1O2 (a land touches there only: a fit's lands
+      are not flat to the 1e-9 of :func:`~rotorcad.meshing.meshline.flank_roles` and read as flank);
+    - along a run of steps whose contact stays within ``reach`` of one rotor's tip corner all along:
+      that rotor's flank part there is shorter than the input resolves, the corner rounded by the fit
+      (the narrow-tip female's tip from 300 points a lobe: its contact wanders 0.2 mm from the corner
+      while the male turns 12 deg, sealing ratio 0.28 for 0.17).
+
+    Parameters
+    ----------
+    piece : MeshlinePiece
+        A curve piece of the meshline.
+    steps : (n - 1,) bool array
+        Its steps on the flank in question.
+    gaps : (n, 2) float array, mm
+        :func:`corner_gaps` of the piece.
+    band, reach : float, mm
+        The meshline's accuracy and the resolution; 0 for a design's exact curves (every step counts).
+
+    Returns
+    -------
+    (n - 1,) bool array
+    """
+    if band <= 0:
+        return steps
+    near = gaps.min(axis=1) <= band
+    axis = np.abs(piece.points[:, 1]) <= band
+    work = steps & ~near[:-1] & ~near[1:] & ~(axis[:-1] & axis[1:])
+    for i, j in _runs(work):
+        if np.maximum(gaps[i:j], gaps[i + 1 : j + 1]).min(axis=1).max() <= reach:
+            work[i:j] = False
+    return work
 
 
 def flank_reports(
-    pieces: list[MeshlinePiece], defects: list[Defect], pair: RotorPair, tip_tolerance: float, shortest: float = 0.0
+    pieces: list[MeshlinePiece],
+    defects: list[Defect],
+    pair: RotorPair,
+    tip_tolerance: float,
+    shortest: float = 0.0,
+    band: float = 0.0,
 ) -> dict[Flank, FlankReport]:
     """Return per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
@@ -126,7 +262,9 @@ def flank_reports(
     geometrischen Sinn mit gemeinsamen Tangenten ... ist in keinem Flankenteil gegeben"). The
     working part is the geometric contact; the point-generated parts seal but do not drive.
     Contact pieces shorter than 1e-6 of the centre distance (a corner touching only at C) do not
-    count.
+    count. The transverse ratio is the rotation covered by the steps between consecutive samples of
+    the working part (:func:`covered_rotation`) that the input's accuracy resolves as working
+    (:func:`resolved_steps`).
 
     Parameters
     ----------
@@ -142,6 +280,11 @@ def flank_reports(
         Shortest geometric contact of a piece that makes a working part: a given profile's
         resolution (:func:`rotorcad.meshing.defects.resolution`; 1 µm of working flank came out of
         the Krigar male's points with 1 µm of scatter, which has none); 0 for a design.
+    band : float, mm
+        The meshline's accuracy, within which a contact is told from a tip corner's path or a land
+        (:func:`resolved_steps`): :data:`~rotorcad.meshing.defects.MESHLINE_GAIN` times a given
+        profile's accuracy; 0 for a design. A given profile's flank part shorter than ``shortest``
+        near a tip corner is that corner too.
 
     Returns
     -------
@@ -153,26 +296,30 @@ def flank_reports(
     tol = tip_tolerance
     out = {}
     steps = [piece.steps for piece in pieces]  # chord lengths, once (shared with the defect rules)
+    gaps = corner_gaps(pieces, pair) if band > 0 else [np.zeros((0, 2))] * len(pieces)
     for flank in (Flank.DRIVING, Flank.SEALING):
         total = geometric = 0.0
-        t_geo: list[np.ndarray] = []
-        for piece, seg in zip(pieces, steps, strict=True):
+        spans: list[np.ndarray] = []  # (m, 2): the male rotation between consecutive working contacts
+        for piece, seg, gap in zip(pieces, steps, gaps, strict=True):
             mask = piece.flank_mask(flank)
             if mask.sum() < 2:
                 continue
-            length = float(seg[mask[:-1] & mask[1:]].sum())
+            both = mask[:-1] & mask[1:]  # a step of the meshline on the flank: both its ends on it
+            length = float(seg[both].sum())
             if length < 1e-6 * pair.center_distance:
                 continue
             total += length
             if piece.kind is PieceRole.CURVE and length >= shortest:
                 geometric += length
-                t_geo.append(piece.t[mask])
+                work = resolved_steps(piece, both, gap, band, shortest)
+                spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
         across = [d for d in defects if d.role in (Flank.TIP, Flank.ROOT) and d.kind == "cusp"]
         corners = tuple(sorted({d.rotor for d in mine + across if is_tip_corner(d, pair, tol)}))
         kinds = tuple(sorted({d.kind for d in mine if not is_tip_corner(d, pair, tol)}))
-        ratio = _covered(t_geo) / pitch_angle
+        span = np.vstack(spans) if spans else np.zeros((0, 2))
+        ratio = covered_rotation(span[:, 0], span[:, 1]) / pitch_angle
         out[flank] = FlankReport(
             flank,
             total,
