@@ -56,12 +56,9 @@ EVEN_PHASES = {"even-300": 0.37, "even-300-b": 0.8}  # where the first point fal
 SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coordinate of the CSV's points (a CMM's)
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
-_ARC_ABOUT_C = (
-    "the female tip path (14.03 mm of meshline in the design, 12.19 from the CSV) is recognised over 9.4-9.6 mm "
-    "only: the interpolating fit smooths the 1.07 deg tangent step where it meets the lobe arc (an arc about "
-    "C), the mate's point leaves the tip corner by more than 0.1 um there, and the lobe arc's meshline piece, "
-    "holding the rest of the path, has its normals cross C (jamming) where the design's is Rinder's exception"
-)
+# srm_symmetric_4_6 even-300 and even-300-b read a jamming on the lobe arc (the female tip path recognised over
+# 9.4-9.6 mm of its 14.03: the mate's point left the tip corner by more than a fixed 0.1 um) until the path's
+# extent followed the profile's accuracy (rotorcad.measured.pairs.mate_wander)
 KNOWN: dict[tuple[str, str], str] = {}
 _TIP_CENTRE = (
     "the male cusp at the tip's centre (a point-generated path of 70 mm) is named by the side of the tip's middle "
@@ -69,7 +66,6 @@ _TIP_CENTRE = (
     "turn apart, within the points' resolution; kind, rotor and place agree"
 )
 KNOWN_VERDICTS: dict[tuple[str, str], str] = {
-    **{("srm_symmetric_4_6", form): _ARC_ABOUT_C for form in ("even-300", "even-300-b")},
     ("krigar_4_6", "even-300-b"): _TIP_CENTRE,
 }
 _TIP = (
@@ -639,7 +635,7 @@ _LOST_TIP_PATHS = (
 @pytest.mark.parametrize(
     "seed",
     [
-        pytest.param(1, marks=pytest.mark.xfail(strict=True, reason=_LOST_TIP_PATHS.format(1, "driving", "-9.6 %", "8.0 mm²"))),
+        1,  # read -9.6 % (a lost driving tip path); within 1 % since this branch's pairs.py changes (which one: not isolated)
         2,
         pytest.param(3, marks=pytest.mark.xfail(strict=True, reason=_LOST_TIP_PATHS.format(3, "sealing", "-13.0 %", "10.1 mm²"))),
     ],

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.curves import Curve, Mapped
+from rotorcad.curves import Curve, Mapped, PointPath
 from rotorcad.envelope import Generated, conjugate
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
@@ -20,7 +20,7 @@ from rotorcad.measured.corner_paths import corner_point_path
 from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.tangent import tip_tangent_accuracy
-from rotorcad.roles import PieceRole, Side
+from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -77,16 +77,18 @@ flanks' geometric contact ran without timing gears where the design does not. Th
 (:data:`rotorcad.meshing.MESHLINE_GAIN`)."""
 
 
-def mate_wander(rack_curve: Curve, mate: Generated, s: np.ndarray, accuracy: float, turn: float) -> np.ndarray:
+def mate_wander(rack_curve: Curve, mate: Generated, s: np.ndarray, accuracy: float, turn: float | np.ndarray) -> np.ndarray:
     """Return how far (mm) the mate's point generated at rack parameters ``s`` may lie from the true one.
 
     A rack derived from a rotor's points carries that profile's errors: a position error of up to
     ``accuracy`` (mm) and a normal turned by up to ``turn`` (rad, the fitted tangent's accuracy). A
-    turned normal meets the pitch line elsewhere, so the rack point touches the mate at another
-    instant and generates another mate point (Wu & Chi sec. 2, eq. 4: the contact where the normal
-    passes the pitch point C): the bound is ``accuracy`` plus the larger displacement of the mate's
-    point with the rack's normal turned by +-``turn``, computed by the same contact condition
-    (:func:`rotorcad.envelope.conjugate`). Along a mate tip corner's path that displacement grows
+    moved or turned normal meets the pitch line elsewhere, so the rack point touches the mate at
+    another instant and generates another mate point (Wu & Chi sec. 2, eq. 4: the contact where the
+    normal passes the pitch point C): the bound is ``accuracy`` plus the largest displacement of the
+    mate's point with the rack point moved by +-``accuracy`` along its normal and the normal turned
+    by +-``turn``, computed by the same contact condition (:func:`rotorcad.envelope.conjugate`). Where
+    the rack's normal runs nearly along the pitch line (a female tip path ending on it) the position
+    alone moves the mate's point by tens of micrometres. Along a mate tip corner's path that displacement grows
     roughly as |P - C|^2 / r_w per radian (measured: 1 um of scatter on the asymmetric SRM female,
     6.9 mrad, lets the male's tip corner wander by 1 um at O1O2 and by 0.1 mm near the apex).
 
@@ -100,23 +102,23 @@ def mate_wander(rack_curve: Curve, mate: Generated, s: np.ndarray, accuracy: flo
         Parameters of ``rack_curve``.
     accuracy : float, mm
         Position accuracy of the profile the rack comes from.
-    turn : float, rad
-        Accuracy of its tangent direction.
+    turn : float or (n,) float array, rad
+        Accuracy of its tangent direction (at each parameter).
 
     Returns
     -------
     (n,) float array, mm
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
-    if turn <= 0.0:
-        return np.full(len(s), accuracy)
     p, tg = rack_curve.evaluate(s)
     base = mate.evaluate(s)[0]
+    normal = np.column_stack([tg[:, 1], -tg[:, 0]])
     moved = np.zeros(len(s))
-    for angle in (-turn, turn):
+    turn = np.broadcast_to(np.asarray(turn, dtype=float), len(s))
+    for angle, offset in ((-turn, -accuracy), (-turn, accuracy), (turn, -accuracy), (turn, accuracy)):
         c, n = np.cos(angle), np.sin(angle)
         turned = np.column_stack([c * tg[:, 0] - n * tg[:, 1], n * tg[:, 0] + c * tg[:, 1]])
-        q = conjugate(p, turned, mate.generating, mate.generated).points
+        q = conjugate(p + offset * normal, turned, mate.generating, mate.generated).points
         moved = np.maximum(moved, np.nan_to_num(np.hypot(*(q - base).T), nan=np.inf))
     return accuracy + moved
 
@@ -135,6 +137,27 @@ def _wander_run(pm: np.ndarray, i: int, j: int) -> tuple[int, int, float]:
     far = np.flatnonzero(dist > wander)
     centre = i + int(np.argmin(dist[i:j]))
     return int(far[far < centre].max(initial=-1)) + 1, int(far[far > centre].min(initial=len(pm))) - 1, wander
+
+
+def departure(mate: Generated, corner: np.ndarray, edge: float, inside: float, span: float) -> float:
+    """Return where the mate's point leaves its corner, from where it is first seen beyond its wander.
+
+    Beyond the hand-over the mate's point runs away from the corner about linearly in the rack
+    parameter (speed v), so by ``edge`` (where it leaves the wander w) it has run w already: the
+    hand-over lies dist(edge) / v before ``edge``, v fitted over five steps of 1/400 of the curve's
+    ``span`` beyond it, and no further back than ``inside`` (the last sample within the wander).
+    Without it each end of a path ran w / v long (the narrow-tip male 5 µm off its brute-force
+    envelope, from exact female points).
+    """
+    direction = 1.0 if edge >= inside else -1.0
+    x = edge + direction * 2.5e-3 * span * np.arange(5)
+    q = mate.evaluate(x)[0]
+    if not np.all(np.isfinite(q)):
+        return edge
+    dist = np.hypot(*(q - corner).T)
+    slope = float(np.polyfit(direction * (x - edge), dist, 1)[0])
+    back = dist[0] / slope if slope > 0 else 0.0
+    return float(np.clip(edge - direction * back, min(edge, inside), max(edge, inside)))
 
 
 def _mate_corner_runs(
@@ -181,11 +204,13 @@ def _mate_corner_runs(
 
     Of exact points, how far the mate's point may stray from its corner and still be that corner
     follows the profile's accuracy: ``tolerance`` plus :func:`mate_wander` of the profile's
-    ``accuracy`` (mm) and tangent ``turn`` (rad) at each rack point. A fixed 0.1 µm cut the narrow-tip
-    male's tip path from exact female points (300 a lobe; the male's point within 0.3 µm of its corner
-    all along, at an accuracy of 0.77 µm) 3.6 mm of rack after the piece begins, and that part counted
-    as working contact: sealing transverse contact ratio 0.343 for the design's 0.175 (SRM-B 0.330 for
-    0.184, asymmetric SRM 0.231 for 0.184); now 0.173, 0.182, 0.182. Of scattered points the wander
+    ``accuracy`` (mm) and tangent ``turn`` (rad) at each rack point; the pair from exact points passes
+    its accuracy alone (a tangent bound from the fit's spread, 3-4.6 mrad along 1 µm-chord outlines,
+    let the paths swallow flank: the racks derived back from the two rotors 1.7 mm apart). A fixed
+    0.1 µm cut the narrow-tip male's tip path from exact female points (300 a lobe;
+    the male's point within 0.3 µm of its corner all along, at an accuracy of 0.77 µm) 3.6 mm of rack
+    after the piece begins, and that part counted as working contact: sealing transverse contact
+    ratio 0.343 for the design's 0.175 (SRM-B 0.330 for 0.184, asymmetric SRM 0.231 for 0.184). Of scattered points the wander
     bound (up to 0.15 mm near the N rack's male tip rounding at 1 µm) would take a rounding 0.67 mm
     long for a corner, so their paths keep the stall test above.
     """
@@ -210,6 +235,7 @@ def _mate_corner_runs(
     wander = tolerance + mate_wander(rack_curve, mate, s, accuracy, turn)  # how far the mate's point may stray
 
     def leave(corner: np.ndarray, inside: float, outside: float) -> float:
+        start = inside  # the last sample inside: the hand-over lies no further back
         for _ in range(30):
             mid = 0.5 * (inside + outside)
             q = mate.evaluate(np.array([mid]))[0][0]
@@ -218,17 +244,16 @@ def _mate_corner_runs(
                 inside = mid
             else:
                 outside = mid
-        return float(0.5 * (inside + outside))
+        return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
     out, last = [], rack_curve.s0
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     previous = (np.full(2, np.nan), np.full(2, np.nan))  # the last corner path's corner and rack point
     for i, j in runs:
-        # the corner is where the run's best-known mate points lie (the least wander); the path extends
-        # exactly as far as the mate's point stays within its wander of it (a slowly moving flank next
-        # to it may pass the stall test without being the corner)
-        best = wander[i:j] <= np.quantile(wander[i:j], 0.25)
-        corner = np.nanmedian(pm[i:j][best], axis=0)
+        # the corner is where most of the run's mate points lie; the path extends exactly as far as the
+        # mate's point stays within its wander of it (a slowly moving flank next to it may pass the
+        # stall test without being the corner)
+        corner = np.nanmedian(pm[i:j], axis=0)
         dist = np.nan_to_num(np.hypot(*(pm - corner).T), nan=np.inf)
         near = dist <= wander
         centre = i + int(np.argmin(dist[i:j] / wander[i:j]))
@@ -265,7 +290,11 @@ def _mate_corner_runs(
         tiny = False
         if not c:  # a flank part beside a corner path that gives the mate under 10 um of flank (of
             ends, _ = mate.evaluate(np.array([a, b]))  # scattered points: the wander) is noise near the path's end
-            tiny = bool(np.all(np.isfinite(ends)) and np.hypot(*(ends[1] - ends[0])) < noise)
+            # of exact points: or within the wander where it is (near the pitch line the mate's point strays
+            # by tens of micrometres: Krigar's male, 300 points a lobe, left 0.07 mm of rack as flank there)
+            order = np.argsort(s)
+            local = float(np.interp([a, b], s[order], wander[order]).max()) if not scattered else 0.0
+            tiny = bool(np.all(np.isfinite(ends)) and np.hypot(*(ends[1] - ends[0])) < max(noise, local))
         if parts and ((c and (parts[-1][2] or parts[-1][3])) or (parts[-1][2] and tiny)):
             parts[-1] = [parts[-1][0], b, True, False]
         else:
@@ -298,6 +327,74 @@ def _joints(racks: list[Curve], k: int, side: Side, period: float) -> list[np.nd
         curve = racks[j % n]
         point = curve.end if end == "end" else curve.start
         out.append(point + shift if not 0 <= j < n else point[None, :])
+    return out
+
+
+def _shifted(curve: Curve, pair: RotorPair, k: int) -> Curve:
+    """Return a rack piece moved by -k rack periods along the pitch line (the same rack, one lobe on).
+
+    A corner's point path stays a point path (its mate is cut from it in closed form,
+    :mod:`rotorcad.rotor_cut`): the same corner of the lobe k pitches back, observed k male pitches
+    later, which is the path moved by -k periods. Any other piece is mapped.
+    """
+    if k == 0:
+        return curve
+    if type(curve) is PointPath:
+        turn = k * 2.0 * np.pi / pair.male_teeth  # male rotation over k rack periods
+        carried = curve.carrier.to_fixed(np.array([curve.carried], dtype=float), -turn)[0]
+        return PointPath(
+            (float(carried[0]), float(carried[1])), curve.carrier, curve.observer, curve.s0 + turn, curve.s1 + turn, curve.offset
+        )
+    return Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), (0.0, -k * pair.rack_period))
+
+
+def _in_design_period(rack: list[RackPiece], pair: RotorPair) -> list[RackPiece]:
+    """Return the rack chain with every piece within half a rack period of the male tip's middle, in travel order.
+
+    The design's chain holds the male tip's middle at the pitch line's origin (y = 0, the male tip on
+    O1O2 at t = 0, the zero of the angle convention :meth:`rotorcad.meshing.MeshingAnalysis.rinder_angle`);
+    a chain derived from a female's points ran its last pieces one period on (the driving flank's
+    contacts at -72 deg of male turn on the 5/6 pairs for the design's 0 to -20), and every angle read
+    off them (sliding, slip, the contact's place) one male pitch away. A piece whose middle lies
+    beyond half a period is moved by whole periods (:func:`_shifted`); the moved pieces end or start
+    the chain, which stays continuous.
+    """
+    period = pair.rack_period
+    ks = []
+    for piece in rack:  # the median of its rack points' places along the pitch line (a piece may hold gaps)
+        y = piece.curve.evaluate(np.linspace(piece.curve.s0, piece.curve.s1, 9))[0][:, 1]
+        ks.append(round(float(np.nanmedian(y)) / period) if np.isfinite(y).any() else 0)
+    moved = [RackPiece(_shifted(p.curve, pair, k), p.male_name, p.female_name, p.kind) for p, k in zip(rack, ks, strict=True)]
+    order = sorted(range(len(rack)), key=lambda i: -ks[i])  # stable: the pieces moved back go first
+    return [moved[i] for i in order]
+
+
+def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[RackPiece]:
+    """Return the pieces named by their lobe part (:class:`rotorcad.roles.Flank`), as the design's are.
+
+    The part is read off the rack as :func:`rotorcad.meshing.meshline.flank_roles` reads it per point
+    (Rinder sec. 1.2): rising towards the male tip along the travel, the driving flank; falling, the
+    sealing flank; flat (to 1 % of its chord: fitted points leave a land micrometres off flat), the
+    tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner ("sealing male
+    tip corner"), a fan's path by the rotor whose corner it is.
+    """
+    out = []
+    for piece in rack:
+        pts = piece.curve.evaluate(np.linspace(piece.curve.s0, piece.curve.s1, 9))[0]
+        pts = pts[np.isfinite(pts).all(axis=1)]  # a piece may hold gaps (no rack point)
+        ends = pts[[0, -1]] if len(pts) else np.zeros((2, 2))
+        rise = float(ends[1, 0] - ends[0, 0])
+        if abs(rise) <= 1e-2 * float(np.hypot(*(ends[1] - ends[0]))):  # flat to 0.6 deg: a land
+            above = float(ends[:, 0].mean()) - pair.male_pitch_radius > 0.5 * pair.male_addendum
+            role = Flank.TIP if above else Flank.ROOT
+        else:
+            role = Flank.DRIVING if rise > 0 else Flank.SEALING
+        if piece.kind is PieceRole.CURVE:
+            name = f"{role} flank" if role in (Flank.DRIVING, Flank.SEALING) else f"{role} land"
+        else:
+            corner = Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE
+            name = f"{role} {corner} tip corner"
+        out.append(RackPiece(piece.curve, name, name, piece.kind))
     return out
 
 
@@ -371,10 +468,6 @@ def pair_from_rotor_points(
         if outline.sigma <= 0 and outline.whole is not None
         else None
     )
-    # of exact points the fit's tangent along a smooth flank, where the points resolve the outline:
-    # the median of its spread (0.016-0.12 mrad on the samples' females at 300 points a lobe, against
-    # point_turn's 2.6-3.7 mrad, which let the narrow-tip male's tip path run 12 um of flank long)
-    exact_turn = float(np.median(spread[1])) if spread is not None and len(spread[1]) else 0.0
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
     gap = MEASURED_JOIN_GAP if outline.sigma > 0 else 2e-3  # scattered points' fits leave a corner's ends apart
@@ -403,13 +496,13 @@ def pair_from_rotor_points(
             shortest=shortest,
             same_corner=same,
             accuracy=acc,
-            turn=exact_turn if outline.sigma <= 0 else 0.0,
         )
         parts.append(
             [RackPiece(rack_curve.trimmed(a, b), "flank", "flank", kind=other if c else PieceRole.CURVE) for a, b, c in runs]
         )
     # the male's counter-clockwise pieces follow the rack's travel, the female's run against it
     rack = [p for group in (parts if side is Side.MALE else reversed(parts)) for p in group]
+    rack = _role_names(_in_design_period(rack, pair), pair, side)
     lost_share = 100.0 * lost / max(total, 1)
     if lost_share > 2.0:  # a few points at sharp corners may miss their pitch circle; more is not a rotor
         raise DesignError(
