@@ -58,6 +58,10 @@ EVEN_PHASES = {"even-300": 0.37, "even-300-b": 0.8}  # where the first point fal
 SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coordinate of the CSV's points (a CMM's)
 
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
+# srm_symmetric_4_6 even-300 and even-300-b read a jamming on the lobe arc, until an arc about C was recognised
+# from the meshline's positions (rotorcad.meshing.defects.arcs_about) and the female tip path's extent followed
+# the profile's accuracy (rotorcad.measured.pairs.mate_wander); krigar_4_6 even-300-b named its tip-centre cusp
+# by the driving flank until a corner path across O1O2 became the tip of both flanks
 KNOWN: dict[tuple[str, str], str] = {}
 KNOWN_VERDICTS: dict[tuple[str, str], str] = {}
 _TIP = (
@@ -650,7 +654,7 @@ _LOST_TIP_PATHS = (
 @pytest.mark.parametrize(
     "seed",
     [
-        pytest.param(1, marks=pytest.mark.xfail(strict=True, reason=_LOST_TIP_PATHS.format(1, "driving", "-9.6 %", "8.0 mm²"))),
+        1,  # read -9.6 % (a lost driving tip path); within 1 % since this branch's pairs.py changes (which one: not isolated)
         2,
         pytest.param(3, marks=pytest.mark.xfail(strict=True, reason=_LOST_TIP_PATHS.format(3, "sealing", "-13.0 %", "10.1 mm²"))),
     ],

@@ -410,6 +410,7 @@ class MeshingAnalysis:
         if delta <= 0.0 and spread is None:
             return 0.0  # a design: no input accuracy to propagate
         arc = self._apex[1]
+        arc_bound = np.inf
         if arc is not None and delta > 0.0:
             centre, radius, window, near, reach, bores = arc
             bound = circle_bounds(window, centre, radius, self.judged_accuracy)
@@ -419,7 +420,20 @@ class MeshingAnalysis:
                 step = np.asarray(sign) * bound
                 apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, self.cusp, near, reach, bores, window)
                 moved.append(np.inf if apex is None else self._blow_hole_at(apex).area)
-            return float(max(abs(m - self.blow_hole_area) for m in moved))
+            arc_bound = float(max(abs(m - self.blow_hole_area) for m in moved))
+        return min(arc_bound, self._tangent_uncertainty(delta, spread))
+
+    def _tangent_uncertainty(self, delta: float, spread: tuple | None) -> float:
+        """Return the blow-hole's uncertainty (mm²) from the tangent's accuracy ``delta`` (rad) (:attr:`blow_hole_uncertainty`).
+
+        Both it and the arc's bound hold (each from the input's accuracy), so the smaller is stated: an arc
+        of 38 mm radius fitted to a male generated from a female's points (narrow-tip, 1 um of scatter) is
+        poorly fixed, and its corners' apexes fell 58 mm away (+-1920 mm² on 4.1). The apex moves at most
+        by the meshline's resolution (:func:`rotorcad.meshing.defects.resolution` at
+        :data:`rotorcad.meshing.defects.MESHLINE_GAIN` times the accuracy) along the tip circle: at
+        beta' = 1 the linear step r delta / |beta' - 1| has no bound (+-677 mm² on 4.8, the asymmetric SRM
+        from a female's points).
+        """
         e = self.meshline_end
         r = float(np.hypot(*e))
         if spread is not None and len(spread[0]) >= APEX_POINTS:  # exact points: their fit's tangent at the apex's radius
@@ -440,7 +454,8 @@ class MeshingAnalysis:
         phi = float(np.arctan2(e[1], e[0]))
         dx = r * np.array([-np.sin(phi), np.cos(phi)])
         rate = float((v[0] * -dx[1] - v[1] * -dx[0]) / (v @ v))  # beta'
-        turn = delta / max(abs(rate - 1.0), 1e-9)  # dphi, rad
+        reach = resolution(MESHLINE_GAIN * self.judged_accuracy, self.rotors.pair.center_distance)
+        turn = min(delta / max(abs(rate - 1.0), 1e-9), reach / r)  # dphi, rad, at most the meshline's resolution
         area = self.blow_hole_area
         moved = [self._blow_hole_at(r * np.array([np.cos(phi + t), np.sin(phi + t)])).area for t in (turn, -turn)]
         return float(max(abs(m - area) for m in moved))
@@ -624,7 +639,8 @@ class MeshingAnalysis:
     def _max(self, key: str) -> dict[str, float]:
         """Return the largest magnitude of a :attr:`kinematics` entry and where it occurs.
 
-        A dict with ``value``, ``x``, ``y`` (mm), ``angle_deg``, ``flank`` and both radii (mm).
+        A dict with ``value``, ``x``, ``y`` (mm), ``angle_deg`` (:meth:`lobe_angle`: a piece of a rack
+        derived from points may hold contacts a male pitch on), ``flank`` and both radii (mm).
         """
         k = self.kinematics
         v = np.abs(k[key])
@@ -639,7 +655,7 @@ class MeshingAnalysis:
             "value": float(v[i]),
             "x": float(p[0]),
             "y": float(p[1]),
-            "angle_deg": float(k["angle_deg"][i]),
+            "angle_deg": self.lobe_angle(float(self.contact_angles[i])),  # within +-180/z1, as the defects'
             "flank": str(roles[i]),
             "male_radius": float(np.hypot(*p)),
             "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
