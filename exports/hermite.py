@@ -39,20 +39,40 @@ def hermite_cubic(points: np.ndarray, tangents: np.ndarray, u: np.ndarray) -> np
     return np.einsum("ku,nkd->nud", basis, poles)
 
 
-def _gap_to_chords(px: np.ndarray, py: np.ndarray, ax: np.ndarray, ay: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
-    """Distance of points p to the chords from a along d, by components (broadcast arrays), mm.
+def _squared_gap(px: np.ndarray, py: np.ndarray, ax: np.ndarray, ay: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
+    """Squared distance of points p to the chords from a along d, by components (broadcast arrays), mm².
 
     The foot of p on each chord is clipped to its ends. By x and y arrays rather than a last axis of
-    2, whose sums numpy makes as many tiny reductions (the same sums, a few times slower).
+    2, whose sums numpy makes as many tiny reductions (the same sums, a few times slower); the
+    products and sums are made in place in four arrays of the broadcast shape, the same values as
+    the plain expressions (each step the same rounding) without a dozen fresh ones.
     """
-    wx, wy = px - ax, py - ay
-    foot = np.clip((wx * dx + wy * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0.0, 1.0)
-    gx, gy = wx - foot * dx, wy - foot * dy
-    return np.sqrt(gx * gx + gy * gy)
+    wx, wy = np.subtract(px, ax), np.subtract(py, ay)
+    foot = wx * dx
+    part = wy * dy
+    foot += part
+    foot /= np.maximum(dx * dx + dy * dy, 1e-300)
+    np.clip(foot, 0.0, 1.0, out=foot)
+    np.multiply(foot, dx, out=part)
+    wx -= part
+    np.multiply(foot, dy, out=part)
+    wy -= part
+    wx *= wx
+    wy *= wy
+    wx += wy
+    return wx
+
+
+def _gap_to_chords(px: np.ndarray, py: np.ndarray, ax: np.ndarray, ay: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
+    """Distance of points p to the chords from a along d, by components (broadcast arrays), mm (:func:`_squared_gap`)."""
+    return np.sqrt(_squared_gap(px, py, ax, ay, dx, dy))
 
 
 def distance_to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
     """Largest distance of each interval's points to its own chain of chords, (n,) mm.
+
+    The root is taken of the least squared distance (the root rises with its argument: the same
+    number as the least of the roots).
 
     Parameters
     ----------
@@ -63,7 +83,7 @@ def distance_to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
     """
     ax, ay = chains[:, None, :-1, 0], chains[:, None, :-1, 1]  # (n, 1, k - 1)
     dx, dy = chains[:, None, 1:, 0] - ax, chains[:, None, 1:, 1] - ay
-    near = _gap_to_chords(points[:, :, None, 0], points[:, :, None, 1], ax, ay, dx, dy).min(axis=2)
+    near = np.sqrt(_squared_gap(points[:, :, None, 0], points[:, :, None, 1], ax, ay, dx, dy).min(axis=2))
     return np.nan_to_num(near, nan=0.0).max(axis=1)
 
 

@@ -1,0 +1,42 @@
+"""The export's faster arithmetic gives the numbers of the plain expressions it replaces, bit for bit
+(issue 26): the Hermite check's point-to-chain distances made in place and by the least squared
+distance (exports.hermite), against the textbook clipped-projection distance evaluated naively."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from exports.hermite import _gap_to_chords, distance_to_chains
+
+
+def _plain_distance_to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
+    # the distance of p to the segment a + s d, s clipped to [0, 1] (the foot of the perpendicular),
+    # as the plain expression the module had; the least over the chain's segments, NaN rows left out
+    ax, ay = chains[:, None, :-1, 0], chains[:, None, :-1, 1]
+    dx, dy = chains[:, None, 1:, 0] - ax, chains[:, None, 1:, 1] - ay
+    px, py = points[:, :, None, 0], points[:, :, None, 1]
+    wx, wy = px - ax, py - ay
+    foot = np.clip((wx * dx + wy * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0.0, 1.0)
+    gx, gy = wx - foot * dx, wy - foot * dy
+    near = np.sqrt(gx * gx + gy * gy).min(axis=2)
+    return np.nan_to_num(near, nan=0.0).max(axis=1)
+
+
+def test_distances_to_chains_are_the_plain_expression_s_bit_for_bit():
+    rng = np.random.default_rng(3)
+    chains = np.cumsum(rng.normal(0.0, 0.3, (200, 17, 2)), axis=1) + rng.normal(0.0, 50.0, (200, 1, 2))
+    points = chains[:, :1] + rng.normal(0.0, 1.0, (200, 33, 2))
+    points[5, 3] = np.nan  # a point without contact
+    points[7] = np.nan  # an interval of none
+    chains[9, 4] = chains[9, 5]  # a chord of no length
+    assert np.array_equal(distance_to_chains(points, chains), _plain_distance_to_chains(points, chains))
+
+
+def test_gaps_to_chords_are_the_plain_expression_s_bit_for_bit():
+    rng = np.random.default_rng(4)
+    a, d, p = (rng.normal(0.0, 10.0, (50, 16, 2)) for _ in range(3))
+    d[0, 0] = 0.0  # a chord of no length: the distance to its point
+    got = _gap_to_chords(p[..., 0], p[..., 1], a[..., 0], a[..., 1], d[..., 0], d[..., 1])
+    foot = np.clip(((p - a) * d).sum(axis=2) / np.maximum((d * d).sum(axis=2), 1e-300), 0.0, 1.0)
+    gap = p - a - foot[..., None] * d
+    assert np.array_equal(got, np.sqrt(gap[..., 0] * gap[..., 0] + gap[..., 1] * gap[..., 1]))
