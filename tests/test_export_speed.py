@@ -1,6 +1,8 @@
 """The export's faster arithmetic gives the numbers of the plain expressions it replaces, bit for bit
 (issue 26): the Hermite check's point-to-chain distances made in place and by the least squared
-distance (exports.hermite), against the textbook clipped-projection distance evaluated naively."""
+distance (exports.hermite), against the textbook clipped-projection distance evaluated naively; and
+the command's early end (rotorcad.cli.main.run: no finalisation of every object) keeps what Python's
+exit does that a user sees."""
 
 from __future__ import annotations
 
@@ -40,3 +42,33 @@ def test_gaps_to_chords_are_the_plain_expression_s_bit_for_bit():
     foot = np.clip(((p - a) * d).sum(axis=2) / np.maximum((d * d).sum(axis=2), 1e-300), 0.0, 1.0)
     gap = p - a - foot[..., None] * d
     assert np.array_equal(got, np.sqrt(gap[..., 0] * gap[..., 0] + gap[..., 1] * gap[..., 1]))
+
+
+RUN = """
+import atexit, sys
+atexit.register(lambda: print("atexit handler ran", file=sys.stderr))
+sys.argv = ["rotorcad", *{args!r}]
+from rotorcad.cli.main import run
+run()
+print("not reached", file=sys.stderr)
+"""
+
+
+def test_the_command_ends_after_its_atexit_handlers_and_output():
+    # reference: what Python's own exit does that a user sees (the atexit handlers, the flushed
+    # standard streams, the status), kept by the command's early end (rotorcad.cli.main.run)
+    import json
+    import subprocess
+    import sys
+
+    ok = subprocess.run(
+        [sys.executable, "-c", RUN.format(args=["gear", "--teeth", "20", "--module", "2", "--json"])],
+        capture_output=True,
+        text=True,
+    )
+    assert ok.returncode == 0 and json.loads(ok.stdout)["pitch_radius"] == 20.0  # z m / 2, the whole JSON flushed
+    assert ok.stderr == "atexit handler ran\n"
+    bad = subprocess.run(
+        [sys.executable, "-c", RUN.format(args=["gear", "--teeth", "1", "--module", "2"])], capture_output=True, text=True
+    )
+    assert bad.returncode == 2 and bad.stderr.endswith("(got 1).\natexit handler ran\n")
