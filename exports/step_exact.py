@@ -290,14 +290,22 @@ def helicoid_deviation(shape, exact: np.ndarray, lead: float, length: float, per
     """
     from OCP.BRep import BRep_Tool
     from OCP.BRepTools import BRepTools
+    from OCP.gp import gp_Pnt
 
     ring = np.vstack([exact, exact[:1]])
     batches = []
+    at = gp_Pnt()
+    coord = at.Coord
     for face in faces(shape):
         surface = BRep_Tool.Surface_s(face)
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
         us, vs = _face_parameters(surface, u0, u1, v0, v1, per_face)
-        pts = np.array([surface.Value(u, v).Coord() for u in us for v in vs])  # (x, y, z) in one call
+        d0, values = surface.D0, []
+        for u in us.tolist():  # each point written into one gp_Pnt (what Value does, without a new one per point)
+            for v in vs.tolist():
+                d0(u, v, at)
+                values.append(coord())
+        pts = np.array(values)
         if np.ptp(pts[:, 2]) < 1e-9 * max(length, 1.0):  # an end cap
             continue
         batches.append(rotate(pts[:, :2], -2 * np.pi * pts[:, 2] / lead))  # each point by its own turn
