@@ -2,7 +2,7 @@
 (issue 26): the Hermite check's point-to-chain distances made in place and by the least squared
 distance (exports.hermite), against the textbook clipped-projection distance evaluated naively; and
 the command's early end (rotorcad.cli.main.run: no finalisation of every object) keeps what Python's
-exit does that a user sees."""
+exit does that a user sees; a DXF written in one piece holds the bytes of ezdxf's own saveas."""
 
 from __future__ import annotations
 
@@ -72,3 +72,33 @@ def test_the_command_ends_after_its_atexit_handlers_and_output():
         [sys.executable, "-c", RUN.format(args=["gear", "--teeth", "1", "--module", "2"])], capture_output=True, text=True
     )
     assert bad.returncode == 2 and bad.stderr.endswith("(got 1).\natexit handler ran\n")
+
+
+def _without_clock(data: bytes) -> list[bytes]:
+    # the save time: the values of the header's date variables and the writer's time stamp
+    lines = data.split(b"\n")
+    for i, line in enumerate(lines[:-1]):
+        if line.strip() in (b"$TDUPDATE", b"$TDUUPDATE", b"$TDINDWG", b"$VERSIONGUID"):
+            lines[i + 2] = b"<clock>"
+        if b" @ " in line:
+            lines[i] = line.split(b" @ ")[0]
+    return lines
+
+
+def test_a_drawing_is_saved_as_ezdxf_s_saveas_saves_it(tmp_path):
+    # reference: ezdxf's own Drawing.saveas (text file, the drawing's encoding, its error handler)
+    import ezdxf
+
+    from exports.dxf import _save
+
+    for version in ("R2000", "R12"):
+        doc = ezdxf.new(version)
+        msp = doc.modelspace()
+        msp.add_line((0, 0), (1.25, 3.5))
+        msp.add_text("tip radius 2.5 µm → 3 µm", height=1.0)  # µ in cp1252, the arrow escaped (dxfreplace)
+        if version != "R12":
+            msp.add_lwpolyline([(0, 0), (1, 0), (1, 1)], close=True)
+        doc.saveas(tmp_path / "theirs.dxf")
+        _save(doc, tmp_path / "ours.dxf", version)
+        theirs, ours = (tmp_path / "theirs.dxf").read_bytes(), (tmp_path / "ours.dxf").read_bytes()
+        assert b"\\U+2192" in ours and _without_clock(ours) == _without_clock(theirs)
