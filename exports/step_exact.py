@@ -136,7 +136,7 @@ def _hermite_samples(segment, budget: float, passes: int = 8) -> tuple[np.ndarra
     """
     if len(segment.s) < 2:
         return np.asarray(segment.points, dtype=float), np.asarray(segment.tangents, dtype=float)
-    _, p, t, _ = refine_samples(segment.curve, segment.s, segment.points, segment.tangents, budget, passes)
+    _, p, t, _ = refine_samples(segment.curve, segment.s, segment.points, segment.tangents, budget, passes, exact=False)
     return p, t
 
 

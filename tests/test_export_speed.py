@@ -2,7 +2,9 @@
 (issue 26): the Hermite check's point-to-chain distances made in place and by the least squared
 distance (exports.hermite), against the textbook clipped-projection distance evaluated naively; and
 the command's early end (rotorcad.cli.main.run: no finalisation of every object) keeps what Python's
-exit does that a user sees; a DXF written in one piece holds the bytes of ezdxf's own saveas."""
+exit does that a user sees; a DXF written in one piece holds the bytes of ezdxf's own saveas; the
+exact STEP's Hermite check bounded by the chords beside each point splits the intervals the full
+check splits."""
 
 from __future__ import annotations
 
@@ -102,3 +104,24 @@ def test_a_drawing_is_saved_as_ezdxf_s_saveas_saves_it(tmp_path):
         _save(doc, tmp_path / "ours.dxf", version)
         theirs, ours = (tmp_path / "theirs.dxf").read_bytes(), (tmp_path / "ours.dxf").read_bytes()
         assert b"\\U+2192" in ours and _without_clock(ours) == _without_clock(theirs)
+
+
+def test_the_bounded_check_splits_the_same_intervals_into_the_same_samples():
+    # reference: the Hermite check against every chord of every interval (interval_deviation
+    # without `below`); the bound made from the chords beside each point must never be below it,
+    # equal it wherever it exceeds `below`, and the refinement must add the same samples. An
+    # involute from its cusp (u = 0, where the cubic errs most) and sparse samples.
+    from exports.hermite import interval_deviation, refine_samples
+    from rotorcad.curves import Involute
+
+    curve = Involute(base_radius=20.0, theta0=0.3, hand=1.0, s0=0.0, s1=0.9)
+    s = np.concatenate([np.linspace(0.0, 0.05, 4), np.linspace(0.08, 0.9, 9)])
+    p, t = curve.evaluate(s)
+    exact = interval_deviation(curve, s, p, t)
+    for below in (1e-7, float(np.median(exact)), 1.0):
+        bound = interval_deviation(curve, s, p, t, below)
+        assert np.all(bound >= exact) and np.array_equal(bound[bound > below], exact[bound > below])
+    assert np.any(exact > 1e-4) and np.any(exact < 1e-6)  # both kinds of interval in the test
+    for target in (1e-4, 1e-6):
+        got, want = refine_samples(curve, s, p, t, target, 8, exact=False), refine_samples(curve, s, p, t, target, 8)
+        assert all(np.array_equal(a, b) for a, b in zip(got[:3], want[:3], strict=True))
