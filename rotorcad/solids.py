@@ -236,23 +236,32 @@ def twisted_extrusion(contours: tuple[np.ndarray, ...], length: float, layers: i
     k = np.arange(layers + 1)
     phi = wrap * k / layers
     c, s = np.cos(phi)[:, None], np.sin(phi)[:, None]
+    # every array of a rotor's size is made once and filled in place (each product, sum and index
+    # as the plain expressions make it): a fresh one is some 10 MB of pages to fault in
     vertices = np.empty((layers + 1, m, 3))
-    vertices[..., 0] = c * pts[:, 0] - s * pts[:, 1]
-    vertices[..., 1] = s * pts[:, 0] + c * pts[:, 1]
+    x, y, vx, vy = pts[:, 0], pts[:, 1], vertices[..., 0], vertices[..., 1]
+    np.multiply(c, x, out=vx)
+    vx -= s * y  # c x - s y
+    np.multiply(s, x, out=vy)
+    vy += c * y  # s x + c y
     vertices[..., 2] = (length * k / layers)[:, None]
     starts = np.cumsum([0] + [len(ring) for ring in contours])
     i = np.arange(m)
     j = i + 1
     j[starts[1:] - 1] = starts[:-1]  # each ring closes on its own first vertex
     base = (np.arange(layers) * m)[:, None]
-    a, b, up_b, up_a = base + i, base + j, base + m + j, base + m + i
     cap = np.asarray(m3.triangulate(list(contours)), dtype=np.int64)
     # the faces filled in place (layer, edge, its two triangles, their corners), then the caps:
-    # no stacked copies of the 0.5 million side triangles of a rotor
+    # no stacked copies of the 0.5 million side triangles of a rotor; corners a = base + i,
+    # b = base + j and the ones above them, up_a = a + m, up_b = b + m
     faces = np.empty((2 * layers * m + 2 * len(cap), 3), dtype=np.int64)
     side = faces[: 2 * layers * m].reshape(layers, m, 2, 3)
-    side[:, :, 0, 0], side[:, :, 0, 1], side[:, :, 0, 2] = a, b, up_a
-    side[:, :, 1, 0], side[:, :, 1, 1], side[:, :, 1, 2] = b, up_b, up_a
+    np.add(base, i, out=side[:, :, 0, 0])
+    np.add(base, j, out=side[:, :, 0, 1])
+    np.add(base + m, i, out=side[:, :, 0, 2])
+    side[:, :, 1, 0] = side[:, :, 0, 1]
+    np.add(base + m, j, out=side[:, :, 1, 1])
+    side[:, :, 1, 2] = side[:, :, 0, 2]
     side = faces[: 2 * layers * m]
     faces[2 * layers * m : 2 * layers * m + len(cap)] = cap[:, ::-1]
     faces[2 * layers * m + len(cap) :] = cap + layers * m
@@ -260,14 +269,19 @@ def twisted_extrusion(contours: tuple[np.ndarray, ...], length: float, layers: i
     # the side triangles of layer k are those of layer 0 turned by phi_k about z, and so are their
     # normals: computed on layer 0 and turned, without gathering the corners of every triangle
     first = face_normals(vertices, side[: 2 * m]).reshape(1, 2 * m, 3)
-    normals = np.empty((layers, 2 * m, 3))
+    normals = np.empty((2 * layers * m + 2 * len(cap), 3))
+    turned = normals[: 2 * layers * m].reshape(layers, 2 * m, 3)
     cos, sin = np.cos(phi[:-1])[:, None], np.sin(phi[:-1])[:, None]
-    normals[..., 0] = cos * first[..., 0] - sin * first[..., 1]
-    normals[..., 1] = sin * first[..., 0] + cos * first[..., 1]
-    normals[..., 2] = first[..., 2]
-    caps = np.zeros((2 * len(cap), 3))
+    nx, ny = turned[..., 0], turned[..., 1]
+    np.multiply(cos, first[..., 0], out=nx)
+    nx -= sin * first[..., 1]
+    np.multiply(sin, first[..., 0], out=ny)
+    ny += cos * first[..., 1]
+    turned[..., 2] = first[..., 2]
+    caps = normals[2 * layers * m :]
+    caps[:, :2] = 0.0
     caps[: len(cap), 2], caps[len(cap) :, 2] = -1.0, 1.0  # the bottom cap faces down, the top one up
-    return TriangleMesh(vertices, faces, np.concatenate([normals.reshape(-1, 3), caps]))
+    return TriangleMesh(vertices, faces, normals)
 
 
 def twisted_volume(contours: tuple[np.ndarray, ...], length: float, layers: int, wrap: float) -> float:

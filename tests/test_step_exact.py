@@ -124,3 +124,46 @@ def test_the_face_check_looks_between_the_samples(tmp_path, involute_to_its_cusp
     refined = section_segments(outline, 0.0, 1e-3)
     done = write_exact_step(tmp_path / "b.step", refined, lead, pair.length, 1e-3, "female", exact=exact)
     assert done["deviation"] < 0.5e-3
+
+
+def _brute_force_distance(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
+    """Distance of every point to every segment of the polyline, the least kept (numpy, no R-tree)."""
+    a, b = polyline[:-1], polyline[1:]
+    d = b - a
+    w = points[:, None, :] - a[None]
+    foot = np.clip((w * d).sum(axis=2) / np.maximum((d * d).sum(axis=1), 1e-300), 0.0, 1.0)
+    return np.hypot(*(w - foot[..., None] * d).transpose(2, 0, 1)).min(axis=1)
+
+
+@pytest.mark.parametrize("shape", ["star", "hooked", "off-axis"])
+def test_the_farthest_point_is_the_r_tree_s_farthest_bit_for_bit(shape):
+    # reference: the R-tree query of every point (rotorcad.geometry.distance_to_polyline, GEOS),
+    # and brute force over every segment; the pruned search must return the R-tree's maximum
+    # itself, also where the polar-angle bound is poor (a hooked curve, not star-shaped about the
+    # origin, and a section away from the origin: there the farthest point is not among the
+    # largest bounds, and is found by the second pass)
+    from exports.step_exact import FIRST_MEASURED, _distance_bound, farthest_distance
+    from rotorcad.geometry import distance_to_polyline
+
+    rng = np.random.default_rng(7)
+    t = np.linspace(0.0, 2 * np.pi, 1001)
+    r = 40.0 + 3.0 * np.cos(6 * t)
+    if shape == "hooked":  # the angle runs back and forth: a curve no ray from the origin crosses once
+        t = t + 0.6 * np.sin(12 * t)
+    ring = np.column_stack([r * np.cos(t), r * np.sin(t)])
+    if shape == "off-axis":
+        ring = ring + [55.0, -20.0]
+    k = rng.integers(0, len(ring) - 1, 4000)
+    f = rng.random(4000)[:, None]
+    points = ring[k] + f * (ring[k + 1] - ring[k]) + rng.normal(0.0, 1e-4, (4000, 2))  # near the curve, as face samples are
+    far = int(np.argmin(np.abs(np.arctan2(*points[:, ::-1].T) - 0.05)))  # one point 2 um off, near angle 0.05
+    a, b = ring[k[far]], ring[k[far] + 1]
+    points[far] = a + f[far] * (b - a) + 2e-3 * np.array([b[1] - a[1], a[0] - b[0]]) / np.hypot(*(b - a))
+    full = distance_to_polyline(points, ring)
+    bound = _distance_bound(points, ring)
+    assert np.all(bound >= full - 1e-12)  # an upper bound of every point's distance
+    assert int(np.argmax(full)) == far
+    if shape != "star":
+        assert far not in np.argsort(bound)[-FIRST_MEASURED:]  # found by the second pass
+    assert farthest_distance(points, ring) == float(full.max())
+    assert float(full.max()) == pytest.approx(float(_brute_force_distance(points, ring).max()), abs=1e-12)

@@ -78,6 +78,9 @@ class LazyGroup(click.Group):
             return getattr(importlib.import_module(module), attr)
         finally:
             if running:
+                # and none afterwards: the modules' objects, all young, would make the next
+                # collection walk every one of them (10 ms after the export's imports, measured)
+                gc.freeze()
                 gc.enable()
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
@@ -218,5 +221,30 @@ def _run(args: list[str]) -> int:
     return status if isinstance(status, int) and not isinstance(status, bool) else 0
 
 
+def run() -> None:
+    """Run the ``rotorcad`` command (console script, ``python -m rotorcad.cli.main``): :func:`main`, then exit.
+
+    Python's finalisation frees every object left one by one (the modules of numpy, shapely,
+    click and rich, the command's arrays): 40-75 ms of CPU after an export (measured, 2 cores),
+    for a process that is ending. The command ends at once instead, once it has done what that
+    finalisation does that anyone sees: the ``atexit`` handlers run (logging's flush, temporary
+    folders, a Dask client's close) and the standard streams are flushed. Only when this is the
+    only thread left (Python would wait for another) and the streams flush; else it exits as usual.
+    :func:`main` (for a caller in Python) returns the status as before.
+    """
+    import atexit
+
+    status = main()
+    if threading.active_count() == 1:
+        atexit._run_exitfuncs()
+        try:
+            sys.stdout.flush()
+            sys.stderr.flush()
+        except (OSError, ValueError):  # a closed pipe: Python's own exit says so, with its status
+            sys.exit(status)
+        os._exit(status)
+    sys.exit(status)
+
+
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    run()
