@@ -75,6 +75,15 @@ KNOWN_NUMBERS: dict[tuple[str, str, str], str] = {
     ("rinder_deix_5_6", "female", "polyline"): _FEMALE_ROUND,
     ("n_rack_5_6", "male", "polyline"): _ROUND,
     ("rinder_deix_5_6", "male", "polyline"): _ROUND,
+    **{
+        (name, "female", "spline"): (
+            "+1.7 % (1.768 for 1.7375 mm²): the male's 0.67 mm tip rounding, where the apex lies, generated from the "
+            "female's splines, ends where the mate's point leaves the corner path within the drawing's accuracy "
+            "(rotorcad.measured.pairs.mate_wander; 0.0 % with the fixed 0.1 um it replaced; test_mate_points reads "
+            "+2.8 % from 300 exact points a lobe)"
+        )
+        for name in ("n_rack_5_6", "rinder_deix_5_6")
+    },
     ("rack_involute_5_6", "female", "polyline"): (
         "-2.2 %: the male generated from the female polyline's points (2.1 um accuracy), whose tip corner's path "
         "sets the apex (the female-points work); its splines read +0.27 %"
@@ -186,13 +195,17 @@ def test_spline_contact_ratios(read_back, name, side):
     # splines (0.44 um) read 0.491 against 0.497 on the sealing flank: 0.34 mm of the 29.1 mm working part
     # next to the female's sealing cusp, where the female generated from the splines retraces 1 um (the
     # splines' 0.2 um error), is read as the female's corner path, within a resolution of 0.64 mm
+    # (now 0.484 after the contacts within the meshline's accuracy of a tip corner count as none): each end
+    # of the working part is known to the meshline the drawing's tangent resolves, sqrt(8 a e), so the ratio
+    # to 2 sqrt(8 a e) / p_t, p_t = 2 pi a / (z1 + z2) (tests/test_contact_ratio_invariance.py derives it)
     built = read_back(name)
     design, given = built["design"], built[(side, "spline")]
-    reach = resolution(given["defect_accuracy"], design["center_distance"])
+    a = design["center_distance"]
+    e = max(given["defect_accuracy"], design["defect_accuracy"])
+    known = 2 * np.sqrt(8 * a * e) / (2 * np.pi * a / (built["teeth"] + built["female_teeth"]))
     for flank, report in design["flanks"].items():
         want = report["transverse_contact_ratio"] or 0.0
         got = given["flanks"][flank]["transverse_contact_ratio"] or 0.0
-        known = want * reach / report["working_length"] if report["working_length"] > 0 else 0.0
         assert got == pytest.approx(want, rel=0.01, abs=max(1e-3, known)), flank
 
 

@@ -178,16 +178,15 @@ class MeshingAnalysis:
         """Per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
         :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`. A
-        given profile's working part counts from the resolution of its meshline, known to
-        :data:`rotorcad.meshing.defects.MESHLINE_GAIN` times the profile's accuracy
-        (:func:`rotorcad.meshing.defects.resolution`, the reach of its defect tests): Krigar's male at
-        300 exact points a lobe, the corner between two, had 1.04 mm of meshline where the male tip
-        corner's path hands over to the female's (the design: none), 1.4 times the profile's
-        resolution and 0.46 times the meshline's. Its contacts within the meshline's accuracy of a tip
-        corner or a land count as none (:func:`rotorcad.meshing.contact_ratios.resolved_steps`).
+        given profile's working part counts from its resolution (:func:`rotorcad.meshing.defects.resolution`),
+        its contacts within the meshline's accuracy (:data:`MESHLINE_GAIN` times its own) of a tip corner or
+        a land from none (:func:`rotorcad.meshing.contact_ratios.resolved_steps`). (Counting the working part
+        from the meshline's resolution instead, sqrt(10) times longer, made Krigar's male at 300 exact points a
+        lobe run as the design but dropped the short working parts of SRM-B's and the asymmetric SRM's sealing
+        flanks from their CSVs: a strict xfail in tests/test_verdict_invariance.py.)
         """
         band = MESHLINE_GAIN * self.judged_accuracy if self.is_given else 0.0
-        shortest = resolution(band, self.rotors.pair.center_distance) if self.is_given else 0.0
+        shortest = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
         return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest, band)
 
     @property
