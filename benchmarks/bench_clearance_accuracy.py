@@ -37,7 +37,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from independent_pairs import arc_flank_5_6, cut_rotor, resample, trapezoid_4_6, true_gap
 
-from rotorcad.clearance import MeshingClearance, points_quality
+from rotorcad.clearance import MeshingClearance, pair_quality
 from rotorcad.cli.clearance_cmd import INTERFERENCE_THRESHOLD
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import lobe_pieces
@@ -48,13 +48,8 @@ def per_lobe(ring: np.ndarray, teeth: int, points: int) -> float:
 
 
 def evaluate(pair: RotorPair, male: np.ndarray, female: np.ndarray) -> MeshingClearance:
-    qm, qf = points_quality(male), points_quality(female)
     return MeshingClearance(
-        pair,
-        lobe_pieces(pair, male, "male"),
-        lobe_pieces(pair, female, "female"),
-        scatter=max(qm[0], qf[0]),
-        spacing=max(qm[1], qf[1]),
+        pair, lobe_pieces(pair, male, "male"), lobe_pieces(pair, female, "female"), **pair_quality(male, female)
     )
 
 
