@@ -36,6 +36,7 @@ from functools import cached_property
 
 import numpy as np
 
+from rotorcad.clearance_accuracy import ACCURACY_FLOOR, estimated_accuracy, pair_quality, points_quality, polygon_sagitta
 from rotorcad.clearance_normals import normal_clearance, normal_crossing
 from rotorcad.clearance_thermal import ThermalState
 from rotorcad.curves import Curve, sample_curve
@@ -79,61 +80,6 @@ class ClearanceZone(IntEnum):
     UNRESOLVED = 4
 
 
-ACCURACY_FLOOR = 1e-3
-"""mm: the accuracy stated for exact points (the fits' and the racks' sampling, README)."""
-
-
-def points_quality(points: Array) -> tuple[float, float]:
-    """Estimate the scatter and the spacing of measured profile points.
-
-    Parameters
-    ----------
-    points : (n, 2) float array, mm
-        The points, in order along the outline (one lobe or the whole rotor).
-
-    Returns
-    -------
-    sigma : float, mm
-        Scatter normal to the outline (:func:`rotorcad.measured.outline.scatter`; 0 for exact points).
-    spacing : float, mm
-        Median distance between neighbouring points.
-    """
-    from rotorcad.measured.outline import scatter
-
-    p = np.asarray(points, dtype=float)
-    return scatter(p), float(np.median(np.hypot(*np.diff(p, axis=0).T)))
-
-
-def estimated_accuracy(sigma: float, spacing: float, count: float = 1.0) -> float:
-    """Return the stated accuracy of the contact-zone clearance from the points' scatter and spacing.
-
-    A bound on the largest error of the normal clearance over the contact zone, which holds with
-    95 % confidence (:data:`CONFIDENCE`): 1 µm for exact points (the fits' and the racks'
-    sampling), plus sqrt(2) k sigma for the scatter (the female's and the male's fitted outlines
-    each off by at most the scatter's own standard deviation sigma, independently; k from
-    :func:`max_factor` for the ``count`` independent points the contact zone is measured by), plus
-    0.004 h^2 / mm (a cubic through points h apart misses the outline's curvature jumps, where a
-    rounding meets a flank, by about h^2 dk / 8). Measured on independent pairs cut by brute force
-    (``benchmarks/bench_clearance_accuracy.py``, README).
-
-    Parameters
-    ----------
-    sigma : float, mm
-        The larger scatter of the two rotors' points (0 for exact curves).
-    spacing : float, mm
-        The larger point spacing of the two rotors (0 for exact curves).
-    count : float
-        Number of measured points along the contact zone (its length over the spacing).
-
-    Returns
-    -------
-    float, mm
-        The stated accuracy.
-    """
-    scatter = np.sqrt(2.0) * max_factor(count) * sigma if sigma > 0 else 0.0
-    return float(ACCURACY_FLOOR + scatter + 0.004 * spacing**2)
-
-
 def _running_mean(values: Array, arc: Array, width: float) -> Array:
     """Mean of ``values`` (n,) over a window ``width`` (mm) about each point, by arc length ``arc`` (n,), increasing."""
     if width <= 0 or len(values) < 2:
@@ -170,6 +116,10 @@ class MeshingClearance:
     scatter, spacing : float, mm
         The points' scatter and spacing (:func:`points_quality`, the larger of the two rotors'),
         for the stated :attr:`accuracy`; 0 for exact curves.
+    sagitta : float, mm
+        The sagittas of the polygons the two rotors' points lie on, added
+        (:func:`rotorcad.clearance_accuracy.polygon_sagitta`), for the stated :attr:`accuracy`;
+        :func:`rotorcad.clearance_accuracy.pair_quality` gives all three.
 
     Raises
     ------
@@ -185,6 +135,7 @@ class MeshingClearance:
     contact_step: float = 0.05  # mm between contact-line points
     scatter: float = 0.0  # mm: the points' scatter (points_quality), for the stated accuracy
     spacing: float = 0.0  # mm: the points' spacing (points_quality), for the stated accuracy
+    sagitta: float = 0.0  # mm: the two rotors' polygon sagittas (polygon_sagitta), for the stated accuracy
 
     def __post_init__(self) -> None:
         if self.contact not in CONTACT_SIDES:
@@ -565,12 +516,12 @@ class MeshingClearance:
         independent points as the contact zone's length on the female rack over the point spacing.
         """
         if self.scatter <= 0 or self.spacing <= 0:
-            return estimated_accuracy(self.scatter, self.spacing)
+            return estimated_accuracy(self.scatter, self.spacing, sagitta=self.sagitta)
         pts = self.female_rack.points
         on = self.contact_zone
         step = np.hypot(*np.diff(pts, axis=0).T)
         length = float(step[on[:-1] & on[1:]].sum())
-        return estimated_accuracy(self.scatter, self.spacing, max(length / self.spacing, 1.0))
+        return estimated_accuracy(self.scatter, self.spacing, max(length / self.spacing, 1.0), self.sagitta)
 
     def _refuse_a_lead_past_the_contact_zone(self) -> None:
         """Refuse a lead so long that the contact zone of the bores falls outside the rotor length.
@@ -796,5 +747,7 @@ __all__ = [
     "max_factor",
     "normal_clearance",
     "normal_crossing",
+    "pair_quality",
     "points_quality",
+    "polygon_sagitta",
 ]

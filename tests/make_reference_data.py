@@ -27,6 +27,7 @@ USERS = (  # the files that use stored brute-force results
     "test_racks_from_points.py",
     "test_clearance_zones.py",
     "test_contact_ratio_invariance.py",
+    "test_clearance_lands.py",
 )
 
 

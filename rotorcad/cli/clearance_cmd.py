@@ -10,7 +10,7 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf_profile import read_profile
-from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, points_quality
+from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, pair_quality
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
@@ -186,14 +186,12 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         thermal = _thermal(opts)
         if thermal is not None:
             pair, male, female = thermal.apply(pair, male, female)
-        quality = [points_quality(p) if not isinstance(p, list | tuple) else (0.0, 0.0) for p in (male, female)]
         mc = MeshingClearance(
             pair,
             lobe_pieces(pair, male, "male", opts["smoothing"], label="--male-points"),
             lobe_pieces(pair, female, "female", opts["smoothing"], label="--female-points"),
             contact=opts["contact"],
-            scatter=max(q[0] for q in quality),
-            spacing=max(q[1] for q in quality),
+            **pair_quality(male, female),
         )
         mc.summary()  # evaluate here (the clearance and its band) so that its errors are reported as bad input
     except DesignError as exc:
