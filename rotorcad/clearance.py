@@ -38,6 +38,7 @@ import numpy as np
 
 from rotorcad.clearance_accuracy import ACCURACY_FLOOR, estimated_accuracy, pair_quality, points_quality, polygon_sagitta
 from rotorcad.clearance_normals import normal_clearance, normal_crossing
+from rotorcad.clearance_phase import alignment_curve, complementary_shift, search_steps
 from rotorcad.clearance_thermal import ThermalState
 from rotorcad.curves import Curve, sample_curve
 from rotorcad.errors import DesignError
@@ -321,8 +322,8 @@ class MeshingClearance:
     def shift(self) -> float:
         """Transverse shift of the female rack that makes the racks touch on the chosen flank, mm.
 
-        The smallest clearance there is zero, found by stepping out from the given position (doubling,
-        up to a quarter of the rack period) until it changes sign, then Brent's method. 0 for
+        The smallest clearance there is zero, found by stepping out from the racks' complementary phase
+        (:mod:`rotorcad.clearance_phase`, doubling, up to a quarter period) to a sign change, then Brent's. 0 for
         ``contact="as-given"``. Raises :class:`DesignError` when the flank has no contact inside both
         bores or the racks never touch there.
         """
@@ -337,7 +338,8 @@ class MeshingClearance:
         # racks are brought into contact on the flank proper
         proper = ~self._near_corner(self.female_rack)
         # nor where the female faces the path of a sharp male corner (its root below the male tip)
-        inside = self._in_both_bores() & side & proper & ~np.logical_or(*self._faces_male_corner(0.0))
+        start = complementary_shift(self.male_rack, self.female_rack)  # any input phase: over the whole period
+        inside = self._in_both_bores() & side & proper & ~np.logical_or(*self._faces_male_corner(start))
         if not inside.any():
             raise DesignError(
                 "contact", f"a flank that meets the mate inside both bores on the {self.contact} side", self.contact
@@ -355,17 +357,9 @@ class MeshingClearance:
             ok = np.isfinite(d)
             if not ok.any():
                 return np.nan
-            return float(np.min(_running_mean(d[ok], arc[inside][ok], width)))
+            return float(np.min(alignment_curve(d[ok], arc[inside][ok], width, self.scatter)))
 
-        g0 = gap(0.0)
-        step = max(abs(g0), 1e-3) if np.isfinite(g0) else 1e-3
-        direction = 1.0 if not np.isfinite(g0) or g0 >= 0 else -1.0
-        # step out from the given position, doubling, up to a quarter of the rack period
-        steps = [0.0]
-        while step < self.pair.rack_period / 4:
-            steps.append(direction * step)
-            step *= 2
-        root = bracket_root(gap, steps, xtol=1e-12)
+        root = bracket_root(gap, search_steps(sign * start, gap(sign * start), self.pair.rack_period), xtol=1e-12)
         if root is not None:
             # the flank proper at the contact found: what faces the male corner there is left out
             again = inside & ~np.logical_or(*self._faces_male_corner(sign * root))
