@@ -36,6 +36,10 @@ departure from a cubic there, at sparse points, and the scatter's)."""
 OUTLIER_FLOOR = 1e-3
 """mm: and by more than this (exact points: the floor of what is told from a curve's own shape)."""
 
+OUTLIER_SPACING = 0.1
+"""...and by more than this share of the spacing of its neighbours (a curve sampled sparsely departs from
+their cubic by up to 3 % of it where its curvature changes: the females of 80 points a lobe)."""
+
 CORNER_TURN = np.radians(30.0)
 """rad: a point between neighbours' chords that turn by more than this is at a corner and not judged."""
 
@@ -61,15 +65,17 @@ def _where(whole: np.ndarray, k: int, given: np.ndarray | None, lines: np.ndarra
 
 
 def _thinned(p: np.ndarray, sigma: float) -> np.ndarray:
-    """Indices of a closed outline's points without those closer than max(5 sigma, 1 nm) to the one before.
+    """Return the indices of a closed outline's points thinned to one in each max(5 sigma, h / 4, 1 nm) of its length.
 
-    Two points closer than the scatter (a CMM's pairs 0.3 µm apart) would make any curve through
-    them point anywhere.
+    h is the median spacing. Two points closer than the scatter (a CMM's pairs 0.3-3 µm apart with
+    0.5 µm of scatter) would make any curve through them point anywhere; one point in each such
+    stretch of outline (the first) keeps the rest evenly enough spaced, however the points bunch.
     """
-    step = np.hypot(*(p - np.roll(p, 1, axis=0)).T)
-    keep = step > max(5.0 * sigma, 1e-6)
-    keep[0] = True
-    return np.flatnonzero(keep)
+    step = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
+    width = max(5.0 * sigma, 0.25 * float(np.median(step)), 1e-6)
+    s = np.concatenate([[0.0], np.cumsum(step[:-1])])
+    stretch = np.floor(s / width)
+    return np.flatnonzero(np.concatenate([[True], np.diff(stretch) > 0]))
 
 
 def _lagrange(nodes: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -147,13 +153,18 @@ def outliers(whole: np.ndarray, sigma: float) -> tuple[np.ndarray, np.ndarray]:
     central, left, right, turn = _residuals(q)
     off = np.minimum(central, np.minimum(left, right))
     local = np.max([np.roll(central, k) for k in (-4, -3, 3, 4)], axis=0)
-    limit = np.maximum(np.maximum(OUTLIER_SIGMAS * sigma, OUTLIER_LOCAL * local), OUTLIER_FLOOR)
+    spacing = 0.5 * np.hypot(*(np.roll(q, -1, axis=0) - np.roll(q, 1, axis=0)).T)
+    limit = np.maximum(
+        np.maximum(OUTLIER_SIGMAS * sigma, OUTLIER_LOCAL * local), np.maximum(OUTLIER_SPACING * spacing, OUTLIER_FLOOR)
+    )
     bad = np.flatnonzero((off > limit) & (turn < CORNER_TURN))
     order = np.argsort(-off[bad])
     return keep[bad[order]], off[bad[order]]
 
 
-def refuse_outliers(whole: np.ndarray, sigma: float, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None) -> None:
+def refuse_outliers(
+    whole: np.ndarray, sigma: float, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None
+) -> None:
     """Refuse an outline with outliers (:func:`outliers`), naming the farthest off: its line, position and offset.
 
     Raises
@@ -171,7 +182,8 @@ def refuse_outliers(whole: np.ndarray, sigma: float, label: str, given: np.ndarr
     more = f"; {len(index) - 1} more points lie so far off" if len(index) > 1 else ""
     raise DesignError(
         label,
-        "points on a smooth outline (a point many times the scatter off its neighbours' curve is an outlier: remove or re-measure it)",
+        "points on a smooth outline (a point many times the scatter off its neighbours' curve is an outlier: "
+        "remove or re-measure it)",
         None,
         f"the point at {_where(whole, k, given, lines)} lies {off:.4g} mm off the curve of its neighbours, "
         f"{off / max(sigma, 1e-300):.3g} times the estimated scatter {sigma * 1e3:.3g} µm{more}"
@@ -226,7 +238,9 @@ def crossing(whole: np.ndarray, sigma: float) -> tuple[int, int, np.ndarray] | N
     return int(a[k]), int(b[k]), np.asarray(where)
 
 
-def refuse_crossing(whole: np.ndarray, sigma: float, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None) -> None:
+def refuse_crossing(
+    whole: np.ndarray, sigma: float, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None
+) -> None:
     """Refuse an outline that crosses or runs along itself (:func:`crossing`), naming where and between which points.
 
     Raises
@@ -280,6 +294,7 @@ __all__ = [
     "OUTLIER_FLOOR",
     "OUTLIER_LOCAL",
     "OUTLIER_SIGMAS",
+    "OUTLIER_SPACING",
     "UNIT_FACTORS",
     "crossing",
     "file_lines",
