@@ -152,6 +152,8 @@ def test_too_few_points_and_part_of_a_lobe(capsys, tmp_path, male):
 
 def good_forms(male: dict) -> dict[str, np.ndarray]:
     """Points that are a measured male as users bring them: none of them is refused."""
+    from rotorcad.geometry import rotate
+
     rng = np.random.default_rng(16)
     whole, lobe = male["whole"], male["lobe"]
 
@@ -165,6 +167,8 @@ def good_forms(male: dict) -> dict[str, np.ndarray]:
         "1 um": scattered(whole, 1e-3),
         "2 um": scattered(whole, 2e-3),
         "one lobe": lobe,
+        "one lobe, both ends": np.vstack([lobe, rotate(lobe[:1], 2 * np.pi / 5)]),  # the seam repeats a point
+        "sparse": whole[::5],  # 60 points a lobe
         "one lobe 2 um": scattered(lobe, 2e-3),
         "reversed": whole[::-1],
         "another start": np.roll(whole, 137, axis=0),
@@ -173,7 +177,8 @@ def good_forms(male: dict) -> dict[str, np.ndarray]:
 
 
 def test_good_forms_are_read(male):
-    """Exact, 1-2 µm of normal scatter, one lobe, reversed, from another start, rotated: read without a
+    """Exact, 1-2 µm of normal scatter, one lobe (with or without its end), 60 points a lobe, reversed, from
+    another start, rotated: read without a
     refusal (the checks run in read_outline), and the outlier search finds nothing in any."""
     from rotorcad.measured.outline import read_outline
     from rotorcad.measured.point_checks import outliers

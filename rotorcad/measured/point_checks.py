@@ -227,10 +227,11 @@ def crossing(whole: np.ndarray, sigma: float) -> tuple[int, int, np.ndarray] | N
     a, b = a[pairs], b[pairs]
     if len(a) == 0:
         return None
+    a, b = np.minimum(a, b), np.maximum(a, b)
     step = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
     s = np.concatenate([[0.0], np.cumsum(step)])
-    loop = np.abs(s[b] - s[a])
-    loop = np.minimum(loop, s[-1] - loop)
+    # the outline between the two chords, either way round (chords meeting at a repeated point: none)
+    loop = np.minimum(s[b] - s[a + 1], s[-1] - (s[b + 1] - s[a]))
     k = int(np.argmax(loop))
     if loop[k] <= max(40.0 * sigma, 0.05):
         return None
