@@ -36,7 +36,10 @@ def male() -> dict:
     from rotorcad.rotor_build import build_pair, pair_spec
 
     spec = pair_spec(rotor_design(tomllib.loads(SAMPLE.read_text()), SAMPLE.parent))
-    lobe = np.vstack([seg.resampled(1e-4).points for seg in build_pair(spec).male_lobe().segments])
+    rotors = build_pair(spec)
+    female = np.vstack([seg.resampled(1e-3).points for seg in rotors.female_lobe().segments])
+    female = np.vstack([rotate(female[:-1], k * 2 * np.pi / 6) for k in range(6)])
+    lobe = np.vstack([seg.resampled(1e-4).points for seg in rotors.male_lobe().segments])
     lobe = lobe[np.concatenate([[True], np.hypot(*np.diff(lobe, axis=0).T) > 1e-9])]
     s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(lobe, axis=0).T))])
     u = np.linspace(0.0, s[-1], 301)[:-1]
@@ -44,7 +47,7 @@ def male() -> dict:
     pitch = 2 * np.pi / 5
     whole = np.vstack([rotate(even, k * pitch) for k in range(5)])
     dense = np.vstack([rotate(lobe, k * pitch) for k in range(5)])
-    return {"whole": whole, "lobe": even, "ring": shapely.LinearRing(dense)}
+    return {"whole": whole, "lobe": even, "ring": shapely.LinearRing(dense), "female": female, "a": spec.pair.center_distance}
 
 
 def write(path: Path, points: np.ndarray) -> Path:
@@ -96,6 +99,17 @@ def test_outliers_in_every_lobe_are_named(capsys, tmp_path, male):
     line = refusal(capsys, tmp_path, moved(male["whole"], index, 1.0))
     found = int(re.search(r"at line (\d+) ", line).group(1))
     assert found - 1 - HEADER in index and "4 more points" in line, line
+
+
+def test_outlier_of_a_female_drawn_at_its_place(capsys, tmp_path, male):
+    """A female drawn at (a, 0), as rotor --dxf and export draw it, is moved into its own frame; an outlier
+    in it is still named by its line in the file (the construction: point 300, line 303)."""
+    p = moved(male["female"], np.array([300]), 0.4) + (male["a"], 0.0)
+    path = write(tmp_path / "f.csv", p)
+    capsys.readouterr()
+    assert main(["rotor", str(SAMPLE), "--female-points", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "--female-points must be points on a smooth outline" in err and "at line 303 " in err, err
 
 
 def test_outlier_in_interfere(capsys, tmp_path, male):
