@@ -157,7 +157,7 @@ def _read_built(
         ring = whole_outline(points, teeth, option)
         sigma = scatter(ring)
         refuse_other_units(ring, *(pair.male_root_radius, pair.male_tip_radius) if side == "male" else radii, option)
-        refuse_bad_points(ring, sigma, option, points, file_lines(points))
+        refuse_bad_points(ring, sigma, teeth, option, points, file_lines(points))
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     outline = shapely.Polygon(ring)

@@ -496,7 +496,7 @@ def read_outline(
         return Outline(given, None, 0.0, acc, teeth, label)
     whole = whole_outline(given, teeth, label)
     sigma = scatter(whole)
-    refuse_bad_points(whole, sigma, label, given, file_lines(points))
+    refuse_bad_points(whole, sigma, teeth, label, given, file_lines(points))
     return Outline(given, whole, sigma, accuracy(whole, sigma), teeth, label)
 
 

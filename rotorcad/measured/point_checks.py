@@ -40,6 +40,12 @@ OUTLIER_SPACING = 0.1
 """...and by more than this share of the spacing of its neighbours (a curve sampled sparsely departs from
 their cubic by up to 3 % of it where its curvature changes: the females of 80 points a lobe)."""
 
+ALONG_ANGLE = np.radians(10.0)
+"""rad: two chords that touch within this of parallel: the outline runs along itself there."""
+
+CROSSING_LOOP = 0.1
+"""A crossing at an angle whose loop is longer than this share of a lobe's outline is a figure of eight."""
+
 CORNER_TURN = np.radians(30.0)
 """rad: a point between neighbours' chords that turn by more than this is at a corner and not judged."""
 
@@ -193,13 +199,18 @@ def refuse_outliers(
     )
 
 
-def crossing(whole: np.ndarray, sigma: float) -> tuple[int, int, np.ndarray] | None:
+def crossing(whole: np.ndarray, sigma: float, teeth: int) -> tuple[int, int, np.ndarray] | None:
     """Find where a closed outline crosses or runs along itself, beyond its scatter.
 
-    Two chords that are not neighbours and touch, cross or overlap (shapely's STRtree, GEOS): a
-    crossing whose loop (the outline between the two chords, the shorter way round) is longer than
-    max(40 sigma, 0.05 mm) is a fault; a shorter one is the scatter's (points 0.3 µm apart with a
-    µm of scatter zigzag).
+    Two chords that are not neighbours and touch, cross or overlap (shapely's STRtree, GEOS), with
+    the loop between them (the outline from the one to the other, the shorter way round): the
+    outline runs along itself when the chords lie within :data:`ALONG_ANGLE` of parallel and the loop
+    is longer than max(40 sigma, 0.05 mm) (a run of points reversed or measured twice; a shorter loop
+    is the scatter's: points 0.3 µm apart with a µm of scatter zigzag); it crosses itself when the
+    loop is longer than :data:`CROSSING_LOOP` of a lobe's outline (a figure of eight). A shorter
+    crossing at an angle is a generated envelope's swallowtail (the rack-involute family's male:
+    its tip-corner path and flank cross at 30 deg, a loop of 1.2 mm), which the fit smooths over as
+    before.
 
     Parameters
     ----------
@@ -207,6 +218,8 @@ def crossing(whole: np.ndarray, sigma: float) -> tuple[int, int, np.ndarray] | N
         The closed outline, without a repeated end point.
     sigma : float, mm
         Its estimated scatter.
+    teeth : int
+        Its lobe count.
 
     Returns
     -------
@@ -232,15 +245,20 @@ def crossing(whole: np.ndarray, sigma: float) -> tuple[int, int, np.ndarray] | N
     s = np.concatenate([[0.0], np.cumsum(step)])
     # the outline between the two chords, either way round (chords meeting at a repeated point: none)
     loop = np.minimum(s[b] - s[a + 1], s[-1] - (s[b + 1] - s[a]))
-    k = int(np.argmax(loop))
-    if loop[k] <= max(40.0 * sigma, 0.05):
+    da, db = np.roll(p, -1, axis=0)[a] - p[a], np.roll(p, -1, axis=0)[b] - p[b]
+    sine = np.abs(cross(da, db)) / np.maximum(np.hypot(*da.T) * np.hypot(*db.T), 1e-300)
+    along = (sine < np.sin(ALONG_ANGLE)) & (loop > max(40.0 * sigma, 0.05))  # runs back or again along itself
+    across = loop > CROSSING_LOOP * s[-1] / max(teeth, 1)  # a figure of eight
+    fault = np.flatnonzero(along | across)
+    if len(fault) == 0:
         return None
+    k = int(fault[np.argmax(loop[fault])])
     where = shapely.get_coordinates(shapely.centroid(shapely.intersection(chords[a[k]], chords[b[k]])))[0]
     return int(a[k]), int(b[k]), np.asarray(where)
 
 
 def refuse_crossing(
-    whole: np.ndarray, sigma: float, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None
+    whole: np.ndarray, sigma: float, teeth: int, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None
 ) -> None:
     """Refuse an outline that crosses or runs along itself (:func:`crossing`), naming where and between which points.
 
@@ -249,7 +267,7 @@ def refuse_crossing(
     DesignError
         Naming ``label``.
     """
-    found = crossing(whole, sigma)
+    found = crossing(whole, sigma, teeth)
     if found is None:
         return
     i, j, (x, y) = found
@@ -291,7 +309,9 @@ def refuse_other_units(whole: np.ndarray, root: float, tip: float, label: str) -
 
 
 __all__ = [
+    "ALONG_ANGLE",
     "CORNER_TURN",
+    "CROSSING_LOOP",
     "OUTLIER_FLOOR",
     "OUTLIER_LOCAL",
     "OUTLIER_SIGMAS",
@@ -308,9 +328,9 @@ __all__ = [
 
 
 def refuse_bad_points(
-    whole: np.ndarray, sigma: float, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None
+    whole: np.ndarray, sigma: float, teeth: int, label: str, given: np.ndarray | None = None, lines: np.ndarray | None = None
 ) -> None:
     """Refuse a whole outline that crosses or runs along itself, then one with outliers (one sentence naming ``label``)."""
     given = None if given is None or isinstance(given, list) else np.asarray(given, dtype=float)
-    refuse_crossing(whole, sigma, label, given, lines)
+    refuse_crossing(whole, sigma, teeth, label, given, lines)
     refuse_outliers(whole, sigma, label, given, lines)
