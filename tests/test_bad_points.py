@@ -154,6 +154,12 @@ def test_inch_file_is_named_as_inches(capsys, tmp_path, male, command):
     assert "25.4 times smaller than the design's 70 and 52.73 mm (inches?" in line, line
 
 
+def test_micrometre_file_is_named(capsys, tmp_path, male):
+    """The outline in µm (1000 times the design's radii: the construction) is refused saying so."""
+    line = refusal(capsys, tmp_path, male["whole"] * 1000.0)
+    assert "1000 times larger than the design's 70 and 52.73 mm (µm?" in line, line
+
+
 def test_too_few_points_and_part_of_a_lobe(capsys, tmp_path, male):
     """5 points of a flank (bad/few.csv) and a third of the outline (bad/half.csv) were told to move the
     female by (-a, 0); they are told their count and span against the lobe pitch 72 deg (the

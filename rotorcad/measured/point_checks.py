@@ -7,9 +7,9 @@ it is: the point's line in the file when the points carry their lines (:func:`fi
 :func:`exports.csv_points.read_points` returns them), its position in mm, and by how much.
 
 Outliers. A CMM point far off the smooth curve of its neighbours is refused, not smoothed in nor
-dropped: a metrologist flags such a point and re-measures (ISO 10360-2's probing error and the
-evaluation software's outlier rejection report the points they reject; a silently smoothed spike
-moves the fitted outline, and a silently dropped one hides a probe fault or a burr). A point is an
+dropped: a metrologist flags such a point and re-measures it (CMM evaluation software lists the
+points its outlier filter rejects rather than fitting through them; a silently smoothed spike moves
+the fitted outline, and a silently dropped one hides a probe fault, a chip or a burr). A point is an
 outlier when it lies off three predictions from its neighbours alone, each by more than many times
 the estimated scatter: the cubic through the two points on either side of it (Lagrange, chord-length
 parameter), and the quadratic extrapolations from the three points before and the three after it.
@@ -49,7 +49,7 @@ CROSSING_LOOP = 0.1
 CORNER_TURN = np.radians(30.0)
 """rad: a point between neighbours' chords that turn by more than this is at a corner and not judged."""
 
-UNIT_FACTORS = {25.4: "inches", 10.0: "cm", 1000.0: "m", 1 / 25.4: "mm read as inches", 0.1: "mm read as cm"}
+UNIT_FACTORS = {25.4: "inches", 10.0: "cm", 1000.0: "m", 1e-3: "µm"}
 """Scale factors between a profile's radii and the design's that name a unit mistake."""
 
 
