@@ -223,7 +223,30 @@ def read_points(path: Path, label: str = "points file", columns: tuple[str, str]
         if len(pts) < 2:
             raise DesignError(label, f"a table of at least two rows {head}", str(path), f"{len(pts)} read")
         return pts
-    return check_profile(pts, label, str(path))
+    distinct = check_profile(pts, label, str(path))
+    kept = np.concatenate([[True], np.any(np.diff(pts, axis=0) != 0.0, axis=1)])  # as check_profile keeps them
+    return FilePoints.of(distinct, np.asarray(numbers)[kept])
+
+
+class FilePoints(np.ndarray):
+    """Points (n, 2) read from a file, carrying the line of each in it (``lines``, (n,) int, 1-based).
+
+    A plain array everywhere else; ``lines`` is kept by this array only (not by its views or by
+    arrays made from it), so that a point's line is named in an error (an outlier's) and never a
+    wrong one.
+    """
+
+    lines: np.ndarray | None
+
+    @classmethod
+    def of(cls, points: np.ndarray, lines: np.ndarray) -> FilePoints:
+        """Return ``points`` carrying ``lines`` (one a point), or as plain points when they do not match."""
+        out = np.asarray(points, dtype=float).view(cls)
+        out.lines = np.asarray(lines, dtype=int) if len(lines) == len(points) else None
+        return out
+
+    def __array_finalize__(self, obj: object) -> None:
+        self.lines = None
 
 
 def check_profile(points: np.ndarray, label: str, value: object = None) -> np.ndarray:

@@ -146,7 +146,8 @@ def _read_built(
     if path is None:
         return None
     from rotorcad.clearance import points_quality
-    from rotorcad.measured.outline import own_frame, whole_outline
+    from rotorcad.measured.outline import own_frame, scatter, whole_outline
+    from rotorcad.measured.point_checks import file_lines, refuse_bad_points, refuse_other_units
     from rotorcad.roles import Side
 
     teeth = pair.male_teeth if side == "male" else pair.female_teeth
@@ -154,6 +155,9 @@ def _read_built(
         radii = (pair.female_root_radius, pair.female_tip_radius)
         points = own_frame(read_profile_points(path, option, layer), Side(side), pair.center_distance, option, radii)
         ring = whole_outline(points, teeth, option)
+        sigma = scatter(ring)
+        refuse_other_units(ring, *(pair.male_root_radius, pair.male_tip_radius) if side == "male" else radii, option)
+        refuse_bad_points(ring, sigma, teeth, option, points, file_lines(points))
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     outline = shapely.Polygon(ring)

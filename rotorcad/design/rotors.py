@@ -238,6 +238,14 @@ def _judgeable(pair: RotorPair, points: Any, rotor: Side, label: str) -> Any:
     """
     teeth = rotor.pick(pair.male_teeth, pair.female_teeth)
     outline = read_outline(points, teeth, label)
+    if outline.whole is not None:  # points in other units than mm (an inch file) are refused as such
+        from rotorcad.measured.point_checks import refuse_other_units
+
+        root, tip = (
+            rotor.pick(pair.male_root_radius, pair.female_root_radius),
+            rotor.pick(pair.male_tip_radius, pair.female_tip_radius),
+        )
+        refuse_other_units(outline.whole, root, tip, label)
     depth = rotor.pick(pair.male_tip_radius - pair.male_root_radius, pair.female_tip_radius - pair.female_root_radius)
     most = largest_scatter(depth, pair.center_distance)
     if outline.sigma > most:

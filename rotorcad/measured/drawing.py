@@ -103,7 +103,9 @@ def own_frame(
     shift = np.array([-a, 0.0])
     if isinstance(profile, list | tuple):
         return [_translated(c, shift) for c in profile]
-    return np.asarray(profile, dtype=float) + shift
+    moved = np.asarray(profile, dtype=float) + shift
+    lines = getattr(profile, "lines", None)  # a points file's lines (exports.csv_points.FilePoints) stay named
+    return type(profile).of(moved, lines) if lines is not None else moved
 
 
 def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -> np.ndarray:

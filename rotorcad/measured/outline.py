@@ -36,6 +36,7 @@ from rotorcad.measured.drawing import (
     own_frame,
     profile_points,
 )
+from rotorcad.measured.point_checks import file_lines, refuse_bad_points
 from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 
@@ -129,13 +130,13 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
         return _patterned_groove(pts, teeth)
     if abs(span - pitch) > max(3 * spacing, 0.02 * pitch):
         _refuse_off_centre(pts, label)
-        fits = 2 * np.pi / span if span > 0 else float("inf")
+        share = "less than one lobe's" if span < pitch else f"{span / pitch:.3g} times the lobe's"
         raise DesignError(
             label,
             f"one lobe spanning the lobe pitch 360/{teeth} = {np.degrees(pitch):.4g} deg (or one groove or tooth from tip "
             "to tip or root to root), or the whole outline",
             None,
-            f"the points span {np.degrees(span):.4g} deg, which fits {fits:.3g} lobes",
+            f"its {len(pts)} points span {np.degrees(span):.4g} deg about the centre, {share} span",
         )
     # one lobe: keep one pitch of it (the last point may repeat the first one lobe on) and pattern it
     ang = ang - ang[0]
@@ -152,6 +153,9 @@ def _refuse_off_centre(pts: np.ndarray, label: str) -> None:
     spanning 0.0004 deg (a new user's finding). Raises :class:`DesignError` naming ``label`` when
     the points close around their own centroid (winding once) and that lies away from the origin.
     """
+    step = np.hypot(*np.diff(pts, axis=0).T)
+    if np.hypot(*(pts[-1] - pts[0])) > 3 * step.max():  # an open run of points (too few, part of a lobe), not an outline
+        return
     c = pts.mean(axis=0)
     rel = pts - c
     ang = np.unwrap(np.arctan2(rel[:, 1], rel[:, 0]))
@@ -492,6 +496,7 @@ def read_outline(
         return Outline(given, None, 0.0, acc, teeth, label)
     whole = whole_outline(given, teeth, label)
     sigma = scatter(whole)
+    refuse_bad_points(whole, sigma, teeth, label, given, file_lines(points))
     return Outline(given, whole, sigma, accuracy(whole, sigma), teeth, label)
 
 

@@ -1,0 +1,215 @@
+"""A rotor's points that cannot be a measured outline are refused in one sentence (a new user's finding 16).
+
+Each bad file is built here from the narrow-tip sample's male outline (5 lobes, tip radius 70 mm) with one
+known fault: a point moved off the outline (an outlier), a run of points reversed, repeated or swapped (an
+outline that crosses or runs along itself), the whole file in inches, too few points, part of a lobe. The
+refusal must name the option, the fault and where (the line in the file that was changed: the reference is
+the construction), exit 2, no traceback, no file written. Every good form (exact, 1-2 µm of scatter, one
+lobe, reversed, from another start) is still read.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorcad.cli.main import main
+
+ROOT = Path(__file__).resolve().parents[1]
+SAMPLE = ROOT / "samples" / "narrow_tip_5_6.toml"
+HEADER = 2  # lines above the data: a comment and the header x,y
+K = 400  # the point that is changed (in the first lobe's second half: a flank)
+
+
+@pytest.fixture(scope="module")
+def male() -> dict:
+    """The sample's male outline at 300 points a lobe, evenly spaced (the design's 0.1 µm chord resampled),
+    and the design outline itself as a shapely ring (the reference for distances)."""
+    import shapely
+
+    from rotorcad.design import rotor_design
+    from rotorcad.geometry import rotate
+    from rotorcad.rotor_build import build_pair, pair_spec
+
+    spec = pair_spec(rotor_design(tomllib.loads(SAMPLE.read_text()), SAMPLE.parent))
+    rotors = build_pair(spec)
+    female = np.vstack([seg.resampled(1e-3).points for seg in rotors.female_lobe().segments])
+    female = np.vstack([rotate(female[:-1], k * 2 * np.pi / 6) for k in range(6)])
+    lobe = np.vstack([seg.resampled(1e-4).points for seg in rotors.male_lobe().segments])
+    lobe = lobe[np.concatenate([[True], np.hypot(*np.diff(lobe, axis=0).T) > 1e-9])]
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(lobe, axis=0).T))])
+    u = np.linspace(0.0, s[-1], 301)[:-1]
+    even = np.column_stack([np.interp(u, s, lobe[:, 0]), np.interp(u, s, lobe[:, 1])])
+    pitch = 2 * np.pi / 5
+    whole = np.vstack([rotate(even, k * pitch) for k in range(5)])
+    dense = np.vstack([rotate(lobe, k * pitch) for k in range(5)])
+    return {"whole": whole, "lobe": even, "ring": shapely.LinearRing(dense), "female": female, "a": spec.pair.center_distance}
+
+
+def write(path: Path, points: np.ndarray) -> Path:
+    lines = ["# male outline, own frame (units: x mm, y mm)", "x,y"] + [f"{x:.10f},{y:.10f}" for x, y in points]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def refusal(capsys, tmp_path: Path, points: np.ndarray, command: str = "rotor") -> str:
+    """Run ``command`` on the points as --male-points; assert exit 2, one line naming the option, no traceback, no file."""
+    path = write(tmp_path / "bad.csv", points)
+    out = tmp_path / "out.dxf"
+    extra = ["--dxf", str(out)] if command == "rotor" else []
+    capsys.readouterr()
+    status = main([command, str(SAMPLE), "--male-points", str(path), *extra])
+    _, err = capsys.readouterr()
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert status == 2, err
+    assert "Traceback" not in err and len(lines) == 1 and lines[0].startswith("rotorcad: error: --male-points must be "), err
+    assert not out.exists()
+    return lines[0]
+
+
+def moved(whole: np.ndarray, index: np.ndarray, by: float) -> np.ndarray:
+    """The outline with the points ``index`` moved outward along their radius by ``by`` mm."""
+    p = whole.copy()
+    p[index] *= 1 + by / np.hypot(*p[index].T)[:, None]
+    return p
+
+
+@pytest.mark.parametrize("by", [0.5, -7.0])
+def test_outlier_is_named_with_its_line_and_offset(capsys, tmp_path, male, by):
+    """A point 0.5 mm out or 7 mm in (bad/outlier05.csv, bad/outlier_r.csv: accepted, exit 0) is refused
+    naming its line, its position and how far it lies off its neighbours' curve. Reference: the
+    construction (line K + 1 + HEADER) and shapely's distance of the moved point from the design outline."""
+    import shapely
+
+    p = moved(male["whole"], np.array([K]), by)
+    line = refusal(capsys, tmp_path, p)
+    assert "outlier" in line and f"line {K + 1 + HEADER} ({p[K, 0]:.4f}, {p[K, 1]:.4f}) mm" in line, line
+    off = float(re.search(r"lies ([0-9.e+-]+) mm off the curve of its neighbours", line).group(1))
+    assert off == pytest.approx(shapely.distance(shapely.Point(p[K]), male["ring"]), rel=0.05)
+
+
+def test_outliers_in_every_lobe_are_named(capsys, tmp_path, male):
+    """One point 1 mm out in every lobe (bad/outlier_all.csv: "2.4 % of the lobe has no rack point",
+    naming no point) is refused naming one of them and counting the others (the construction)."""
+    index = K % 300 + 300 * np.arange(5)
+    line = refusal(capsys, tmp_path, moved(male["whole"], index, 1.0))
+    found = int(re.search(r"at line (\d+) ", line).group(1))
+    assert found - 1 - HEADER in index and "4 more points" in line, line
+
+
+def test_outlier_of_a_female_drawn_at_its_place(capsys, tmp_path, male):
+    """A female drawn at (a, 0), as rotor --dxf and export draw it, is moved into its own frame; an outlier
+    in it is still named by its line in the file (the construction: point 300, line 303)."""
+    p = moved(male["female"], np.array([300]), 0.4) + (male["a"], 0.0)
+    path = write(tmp_path / "f.csv", p)
+    capsys.readouterr()
+    assert main(["rotor", str(SAMPLE), "--female-points", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "--female-points must be points on a smooth outline" in err and "at line 303 " in err, err
+
+
+def test_outlier_in_interfere(capsys, tmp_path, male):
+    """`interfere` reads the points the same way."""
+    line = refusal(capsys, tmp_path, moved(male["whole"], np.array([K]), 0.5), "interfere")
+    assert f"line {K + 1 + HEADER} " in line
+
+
+@pytest.mark.parametrize(
+    "fault",
+    [
+        "reversed run",  # bad/zigzag.csv: 20 points in reverse order (the outline runs back and forth)
+        "repeated run",  # bad/overlap.csv: 50 points measured twice (it runs along itself)
+        "swapped runs",  # bad/selfx.csv: two runs exchanged (a figure of eight)
+    ],
+)
+def test_outline_crossing_itself_is_refused_naming_where(capsys, tmp_path, male, fault):
+    """CONTRACT.md: "An outline that crosses or runs along itself is refused, naming where" (these were
+    accepted, exit 0). Reference: shapely says the constructed ring is not simple, and the lines named lie
+    in the changed run (the construction)."""
+    import shapely
+
+    p = male["whole"]
+    if fault == "reversed run":
+        bad, changed = np.vstack([p[:K], p[K : K + 20][::-1], p[K + 20 :]]), range(K - 1, K + 21)
+    elif fault == "repeated run":
+        bad, changed = np.vstack([p[: K + 1], p[K - 50 :]]), range(K - 50, K + 52)
+    else:
+        bad, changed = np.vstack([p[:K], p[K + 40 : K + 80], p[K : K + 40], p[K + 80 :]]), range(K - 1, K + 81)
+    assert not shapely.LinearRing(bad).is_simple
+    line = refusal(capsys, tmp_path, bad)
+    assert "must be an outline that does not cross or run along itself" in line, line
+    named = [int(n) - 1 - HEADER for n in re.findall(r"line (\d+) ", line)]
+    assert len(named) == 2 and all(n in changed for n in named), line
+
+
+@pytest.mark.parametrize("command", ["rotor", "interfere"])
+def test_inch_file_is_named_as_inches(capsys, tmp_path, male, command):
+    """The outline in inches (bad/inch.csv: "noise in the points? raise --smoothing"; `interfere`: exit 0,
+    "no interference") is refused saying its radii are 25.4 times smaller than the design's."""
+    line = refusal(capsys, tmp_path, male["whole"] / 25.4, command)
+    assert "25.4 times smaller than the design's 70 and 52.73 mm (inches?" in line, line
+
+
+def test_micrometre_file_is_named(capsys, tmp_path, male):
+    """The outline in µm (1000 times the design's radii: the construction) is refused saying so."""
+    line = refusal(capsys, tmp_path, male["whole"] * 1000.0)
+    assert "1000 times larger than the design's 70 and 52.73 mm (µm?" in line, line
+
+
+def test_too_few_points_and_part_of_a_lobe(capsys, tmp_path, male):
+    """5 points of a flank (bad/few.csv) and a third of the outline (bad/half.csv) were told to move the
+    female by (-a, 0); they are told their count and span against the lobe pitch 72 deg (the
+    construction: 500 points at 300 a lobe are 1.67 lobes)."""
+    line = refusal(capsys, tmp_path, male["whole"][K : K + 5])
+    assert "its 5 points span" in line and "less than one lobe's span" in line and "(-a, 0)" not in line, line
+    line = refusal(capsys, tmp_path, male["whole"][:500])
+    assert "its 500 points span" in line and "1.67 times the lobe's span" in line and "(-a, 0)" not in line, line
+
+
+def good_forms(male: dict) -> dict[str, np.ndarray]:
+    """Points that are a measured male as users bring them: none of them is refused."""
+    from rotorcad.geometry import rotate
+
+    rng = np.random.default_rng(16)
+    whole, lobe = male["whole"], male["lobe"]
+
+    def scattered(p: np.ndarray, sigma: float) -> np.ndarray:
+        t = np.roll(p, -1, axis=0) - np.roll(p, 1, axis=0)
+        n = np.column_stack([t[:, 1], -t[:, 0]]) / np.hypot(*t.T)[:, None]
+        return p + n * rng.normal(0.0, sigma, len(p))[:, None]
+
+    return {
+        "exact": whole,
+        "1 um": scattered(whole, 1e-3),
+        "2 um": scattered(whole, 2e-3),
+        "one lobe": lobe,
+        "one lobe, both ends": np.vstack([lobe, rotate(lobe[:1], 2 * np.pi / 5)]),  # the seam repeats a point
+        "sparse": whole[::5],  # 60 points a lobe
+        "one lobe 2 um": scattered(lobe, 2e-3),
+        "reversed": whole[::-1],
+        "another start": np.roll(whole, 137, axis=0),
+        "rotated": whole @ np.array([[np.cos(0.3), np.sin(0.3)], [-np.sin(0.3), np.cos(0.3)]]),
+    }
+
+
+def test_good_forms_are_read(male):
+    """Exact, 1-2 µm of normal scatter, one lobe (with or without its end), 60 points a lobe, reversed, from
+    another start, rotated: read without a
+    refusal (the checks run in read_outline), and the outlier search finds nothing in any."""
+    from rotorcad.measured.outline import read_outline
+    from rotorcad.measured.point_checks import outliers
+
+    for name, points in good_forms(male).items():
+        outline = read_outline(points, 5, "--male-points")
+        assert len(outliers(outline.whole, outline.sigma)[0]) == 0, name
+
+
+def test_good_scattered_points_run(capsys, tmp_path, male):
+    """The whole `rotor` run on the 2 µm points still exits 0."""
+    path = write(tmp_path / "good.csv", good_forms(male)["2 um"])
+    capsys.readouterr()
+    assert main(["rotor", str(SAMPLE), "--male-points", str(path), "--json", "--quiet"]) == 0
