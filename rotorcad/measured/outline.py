@@ -36,6 +36,7 @@ from rotorcad.measured.drawing import (
     own_frame,
     profile_points,
 )
+from rotorcad.measured.pattern import PATTERN_RMS, pattern_deviation
 from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 
@@ -492,7 +493,12 @@ def read_outline(
         return Outline(given, None, 0.0, acc, teeth, label)
     whole = whole_outline(given, teeth, label)
     sigma = scatter(whole)
-    return Outline(given, whole, sigma, accuracy(whole, sigma), teeth, label)
+    acc = accuracy(whole, sigma)
+    if sigma <= 0.0:  # points that show no scatter between neighbours may still lie on a polygon's chords
+        chords = pattern_deviation(whole, teeth)
+        if chords > acc:  # they do: fitted as scattered by the pattern's spread (rotorcad.measured.pattern)
+            sigma, acc = PATTERN_RMS * chords, chords
+    return Outline(given, whole, sigma, acc, teeth, label)
 
 
 def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: Side, label: str | None = None) -> float:
