@@ -169,15 +169,19 @@ class MeshingAnalysis:
         1e-4 of the centre distance (12 µm at a = 116 mm): far below any flank's extent, far above
         the meshline's sampling error at a corner's end; for a profile given to a coarser accuracy
         (:attr:`judged_accuracy`, measured points) 20 times that accuracy, the distance by which a
-        corner found from points may sit off its tip circle; and at least the resolution of the
-        defect tests at that accuracy (:func:`rotorcad.meshing.defects.resolution`), along which a
-        given profile's cusp is placed no better: the narrow-tip male with 1-2 µm of scatter (80 and
-        300 points a lobe, or 300 fitted with ``--smoothing`` 0.001-0.01 mm²) put the female tip
+        corner found from points may sit off its tip circle; of scattered points (whose tangents are
+        known to a scatter, :attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy`) at least the
+        resolution of the defect tests at that accuracy (:func:`rotorcad.meshing.defects.resolution`),
+        along which their fit places a cusp no better: the narrow-tip male with 1-2 µm of scatter (80
+        and 300 points a lobe, or 300 fitted with ``--smoothing`` 0.001-0.01 mm²) put the female tip
         corner's cusp 0.19-0.20 mm inside its tip circle (20 accuracies: 0.05-0.17 mm), and the
-        sealing flank read "does not run".
+        sealing flank read "does not run". Not of exact points or drawings, whose fits place a cusp
+        to their accuracy (the resolution, 0.58 mm and more, would take a flank's own cusp near a tip
+        for the corner).
         """
         pair = self.rotors.pair
-        reach = resolution(self.judged_accuracy, pair.center_distance) if self.is_given else 0.0
+        scattered = float(getattr(self.rotors, "tangent_accuracy", 0.0)) > 0.0
+        reach = resolution(self.judged_accuracy, pair.center_distance) if scattered else 0.0
         return max(1e-4 * pair.center_distance, 20.0 * self.judged_accuracy, reach)
 
     @cached_property
