@@ -496,8 +496,8 @@ def read_outline(
     acc = accuracy(whole, sigma)
     if sigma <= 0.0:  # points that show no scatter between neighbours may still lie on a polygon's chords
         chords = pattern_deviation(whole, teeth)
-        if chords > acc:  # they do: fitted as scattered by the pattern's spread (rotorcad.measured.pattern)
-            sigma, acc = PATTERN_RMS * chords, chords
+        if chords > acc and PATTERN_RMS * chords > SCATTER_FLOOR:  # they do: fitted as scattered by the pattern's spread
+            sigma, acc = PATTERN_RMS * chords, chords  # (rotorcad.measured.pattern; below the floor they are exact)
     return Outline(given, whole, sigma, acc, teeth, label)
 
 
