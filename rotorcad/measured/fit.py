@@ -298,7 +298,7 @@ def lobe_pieces(
     if isinstance(points, list):
         return _lobe_from_curves(points, teeth, rotor, label)
     whole = outline.whole
-    sigma = outline.sigma if smoothing is None else 0.0
+    sigma = outline.sigma  # the points read as they are; --smoothing sets only the splines' smoothing
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
     if len(edges):
         corner_points = _refined_corners(whole, edges, corner_points, sigma, smoothing, outline.accuracy)

@@ -36,6 +36,7 @@ from rotorcad.measured.drawing import (
     own_frame,
     profile_points,
 )
+from rotorcad.measured.pattern import PATTERN_RMS, pattern_deviation
 from rotorcad.measured.point_checks import file_lines, refuse_bad_points
 from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
@@ -496,8 +497,13 @@ def read_outline(
         return Outline(given, None, 0.0, acc, teeth, label)
     whole = whole_outline(given, teeth, label)
     sigma = scatter(whole)
+    acc = accuracy(whole, sigma)
+    if sigma <= 0.0:  # points that show no scatter between neighbours may still lie on a polygon's chords
+        chords = pattern_deviation(whole, teeth)
+        if chords > acc and PATTERN_RMS * chords > SCATTER_FLOOR:  # they do: fitted as scattered by the pattern's spread
+            sigma, acc = PATTERN_RMS * chords, chords  # (rotorcad.measured.pattern; below the floor they are exact)
     refuse_bad_points(whole, sigma, teeth, label, given, file_lines(points))
-    return Outline(given, whole, sigma, accuracy(whole, sigma), teeth, label)
+    return Outline(given, whole, sigma, acc, teeth, label)
 
 
 def points_accuracy(pair: RotorPair, points: np.ndarray | list[Curve], rotor: Side, label: str | None = None) -> float:
