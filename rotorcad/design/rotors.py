@@ -224,6 +224,8 @@ def _note_scatter_followed(spec: PairSpec, points: Any, rotor: Side, label: str 
     if outline.whole is None or outline.sigma <= 0:
         return outline
     per_lobe = len(outline.whole) / teeth
+    if spec.smoothing < per_lobe * outline.sigma**2:  # below the fit through the scatter: judged as without one
+        _refuse_scatter(spec.pair, outline, rotor, label or f"[profile] points ({spec.family})")
     bound = per_lobe * outline.sigma**2 / 4.0
     if spec.smoothing < bound:
         import warnings
@@ -283,6 +285,12 @@ def _judgeable(pair: RotorPair, points: Any, rotor: Side, label: str) -> Any:
             rotor.pick(pair.male_tip_radius, pair.female_tip_radius),
         )
         refuse_other_units(outline.whole, root, tip, label)
+    _refuse_scatter(pair, outline, rotor, label)
+    return outline
+
+
+def _refuse_scatter(pair: RotorPair, outline: Any, rotor: Side, label: str) -> None:
+    """Refuse points that scatter more than a verdict allows (:func:`rotorcad.meshing.largest_scatter`)."""
     depth = rotor.pick(pair.male_tip_radius - pair.male_root_radius, pair.female_tip_radius - pair.female_root_radius)
     most = largest_scatter(depth, pair.center_distance)
     if outline.sigma > most:
@@ -293,9 +301,9 @@ def _judgeable(pair: RotorPair, points: Any, rotor: Side, label: str) -> Any:
             f"a scatter of {outline.sigma * 1e3:.3g} µm, estimated from the points' third differences",
             f"the defect tests would resolve no stretch shorter than {reach:.3g} mm "
             f"of meshline, over a quarter of the {rotor}'s lobe depth {depth:g} mm, and the numbers would be the noise's; "
-            "measure more accurately, or give --smoothing (or [profile] smoothing) to fit through the scatter",
+            "measure more accurately, or give --smoothing (or [profile] smoothing) of at least n sigma^2 "
+            "over a lobe's points to fit through the scatter",
         )
-    return outline
 
 
 MAX_LOBE_POINTS = 50_000
