@@ -1185,12 +1185,17 @@ def test_fuzz_command_lines(capsys, work, argv):
     kind=st.sampled_from(DXF_KINDS),
     mutation=st.sampled_from(DXF_MUTATIONS),
     seed=st.integers(0, 10_000),
+    by_rotor=st.booleans(),
 )
-def test_fuzz_dxf_points(capsys, work, command, rotor, kind, mutation, seed):
+def test_fuzz_dxf_points(capsys, work, command, rotor, kind, mutation, seed, by_rotor):
     """DXF points files: valid drawings made with ezdxf, then mutated (NaN/inf coordinates, x1e9 and
-    x1e-9, open outlines, self-crossing, duplicate entities, an empty layer, binary garbage, ...)."""
+    x1e-9, open outlines, self-crossing, duplicate entities, an empty layer, binary garbage, ...);
+    ``clearance`` and ``interfere`` take the layer as ``--layer`` or as ``--male-layer`` /
+    ``--female-layer`` (``by_rotor``)."""
     folder = work()
     path, extra = dxf_file(folder, f"{rotor}.dxf", rotor, kind, mutation, seed)
+    if by_rotor and command != "rotor" and extra:
+        extra = [f"--{rotor}-layer", extra[1]]
     if command == "rotor":
         argv = ["rotor", f"--{rotor}-points", str(path), *extra, "--json"]
         argv += [x for k, v in SYM_SAMPLE.items() for x in ("--" + k.replace("_", "-"), str(v))]
