@@ -223,7 +223,7 @@ def circle_meshline_apex(
     cand, cand_t = contacts(theta), turns(theta)
     with np.errstate(invalid="ignore"):
         d = np.stack([np.where(allowed(x, t), np.hypot(*(x - cusp).T), np.inf) for x, t in zip(cand, cand_t, strict=True)])
-    d = np.nan_to_num(d, nan=np.inf)
+    d = np.where(np.isnan(d), np.inf, d)  # not nan_to_num: it would make the inf of "not allowed" finite
     if not np.isfinite(d).any():
         return None
     b, i = np.unravel_index(int(np.argmin(d)), d.shape)
