@@ -249,6 +249,7 @@ class Outputs:
         InputError
             A write that failed, naming the option and its file.
         """
+        self._refuse_inputs()
         there = [(p, self._options[p]) for p, _ in self._items if p.is_file()]  # a link: the file it points to
         try:
             written = write_all(self._items, pool)
@@ -264,6 +265,34 @@ class Outputs:
             named = "; ".join(f"{', '.join(paths)} ({option})" for option, paths in by_option.items())
             warnings.warn(f"replaced the existing {'file' if len(there) == 1 else 'files'} {named}", InputNote, stacklevel=2)
         return written
+
+    def _refuse_inputs(self) -> None:
+        """Refuse an output that is a file the command reads (``--male-csv`` naming the ``--male-points`` file).
+
+        The inputs are the command's file parameters that are not among the outputs' options; the same
+        file also through another name or a link (:func:`os.path.samefile`).
+
+        Raises
+        ------
+        InputError
+            Naming the output's option, the input's and the file.
+        """
+        import os
+
+        ctx = click.get_current_context(silent=True)
+        if ctx is None:
+            return
+        outputs = set(self._options.values())
+        inputs = []
+        for param in ctx.command.params:
+            value = ctx.params.get(param.name or "")
+            name = param.opts[0] if param.opts[0].startswith("-") else f"the {param.name} file"
+            if isinstance(value, Path) and name not in outputs and value.is_file():
+                inputs.append((name, value))
+        for path, option in self._options.items():
+            for name, value in inputs:
+                if path.is_file() and os.path.samefile(path, value):
+                    raise InputError(f"{option} names the file {name} reads ({path}): write it to another file.")
 
     def _failure(self, exc: OSError) -> str:
         """Return the sentence for a failed write, naming the option and its file (never the temporary)."""
