@@ -1,0 +1,168 @@
+"""How an outline given as points is read: a polyline's vertices and one groove or tooth (issue 21 item 3).
+
+1. A polyline drawn to a chord tolerance e (rotorcad's own DXF layer MALE, or a CAD program's) has its
+   vertices on the outline, spaced sqrt(8 e rho) as the radius of curvature rho changes. The third
+   differences :func:`rotorcad.measured.outline.scatter` reads scatter from assume an even spacing:
+   the N rack male's export polyline (2.5 µm chords) read 0.18 µm of scatter, its vertices were
+   smoothed instead of interpolated, and the blow-hole, whose apex lies where the male's 0.67 mm tip
+   rounding meets the sealing flank, read -2.3 % (now -0.25 %, tests/test_dxf_exact.py). Reference
+   here: an ellipse's exact points placed by its closed-form curvature at a constant sagitta (not
+   rotorcad's sampler), with and without a known normal scatter.
+2. One tooth (root land to root land) or one groove (tip land to tip land) is patterned, the unmeasured
+   land between two copies filled along the land's arc about the centre; a tooth cut short of its
+   root land (its ends on the root fillets, 2-3 deg short) was filled by a straight line across the
+   land. Now it is refused, saying how far above the root its ends lie. Reference: the design's own
+   section (shapely distance) and its root and tip radii from the sample's TOML.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from exports.csv_points import write_points
+from rotorcad.cli.main import main
+from rotorcad.design import rotor_design
+from rotorcad.errors import DesignError
+from rotorcad.geometry import rotate
+from rotorcad.measured.outline import SCATTER_FLOOR, scatter, whole_outline
+from rotorcad.measured.pattern import uneven_scatter
+from rotorcad.rotor_build import build_pair, pair_spec
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+
+
+def _ellipse_vertices(a: float, b: float, sagitta: float) -> np.ndarray:
+    """Vertices on the ellipse (a cos t, b sin t) spaced so that each chord's sagitta is ``sagitta``:
+    arc-length step h = sqrt(8 e rho) with rho = (a^2 sin^2 t + b^2 cos^2 t)^(3/2) / (a b) (closed form)."""
+    t, out = 0.0, []
+    while t < 2 * np.pi:
+        out.append((a * np.cos(t), b * np.sin(t)))
+        speed = np.hypot(a * np.sin(t), b * np.cos(t))
+        rho = speed**3 / (a * b)
+        t += np.sqrt(8 * sagitta * rho) / speed
+    return np.array(out)
+
+
+def test_polyline_vertices_read_as_exact():
+    # an ellipse of 60 x 25 mm drawn to 2.5 um chords: spacing 0.46-1.7 mm. Its exact vertices are no
+    # scatter (the third differences alone read it as scattered, above the 0.1 um floor)
+    pts = _ellipse_vertices(60.0, 25.0, 2.5e-3)
+    step = np.hypot(*np.diff(pts, axis=0).T)
+    assert step.max() > 3 * step.min()  # uneven, as a polyline to a chord tolerance is
+    assert uneven_scatter(pts) < 0.2 * SCATTER_FLOOR  # 17 nm: the quartic term over five vertices
+    d3 = np.roll(pts, -2, axis=0) - 3 * np.roll(pts, -1, axis=0) + 3 * pts - np.roll(pts, 1, axis=0)
+    chord = np.roll(pts, -2, axis=0) - np.roll(pts, 1, axis=0)
+    normal = np.abs(chord[:, 0] * d3[:, 1] - chord[:, 1] * d3[:, 0]) / np.hypot(*chord.T)
+    assert 1.4826 * np.median(normal) / np.sqrt(20.0) > SCATTER_FLOOR  # what read the vertices as scattered
+    assert scatter(pts) == 0.0
+
+
+@pytest.mark.parametrize("sigma", [1e-3, 2e-3])
+def test_scatter_on_uneven_spacing_is_read(sigma):
+    # the same vertices with a known normal scatter (seeded)
+    pts = _ellipse_vertices(60.0, 25.0, 2.5e-3)
+    tangent = np.roll(pts, -1, axis=0) - np.roll(pts, 1, axis=0)
+    normal = np.column_stack([tangent[:, 1], -tangent[:, 0]]) / np.hypot(*tangent.T)[:, None]
+    noisy = pts + np.random.default_rng(0).normal(0.0, sigma, len(pts))[:, None] * normal
+    # within 15 %: the median of 267 residuals scatters by 7 % (1.17 / sqrt(n)), and both estimates read it
+    assert uneven_scatter(noisy) == pytest.approx(sigma, rel=0.15)
+    assert scatter(noisy) == pytest.approx(sigma, rel=0.15)
+
+
+# ---- one tooth or one groove ---------------------------------------------------------------------
+
+
+@functools.cache
+def _rack_involute():
+    """The rack-involute pair's spec and each rotor's whole outline (its exact lobe's samples at a
+    0.1 um chord, patterned, counter-clockwise, in its own frame)."""
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text()), SAMPLES))
+    rotors = build_pair(spec)
+    out = {}
+    lobes = {"male": (rotors.male_lobe(), spec.pair.male_teeth), "female": (rotors.female_lobe(), spec.pair.female_teeth)}
+    for side, (lobe, teeth) in lobes.items():
+        pts = np.vstack([seg.resampled(1e-4).points[:-1] for seg in lobe.segments])
+        out[side] = np.vstack([rotate(pts, 2 * np.pi * k / teeth) for k in range(teeth)])
+    return spec, out
+
+
+def _span(ring: np.ndarray, lo_deg: float, hi_deg: float) -> np.ndarray:
+    """The ring's points whose polar angle lies in [lo, hi] deg (one run, in the ring's order)."""
+    start = int(np.argmin(np.abs(np.degrees(np.arctan2(ring[:, 1], ring[:, 0])) - (lo_deg - 5.0))))
+    ring = np.roll(ring, -start, axis=0)
+    theta = np.degrees(np.unwrap(np.arctan2(ring[:, 1], ring[:, 0])))
+    theta += 360.0 * np.round((lo_deg - 5.0 - theta[0]) / 360.0)
+    return ring[(theta >= lo_deg) & (theta <= hi_deg)]
+
+
+def _land_edges(ring: np.ndarray, radius: float) -> np.ndarray:
+    """Polar angles (deg) where the ring leaves or reaches ``radius`` within 1e-6 mm (a land's ends)."""
+    on = np.abs(np.hypot(*ring.T) - radius) < 1e-6
+    change = np.flatnonzero(on != np.roll(on, 1))
+    return np.sort(np.degrees(np.arctan2(ring[change, 1], ring[change, 0])) % 360.0)
+
+
+def test_tooth_from_root_land_to_root_land_is_the_design():
+    # reference: the design's male section, and its root radius from the sample's TOML. A tooth from
+    # 3 deg into one root land to 3 deg into the next, patterned with the land filled along the root
+    # circle, lies on the design's outline (the fill within 1 um of the root circle)
+    spec, rings = _rack_involute()
+    male, root = rings["male"], tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"]["male_root_radius"]
+    edges = _land_edges(male, root)  # root lands' ends: 19.4 and 52.6 deg (one tooth between) and each lobe on
+    leave, reach = edges[(edges > 0) & (edges < 30)][0], edges[(edges > 40) & (edges < 72)][0]
+    tooth = _span(male, leave - 3.0, reach + 3.0)
+    assert np.hypot(*tooth[[0, -1]].T) == pytest.approx([root, root], abs=1e-6)
+    whole = whole_outline(tooth, spec.pair.male_teeth, "--male-points")
+    gap = shapely.distance(shapely.points(whole), shapely.LinearRing(male))
+    assert gap.max() < 1e-3
+
+
+@pytest.mark.parametrize("short", [(2.0, 2.0), (3.0, -3.0), (-3.0, 2.5)])
+def test_tooth_cut_short_of_its_root_land_is_refused(short, tmp_path, capsys):
+    # a tooth whose ends (one or both) lie 2-3 deg short of the root land, on the root fillets (the
+    # design's: 0.9-1.7 mm above the root radius of the TOML, the fillet turned 20 deg and more from the
+    # root circle); negative: 3 deg into the land. Was filled by a straight line across the land; now
+    # refused, saying how steeply each end leaves the circle (0 on the land, over 6 deg on a fillet)
+    spec, rings = _rack_involute()
+    male, root = rings["male"], tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"]["male_root_radius"]
+    edges = _land_edges(male, root)
+    leave, reach = edges[(edges > 0) & (edges < 30)][0], edges[(edges > 40) & (edges < 72)][0]
+    tooth = _span(male, leave + short[0], reach - short[1])
+    above = np.hypot(*tooth[[0, -1]].T) - root
+    assert np.all((above > 0.1) == (np.array(short) > 0))
+    with pytest.raises(DesignError) as err:
+        whole_outline(tooth, spec.pair.male_teeth, "--male-points")
+    sentence = err.value.sentence()
+    assert "--male-points" in sentence and "short of the root land" in sentence
+    turns = re.search(r"leaving its circle at ([0-9.e+-]+) and ([0-9.e+-]+) deg", sentence).groups()
+    for turn, cut in zip(map(float, turns), short, strict=True):
+        assert (turn > 6.0) == (cut > 0), sentence
+    path = tmp_path / "tooth.csv"
+    write_points(path, tooth)
+    assert main(["rotor", str(SAMPLES / "rack_involute_5_6.toml"), "--male-points", str(path)]) == 2
+    out = capsys.readouterr()
+    assert "--male-points" in out.err and "root land on both sides" in out.err and "Traceback" not in out.err
+
+
+def test_groove_from_tip_land_to_tip_land_is_the_design():
+    # reference: the design's female outline (its exact lobe). One groove of the female
+    # from 2 deg into one tip land to 2 deg into the next is the design's outline (fill on the tip circle)
+    spec, rings = _rack_involute()
+    female = rings["female"]
+    tip = tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"]["female_tip_radius"]
+    edges = _land_edges(female, tip)
+    leave = edges[(edges > 130) & (edges < 140)][0]
+    reach = edges[(edges > 160) & (edges < 170)][0]
+    groove = _span(female, leave - 2.0, reach + 2.0)
+    whole = whole_outline(groove, spec.pair.female_teeth, "--female-points")
+    gap = shapely.distance(shapely.points(whole), shapely.LinearRing(female))
+    assert gap.max() < 1e-3
+    with pytest.raises(DesignError, match="below it"):  # cut 2 deg short of a tip land: refused
+        whole_outline(_span(female, leave + 2.0, reach + 2.0), spec.pair.female_teeth, "--female-points")
