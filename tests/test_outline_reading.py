@@ -13,11 +13,14 @@
    root land (its ends on the root fillets, 2-3 deg short) was filled by a straight line across the
    land. Now it is refused, saying how far above the root its ends lie. Reference: the design's own
    section (shapely distance) and its root and tip radii from the sample's TOML.
+3. A defect of the design below what the points resolve is said: ``defect_resolution`` (a new user's
+   N rack 4/5 design, whose female driving cusp its own CSV does not show).
 """
 
 from __future__ import annotations
 
 import functools
+import json
 import re
 import tomllib
 from pathlib import Path
@@ -166,3 +169,62 @@ def test_groove_from_tip_land_to_tip_land_is_the_design():
     assert gap.max() < 1e-3
     with pytest.raises(DesignError, match="below it"):  # cut 2 deg short of a tip land: refused
         whole_outline(_span(female, leave + 2.0, reach + 2.0), spec.pair.female_teeth, "--female-points")
+
+
+# ---- a defect below the input's resolution is said (issue 21 item 3) -----------------------------
+
+N_RACK_4_5 = """[pair]
+male_teeth = 4
+female_teeth = 5
+center_distance = 100.0
+male_tip_radius = "r1w + 1.39*m"
+male_root_radius = "r1w - 0.107*m"
+female_tip_radius = "a - male_root_radius"
+female_root_radius = "a - male_tip_radius"
+lead = "2.586*a"
+length = "1.638*a"
+
+[profile]
+family = "n-rack"
+driving_width = 1.25
+driving_center_depth = 0.5
+driving_exponent_along = 2.0
+driving_exponent_across = 2.0
+driving_root_rounding = 0.3
+male_tip_rounding = 0.05
+female_tip_rounding = 0.1
+"""
+"""A new user's changed N rack design (4/5 lobes, a = 100 mm): its female has a cusp on the driving flank."""
+
+
+def test_a_defect_below_the_resolution_is_said(tmp_path, capsys):
+    # the finding: the design says "cusp on the female inside its working part" (driving flank), its own
+    # CSVs say nothing, and nothing in the JSON said a defect below the resolution might be hidden. The
+    # design's cusp (reference: its exact curves' meshline) lies 0.5 mm of meshline from the end of its
+    # piece; the CSV's points are judged over defect_resolution = max(0.5 % a, sqrt(8 a 10 e)) (closed
+    # form, e their defect_accuracy), 2.6 mm, within which a sign change next to a piece's end is no defect
+    from rotorcad.meshing import MeshingAnalysis
+
+    design_file, csv = tmp_path / "nrack_4_5.toml", tmp_path / "m.csv"
+    design_file.write_text(N_RACK_4_5)
+    assert main(["rotor", str(design_file), "--json", "--male-csv", str(csv)]) == 0
+    design = json.loads(capsys.readouterr().out)
+    (cusp,) = [d for d in design["defects"] if d["kind"] == "cusp"]
+    assert (cusp["rotor"], cusp["flank_role"]) == ("female", "driving")
+    a = design["center_distance"]
+    assert design["defect_resolution"] == pytest.approx(max(5e-3 * a, np.sqrt(8 * a * design["defect_accuracy"])))
+    assert main(["rotor", str(design_file), "--male-points", str(csv), "--json"]) == 0
+    given = json.loads(capsys.readouterr().out)
+    assert not [d for d in given["defects"] if d["kind"] == "cusp"]  # lost: below the resolution
+    stated = given["defect_resolution"]
+    assert stated == pytest.approx(max(5e-3 * a, np.sqrt(8 * a * 10 * given["defect_accuracy"])))
+    spec = pair_spec(rotor_design(tomllib.loads(N_RACK_4_5), tmp_path))
+    pieces = MeshingAnalysis(build_pair(spec)).pieces
+    at = np.array([cusp["x"], cusp["y"]])
+    piece = min(pieces, key=lambda p: np.hypot(*(p.points - at).T).min())
+    i = int(np.argmin(np.hypot(*(piece.points - at).T)))
+    arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(piece.points, axis=0).T))])
+    to_end = min(arclen[i], arclen[-1] - arclen[i])
+    assert to_end < stated  # 0.53 mm: within the points' resolution (the design has no such rule)
+    assert main(["rotor", str(design_file), "--male-points", str(csv)]) == 0
+    assert "below this resolution, not seen" in capsys.readouterr().out
