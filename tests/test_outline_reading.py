@@ -171,6 +171,27 @@ def test_groove_from_tip_land_to_tip_land_is_the_design():
         whole_outline(_span(female, leave + 2.0, reach + 2.0), spec.pair.female_teeth, "--female-points")
 
 
+@pytest.mark.parametrize("sigma", [1e-3, 2e-3])
+def test_scattered_groove_is_taken(sigma):
+    # the same groove, 150 points with 1-2 um of normal scatter (seeded, as a CMM's): its ends on the tip
+    # lands are within the tolerance (6 sigma) of the land's radius and run along its circle, so it is
+    # patterned, the fill on the tip circle of the TOML within that tolerance (the reference)
+    spec, rings = _rack_involute()
+    female = rings["female"]
+    tip = tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"]["female_tip_radius"]
+    edges = _land_edges(female, tip)
+    groove = _span(female, edges[(edges > 130) & (edges < 140)][0] - 2.0, edges[(edges > 160) & (edges < 170)][0] + 2.0)
+    groove = groove[:: max(1, len(groove) // 150)]
+    tangent = np.roll(groove, -1, axis=0) - np.roll(groove, 1, axis=0)
+    normal = np.column_stack([tangent[:, 1], -tangent[:, 0]]) / np.hypot(*tangent.T)[:, None]
+    for seed in range(3):
+        noisy = groove + np.random.default_rng(seed).normal(0.0, sigma, len(groove))[:, None] * normal
+        whole = whole_outline(noisy, spec.pair.female_teeth, "--female-points")
+        fill = whole[len(noisy) : len(whole) // spec.pair.female_teeth]  # each copy: the points, then the fill
+        assert len(fill) > 10
+        assert np.abs(np.hypot(*fill.T) - tip).max() < 6 * sigma  # on the tip circle within the ends' tolerance
+
+
 # ---- a defect below the input's resolution is said (issue 21 item 3) -----------------------------
 
 N_RACK_4_5 = """[pair]
