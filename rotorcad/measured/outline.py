@@ -43,6 +43,12 @@ from rotorcad.rotor_pair import RotorPair
 
 SCATTER_FLOOR = 1e-4  # mm: below this the points are taken as exact (interpolated)
 
+UNEVEN_SPACING = 1.5
+"""Ratio of the 90th to the 10th percentile of the points' spacing above which the spacing is
+uneven (a polyline's vertices drawn to a chord tolerance: 2.4-11 on the samples' export polylines;
+points resampled evenly along the outline, as a CMM's: 1.0), and :func:`scatter` asks local cubics
+(:func:`rotorcad.measured.pattern.uneven_scatter`) whether the points are exact."""
+
 
 def _drop_repeats(points: np.ndarray) -> np.ndarray:
     """Points without consecutive duplicates (within 1e-9 mm) and without a repeated end point."""
@@ -319,9 +325,9 @@ def scatter(whole: np.ndarray) -> float:
     -------
     float, mm
         sigma; 0 for exact points (below :data:`SCATTER_FLOOR`) or fewer than 8 points, and for
-        points that local cubics, which do not assume an even spacing, find exact
-        (:func:`rotorcad.measured.pattern.uneven_scatter`: a polyline's vertices drawn to a chord
-        tolerance, which the third differences read as scattered).
+        unevenly spaced points (:data:`UNEVEN_SPACING`) that local cubics, which do not assume an
+        even spacing, find exact (:func:`rotorcad.measured.pattern.uneven_scatter`: a polyline's
+        vertices drawn to a chord tolerance, which the third differences read as scattered).
     """
     p = np.asarray(whole, dtype=float)
     if len(p) < 8:
@@ -332,7 +338,11 @@ def scatter(whole: np.ndarray) -> float:
     ok = length > 0
     normal = np.abs(cross(chord[ok], d3[ok])) / length[ok]
     sigma = 1.4826 * np.median(normal) / np.sqrt(20.0)  # MAD of a zero-mean normal, sqrt(20): the difference's gain
-    if sigma <= SCATTER_FLOOR or uneven_scatter(p) <= SCATTER_FLOOR:  # exact points, however unevenly spaced
+    if sigma <= SCATTER_FLOOR:
+        return 0.0
+    step = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
+    uneven = np.quantile(step, 0.9) > UNEVEN_SPACING * np.quantile(step, 0.1)
+    if uneven and uneven_scatter(p) <= SCATTER_FLOOR:  # exact points on an uneven spacing (a polyline's vertices)
         return 0.0
     return float(sigma)
 
@@ -619,6 +629,7 @@ __all__ = [
     "DRAWN_SPANS",
     "SCATTER_FLOOR",
     "SMOOTH_JOINT",
+    "UNEVEN_SPACING",
     "Outline",
     "accuracy",
     "as_given",
