@@ -11,8 +11,10 @@
 2. One tooth (root land to root land) or one groove (tip land to tip land) is patterned, the unmeasured
    land between two copies filled along the land's arc about the centre; a tooth cut short of its
    root land (its ends on the root fillets, 2-3 deg short) was filled by a straight line across the
-   land. Now it is refused, saying how far above the root its ends lie. Reference: the design's own
-   section (shapely distance) and its root and tip radii from the sample's TOML.
+   land. Now it is refused, saying how far from the land's radius its ends lie and how steeply the
+   outline leaves its circle there; one lobe a little short of the pitch on its land is filled along
+   the land too (was a chord). Reference: the design's outline (its exact lobe's samples, shapely
+   distance along the given outline's edges) and its root and tip radii from the sample's TOML.
 3. A defect of the design below what the points resolve is said: ``defect_resolution`` (a new user's
    N rack 4/5 design, whose female driving cusp its own CSV does not show).
 """
