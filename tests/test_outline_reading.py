@@ -108,9 +108,9 @@ def _span(ring: np.ndarray, lo_deg: float, hi_deg: float) -> np.ndarray:
 
 
 def _gap(whole: np.ndarray, ring: np.ndarray) -> float:
-    """Largest distance (mm) of the closed polygon through ``whole``, sampled every 10 um along its
+    """Largest distance (mm) of the closed polygon through ``whole``, sampled every 50 um along its
     edges (shapely's segmentize), from the polygon of the design's ``ring``."""
-    dense = shapely.segmentize(shapely.LinearRing(whole), 0.01)
+    dense = shapely.segmentize(shapely.LinearRing(whole), 0.05)
     return float(shapely.distance(shapely.points(np.asarray(dense.coords)), shapely.LinearRing(ring)).max())
 
 
