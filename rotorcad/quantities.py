@@ -196,6 +196,7 @@ _declare(
         ("defects[].angle_deg", "deg", "male angle"),
         ("defects[].extent", "mm", "extent along the profile"),
         ("defect_accuracy", "mm", "accuracy of the defect search"),
+        ("defect_resolution", "mm", "shortest meshline stretch the defect search resolves"),
         *((f"flanks.{flank}.{key}", unit, label) for flank in ("driving", "sealing") for key, unit, label in _FLANK),
         ("overlap_contact_ratio", "1", "overlap contact ratio"),
         ("wrap_angle_deg", "deg", "wrap angle"),

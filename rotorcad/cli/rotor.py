@@ -193,6 +193,7 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
     if rotors.accuracy > 0:  # a given profile: its meshline's normals to the meshline's accuracy, over the resolution
         reach = resolution(MESHLINE_GAIN * acc, result["center_distance"])
         line += f" (the meshline's normals to {1e3 * MESHLINE_GAIN * acc:.2g} µm, over {reach:.2g} mm of meshline)"
+        line += ": a defect within that of the meshline's end, a turn or another is below this resolution, not seen"
     click.echo(line)
     if result.get("blow_hole_uncertainty", 0.0) > 0:  # scattered points: their tangents move the apex
         click.echo(

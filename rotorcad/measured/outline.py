@@ -36,12 +36,18 @@ from rotorcad.measured.drawing import (
     own_frame,
     profile_points,
 )
-from rotorcad.measured.pattern import PATTERN_RMS, pattern_deviation
+from rotorcad.measured.pattern import PATTERN_RMS, pattern_deviation, uneven_scatter
 from rotorcad.measured.point_checks import file_lines, refuse_bad_points
 from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 
 SCATTER_FLOOR = 1e-4  # mm: below this the points are taken as exact (interpolated)
+
+UNEVEN_SPACING = 1.5
+"""Ratio of the 90th to the 10th percentile of the points' spacing above which the spacing is
+uneven (a polyline's vertices drawn to a chord tolerance: 2.4-11 on the samples' export polylines;
+points resampled evenly along the outline, as a CMM's: 1.0), and :func:`scatter` asks local cubics
+(:func:`rotorcad.measured.pattern.uneven_scatter`) whether the points are exact."""
 
 
 def _drop_repeats(points: np.ndarray) -> np.ndarray:
@@ -87,7 +93,9 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
     duplicated points; the points may come in either direction and from any start, and one lobe is
     patterned ``teeth`` times. One groove (tip to tip) or one tooth (root to root), which holds
     both flanks but spans less than the lobe pitch, is patterned too, the unmeasured tip or root
-    between the copies filled (:func:`_patterned_groove`).
+    land between the copies filled along its arc (:func:`_patterned_groove`); so is one lobe that
+    stops a little short of the pitch (up to 2 % of it) on its land, whose copies were joined by a
+    chord across the land before (1.3 deg of the rack-involute male's root land: 3.9 µm inside it).
 
     Parameters
     ----------
@@ -128,7 +136,9 @@ def whole_outline(points: np.ndarray, teeth: int, label: str) -> np.ndarray:
         pts, span = pts[::-1], -span
     spacing = np.median(np.abs(np.diff(ang)))
     if span < pitch - max(3 * spacing, 0.02 * pitch) and _one_groove(pts, span, pitch):
-        return _patterned_groove(pts, teeth)
+        return _patterned_groove(pts, teeth, label)
+    if pitch - 1.5 * spacing > span and _one_groove(pts, span, pitch) and _on_land(pts):
+        return _patterned_groove(pts, teeth, label)  # a lobe a little short at its land: the gap along the land's arc
     if abs(span - pitch) > max(3 * spacing, 0.02 * pitch):
         _refuse_off_centre(pts, label)
         share = "less than one lobe's" if span < pitch else f"{span / pitch:.3g} times the lobe's"
@@ -172,9 +182,10 @@ def _refuse_off_centre(pts: np.ndarray, label: str) -> None:
         )
 
 
-GROOVE_ENDS = 0.1
-"""Share of the radial range within which both ends of a span shorter than the pitch lie at the
-same extreme radius (tip or root) for the span to be one groove or one tooth."""
+GROOVE_ENDS = 0.5
+"""Share of the radial range within which both ends of a span shorter than the pitch lie from the
+same extreme radius (tip or root) for the span to be taken as one groove or one tooth (and refused
+by :func:`_groove_land`, saying why, when an end falls short of that tip or root)."""
 
 
 def _one_groove(pts: np.ndarray, span: float, pitch: float) -> bool:
@@ -182,25 +193,111 @@ def _one_groove(pts: np.ndarray, span: float, pitch: float) -> bool:
 
     That is a span from tip to tip (a groove, as a CMM measures a female) or from root to root (a
     tooth), which holds both flanks: both ends within :data:`GROOVE_ENDS` of the radial range from
-    the same extreme radius, and a span of at least a quarter of the pitch.
+    the same extreme radius, a span of at least a quarter of the pitch and radii over 1 % of the
+    largest apart (a lobe's depth, not a land alone). Whether the ends reach
+    that tip or root is judged when it is patterned (:func:`_groove_land`).
     """
     r = np.hypot(*pts.T)
     lo, hi = float(r.min()), float(r.max())
     near = GROOVE_ENDS * (hi - lo)
     ends = r[[0, -1]]
     at_tip, at_root = np.all(ends >= hi - near), np.all(ends <= lo + near)
-    return bool(span >= 0.25 * pitch and hi - lo > 0 and (at_tip or at_root))
+    return bool(span >= 0.25 * pitch and hi - lo > 0.01 * hi and (at_tip or at_root))  # a lobe's depth, not a land
 
 
-def _patterned_groove(pts: np.ndarray, teeth: int) -> np.ndarray:
+GROOVE_END_FLOOR = 1e-3
+"""mm: the ends of one groove or tooth lie on its tip or root land when their radii are within this
+of the land's, or within six times the points' scatter when that is more."""
+
+GROOVE_END_SLOPE = np.radians(6.0)
+"""rad: the most the outline may turn away from the land's circle over the first
+:data:`GROOVE_END_REACH` from an end of one groove or tooth for that end to lie on the land (a root
+fillet of 0.1 mm radius tangent to it turns 6 deg over 0.01 mm; a flank 2 deg short of the land
+turns by tens of degrees)."""
+
+GROOVE_END_REACH = 0.01
+"""mm: the length from an end of one groove or tooth over which its turn from the land is judged
+(40 scatters when that is more)."""
+
+
+def _land_ends(pts: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, float, bool]:
+    """Measure how the ends of a span shorter than the pitch lie on its tip or root land (:func:`_groove_land`).
+
+    Returns the land's radius (mm), each end's distance from it (mm) and turn from its circle (rad,
+    0 within the tolerance), the tolerance (mm) and whether it is the tip.
+    """
+    r = np.hypot(*pts.T)
+    lo, hi = float(r.min()), float(r.max())
+    at_tip = bool(abs(r[0] - hi) + abs(r[-1] - hi) <= abs(r[0] - lo) + abs(r[-1] - lo))
+    sigma = scatter(pts)
+    tol = max(GROOVE_END_FLOOR, 6.0 * sigma)
+    land = float(np.median(r[r >= hi - tol] if at_tip else r[r <= lo + tol]))
+    off = np.abs(r[[0, -1]] - land)
+    reach = max(GROOVE_END_REACH, 40.0 * sigma)
+    turn = np.zeros(2)
+    for k, run in enumerate((pts, pts[::-1])):  # from either end inwards
+        far = np.hypot(*(run - run[0]).T)
+        j = int(np.argmax(far >= reach)) if np.any(far >= reach) else len(run) - 1
+        radial = np.dot(run[j] - run[0], run[0]) / max(float(np.hypot(*run[0])), 1e-300)
+        turn[k] = np.arcsin(np.clip(abs(radial) / max(float(far[j]), 1e-300), 0.0, 1.0))
+    turn = np.where(turn * reach > tol, turn, 0.0)  # a rise within the tolerance is no turn
+    return land, off, turn, tol, at_tip
+
+
+def _on_land(pts: np.ndarray) -> bool:
+    """Tell whether both ends of a span shorter than the pitch lie on its tip or root land (:func:`_groove_land`)."""
+    _, off, turn, tol, _ = _land_ends(pts)
+    return bool(np.all(off <= tol) and np.all(turn <= GROOVE_END_SLOPE))
+
+
+def _groove_land(pts: np.ndarray, label: str) -> float:
+    """Return the radius of the land both ends of one groove or tooth lie on (mm), or refuse.
+
+    Points that span less than the lobe pitch from tip to tip (a groove) or root to root (a tooth)
+    leave part of the lobe unmeasured between one copy and the next; for the outline to be known
+    there, that part is a land (an arc about the centre: without one, tip to tip or root to root spans
+    the pitch) and both ends lie on it: at the land's radius (the median radius of the points within
+    the tolerance, :data:`GROOVE_END_FLOOR` or 6 sigma, of the extreme one, sigma the points'
+    :func:`scatter`) and running along its circle, turned from it by less than
+    :data:`GROOVE_END_SLOPE` over :data:`GROOVE_END_REACH` (a root fillet or tip rounding tangent to
+    the land). An end short of the land lies on a flank or rounding, and what lies between it and the
+    land was not measured: a rack-involute male tooth cut 2-3 deg short of its root land was filled
+    by a straight line from the one flank to the other.
+
+    Raises
+    ------
+    DesignError
+        Naming ``label``, how far from the land's radius each end lies and how steeply the outline
+        leaves its circle there.
+    """
+    land, off, turn, tol, at_tip = _land_ends(pts)
+    if np.all(off <= tol) and np.all(turn <= GROOVE_END_SLOPE):
+        return land
+    where, part = ("below", "tip") if at_tip else ("above", "root")
+    raise DesignError(
+        label,
+        f"one groove or tooth whose both ends lie on its {part} land (within {tol * 1e3:.3g} µm of the {part} radius "
+        f"{land:.4f} mm its points reach, running along that circle), one lobe spanning the lobe pitch, or the whole "
+        "outline",
+        None,
+        f"its first and last points lie {off[0]:.4g} and {off[1]:.4g} mm {where} it, leaving its circle at "
+        f"{np.degrees(turn[0]):.3g} and {np.degrees(turn[1]):.3g} deg: short of the {part} land, on a flank or "
+        f"rounding, and the part between them and the land was not measured (it would be guessed); give the points "
+        f"up to the {part} land on both sides",
+    )
+
+
+def _patterned_groove(pts: np.ndarray, teeth: int, label: str = "points") -> np.ndarray:
     """Make the whole outline from one groove or tooth, counter-clockwise.
 
     The span is patterned ``teeth`` times; the part between the end of one copy and the start of
     the next, which was not measured (the tip or the root between two grooves), is filled with
-    points at the polar angle's own spacing whose radius runs linearly in angle from the one end to
-    the other: an arc about the centre (a land) when both ends lie on one radius.
+    points at the polar angle's own spacing on the arc about the centre at the radius both ends
+    lie on (:func:`_groove_land`, which refuses ends short of the tip or root land), the ends' own
+    radii blended into it over the gap (within the tolerance of that land).
     """
     pitch = 2 * np.pi / teeth
+    land = _groove_land(pts, label)
     theta = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
     r = np.hypot(*pts.T)
     gap = theta[0] + pitch - theta[-1]
@@ -208,7 +305,7 @@ def _patterned_groove(pts: np.ndarray, teeth: int) -> np.ndarray:
     n = max(int(np.ceil(gap / max(step, 1e-6))), 2)
     u = np.linspace(0.0, 1.0, n + 1)[1:-1]
     fill_t = theta[-1] + gap * u
-    fill_r = r[-1] + (r[0] - r[-1]) * u
+    fill_r = land + (r[-1] - land) * (1.0 - u) ** 2 + (r[0] - land) * u**2  # on the land, meeting either end
     fill = np.column_stack([fill_r * np.cos(fill_t), fill_r * np.sin(fill_t)])
     lobe = np.vstack([pts, fill])
     return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
@@ -227,7 +324,10 @@ def scatter(whole: np.ndarray) -> float:
     Returns
     -------
     float, mm
-        sigma; 0 for exact points (below :data:`SCATTER_FLOOR`) or fewer than 8 points.
+        sigma; 0 for exact points (below :data:`SCATTER_FLOOR`) or fewer than 8 points, and for
+        unevenly spaced points (:data:`UNEVEN_SPACING`) that local cubics, which do not assume an
+        even spacing, find exact (:func:`rotorcad.measured.pattern.uneven_scatter`: a polyline's
+        vertices drawn to a chord tolerance, which the third differences read as scattered).
     """
     p = np.asarray(whole, dtype=float)
     if len(p) < 8:
@@ -238,7 +338,13 @@ def scatter(whole: np.ndarray) -> float:
     ok = length > 0
     normal = np.abs(cross(chord[ok], d3[ok])) / length[ok]
     sigma = 1.4826 * np.median(normal) / np.sqrt(20.0)  # MAD of a zero-mean normal, sqrt(20): the difference's gain
-    return float(sigma) if sigma > SCATTER_FLOOR else 0.0
+    if sigma <= SCATTER_FLOOR:
+        return 0.0
+    step = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
+    uneven = np.quantile(step, 0.9) > UNEVEN_SPACING * np.quantile(step, 0.1)
+    if uneven and uneven_scatter(p) <= SCATTER_FLOOR:  # exact points on an uneven spacing (a polyline's vertices)
+        return 0.0
+    return float(sigma)
 
 
 def accuracy(whole: np.ndarray, sigma: float) -> float:
@@ -523,6 +629,7 @@ __all__ = [
     "DRAWN_SPANS",
     "SCATTER_FLOOR",
     "SMOOTH_JOINT",
+    "UNEVEN_SPACING",
     "Outline",
     "accuracy",
     "as_given",

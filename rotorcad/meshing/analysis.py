@@ -740,6 +740,8 @@ class MeshingAnalysis:
             "angle_convention": ANGLE_CONVENTION,
             "defects": self.defect_dicts(),
             "defect_accuracy": self.judged_accuracy,
+            # the meshline stretch the normals' tests resolve (rotorcad.meshing.defects.meshline_defects): not seen within it
+            "defect_resolution": resolution((MESHLINE_GAIN if self.is_given else 1) * self.judged_accuracy, pair.center_distance),
             "point_generated_flanks": self.point_generated_flanks,
             "flanks": {str(f): r.as_dict() for f, r in self.flanks.items()},
             "overlap_contact_ratio": float(pair.wrap_angle * pair.male_teeth / (2 * np.pi)),
