@@ -268,3 +268,30 @@ def test_a_defect_below_the_resolution_is_said(tmp_path, capsys):
     assert to_end < stated  # 0.53 mm: within the points' resolution (the design has no such rule)
     assert main(["rotor", str(design_file), "--male-points", str(csv)]) == 0
     assert "below this resolution, not seen" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("count", [10_000, 200_000])
+def test_pattern_of_a_polygon_read_in_bounded_memory(count):
+    """Points along a regular polygon inscribed in a circle: :func:`pattern_deviation` reads the chords'
+    sagitta e = R (1 - cos(pi / m)) (closed form), also from 200 000 points, within 100 MB (the window
+    of 2500 points about each of 100 000 points took 5 GB, a new user's CMM file)."""
+    import tracemalloc
+
+    from independent_pairs import scan
+
+    from rotorcad.measured.pattern import pattern_deviation
+
+    radius, sides = 50.0, 600
+    corners = radius * np.column_stack(
+        [np.cos(2 * np.pi * np.arange(sides) / sides), np.sin(2 * np.pi * np.arange(sides) / sides)]
+    )
+    sagitta = radius * (1.0 - np.cos(np.pi / sides))
+    points = scan(corners, count, 0.31)
+    tracemalloc.start()
+    try:
+        got = pattern_deviation(points, 5)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert got == pytest.approx(sagitta, rel=0.2), (got, sagitta)
+    assert peak < 100e6, peak

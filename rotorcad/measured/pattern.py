@@ -42,21 +42,36 @@ longer than the vertex spacing of its 1 µm chord CSV (0.3-1 mm) and short enoug
 outline's fourth-order term stays in nanometres."""
 
 
-def _local_cubic(whole: np.ndarray, half: int) -> tuple[np.ndarray, np.ndarray]:
+WINDOW_HALF_POINTS = 16
+"""Most points each side of a window's centre that a local cubic takes: denser points take every
+k-th (33 points fix a cubic's four coefficients many times over), so that 100 000 points need
+tens of megabytes, not the 8 GB a window of 2500 points about each of them took."""
+
+PATTERN_CENTRES = 20_000
+"""Most points whose residuals :func:`pattern_deviation` takes the median of (evenly among all)."""
+
+
+def _local_cubic(
+    whole: np.ndarray, half: int, stride: int = 1, centres: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Return each point's offset from the local cubic of the ``2 half + 1`` points about it and its leverage.
 
     The offsets v normal to the window's chord against the positions u along it, the least-squares
     cubic c(u) of them; the residual v_0 - c(0) of the centre point and the hat matrix's diagonal
     entry h_00 there (the residual of independent scatter sigma has standard deviation
-    sigma sqrt(1 - h_00), however uneven the points' spacing).
+    sigma sqrt(1 - h_00), however uneven the points' spacing). The window takes every ``stride``-th
+    point about the centre (its span ``2 half stride`` points); ``centres`` (indices, default every
+    point) are the points whose residuals are returned: memory (centres x window x 4 floats) stays
+    bounded however dense the points.
     """
     p = np.asarray(whole, dtype=float)
     n = len(p)
-    k = np.arange(-half, half + 1)
-    idx = (np.arange(n)[:, None] + k[None, :]) % n
-    chord = p[(np.arange(n) + half) % n] - p[(np.arange(n) - half) % n]
+    at = np.arange(n) if centres is None else np.asarray(centres)
+    k = stride * np.arange(-half, half + 1)
+    idx = (at[:, None] + k[None, :]) % n
+    chord = p[(at + stride * half) % n] - p[(at - stride * half) % n]
     t = chord / np.maximum(np.hypot(*chord.T), 1e-300)[:, None]
-    d = p[idx] - p[:, None, :]  # (n, w, 2)
+    d = p[idx] - p[at][:, None, :]  # (m, w, 2)
     u = d[..., 0] * t[:, None, 0] + d[..., 1] * t[:, None, 1]
     v = d[..., 1] * t[:, None, 0] - d[..., 0] * t[:, None, 1]
     u = u / np.maximum(np.abs(u).max(axis=1, keepdims=True), 1e-300)
@@ -140,7 +155,19 @@ def pattern_deviation(whole: np.ndarray, teeth: int) -> float:
     step = np.hypot(*np.diff(np.vstack([p, p[:1]]), axis=0).T)
     window = step.sum() / max(teeth, 1) / WINDOWS_PER_LOBE
     half = int(min(max(2, round(window / 2.0 / max(float(np.median(step)), 1e-300))), (len(p) - 1) // 2))
-    return float(np.median(local_fit_residual(p, half))) / PATTERN_MEDIAN
+    stride = -(-half // WINDOW_HALF_POINTS)  # dense points: every stride-th of them spans the same window
+    centres = np.arange(0, len(p), max(1, len(p) // PATTERN_CENTRES))
+    residual = _local_cubic(p, -(-half // stride), stride, centres)[0]
+    return float(np.median(np.abs(residual))) / PATTERN_MEDIAN
 
 
-__all__ = ["PATTERN_MEDIAN", "PATTERN_RMS", "WINDOWS_PER_LOBE", "local_fit_residual", "pattern_deviation", "uneven_scatter"]
+__all__ = [
+    "PATTERN_CENTRES",
+    "PATTERN_MEDIAN",
+    "PATTERN_RMS",
+    "WINDOWS_PER_LOBE",
+    "WINDOW_HALF_POINTS",
+    "local_fit_residual",
+    "pattern_deviation",
+    "uneven_scatter",
+]
