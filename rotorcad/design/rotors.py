@@ -230,9 +230,10 @@ def _refuse_scatter_followed(spec: PairSpec, points: Any, rotor: Side, label: st
     least = per_lobe * outline.sigma**2
     if spec.smoothing < least:  # below the fit through the scatter: judged as without one
         _refuse_scatter(spec.pair, outline, rotor, label or f"[profile] points ({spec.family})")
+        step = 10.0 ** (np.floor(np.log10(least)) - 1)  # the least named to two digits, rounded up: it is taken
         raise DesignError(
             "smoothing",
-            f"at least {least:.2g} mm^2 for {label or 'these points'}, or not given (then it is that)",
+            f"at least {np.ceil(least / step) * step:.2g} mm^2 for {label or 'these points'}, or not given (then it is that)",
             spec.smoothing,
             f"n sigma^2 over a lobe's {per_lobe:.0f} points at their estimated scatter of {outline.sigma * 1e3:.2g} um; "
             "a smaller one lets the fit follow the scatter, and the tip corners' paths, the blow-hole and the "
