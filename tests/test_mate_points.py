@@ -293,12 +293,17 @@ def female_verdicts(built_once) -> dict:
 # meshline's accuracy of a tip corner counted as none (rotorcad.meshing.contact_ratios.resolved_steps)
 _N_RACK_SPREAD = (
     "exact points: the apex is where the male's tip rounding meets the sealing flank, which 300 points a lobe "
-    "resolve with 2-3 points: 1.787 mm² for the design's 1.738 (+2.8 %), and the fit's tangent spread there "
-    "(28-29 mrad) states +-4.4 mm², above the area itself"
+    "resolve with 2-3 points: 1.787 mm² for the design's 1.738 (+2.8 %) with the male generated within 0.65 um "
+    "of the design's everywhere (its apex 0.05 mm off: the blow-hole is that ill-conditioned in the fitted "
+    "tangent; 600 points a lobe: +0.31 %, the male within 0.29 um), and the fit's tangent spread there "
+    "(28-29 mrad) states +-4.4 mm², above the area itself (the same from the male's even-300 points, "
+    "test_verdict_invariance's UNRESOLVED_BLOW_HOLE)"
 )
-KNOWN_FEMALE: dict[tuple[str, str, str], str] = {
-    **{(name, "exact", "blow_hole"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")},
-}
+KNOWN_FEMALE: dict[tuple[str, str, str], str] = {}
+UNRESOLVED_FEMALE: dict[tuple[str, str], str] = {(name, "exact"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")}
+"""The blow-holes the female's points do not resolve, and say so (``blow_hole_resolved`` false): the area is no
+verdict there, and the design's lies within the stated uncertainty (as the male's evenly spaced points in
+test_verdict_invariance's UNRESOLVED_BLOW_HOLE)."""
 
 
 def _female_case(name: str, form: str, what: str):
@@ -329,6 +334,10 @@ def test_female_points_give_the_design_contact_ratios(female_verdicts, name, for
 def test_female_points_give_the_design_blow_hole(female_verdicts, name, form):
     design, given = female_verdicts[(name, "design")], female_verdicts[(name, form)]
     area, stated = given["blow_hole_area"], given["blow_hole_uncertainty"]
+    assert given["blow_hole_resolved"] == ((name, form) not in UNRESOLVED_FEMALE)  # says where it does not resolve
+    if (name, form) in UNRESOLVED_FEMALE:  # no verdict: the design's area within the stated uncertainty
+        assert abs(area - design["blow_hole_area"]) <= stated, (area, stated, design["blow_hole_area"])
+        return
     if form == "exact":
         assert area == pytest.approx(design["blow_hole_area"], rel=BLOW_HOLE, abs=1e-3)
     else:
