@@ -172,7 +172,8 @@ def joined_mate_paths(
     Returns
     -------
     list of RackPiece
-        The chain with each such run of pieces as one piece (names from its first piece).
+        The chain with each such run of pieces as one piece (names from its first piece); a run
+        whose corner's path does not reach both neighbours' ends within ``gap`` is left as it was.
     """
     other = PieceRole.MALE_CORNER_PATH if own is PieceRole.FEMALE_CORNER_PATH else PieceRole.FEMALE_CORNER_PATH
     n = len(rack)
@@ -221,7 +222,12 @@ def joined_mate_paths(
         t0 = _time_at(corner, mate, rack_body, ends[lo][0], first, reach)
         t1 = _time_at(corner, mate, rack_body, ends[hi][1], last, reach)
         carried = (float(corner[0]), float(corner[1]))
-        out.append(RackPiece(PointPath(carried, mate, rack_body, t0, t1), rack[i].male_name, rack[i].female_name, other))
+        path = PointPath(carried, mate, rack_body, t0, t1)
+        reached = np.hypot(*(path.evaluate(np.array([t0, t1]))[0] - np.array([ends[lo][0], ends[hi][1]])).T)
+        if np.all(reached <= gap):  # the chain stays continuous
+            out.append(RackPiece(path, rack[i].male_name, rack[i].female_name, other))
+        else:  # the corner's path does not reach a neighbour: the pieces as they were
+            out.extend(rack[lo : hi + 1])
         i = hi + 1
     return out
 
