@@ -173,7 +173,8 @@ def joined_mate_paths(
     -------
     list of RackPiece
         The chain with each such run of pieces as one piece (names from its first piece); a run
-        whose corner's path does not reach both neighbours' ends within ``gap`` is left as it was.
+        whose corner's path does not reach both neighbours' ends within ``gap`` or ``same`` (how
+        well the corner is placed) is left as it was.
     """
     other = PieceRole.MALE_CORNER_PATH if own is PieceRole.FEMALE_CORNER_PATH else PieceRole.FEMALE_CORNER_PATH
     n = len(rack)
@@ -224,7 +225,7 @@ def joined_mate_paths(
         carried = (float(corner[0]), float(corner[1]))
         path = PointPath(carried, mate, rack_body, t0, t1)
         reached = np.hypot(*(path.evaluate(np.array([t0, t1]))[0] - np.array([ends[lo][0], ends[hi][1]])).T)
-        if np.all(reached <= gap):  # the chain stays continuous
+        if np.all(reached <= max(gap, same)):  # the chain continuous to the joints' gap or the corner's own place
             out.append(RackPiece(path, rack[i].male_name, rack[i].female_name, other))
         else:  # the corner's path does not reach a neighbour: the pieces as they were
             out.extend(rack[lo : hi + 1])
