@@ -202,12 +202,17 @@ def _mate_corner_runs(
     Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other are
     one corner's path, with what lies between them (:data:`EXACT_CORNER_WANDER`).
 
-    Of exact points as of scattered ones, only a run whose corner lies on the mate's tip circle
-    (``tip``) is a corner path: the male's 0.67 mm tip rounding of the N rack and Rinder-Deix pairs,
-    generated from the female's splines or 300 exact points a lobe, moves the male's point at 2-5 %
-    of the rack's speed, and its slowest stretch (0.35-2.25 mm of rack, its corner 0.19 mm inside the
-    tip circle) was read as the male's tip corner, which cut the rounding short where the apex lies
-    (blow-hole +1.7 % from the splines and +7.2 % from the polyline, now -0.28 % and +0.42 %).
+    Of exact points, a run inside the rack piece (reaching neither of its ends) is a corner path only
+    where its corner lies on the mate's tip circle (``tip``): the male's 0.67 mm tip rounding of the N
+    rack and Rinder-Deix pairs, generated from the female's splines or 300 exact points a lobe, moves
+    the male's point at 2-5 % of the rack's speed, and its slowest stretch (0.35-2.25 mm of rack, its
+    corner 0.19 mm inside the tip circle) was read as the male's tip corner, which cut the rounding
+    short where the apex lies (blow-hole +1.7 % from the splines and +7.2 % from the polyline, now
+    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner
+    lies: there the piece hands over from this rotor's own corner, and the fit's end leaves the
+    mate's point still for a moment (one tooth of the rack-involute male, 300 points a lobe: the
+    female's point stands within 2.4 µm over 0.12 mm of rack, 7.4 mm inside its tip circle; taken as
+    flank, the female generated there crossed itself and ``hob`` read it undercut).
 
     Of exact points, how far the mate's point may stray from its corner and still be that corner
     follows the profile's accuracy: ``tolerance`` plus :func:`mate_wander` of the profile's
@@ -267,8 +272,9 @@ def _mate_corner_runs(
         far = np.flatnonzero(~near)
         lo = int(far[far < centre].max(initial=-1)) + 1  # the run of near samples around the centre
         hi = int(far[far > centre].min(initial=len(s))) - 1
-        if tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]:
-            continue  # not the mate's tip corner: a flank generated slowly
+        off_tip = tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]
+        if off_tip and (scattered or (0 < lo and hi < len(s) - 1)):
+            continue  # not the mate's tip corner: a flank generated slowly (of exact points, inside the piece)
         if scattered:  # as far as the mate's point stays within its own wander of the corner
             lo, hi, spread = _wander_run(pm, i, j)
             noise = max(noise, spread)
