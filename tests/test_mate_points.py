@@ -26,9 +26,12 @@ import pytest
 import shapely
 from independent_pairs import scan
 
+from exports.csv_points import write_points
+from rotorcad.cli.main import main
 from rotorcad.design import rotor_design
 from rotorcad.envelope import rack_frame
 from rotorcad.profile import Segment
+from rotorcad.roles import PieceRole
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
@@ -258,7 +261,17 @@ def _female_verdicts() -> dict:
                 pts, tangents = piece.curve.evaluate(np.linspace(piece.curve.s0, piece.curve.s1, 41))
                 roles = flank_roles(pts, tangents, spec.pair.male_pitch_radius, spec.pair.center_distance)
                 flat = bool(np.ptp(pts[:, 0]) <= 1e-2 * np.hypot(*(pts[-1] - pts[0])))
-                parts.append((piece.male_name, Counter(str(r) for r in roles).most_common(1)[0][0], flat))
+                role = Counter(str(r) for r in roles).most_common(1)[0][0]
+                counts = Counter(str(r) for r in roles)
+                if (
+                    piece.kind in (PieceRole.MALE_CORNER_PATH, PieceRole.FEMALE_CORNER_PATH)
+                    and min(counts["driving"], counts["sealing"]) >= 10
+                ):
+                    # a corner's path with a quarter of its samples on each flank crosses O1O2 at the tip or
+                    # root (Rinder sec. 2.2.2: at the tip only a corner): named by the lobe part where it crosses
+                    k = int(np.flatnonzero(pts[:-1, 1] * pts[1:, 1] <= 0)[0])
+                    role = "tip" if pts[k, 0] > spec.pair.male_pitch_radius else "root"
+                parts.append((piece.male_name, role, flat))
             out[(name, form, "parts")] = parts
         out[(name, "teeth")] = spec.pair.male_teeth
     return out
@@ -270,25 +283,27 @@ def female_verdicts(built_once) -> dict:
     return built_once("test_mate_points.female_verdicts", _female_verdicts)
 
 
-_KRIGAR = (
-    "Krigar's pointed male tip touches the female's root on O1O2, where the female's points are fitted in two "
-    "pieces: the male tip corner's path comes as two rack pieces (14.0 and 13.1 mm, one each side of O1O2) and "
-    "reads as two point-generated cusps, driving and sealing, where the design's one path (19.5 mm) reads one "
-    "cusp named by the side its middle falls on (sealing); of exact points the sealing path also ends 0.9 mm of "
-    "rack before the female tip's path begins, and that flank part runs (sealing contact ratio 0.015 for 0)"
-)
+# krigar_4_6 read two point-generated cusps, driving and sealing, on the male (its tip corner's path came as
+# two rack pieces, 14.0 and 13.1 mm, one each side of O1O2, from the female's root fitted in two pieces), and of
+# exact points its sealing flank ran (a 0.94 mm sliver of rack between that path and the female tip's path,
+# sealing contact ratio 0.015 for 0), until the pieces of one mate corner's path and such slivers were joined
+# into the corner's own point path (rotorcad.measured.corner_paths.joined_mate_paths)
 # n_rack_5_6 and rinder_deix_5_6 from exact female points read a sealing ratio of 1.417 for 0.746 (the rack from
 # the female's points held the male's tip rounding and the sealing flank as one piece) until contacts within the
 # meshline's accuracy of a tip corner counted as none (rotorcad.meshing.contact_ratios.resolved_steps)
 _N_RACK_SPREAD = (
     "exact points: the apex is where the male's tip rounding meets the sealing flank, which 300 points a lobe "
-    "resolve with 2-3 points: 1.787 mm² for the design's 1.738 (+2.8 %), and the fit's tangent spread there "
-    "(28-29 mrad) states +-4.4 mm², above the area itself"
+    "resolve with 2-3 points: 1.787 mm² for the design's 1.738 (+2.8 %) with the male generated within 0.65 um "
+    "of the design's everywhere (its apex 0.05 mm off: the blow-hole is that ill-conditioned in the fitted "
+    "tangent; 600 points a lobe: +0.31 %, the male within 0.29 um), and the fit's tangent spread there "
+    "(28-29 mrad) states +-4.4 mm², above the area itself (the same from the male's even-300 points, "
+    "test_verdict_invariance's UNRESOLVED_BLOW_HOLE)"
 )
-KNOWN_FEMALE: dict[tuple[str, str, str], str] = {
-    **{("krigar_4_6", form, "defects"): _KRIGAR for form in FEMALE_FORMS},
-    **{(name, "exact", "blow_hole"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")},
-}
+KNOWN_FEMALE: dict[tuple[str, str, str], str] = {}
+UNRESOLVED_FEMALE: dict[tuple[str, str], str] = {(name, "exact"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")}
+"""The blow-holes the female's points do not resolve, and say so (``blow_hole_resolved`` false): the area is no
+verdict there, and the design's lies within the stated uncertainty (as the male's evenly spaced points in
+test_verdict_invariance's UNRESOLVED_BLOW_HOLE)."""
 
 
 def _female_case(name: str, form: str, what: str):
@@ -319,6 +334,10 @@ def test_female_points_give_the_design_contact_ratios(female_verdicts, name, for
 def test_female_points_give_the_design_blow_hole(female_verdicts, name, form):
     design, given = female_verdicts[(name, "design")], female_verdicts[(name, form)]
     area, stated = given["blow_hole_area"], given["blow_hole_uncertainty"]
+    assert given["blow_hole_resolved"] == ((name, form) not in UNRESOLVED_FEMALE)  # says where it does not resolve
+    if (name, form) in UNRESOLVED_FEMALE:  # no verdict: the design's area within the stated uncertainty
+        assert abs(area - design["blow_hole_area"]) <= stated, (area, stated, design["blow_hole_area"])
+        return
     if form == "exact":
         assert area == pytest.approx(design["blow_hole_area"], rel=BLOW_HOLE, abs=1e-3)
     else:
@@ -364,3 +383,70 @@ def test_asymmetric_srm_from_scattered_female_points_runs_as_the_design(seed):
     assert abs(area - reference["blow_hole_area"]) <= stated <= area, (area, stated)
     for flank, report in reference["flanks"].items():
         assert given["flanks"][flank]["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
+
+
+# ---- one mate corner's path, and no corner where the mate has none (issue 21 item 3) ---------------------------
+
+
+def _from_female(name: str, form: str):
+    spec = _spec(name)
+    design = build_pair(spec)
+    points = scan(_exterior(design.section("female", tolerance=1e-5)), spec.pair.female_teeth * PER_LOBE, 0.37)
+    if form == "scatter-1um":
+        points = points + np.random.default_rng(0).normal(0.0, SCATTER, points.shape)
+    return spec, design, build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0))
+
+
+def _male_paths(rotors) -> list:
+    return [p for p in rotors.rack if p.kind is PieceRole.MALE_CORNER_PATH]
+
+
+@pytest.mark.parametrize("form", FEMALE_FORMS)
+def test_krigar_male_tip_path_from_female_points_is_one_path(form):
+    # Krigar's pointed male tip touches the female's root on O1O2, where the female's points were fitted in two
+    # pieces: the tip's path came as two rack pieces (14.0 and 13.1 mm, one each side of O1O2) read as a driving
+    # and a sealing cusp, and of exact points a 0.94 mm flank between it and the female tip's path ran.
+    # Reference: the design's rack (rotorcad.families.krigar: one male tip corner path, a closed-form point
+    # path of the corner on the tip circle); its ends within the defect tests' resolution sqrt(8 a e) (the
+    # place of a verdict, Rinder's tests resolved to the input's accuracy e), its corner within e.
+    spec, design, given = _from_female("krigar_4_6", form)
+    (expected,) = _male_paths(design)
+    (found,) = _male_paths(given)
+    a = spec.pair.center_distance
+    reach = max(5e-3 * a, float(np.sqrt(8.0 * a * given.accuracy)))
+    ends = lambda c: c.evaluate(np.array([c.s0, c.s1]))[0]  # noqa: E731
+    assert np.hypot(*(ends(found.curve) - ends(expected.curve)).T).max() <= reach
+    assert np.hypot(*np.subtract(found.curve.carried, expected.curve.carried)) <= given.accuracy
+    assert found.male_name.split()[0] == "tip"  # across O1O2, above C: the tip's corner (Rinder sec. 2.2.2)
+
+
+@pytest.mark.parametrize("form", FEMALE_FORMS)
+def test_rounded_male_tip_from_female_points_has_no_corner_path(form):
+    # the N rack's male tip is rounded (0.67 mm): the slow part of that rounding, 0.19 mm inside the male tip
+    # circle, was read as the male's tip corner from the female's splines, which cut the rounding short where
+    # the apex lies (blow-hole +1.7 %). Reference: the design's rack (rotorcad.families.n_rack: a rounded tip
+    # has no male corner path) and Rinder sec. 2.2.2 (only a corner at the tip stands still on the tip circle)
+    _, design, given = _from_female("n_rack_5_6", form)
+    assert not _male_paths(design)
+    assert not _male_paths(given), [(p.male_name, p.curve.evaluate(np.array([p.curve.s0]))[0]) for p in _male_paths(given)]
+
+
+def test_smoothing_that_follows_scattered_female_points_is_refused(capsys, tmp_path):
+    # issue 21 item 3: `rotor --female-points` of 1 um scattered points with --smoothing 0 lost the female tip
+    # corner's path (the symmetric SRM's driving cusp, blow-hole 0.53 for 70.7 mm²) with only a note; the N
+    # rack's male read a tip corner it has not at 8e-5 and 1.5e-4 mm². Now refused in one sentence naming
+    # --smoothing and the least that works, exit status 2; that least is taken. Reference: the scatter put in,
+    # 300 points a lobe x (1 um)^2 = 3e-4 mm² (scipy's s = n sigma^2, Dierckx sec. 5.2)
+    spec = _spec("narrow_tip_5_6")
+    female = _exterior(build_pair(spec).section("female", tolerance=1e-5))
+    points = scan(female, spec.pair.female_teeth * PER_LOBE, 0.37)
+    path = tmp_path / "female.csv"
+    write_points(path, points + np.random.default_rng(0).normal(0.0, SCATTER, points.shape))
+    args = ["rotor", str(SAMPLES / "narrow_tip_5_6.toml"), "--female-points", str(path), "--quiet"]
+    capsys.readouterr()
+    assert main([*args, "--smoothing", "0"]) == 2
+    lines = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert len(lines) == 1 and "--smoothing must be at least" in lines[0] and "Traceback" not in lines[0], lines
+    least = float(lines[0].split("at least ")[1].split()[0])
+    assert least == pytest.approx(PER_LOBE * SCATTER**2, rel=0.3)
+    assert main([*args, "--smoothing", f"{least:.3g}"]) == 0, capsys.readouterr().err

@@ -28,7 +28,7 @@ from independent_pairs import scan
 
 from exports.csv_points import read_points, write_points
 from rotorcad.design import rotor_design
-from rotorcad.errors import InputNote
+from rotorcad.errors import DesignError, InputNote
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
@@ -153,15 +153,17 @@ def test_scatter_keeps_the_design_verdicts(name, per_lobe, sigma, smoothing):
     assert given["blow_hole_uncertainty"] < 0.05 * design["female_flute_area"]
 
 
-def test_smoothing_that_follows_the_scatter_is_said():
-    # finding 15, decided: --smoothing keeps its meaning (scipy's s of each piece) and is applied as
-    # given; where it lets the fit follow the scatter, below a lobe's n sigma^2 / 4, the user is told
-    # (the finding's points read 0.000 +- 0.16 mm² at 0 and 1e-5 mm², design 2.778). Reference: the
-    # scatter put in here, 1 um: the bound 300 points x (1 um)^2 / 4 = 7.5e-5 mm²
-    with pytest.warns(InputNote, match="follow the points' scatter") as notes:
+def test_smoothing_that_follows_the_scatter_is_refused():
+    # finding 15 and issue 21 item 3: a smoothing that lets the fit follow the scatter (below a lobe's n sigma^2)
+    # read numbers of the noise (the finding's points: 0.000 +- 0.16 mm² at 0 and 1e-5 mm², design 2.778; the
+    # N rack's male from 1 um female points a sealing tip corner it has not at 8e-5 and 1.5e-4), with only a
+    # note: now refused, naming the smoothing and the least that works. Reference: the scatter put in here,
+    # 1 um: 300 points x (1 um)^2 = 3e-4 mm²
+    with pytest.raises(DesignError, match="at least") as refusal:
         _scattered("narrow_tip_5_6", 300, 1e-3, 1e-5)
-    bound = float(re.search(r"below ([0-9.e+-]+) mm\^2", str(notes[0].message)).group(1))
-    assert bound == pytest.approx(300 * 1e-3**2 / 4, rel=0.3)
+    assert refusal.value.param == "smoothing" and refusal.value.value == 1e-5
+    least = float(re.search(r"at least ([0-9.e+-]+) mm\^2", refusal.value.sentence()).group(1))
+    assert least == pytest.approx(300 * 1e-3**2, rel=0.3)
     with warnings.catch_warnings():
-        warnings.simplefilter("error", InputNote)  # a smoothing near the default: no note
+        warnings.simplefilter("error", InputNote)  # a smoothing above it: taken as given, no note
         _scattered("narrow_tip_5_6", 300, 1e-3, 1e-3)

@@ -63,15 +63,11 @@ SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coo
 # the profile's accuracy (rotorcad.measured.pairs.mate_wander); krigar_4_6 even-300-b named its tip-centre cusp
 # by the driving flank until a corner path across O1O2 became the tip of both flanks
 KNOWN: dict[tuple[str, str], str] = {}
-KNOWN_VERDICTS: dict[tuple[str, str], str] = {
-    ("krigar_4_6", "even-300-b"): (
-        "the driving flank runs (the design's does not): 300 points a lobe at phase 0.8 leave 1.04 mm of meshline "
-        "where the male tip corner's path hands over to the female's as a working part, 1.4 times the profile's "
-        "resolution; counting working parts from the meshline's resolution (sqrt(10) times longer) fixes it but "
-        "drops SRM-B's and the asymmetric SRM's short sealing working parts from their CSVs "
-        "(tests/test_contact_ratio_invariance.py)"
-    ),
-}
+# krigar_4_6 even-300-b ran on its driving flank (the design's does not): 300 points a lobe at phase 0.8 left
+# 1.04 mm of meshline where the male tip corner's path hands over to the female's as a working part, until a
+# rack part between the two tips' corner paths along which the mate's point stands nearly still was joined to
+# the mate corner's path (rotorcad.measured.corner_paths.joined_mate_paths)
+KNOWN_VERDICTS: dict[tuple[str, str], str] = {}
 _TIP = (
     "1 um of scatter moves the blow-hole's apex (where the male tip corner's path hands over to the "
     "flank's) along the male tip circle: the flank's tangent at the corner, fitted through scattered "

@@ -26,6 +26,16 @@ import numpy as np
 from rotorcad.curves import Curve, PointPath
 from rotorcad.envelope import Generated, contact_parameter
 from rotorcad.kinematics import Body, pitch_point
+from rotorcad.roles import PieceRole
+from rotorcad.screw_rotors import RackPiece
+
+SLIVER_STALL = 0.15
+"""A rack part between the mate's tip corner path and this rotor's own tip corner path along which the
+mate's point moves (chord) less than this share of the rack point's motion (chord) is the mate
+corner's path too (:func:`joined_mate_paths`): 0.025-0.10 on Krigar's female fitted through 300
+points a lobe, exact or with 1 µm of scatter (the fit's end at the female tip corner lets the male's
+point stray 23-113 µm from its corner), 0.35-1 along the flanks the samples' racks generate (the
+stall share of scattered points, :data:`rotorcad.measured.pairs.SCATTERED_STALL`)."""
 
 
 def corner_point_path(fan: Curve, rotor: Body, rack: Body, targets: list[np.ndarray], gap: float) -> PointPath | None:
@@ -105,4 +115,122 @@ def _follows(generated: Generated, times: list[float], samples: int = 65) -> boo
     return monotone and abs(ends[0] - lo) <= 1e-9 and abs(ends[1] - hi) <= 1e-9
 
 
-__all__ = ["corner_point_path"]
+def _time_at(corner: np.ndarray, mate: Body, rack: Body, target: np.ndarray, guess: float, reach: float) -> float:
+    """Return the motion parameter at which the mate's corner, seen from the rack, lies nearest ``target`` (mm).
+
+    Searched within ``reach`` (rad) of ``guess`` (bounded scalar minimisation of the distance).
+    """
+    from scipy.optimize import minimize_scalar
+
+    carried = (float(corner[0]), float(corner[1]))
+
+    def distance(t: float) -> float:
+        p, _ = PointPath(carried, mate, rack, t, t).evaluate(np.array([t]))
+        return float(np.hypot(*(p[0] - target))) if np.all(np.isfinite(p)) else np.inf
+
+    found = minimize_scalar(distance, bounds=(guess - reach, guess + reach), method="bounded", options={"xatol": 1e-12})
+    return float(found.x)
+
+
+def joined_mate_paths(
+    rack: list[RackPiece], mate: Body, rack_body: Body, own: PieceRole, same: float, gap: float
+) -> list[RackPiece]:
+    """Join the pieces of one mate tip corner's path that the rotor's fitted pieces leave apart.
+
+    A rotor given by points is fitted piece by piece, and each piece's rack finds the mate's corner
+    paths on its own (:func:`rotorcad.measured.pairs._mate_corner_runs`). Where one path of the mate's
+    tip corner runs across a joint of the fit (Krigar's pointed male tip touches the female's root on
+    O1O2, where 300 points a lobe of the female are fitted in two pieces), it came as two rack pieces
+    (14.0 and 13.1 mm, one each side of O1O2), each read as a point-generated cusp of its own flank,
+    where the design's one path reads one cusp at the tip (Rinder sec. 2.2.1-2.2.2: at the tip only a
+    corner). Pieces of the mate's corner path (role ``other``) that follow one another in the chain,
+    each end within ``gap`` (mm) of the next, whose corners (the median of the mate's points
+    generated along them) lie within ``same`` (mm) of each other, are one path. A flank part between
+    that path and this rotor's own tip corner path (role ``own``: the two tips hand over) along which
+    the mate's point moves less than :data:`SLIVER_STALL` of the rack's motion is that path's too.
+
+    The joined path is the mate corner's own point path (:class:`rotorcad.curves.PointPath`, the
+    corner at the median of its pieces' mate points), from where the piece before it ends to where
+    the one after it begins, as the profile families give a corner's path (Litvin, *Gear Geometry
+    and Applied Theory*, sec. 6.1), so the rotor is cut by it in closed form.
+
+    Parameters
+    ----------
+    rack : list of RackPiece
+        The rack chain in travel order (fixed frame at t = 0), one rack period.
+    mate : Body
+        The motion of the rotor generated (the mate whose corner the paths are).
+    rack_body : Body
+        The rack's motion.
+    own : PieceRole
+        The corner-path role of the rotor the points are of.
+    same : float, mm
+        How near two corners lie that are one.
+    gap : float, mm
+        How far apart the ends of neighbouring pieces may lie.
+
+    Returns
+    -------
+    list of RackPiece
+        The chain with each such run of pieces as one piece (names from its first piece); a run
+        whose corner's path does not reach both neighbours' ends within ``gap`` or ``same`` (how
+        well the corner is placed) is left as it was.
+    """
+    other = PieceRole.MALE_CORNER_PATH if own is PieceRole.FEMALE_CORNER_PATH else PieceRole.FEMALE_CORNER_PATH
+    n = len(rack)
+    samples = [np.linspace(p.curve.s0, p.curve.s1, 33) for p in rack]
+    gen = [Generated(p.curve, rack_body, mate) for p in rack]
+    mates = [g.evaluate(s)[0] for g, s in zip(gen, samples, strict=True)]
+    corners = [np.nanmedian(m, axis=0) if np.isfinite(m).any() else np.full(2, np.nan) for m in mates]
+    ends = [np.asarray(p.curve.evaluate(np.array([p.curve.s0, p.curve.s1]))[0]) for p in rack]
+
+    def touching(i: int, j: int) -> bool:
+        return bool(np.hypot(*(ends[i][1] - ends[j][0])) <= gap)
+
+    def sliver(k: int) -> bool:
+        m = mates[k][np.isfinite(mates[k]).all(axis=1)]
+        if rack[k].kind is not PieceRole.CURVE or len(m) < 2:
+            return False
+        return bool(np.hypot(*(m[-1] - m[0])) < SLIVER_STALL * np.hypot(*(ends[k][1] - ends[k][0])))
+
+    out: list[RackPiece] = []
+    i = 0
+    while i < n:
+        if rack[i].kind is not other:
+            out.append(rack[i])
+            i += 1
+            continue
+        j = i  # the last path piece of this corner
+        while j + 1 < n and rack[j + 1].kind is other and touching(j, j + 1):
+            if not np.hypot(*(corners[j + 1] - corners[i])) <= same:
+                break
+            j += 1
+        lo, hi = i, j
+        if lo > 0 and sliver(lo - 1) and lo - 2 >= 0 and rack[lo - 2].kind is own and touching(lo - 1, lo) and out:
+            lo -= 1  # the sliver before the path, after this rotor's own corner path
+            out.pop()
+        if hi + 2 < n and sliver(hi + 1) and rack[hi + 2].kind is own and touching(hi, hi + 1):
+            hi += 1
+        if lo == hi:
+            out.append(rack[i])
+            i = j + 1
+            continue
+        paths = [k for k in range(lo, hi + 1) if rack[k].kind is other]
+        points = np.vstack([mates[k] for k in paths])
+        corner = np.nanmedian(points, axis=0)
+        first, last = gen[lo].contact(samples[lo][[0]]).t[0], gen[hi].contact(samples[hi][[-1]]).t[0]
+        reach = 0.25 * abs(last - first) + 1e-6
+        t0 = _time_at(corner, mate, rack_body, ends[lo][0], first, reach)
+        t1 = _time_at(corner, mate, rack_body, ends[hi][1], last, reach)
+        carried = (float(corner[0]), float(corner[1]))
+        path = PointPath(carried, mate, rack_body, t0, t1)
+        reached = np.hypot(*(path.evaluate(np.array([t0, t1]))[0] - np.array([ends[lo][0], ends[hi][1]])).T)
+        if np.all(reached <= max(gap, same)):  # the chain continuous to the joints' gap or the corner's own place
+            out.append(RackPiece(path, rack[i].male_name, rack[i].female_name, other))
+        else:  # the corner's path does not reach a neighbour: the pieces as they were
+            out.extend(rack[lo : hi + 1])
+        i = hi + 1
+    return out
+
+
+__all__ = ["SLIVER_STALL", "corner_point_path", "joined_mate_paths"]

@@ -16,7 +16,7 @@ from rotorcad.curves import Curve, Mapped, PointPath
 from rotorcad.envelope import Generated, conjugate
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
-from rotorcad.measured.corner_paths import corner_point_path
+from rotorcad.measured.corner_paths import corner_point_path, joined_mate_paths
 from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.tangent import tip_tangent_accuracy
@@ -202,6 +202,18 @@ def _mate_corner_runs(
     Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other are
     one corner's path, with what lies between them (:data:`EXACT_CORNER_WANDER`).
 
+    Of exact points, a run inside the rack piece (reaching neither of its ends) is a corner path only
+    where its corner lies on the mate's tip circle (``tip``): the male's 0.67 mm tip rounding of the N
+    rack and Rinder-Deix pairs, generated from the female's splines or 300 exact points a lobe, moves
+    the male's point at 2-5 % of the rack's speed, and its slowest stretch (0.35-2.25 mm of rack, its
+    corner 0.19 mm inside the tip circle) was read as the male's tip corner, which cut the rounding
+    short where the apex lies (blow-hole +1.7 % from the splines and +7.2 % from the polyline, now
+    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner
+    lies: there the piece hands over from this rotor's own corner, and the fit's end leaves the
+    mate's point still for a moment (one tooth of the rack-involute male, 300 points a lobe: the
+    female's point stands within 2.4 µm over 0.12 mm of rack, 7.4 mm inside its tip circle; taken as
+    flank, the female generated there crossed itself and ``hob`` read it undercut).
+
     Of exact points, how far the mate's point may stray from its corner and still be that corner
     follows the profile's accuracy: ``tolerance`` plus :func:`mate_wander` of the profile's
     ``accuracy`` (mm) and tangent ``turn`` (rad) at each rack point; the pair from exact points passes
@@ -260,8 +272,9 @@ def _mate_corner_runs(
         far = np.flatnonzero(~near)
         lo = int(far[far < centre].max(initial=-1)) + 1  # the run of near samples around the centre
         hi = int(far[far > centre].min(initial=len(s))) - 1
-        if scattered and tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]:
-            continue  # not the mate's tip corner: a flank generated slowly
+        off_tip = tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]
+        if off_tip and (scattered or (0 < lo and hi < len(s) - 1)):
+            continue  # not the mate's tip corner: a flank generated slowly (of exact points, inside the piece)
         if scattered:  # as far as the mate's point stays within its own wander of the corner
             lo, hi, spread = _wander_run(pm, i, j)
             noise = max(noise, spread)
@@ -369,6 +382,53 @@ def _in_design_period(rack: list[RackPiece], pair: RotorPair) -> list[RackPiece]
     return [moved[i] for i in order]
 
 
+def _at_turns(rack: list[RackPiece], period: float, depth: int = 4) -> list[RackPiece]:
+    """Return the chain with each flank piece that holds two lobe parts split where its rack turns.
+
+    A lobe fitted as one closed spline (the N rack's female from 300 exact points a lobe: no sharp
+    corner) gives one rack piece over the whole period, from the male tip's middle to the next,
+    falling (sealing flank) and then rising (driving flank): named by its ends it read "tip land",
+    and no part of it could be placed in the design's period (:func:`_in_design_period`). A piece
+    that runs more than half the rack ``period`` (mm) along the pitch line is split at the interior
+    extreme of its rack's height (the male root's or tip's middle, where Rinder sec. 1.2's driving and
+    sealing flanks meet) when both parts rise or fall by more than 1 % of their chords (neither a
+    land); the parts are split so again, ``depth`` times at most. The geometry is unchanged (trims of
+    one curve). A shorter piece is left whole: it lies within one period, and its meshline is judged
+    as one piece (the symmetric SRM's male from scattered points, its driving flank run on over the
+    female tip's lost path, read -9.5 % of blow-hole with that piece split at the male tip).
+    """
+    out = []
+    for piece in rack:
+        if piece.kind is not PieceRole.CURVE or depth <= 0:
+            out.append(piece)
+            continue
+        curve = piece.curve
+        s = np.linspace(curve.s0, curve.s1, 201)
+        pts = curve.evaluate(s)[0]
+        x = pts[:, 0]
+        if not np.isfinite(pts).all() or np.ptp(pts[:, 1]) <= 0.5 * period:
+            out.append(piece)
+            continue
+        split = None
+        for k in (int(np.argmax(x)), int(np.argmin(x))):
+            if not 4 <= k <= len(s) - 5:
+                continue  # an extreme at an end: no turn inside
+            ends = curve.evaluate(np.array([curve.s0, s[k], curve.s1]))[0]
+            sides = (ends[[0, 1]], ends[[1, 2]])
+            if all(abs(e[1, 0] - e[0, 0]) > 1e-2 * np.hypot(*(e[1] - e[0])) for e in sides):
+                split = s[k]
+                break
+        if split is None:
+            out.append(piece)
+            continue
+        halves = [
+            RackPiece(curve.trimmed(a, b), piece.male_name, piece.female_name, piece.kind)
+            for a, b in ((curve.s0, split), (split, curve.s1))
+        ]
+        out.extend(_at_turns(halves, period, depth - 1))
+    return out
+
+
 def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[RackPiece]:
     """Return the pieces named by their lobe part (:class:`rotorcad.roles.Flank`), as the design's are.
 
@@ -376,7 +436,9 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
     (Rinder sec. 1.2): rising towards the male tip along the travel, the driving flank; falling, the
     sealing flank; flat (to 1 % of its chord: fitted points leave a land micrometres off flat), the
     tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner ("sealing male
-    tip corner"), a fan's path by the rotor whose corner it is.
+    tip corner"), a fan's path by the rotor whose corner it is; a corner path across O1O2 (its ends a
+    quarter of its chord or more either side) by where it crosses: above the pitch point C the tip
+    ("tip male tip corner"), below it the root.
     """
     out = []
     for piece in rack:
@@ -384,7 +446,13 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
         pts = pts[np.isfinite(pts).all(axis=1)]  # a piece may hold gaps (no rack point)
         ends = pts[[0, -1]] if len(pts) else np.zeros((2, 2))
         rise = float(ends[1, 0] - ends[0, 0])
-        if abs(rise) <= 1e-2 * float(np.hypot(*(ends[1] - ends[0]))):  # flat to 0.6 deg: a land
+        chord = float(np.hypot(*(ends[1] - ends[0])))
+        if piece.kind is not PieceRole.CURVE and ends[0, 1] * ends[1, 1] < 0 and np.abs(ends[:, 1]).min() > 0.25 * chord:
+            # a corner path across O1O2 with a quarter of its chord or more either side (Krigar's male tip
+            # corner): the corner of both flanks, of the lobe part where it crosses (above C: the tip)
+            cross = pts[int(np.flatnonzero(pts[:-1, 1] * pts[1:, 1] <= 0)[0])]
+            role = Flank.TIP if cross[0] > pair.male_pitch_radius else Flank.ROOT
+        elif abs(rise) <= 1e-2 * chord:  # flat to 0.6 deg: a land
             above = float(ends[:, 0].mean()) - pair.male_pitch_radius > 0.5 * pair.male_addendum
             role = Flank.TIP if above else Flank.ROOT
         else:
@@ -507,7 +575,16 @@ def pair_from_rotor_points(
         )
     # the male's counter-clockwise pieces follow the rack's travel, the female's run against it
     rack = [p for group in (parts if side is Side.MALE else reversed(parts)) for p in group]
-    rack = _role_names(_in_design_period(rack, pair), pair, side)
+    # one mate tip corner's path that the fit's pieces leave apart is one path (Krigar's male tip across O1O2)
+    joined = joined_mate_paths(
+        _in_design_period(_at_turns(rack, pair.rack_period), pair),
+        mate_body,
+        mesh.rack,
+        own,
+        same if outline.sigma <= 0 else mate_tip[2],
+        gap,
+    )
+    rack = _role_names(joined, pair, side)
     lost_share = 100.0 * lost / max(total, 1)
     if lost_share > 2.0:  # a few points at sharp corners may miss their pitch circle; more is not a rotor
         raise DesignError(
