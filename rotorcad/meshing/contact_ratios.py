@@ -16,7 +16,10 @@ der Punkte"); a contact that near the line O1O2 is a land's (a land touches ther
 whose contacts all stay within the resolution sqrt(8 a e) of a tip corner is that corner, rounded by
 the fit. So judged, the ratio from every form of the samples' males lies within 2 sqrt(8 a e) / p_t of
 the design's (p_t the transverse pitch; tests/test_contact_ratio_invariance.py). The working length
-(and with it the overlap ratio and running) still counts every geometric contact of a piece.
+(and with it the overlap ratio and running) counts every geometric contact of a piece but one: a
+curve contact between the male tip corner's path and the female's shorter than the meshline's
+resolution sqrt(8 a G e) (G = MESHLINE_GAIN) is the fit's rounding of a corner-to-corner hand-over
+(:func:`is_corner_handover`; Krigar's, at the housing cusp).
 """
 
 from __future__ import annotations
