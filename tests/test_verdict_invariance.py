@@ -801,3 +801,25 @@ def test_unresolved_blow_hole_is_said(verdicts, tmp_path, capsys):
     area, plus = (float(v) for v in re.findall(r"([0-9.]+)", line)[:2])
     design = verdicts[(name, "design")]["blow_hole_area"]
     assert abs(area - design) <= plus and plus > area
+
+
+def test_tip_corner_across_o1o2_from_the_females_points():
+    # the same rule from the female's exact points, 300 a lobe (a CMM's scan, as tests/test_mate_points.py builds
+    # them): the rack derived from them ends its pieces on O1O2 and split Krigar's male tip corner's path there into
+    # two, which read as two cusps (driving and sealing) for the design's one across O1O2 (the tip), until two such
+    # paths of one corner (their points turned back into the male within the resolution of each other) were made one.
+    # Reference: the design's defects, from its exact curves; its rack-involute male's two tip corners (the ends of
+    # its tip land, 0.2 mm apart on the male) stay two (test_same_defects_and_running)
+    from independent_pairs import scan
+
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "krigar_4_6.toml").read_text()), SAMPLES))
+    female = _exterior(build_pair(spec).section("female", tolerance=1e-5))
+    points = scan(female, spec.pair.female_teeth * EVEN_PER_LOBE, 0.37)
+    given = analyse_pair(
+        build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points"),
+        spec.speed_rpm,
+    )[1]
+    design = analyse_pair(build_pair(spec), spec.speed_rpm)[1]
+    assert_same_verdicts(design, given)
+    (tip,) = [d for d in given["defects"] if d["kind"] == "cusp" and d["rotor"] == "male"]
+    assert tip["flank_role"] == "tip" and tip["extent"] == pytest.approx(2 * 35.14, rel=0.05)
