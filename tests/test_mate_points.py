@@ -270,13 +270,11 @@ def female_verdicts(built_once) -> dict:
     return built_once("test_mate_points.female_verdicts", _female_verdicts)
 
 
-_KRIGAR = (
-    "Krigar's pointed male tip touches the female's root on O1O2, where the female's points are fitted in two "
-    "pieces: the male tip corner's path comes as two rack pieces (14.0 and 13.1 mm, one each side of O1O2) and "
-    "reads as two point-generated cusps, driving and sealing, where the design's one path (19.5 mm) reads one "
-    "cusp named by the side its middle falls on (sealing); of exact points the sealing path also ends 0.9 mm of "
-    "rack before the female tip's path begins, and that flank part runs (sealing contact ratio 0.015 for 0)"
-)
+# krigar_4_6 (exact and 1 um scatter) read two male tip-corner cusps, driving and sealing, for the design's one across
+# O1O2 (the rack from the female's points split the male tip corner's path on O1O2), and of exact points its sealing
+# flank ran on a short curve contact between the two tip corners' paths (sealing contact ratio 0.015 for 0), until a
+# corner's path split at O1O2 was made one (rotorcad.meshing.defects._joined_across_o1o2) and such a hand-over
+# shorter than the meshline's resolution counted as no working part (rotorcad.meshing.contact_ratios.is_corner_handover)
 # n_rack_5_6 and rinder_deix_5_6 from exact female points read a sealing ratio of 1.417 for 0.746 (the rack from
 # the female's points held the male's tip rounding and the sealing flank as one piece) until contacts within the
 # meshline's accuracy of a tip corner counted as none (rotorcad.meshing.contact_ratios.resolved_steps)
@@ -286,7 +284,6 @@ _N_RACK_SPREAD = (
     "(28-29 mrad) states +-4.4 mm², above the area itself"
 )
 KNOWN_FEMALE: dict[tuple[str, str, str], str] = {
-    **{("krigar_4_6", form, "defects"): _KRIGAR for form in FEMALE_FORMS},
     **{(name, "exact", "blow_hole"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")},
 }
 
