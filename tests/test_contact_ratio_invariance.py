@@ -55,6 +55,9 @@ TOUCH = 1e-4  # mm: how near the other outline a point touches (the samples' wor
 # carried 22 mm of meshline as a curve piece) until a rack part between the two tips' corner paths, along which
 # the mate's point stands nearly still, was joined to the mate corner's path
 # (rotorcad.measured.corner_paths.joined_mate_paths)
+# krigar_4_6 even-300-b read an overlap ratio of 2.31 for 0 (a curve contact of 0.96 mm where the male tip corner's
+# path hands over to the female's, counted as working length), until such a hand-over shorter than the meshline's
+# resolution counted as none (rotorcad.meshing.contact_ratios.is_corner_handover)
 KNOWN_OVERLAP: dict[tuple[str, str], str] = {}
 
 

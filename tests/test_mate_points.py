@@ -283,11 +283,11 @@ def female_verdicts(built_once) -> dict:
     return built_once("test_mate_points.female_verdicts", _female_verdicts)
 
 
-# krigar_4_6 read two point-generated cusps, driving and sealing, on the male (its tip corner's path came as
-# two rack pieces, 14.0 and 13.1 mm, one each side of O1O2, from the female's root fitted in two pieces), and of
-# exact points its sealing flank ran (a 0.94 mm sliver of rack between that path and the female tip's path,
-# sealing contact ratio 0.015 for 0), until the pieces of one mate corner's path and such slivers were joined
-# into the corner's own point path (rotorcad.measured.corner_paths.joined_mate_paths)
+# krigar_4_6 (exact and 1 um scatter) read two male tip-corner cusps, driving and sealing, for the design's one across
+# O1O2 (the rack from the female's points split the male tip corner's path on O1O2), and of exact points its sealing
+# flank ran on a short curve contact between the two tip corners' paths (sealing contact ratio 0.015 for 0), until a
+# corner's path split at O1O2 was made one (rotorcad.meshing.defects._joined_across_o1o2) and such a hand-over
+# shorter than the meshline's resolution counted as no working part (rotorcad.meshing.contact_ratios.is_corner_handover)
 # n_rack_5_6 and rinder_deix_5_6 from exact female points read a sealing ratio of 1.417 for 0.746 (the rack from
 # the female's points held the male's tip rounding and the sealing flank as one piece) until contacts within the
 # meshline's accuracy of a tip corner counted as none (rotorcad.meshing.contact_ratios.resolved_steps)

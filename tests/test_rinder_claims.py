@@ -300,3 +300,70 @@ def test_the_readme_shows_rotorcads_numbers_beside_rinders_words():
     spec.loader.exec_module(compare)
     readme = (SAMPLES.parent / "README.md").read_text()
     assert compare.verdict_table({name: summary(name) for name in compare.VERDICT_SAMPLES}) in readme
+
+
+# ---- infinite slip: from positions, and from the female's points (issue 21 item 3) ----------------
+
+
+def test_tangential_lever_is_the_foot_of_the_perpendicular():
+    # Rinder eq. 2: v_t = omega N P, N the foot of the perpendicular from the rotor's centre on the contact
+    # normal (a line through C). Reference: N found by projecting O onto a straight line of action through C at
+    # 26 deg (the rack-involute's sealing angle), the involute's case: N P = |P - T|, T the base circle's tangency
+    from rotorcad.meshing.slip import tangential_lever
+
+    a, r1w = 116.0, 116.0 * 5 / 11
+    c, o2 = np.array([r1w, 0.0]), np.array([a, 0.0])
+    direction = np.array([np.sin(np.radians(26.0)), np.cos(np.radians(26.0))])
+    s = np.linspace(-20.0, 30.0, 101)
+    s = s[np.abs(s) > 1e-9]
+    points = c + s[:, None] * direction
+    foot = c + ((o2 - c) @ direction) * direction  # T: the female base circle's point on the line
+    lever, gain = tangential_lever(points, o2, c)
+    np.testing.assert_allclose(np.abs(lever), np.hypot(*(points - foot).T), atol=1e-12)
+    assert np.hypot(*(foot - o2)) == pytest.approx(a * 6 / 11 * np.cos(np.radians(26.0)), rel=1e-12)  # r2w cos 26 deg
+    assert np.all(gain >= 1.0)
+
+
+def test_a_corner_off_its_pitch_circle_moves_the_zero_from_c_as_the_square_root():
+    # the reason a given female tip corner on its pitch circle (SRM, Krigar, Lysholm) made points of infinite slip
+    # near C: its corner placed dr inside the pitch circle runs on a circle that meets the Thales circle on O2 C
+    # where cos(theta) = (r2w - dr) / r2w (closed form), sqrt(2 r2w dr) from C; on the pitch circle itself, at C only
+    from rotorcad.meshing.slip import tangential_lever
+
+    a, r2w, dr = 116.0, 116.0 * 6 / 11, 50e-3
+    c, o2 = np.array([a - r2w, 0.0]), np.array([a, 0.0])
+    theta = np.linspace(1e-4, 0.2, 20001)
+    circle = o2 + (r2w - dr) * np.column_stack([-np.cos(theta), np.sin(theta)])
+    lever = tangential_lever(circle, o2, c)[0]
+    (k,) = np.flatnonzero(lever[:-1] * lever[1:] < 0)
+    expected = np.arccos((r2w - dr) / r2w)
+    assert theta[k] == pytest.approx(expected, abs=2e-5)
+    assert np.hypot(*(circle[k] - c)) == pytest.approx(np.sqrt(2 * r2w * dr), rel=0.01)
+    on_pitch = o2 + r2w * np.column_stack([-np.cos(theta), np.sin(theta)])
+    assert not np.any(tangential_lever(on_pitch, o2, c)[0][:-1] * tangential_lever(on_pitch, o2, c)[0][1:] < 0)
+
+
+def test_rack_involute_from_its_females_points_has_its_one_point_of_infinite_slip():
+    # sec. 3.2 "nur in einem einzigen Punkt unendliche Schlupfwerte ... Evolventenflanke bis zum Grundkreis" from the
+    # female's exact points, 300 a lobe (a CMM's scan): 0 before (the fit rounds the meshline's corner where the male
+    # tip corner's path meets the involute's line of action, and the rounded meshline passed 0.15 mm from the zero
+    # without crossing it). Reference: the female base circle r2w cos(alpha_s) from the design file, within the
+    # input's resolution sqrt(8 a e) (rotorcad.meshing.resolution)
+    from independent_pairs import scan
+
+    from rotorcad.design import rotor_design
+    from rotorcad.meshing import resolution
+    from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
+
+    d = _design("rack_involute_5_6")
+    spec = pair_spec(rotor_design(d, SAMPLES))
+    outline = np.asarray(build_pair(spec).section("female", tolerance=1e-5).exterior.coords)[:-1]
+    points = scan(outline, spec.pair.female_teeth * 300, 0.37)
+    given = build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points")
+    s = analyse_pair(given, spec.speed_rpm)[1]
+    pair, prof = d["pair"], d["profile"]
+    r2w = pair["center_distance"] * pair["female_teeth"] / (pair["male_teeth"] + pair["female_teeth"])
+    base = r2w * np.cos(np.radians(prof["sealing_angle_deg"]))
+    (sing,) = s["slip_singularities"]
+    assert sing["rotor"] == "female" and sing["flank"] == "sealing"
+    assert sing["female_radius"] == pytest.approx(base, abs=resolution(s["defect_accuracy"], pair["center_distance"]))

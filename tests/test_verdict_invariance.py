@@ -67,6 +67,10 @@ KNOWN: dict[tuple[str, str], str] = {}
 # 1.04 mm of meshline where the male tip corner's path hands over to the female's as a working part, until a
 # rack part between the two tips' corner paths along which the mate's point stands nearly still was joined to
 # the mate corner's path (rotorcad.measured.corner_paths.joined_mate_paths)
+# krigar_4_6 even-300-b ran on its sealing flank (the design's does not): 300 points a lobe at phase 0.8 left 0.96 mm
+# of curve contact where the male tip corner's path hands over to the female's, counted as a working part, until
+# such a hand-over shorter than the meshline's resolution counted as none
+# (rotorcad.meshing.contact_ratios.is_corner_handover)
 KNOWN_VERDICTS: dict[tuple[str, str], str] = {}
 _TIP = (
     "1 um of scatter moves the blow-hole's apex (where the male tip corner's path hands over to the "
@@ -215,6 +219,29 @@ def test_same_blow_hole(verdicts, name, form):
         acc = verdicts[(name, form)]["defect_accuracy"]
         floor = max(floor, MESHLINE_GAIN * acc * resolution(acc, verdicts[(name, form)]["center_distance"]))
     assert given == pytest.approx(design, rel=0.01, abs=floor)  # 1 %
+
+
+def _slip_key(d: dict) -> tuple:
+    return d["rotor"], d["flank"]
+
+
+@pytest.mark.parametrize(("name", "form"), [(n, f) for n in ROTOR_SAMPLES for f in FORMS])
+def test_same_points_of_infinite_slip(verdicts, name, form):
+    # issue 21 item 3: the points of infinite slip (Rinder eq. 4, sec. 3.2: where a rotor's v_t vanishes) are the
+    # design's whatever form the male comes in (reference: the design's own, from its exact curves): the same count
+    # by rotor and lobe part, each where the design's is within the input's resolution sqrt(8 a e)
+    # (rotorcad.meshing.resolution: how far along the meshline the input places a point), and at the male rotation
+    # that turns the male's point there by that much (the angle names the instant of that contact). Before: narrow-tip
+    # and SRM-B 2 for 1, the asymmetric SRM 3-4 for 2, Krigar, Lysholm and the symmetric SRM 3-5 for 2 (a female tip
+    # corner on its pitch circle, placed 16-95 um off it by the fit, moved the zero at C 0.1-3.8 mm away)
+    design, given = verdicts[(name, "design")], verdicts[(name, form)]
+    want, got = design["slip_singularities"], given["slip_singularities"]
+    assert Counter(map(_slip_key, got)) == Counter(map(_slip_key, want)), got
+    reach = resolution(given["defect_accuracy"], design["center_distance"])
+    for d in want:
+        near = min((g for g in got if _slip_key(g) == _slip_key(d)), key=lambda g: np.hypot(g["x"] - d["x"], g["y"] - d["y"]))
+        assert np.hypot(near["x"] - d["x"], near["y"] - d["y"]) <= reach, (d, near)
+        assert near["angle_deg"] == pytest.approx(d["angle_deg"], abs=np.degrees(reach / d["male_radius"])), (d, near)
 
 
 def test_scatter_judged_to_its_accuracy(verdicts):
@@ -778,3 +805,25 @@ def test_unresolved_blow_hole_is_said(verdicts, tmp_path, capsys):
     area, plus = (float(v) for v in re.findall(r"([0-9.]+)", line)[:2])
     design = verdicts[(name, "design")]["blow_hole_area"]
     assert abs(area - design) <= plus and plus > area
+
+
+def test_tip_corner_across_o1o2_from_the_females_points():
+    # the same rule from the female's exact points, 300 a lobe (a CMM's scan, as tests/test_mate_points.py builds
+    # them): the rack derived from them ends its pieces on O1O2 and split Krigar's male tip corner's path there into
+    # two, which read as two cusps (driving and sealing) for the design's one across O1O2 (the tip), until two such
+    # paths of one corner (their points turned back into the male within the resolution of each other) were made one.
+    # Reference: the design's defects, from its exact curves; its rack-involute male's two tip corners (the ends of
+    # its tip land, 0.2 mm apart on the male) stay two (test_same_defects_and_running)
+    from independent_pairs import scan
+
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "krigar_4_6.toml").read_text()), SAMPLES))
+    female = _exterior(build_pair(spec).section("female", tolerance=1e-5))
+    points = scan(female, spec.pair.female_teeth * EVEN_PER_LOBE, 0.37)
+    given = analyse_pair(
+        build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points"),
+        spec.speed_rpm,
+    )[1]
+    design = analyse_pair(build_pair(spec), spec.speed_rpm)[1]
+    assert_same_verdicts(design, given)
+    (tip,) = [d for d in given["defects"] if d["kind"] == "cusp" and d["rotor"] == "male"]
+    assert tip["flank_role"] == "tip" and tip["extent"] == pytest.approx(2 * 35.14, rel=0.05)

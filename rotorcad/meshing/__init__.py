@@ -9,7 +9,8 @@ The package, one job a module (every name importable from ``rotorcad.meshing`` a
 corners), :mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's
 accuracy), :mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per
 flank), :mod:`~rotorcad.meshing.angles` (the one angle convention), :mod:`~rotorcad.meshing.apex` (the
-blow-hole's apex of a given profile from the closed-form meshline of a fitted arc) and
+blow-hole's apex of a given profile from the closed-form meshline of a fitted arc),
+:mod:`~rotorcad.meshing.slip` (slip and the points of infinite slip, eq. 4) and
 :mod:`~rotorcad.meshing.analysis` (:class:`MeshingAnalysis`: the verdict and the summary).
 
 The meshline is the set of contact points in the fixed transverse frame: for a rack-generated
@@ -78,7 +79,13 @@ reported as ``defect_accuracy``); a feature smaller than it is no verdict. A sig
 miss counts only beyond its band and when it persists over the resolution sqrt(8 a e)
 (:func:`resolution`); the normals of a meshline generated from scattered points are judged to
 :data:`MESHLINE_GAIN` times e (the normal's error moves the contact along the meshline); a working
-part shorter than the meshline's resolution (at that accuracy) is none. The blow-hole carries the
+part shorter than the resolution is none, and so is a curve contact between the male tip corner's
+path and the female's shorter than the meshline's resolution sqrt(8 a G e) (G = :data:`MESHLINE_GAIN`):
+the fit's rounding of a corner-to-corner hand-over (:func:`~rotorcad.meshing.contact_ratios.is_corner_handover`).
+A point of infinite slip (a rotor's v_t = 0, where the meshline crosses the circle on that rotor's
+centre and C as diameter) on a tip corner's path that runs on its pitch circle within the meshline's
+accuracy is C's rolling, and one at a corner of the meshline that the fit rounds is judged at the
+corner (:func:`~rotorcad.meshing.slip.slip_singularities`). The blow-hole carries the
 uncertainty the input leaves it, and where that exceeds the area (or 0.1 % of the female flute's,
 :data:`~rotorcad.meshing.analysis.BLOW_HOLE_RESOLUTION`) the input does not resolve it
 (:attr:`MeshingAnalysis.blow_hole_resolved`). A cusp of the design survives: a given profile's corner
@@ -106,7 +113,7 @@ to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear)
 from rotorcad.meshing.analysis import BLOW_HOLE_RESOLUTION, MeshingAnalysis
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex, fit_circle
-from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
+from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, is_corner_handover, running_reasons
 from rotorcad.meshing.defects import (
     MESHLINE_GAIN,
     VERDICT_SHARE,
@@ -128,13 +135,16 @@ from rotorcad.meshing.meshline import (
     meshline_tangents,
     reversals,
     turn_corner,
+    with_neighbours,
 )
+from rotorcad.meshing.slip import SLIP_ZERO, on_pitch_circle, slip_singularities, tangential_lever
 
 __all__ = [
     "ANGLE_CONVENTION",
     "BLOW_HOLE_RESOLUTION",
     "MESHLINE_GAIN",
     "SHARP_TURN",
+    "SLIP_ZERO",
     "UNEVEN",
     "VERDICT_SHARE",
     "Defect",
@@ -149,15 +159,21 @@ __all__ = [
     "fit_circle",
     "flank_reports",
     "flank_roles",
+    "handover_length",
+    "is_corner_handover",
     "is_tip_corner",
     "largest_scatter",
     "meshline_defects",
     "meshline_tangents",
+    "on_pitch_circle",
     "resolution",
     "reversals",
     "robust_zeros",
     "running_reasons",
+    "slip_singularities",
     "slipping_between_pieces",
+    "tangential_lever",
     "tip_on_centre_line",
     "turn_corner",
+    "with_neighbours",
 ]

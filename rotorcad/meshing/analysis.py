@@ -21,41 +21,13 @@ from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, dots, nearest_hypot, rotate, row_norms, shifted, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex
-from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, running_reasons
+from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
-from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner
+from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner, with_neighbours
+from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
-
-SLIP_ZERO = 1e-9  # a tangential velocity below this share of the rotor's largest one is zero to rounding
-
-
-def slip(sliding: np.ndarray, tangential: np.ndarray) -> np.ndarray:
-    """Return the slip v_g / v_t of a rotor at the contacts (Rinder eq. 4), infinite where v_t vanishes.
-
-    v_t is judged zero relative to its own scale: at most :data:`SLIP_ZERO` times the rotor's largest
-    tangential velocity (a zero of v_t on the meshline computes as 1e-15 m/s and would give a slip of
-    1e15). Where v_g vanishes too (to the same share of its largest), the slip is nan: pure rolling.
-
-    Parameters
-    ----------
-    sliding : (n,) float array, m/s
-        The sliding velocity v_g.
-    tangential : (n,) float array, m/s
-        The rotor's velocity v_t along the common tangent.
-
-    Returns
-    -------
-    (n,) float array
-        The slip, +-inf where v_t is zero and v_g is not, nan where both are.
-    """
-    zero_t = np.abs(tangential) <= SLIP_ZERO * (np.abs(tangential).max(initial=0.0))
-    zero_g = np.abs(sliding) <= SLIP_ZERO * (np.abs(sliding).max(initial=0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = sliding / np.where(zero_t, 1.0, tangential)
-    return np.where(zero_t, np.where(zero_g, np.nan, np.copysign(np.inf, sliding)), ratio)
-
 
 APEX_POINTS = 4
 """How many of exact points, nearest the blow-hole apex's radius about their rotor's centre, set its
@@ -191,14 +163,17 @@ class MeshingAnalysis:
         :func:`rotorcad.meshing.contact_ratios.flank_reports`; a dict Flank -> :class:`FlankReport`. A
         given profile's working part counts from its resolution (:func:`rotorcad.meshing.defects.resolution`),
         its contacts within the meshline's accuracy (:data:`MESHLINE_GAIN` times its own) of a tip corner or
-        a land from none (:func:`rotorcad.meshing.contact_ratios.resolved_steps`). (Counting the working part
-        from the meshline's resolution instead, sqrt(10) times longer, made Krigar's male at 300 exact points a
-        lobe run as the design but dropped the short working parts of SRM-B's and the asymmetric SRM's sealing
-        flanks from their CSVs: a strict xfail in tests/test_verdict_invariance.py.)
+        a land from none (:func:`rotorcad.meshing.contact_ratios.resolved_steps`), and a curve contact between the
+        male tip corner's path and the female's shorter than the meshline's resolution is their hand-over
+        (:func:`rotorcad.meshing.contact_ratios.is_corner_handover`). (Counting every working part from the
+        meshline's resolution made Krigar's male at 300 exact points a lobe run as the design but dropped the
+        short working parts of SRM-B's and the asymmetric SRM's sealing flanks from their CSVs; only the
+        hand-over between two corners' paths is judged so.)
         """
         band = MESHLINE_GAIN * self.judged_accuracy if self.is_given else 0.0
         shortest = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
-        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest, band)
+        handover = handover_length(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
+        return flank_reports(self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest, band, handover)
 
     @property
     def running_reasons(self) -> list[str]:
@@ -316,7 +291,7 @@ class MeshingAnalysis:
         if self.is_given:
             tips = ((np.zeros(2), pair.male_tip_radius), (o2, pair.female_tip_radius))
             reach = resolution(self.judged_accuracy, pair.center_distance)
-            run, at = _with_neighbours(self.pieces, j, local, reach)  # a turn at a piece's end too
+            run, at = with_neighbours(self.pieces, j, local, reach)  # a turn at a piece's end too
             arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
             corner = turn_corner(run, arclen, at, reach, tips, self.judged_accuracy)
             if corner is not None:
@@ -602,59 +577,32 @@ class MeshingAnalysis:
     def slip_singularities(self) -> list[dict[str, object]]:
         """Points of infinite slip: where a rotor's tangential velocity vanishes (Rinder eq. 4, sec. 3.2).
 
-        Rinder: "nur in einem einzigen Punkt unendliche Schlupfwerte ... daß die Evolventenflanke bis
-        zum Grundkreis benutzt wurde". Found on each meshline piece where v1t (male slip infinite)
-        or v2t (female slip infinite) changes sign between neighbouring contacts (located by linear
-        interpolation), or, at a piece's end, falls below 1 % of the rotor's largest tangential
-        velocity while falling towards that end (a zero where the piece leaves a bore: the sampled
-        meshline stops within one step of it). The pitch point C is left out (both velocities
-        vanish there with the sliding: pure rolling, not infinite slip). Points closer than 1 % of
-        the centre distance are one.
+        :func:`rotorcad.meshing.slip.slip_singularities` of the meshline, a given profile's judged to its
+        accuracy (the meshline's, :data:`MESHLINE_GAIN` times the profile's, and its resolution).
 
         Returns
         -------
         list of dict
-            ``rotor`` (whose slip is infinite), ``x``, ``y`` (mm), ``angle_deg`` (:meth:`rinder_angle`),
+            ``rotor`` (whose slip is infinite), ``x``, ``y`` (mm), ``angle_deg`` (:meth:`lobe_angle`),
             ``flank`` (lobe part), ``male_radius``, ``female_radius`` (mm).
         """
-        pair = self.rotors.pair
-        k = self.kinematics
-        found: list[dict[str, object]] = []
-        start = 0
-        for piece in self.pieces:
-            n = len(piece.t)
-            sl = slice(start, start + n)
-            start += n
-            for key, rotor in (("v1t", "male"), ("v2t", "female")):
-                v = k[key][sl]
-                mag = np.abs(v)
-                big = float(np.abs(k[key]).max()) if len(k[key]) else 0.0
-                ends = [i for i, j in ((0, 1), (n - 1, n - 2)) if n > 1 and mag[i] <= 1e-2 * big and mag[i] < mag[j]]
-                cross_ = np.nonzero(v[:-1] * v[1:] < 0)[0]
-                hits = [(i, 0.0) for i in ends] + [(int(i), float(v[i] / (v[i] - v[i + 1]))) for i in cross_]
-                for i, w in hits:
-                    j = min(i + 1, n - 1)
-                    p = piece.points[i] + w * (piece.points[j] - piece.points[i])
-                    t = piece.t[i] + w * (piece.t[j] - piece.t[i])
-                    if np.hypot(p[0] - pair.male_pitch_radius, p[1]) < 1e-3 * pair.center_distance:
-                        continue  # the pitch point: pure rolling
-                    if any(
-                        f["rotor"] == rotor and np.hypot(f["x"] - p[0], f["y"] - p[1]) < 1e-2 * pair.center_distance
-                        for f in found
-                    ):
-                        continue
-                    found.append(
-                        {
-                            "rotor": rotor,
-                            "x": float(p[0]),
-                            "y": float(p[1]),
-                            "angle_deg": self.lobe_angle(t),
-                            "flank": str(piece.roles[i]),
-                            "male_radius": float(np.hypot(*p)),
-                            "female_radius": float(np.hypot(p[0] - pair.center_distance, p[1])),
-                        }
-                    )
-        return found
+        v = self.velocities
+        given = self.is_given
+        band = MESHLINE_GAIN * self.judged_accuracy if given else 0.0
+        reach = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if given else 0.0
+        found = slip_singularities(
+            self.pieces, {"male": v["v1t"], "female": v["v2t"]}, self.rotors.pair, band, reach, self.judged_accuracy
+        )
+        return [
+            {
+                "rotor": f["rotor"],
+                "x": f["x"],
+                "y": f["y"],
+                "angle_deg": self.lobe_angle(f["t"]),
+                **{k: f[k] for k in ("flank", "male_radius", "female_radius")},
+            }
+            for f in found
+        ]
 
     def _max(self, key: str) -> dict[str, float]:
         """Return the largest magnitude of a :attr:`kinematics` entry and where it occurs.
@@ -749,20 +697,3 @@ class MeshingAnalysis:
             "running_reasons": self.running_reasons,
             "wrap_angle_deg": float(np.degrees(pair.wrap_angle)),
         }
-
-
-def _with_neighbours(pieces: list[MeshlinePiece], j: int, local: int, reach: float) -> tuple[np.ndarray, int]:
-    """Return piece ``j``'s meshline samples joined with the neighbours that continue it, and sample ``local``'s index.
-
-    A profile given by points may end a corner's path exactly where the meshline turns (the
-    narrow-tip male tip corner's path handing over to the sealing flank, from rotorcad's own rack
-    CSV): the turn then lies at the end of a piece, and :func:`turn_corner` needs both branches.
-    A neighbour continues the piece when its end lies within ``reach`` (mm) of the piece's end.
-    """
-    run, at = pieces[j].points, local
-    if j > 0 and len(pieces[j - 1].points) and np.hypot(*(pieces[j - 1].points[-1] - run[0])) <= reach:
-        before = pieces[j - 1].points[:-1]
-        run, at = np.vstack([before, run]), at + len(before)
-    if j + 1 < len(pieces) and len(pieces[j + 1].points) and np.hypot(*(pieces[j + 1].points[0] - run[-1])) <= reach:
-        run = np.vstack([run, pieces[j + 1].points[1:]])
-    return run, at

@@ -16,7 +16,10 @@ der Punkte"); a contact that near the line O1O2 is a land's (a land touches ther
 whose contacts all stay within the resolution sqrt(8 a e) of a tip corner is that corner, rounded by
 the fit. So judged, the ratio from every form of the samples' males lies within 2 sqrt(8 a e) / p_t of
 the design's (p_t the transverse pitch; tests/test_contact_ratio_invariance.py). The working length
-(and with it the overlap ratio and running) still counts every geometric contact of a piece.
+(and with it the overlap ratio and running) counts every geometric contact of a piece but one: a
+curve contact between the male tip corner's path and the female's shorter than the meshline's
+resolution sqrt(8 a G e) (G = MESHLINE_GAIN) is the fit's rounding of a corner-to-corner hand-over
+(:func:`is_corner_handover`; Krigar's, at the housing cusp).
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.meshing.defects import Defect, is_tip_corner
+from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner
 from rotorcad.meshing.meshline import MeshlinePiece
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
@@ -247,6 +250,85 @@ def resolved_steps(piece: MeshlinePiece, steps: np.ndarray, gaps: np.ndarray, ba
     return work
 
 
+def handover_length(accuracy: float, scale: float) -> float:
+    """Return the meshline's resolution sqrt(8 a G e) (mm): the stretch along which a hand-over between two corners moves.
+
+    A profile known to e places its meshline to :data:`~rotorcad.meshing.defects.MESHLINE_GAIN` e
+    (G), and a stretch of the meshline is resolved over the chord along which a circle of the pair's
+    size (the centre distance a) leaves its tangent by that: sqrt(8 a G e), sqrt(G) times the
+    profile's resolution (:func:`~rotorcad.meshing.defects.resolution`). Where the design hands the
+    contact over from one rotor's tip corner to the other's at a point (a corner against a corner,
+    Krigar's housing cusp), a fit through points rounds both corners by its accuracy, and their
+    flanks touch each other over up to that much meshline: 300 exact points a lobe of Krigar's male at
+    phase 0.8 (e = 0.65 µm, a = 100 mm) put 0.96 mm of curve contact there, sqrt(8 a G e) = 2.28 mm.
+
+    Parameters
+    ----------
+    accuracy : float, mm
+        The profile's accuracy e.
+    scale : float, mm
+        The centre distance a.
+
+    Returns
+    -------
+    float, mm
+    """
+    return float(np.sqrt(8.0 * scale * MESHLINE_GAIN * accuracy))
+
+
+def _corner_path_points(pieces: list[MeshlinePiece]) -> dict[PieceRole, np.ndarray]:
+    """Return the meshline samples of each rotor's tip-corner paths, (k, 2) float, mm, by path kind."""
+    out: dict[PieceRole, list[np.ndarray]] = {}
+    for piece in pieces:
+        if piece.kind in (PieceRole.MALE_CORNER_PATH, PieceRole.FEMALE_CORNER_PATH):
+            out.setdefault(piece.kind, []).append(piece.points)
+    return {kind: np.vstack(points) for kind, points in out.items()}
+
+
+def is_corner_handover(
+    piece: MeshlinePiece, steps: np.ndarray, length: float, paths: dict[PieceRole, np.ndarray], handover: float
+) -> bool:
+    """Return True where a curve piece's contact on a flank is a hand-over between the two rotors' tip corners.
+
+    Rinder sec. 1.2 counts as working only the contact with a common tangent; where a design's
+    meshline passes from the male tip corner's path straight to the female's (Krigar: both corners
+    meet at the housing cusp), a profile given to an accuracy e rounds both corners and leaves a short
+    stretch of curve contact between the two paths. It is told from a working part by its length: one
+    shorter than the meshline's resolution ``handover`` (:func:`handover_length`) whose ends lie
+    within that of a male tip corner's path and of a female tip corner's path (one at each end, either
+    way round) is the hand-over, not a flank the input resolves. A working part between the two paths
+    longer than that (SRM-B's and the asymmetric SRM's sealing flanks, 13 mm) is kept.
+
+    Parameters
+    ----------
+    piece : MeshlinePiece
+        A curve piece.
+    steps : (n - 1,) bool array
+        Its steps on the flank in question.
+    length : float, mm
+        Their meshline length.
+    paths : dict
+        :func:`_corner_path_points` of the meshline.
+    handover : float, mm
+        The meshline's resolution; 0: never (a design).
+
+    Returns
+    -------
+    bool
+    """
+    males, females = paths.get(PieceRole.MALE_CORNER_PATH), paths.get(PieceRole.FEMALE_CORNER_PATH)
+    if handover <= 0 or length >= handover or males is None or females is None or not steps.any():
+        return False
+    idx = np.flatnonzero(steps)
+    ends = piece.points[[idx[0], idx[-1] + 1]]  # (2, 2): the stretch's first and last contact
+
+    def near(path: np.ndarray) -> np.ndarray:
+        return np.hypot(path[None, :, 0] - ends[:, None, 0], path[None, :, 1] - ends[:, None, 1]).min(axis=1) <= handover
+
+    m, f = near(males), near(females)
+    return bool((m[0] and f[1]) or (f[0] and m[1]))
+
+
 def flank_reports(
     pieces: list[MeshlinePiece],
     defects: list[Defect],
@@ -254,6 +336,7 @@ def flank_reports(
     tip_tolerance: float,
     shortest: float = 0.0,
     band: float = 0.0,
+    handover: float = 0.0,
 ) -> dict[Flank, FlankReport]:
     """Return per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
@@ -285,6 +368,11 @@ def flank_reports(
         (:func:`resolved_steps`): :data:`~rotorcad.meshing.defects.MESHLINE_GAIN` times a given
         profile's accuracy; 0 for a design. A given profile's flank part shorter than ``shortest``
         near a tip corner is that corner too.
+    handover : float, mm
+        Of a given profile, the meshline's resolution (:func:`handover_length`): a curve piece's contact
+        on the flank shorter than this that runs from the male tip corner's path to the female's is the
+        corner-to-corner hand-over the fit rounds (:func:`is_corner_handover`), no working part; 0 for a
+        design.
 
     Returns
     -------
@@ -297,6 +385,7 @@ def flank_reports(
     out = {}
     steps = [piece.steps for piece in pieces]  # chord lengths, once (shared with the defect rules)
     gaps = corner_gaps(pieces, pair) if band > 0 else [np.zeros((0, 2))] * len(pieces)
+    paths = _corner_path_points(pieces) if handover > 0 else {}
     for flank in (Flank.DRIVING, Flank.SEALING):
         total = geometric = 0.0
         spans: list[np.ndarray] = []  # (m, 2): the male rotation between consecutive working contacts
@@ -309,7 +398,11 @@ def flank_reports(
             if length < 1e-6 * pair.center_distance:
                 continue
             total += length
-            if piece.kind is PieceRole.CURVE and length >= shortest:
+            if (
+                piece.kind is PieceRole.CURVE
+                and length >= shortest
+                and not is_corner_handover(piece, both, length, paths, handover)
+            ):
                 geometric += length
                 work = resolved_steps(piece, both, gap, band, shortest)
                 spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))

@@ -385,6 +385,58 @@ def _merged(defects: list[Defect], distance: float, spans: dict[int, np.ndarray]
     return out
 
 
+def _joined_across_o1o2(
+    defects: list[Defect],
+    spans: dict[int, np.ndarray],
+    times: dict[int, np.ndarray],
+    distance: float,
+    pair: RotorPair,
+    reach: float,
+) -> list[Defect]:
+    """Return the defects with a corner's path split at O1O2 into two pieces made one, the tip's or the root's.
+
+    A rack derived from points may end its pieces on O1O2, and a corner's path that runs across it
+    (Krigar's male tip corner, from the female's points) then comes as two point-generated cusps of
+    one rotor, one either side of O1O2, each named by its side (driving, sealing). Two such stretches
+    that meet within ``distance`` (mm, the resolution) of each other on O1O2, each holding more than
+    ``reach`` (mm) of meshline and traced by the same corner (their points, turned back into the
+    rotor, within ``distance`` of each other: not the two corners at the ends of a tip land, the
+    rack-involute male's), are the one path :func:`_stretch_role` names by where it crosses: the
+    tip above the pitch point C, the root below; at the crossing, its extents
+    added. Paths that meet at C are not joined: there the female tip corner on its pitch circle hands
+    over from one flank to the other (Krigar's, Lysholm's, the design's two cusps). ``spans`` and
+    ``times`` hold each stretch's meshline points (mm) and male rotations (rad) by the defect's id,
+    and receive the joined one's.
+    """
+    out = list(defects)
+    paths = [d for d in out if d.kind == "cusp" and d.point_generated and id(d) in spans and d.extent > reach]
+    for d, e in ((d, e) for k, d in enumerate(paths) for e in paths[k + 1 :]):
+        if d.rotor != e.rotor or d not in out or e not in out:
+            continue
+        a, b = spans[id(d)], spans[id(e)]
+        if np.median(a[:, 1]) * np.median(b[:, 1]) >= 0:
+            continue  # not either side of O1O2
+        gap = np.hypot(*(a[:, None, :] - b[None, :, :]).transpose(2, 0, 1))
+        i, j = np.unravel_index(int(np.argmin(gap)), gap.shape)
+        meet = 0.5 * (a[i] + b[j])
+        pitch_x = pair.male_pitch_radius
+        if gap[i, j] >= distance or abs(meet[1]) >= distance or abs(meet[0] - pitch_x) <= distance:
+            continue  # apart, off O1O2, or meeting at C (a female tip corner on its pitch circle: one path a flank)
+        body = pair.mesh.male if d.rotor == "male" else pair.mesh.female
+        corners = [np.median(body.to_body(spans[id(x)], times[id(x)]), axis=0) for x in (d, e)]
+        if np.hypot(*(corners[0] - corners[1])) >= distance:
+            continue  # two corners (the ends of a tip land), not one corner's path
+        role = Flank.TIP if meet[0] > pitch_x else Flank.ROOT
+        t = 0.5 * (times[id(d)][i] + times[id(e)][j])
+        one = replace(
+            d, x=float(meet[0]), y=float(meet[1]), angle_deg=float(np.degrees(t)), extent=d.extent + e.extent, role=role
+        )
+        spans[id(one)], times[id(one)] = np.vstack([a, b]), np.concatenate([times[id(d)], times[id(e)]])
+        out[out.index(d)] = one
+        out.remove(e)
+    return out
+
+
 def _stretch_role(points: np.ndarray, arclen: np.ndarray, middle: Flank | None, pitch_x: float, reach: float) -> Flank | None:
     """Return the lobe part of a point-generated stretch: its middle's, or the tip's or root's across O1O2.
 
@@ -497,6 +549,7 @@ def meshline_defects(
     reach = resolution(mesh_acc, scale)
     found: list[Defect] = []
     spans: dict[int, np.ndarray] = {}  # the meshline points of each stretch, by the defect's id
+    times: dict[int, np.ndarray] = {}  # and the male rotation at them (rad)
     on_line = max(1e-3 * scale, longest if given else 0.0)  # through a centre or on O1O2 within the resolution
     for piece in pieces:
         pts = piece.points
@@ -555,6 +608,7 @@ def meshline_defects(
                     )
                 )
                 spans[id(found[-1])] = pts[i : j + 1 : max(1, (j - i) // 200)]
+                times[id(found[-1])] = piece.t[i : j + 1 : max(1, (j - i) // 200)]
             others = np.concatenate([at[m] for m in range(len(tests)) if m != k]) if crossings else None
             for (x, lo, hi), s_x in zip(crossings, at[k], strict=True):
                 if np.any(np.abs(others - s_x) < reach):
@@ -586,7 +640,7 @@ def meshline_defects(
                 at = (float(p[0]), float(p[1]), float(np.degrees(ang)))
                 found.append(Defect("slipping", "male", *at, piece.name, role=role))
     found.extend(slipping_between_pieces(pieces, pair, accuracy, given))
-    return _merged(found, longest, spans)
+    return _merged(_joined_across_o1o2(found, spans, times, longest, pair, reach), longest, spans)
 
 
 def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accuracy: float, given: bool) -> list[Defect]:

@@ -429,3 +429,20 @@ def meshline_tangents(piece: MeshlinePiece, arclen: np.ndarray, accuracy: float)
     np.divide(tau[:, 0], norm, out=out[:, 0])
     np.divide(tau[:, 1], norm, out=out[:, 1])
     return out
+
+
+def with_neighbours(pieces: list[MeshlinePiece], j: int, local: int, reach: float) -> tuple[np.ndarray, int]:
+    """Return piece ``j``'s meshline samples joined with the neighbours that continue it, and sample ``local``'s index.
+
+    A profile given by points may end a corner's path exactly where the meshline turns (the
+    narrow-tip male tip corner's path handing over to the sealing flank, from rotorcad's own rack
+    CSV): the turn then lies at the end of a piece, and :func:`turn_corner` needs both branches.
+    A neighbour continues the piece when its end lies within ``reach`` (mm) of the piece's end.
+    """
+    run, at = pieces[j].points, local
+    if j > 0 and len(pieces[j - 1].points) and np.hypot(*(pieces[j - 1].points[-1] - run[0])) <= reach:
+        before = pieces[j - 1].points[:-1]
+        run, at = np.vstack([before, run]), at + len(before)
+    if j + 1 < len(pieces) and len(pieces[j + 1].points) and np.hypot(*(pieces[j + 1].points[0] - run[-1])) <= reach:
+        run = np.vstack([run, pieces[j + 1].points[1:]])
+    return run, at

@@ -1,0 +1,237 @@
+"""Slip and the points of infinite slip (Rinder eqs. 2-4, sec. 3.2), judged to the profile's accuracy.
+
+A rotor's slip is v_g / v_t (eq. 4), v_t = omega N P its velocity along the common tangent (eq. 2,
+N the foot of the perpendicular from its centre O on the contact normal). The slip is infinite
+where v_t vanishes: where the contact normal, which passes through the pitch point C (the law of
+gearing), is perpendicular to O P, that is where the meshline crosses the circle on O C as
+diameter (Thales), away from C itself (pure rolling there). Of the contact P alone,
+
+    v_t = omega (P - O) . (P - C) / |P - C|,
+
+so a point of infinite slip is a property of the meshline's positions (:func:`tangential_lever`).
+
+A profile given by points places its meshline to an accuracy (:data:`~rotorcad.meshing.defects.MESHLINE_GAIN`
+times its own), and two of the design's points of infinite slip move with it
+(:func:`slip_singularities`):
+
+- a rotor's tip corner on its pitch circle (the SRM females', Krigar's and Lysholm's: no addendum)
+  runs on the pitch circle, which touches the Thales circle at C: the design's v_t vanishes at C
+  only. A fit places that corner a few micrometres off, and the zero moves to sqrt(2 r_w dr) from C
+  (r_w the pitch radius, dr the corner's radial error): 0.1-3.8 mm for the samples' males given as
+  points (16-95 µm), one spurious point of infinite slip on each such path. The corner's path is a
+  circle about its rotor's centre; where the radii at which the given path runs reach the pitch
+  radius (widened by the meshline's accuracy), the corner's circle is the pitch circle as far as the
+  input tells, and its zero is C's;
+- where the design's zero lies at a corner of the meshline (the rack-involute's female involute used
+  to its base circle: the male tip corner's path hands over to the involute's line of action there,
+  Rinder sec. 3.2 "nur in einem einzigen Punkt"), a fit through points rounds the corner, and the
+  rounded meshline misses the zero by up to the resolution (0.15-0.2 mm from the female's points:
+  v_t = 0.3 omega mm, no sign change). The corner is found from the branches either side
+  (:func:`~rotorcad.meshing.meshline.turn_corner`, as for the blow-hole's apex) and v_t is judged there.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorcad.meshing.meshline import MeshlinePiece, turn_corner, with_neighbours
+from rotorcad.roles import PieceRole
+from rotorcad.rotor_pair import RotorPair
+
+SLIP_ZERO = 1e-9  # a tangential velocity below this share of the rotor's largest one is zero to rounding
+
+
+def slip(sliding: np.ndarray, tangential: np.ndarray) -> np.ndarray:
+    """Return the slip v_g / v_t of a rotor at the contacts (Rinder eq. 4), infinite where v_t vanishes.
+
+    v_t is judged zero relative to its own scale: at most :data:`SLIP_ZERO` times the rotor's largest
+    tangential velocity (a zero of v_t on the meshline computes as 1e-15 m/s and would give a slip of
+    1e15). Where v_g vanishes too (to the same share of its largest), the slip is nan: pure rolling.
+
+    Parameters
+    ----------
+    sliding : (n,) float array, m/s
+        The sliding velocity v_g.
+    tangential : (n,) float array, m/s
+        The rotor's velocity v_t along the common tangent.
+
+    Returns
+    -------
+    (n,) float array
+        The slip, +-inf where v_t is zero and v_g is not, nan where both are.
+    """
+    zero_t = np.abs(tangential) <= SLIP_ZERO * (np.abs(tangential).max(initial=0.0))
+    zero_g = np.abs(sliding) <= SLIP_ZERO * (np.abs(sliding).max(initial=0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = sliding / np.where(zero_t, 1.0, tangential)
+    return np.where(zero_t, np.where(zero_g, np.nan, np.copysign(np.inf, sliding)), ratio)
+
+
+def tangential_lever(points: np.ndarray, centre: np.ndarray, pitch_point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return v_t / omega of a rotor at contacts, from their positions alone, and its sensitivity to them.
+
+    Rinder eq. 2: v_t = omega N P, N the foot of the perpendicular from the rotor's centre O on the
+    contact normal; the normal passes through C, so N P = (P - O) . u with u = (P - C) / |P - C|.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        Contacts P, fixed frame (none at C).
+    centre, pitch_point : (2,) float array, mm
+        The rotor's centre O and the pitch point C.
+
+    Returns
+    -------
+    lever : (n,) float array, mm
+        (P - O) . u.
+    gain : (n,) float array
+        |grad lever| where the lever vanishes, sqrt(1 + |P - O|^2 / |P - C|^2): how many mm the lever
+        moves per mm that P moves.
+    """
+    to_c = points - pitch_point
+    dist = np.hypot(to_c[:, 0], to_c[:, 1])
+    arm = points - centre
+    with np.errstate(divide="ignore", invalid="ignore"):  # a contact at C: nan, no zero of its own
+        lever = (arm[:, 0] * to_c[:, 0] + arm[:, 1] * to_c[:, 1]) / dist
+        return lever, np.sqrt(1.0 + (arm[:, 0] ** 2 + arm[:, 1] ** 2) / dist**2)
+
+
+def on_pitch_circle(piece: MeshlinePiece, pair: RotorPair, band: float) -> bool:
+    """Return True where ``piece`` is a tip corner's path and that corner runs on its rotor's pitch circle.
+
+    A corner's path is a circle about its rotor's centre; a given profile's path strays from one
+    (its corner placed only so well). Where the pitch radius r_w lies within the radii the path runs
+    at, widened by ``band`` (mm, the meshline's accuracy), the corner's circle cannot be told from the
+    pitch circle. That circle touches both Thales circles (on O1 C and on O2 C as diameters) at C and
+    meets neither elsewhere (each lies on its own side of the tangent there, the pitch circle inside
+    or outside it): on it both rotors' v_t vanish at C only.
+    """
+    if piece.kind is PieceRole.MALE_CORNER_PATH:
+        centre, pitch = np.zeros(2), pair.male_pitch_radius
+    elif piece.kind is PieceRole.FEMALE_CORNER_PATH:
+        centre, pitch = np.array([pair.center_distance, 0.0]), pair.center_distance - pair.male_pitch_radius
+    else:
+        return False
+    radii = np.hypot(piece.points[:, 0] - centre[0], piece.points[:, 1] - centre[1])
+    return bool(radii.min() - band <= pitch <= radii.max() + band)
+
+
+def _corner_zero(
+    pieces: list[MeshlinePiece], j: int, i: int, centre: np.ndarray, c: np.ndarray, reach: float, circles: tuple, accuracy: float
+) -> tuple[np.ndarray, float] | None:
+    """Return the corner of a meshline turn at sample ``i`` of piece ``j`` where the rotor's v_t vanishes, and its lever.
+
+    The rounded turn's sample has a lever ``l`` (:func:`tangential_lever`); the corner
+    (:func:`turn_corner`, from the branches either side) has ``l_c``. v_t vanishes at the corner
+    where the two have opposite signs (the rounding cut across the zero) or ``l_c`` lies within what
+    the corner's placing moves it (``reach`` / 10, how near the extended branches must pass each other).
+    """
+    run, at = with_neighbours(pieces, j, i, reach)
+    arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
+    corner = turn_corner(run, arclen, at, reach, circles, accuracy)
+    if corner is None or np.hypot(*(corner - c)) <= 0:
+        return None
+    (lever, gain), (mine, _) = tangential_lever(corner[None], centre, c), tangential_lever(run[at][None], centre, c)
+    if lever[0] * mine[0] <= 0 or abs(lever[0]) <= gain[0] * 0.1 * reach:
+        return corner, float(lever[0])
+    return None
+
+
+def slip_singularities(
+    pieces: list[MeshlinePiece],
+    tangential: dict[str, np.ndarray],
+    pair: RotorPair,
+    band: float = 0.0,
+    reach: float = 0.0,
+    accuracy: float = 0.0,
+) -> list[dict[str, object]]:
+    """Return the points of infinite slip: where a rotor's tangential velocity vanishes (Rinder eq. 4, sec. 3.2).
+
+    Rinder: "nur in einem einzigen Punkt unendliche Schlupfwerte ... daß die Evolventenflanke bis
+    zum Grundkreis benutzt wurde". Found on each meshline piece where v1t (male slip infinite) or v2t
+    (female slip infinite) changes sign between neighbouring contacts (located by linear
+    interpolation), or, at a piece's end, falls below 1 % of the rotor's largest tangential velocity
+    while falling towards that end (a zero where the piece leaves a bore: the sampled meshline stops
+    within one step of it). The pitch point C is left out (both velocities vanish there with the
+    sliding: pure rolling, not infinite slip), and so is a zero on a tip corner's path where that
+    corner runs on its pitch circle within ``band`` (:func:`on_pitch_circle`). Of a given
+    profile (``reach`` > 0), a local least |v_t| within what the resolution moves it
+    (:func:`tangential_lever`) where the meshline turns sharply is judged at the turn's corner
+    (:func:`_corner_zero`). Points closer than 1 % of the centre distance are one.
+
+    Parameters
+    ----------
+    pieces : list of MeshlinePiece
+        The meshline.
+    tangential : dict
+        ``"male"`` and ``"female"``: v1t and v2t at every contact, pieces after each other, (n,) float, m/s.
+    pair : RotorPair
+        The pair.
+    band : float, mm
+        The meshline's accuracy (:data:`~rotorcad.meshing.defects.MESHLINE_GAIN` times a given
+        profile's); 0 for a design.
+    reach : float, mm
+        A given profile's resolution (:func:`~rotorcad.meshing.defects.resolution`); 0 for a design.
+    accuracy : float, mm
+        A given profile's accuracy.
+
+    Returns
+    -------
+    list of dict
+        ``rotor``, ``x``, ``y`` (mm), ``t`` (male rotation, rad), ``flank`` (lobe part, text),
+        ``male_radius``, ``female_radius`` (mm).
+    """
+    a = pair.center_distance
+    c = np.array([pair.male_pitch_radius, 0.0])
+    centres = {"male": np.zeros(2), "female": np.array([a, 0.0])}
+    circles = ((centres["male"], pair.male_tip_radius), (centres["female"], pair.female_tip_radius))
+    found: list[dict[str, object]] = []
+
+    def add(rotor: str, p: np.ndarray, t: float, role: object) -> None:
+        if np.hypot(*(p - c)) < 1e-3 * a:
+            return  # the pitch point: pure rolling
+        if any(f["rotor"] == rotor and np.hypot(f["x"] - p[0], f["y"] - p[1]) < 1e-2 * a for f in found):
+            return
+        found.append(
+            {
+                "rotor": rotor,
+                "x": float(p[0]),
+                "y": float(p[1]),
+                "t": float(t),
+                "flank": str(role),
+                "male_radius": float(np.hypot(*p)),
+                "female_radius": float(np.hypot(p[0] - a, p[1])),
+            }
+        )
+
+    start = 0
+    for j, piece in enumerate(pieces):
+        n = len(piece.t)
+        sl = slice(start, start + n)
+        start += n
+        if on_pitch_circle(piece, pair, band if band > 0 else 1e-9 * a):
+            continue  # both v_t vanish at C only
+        for rotor in ("male", "female"):
+            v = tangential[rotor][sl]
+            mag = np.abs(v)
+            big = float(np.abs(tangential[rotor]).max()) if len(tangential[rotor]) else 0.0
+            ends = [i for i, k in ((0, 1), (n - 1, n - 2)) if n > 1 and mag[i] <= 1e-2 * big and mag[i] < mag[k]]
+            cross_ = np.nonzero(v[:-1] * v[1:] < 0)[0]
+            hits = [(i, 0.0) for i in ends] + [(int(i), float(v[i] / (v[i] - v[i + 1]))) for i in cross_]
+            for i, w in hits:
+                k = min(i + 1, n - 1)
+                add(
+                    rotor,
+                    piece.points[i] + w * (piece.points[k] - piece.points[i]),
+                    piece.t[i] + w * (piece.t[k] - piece.t[i]),
+                    piece.roles[i],
+                )
+            if reach <= 0 or n < 3:
+                continue
+            lever, gain = tangential_lever(piece.points, centres[rotor], c)
+            least = np.flatnonzero((mag[1:-1] <= mag[:-2]) & (mag[1:-1] <= mag[2:])) + 1
+            for i in least[np.abs(lever[least]) <= gain[least] * reach]:
+                zero = _corner_zero(pieces, j, int(i), centres[rotor], c, reach, circles, accuracy)
+                if zero is not None:
+                    add(rotor, zero[0], piece.t[i], piece.roles[i])
+    return found
