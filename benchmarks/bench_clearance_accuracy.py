@@ -49,8 +49,12 @@ def per_lobe(ring: np.ndarray, teeth: int, points: int) -> float:
 
 
 def evaluate(pair: RotorPair, male: np.ndarray, female: np.ndarray) -> MeshingClearance:
+    quality = pair_quality(male, female, (pair.male_teeth, pair.female_teeth))
     return MeshingClearance(
-        pair, lobe_pieces(pair, male, "male"), lobe_pieces(pair, female, "female"), **pair_quality(male, female)
+        pair,
+        lobe_pieces(pair, male, "male"),
+        lobe_pieces(pair, female, "female"),
+        **quality,
     )
 
 
@@ -106,7 +110,7 @@ def n_rack_rows(seeds: range, densities: list[int]) -> None:
                         lobe_pieces(pair, m, "male"),
                         lobe_pieces(pair, f, "female"),
                         contact="as-given",
-                        **pair_quality(m, f),
+                        **pair_quality(m, f, (5, 6)),
                     )
                     s, dist = mc.summary(), mc.distribution()
                     on = np.flatnonzero(mc.contact_zone)

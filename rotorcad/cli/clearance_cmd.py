@@ -191,7 +191,7 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
             lobe_pieces(pair, male, "male", opts["smoothing"], label="--male-points"),
             lobe_pieces(pair, female, "female", opts["smoothing"], label="--female-points"),
             contact=opts["contact"],
-            **pair_quality(male, female),
+            **pair_quality(male, female, (pair.male_teeth, pair.female_teeth)),
         )
         mc.summary()  # evaluate here (the clearance and its band) so that its errors are reported as bad input
     except DesignError as exc:

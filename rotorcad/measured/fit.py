@@ -118,6 +118,128 @@ def _polar_crossing(curve: Curve, points: np.ndarray, u: np.ndarray, theta: floa
     return float(a) if root is None else root  # no sign change on the spline: the chord's crossing
 
 
+ROUNDING_SHARE = 0.1
+"""A convex turn across one edge of sparse points is a rounding, not a sharp corner, when a vertex
+beside the edge's two turns by more than this share of it (:func:`_resolved_corners`)."""
+
+
+def _resolved_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float) -> tuple[np.ndarray, np.ndarray]:
+    """Drop the corners of sparse points that are tip roundings the points step over.
+
+    Points about a spacing apart on a rounding of radius rho turn by h / rho at every vertex: a
+    rounding of 2 mm at 80 points a lobe (h = 1 mm, the N-rack female's tip) turns by 22 deg at each of
+    its three vertices, 44 deg across the edge between two of them, and read as a sharp corner (its
+    fan of normals sent the female's tip flanks to corner paths, half the contact line of the
+    N-rack sample out of the contact zone). A sharp corner turns at the edge's two vertices alone:
+    the vertices beside them turn by the flanks' curvature over a spacing (the narrow-tip male's tip
+    at 80 a lobe: 2 %, the independent pairs' tips beside their lands: under 5 % of the corner). The
+    rule :func:`rotorcad.measured.outline.corners` applies to concave turns, applied to convex ones:
+    where each chord of the turn spans one edge (the points sparser than the chords' reach), a
+    corner whose vertices beside it turn by more than :data:`ROUNDING_SHARE` of its turn is a rounding
+    (the spline runs through it).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    edges : (m,) int array
+        Each corner's edge (:func:`rotorcad.measured.outline.corners`).
+    points : (m, 2) float array, mm
+        Each corner's point.
+    sigma : float, mm
+        The points' scatter.
+
+    Returns
+    -------
+    edges, points
+        The corners kept.
+    """
+    if not len(edges):
+        return edges, points
+    n = len(whole)
+    d = np.roll(whole, -1, axis=0) - whole
+    step = np.hypot(*d.T)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    vertex_turn = wrap_angle(heading - np.roll(heading, 1))  # signed, at each point (counter-clockwise: convex > 0)
+    i = np.asarray(edges)
+    turn = vertex_turn[i] + vertex_turn[(i + 1) % n]  # the edge's turn between its one-edge chords
+    beside = np.maximum(np.abs(vertex_turn[(i - 1) % n]), np.abs(vertex_turn[(i + 2) % n]))
+    reach = min(40.0 * sigma, 0.1) if sigma > 0 else 0.0
+    single = (step[(i - 1) % n] >= reach) & (step[(i + 1) % n] >= reach)
+    rounding = single & (turn > 0) & (beside > ROUNDING_SHARE * np.abs(turn))
+    return i[~rounding], np.asarray(points)[~rounding]
+
+
+def corner_uncertainty(whole: np.ndarray, sigma: float, corner_angle_deg: float = 30.0) -> float:
+    """Return how far a sharp corner of the points may lie from where it is found, mm.
+
+    A corner between two points (the corner's edge, :func:`rotorcad.measured.outline.corners`) is
+    found where the chords (or fits) beside it cross; the outline between the two points is known
+    only to lie in the triangle of the edge and that crossing: a sharp corner at the crossing, or a
+    rounding shorter than the spacing anywhere inside (the N-rack male's 1.04 mm tip rounding at 80
+    points a lobe, 1 mm apart, read as a corner whose path passes its mate 30 um nearer than the
+    rounding). The bound is the triangle's height over the edge, the largest over the corners kept
+    by the fit (:func:`_resolved_corners`); 0 for a corner on a point (exact points of a sharp
+    corner) and for an outline without corners.
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    sigma : float, mm
+        Its scatter (0 for exact points).
+    corner_angle_deg : float, deg
+        Turn above which a vertex is a sharp corner.
+
+    Returns
+    -------
+    float, mm
+    """
+    edges, points = _resolved_corners(whole, *corners(whole, sigma, corner_angle_deg), sigma)
+    if not len(edges):
+        return 0.0
+    a, b = whole[edges], whole[(edges + 1) % len(whole)]
+    chord = b - a
+    height = np.abs(chord[:, 0] * (points - a)[:, 1] - chord[:, 1] * (points - a)[:, 0]) / np.maximum(np.hypot(*chord.T), 1e-300)
+    return float(height.max())
+
+
+def curvature_jump(whole: np.ndarray, sigma: float, corner_angle_deg: float = 30.0) -> float:
+    """Return the largest jump of the outline's curvature between neighbouring points, 1/mm, corners left out.
+
+    The curvature at each point is its vertex's turn over the mean of its two spacings; the jump the
+    difference between neighbours. Where a rounding meets a flank the curvature jumps, and a cubic
+    through points h apart misses the outline there by a share of h^2 dk (the fit's own error,
+    :func:`rotorcad.clearance_accuracy.estimated_accuracy`). Points within two of a sharp corner's
+    edge (:func:`_resolved_corners`) are left out (a corner is no curvature). Scatter adds about
+    4 sigma / h^2 to each curvature: h^2 dk then by 4 sigma at most, a share of the scatter's own term.
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    sigma : float, mm
+        Its scatter (0 for exact points).
+    corner_angle_deg : float, deg
+        Turn above which a vertex is a sharp corner.
+
+    Returns
+    -------
+    float, 1/mm
+    """
+    n = len(whole)
+    d = np.roll(whole, -1, axis=0) - whole
+    step = np.maximum(np.hypot(*d.T), 1e-300)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    kappa = wrap_angle(heading - np.roll(heading, 1)) / (0.5 * (step + np.roll(step, 1)))
+    jump = np.abs(kappa - np.roll(kappa, 1))  # between points i - 1 and i
+    edges, _ = _resolved_corners(whole, *corners(whole, sigma, corner_angle_deg), sigma)
+    near = np.zeros(n, dtype=bool)
+    for off in range(-2, 4):
+        near[(np.asarray(edges, dtype=int) + off) % n] = True
+    return float(jump[~near].max()) if (~near).any() else 0.0
+
+
 def _runs_between_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float = 0.0) -> list[np.ndarray]:
     """Cut the outline at its corners.
 
@@ -299,7 +421,7 @@ def lobe_pieces(
         return _lobe_from_curves(points, teeth, rotor, label)
     whole = outline.whole
     sigma = outline.sigma  # the points read as they are; --smoothing sets only the splines' smoothing
-    edges, corner_points = corners(whole, sigma, corner_angle_deg)
+    edges, corner_points = _resolved_corners(whole, *corners(whole, sigma, corner_angle_deg), sigma)
     if len(edges):
         corner_points = _refined_corners(whole, edges, corner_points, sigma, smoothing, outline.accuracy)
         runs = _runs_between_corners(whole, edges, corner_points, sigma)
@@ -307,10 +429,18 @@ def lobe_pieces(
         found = _lands(np.vstack([whole, whole[:1]]), sigma)
         if not found:
             return [("flank", lobe_curve(pair, whole, rotor, smoothing))]
-        a, b, _ = found[0]
-        start = (a + b) // 2
-        ring = np.roll(whole, -start, axis=0)
-        runs = [np.vstack([ring, ring[:1]])]
+        # the run starts at the land's first point and ends past its last, so that the spline before
+        # it sees the land it runs into (as every other land's); the land's second copy is dropped. Cut
+        # in the land's middle, the two halves were splines with free ends meeting at a kink (the
+        # N-rack female's tip land at 300 points a lobe, 2 um scatter: 6 deg, whose fan of normals
+        # took half the contact line as a sharp corner's path)
+        inner = [land for land in found if 0 < land[0] and land[1] < len(whole)]  # not cut by the ring's seam
+        a, b, _ = (inner or found)[0]
+        ring = np.roll(whole, -a, axis=0)
+        fitted = _fit_run(np.vstack([ring, ring[: b - a + 1]]), sigma, smoothing)
+        if len(fitted) > 1 and isinstance(fitted[-1][0], Arc) and isinstance(fitted[0][0], Arc):
+            fitted = fitted[:-1]
+        return _cut_lobe(fitted, whole, teeth, rotor, label)
     fitted = [piece for run in runs for piece in _fit_run(run, sigma, smoothing)]
     return _cut_lobe(fitted, whole, teeth, rotor, label)
 
