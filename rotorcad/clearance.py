@@ -59,10 +59,10 @@ from rotorcad.rotor_pair import RotorPair
 
 CONTACT_SIDES = ("driving", "sealing", "as-given")
 
-SHARP_FAN = np.radians(5.0)
+SHARP_FAN = np.radians(10.0)
 """rad: the least turn of a fan of normals that the clearance treats as a sharp corner's path (the
-N-rack female's tip land meeting its splines from 2 um scatter: 0.4-1.2 deg, a quarter of the contact
-line read as corner paths; the tests' sharp corners: 30 deg and more)."""
+N-rack female's tip land meeting its splines from 2 um scatter: 0.4-6 deg, 43 % of the contact line
+read as corner paths; the tests' sharp corners: 30 deg and more)."""
 
 ALIGNMENT_WINDOW_MAX = 5.0
 """mm: the contact alignment's window where the flank's clearance trends (:func:`trends`): twenty
@@ -267,7 +267,7 @@ class MeshingClearance:
             return fan
         corners = np.unique(np.round(rack.profile[fan], 9), axis=0)
         # a fan whose normals turn by less than SHARP_FAN is a kink the fits leave where a land meets a
-        # flank's spline (scattered points: 0.4-1.2 deg), not a corner: its normals are the flank's
+        # flank's spline (scattered points: 0.4-6 deg), not a corner: its normals are the flank's
         at = np.round(rack.profile, 9)
         sharp = np.zeros(len(fan), dtype=bool)
         for c in corners:

@@ -88,7 +88,11 @@ def n_rack_read(rotors, chord: float, points: int, sigma: float):
     p = rotors.pair
     pair = RotorPair(5, 6, p.center_distance, rm.max(), rm.min(), rf.max(), rf.min(), p.lead, p.length, strict=False)
     mc = MeshingClearance(
-        pair, lobe_pieces(pair, m, "male"), lobe_pieces(pair, f, "female"), contact="as-given", **pair_quality(m, f, (5, 6))
+        pair,
+        lobe_pieces(pair, m, "male", roundings=True),
+        lobe_pieces(pair, f, "female", roundings=True),
+        contact="as-given",
+        **pair_quality(m, f, (5, 6)),
     )
     return male, female, mc
 
@@ -184,6 +188,11 @@ def test_n_rack_housing_bored_oversize_from_80_points_a_lobe(n_rack):
     rm, rf = np.hypot(*m.T), np.hypot(*f.T)
     p = n_rack.pair
     pair = RotorPair(5, 6, 82.2, rm.max(), rm.min(), rf.max(), rf.min(), p.lead, p.length, strict=False)
-    mc = MeshingClearance(pair, lobe_pieces(pair, m, "male"), lobe_pieces(pair, f, "female"), **pair_quality(m, f, (5, 6)))
+    mc = MeshingClearance(
+        pair,
+        lobe_pieces(pair, m, "male", roundings=True),
+        lobe_pieces(pair, f, "female", roundings=True),
+        **pair_quality(m, f, (5, 6)),
+    )
     s = mc.summary()
     assert abs(s["min_normal_clearance"]) <= s["accuracy"]
