@@ -40,6 +40,7 @@ from independent_pairs import arc_flank_5_6, cut_rotor, resample, trapezoid_4_6,
 
 from rotorcad.clearance import MeshingClearance, pair_quality
 from rotorcad.cli.clearance_cmd import INTERFERENCE_THRESHOLD
+from rotorcad.measured.fit import close_smoothing
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import lobe_pieces
 
@@ -49,8 +50,12 @@ def per_lobe(ring: np.ndarray, teeth: int, points: int) -> float:
 
 
 def evaluate(pair: RotorPair, male: np.ndarray, female: np.ndarray) -> MeshingClearance:
+    quality = pair_quality(male, female, (pair.male_teeth, pair.female_teeth))
     return MeshingClearance(
-        pair, lobe_pieces(pair, male, "male"), lobe_pieces(pair, female, "female"), **pair_quality(male, female)
+        pair,
+        lobe_pieces(pair, male, "male", close_smoothing, roundings=True),  # as rotorcad clearance fits them
+        lobe_pieces(pair, female, "female", close_smoothing, roundings=True),
+        **quality,
     )
 
 
@@ -103,10 +108,10 @@ def n_rack_rows(seeds: range, densities: list[int]) -> None:
                     )
                     mc = MeshingClearance(
                         pair,
-                        lobe_pieces(pair, m, "male"),
-                        lobe_pieces(pair, f, "female"),
+                        lobe_pieces(pair, m, "male", close_smoothing, roundings=True),
+                        lobe_pieces(pair, f, "female", close_smoothing, roundings=True),
                         contact="as-given",
-                        **pair_quality(m, f),
+                        **pair_quality(m, f, (5, 6)),
                     )
                     s, dist = mc.summary(), mc.distribution()
                     on = np.flatnonzero(mc.contact_zone)

@@ -36,7 +36,7 @@ from functools import cached_property
 
 import numpy as np
 
-from rotorcad.clearance_accuracy import ACCURACY_FLOOR, estimated_accuracy, pair_quality, points_quality, polygon_sagitta
+from rotorcad.clearance_accuracy import ACCURACY_FLOOR, estimated_accuracy, pair_quality, points_quality, trends
 from rotorcad.clearance_normals import normal_clearance, normal_crossing
 from rotorcad.clearance_phase import alignment_curve, complementary_shift, search_steps
 from rotorcad.clearance_thermal import ThermalState
@@ -58,6 +58,16 @@ from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
 
 CONTACT_SIDES = ("driving", "sealing", "as-given")
+
+SHARP_FAN = np.radians(10.0)
+"""rad: the least turn of a fan of normals that the clearance treats as a sharp corner's path (the
+N-rack female's tip land meeting its splines from 2 um scatter: 0.4-6 deg, 43 % of the contact line
+read as corner paths; the tests' sharp corners: 30 deg and more)."""
+
+ALIGNMENT_WINDOW_MAX = 5.0
+"""mm: the contact alignment's window where the flank's clearance trends (:func:`trends`): twenty
+spacings of 300 points a lobe of the N-rack (5.3 mm); its 80 a lobe with 2 um scatter at 82.2 mm for 82
+read -35 um (a false interference) with twenty spacings (20 mm), -1.3 um with 5 mm."""
 
 
 class ClearanceZone(IntEnum):
@@ -119,8 +129,15 @@ class MeshingClearance:
         for the stated :attr:`accuracy`; 0 for exact curves.
     sagitta : float, mm
         The sagittas of the polygons the two rotors' points lie on, added
-        (:func:`rotorcad.clearance_accuracy.polygon_sagitta`), for the stated :attr:`accuracy`;
-        :func:`rotorcad.clearance_accuracy.pair_quality` gives all three.
+        (:func:`rotorcad.measured.pattern.pattern_deviation`), for the stated :attr:`accuracy`.
+    corner_error : float, mm
+        How far a sharp corner found between sparse points may lie from its fits' crossing
+        (:func:`rotorcad.measured.fit.corner_uncertainty`), for the stated :attr:`gap_accuracy`;
+    curvature_jump : float, 1/mm, optional
+        The larger of the two rotors' largest curvature jumps between neighbouring points
+        (:func:`rotorcad.measured.fit.curvature_jump`), for the stated :attr:`accuracy`; None: the
+        default of :func:`estimated_accuracy`. :func:`rotorcad.clearance_accuracy.pair_quality` gives
+        all five.
 
     Raises
     ------
@@ -136,7 +153,9 @@ class MeshingClearance:
     contact_step: float = 0.05  # mm between contact-line points
     scatter: float = 0.0  # mm: the points' scatter (points_quality), for the stated accuracy
     spacing: float = 0.0  # mm: the points' spacing (points_quality), for the stated accuracy
-    sagitta: float = 0.0  # mm: the two rotors' polygon sagittas (polygon_sagitta), for the stated accuracy
+    sagitta: float = 0.0  # mm: the two rotors' polygon sagittas (pattern_deviation), for the stated accuracy
+    corner_error: float = 0.0  # mm: a corner's uncertainty between sparse points (corner_uncertainty), for gap_accuracy
+    curvature_jump: float | None = None  # 1/mm: the points' largest curvature jump (curvature_jump), for the stated accuracy
 
     def __post_init__(self) -> None:
         if self.contact not in CONTACT_SIDES:
@@ -247,6 +266,19 @@ class MeshingClearance:
         if not fan.any() or rack.profile is None:
             return fan
         corners = np.unique(np.round(rack.profile[fan], 9), axis=0)
+        # a fan whose normals turn by less than SHARP_FAN is a kink the fits leave where a land meets a
+        # flank's spline (scattered points: 0.4-6 deg), not a corner: its normals are the flank's
+        at = np.round(rack.profile, 9)
+        sharp = np.zeros(len(fan), dtype=bool)
+        for c in corners:
+            own = fan & np.all(at == c, axis=1)
+            heading = np.unwrap(np.arctan2(rack.tangents[own, 1], rack.tangents[own, 0]))
+            if np.ptp(heading) >= SHARP_FAN:
+                sharp |= own
+        fan = sharp
+        if not fan.any():
+            return fan
+        corners = np.unique(at[fan], axis=0)
         d = np.min(np.hypot(*(rack.profile[:, None, :] - corners[None, :, :]).transpose(2, 0, 1)), axis=1)
         return fan | (d <= self.corner_reach)
 
@@ -360,6 +392,11 @@ class MeshingClearance:
             return float(np.min(alignment_curve(d[ok], arc[inside][ok], width, self.scatter)))
 
         root = bracket_root(gap, search_steps(sign * start, gap(sign * start), self.pair.rack_period), xtol=1e-12)
+        quality = (self.scatter, self.spacing, self.sagitta, self.curvature_jump)
+        if root is not None and width > ALIGNMENT_WINDOW_MAX and trends(self.clearance_at(sign * root, inside), *quality):
+            width = ALIGNMENT_WINDOW_MAX  # sparse points' window spans the flank, whose clearance trends
+            gap.cache_clear()
+            root = bracket_root(gap, search_steps(sign * root, gap(sign * root), self.pair.rack_period), xtol=1e-12)
         if root is not None:
             # the flank proper at the contact found: what faces the male corner there is left out
             again = inside & ~np.logical_or(*self._faces_male_corner(sign * root))
@@ -381,7 +418,9 @@ class MeshingClearance:
         """Width of the running mean (mm along the datum rack) whose smallest value the contact alignment zeroes.
 
         Twenty point spacings (none for exact curves): the scatter left by the fits is averaged out
-        of the alignment, a designed clearance's minimum is not (it varies over millimetres).
+        of the alignment, a designed clearance's minimum is not (it varies over millimetres). Where
+        the clearance along the flank trends by more than the window can average (:meth:`shift`),
+        at most :data:`ALIGNMENT_WINDOW_MAX`.
         """
         return 20.0 * self.spacing
 
@@ -510,12 +549,24 @@ class MeshingClearance:
         independent points as the contact zone's length on the female rack over the point spacing.
         """
         if self.scatter <= 0 or self.spacing <= 0:
-            return estimated_accuracy(self.scatter, self.spacing, sagitta=self.sagitta)
+            return estimated_accuracy(self.scatter, self.spacing, sagitta=self.sagitta, curvature_jump=self.curvature_jump)
         pts = self.female_rack.points
         on = self.contact_zone
         step = np.hypot(*np.diff(pts, axis=0).T)
         length = float(step[on[:-1] & on[1:]].sum())
-        return estimated_accuracy(self.scatter, self.spacing, max(length / self.spacing, 1.0), self.sagitta)
+        count = max(length / self.spacing, 1.0)
+        return estimated_accuracy(self.scatter, self.spacing, count, self.sagitta, self.curvature_jump)
+
+    @property
+    def gap_accuracy(self) -> float:
+        """The stated accuracy of the gaps of the parts that never touch and of a corner's path, mm.
+
+        :attr:`accuracy` plus :attr:`corner_error`: a sharp corner between sparse points (or a
+        rounding shorter than their spacing, which looks the same) lies somewhere in the triangle of
+        its edge and its fits' crossing, and its path, and the mate's closest approach to it, move by
+        as much (:func:`rotorcad.measured.fit.corner_uncertainty`).
+        """
+        return float(self.accuracy + self.corner_error)
 
     def _refuse_a_lead_past_the_contact_zone(self) -> None:
         """Refuse a lead so long that the contact zone of the bores falls outside the rotor length.
@@ -708,12 +759,14 @@ class MeshingClearance:
             contact line's points), ``max_unresolved_clearance``, ``min_unresolved_clearance`` (mm,
             the normal clearance where the points cannot resolve the contact,
             :attr:`ClearanceZone.UNRESOLVED`, not judged), ``unresolved_share`` (of the contact line's
-            points), ``accuracy`` (mm, :attr:`accuracy`), ``female_rack_shift`` (mm,
+            points), ``accuracy`` (mm, :attr:`accuracy`), ``gap_accuracy`` (mm, :attr:`gap_accuracy`: of
+            ``max_gap``, ``min_gap``, ``min_corner_gap``), ``female_rack_shift`` (mm,
             the shift applied to position the racks) and ``helix_angle_deg`` (deg).
         """
         return {
             **self._band,
             "accuracy": self.accuracy,
+            "gap_accuracy": self.gap_accuracy,
             "female_rack_shift": self.shift,
             "helix_angle_deg": float(np.degrees(self.helix_angle)),
         }
@@ -743,5 +796,4 @@ __all__ = [
     "normal_crossing",
     "pair_quality",
     "points_quality",
-    "polygon_sagitta",
 ]

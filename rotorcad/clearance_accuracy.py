@@ -2,7 +2,12 @@
 
 From what the points themselves show: their scatter normal to the outline, their spacing, and, for
 points that lie on straight runs (resampled from a polyline, a drawing's or an export's chords),
-the sagitta of that polygon, by which they leave the true outline wherever it is curved.
+the sagitta of that polygon, by which they leave the true outline wherever it is curved: the one
+estimate :func:`rotorcad.measured.pattern.pattern_deviation` that :func:`rotorcad.measured.outline.read_outline`
+judges such points by (their fit's scatter), counted here once, as a bound, not as scatter too.
+The gaps of the parts that never touch state their own accuracy: a sharp corner between sparse
+points may lie anywhere in the triangle of its edge and the chords beside it
+(:func:`rotorcad.measured.fit.corner_uncertainty`).
 Measured on independent pairs cut by brute force (``benchmarks/bench_clearance_accuracy.py``,
 README) and on the N-rack sample's thinned female (``tests/test_clearance_lands.py``).
 """
@@ -11,17 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.geometry import Array, wrap_angle
+from rotorcad.geometry import Array
 from rotorcad.measured.pairs import max_factor
 
 ACCURACY_FLOOR = 1e-3
 """mm: the accuracy stated for exact points (the fits' and the racks' sampling, README)."""
-
-STRAIGHT_TURN = 1e-6
-"""mm: a vertex turns by less than this over its spacing (rad x mm) where points lie on one chord.
-
-Points written to 0.1 nm (seven decimals of a millimetre) turn by about 1e-7 mm / h rad on a chord;
-a smooth outline of 1 m radius turns by h / 1000 rad, above this from h = 0.03 mm."""
 
 
 def points_quality(points: Array) -> tuple[float, float]:
@@ -45,58 +44,21 @@ def points_quality(points: Array) -> tuple[float, float]:
     return scatter(p), float(np.median(np.hypot(*np.diff(p, axis=0).T)))
 
 
-def polygon_sagitta(points: Array) -> float:
-    """Estimate how far points resampled from a polygon may lie from the curve the polygon stands for.
+SPLINE_GAIN = 1.0 / 30.0
+"""A cubic through points h apart misses an outline whose curvature jumps by dk between two of them
+by up to SPLINE_GAIN h^2 dk (the clearance, both rotors' fits: measured, not the interpolation
+bound h^2 dk / 8). Calibrated on the N-rack sample thinned by 30 um, exact points at 80 a lobe
+(the female's 2.07 mm tip roundings, read dk 0.29/mm, 1 mm apart): 12.2 um off the brute force
+(``benchmarks/bench_clearance_accuracy.py``)."""
 
-    Points taken along a polyline's chords (an outline exported at a chord tolerance, then resampled
-    or scanned along it) lie on straight runs between the polyline's vertices, where the outline
-    turns at once: a chord of length c across which the outline turns by alpha leaves the curve by
-    its sagitta c alpha / 8. The runs are the vertices that turn by less than
-    :data:`STRAIGHT_TURN` over their spacing; a turn of one or two vertices between two runs is a
-    vertex of the polygon, its chord the longer run beside it. Returns the largest sagitta when most
-    vertices lie on runs (points of a smooth outline, or scattered ones, turn at every vertex:
-    0 then).
-
-    Parameters
-    ----------
-    points : (n, 2) float array, mm
-        The closed outline's points in order.
-
-    Returns
-    -------
-    float, mm
-        The largest sagitta of the polygon (the N-rack sample's outlines written at 1 µm: 1.1-1.2 µm),
-        0 when the points do not lie on a polygon's chords.
-    """
-    p = np.asarray(points, dtype=float)
-    if len(p) < 8:
-        return 0.0
-    d = np.roll(p, -1, axis=0) - p
-    step = np.hypot(*d.T)
-    turn = wrap_angle(np.arctan2(d[:, 1], d[:, 0]) - np.roll(np.arctan2(d[:, 1], d[:, 0]), 1))  # at each vertex
-    straight = np.abs(turn) * np.maximum(step, np.roll(step, 1)) < STRAIGHT_TURN
-    if straight.mean() < 0.5 or straight.all():
-        return 0.0
-    # runs of straight vertices and the bends between them, around the ring (start at a bend's first vertex)
-    start = int(np.flatnonzero(~straight & np.roll(straight, 1))[0])
-    flag = np.roll(straight, -start)
-    t, s = np.roll(turn, -start), np.roll(step, -start)
-    change = np.flatnonzero(np.diff(np.concatenate([flag, flag[:1]]).astype(int))) + 1  # first index of each next part
-    bounds = np.concatenate([[0], change[change < len(flag)], [len(flag)]])
-    total_turn = np.add.reduceat(t, bounds[:-1])
-    length = np.add.reduceat(s, bounds[:-1])
-    is_run = flag[bounds[:-1]]
-    count = np.diff(bounds)
-    # the parts alternate bend, run, bend, run, ...: a polygon's vertex turns one vertex of the points
-    # (on it) or two (between them); a longer bend is a stretch of short chords, as smooth as the points
-    bends = np.flatnonzero(~is_run & (count <= 2))
-    before = length[bends - 1] if len(bends) else np.zeros(0)  # bend 0's run before is the ring's last part
-    after = length[(bends + 1) % len(length)]
-    chord = np.maximum(before, after) + length[bends]
-    return float(np.max(chord * np.abs(total_turn[bends]) / 8.0)) if len(bends) else 0.0
+DEFAULT_CURVATURE_JUMP = 0.12
+"""1/mm: the curvature jump taken where the points' own is not given (:func:`estimated_accuracy`):
+0.004 h^2 / mm with :data:`SPLINE_GAIN`, the term measured on 1.5 mm roundings."""
 
 
-def estimated_accuracy(sigma: float, spacing: float, count: float = 1.0, sagitta: float = 0.0) -> float:
+def estimated_accuracy(
+    sigma: float, spacing: float, count: float = 1.0, sagitta: float = 0.0, curvature_jump: float | None = None
+) -> float:
     """Return the stated accuracy of the contact-zone clearance from the points' scatter and spacing.
 
     A bound on the largest error of the normal clearance over the contact zone, which holds with
@@ -104,10 +66,11 @@ def estimated_accuracy(sigma: float, spacing: float, count: float = 1.0, sagitta
     the racks' sampling), plus sqrt(2) k sigma for the scatter (the female's and the male's fitted
     outlines each off by at most the scatter's own standard deviation sigma, independently; k from
     :func:`rotorcad.measured.pairs.max_factor` for the ``count`` independent points the contact zone
-    is measured by), plus 0.004 h^2 / mm (a cubic through points h apart misses the outline's
-    curvature jumps, where a rounding meets a flank, by about h^2 dk / 8), plus the sagittas of the
-    polygons the points lie on (:func:`polygon_sagitta`, both rotors': each rotor's points are off
-    its outline by up to its own). Measured on independent pairs cut by brute force
+    is measured by), plus :data:`SPLINE_GAIN` h^2 dk (a cubic through points h apart misses the
+    outline where its curvature jumps by dk, a rounding meeting a flank: dk read from the points,
+    :func:`rotorcad.measured.fit.curvature_jump`), plus the sagittas of the
+    polygons the points lie on (:func:`rotorcad.measured.pattern.pattern_deviation`, both rotors':
+    each rotor's points are off its outline by up to its own). Measured on independent pairs cut by brute force
     (``benchmarks/bench_clearance_accuracy.py``, README).
 
     Parameters
@@ -120,6 +83,9 @@ def estimated_accuracy(sigma: float, spacing: float, count: float = 1.0, sagitta
         Number of measured points along the contact zone (its length over the spacing).
     sagitta : float, mm
         The two rotors' polygon sagittas added (0 for points off a smooth outline or exact curves).
+    curvature_jump : float, 1/mm, optional
+        The larger of the two rotors' largest curvature jumps between neighbouring points
+        (:func:`rotorcad.measured.fit.curvature_jump`); None: :data:`DEFAULT_CURVATURE_JUMP`.
 
     Returns
     -------
@@ -127,30 +93,91 @@ def estimated_accuracy(sigma: float, spacing: float, count: float = 1.0, sagitta
         The stated accuracy.
     """
     scatter = np.sqrt(2.0) * max_factor(count) * sigma if sigma > 0 else 0.0
-    return float(ACCURACY_FLOOR + scatter + 0.004 * spacing**2 + sagitta)
+    dk = DEFAULT_CURVATURE_JUMP if curvature_jump is None else curvature_jump
+    return float(ACCURACY_FLOOR + scatter + SPLINE_GAIN * spacing**2 * dk + sagitta)
 
 
-def pair_quality(male: Array | list, female: Array | list) -> dict[str, float]:
-    """Return the ``scatter``, ``spacing`` and ``sagitta`` of a pair's points, as ``MeshingClearance`` takes them.
+def trends(flank: Array, sigma: float, spacing: float, sagitta: float = 0.0, curvature_jump: float | None = None) -> bool:
+    """Tell whether the clearance along an aligned flank spans more than twice the points' accuracy.
+
+    Then it trends (a housing bored oversize) rather than scatters about the contact, and the
+    contact alignment's running mean over most of the flank (twenty spacings of sparse points) lifts
+    its minimum: :attr:`rotorcad.clearance.MeshingClearance.shift` cuts the window to
+    :data:`rotorcad.clearance.ALIGNMENT_WINDOW_MAX`. The 4/6 independent pair's conjugate flanks
+    from 80 points a lobe with 2 um scatter span 15 um against 25 um stated and keep their window
+    (the shift within 2 um of the truth over five seeds, 3 um with the short one); the N-rack's at
+    82.2 mm for 82 span 0.14 mm.
+
+    Parameters
+    ----------
+    flank : (n,) float array, mm
+        The clearance along the flank (NaN where undefined).
+    sigma, spacing, sagitta, curvature_jump
+        As :func:`estimated_accuracy` (mm, mm, mm, 1/mm).
+
+    Returns
+    -------
+    bool
+    """
+    ok = np.asarray(flank, dtype=float)
+    ok = ok[np.isfinite(ok)]
+    if len(ok) < 2:
+        return False
+    return float(np.ptp(ok)) > 2.0 * estimated_accuracy(sigma, spacing, len(ok), sagitta, curvature_jump)
+
+
+POLYGON_LARGEST = 1.3
+"""The largest chord's sagitta over the polygon's typical one that
+:func:`rotorcad.measured.pattern.pattern_deviation` estimates (a median): the N-rack sample's outlines
+written at a chord tolerance of 1 um (every chord's sagitta at most 1 um, most near it) read 0.79 um."""
+
+
+def pair_quality(male: Array | list, female: Array | list, teeth: tuple[int, int]) -> dict[str, float]:
+    """Return the quality of a pair's points as ``MeshingClearance`` takes it (its accuracy's inputs).
+
+    Each rotor's points are read as :func:`rotorcad.measured.outline.read_outline` reads them for the
+    fit: points that show no scatter between neighbours but lie on a polygon's chords (the pattern a
+    polygon leaves, :func:`rotorcad.measured.pattern.pattern_deviation`) are off the outline by that
+    polygon's sagitta e, a systematic error bounded by e itself (their fit is smoothed by the
+    pattern's spread, but that spread is not a random scatter a second time): they count with
+    their sagitta and no scatter.
 
     Parameters
     ----------
     male, female : (n, 2) float array, mm, or list of Curve
         Each rotor's points (exact curves, a list, count as exact: 0 each).
+    teeth : (int, int)
+        The male's and the female's lobe counts.
 
     Returns
     -------
     dict of float, mm
-        The larger scatter and spacing of the two (:func:`points_quality`) and the sum of their
-        polygon sagittas (:func:`polygon_sagitta`).
+        ``scatter`` and ``spacing``: the larger of the two rotors' (:func:`points_quality`; 0 for
+        points on a polygon's chords); ``sagitta``: the two polygons' sagittas added;
+        ``curvature_jump`` (1/mm): the larger of the two rotors'
+        (:func:`rotorcad.measured.fit.curvature_jump`); ``corner_error``: the largest distance a
+        sharp corner found between sparse points may lie from where its fits cross
+        (:func:`rotorcad.measured.fit.corner_uncertainty`, either rotor).
     """
-    points = [p for p in (male, female) if not isinstance(p, list | tuple)]
-    quality = [points_quality(p) for p in points]
-    return {
-        "scatter": max((q[0] for q in quality), default=0.0),
-        "spacing": max((q[1] for q in quality), default=0.0),
-        "sagitta": float(sum(polygon_sagitta(p) for p in points)),
-    }
+    from rotorcad.measured.fit import corner_uncertainty, curvature_jump
+    from rotorcad.measured.outline import read_outline, scatter
+    from rotorcad.measured.pattern import PATTERN_RMS, pattern_deviation
+
+    out = {"scatter": 0.0, "spacing": 0.0, "sagitta": 0.0, "corner_error": 0.0, "curvature_jump": 0.0}
+    for points, z in zip((male, female), teeth, strict=True):
+        if isinstance(points, list | tuple):
+            continue
+        outline = read_outline(np.asarray(points, dtype=float), z, "points", drawn_as_points=False)
+        whole = outline.whole
+        sigma = scatter(whole)
+        chords = pattern_deviation(whole, z)
+        polygon = PATTERN_RMS * chords > sigma  # the polygon's pattern, not a scatter, sets how far they lie off
+        out["sagitta"] += POLYGON_LARGEST * chords if polygon else 0.0
+        out["scatter"] = max(out["scatter"], 0.0 if polygon else outline.sigma)
+        out["spacing"] = max(out["spacing"], float(np.median(np.hypot(*np.diff(whole, axis=0).T))))
+        out["corner_error"] = max(out["corner_error"], corner_uncertainty(whole, outline.sigma))
+        out["curvature_jump"] = max(out["curvature_jump"], curvature_jump(whole, outline.sigma))
+    return out
 
 
-__all__ = ["ACCURACY_FLOOR", "estimated_accuracy", "pair_quality", "points_quality", "polygon_sagitta"]
+__all__ = ["ACCURACY_FLOOR", "estimated_accuracy", "pair_quality", "points_quality", "trends"]

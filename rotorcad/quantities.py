@@ -285,6 +285,7 @@ _declare(
         ("min_unresolved_clearance", "mm", "smallest normal clearance the points cannot resolve"),
         ("unresolved_share", "1", "unresolved share"),
         ("accuracy", "mm", "accuracy of the points"),
+        ("gap_accuracy", "mm", "accuracy of the gaps and corner gap"),
         ("female_rack_shift", "mm", "female rack shift"),
     ],
 )

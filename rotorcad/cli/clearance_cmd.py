@@ -14,6 +14,7 @@ from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, pa
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
 from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
+from rotorcad.measured.fit import close_smoothing
 from rotorcad.measured.outline import own_frame
 from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
@@ -184,14 +185,15 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         male = as_given(male, pair.male_teeth, drawn_as_points=False)
         female = as_given(female, pair.female_teeth, drawn_as_points=False)
         thermal = _thermal(opts)
+        smoothing = close_smoothing if opts["smoothing"] is None else opts["smoothing"]  # the closer fit (fit.py)
         if thermal is not None:
             pair, male, female = thermal.apply(pair, male, female)
         mc = MeshingClearance(
             pair,
-            lobe_pieces(pair, male, "male", opts["smoothing"], label="--male-points"),
-            lobe_pieces(pair, female, "female", opts["smoothing"], label="--female-points"),
+            lobe_pieces(pair, male, "male", smoothing, label="--male-points", roundings=True),
+            lobe_pieces(pair, female, "female", smoothing, label="--female-points", roundings=True),
             contact=opts["contact"],
-            **pair_quality(male, female),
+            **pair_quality(male, female, (pair.male_teeth, pair.female_teeth)),
         )
         mc.summary()  # evaluate here (the clearance and its band) so that its errors are reported as bad input
     except DesignError as exc:
