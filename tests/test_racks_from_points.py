@@ -77,7 +77,8 @@ def hob_view(name: str, rotor: str, form: str):
     """The pair from the points, both racks, the rack deviation and both verdicts (as `rotorcad hob`)."""
     rotors = pair_from_rotor_points(rotor_pair(name), points(name, rotor, form), rotor)
     racks = {side: rotor_rack(rotors, side, **MEASURED) for side in ("male", "female")}
-    verdicts = {side: judge(rack, accuracy=rotors.accuracy) for side, rack in racks.items()}
+    # each rotor judged as `rotorcad hob` judges it: the measured one as fitted to its points, its mate as an envelope
+    verdicts = {side: judge(rack, accuracy=rotors.accuracy, measured=side == rotor) for side, rack in racks.items()}
     return rotors, racks, rack_deviation(rotors, **MEASURED), verdicts
 
 

@@ -396,7 +396,9 @@ def tip_corner_path(pair: RotorPair, side: Side, curve: Curve, s0: float, s1: fl
     one curve for one corner position dx. Generated from a fitted flank it follows the fit's tangent
     errors, which grow without bound where the path ends in its cusp on the pitch line (the corner on
     the mate's pitch circle, the SRM and Lysholm females): the male's rack turned 0.7-0.9 deg off the
-    perpendicular there, from exact points of 400 a lobe, for the design's 0. The trochoid whose dx
+    perpendicular there, from exact points of 400 a lobe, for the design's 0. Of a corner on the mate's
+    pitch circle (its tip radius its pitch radius, the path a cycloid with its cusp on the pitch line),
+    the trochoid whose dx
     fits the part's points best (least squares of their normal distances) is taken instead, as for a
     rack's own points (:func:`find_paths`), when :data:`PATH_SHARE` of the part's points lie within
     ``tol`` (mm) of it.
@@ -418,8 +420,14 @@ def tip_corner_path(pair: RotorPair, side: Side, curve: Curve, s0: float, s1: fl
     -------
     Curve or None
         The :class:`rotorcad.curves.PointPath` from the point nearest the part's start to the one
-        nearest its end; None when no trochoid holds the part within ``tol``.
+        nearest its end; None when no trochoid holds the part within ``tol``, or when the mate's tip
+        circle is not its pitch circle (elsewhere the generated path is kept: the exact one, met by the
+        fitted flanks beside it within ``tol``, gave the male from the N rack female's exact points a
+        cusp its design does not have).
     """
+    sigma, rw, big_r = _trochoid(pair, side)
+    if abs(big_r - rw) > 1e-6 * rw:
+        return None  # no cusp on the pitch line: the path generated from the fit is kept
     s = np.linspace(s0, s1, 201)
     fixed = curve.evaluate(s)[0]
     ok = np.isfinite(fixed).all(axis=1)
@@ -428,7 +436,6 @@ def tip_corner_path(pair: RotorPair, side: Side, curve: Curve, s0: float, s1: fl
     pts = rack_frame(fixed[ok], pair.male_pitch_radius)
     # points within ``tol`` beyond the tip circle's reach (a path ending on the pitch line of a corner on
     # the pitch circle, 0.01 um past it) are taken at the reach
-    sigma, rw, big_r = _trochoid(pair, side)
     reach = np.clip(rw + sigma * pts[:, 1], -big_r, big_r)
     excess = np.abs(rw + sigma * pts[:, 1] - reach)
     pts[excess <= tol, 1] = sigma * (reach[excess <= tol] - rw)
@@ -536,10 +543,12 @@ def step_splines(part: np.ndarray, first: int, last: int, smoothing: float) -> l
     return None
 
 
-STEP_KINK = 1e-3
+STEP_KINK = 2e-4
 """rad: the largest turn between the splines either side of a curvature step on one of the points
 (:func:`step_splines`): 0.04-0.08 mrad at the rack-involute rotors' pieces' ends among the points of
-their own CSVs, 17.6-18.5 mrad where the step falls between two evenly spaced points."""
+their own CSVs, 17.6-18.5 mrad where the step falls between two evenly spaced points; evenly spaced
+points of the N rack female (300 a lobe) whose step fell near a point turned by 0.8-1.0 mrad there, and
+the male generated from them read a cusp on its sealing flank that the design does not have."""
 
 
 STEP_SHARE = 0.25
