@@ -32,7 +32,7 @@ import shapely
 from independent_pairs import distance_to_line, scan
 from scipy.spatial import cKDTree
 
-from hob.rack import rotor_rack
+from hob.rack import rack_deviation, rotor_rack
 from hob.verdict import judge
 from rotorcad.design import rotor_design
 from rotorcad.envelope import rack_frame
@@ -189,6 +189,12 @@ KNOWN_RACKS = {
 }
 
 
+KNOWN_DEVIATIONS = {
+    ("srm_symmetric_4_6", "male", "scatter"): "18.9 um for the stated 7.39: the male's rack where it follows the female "
+    "tip corner's path (y = 0.35-1.1 mm, the contact 0.12 mm inside the female's tip circle) is not read as that path",
+}
+
+
 def cases(known: dict[tuple[str, str, str], str]) -> list:
     return [
         pytest.param(name, rotor, form, marks=pytest.mark.xfail(strict=True, reason=known[name, rotor, form]))
@@ -232,3 +238,13 @@ def test_the_rack_from_points_on_the_contact_zone_is_the_design_rack(name, rotor
     rotors = from_points(name, rotor, form)[0]
     bound = 2e-3 if form == "exact" else max(2e-3, rotors.accuracy)
     assert rack_off_design(name, rotor, form) <= bound, rotors.accuracy
+
+
+@pytest.mark.parametrize("name,rotor,form", cases(KNOWN_DEVIATIONS))
+def test_rack_deviation_on_the_contact_zone(name, rotor, form):
+    # Issue 22 item 3: `rack_deviation` (the male's rack against the female's of the pair from the points)
+    # on the contact zone only. Truth: 0 (the mate is generated from the given rotor's rack, Wu & Chi
+    # sec. 2); bound: 2 um or the stated accuracy. Before, a tip corner's path read from 2 um of scatter
+    # counted: 1.5-10 mm on the SRM, Lysholm and Krigar samples.
+    rotors = from_points(name, rotor, form)[0]
+    assert rack_deviation(rotors, **MEASURED) <= max(2e-3, rotors.accuracy), rotors.accuracy
