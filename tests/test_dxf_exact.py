@@ -65,13 +65,7 @@ KNOWN: dict[tuple[str, str, str], str] = {
 }
 """Cases whose verdicts (defects or running) depart from the design, with the cause: strict xfails."""
 
-_FEMALE_ROUND = (
-    "+7.2 %: the male generated from the female polyline's points (2.1 um accuracy) gets its 0.67 mm tip rounding, "
-    "where the apex lies, from a fit of those points (the female-points work); its splines read 0.0 %"
-)
 KNOWN_NUMBERS: dict[tuple[str, str, str], str] = {
-    ("n_rack_5_6", "female", "polyline"): _FEMALE_ROUND,
-    ("rinder_deix_5_6", "female", "polyline"): _FEMALE_ROUND,
     ("n_rack_5_6", "male", "polyline"): _ROUND,
     ("rinder_deix_5_6", "male", "polyline"): _ROUND,
     **{
