@@ -14,7 +14,7 @@ import shapely
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from hob.rack import DerivedRack, hob_tooth, rack_in_contract_frame
+from hob.rack import ZONE_MARGIN, DerivedRack, hob_tooth, rack_in_contract_frame
 from rotorcad import plot_style as ps
 from rotorcad.envelope import rack_frame
 from rotorcad.gears.involute_gear import InvoluteGear
@@ -83,7 +83,7 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
     dict
         ``reference`` (n, 2) the male rack's points (mm) and ``normals`` (n, 2); ``deviation`` (n,)
         the signed distance (mm) of the female rack (its neighbouring periods too) from each, NaN
-        where the contact lies outside a bore (as :func:`hob.rack.rack_deviation` judges);
+        where the contact lies off the contact zone (as :func:`hob.rack.rack_deviation` judges);
         ``compared`` the female rack's points; ``names`` of the two racks; ``period`` (mm).
     """
     pair = rotors.pair
@@ -92,8 +92,9 @@ def rotor_rack_comparison(rotors: ScrewRotors, racks: dict[str, DerivedRack]) ->
     other = rack_in_contract_frame(racks[Side.FEMALE], Side.FEMALE)
     shift = np.array([pair.rack_period, 0.0])
     contact, _ = contact_of_rack_points(pair.male_pitch_radius, pts, male.tangents)
-    inside = (np.hypot(*contact.T) <= pair.male_tip_radius) & (
-        np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1]) <= pair.female_tip_radius
+    margin = ZONE_MARGIN * pair.center_distance  # the contact zone, as rack_deviation judges it
+    inside = (np.hypot(*contact.T) <= pair.male_tip_radius - margin) & (
+        np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1]) <= pair.female_tip_radius - margin
     )
     normals = _upward_normals(male.tangents, pts)
     lines = shapely.MultiLineString([other - shift, other, other + shift])

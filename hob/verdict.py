@@ -28,7 +28,7 @@ import numpy as np
 import shapely
 
 from hob.rack import DerivedRack
-from rotorcad.inverse_rack import MEASURED_MIN_TURN, stalls
+from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
 
 FOLD_TOLERANCE = 5e-4  # mm: folds and zigzags of a measured rack below this are not loops
@@ -256,7 +256,7 @@ def undercut_reasons(rack: DerivedRack, measured: bool = False) -> list[str]:
         return []
     radius = np.hypot(*rack.profile.T)
     out = []
-    for a, b, back in stalls(rack, measured):
+    for a, b, back in stalls(rack, measured, sharp_span=SHARP_SPAN):
         r = radius[a:b]
         how = "its envelope turns back there" if back else "its points stand still there (a sharp corner)"
         out.append(

@@ -49,6 +49,14 @@ SMOOTHED_STALL_FACTOR = 0.4
 0.9 mm apart (80 a lobe) rounds the 5/6 arc-flank male's 10 deg crossing over a millimetre, which lifts its
 stall to f = 0.25 (0.03 from 2000 points a lobe); with the profile turning by :data:`STALL_TURN` across it
 (11-12 deg read there at 80 and 300 points a lobe, exact or 2 µm scatter; nothing on the 4/6 pair)."""
+SHARP_SPAN = 0.5
+"""mm: the longest stretch of a measured profile across which a stall of its generation is a sharp corner
+below its tip (:func:`stalls`, ``sharp_span``, as the hob judges it): the 5/6 arc-flank male's crossing
+(tests/independent_pairs.py, brute-force cut) turns by 9-13 deg within 0.10-0.30 mm of the fitted
+profile (2000 and 300 points a lobe, exact or 1-2 um scatter), the N rack female's tip rounding, a
+design's slow generation (generation factor 0.033-0.2), by 28-31 deg over 0.69-0.98 mm (its CSV, 400
+points a lobe exact or 300 with 2 um scatter), and its fit's curvature errors swing the factor below
+0 there (read "undercut" before)."""
 TIP_MARGIN = 0.05
 """Share of the rack depth below the rotor's tip (above its root) within which a stall is the rotor's tip
 corner (its root fillet, whose curvature a measured rack gives no better), not an undercut."""
@@ -219,6 +227,7 @@ def stalls(
     min_turn: float = STALL_TURN,
     factor: float = STALL_FACTOR,
     max_turn: float = np.pi,
+    sharp_span: float = np.inf,
 ) -> list[tuple[int, int, bool]]:
     """Find where a rotor's generation stalls or turns back: its undercut, or a sharp corner below its tip.
 
@@ -244,6 +253,10 @@ def stalls(
         sparse points lifts a smoothed corner's stall, :data:`SMOOTHED_STALL_FACTOR`).
     max_turn : float, rad
         Largest turn of the profile across a stall that does not turn back (a measured one).
+    sharp_span : float, mm
+        Of a measured profile, the longest stretch of it across which a stall is a sharp corner (its
+        fit's rounding) at all, turning back or not (:data:`SHARP_SPAN`); a longer one is a rounding
+        that the points resolve, generated slowly; default no limit.
 
     Returns
     -------
@@ -262,6 +275,8 @@ def stalls(
     out = []
     for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True):
         if arc[b - 1] - arc[a] < STALL_LENGTH:
+            continue
+        if measured and np.hypot(*np.diff(rack.profile[a:b], axis=0).T).sum() > sharp_span:
             continue
         back = bool(np.nanmin(f[a:b]) < 0)
         if back or (measured and min_turn <= _profile_turn(rack.profile, a, b) <= max_turn):

@@ -52,7 +52,10 @@ def trimmed_lobe(pieces: list[tuple[str, Curve]], centre: np.ndarray, tip: float
         inside = np.isfinite(p).all(axis=1) & (np.hypot(*(p - centre).T) <= tip + TIP_SLACK)
         edges = np.diff(np.concatenate([[0], inside.astype(int), [0]]))
         for a, b in zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0] - 1, strict=True):
-            a, b = max(a - 1, 0), min(b + 1, len(s) - 1)  # one sample beyond: a crossing at the tip is a real one
+            # one sample beyond: a crossing at the tip is a real one; not a sample without a point (the cusp
+            # of a corner's path on the pitch line generates none, and the whole part was dropped with it)
+            a = a - 1 if a > 0 and np.isfinite(p[a - 1]).all() else a
+            b = b + 1 if b < len(s) - 1 and np.isfinite(p[b + 1]).all() else b
             if b > a and np.isfinite(p[a : b + 1]).all():
                 parts.append((k, curve, s[a : b + 1], p[a : b + 1]))
     if not parts:

@@ -17,6 +17,7 @@ from rotorcad.curves import Arc, Curve, Spline, rotated, sample_curve
 from rotorcad.errors import DesignError
 from rotorcad.geometry import rotate, wrap_angle
 from rotorcad.measured.outline import Outline, corners, lands, read_outline, scatter, whole_outline
+from rotorcad.measured.rack_pieces import step_splines
 from rotorcad.roles import Side
 from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
@@ -594,8 +595,13 @@ def _fit_run(run: np.ndarray, sigma: float, smoothing: Smoothing) -> list[tuple[
         j0, j1 = max(i0 - lead_in, 0), min(i1 + lead_out, len(run) - 1)
         part = run[j0 : j1 + 1]
         u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(part, axis=0).T))])
-        curve = Spline.fit(part, smoothing=_smoothing(part, sigma, smoothing)).trimmed(u[i0 - j0], u[i1 - j0])
-        out.append((curve, run[i0 : i1 + 1], u[i0 - j0 : i1 - j0 + 1]))
+        s = _smoothing(part, sigma, smoothing)
+        steps = step_splines(part, i0 - j0, i1 - j0, s) if sigma <= 0 else None  # split where the curvature steps
+        for curve, a, b in steps or ():
+            out.append((curve, part[a : b + 1], u[a : b + 1] - u[a] + curve.s0))
+        if steps is None:
+            curve = Spline.fit(part, smoothing=s).trimmed(u[i0 - j0], u[i1 - j0])
+            out.append((curve, run[i0 : i1 + 1], u[i0 - j0 : i1 - j0 + 1]))
 
     pos, lead = 0, 0
     for a, b, radius in _lands(run, sigma):

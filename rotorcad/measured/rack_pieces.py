@@ -33,12 +33,13 @@ into a tip corner's path is tangent to it).
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
 
 from rotorcad.curves import Curve, Line, PointPath, Spline
-from rotorcad.envelope import from_rack_frame
+from rotorcad.envelope import from_rack_frame, rack_frame
 from rotorcad.roles import PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 
@@ -381,6 +382,103 @@ def _constrained_smoothing(
     return Spline(knots=(knots, (coef[:, 0], coef[:, 1]), 3), s0=0.0, s1=float(u[-1]))
 
 
+PATH_SHARE = 0.9
+"""Share of a mate's corner path's points on the rack derived from points that must lie within the
+tolerance of the trochoid fitted to them (:func:`tip_corner_path`)."""
+
+
+def tip_corner_path(pair: RotorPair, side: Side, curve: Curve, s0: float, s1: float, tol: float) -> Curve | None:
+    """Return the exact path of ``side``'s tip corner that a part of a rack curve derived from points follows.
+
+    A rack derived from one rotor's points (:func:`rotorcad.measured.pairs.pair_from_rotor_points`)
+    carries the path of the mate's tip corner where the mate's generated point stands still; that
+    path is the trochoid of a point of the mate's tip circle (module docstring; Rinder sec. 2.2.2),
+    one curve for one corner position dx. Generated from a fitted flank it follows the fit's tangent
+    errors, which grow without bound where the path ends in its cusp on the pitch line (the corner on
+    the mate's pitch circle, the SRM and Lysholm females): the male's rack turned 0.7-0.9 deg off the
+    perpendicular there, from exact points of 400 a lobe, for the design's 0. Of a corner on the mate's
+    pitch circle (its tip radius its pitch radius, the path a cycloid with its cusp on the pitch line),
+    the trochoid whose dx
+    fits the part's points best (least squares of their normal distances) is taken instead, as for a
+    rack's own points (:func:`find_paths`), when :data:`PATH_SHARE` of the part's points lie within
+    ``tol`` (mm) of it.
+
+    Parameters
+    ----------
+    pair : RotorPair
+        The pair (pitch and tip radii).
+    side : Side
+        The rotor whose tip corner the path is (the mate of the rotor given by points).
+    curve : Curve
+        The rack curve, fixed frame (pitch line x = r1w, travel +y).
+    s0, s1 : float
+        The part's parameters on ``curve``, in the order of travel.
+    tol : float, mm
+        How far the part's points may lie from the trochoid.
+
+    Returns
+    -------
+    Curve or None
+        The :class:`rotorcad.curves.PointPath` from the point nearest the part's start to the one
+        nearest its end; None when no trochoid holds the part within ``tol``, or when the mate's tip
+        circle is not its pitch circle (elsewhere the generated path is kept: the exact one, met by the
+        fitted flanks beside it within ``tol``, gave the male from the N rack female's exact points a
+        cusp its design does not have).
+    """
+    sigma, rw, big_r = _trochoid(pair, side)
+    if abs(big_r - rw) > 1e-6 * rw:
+        return None  # no cusp on the pitch line: the path generated from the fit is kept
+    s = np.linspace(s0, s1, 201)
+    fixed = curve.evaluate(s)[0]
+    ok = np.isfinite(fixed).all(axis=1)
+    if ok.sum() < PATH_POINTS or not (ok[0] and ok[-1]):
+        return None
+    pts = rack_frame(fixed[ok], pair.male_pitch_radius)
+    # points within ``tol`` beyond the tip circle's reach (a path ending on the pitch line of a corner on
+    # the pitch circle, 0.01 um past it) are taken at the reach
+    reach = np.clip(rw + sigma * pts[:, 1], -big_r, big_r)
+    excess = np.abs(rw + sigma * pts[:, 1] - reach)
+    pts[excess <= tol, 1] = sigma * (reach[excess <= tol] - rw)
+    # farther beyond it: where the path ends in its cusp the rack runs along its tangent there, and
+    # the fit's errors carry it past the pitch line by several micrometres (6 um from exact points of
+    # the SRM-B male, 400 a lobe): those points are left out of the fit, their end taken at the reach
+    inside = excess <= tol
+    if inside.sum() < 0.8 * len(pts):
+        return None
+    ends_given = pts[[0, -1]]
+    pts = pts[inside]
+    dx, _, gain = corner_positions(pair, side, pts)
+    if not np.isfinite(dx).any(axis=1).all():
+        return None
+    candidates = dx[np.isfinite(dx)]
+    err = np.abs(dx[:, :, None] - candidates[None, None, :]) * gain[:, :, None]
+    cost = np.nanmax(np.nanmin(np.nan_to_num(err, nan=np.inf), axis=1), axis=0)
+    guess = float(candidates[int(np.argmin(cost))])
+    # least squares of the normal distances on the branch nearest the guess (weights gain^2)
+    k = np.argmin(np.nan_to_num(np.abs(dx - guess), nan=np.inf), axis=1)
+    rows = np.arange(len(pts))
+    vals, g = dx[rows, k], gain[rows, k]
+    value = float(np.sum(g**2 * vals) / max(float(np.sum(g**2)), 1e-300))
+    # once more without the points off it by more than ``tol``: next to the cusp the fit's rack strays
+    # (1.2-4.5 um over the last 0.2 mm of the SRM-B male's, 0.17 um elsewhere); 90 % of them must hold
+    held = np.abs(vals - value) * g <= tol
+    if held.sum() < PATH_SHARE * len(vals):
+        return None
+    value = float(np.sum(g[held] ** 2 * vals[held]) / max(float(np.sum(g[held] ** 2)), 1e-300))
+    if np.mean(np.abs(vals - value) * g <= tol) < PATH_SHARE:
+        return None
+    piece = ExactPiece(PieceRole.corner_path_of(side), value, 0, 0)
+    u = piece_parameters(pair, piece, np.vstack([ends_given[0], pts[1], pts[-2], ends_given[1]]))
+    # not on the cusp itself (u = 0, the corner on the line of centres), whose normal runs along the
+    # pitch line and generates no point: as the design's paths, 1e-11 mm off it
+    u = [float(np.copysign(max(abs(u[0]), 1e-7), u[1])), float(np.copysign(max(abs(u[3]), 1e-7), u[2]))]
+    path = rack_curve(pair, piece, u[0], u[1])
+    ends = path.evaluate(np.array([path.s0, path.s1]))[0]
+    if not np.all(np.isfinite(ends)) or np.hypot(*(ends - fixed[ok][[0, -1]]).T).max() > tol + excess.max():
+        return None
+    return path
+
+
 CURVATURE_STEP = 8.0
 """A point of exact data where the curvature of the points' circles steps by more than this many times
 its change between neighbouring points on either side is a junction of two rack curves (the N rack's
@@ -389,13 +487,86 @@ the change beside it; a spline carried across smeared it and the female's genera
 in the design, swung to -0.07: an undercut that is not there)."""
 
 
-def curvature_breaks(run: np.ndarray, sigma: float) -> np.ndarray:
+def step_splines(part: np.ndarray, first: int, last: int, smoothing: float) -> list[tuple[Spline, int, int]] | None:
+    """Fit exact points of one smooth stretch as interpolating splines split where their curvature steps.
+
+    A rotor's outline is a chain of curves generated by the rack's pieces (Rinder sec. 1.2), which meet
+    with a step of their curvature; one cubic through the points across such a step rings over a few
+    spacings, and the rack derived from it turns by as much: the rack-involute male's CSV, through its
+    root rounding and its flank, gave 17.96 deg for the design's 18.13. The steps are those of
+    :func:`curvature_breaks` by at least :data:`STEP_SHARE` of the curvature beside them, where the
+    step lies on one of the points: the two splines either side, each with its own end tangent, meet
+    there within :data:`STEP_KINK` (the curves are tangent at their junction). A step between two points
+    (evenly spaced points) is left inside one spline: the spline starting on the straddled spacing
+    turns its end tangent (18 mrad; 17.2-17.4 deg for 18.13, against 18.07-18.08 from one spline).
+
+    Parameters
+    ----------
+    part : (n, 2) float array, mm
+        Consecutive exact points (any frame).
+    first, last : int
+        The stretch's first and last point in ``part`` (the points beyond them lead the end splines in
+        and are trimmed off).
+    smoothing : float, mm²
+        The splines' smoothing: only 0 (interpolation of exact points) is split.
+
+    Returns
+    -------
+    list of (Spline, int, int) or None
+        Each spline between consecutive steps with its first and last point index in ``part``,
+        trimmed to them; None when the stretch has no step on a point (the caller fits one spline).
+    """
+    if smoothing > 0:
+        return None
+    steps = (curvature_breaks(part[first : last + 1], 0.0, STEP_SHARE) + first).tolist()
+    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(part, axis=0).T))])
+
+    def fitted(bounds: list[int]) -> list[tuple[Spline, int, int]]:
+        out = []
+        for k in range(len(bounds) - 1):
+            j0 = 0 if k == 0 else bounds[k]
+            j1 = len(part) - 1 if k == len(bounds) - 2 else bounds[k + 1]
+            spline = Spline.fit(part[j0 : j1 + 1])
+            out.append((spline.trimmed(u[bounds[k]] - u[j0], u[bounds[k + 1]] - u[j0]), bounds[k], bounds[k + 1]))
+        return out
+
+    while steps:
+        out = fitted([first, *steps, last])
+        ends = [
+            (a.evaluate(np.array([a.s1]))[1][0], b.evaluate(np.array([b.s0]))[1][0])
+            for (a, _, _), (b, _, _) in itertools.pairwise(out)
+        ]
+        kinks = np.array([abs(np.arctan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb)) for ta, tb in ends])
+        if kinks.max() <= STEP_KINK:
+            return out
+        steps.pop(int(np.argmax(kinks)))  # a step between two points: one spline across it
+    return None
+
+
+STEP_KINK = 2e-4
+"""rad: the largest turn between the splines either side of a curvature step on one of the points
+(:func:`step_splines`): 0.04-0.08 mrad at the rack-involute rotors' pieces' ends among the points of
+their own CSVs, 17.6-18.5 mrad where the step falls between two evenly spaced points; evenly spaced
+points of the N rack female (300 a lobe) whose step fell near a point turned by 0.8-1.0 mrad there, and
+the male generated from them read a cusp on its sealing flank that the design does not have."""
+
+
+STEP_SHARE = 0.25
+"""Share of the larger curvature beside it by which the curvature of a rotor's exact points steps at a
+junction of two generated curves (:func:`step_splines`): the rack-involute male's root rounding meets
+its flank with -0.36 and 0.04 /mm; along its flank the circles of evenly spaced points (400 a lobe)
+passed :data:`CURVATURE_STEP` with steps of 3 % of the curvature, where a split only adds ends."""
+
+
+def curvature_breaks(run: np.ndarray, sigma: float, share: float = 0.0, ratio: float = CURVATURE_STEP) -> np.ndarray:
     """Return the interior points of exact rack points where the curvature steps (:data:`CURVATURE_STEP`).
 
     The curvature at a point is that of the circle through it and its two neighbours; the step at
     point j compares the circles before (j - 2, j - 1, j) and after (j, j + 1, j + 2) with the change
     between neighbouring circles on either side; of steps within two points of each other only the
-    largest is kept. None for scattered points (``sigma`` > 0), whose circles are noise.
+    largest is kept. None for scattered points (``sigma`` > 0), whose circles are noise. With ``share``
+    the step must be that share of the larger of the two circles' curvatures at least; ``ratio`` is
+    the step's least multiple of the change beside it (default :data:`CURVATURE_STEP`).
     """
     p = np.asarray(run, dtype=float)
     n = len(p)
@@ -414,7 +585,9 @@ def curvature_breaks(run: np.ndarray, sigma: float) -> np.ndarray:
     peak = step.copy()
     for off in (1, 2):
         peak = np.maximum(peak, np.maximum(np.roll(step, off), np.roll(step, -off)))
-    idx = np.flatnonzero((step > CURVATURE_STEP * beside) & (step > 1e-4) & (step >= peak))
+    big = np.zeros(n)
+    big[2:-2] = np.maximum(np.abs(k[3:-1]), np.abs(k[1:-3]))
+    idx = np.flatnonzero((step > ratio * beside) & (step > 1e-4) & (step >= peak) & (step >= share * big))
     return idx[(idx >= 2) & (idx <= n - 3)]
 
 
@@ -433,4 +606,6 @@ __all__ = [
     "piece_frame",
     "piece_parameters",
     "rack_curve",
+    "step_splines",
+    "tip_corner_path",
 ]

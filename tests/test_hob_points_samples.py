@@ -1,0 +1,278 @@
+"""The hob verdict from either rotor's points, on every rotor sample: the design's (issue 22 item 3).
+
+Inputs, made here from each sample's design (``rotorcad.rotor_build``): exact points of the male's
+and of the female's whole outline, the design's own pieces sampled at a 1 um chord (their ends among
+the points, as a drawing or rotorcad's CSV gives them), and 300 points a lobe evenly along that
+outline with 2 um of Gaussian scatter along its normals (fixed seed), as a CMM scans.
+
+What the hob sees is what ``rotorcad hob --male-points/--female-points`` builds: the pair generated
+from the points (``pair_from_rotor_points``), both rotors' racks with the measured-piece options,
+``judge`` at the profile's stated accuracy.
+
+References, none produced from the points:
+* the smallest normal flank angle of the design's generating rack in closed form: the family's rack
+  pieces (lines, arcs, tip-corner point paths: ``ScrewRotors.rack``) with their exact tangents, over
+  the pieces each rotor's hob cuts with (not that rotor's own tip-corner paths), in the normal
+  section atan(tan(alpha_t) cos(beta)) (Wu & Chi, *Meshing clearance evaluation*, eq. 7);
+* the design's hob verdict from its exact curves (``hob`` of the sample itself);
+* the rack on its contact zone: the design's closed-form rack, where a rack point's normal through
+  the pitch point meets the rotors inside both tip circles (Wu & Chi sec. 2, eq. 4), not on a
+  tip-corner path.
+"""
+
+from __future__ import annotations
+
+import functools
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from independent_pairs import distance_to_line, scan
+from scipy.spatial import cKDTree
+
+from hob.rack import rack_deviation, rotor_rack
+from hob.verdict import judge
+from rotorcad.design import rotor_design
+from rotorcad.envelope import rack_frame
+from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, contact_of_rack_points
+from rotorcad.measured.pairs import pair_from_rotor_points
+from rotorcad.roles import PieceRole, Side
+from rotorcad.rotor_build import build_pair, pair_spec
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+MEASURED = {"min_turn": MEASURED_MIN_TURN, "join_gap": MEASURED_JOIN_GAP, "cut_loops": True}  # as `rotorcad hob`
+NAMES = [p.stem for p in sorted(SAMPLES.glob("*.toml")) if not {"gear", "sweep"} & set(tomllib.loads(p.read_text()))]
+FORMS = {"exact": None, "scatter": (300, 2e-3)}  # points a lobe, scatter (mm)
+SEED = 11
+ZONE_MARGIN = 0.1  # mm inside both tip circles: the contact zone (the rotors' tip roundings aside)
+
+
+@functools.cache
+def design(name: str):
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
+    return spec, build_pair(spec)
+
+
+@functools.cache
+def design_verdicts(name: str) -> dict:
+    _, rotors = design(name)
+    return {side: judge(rotor_rack(rotors, side)) for side in ("male", "female")}
+
+
+def outline(name: str, rotor: str, form: str) -> np.ndarray:
+    """The rotor's whole outline as the input form gives it (own frame, counter-clockwise)."""
+    spec, rotors = design(name)
+    lobe = rotors.male_outline(1e-3) if rotor == "male" else rotors.female_outline(1e-3)
+    pts = np.vstack([seg.points for seg in lobe.segments])
+    pts = pts[np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 1e-9])]
+    if np.hypot(*(pts[-1] - pts[0])) < 1e-9:
+        pts = pts[:-1]
+    if FORMS[form] is None:
+        return pts
+    per_lobe, noise = FORMS[form]
+    teeth = spec.pair.male_teeth if rotor == "male" else spec.pair.female_teeth
+    fine = np.vstack([seg.resampled(1e-4).points for seg in lobe.segments])  # 0.1 um chords for the scan
+    fine = fine[np.concatenate([[True], np.hypot(*np.diff(fine, axis=0).T) > 1e-9])]
+    q = scan(fine[:-1] if np.hypot(*(fine[-1] - fine[0])) < 1e-9 else fine, per_lobe * teeth, 0.37)
+    d = np.roll(q, -1, axis=0) - np.roll(q, 1, axis=0)  # the scatter's direction only
+    normal = np.column_stack([d[:, 1], -d[:, 0]]) / np.hypot(*d.T)[:, None]
+    return q + np.random.default_rng(SEED).normal(0.0, noise, len(q))[:, None] * normal
+
+
+@functools.cache
+def from_points(name: str, rotor: str, form: str):
+    """The pair from the points, both racks and both verdicts (as `rotorcad hob --<rotor>-points`)."""
+    spec, _ = design(name)
+    rotors = pair_from_rotor_points(spec.pair, outline(name, rotor, form), rotor)
+    racks = {side: rotor_rack(rotors, side, **MEASURED) for side in ("male", "female")}
+    verdicts = {side: judge(rack, accuracy=rotors.accuracy, measured=side == rotor) for side, rack in racks.items()}
+    return rotors, racks, verdicts
+
+
+@functools.cache
+def closed_form(name: str) -> dict:
+    """The design's generating rack (rack frame of CONTRACT.md, 1 um apart) from its closed-form pieces:
+    points, unit tangents and the role of each point's piece."""
+    _, rotors = design(name)
+    r1 = rotors.pair.male_pitch_radius
+    pts, tans, roles = [], [], []
+    for piece in rotors.rack:
+        c = piece.curve
+        n = max(int(np.ceil(abs(c.s1 - c.s0) * 1000.0)), 2) if not np.isclose(c.s0, c.s1) else 0
+        if n == 0:
+            continue
+        p, t = c.evaluate(np.linspace(c.s0, c.s1, min(n, 20000)))
+        ok = np.isfinite(p).all(axis=1) & np.isfinite(t).all(axis=1)
+        pts.append(rack_frame(p[ok], r1))
+        tans.append(np.column_stack([t[ok, 1], t[ok, 0]]))  # the axes swapped, as rack_frame
+        roles += [piece.kind] * int(ok.sum())
+    return {"points": np.vstack(pts), "tangents": np.vstack(tans), "roles": np.array(roles, dtype=object)}
+
+
+def closed_form_angle(name: str) -> float:
+    """The smallest normal flank angle (deg) of the design's closed-form rack over the pieces the two
+    hobs cut with (each rotor's own tip-corner paths left out of its hob), Wu & Chi eq. 7."""
+    _, rotors = design(name)
+    rack = closed_form(name)
+    pair = rotors.pair
+    beta = np.arctan(2 * np.pi * pair.male_pitch_radius / pair.lead)
+    t = rack["tangents"]
+    flank = np.abs(t[:, 1]) > 1e-9
+    angle = np.degrees(np.arctan2(np.abs(t[:, 0]) * np.cos(beta), np.abs(t[:, 1])))
+    smallest = []
+    for side in (Side.MALE, Side.FEMALE):
+        cuts = flank & (rack["roles"] != PieceRole.corner_path_of(side))
+        smallest.append(angle[cuts].min())
+    return float(min(smallest))
+
+
+def on_zone(name: str, rotor: str) -> np.ndarray:
+    """Which closed-form rack points lie where ``rotor`` touches the rack: its contact (the normal through
+    the pitch point, Wu & Chi eq. 4) inside its tip circle by ZONE_MARGIN and inside the mate's (on it
+    for the mate's tip-corner path, which touches ``rotor``'s point-generated flank), not on
+    ``rotor``'s own tip-corner paths (the rotor receives only its corner there)."""
+    _, rotors = design(name)
+    pair = rotors.pair
+    rack = closed_form(name)
+    contact, _ = contact_of_rack_points(pair.male_pitch_radius, rack["points"], rack["tangents"])
+    r_male = np.hypot(*contact.T)
+    r_female = np.hypot(contact[:, 0] - pair.center_distance, contact[:, 1])
+    own, mate = (r_male, r_female) if rotor == "male" else (r_female, r_male)
+    own_tip, mate_tip = (
+        (pair.male_tip_radius, pair.female_tip_radius) if rotor == "male" else (pair.female_tip_radius, pair.male_tip_radius)
+    )
+    inside = (own <= own_tip - ZONE_MARGIN) & (mate <= mate_tip + 1e-6)
+    return inside & (rack["roles"] != PieceRole.corner_path_of(Side(rotor)))
+
+
+def rack_off_design(name: str, rotor: str, form: str) -> float:
+    """Largest distance (mm) of the given rotor's rack (the one its hob is judged on) from the design's
+    closed-form rack, over the contact zone."""
+    _, rotors = design(name)
+    period = rotors.pair.rack_period
+    reference = closed_form(name)["points"]
+    zone = on_zone(name, rotor)
+    tiled = np.vstack([reference + [k * period, 0.0] for k in (-1, 0, 1)])
+    rack = from_points(name, rotor, form)[1][rotor].in_contract_frame()
+    pts = rack.points[~rack.corner_path]
+    near = cKDTree(tiled).query(pts)[1]
+    keep = np.tile(zone, 3)[near]
+    assert keep.sum() > 50
+    return float(distance_to_line(pts[keep], shapely.LineString(tiled)).max())
+
+
+# Measured departures, 300 points a lobe with 2 um of scatter (seed 11), strict: each must still fail,
+# and the day it passes its entry goes.
+ENVELOPE_TURNS_BACK = (
+    "the mate generated from the scattered rotor turns back where the design's generation is slow (its rack's "
+    "curvature from a smoothing fit swings the generation factor below 0): 'female undercut'"
+)
+CUSP_FROM_SCATTER = (
+    "the female tip corner's path (a cycloid ending in its cusp on the pitch line) generated from the male's "
+    "scattered points stays as generated (its exact trochoid, taken for exact points, moved the symmetric SRM's "
+    "blow-hole by -19 %): "
+)
+KNOWN_VERDICTS = {
+    **{
+        (name, "male", "scatter"): CUSP_FROM_SCATTER + f"{angle} deg for 0 (both not hobbable)"
+        for name, angle in (
+            ("krigar_4_6", 1.75),
+            ("lysholm_4_6", 1.85),
+            ("narrow_tip_5_6", 1.85),
+            ("srm_asymmetric_5_6", 1.94),
+            ("srm_b_5_6", 2.51),
+        )
+    },
+    ("n_rack_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.5 mm (design 0.033 there), 5.39 deg for 5.73",
+    ("rinder_deix_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.5 mm (design 0.033 there), 5.39 deg for 5.73",
+    ("rack_involute_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 55.3-57.8 mm, 16.80 deg for 18.13",
+    ("rack_involute_5_6", "female", "scatter"): "17.98 deg for 18.13 (hobbable): the male's rack generated from the "
+    "scattered female turns 0.15 deg steeper along its flank",
+    ("srm_symmetric_4_6", "male", "scatter"): "0.61 deg for 0 (both not hobbable): the male's rack reaches the "
+    "female tip corner's cusp on the pitch line 0.6 deg off the perpendicular",
+    ("srm_b_5_6", "female", "scatter"): "0.103 deg for 0 (both not hobbable): the male generated from the "
+    "scattered female reaches its cusp 0.1 deg off the perpendicular",
+}
+KNOWN_RACKS = {
+    **{
+        (name, "male", "scatter"): CUSP_FROM_SCATTER + f"{off} um off for the stated {acc}"
+        for name, off, acc in (
+            ("krigar_4_6", 13.30, 7.52),
+            ("lysholm_4_6", 9.68, 7.56),
+            ("narrow_tip_5_6", 7.86, 7.54),
+            ("srm_asymmetric_5_6", 19.14, 7.57),
+            ("srm_b_5_6", 19.92, 7.82),
+        )
+    },
+    ("n_rack_5_6", "female", "scatter"): "7.76 um off for the stated 7.49",
+    ("rinder_deix_5_6", "female", "scatter"): "7.76 um off for the stated 7.49",
+    ("rack_involute_5_6", "female", "scatter"): "9.07 um off for the stated 7.81",
+    ("srm_symmetric_4_6", "male", "scatter"): "11.69 um off for the stated 7.39",
+}
+
+
+KNOWN_DEVIATIONS = {
+    **{
+        (name, "male", "scatter"): CUSP_FROM_SCATTER + f"{dev} um for the stated {acc}"
+        for name, dev, acc in (("krigar_4_6", 239.2, 7.52), ("srm_asymmetric_5_6", 9.18, 7.57), ("srm_b_5_6", 15.5, 7.82))
+    },
+    ("srm_symmetric_4_6", "male", "scatter"): "18.9 um for the stated 7.39: the male's rack where it follows the female "
+    "tip corner's path (y = 0.35-1.1 mm, the contact 0.12 mm inside the female's tip circle) is not read as that path",
+}
+
+
+def cases(known: dict[tuple[str, str, str], str]) -> list:
+    return [
+        pytest.param(name, rotor, form, marks=pytest.mark.xfail(strict=True, reason=known[name, rotor, form]))
+        if (name, rotor, form) in known
+        else (name, rotor, form)
+        for name in NAMES
+        for rotor in ("male", "female")
+        for form in FORMS
+    ]
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_design_hob_reads_its_closed_form_rack(name):
+    # the reference itself: the design's verdict (from its exact curves) has the closed-form smallest angle
+    smallest = min(v.normal_pressure_angle_min_deg for v in design_verdicts(name).values())
+    assert smallest == pytest.approx(closed_form_angle(name), abs=0.02)
+
+
+@pytest.mark.parametrize("name,rotor,form", cases(KNOWN_VERDICTS))
+def test_the_hob_from_points_is_the_design_hob(name, rotor, form):
+    # Issue 22 item 3: hobbable or not, and the smallest normal flank angle within 0.1 deg, from the
+    # male's and from the female's points as from the design. Before (400 points a lobe, exact):
+    # Krigar, Lysholm, narrow-tip, SRM-A, SRM-B, symmetric SRM from the male 0.70-6.11 deg for 0
+    # (the female tip corner's path generated from the fitted male bent off the perpendicular at its
+    # cusp on the pitch line); the N rack and Rinder-Deix "female undercut" from either rotor. Now
+    # 0.000-0.018 deg and the design's verdict from exact points on every sample.
+    verdicts = from_points(name, rotor, form)[2]
+    truth = design_verdicts(name)
+    assert all(v.hobbable for v in verdicts.values()) == all(v.hobbable for v in truth.values()), [
+        r for v in verdicts.values() for r in v.reasons
+    ]
+    smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
+    assert smallest == pytest.approx(closed_form_angle(name), abs=0.1)
+
+
+@pytest.mark.parametrize("name,rotor,form", cases(KNOWN_RACKS))
+def test_the_rack_from_points_on_the_contact_zone_is_the_design_rack(name, rotor, form):
+    # Issue 22 item 3: the rack the hob is judged on, where the rotors touch, within 2 um of the
+    # design's generating rack (closed form) from exact points; from 2 um of scatter within the bound
+    # the profile states (the largest of a lobe's errors with 95 % confidence). Exact points: 0.00-1.91 um.
+    rotors = from_points(name, rotor, form)[0]
+    bound = 2e-3 if form == "exact" else max(2e-3, rotors.accuracy)
+    assert rack_off_design(name, rotor, form) <= bound, rotors.accuracy
+
+
+@pytest.mark.parametrize("name,rotor,form", cases(KNOWN_DEVIATIONS))
+def test_rack_deviation_on_the_contact_zone(name, rotor, form):
+    # Issue 22 item 3: `rack_deviation` (the male's rack against the female's of the pair from the points)
+    # on the contact zone only. Truth: 0 (the mate is generated from the given rotor's rack, Wu & Chi
+    # sec. 2); bound: 2 um or the stated accuracy. Before, a tip corner's path read from 2 um of scatter
+    # counted: 1.5-10 mm on the SRM, Lysholm and Krigar samples.
+    rotors = from_points(name, rotor, form)[0]
+    assert rack_deviation(rotors, **MEASURED) <= max(2e-3, rotors.accuracy), rotors.accuracy
