@@ -31,6 +31,7 @@ from independent_pairs import (
     distance_to_line,
     one_lobe,
     resample,
+    stored_by_inputs,
     trapezoid_4_6,
 )
 
@@ -120,7 +121,7 @@ def test_the_reading_does_not_depend_on_the_angle_the_points_were_measured_at(ma
     on = np.flatnonzero(mc.zones == ClearanceZone.CONTACT)[::12]
     pts = np.column_stack([d["female_x"], d["female_y"]])[on]
     assert distance_to_line(pts, shapely.LinearRing(female)).max() < 1e-3
-    truth = closest_approach.brute_force(trapezoid_4_6(), pts, male, positions=1500)
+    truth = closest_approach(trapezoid_4_6(), pts, male, positions=1500)  # stored by its inputs in tests/reference_data
     np.testing.assert_allclose(mc.clearance[on], truth, atol=1.5e-3)
 
 
@@ -171,12 +172,14 @@ def test_as_given_keeps_the_points_own_phase(tmp_path, capsys):
     assert out["driving"]["mean_clearance"] == pytest.approx(ref["mean_clearance"], abs=1e-3)
 
 
+@stored_by_inputs("signed_approach", _rot)
 def signed_approach(a: float, female_pts: np.ndarray, male: np.ndarray, positions: int = 1500) -> np.ndarray:
     """Brute force: for each female point (own frame, (n, 2)) the smallest signed distance to the male outline
     over ``positions`` mesh positions at centre distance ``a`` (the 5/6 pair; negative inside the male: an
     interference). The positions, the distance and the window of ``independent_pairs.closest_approach`` (the
     female turned clockwise by phi2 within 40 deg of the line of centres, the male counter-clockwise by
-    phi2 z2 / z1); the sign from shapely's point-in-polygon test."""
+    phi2 z2 / z1); the sign from shapely's point-in-polygon test. Stored in tests/reference_data by its
+    inputs and its code (tests/make_reference_data.py)."""
     from scipy.spatial import cKDTree
 
     ring = np.asarray(shapely.segmentize(shapely.LinearRing(male), 0.005).coords)[:-1]
