@@ -96,6 +96,14 @@ def column_crossings(ring: Array, x0: float, width: float, count: int) -> tuple[
     return column, y
 
 
+def _column_spans(column: Array, y: Array, count: int) -> tuple[Array, Array, Array]:
+    """Return each column's number of crossings (count,) int, and their lowest and highest heights (count,), mm."""
+    low, high = np.full(count, np.inf), np.full(count, -np.inf)
+    np.minimum.at(low, column, y)
+    np.maximum.at(high, column, y)
+    return np.bincount(column, minlength=count), low, high
+
+
 def overlap_areas(male_ring: Array, female_ring: Array, shifts: Array, width: float) -> Array:
     """Return the area of the overlap of the male region and the female region moved by each shift.
 
@@ -120,22 +128,30 @@ def overlap_areas(male_ring: Array, female_ring: Array, shifts: Array, width: fl
     x0 = float(female_ring[:, 0].min() + shifts.min()) - width
     count = int(np.ceil((female_ring[:, 0].max() + shifts.max() - x0) / width)) + 2
     male_column, male_y = column_crossings(male_ring, x0, width, count)
+    male_count, male_low, male_high = _column_spans(male_column, male_y, count)
     areas = np.empty(len(shifts))
     for k, shift in enumerate(shifts):
         female_column, female_y = column_crossings(female_ring + np.array([shift, 0.0]), x0, width, count)
-        # the male only where the female is: every column holds an even number of each ring's crossings
-        keep = (male_column >= female_column.min()) & (male_column <= female_column.max())
-        column = np.concatenate([male_column[keep], female_column])
-        y = np.concatenate([male_y[keep], female_y])
-        is_male = np.concatenate([np.ones(keep.sum(), dtype=np.intp), np.zeros(len(female_y), dtype=np.intp)])
-        order = np.lexsort((y, column))
-        y, is_male = y[order], is_male[order]
-        # inside each region above each crossing: the parity of its crossings so far (each column's
-        # count is even, so the parity is 0 again at the next column's first crossing)
-        in_male = np.cumsum(is_male) % 2
-        in_female = np.cumsum(1 - is_male) % 2
-        both = (in_male[:-1] == 1) & (in_female[:-1] == 1)
-        areas[k] = width * float(np.sum(np.diff(y)[both]))
+        female_count, female_low, female_high = _column_spans(female_column, female_y, count)
+        # a column each ring crosses twice holds one interval of each region (nearly all of them)
+        simple = (male_count == 2) & (female_count == 2)
+        spans = np.minimum(male_high[simple], female_high[simple]) - np.maximum(male_low[simple], female_low[simple])
+        area = float(np.sum(np.maximum(spans, 0.0)))
+        other = (male_count > 0) & (female_count > 0) & ~simple
+        if other.any():  # more crossings (an overhang, a chain crossing itself): even-odd, as below
+            keep_male, keep_female = other[male_column], other[female_column]
+            column = np.concatenate([male_column[keep_male], female_column[keep_female]])
+            y = np.concatenate([male_y[keep_male], female_y[keep_female]])
+            is_male = np.concatenate([np.ones(keep_male.sum(), dtype=np.intp), np.zeros(keep_female.sum(), dtype=np.intp)])
+            order = np.lexsort((y, column))
+            y, is_male = y[order], is_male[order]
+            # inside each region above each crossing: the parity of its crossings so far (each column's
+            # count is even, so the parity is 0 again at the next column's first crossing)
+            in_male = np.cumsum(is_male) % 2
+            in_female = np.cumsum(1 - is_male) % 2
+            both = (in_male[:-1] == 1) & (in_female[:-1] == 1)
+            area += float(np.sum(np.diff(y)[both]))
+        areas[k] = width * area
     return areas
 
 

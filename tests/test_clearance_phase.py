@@ -234,3 +234,30 @@ def test_a_housing_bored_oversize_reads_no_interference(a):
     truth = signed_approach(a, np.column_stack([d["female_x"], d["female_y"]])[on], male)
     assert truth.min() == pytest.approx(0.0, abs=s["accuracy"])
     np.testing.assert_allclose(mc.clearance[on], truth, atol=s["accuracy"])
+
+
+def test_the_overlap_areas_are_shapelys_for_overhangs_and_a_chain_that_crosses_itself():
+    # rotorcad.clearance_phase sums the racks' overlap over thin columns (each region's section the
+    # intervals between alternate crossings of its outline). Reference: shapely's intersection area of
+    # the same outlines made valid (GEOS MakeValid: the noded linework, even-odd), on racks whose chains
+    # lean back over themselves (an overhang: three crossings in a column) and cross themselves (a loop,
+    # as the two generated parts of an undercut flank make), within 1e-4 of the area (1e-6 mm² where
+    # they do not overlap).
+    from rotorcad.clearance_phase import COLUMNS, overlap_areas, rack_ring
+
+    period = 20.0
+    t = np.linspace(0.0, 1.0, 400, endpoint=False)
+    # one tooth a period: a sine, leaned so that its flanks hang over (x turns back), plus a loop
+    male = np.column_stack([period * t + 4.5 * np.sin(2 * np.pi * t), 3.0 * np.cos(2 * np.pi * t)])
+    s = np.linspace(0.0, 1.0, 300, endpoint=False)
+    female = np.column_stack([period * s - 2.5 * np.sin(4 * np.pi * s), 3.2 + 2.5 * np.cos(2 * np.pi * s)])
+    assert np.any(np.diff(male[:, 0]) < 0) and np.any(np.diff(female[:, 0]) < 0)  # both hang over
+    assert not shapely.LineString(female).is_simple  # and the female crosses itself
+    low, high = -5.0, 7.0
+    m_ring, f_ring = rack_ring(male, period, 3, low), rack_ring(female, period, 1, high)
+    shifts = np.linspace(-period / 2, period / 2, 9)
+    got = overlap_areas(m_ring, f_ring, shifts, period / COLUMNS)
+    m_region, f_region = shapely.make_valid(shapely.Polygon(m_ring)), shapely.make_valid(shapely.Polygon(f_ring))
+    want = [shapely.intersection(m_region, shapely.affinity.translate(f_region, xoff=x)).area for x in shifts]
+    assert sum(w > 1.0 for w in want) >= 6  # the areas compared are mostly not zeros
+    np.testing.assert_allclose(got, want, rtol=1e-4, atol=1e-6)
