@@ -16,25 +16,23 @@ brings the flank into contact from there (``shift``).
 from __future__ import annotations
 
 import numpy as np
-import shapely
 
 from rotorcad.geometry import Array
 from rotorcad.inverse_rack import DerivedRack
 
 COARSE_COUNT = 32
 """Shifts of the female rack over one rack period on the coarse grid (the least overlap is a basin
-as wide as a rack tooth, so a thirty-second of the period finds it; 128 cost 8 s CPU of shapely
-intersections a clearance on the 4/6 independent pair's dense racks, 32 about 2 s)."""
+as wide as a rack tooth, so a thirty-second of the period finds it)."""
 
 FINE_COUNT = 33
 """Shifts on the fine grid, over one coarse step either side of the coarse grid's best."""
 
-SIMPLIFY = 1e-3
-"""mm: the racks' regions are simplified to this (the phase is refined by the contact search after)."""
+COLUMNS = 8192
+"""Columns a rack period is cut into for the overlap areas (the fine grid's step is 16 of them)."""
 
 
-def rack_region(points: Array, period: float, copies: int, bound: float) -> shapely.Geometry:
-    """Return the region on one side of a rack chain repeated along the pitch line.
+def rack_ring(points: Array, period: float, copies: int, bound: float) -> Array:
+    """Return the closed outline of the region on one side of a rack chain repeated along the pitch line.
 
     Parameters
     ----------
@@ -51,35 +49,110 @@ def rack_region(points: Array, period: float, copies: int, bound: float) -> shap
 
     Returns
     -------
-    shapely geometry
-        The region (valid, simplified to :data:`SIMPLIFY`).
+    (m, 2) float array, mm
+        The ring, its first point repeated at its end. A chain that crosses itself (the two
+        generated parts of an undercut flank, a corner's path) bounds the region by the even-odd
+        rule, as the noded linework of the ring does (GEOS ``MakeValid``).
     """
     half = copies // 2
     chain = np.vstack([points + np.array([k * period, 0.0]) for k in range(-half, half + 1)])
-    ring = np.vstack([chain, [[chain[-1, 0], bound], [chain[0, 0], bound]]])
-    # a rack chain may cross itself (the two generated parts of an undercut flank, a corner's path)
-    return shapely.simplify(shapely.make_valid(shapely.Polygon(ring)), SIMPLIFY)
+    return np.vstack([chain, [[chain[-1, 0], bound], [chain[0, 0], bound]], chain[:1]])
 
 
-def overlap_areas(male: shapely.Geometry, female: shapely.Geometry, shifts: Array) -> Array:
-    """Return the area of the overlap of the male region and the female region moved by each shift.
+def column_crossings(ring: Array, x0: float, width: float, count: int) -> tuple[Array, Array]:
+    """Return where a closed ring crosses the vertical lines x = x0 + (i + 1/2) ``width``, i < ``count``.
+
+    A segment counts on the lines from its smaller end's x (included) to its larger's (excluded), so
+    that a vertex on a line is crossed once where the ring passes it and twice or not at all where it
+    turns back: every line meets the closed ring an even number of times.
 
     Parameters
     ----------
-    male, female : shapely geometry
-        The racks' material regions (:func:`rack_region`), mm.
+    ring : (m, 2) float array, mm
+        Closed ring, its first point repeated at its end.
+    x0, width : float, mm
+        The columns' start and width.
+    count : int
+        Columns.
+
+    Returns
+    -------
+    column : (k,) int array
+        The column of each crossing.
+    y : (k,) float array, mm
+        Its height (linear along the segment).
+    """
+    a, b = ring[:-1], ring[1:]
+    lo_x, hi_x = np.minimum(a[:, 0], b[:, 0]), np.maximum(a[:, 0], b[:, 0])
+    # the first column whose line lies at or past each end: (x - x0) / width - 1/2, rounded up
+    first = np.clip(np.ceil((lo_x - x0) / width - 0.5), 0, count).astype(np.intp)
+    last = np.clip(np.ceil((hi_x - x0) / width - 0.5), 0, count).astype(np.intp)
+    n = last - first
+    seg = np.repeat(np.arange(len(a)), n)
+    column = np.repeat(first, n) + np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
+    x = x0 + (column + 0.5) * width
+    dx = b[seg, 0] - a[seg, 0]  # not 0: a vertical segment spans no line
+    y = a[seg, 1] + (x - a[seg, 0]) * (b[seg, 1] - a[seg, 1]) / dx
+    return column, y
+
+
+def _column_spans(column: Array, y: Array, count: int) -> tuple[Array, Array, Array]:
+    """Return each column's number of crossings (count,) int, and their lowest and highest heights (count,), mm."""
+    low, high = np.full(count, np.inf), np.full(count, -np.inf)
+    np.minimum.at(low, column, y)
+    np.maximum.at(high, column, y)
+    return np.bincount(column, minlength=count), low, high
+
+
+def overlap_areas(male_ring: Array, female_ring: Array, shifts: Array, width: float) -> Array:
+    """Return the area of the overlap of the male region and the female region moved by each shift.
+
+    Summed over vertical columns ``width`` wide (the midpoint rule along the pitch line): in each
+    column the two regions are the intervals between alternate crossings of their rings (even-odd),
+    and the overlap the length where both are inside.
+
+    Parameters
+    ----------
+    male_ring, female_ring : (m, 2) float arrays, mm
+        The racks' material regions' outlines (:func:`rack_ring`).
     shifts : (k,) float array, mm
         Shifts of the female region along the pitch line (+x).
+    width : float, mm
+        The columns' width.
 
     Returns
     -------
     (k,) float array, mm²
     """
     shifts = np.asarray(shifts, dtype=float)
-    moved = np.full(len(shifts), female, dtype=object)
-    offsets = np.repeat(shifts, shapely.get_num_coordinates(moved))
-    moved = shapely.transform(moved, lambda xy: xy + np.column_stack([offsets, np.zeros_like(offsets)]))
-    return shapely.area(shapely.intersection(moved, male))
+    x0 = float(female_ring[:, 0].min() + shifts.min()) - width
+    count = int(np.ceil((female_ring[:, 0].max() + shifts.max() - x0) / width)) + 2
+    male_column, male_y = column_crossings(male_ring, x0, width, count)
+    male_count, male_low, male_high = _column_spans(male_column, male_y, count)
+    areas = np.empty(len(shifts))
+    for k, shift in enumerate(shifts):
+        female_column, female_y = column_crossings(female_ring + np.array([shift, 0.0]), x0, width, count)
+        female_count, female_low, female_high = _column_spans(female_column, female_y, count)
+        # a column each ring crosses twice holds one interval of each region (nearly all of them)
+        simple = (male_count == 2) & (female_count == 2)
+        spans = np.minimum(male_high[simple], female_high[simple]) - np.maximum(male_low[simple], female_low[simple])
+        area = float(np.sum(np.maximum(spans, 0.0)))
+        other = (male_count > 0) & (female_count > 0) & ~simple
+        if other.any():  # more crossings (an overhang, a chain crossing itself): even-odd, as below
+            keep_male, keep_female = other[male_column], other[female_column]
+            column = np.concatenate([male_column[keep_male], female_column[keep_female]])
+            y = np.concatenate([male_y[keep_male], female_y[keep_female]])
+            is_male = np.concatenate([np.ones(keep_male.sum(), dtype=np.intp), np.zeros(keep_female.sum(), dtype=np.intp)])
+            order = np.lexsort((y, column))
+            y, is_male = y[order], is_male[order]
+            # inside each region above each crossing: the parity of its crossings so far (each column's
+            # count is even, so the parity is 0 again at the next column's first crossing)
+            in_male = np.cumsum(is_male) % 2
+            in_female = np.cumsum(1 - is_male) % 2
+            both = (in_male[:-1] == 1) & (in_female[:-1] == 1)
+            area += float(np.sum(np.diff(y)[both]))
+        areas[k] = width * area
+    return areas
 
 
 def _least(shifts: Array, areas: Array) -> float:
@@ -121,14 +194,15 @@ def complementary_shift(male: DerivedRack, female: DerivedRack) -> float:
     m, f = male.points, female.points
     low = min(m[:, 1].min(), f[:, 1].min()) - 1.0
     high = max(m[:, 1].max(), f[:, 1].max()) + 1.0
-    male_region = rack_region(m, period, 3, low)
-    female_region = rack_region(f, period, 1, high)
+    male_ring = rack_ring(m, period, 3, low)
+    female_ring = rack_ring(f, period, 1, high)
+    width = period / COLUMNS
     centre = 0.5 * (m[:, 0].min() + m[:, 0].max()) - 0.5 * (f[:, 0].min() + f[:, 0].max())
     coarse = centre + period * (np.arange(COARSE_COUNT) / COARSE_COUNT - 0.5)
-    best = _least(coarse, overlap_areas(male_region, female_region, coarse))
+    best = _least(coarse, overlap_areas(male_ring, female_ring, coarse, width))
     step = period / COARSE_COUNT
     fine = best + np.linspace(-step, step, FINE_COUNT)
-    shift = _least(fine, overlap_areas(male_region, female_region, fine))
+    shift = _least(fine, overlap_areas(male_ring, female_ring, fine, width))
     # the same phase nearest the given one (0: the points' own), where the female stays inside the
     # male's three periods with an eighth of a period to spare (the clearance's normals find the male there)
     same = shift + period * np.arange(-3, 4)
@@ -248,12 +322,13 @@ def search_steps(start: float, value: float, period: float) -> list[float]:
 
 __all__ = [
     "COARSE_COUNT",
+    "COLUMNS",
     "FINE_COUNT",
-    "SIMPLIFY",
     "alignment_curve",
+    "column_crossings",
     "complementary_shift",
     "overlap_areas",
-    "rack_region",
+    "rack_ring",
     "running_quadratic",
     "search_steps",
 ]

@@ -26,6 +26,7 @@ USERS = (  # the files that use stored brute-force results
     "test_n_rack_cut.py",
     "test_racks_from_points.py",
     "test_clearance_zones.py",
+    "test_clearance_phase.py",
     "test_contact_ratio_invariance.py",
     "test_clearance_lands.py",
 )

@@ -31,6 +31,7 @@ from independent_pairs import (
     distance_to_line,
     one_lobe,
     resample,
+    stored_by_inputs,
     trapezoid_4_6,
 )
 
@@ -120,7 +121,7 @@ def test_the_reading_does_not_depend_on_the_angle_the_points_were_measured_at(ma
     on = np.flatnonzero(mc.zones == ClearanceZone.CONTACT)[::12]
     pts = np.column_stack([d["female_x"], d["female_y"]])[on]
     assert distance_to_line(pts, shapely.LinearRing(female)).max() < 1e-3
-    truth = closest_approach.brute_force(trapezoid_4_6(), pts, male, positions=1500)
+    truth = closest_approach(trapezoid_4_6(), pts, male, positions=1500)  # stored by its inputs in tests/reference_data
     np.testing.assert_allclose(mc.clearance[on], truth, atol=1.5e-3)
 
 
@@ -171,12 +172,14 @@ def test_as_given_keeps_the_points_own_phase(tmp_path, capsys):
     assert out["driving"]["mean_clearance"] == pytest.approx(ref["mean_clearance"], abs=1e-3)
 
 
+@stored_by_inputs("signed_approach", _rot)
 def signed_approach(a: float, female_pts: np.ndarray, male: np.ndarray, positions: int = 1500) -> np.ndarray:
     """Brute force: for each female point (own frame, (n, 2)) the smallest signed distance to the male outline
     over ``positions`` mesh positions at centre distance ``a`` (the 5/6 pair; negative inside the male: an
     interference). The positions, the distance and the window of ``independent_pairs.closest_approach`` (the
     female turned clockwise by phi2 within 40 deg of the line of centres, the male counter-clockwise by
-    phi2 z2 / z1); the sign from shapely's point-in-polygon test."""
+    phi2 z2 / z1); the sign from shapely's point-in-polygon test. Stored in tests/reference_data by its
+    inputs and its code (tests/make_reference_data.py)."""
     from scipy.spatial import cKDTree
 
     ring = np.asarray(shapely.segmentize(shapely.LinearRing(male), 0.005).coords)[:-1]
@@ -231,3 +234,30 @@ def test_a_housing_bored_oversize_reads_no_interference(a):
     truth = signed_approach(a, np.column_stack([d["female_x"], d["female_y"]])[on], male)
     assert truth.min() == pytest.approx(0.0, abs=s["accuracy"])
     np.testing.assert_allclose(mc.clearance[on], truth, atol=s["accuracy"])
+
+
+def test_the_overlap_areas_are_shapelys_for_overhangs_and_a_chain_that_crosses_itself():
+    # rotorcad.clearance_phase sums the racks' overlap over thin columns (each region's section the
+    # intervals between alternate crossings of its outline). Reference: shapely's intersection area of
+    # the same outlines made valid (GEOS MakeValid: the noded linework, even-odd), on racks whose chains
+    # lean back over themselves (an overhang: three crossings in a column) and cross themselves (a loop,
+    # as the two generated parts of an undercut flank make), within 1e-4 of the area (1e-6 mm² where
+    # they do not overlap).
+    from rotorcad.clearance_phase import COLUMNS, overlap_areas, rack_ring
+
+    period = 20.0
+    t = np.linspace(0.0, 1.0, 400, endpoint=False)
+    # one tooth a period: a sine, leaned so that its flanks hang over (x turns back), plus a loop
+    male = np.column_stack([period * t + 4.5 * np.sin(2 * np.pi * t), 3.0 * np.cos(2 * np.pi * t)])
+    s = np.linspace(0.0, 1.0, 300, endpoint=False)
+    female = np.column_stack([period * s - 2.5 * np.sin(4 * np.pi * s), 3.2 + 2.5 * np.cos(2 * np.pi * s)])
+    assert np.any(np.diff(male[:, 0]) < 0) and np.any(np.diff(female[:, 0]) < 0)  # both hang over
+    assert not shapely.LineString(female).is_simple  # and the female crosses itself
+    low, high = -5.0, 7.0
+    m_ring, f_ring = rack_ring(male, period, 3, low), rack_ring(female, period, 1, high)
+    shifts = np.linspace(-period / 2, period / 2, 9)
+    got = overlap_areas(m_ring, f_ring, shifts, period / COLUMNS)
+    m_region, f_region = shapely.make_valid(shapely.Polygon(m_ring)), shapely.make_valid(shapely.Polygon(f_ring))
+    want = [shapely.intersection(m_region, shapely.affinity.translate(f_region, xoff=x)).area for x in shifts]
+    assert sum(w > 1.0 for w in want) >= 6  # the areas compared are mostly not zeros
+    np.testing.assert_allclose(got, want, rtol=1e-4, atol=1e-6)
