@@ -23,6 +23,7 @@ import numpy as np
 
 from rotorcad.curves import Arc, Curve, Mapped, sample_curve, split_intervals
 from rotorcad.envelope import Generated, conjugate, from_rack_frame
+from rotorcad.errors import DesignError
 from rotorcad.geometry import cross, rotate, wrap_angle
 from rotorcad.kinematics import Rotation, Translation, gear_mesh
 from rotorcad.lobe_trim import trimmed_lobe
@@ -617,6 +618,15 @@ def rotor_rack(
             pieces = trimmed_lobe(pieces, centre, tip, 2 * np.pi / side.pick(pair.male_teeth, pair.female_teeth))
         else:
             pieces = [p for p in (_inside_tip(name, curve, centre, tip) for name, curve in pieces) if p is not None]
+        if not pieces:  # e.g. a mate generated from dense points whose loops beyond the tip cut it whole
+            family = str(getattr(rotors, "family", ""))
+            raise DesignError(
+                f"--{family}" if family.endswith("-points") else f"the {side.value}",
+                f"a profile whose {side.value} keeps a part inside its tip circle (r = {tip:g} mm)",
+                None,
+                f"the {side.value} {'generated from the points ' if family.endswith('-points') else ''}leaves none there "
+                "(thin the points to 300-1000 a lobe, or give the other rotor's points)",
+            )
     depth = (-pair.male_dedendum - 1e-6, pair.male_addendum + 1e-6)  # the rack lies between these
     rack = derive_rack(
         pieces,
