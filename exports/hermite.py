@@ -84,7 +84,7 @@ def distance_to_chains(points: np.ndarray, chains: np.ndarray) -> np.ndarray:
     ax, ay = chains[:, None, :-1, 0], chains[:, None, :-1, 1]  # (n, 1, k - 1)
     dx, dy = chains[:, None, 1:, 0] - ax, chains[:, None, 1:, 1] - ay
     near = np.sqrt(_squared_gap(points[:, :, None, 0], points[:, :, None, 1], ax, ay, dx, dy).min(axis=2))
-    return np.nan_to_num(near, nan=0.0).max(axis=1)
+    return np.fmax.reduce(near, axis=1, initial=0.0)  # NaN rows left out (fmax); distances are >= 0
 
 
 def _sag(points: np.ndarray, middles: np.ndarray) -> np.ndarray:
@@ -99,7 +99,7 @@ def _sag(points: np.ndarray, middles: np.ndarray) -> np.ndarray:
     """
     ax, ay = points[:, :-1, 0], points[:, :-1, 1]
     dx, dy = points[:, 1:, 0] - ax, points[:, 1:, 1] - ay
-    return np.nan_to_num(_gap_to_chords(middles[..., 0], middles[..., 1], ax, ay, dx, dy), nan=0.0).max(axis=1)
+    return np.fmax.reduce(_gap_to_chords(middles[..., 0], middles[..., 1], ax, ay, dx, dy), axis=1, initial=0.0)  # NaN left out
 
 
 def _near_chains(points: np.ndarray, chains: np.ndarray, chords: np.ndarray) -> np.ndarray:
@@ -120,7 +120,7 @@ def _near_chains(points: np.ndarray, chains: np.ndarray, chords: np.ndarray) -> 
     a = chains[:, chords]  # (n, m, c, 2)
     d = chains[:, chords + 1] - a
     gap = _squared_gap(points[:, :, None, 0], points[:, :, None, 1], a[..., 0], a[..., 1], d[..., 0], d[..., 1])
-    return np.nan_to_num(np.sqrt(gap.min(axis=2)), nan=0.0).max(axis=1)
+    return np.fmax.reduce(np.sqrt(gap.min(axis=2)), axis=1, initial=0.0)  # NaN left out
 
 
 _STEP_CHORDS = np.clip(np.arange(PROBES + 1)[:, None] + [-1, 0], 0, PROBES - 1)
