@@ -311,6 +311,32 @@ def _patterned_groove(pts: np.ndarray, teeth: int, label: str = "points") -> np.
     return np.vstack([rotate(lobe, pitch * k) for k in range(teeth)])
 
 
+def raw_scatter(whole: np.ndarray) -> float:
+    """Estimate the points' scatter normal to the outline from their third differences, without a floor.
+
+    The estimate of :func:`scatter` (module docstring) before it is taken as 0 below
+    :data:`SCATTER_FLOOR`: the error that points taken as exact still carry (a polyline's chords they
+    were resampled from, the decimals they were written to), which an interpolating spline's
+    curvature reads as noise once the points are dense (:func:`rotorcad.measured.fit.fine_knot_spacing`).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline (8 points at least).
+
+    Returns
+    -------
+    float, mm
+    """
+    p = np.asarray(whole, dtype=float)
+    d3 = np.roll(p, -2, axis=0) - 3 * np.roll(p, -1, axis=0) + 3 * p - np.roll(p, 1, axis=0)
+    chord = np.roll(p, -2, axis=0) - np.roll(p, 1, axis=0)
+    length = np.hypot(*chord.T)
+    ok = length > 0
+    normal = np.abs(cross(chord[ok], d3[ok])) / length[ok]
+    return float(1.4826 * np.median(normal) / np.sqrt(20.0))  # MAD of a zero-mean normal, sqrt(20): the difference's gain
+
+
 def scatter(whole: np.ndarray) -> float:
     """Estimate the standard deviation of the points' scatter normal to the outline.
 
@@ -332,12 +358,7 @@ def scatter(whole: np.ndarray) -> float:
     p = np.asarray(whole, dtype=float)
     if len(p) < 8:
         return 0.0
-    d3 = np.roll(p, -2, axis=0) - 3 * np.roll(p, -1, axis=0) + 3 * p - np.roll(p, 1, axis=0)
-    chord = np.roll(p, -2, axis=0) - np.roll(p, 1, axis=0)
-    length = np.hypot(*chord.T)
-    ok = length > 0
-    normal = np.abs(cross(chord[ok], d3[ok])) / length[ok]
-    sigma = 1.4826 * np.median(normal) / np.sqrt(20.0)  # MAD of a zero-mean normal, sqrt(20): the difference's gain
+    sigma = raw_scatter(p)
     if sigma <= SCATTER_FLOOR:
         return 0.0
     step = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
@@ -642,6 +663,7 @@ __all__ = [
     "own_frame",
     "points_accuracy",
     "profile_points",
+    "raw_scatter",
     "read_outline",
     "scatter",
     "whole_outline",
