@@ -16,10 +16,14 @@ der Punkte"); a contact that near the line O1O2 is a land's (a land touches ther
 whose contacts all stay within the resolution sqrt(8 a e) of a tip corner is that corner, rounded by
 the fit. So judged, the ratio from every form of the samples' males lies within 2 sqrt(8 a e) / p_t of
 the design's (p_t the transverse pitch; tests/test_contact_ratio_invariance.py). The working length
-(and with it the overlap ratio and running) counts every geometric contact of a piece but one: a
-curve contact between the male tip corner's path and the female's shorter than the meshline's
-resolution sqrt(8 a G e) (G = MESHLINE_GAIN) is the fit's rounding of a corner-to-corner hand-over
-(:func:`is_corner_handover`; Krigar's, at the housing cusp).
+(and with it the overlap ratio and running) is judged by the same rule: it is the meshline length of
+those resolved steps, not of the whole piece (the Lysholm female as 300 exact points a lobe, e = 0.8
+µm: a curve piece 0.91-1.04 mm long on the male tip circle, whose contact on the male stays within
+0.03-0.04 mm of its tip corner, the corner rounded by the fit, had no resolved step and a ratio of 0,
+yet counted as 0.9-6 mm of sealing working part, and the overlap 2.31 made the flank run where the
+design's has no working part). And a curve contact between the male tip corner's path and the
+female's shorter than the meshline's resolution sqrt(8 a G e) (G = MESHLINE_GAIN) is the fit's
+rounding of a corner-to-corner hand-over (:func:`is_corner_handover`; Krigar's, at the housing cusp).
 """
 
 from __future__ import annotations
@@ -56,7 +60,8 @@ class FlankReport:
         "nur infinitesimale Stirnüberdeckung").
     working_length : float, mm
         Meshline length of the working part: geometric contact (a common tangent), no point-generated
-        part. 0: the flank has no working part.
+        part; of a given profile, the contact its accuracy resolves (:func:`resolved_steps`). 0: the
+        flank has no working part.
     overlap_contact_ratio : float
         Rinder's "Sprungüberdeckung": the male rotation over which one lobe's contact line lasts
         along the rotor (the wrap angle 2 pi L / h1) per angular pitch 2 pi / z1, the overlap ratio
@@ -347,7 +352,7 @@ def flank_reports(
     Contact pieces shorter than 1e-6 of the centre distance (a corner touching only at C) do not
     count. The transverse ratio is the rotation covered by the steps between consecutive samples of
     the working part (:func:`covered_rotation`) that the input's accuracy resolves as working
-    (:func:`resolved_steps`).
+    (:func:`resolved_steps`); the working length is the meshline length of those same steps.
 
     Parameters
     ----------
@@ -403,8 +408,8 @@ def flank_reports(
                 and length >= shortest
                 and not is_corner_handover(piece, both, length, paths, handover)
             ):
-                geometric += length
                 work = resolved_steps(piece, both, gap, band, shortest)
+                geometric += float(seg[work].sum())  # the steps the input's accuracy resolves as working
                 spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
