@@ -392,7 +392,7 @@ def flank_reports(
     gaps = corner_gaps(pieces, pair) if band > 0 else [np.zeros((0, 2))] * len(pieces)
     paths = _corner_path_points(pieces) if handover > 0 else {}
     for flank in (Flank.DRIVING, Flank.SEALING):
-        total = geometric = 0.0
+        total = geometric = working = 0.0
         spans: list[np.ndarray] = []  # (m, 2): the male rotation between consecutive working contacts
         for piece, seg, gap in zip(pieces, steps, gaps, strict=True):
             mask = piece.flank_mask(flank)
@@ -409,7 +409,8 @@ def flank_reports(
                 and not is_corner_handover(piece, both, length, paths, handover)
             ):
                 work = resolved_steps(piece, both, gap, band, shortest)
-                geometric += float(seg[work].sum())  # the steps the input's accuracy resolves as working
+                geometric += length
+                working += float(seg[work].sum())  # the steps the input's accuracy resolves as working
                 spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
@@ -424,8 +425,8 @@ def flank_reports(
             geometric / total if total > 0 else 0.0,
             kinds,
             ratio,
-            geometric,
-            overlap if geometric > 0 else 0.0,
+            working,
+            overlap if working > 0 else 0.0,
             corners,
         )
     return out
