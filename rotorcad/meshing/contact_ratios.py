@@ -16,14 +16,12 @@ der Punkte"); a contact that near the line O1O2 is a land's (a land touches ther
 whose contacts all stay within the resolution sqrt(8 a e) of a tip corner is that corner, rounded by
 the fit. So judged, the ratio from every form of the samples' males lies within 2 sqrt(8 a e) / p_t of
 the design's (p_t the transverse pitch; tests/test_contact_ratio_invariance.py). The working length
-(and with it the overlap ratio and running) is judged by the same rule: it is the meshline length of
-those resolved steps, not of the whole piece (the Lysholm female as 300 exact points a lobe, e = 0.8
-µm: a curve piece 0.91-1.04 mm long on the male tip circle, whose contact on the male stays within
-0.03-0.04 mm of its tip corner, the corner rounded by the fit, had no resolved step and a ratio of 0,
-yet counted as 0.9-6 mm of sealing working part, and the overlap 2.31 made the flank run where the
-design's has no working part). And a curve contact between the male tip corner's path and the
-female's shorter than the meshline's resolution sqrt(8 a G e) (G = MESHLINE_GAIN) is the fit's
-rounding of a corner-to-corner hand-over (:func:`is_corner_handover`; Krigar's, at the housing cusp).
+(and with it the overlap ratio and running) counts every geometric contact of a piece but two: a
+contact whose meshline point lies on a rotor's tip circle to the meshline's accuracy is that rotor's
+tip, rounded by the fit (:func:`on_tip_circles`; the Lysholm female from 300 exact points a lobe),
+and a curve contact between the male tip corner's path and the female's shorter than the meshline's
+resolution sqrt(8 a G e) (G = MESHLINE_GAIN) is the fit's rounding of a corner-to-corner hand-over
+(:func:`is_corner_handover`; Krigar's, at the housing cusp).
 """
 
 from __future__ import annotations
@@ -60,8 +58,8 @@ class FlankReport:
         "nur infinitesimale Stirnüberdeckung").
     working_length : float, mm
         Meshline length of the working part: geometric contact (a common tangent), no point-generated
-        part; of a given profile, the contact its accuracy resolves (:func:`resolved_steps`). 0: the
-        flank has no working part.
+        part; of a given profile, none on a tip circle (:func:`on_tip_circles`). 0: the flank has no
+        working part.
     overlap_contact_ratio : float
         Rinder's "Sprungüberdeckung": the male rotation over which one lobe's contact line lasts
         along the rotor (the wrap angle 2 pi L / h1) per angular pitch 2 pi / z1, the overlap ratio
@@ -281,6 +279,39 @@ def handover_length(accuracy: float, scale: float) -> float:
     return float(np.sqrt(8.0 * scale * MESHLINE_GAIN * accuracy))
 
 
+def on_tip_circles(piece: MeshlinePiece, pair: RotorPair, band: float) -> np.ndarray:
+    """Return which of a piece's contacts lie on either rotor's tip circle to the meshline's accuracy ``band``.
+
+    A contact on a rotor's tip circle is that rotor's tip (Rinder sec. 2.2.2: at the tip only a corner
+    touches), not a working flank: its meshline point turns with the tip, so the meshline there is
+    the tip circle itself. Of a profile given to an accuracy e, the fit rounds a tip corner, and the
+    mate generated from it touches the rounding along the tip circle: the Lysholm female as 300 exact
+    points a lobe (e = 0.8 µm) gave a curve piece 0.91-1.04 mm long on the male tip circle (its contact
+    on the male within 0.03-0.04 mm of the tip corner), counted as sealing working part, and the
+    overlap 2.31 made the flank run where the design's has no working part.
+
+    Parameters
+    ----------
+    piece : MeshlinePiece
+        A piece of the meshline.
+    pair : RotorPair
+        The pair (tip radii, centre distance).
+    band : float, mm
+        The meshline's accuracy (:data:`~rotorcad.meshing.defects.MESHLINE_GAIN` e); 0 for a design
+        (no contact is read as a tip).
+
+    Returns
+    -------
+    (n,) bool array
+    """
+    if band <= 0:
+        return np.zeros(len(piece.t), dtype=bool)
+    x, y = piece.points[:, 0], piece.points[:, 1]
+    male = np.abs(np.hypot(x, y) - pair.male_tip_radius) <= band
+    female = np.abs(np.hypot(x - pair.center_distance, y) - pair.female_tip_radius) <= band
+    return male | female
+
+
 def _corner_path_points(pieces: list[MeshlinePiece]) -> dict[PieceRole, np.ndarray]:
     """Return the meshline samples of each rotor's tip-corner paths, (k, 2) float, mm, by path kind."""
     out: dict[PieceRole, list[np.ndarray]] = {}
@@ -352,7 +383,8 @@ def flank_reports(
     Contact pieces shorter than 1e-6 of the centre distance (a corner touching only at C) do not
     count. The transverse ratio is the rotation covered by the steps between consecutive samples of
     the working part (:func:`covered_rotation`) that the input's accuracy resolves as working
-    (:func:`resolved_steps`); the working length is the meshline length of those same steps.
+    (:func:`resolved_steps`). The working length leaves out a given profile's contacts on a tip
+    circle (:func:`on_tip_circles`).
 
     Parameters
     ----------
@@ -410,7 +442,8 @@ def flank_reports(
             ):
                 work = resolved_steps(piece, both, gap, band, shortest)
                 geometric += length
-                working += float(seg[work].sum())  # the steps the input's accuracy resolves as working
+                tip = on_tip_circles(piece, pair, band)
+                working += float(seg[both & ~(tip[:-1] & tip[1:])].sum())
                 spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
