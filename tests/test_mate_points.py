@@ -450,3 +450,58 @@ def test_smoothing_that_follows_scattered_female_points_is_refused(capsys, tmp_p
     least = float(lines[0].split("at least ")[1].split()[0])
     assert least == pytest.approx(PER_LOBE * SCATTER**2, rel=0.3)
     assert main([*args, "--smoothing", f"{least:.3g}"]) == 0, capsys.readouterr().err
+
+
+# ---- the Lysholm female at other phases and starts of the spacing (issue 21 item 3) ----------------------------
+
+# (sample, phase of the spacing, start as a share of the outline, turn in degrees): a new user's Lysholm female
+# as 300 exact points a lobe read "sealing flank: runs, transverse contact ratio 0.000 + overlap 2.308" at
+# phase 0, at phase 0.5 from 0.37 of the outline and turned by 17.3 deg (12 of his 18 inputs)
+SPACINGS = [
+    ("lysholm_4_6", 0.0, 0.0, 0.0),
+    ("lysholm_4_6", 0.5, 0.37, 0.0),
+    ("lysholm_4_6", 0.8, 0.2, 0.0),
+    ("lysholm_4_6", 0.0, 0.11, 17.3),
+    ("srm_asymmetric_5_6", 0.0, 0.0, 0.0),
+    ("srm_asymmetric_5_6", 0.5, 0.37, 0.0),
+]
+
+
+def _spaced(ring: np.ndarray, teeth: int, phase: float, start: float, turn: float) -> np.ndarray:
+    """300 exact points a lobe of the closed ``ring``: begun ``start`` of its samples round and ``phase`` of a
+    spacing on, then turned by ``turn`` deg about the rotor's centre."""
+    points = scan(np.roll(ring, -round(start * len(ring)), axis=0), teeth * PER_LOBE, phase)
+    c, s = np.cos(np.radians(turn)), np.sin(np.radians(turn))
+    return points @ np.array([[c, s], [-s, c]])
+
+
+@pytest.fixture(scope="module")
+def spaced_verdicts() -> dict:
+    """The design's summary per sample, and the summary of the pair from each spacing of its female's points."""
+    out: dict = {}
+    for name in sorted({case[0] for case in SPACINGS}):
+        spec = _spec(name)
+        design = build_pair(spec)
+        out[name] = analyse_pair(design, spec.speed_rpm)[1]
+        ring = _exterior(design.section("female", tolerance=1e-5))  # exact curves to a 0.01 um chord
+        for case in SPACINGS:
+            if case[0] == name:
+                points = _spaced(ring, spec.pair.female_teeth, *case[1:])
+                given = build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0))
+                out[case] = analyse_pair(given, spec.speed_rpm)[1]
+    return out
+
+
+@pytest.mark.parametrize("case", SPACINGS, ids=lambda c: f"{c[0]}-phase{c[1]}-start{c[2]}-turn{c[3]}")
+def test_female_points_at_any_spacing_give_the_design_defects_and_running(spaced_verdicts, case):
+    # reference: the design's own verdicts from its exact curves, and Rinder (Fig. 2, sec. 1.2): the Lysholm
+    # profile needs timing gears (its sealing flank has no geometric contact: design working length 0), while
+    # the asymmetric SRM's short straight part makes its sealing flank run (Fig. 4: a working part of 13 mm)
+    design, given = spaced_verdicts[case[0]], spaced_verdicts[case]
+    key = lambda d: (d["kind"], d["rotor"], d["flank_role"], d["tip_corner"])  # noqa: E731
+    assert Counter(map(key, given["defects"])) == Counter(map(key, design["defects"])), (given["defects"], design["defects"])
+    assert given["runs_without_timing_gears"] == design["runs_without_timing_gears"]
+    for flank, report in design["flanks"].items():
+        mine = given["flanks"][flank]
+        assert mine["runs_without_timing_gears"] == report["runs_without_timing_gears"], (flank, mine)
+        assert (mine["working_length"] > 0) == (report["working_length"] > 0), (flank, mine["working_length"])

@@ -16,8 +16,10 @@ der Punkte"); a contact that near the line O1O2 is a land's (a land touches ther
 whose contacts all stay within the resolution sqrt(8 a e) of a tip corner is that corner, rounded by
 the fit. So judged, the ratio from every form of the samples' males lies within 2 sqrt(8 a e) / p_t of
 the design's (p_t the transverse pitch; tests/test_contact_ratio_invariance.py). The working length
-(and with it the overlap ratio and running) counts every geometric contact of a piece but one: a
-curve contact between the male tip corner's path and the female's shorter than the meshline's
+(and with it the overlap ratio and running) counts every geometric contact of a piece but two: a
+contact whose meshline point lies on a rotor's tip circle to the meshline's accuracy is that rotor's
+tip, rounded by the fit (:func:`on_tip_circles`; the Lysholm female from 300 exact points a lobe),
+and a curve contact between the male tip corner's path and the female's shorter than the meshline's
 resolution sqrt(8 a G e) (G = MESHLINE_GAIN) is the fit's rounding of a corner-to-corner hand-over
 (:func:`is_corner_handover`; Krigar's, at the housing cusp).
 """
@@ -56,7 +58,8 @@ class FlankReport:
         "nur infinitesimale Stirnüberdeckung").
     working_length : float, mm
         Meshline length of the working part: geometric contact (a common tangent), no point-generated
-        part. 0: the flank has no working part.
+        part; of a given profile, none on a tip circle (:func:`on_tip_circles`). 0: the flank has no
+        working part.
     overlap_contact_ratio : float
         Rinder's "Sprungüberdeckung": the male rotation over which one lobe's contact line lasts
         along the rotor (the wrap angle 2 pi L / h1) per angular pitch 2 pi / z1, the overlap ratio
@@ -276,6 +279,39 @@ def handover_length(accuracy: float, scale: float) -> float:
     return float(np.sqrt(8.0 * scale * MESHLINE_GAIN * accuracy))
 
 
+def on_tip_circles(piece: MeshlinePiece, pair: RotorPair, band: float) -> np.ndarray:
+    """Return which of a piece's contacts lie on either rotor's tip circle to the meshline's accuracy ``band``.
+
+    A contact on a rotor's tip circle is that rotor's tip (Rinder sec. 2.2.2: at the tip only a corner
+    touches), not a working flank: its meshline point turns with the tip, so the meshline there is
+    the tip circle itself. Of a profile given to an accuracy e, the fit rounds a tip corner, and the
+    mate generated from it touches the rounding along the tip circle: the Lysholm female as 300 exact
+    points a lobe (e = 0.8 µm) gave a curve piece 0.91-1.04 mm long on the male tip circle (its contact
+    on the male within 0.03-0.04 mm of the tip corner), counted as sealing working part, and the
+    overlap 2.31 made the flank run where the design's has no working part.
+
+    Parameters
+    ----------
+    piece : MeshlinePiece
+        A piece of the meshline.
+    pair : RotorPair
+        The pair (tip radii, centre distance).
+    band : float, mm
+        The meshline's accuracy (:data:`~rotorcad.meshing.defects.MESHLINE_GAIN` e); 0 for a design
+        (no contact is read as a tip).
+
+    Returns
+    -------
+    (n,) bool array
+    """
+    if band <= 0:
+        return np.zeros(len(piece.t), dtype=bool)
+    x, y = piece.points[:, 0], piece.points[:, 1]
+    male = np.abs(np.hypot(x, y) - pair.male_tip_radius) <= band
+    female = np.abs(np.hypot(x - pair.center_distance, y) - pair.female_tip_radius) <= band
+    return male | female
+
+
 def _corner_path_points(pieces: list[MeshlinePiece]) -> dict[PieceRole, np.ndarray]:
     """Return the meshline samples of each rotor's tip-corner paths, (k, 2) float, mm, by path kind."""
     out: dict[PieceRole, list[np.ndarray]] = {}
@@ -347,7 +383,8 @@ def flank_reports(
     Contact pieces shorter than 1e-6 of the centre distance (a corner touching only at C) do not
     count. The transverse ratio is the rotation covered by the steps between consecutive samples of
     the working part (:func:`covered_rotation`) that the input's accuracy resolves as working
-    (:func:`resolved_steps`).
+    (:func:`resolved_steps`). The working length leaves out a given profile's contacts on a tip
+    circle (:func:`on_tip_circles`).
 
     Parameters
     ----------
@@ -387,7 +424,7 @@ def flank_reports(
     gaps = corner_gaps(pieces, pair) if band > 0 else [np.zeros((0, 2))] * len(pieces)
     paths = _corner_path_points(pieces) if handover > 0 else {}
     for flank in (Flank.DRIVING, Flank.SEALING):
-        total = geometric = 0.0
+        total = geometric = working = 0.0
         spans: list[np.ndarray] = []  # (m, 2): the male rotation between consecutive working contacts
         for piece, seg, gap in zip(pieces, steps, gaps, strict=True):
             mask = piece.flank_mask(flank)
@@ -403,8 +440,10 @@ def flank_reports(
                 and length >= shortest
                 and not is_corner_handover(piece, both, length, paths, handover)
             ):
-                geometric += length
                 work = resolved_steps(piece, both, gap, band, shortest)
+                geometric += length
+                tip = on_tip_circles(piece, pair, band)
+                working += float(seg[both & ~(tip[:-1] & tip[1:])].sum())
                 spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
@@ -419,8 +458,8 @@ def flank_reports(
             geometric / total if total > 0 else 0.0,
             kinds,
             ratio,
-            geometric,
-            overlap if geometric > 0 else 0.0,
+            working,
+            overlap if working > 0 else 0.0,
             corners,
         )
     return out
