@@ -29,6 +29,7 @@ USERS = (  # the files that use stored brute-force results
     "test_clearance_phase.py",
     "test_contact_ratio_invariance.py",
     "test_clearance_lands.py",
+    "test_clearance_sparse.py",
 )
 
 
