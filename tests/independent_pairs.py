@@ -511,7 +511,20 @@ def write_drawing(path: str, ring: np.ndarray, radii: tuple[float, float], flank
     doc.saveas(path)
 
 
-@stored_by_inputs("closest_approach", _rot)
+def ring_distance(ring: np.ndarray, tree, p: np.ndarray) -> np.ndarray:
+    """Exact distance (mm) of each point ``p`` ((m, 2)) to a closed ring densified finely enough that the
+    nearest segment is one of the two at the nearest vertex (``tree``: a cKDTree of ``ring``'s vertices)."""
+    _, k = tree.query(p)
+    best = np.full(len(p), np.inf)
+    for j in (k - 1, k):  # the segments before and after the nearest vertex
+        s0, s1 = ring[np.mod(j, len(ring))], ring[np.mod(j + 1, len(ring))]
+        d = s1 - s0
+        t = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
+        best = np.minimum(best, np.hypot(*(s0 + t[:, None] * d - p).T))
+    return best
+
+
+@stored_by_inputs("closest_approach", _rot, ring_distance)
 def closest_approach(
     pair: Pair, female: np.ndarray, male: np.ndarray, positions: int = 2000, window_deg: float = 40.0
 ) -> np.ndarray:
@@ -536,14 +549,7 @@ def closest_approach(
         f = np.repeat(female[chunk], positions, axis=0)
         fixed = _rot(f, -phi2.ravel()) + np.array([a, 0.0])
         p = _rot(fixed, -phi1.ravel())
-        _, k = tree.query(p)
-        best = np.full(len(p), np.inf)
-        for j in (k - 1, k):  # the segments before and after the nearest vertex
-            s0, s1 = ring[np.mod(j, len(ring))], ring[np.mod(j + 1, len(ring))]
-            d = s1 - s0
-            t = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
-            best = np.minimum(best, np.hypot(*(s0 + t[:, None] * d - p).T))
-        out[chunk] = best.reshape(len(chunk), positions).min(axis=1)
+        out[chunk] = ring_distance(ring, tree, p).reshape(len(chunk), positions).min(axis=1)
     return out
 
 

@@ -31,6 +31,7 @@ from independent_pairs import (
     distance_to_line,
     one_lobe,
     resample,
+    ring_distance,
     stored_by_inputs,
     trapezoid_4_6,
 )
@@ -172,7 +173,7 @@ def test_as_given_keeps_the_points_own_phase(tmp_path, capsys):
     assert out["driving"]["mean_clearance"] == pytest.approx(ref["mean_clearance"], abs=1e-3)
 
 
-@stored_by_inputs("signed_approach", _rot)
+@stored_by_inputs("signed_approach", _rot, ring_distance)
 def signed_approach(a: float, female_pts: np.ndarray, male: np.ndarray, positions: int = 1500) -> np.ndarray:
     """Brute force: for each female point (own frame, (n, 2)) the smallest signed distance to the male outline
     over ``positions`` mesh positions at centre distance ``a`` (the 5/6 pair; negative inside the male: an
@@ -189,13 +190,7 @@ def signed_approach(a: float, female_pts: np.ndarray, male: np.ndarray, position
     phi2 = (theta - np.pi)[:, None] + np.radians(40.0) * np.linspace(-1.0, 1.0, positions)[None, :]
     fixed = _rot(np.repeat(female_pts, positions, axis=0), -phi2.ravel()) + np.array([a, 0.0])
     p = _rot(fixed, -(phi2 * 6 / 5).ravel())
-    _, k = cKDTree(ring).query(p)
-    best = np.full(len(p), np.inf)
-    for j in (k - 1, k):  # the segments before and after the nearest vertex
-        s0, s1 = ring[np.mod(j, len(ring))], ring[np.mod(j + 1, len(ring))]
-        d = s1 - s0
-        t = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
-        best = np.minimum(best, np.hypot(*(s0 + t[:, None] * d - p).T))
+    best = ring_distance(ring, cKDTree(ring), p)
     signed = np.where(shapely.contains_xy(body, p[:, 0], p[:, 1]), -best, best)
     return signed.reshape(len(female_pts), positions).min(axis=1)
 
