@@ -132,12 +132,20 @@ def _start_worker(preload: tuple[str, ...], parent: int | None = None) -> None:
 
 
 def import_without_collections(modules: tuple[str, ...]) -> None:
-    """Import ``modules`` with the cyclic garbage collector paused.
+    """Import ``modules`` with the cyclic garbage collector paused and the symbols of their libraries bound lazily.
 
     Importing OpenCASCADE makes some hundred thousand objects (its classes and functions), none of
     them garbage, and each few hundred of them start a collection that walks the younger ones
     again: measured on 2 cores, ``import OCP.STEPControl, ezdxf`` took 0.9 s of CPU with the
     collector paused and 1.1 s with it running. Garbage made meanwhile is collected once it runs again.
+
+    Python loads extension modules with ``RTLD_NOW`` (``sys.getdlopenflags()``), which makes the
+    dynamic linker resolve every function symbol of the module and of the libraries it pulls in
+    before the import returns: for OpenCASCADE's 60 libraries some 135 000 relocations
+    (``LD_DEBUG=statistics``), most of them for functions an export never calls. Here they are
+    loaded with ``RTLD_LAZY`` (dlopen(3): a function's symbol is resolved at its first call), the
+    flags restored afterwards: ``import OCP.STEPControl`` measured 605 ms of CPU instead of 649
+    (least of 8 interleaved runs each, 2 cores; medians 660 and 709 ms).
 
     Parameters
     ----------
@@ -146,10 +154,15 @@ def import_without_collections(modules: tuple[str, ...]) -> None:
     """
     running = gc.isenabled()
     gc.disable()
+    flags = sys.getdlopenflags() if hasattr(sys, "getdlopenflags") else None
     try:
+        if flags is not None and hasattr(os, "RTLD_LAZY"):
+            sys.setdlopenflags((flags & ~getattr(os, "RTLD_NOW", 0)) | os.RTLD_LAZY)
         for module in modules:
             importlib.import_module(module)
     finally:
+        if flags is not None:
+            sys.setdlopenflags(flags)
         if running:
             gc.enable()
 
