@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from exports.hermite import refine_samples
+from exports.hermite import refine_curves
 from rotorcad.geometry import rotate
 
 if TYPE_CHECKING:
@@ -156,17 +156,53 @@ def segment_spline(segment, tolerance: float, passes: int = PASSES) -> SplinePie
     SplineToleranceError
         When the spline is still off by more than ``tolerance`` after ``passes`` passes.
     """
-    curve = segment.curve
-    s, p, t = (np.asarray(a, dtype=float) for a in (segment.s, segment.points, segment.tangents))
-    if len(s) < 2 or curve.is_corner() or float(np.hypot(*(p[-1] - p[0]))) + float(np.ptp(p, axis=0).max()) < 1e-12:
-        return None
-    s, p, t, err = refine_samples(curve, s, p, t, 0.9 * tolerance, passes)
-    deviation = float(err.max())
-    if deviation > tolerance:
-        raise SplineToleranceError(segment.name, deviation, tolerance)
-    distinct = np.r_[True, np.hypot(*(p[1:] - p[:-1]).T) > 0]  # a repeated sample has no chord to carry a tangent
-    control, knots = hermite_spline(p[distinct], t[distinct])
-    return SplinePiece(segment.name, control, knots, 3, deviation)
+    return segment_splines([segment], tolerance, passes)[0]
+
+
+def _has_length(segment) -> bool:
+    """Tell whether a segment has a spline: two samples or more, not a sharp corner, some length."""
+    s, p = np.asarray(segment.s, dtype=float), np.asarray(segment.points, dtype=float)
+    if len(s) < 2 or segment.curve.is_corner():
+        return False
+    return float(np.hypot(*(p[-1] - p[0]))) + float(np.ptp(p, axis=0).max()) >= 1e-12
+
+
+def segment_splines(segments, tolerance: float, passes: int = PASSES) -> list[SplinePiece | None]:
+    """Return the spline of every segment (:func:`segment_spline`), their samples refined all at once.
+
+    The refinement (:func:`exports.hermite.refine_curves`) measures the intervals of every segment
+    together; each segment gets the samples and the spline :func:`segment_spline` gives it alone.
+
+    Parameters
+    ----------
+    segments : sequence of rotorcad.profile.Segment
+        The segments.
+    tolerance : float, mm
+        Largest deviation of every spline from its curve.
+    passes : int
+        Most refinement passes.
+
+    Returns
+    -------
+    list of SplinePiece or None
+        In order; None for a segment of no length.
+
+    Raises
+    ------
+    SplineToleranceError
+        For the first segment (in order) still off by more than ``tolerance`` after ``passes`` passes.
+    """
+    out: list[SplinePiece | None] = [None] * len(segments)
+    spans = [i for i, seg in enumerate(segments) if _has_length(seg)]
+    pieces = [(segments[i].curve, segments[i].s, segments[i].points, segments[i].tangents) for i in spans]
+    for i, (_, p, t, err) in zip(spans, refine_curves(pieces, 0.9 * tolerance, passes), strict=True):
+        deviation = float(err.max())
+        if deviation > tolerance:
+            raise SplineToleranceError(segments[i].name, deviation, tolerance)
+        distinct = np.r_[True, np.hypot(*(p[1:] - p[:-1]).T) > 0]  # a repeated sample has no chord to carry a tangent
+        control, knots = hermite_spline(p[distinct], t[distinct])
+        out[i] = SplinePiece(segments[i].name, control, knots, 3, deviation)
+    return out
 
 
 def profile_splines(profile, tolerance: float) -> list[SplinePiece]:
@@ -186,8 +222,7 @@ def profile_splines(profile, tolerance: float) -> list[SplinePiece]:
         In the profile's order; segments of no length (sharp corners) are left out, so that one
         piece ends where the next starts.
     """
-    pieces = (segment_spline(seg, tolerance) for seg in profile.segments)
-    return [piece for piece in pieces if piece is not None]
+    return [piece for piece in segment_splines(profile.segments, tolerance) if piece is not None]
 
 
 def placed_splines(

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exports.hermite import refine_samples
+from exports.hermite import refine_curves
 from exports.ocp_messages import quiet_ocp
 from rotorcad.geometry import rotate
 
@@ -87,13 +87,20 @@ def section_segments(profile, turn: float = 0.0, tolerance: float | None = None)
     """
     from rotorcad.curves import Line
 
-    out = []
+    kinds, centres = [], []
     for seg in profile.segments:
         centre = seg.curve.arc_center()
-        kind = "line" if isinstance(seg.curve, Line) else "arc" if centre is not None and not seg.curve.is_corner() else "curve"
-        points, tangents = seg.points, seg.tangents
-        if kind == "curve" and tolerance is not None and len(points) >= 2:
-            points, tangents = _hermite_samples(seg, HERMITE_SHARE * tolerance)
+        arc = centre is not None and not seg.curve.is_corner()
+        kinds.append("line" if isinstance(seg.curve, Line) else "arc" if arc else "curve")
+        centres.append(centre)
+    samples = [(seg.points, seg.tangents) for seg in profile.segments]
+    if tolerance is not None:  # every curve's samples refined at once (exports.hermite.refine_curves)
+        refined = [i for i, seg in enumerate(profile.segments) if kinds[i] == "curve" and len(seg.points) >= 2]
+        found = _hermite_samples([profile.segments[i] for i in refined], HERMITE_SHARE * tolerance)
+        for i, refined_samples in zip(refined, found, strict=True):
+            samples[i] = refined_samples
+    out = []
+    for seg, kind, centre, (points, tangents) in zip(profile.segments, kinds, centres, samples, strict=True):
         out.append(
             SectionSegment(
                 seg.name,
@@ -111,19 +118,19 @@ HERMITE_SHARE = 0.25
 the sweep's and the check's own (its exact polyline is sampled to a hundredth of the tolerance)."""
 
 
-def _hermite_samples(segment, budget: float, passes: int = 8) -> tuple[np.ndarray, np.ndarray]:
-    """Refine a segment's samples until the Hermite cubic between neighbours is within ``budget`` of its curve.
+def _hermite_samples(segments: list, budget: float, passes: int = 8) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Refine segments' samples until the Hermite cubic between neighbours is within ``budget`` of their curves.
 
     Between samples p0, p1 with unit tangents t0, t1, ``GeomAPI_Interpolate`` (chord-length
     parameters, tangents scaled to them) makes the cubic Hermite interpolant of
     :func:`exports.hermite.hermite_cubic`; the samples are refined by the DXF spline's rule and
-    measure (:func:`exports.hermite.refine_samples`), so that both files hold the same cubic to the
-    same check.
+    measure (:func:`exports.hermite.refine_curves`, all the segments at once), so that both files
+    hold the same cubic to the same check.
 
     Parameters
     ----------
-    segment : rotorcad.profile.Segment
-        Samples ``s``, ``points``, ``tangents`` (unit, along the travel) of its exact ``curve``.
+    segments : list of rotorcad.profile.Segment
+        Each with samples ``s``, ``points``, ``tangents`` (unit, along the travel) of its exact ``curve``.
     budget : float, mm
         Largest error of the cubic between two samples.
     passes : int
@@ -131,13 +138,16 @@ def _hermite_samples(segment, budget: float, passes: int = 8) -> tuple[np.ndarra
 
     Returns
     -------
-    points, tangents : (n, 2) float arrays
-        The refined samples, the old ones among them.
+    list of (points, tangents) : (n, 2) float arrays
+        Every segment's refined samples (the old ones among them), in order; a segment of fewer
+        than two samples as it is.
     """
-    if len(segment.s) < 2:
-        return np.asarray(segment.points, dtype=float), np.asarray(segment.tangents, dtype=float)
-    _, p, t, _ = refine_samples(segment.curve, segment.s, segment.points, segment.tangents, budget, passes, exact=False)
-    return p, t
+    out = [(np.asarray(seg.points, dtype=float), np.asarray(seg.tangents, dtype=float)) for seg in segments]
+    refined = [i for i, seg in enumerate(segments) if len(seg.s) >= 2]
+    pieces = [(segments[i].curve, segments[i].s, segments[i].points, segments[i].tangents) for i in refined]
+    for i, (_, p, t, _) in zip(refined, refine_curves(pieces, budget, passes, exact=False), strict=True):
+        out[i] = (p, t)
+    return out
 
 
 def _edge(segment: SectionSegment, tolerance: float):

@@ -125,3 +125,58 @@ def test_the_bounded_check_splits_the_same_intervals_into_the_same_samples():
     for target in (1e-4, 1e-6):
         got, want = refine_samples(curve, s, p, t, target, 8, exact=False), refine_samples(curve, s, p, t, target, 8)
         assert all(np.array_equal(a, b) for a, b in zip(got[:3], want[:3], strict=True))
+
+
+def _one_curve_refinement(curve, s, p, t, target, passes, below):
+    # the refinement loop of one curve as the module had it before curves were refined together:
+    # measure (interval_deviation), split every interval over the target into ceil((e / target)^(1/4)) + 1
+    # equal parameter parts, evaluate the new samples, drop those without contact, measure again
+    from exports.hermite import interval_deviation
+
+    err = interval_deviation(curve, s, p, t, below)
+    for _ in range(passes):
+        if err.max() <= target:
+            break
+        parts = np.where(err > target, np.ceil((err / target) ** 0.25) + 1, 1).astype(int)
+        s_new, p_new, t_new = [s[:1]], [p[:1]], [t[:1]]
+        for i, n in enumerate(parts):
+            inner = s[i] + (s[i + 1] - s[i]) * (np.arange(1, n) / n)
+            pi, ti = curve.evaluate(inner)
+            s_new += [inner, s[i + 1 : i + 2]]
+            p_new += [pi, p[i + 1 : i + 2]]
+            t_new += [ti, t[i + 1 : i + 2]]
+        s, p, t = np.concatenate(s_new), np.concatenate(p_new), np.concatenate(t_new)
+        keep = np.isfinite(p).all(axis=1) & np.isfinite(t).all(axis=1)
+        s, p, t = s[keep], p[keep], t[keep]
+        err = interval_deviation(curve, s, p, t, below)
+    return s, p, t, err
+
+
+def test_curves_refined_together_get_the_samples_each_gets_alone():
+    # reference: the plain one-curve loop above, curve by curve (interval by interval for the new
+    # samples); refine_curves measures the intervals of all the curves at once and must give every
+    # curve the same samples and deviations bit for bit. The sample's male outline (involutes,
+    # generated conjugates, arcs) and an involute from its cusp sampled sparsely (several passes).
+    import tomllib
+    from pathlib import Path
+
+    from exports.hermite import refine_curves
+    from rotorcad.curves import Involute
+    from rotorcad.design import rotor_design
+    from rotorcad.rotor_build import build_pair, pair_spec
+
+    sample = Path(__file__).resolve().parents[1] / "samples" / "rack_involute_5_6.toml"
+    with sample.open("rb") as f:
+        rotors = build_pair(pair_spec(rotor_design(tomllib.load(f), sample.parent)))
+    pieces = [(seg.curve, seg.s, seg.points, seg.tangents) for seg in rotors.male_outline(0.05).segments if len(seg.s) >= 2]
+    cusp = Involute(base_radius=20.0, theta0=0.3, hand=1.0, s0=0.0, s1=0.9)
+    s = np.concatenate([np.linspace(0.0, 0.05, 4), np.linspace(0.08, 0.9, 9)])
+    pieces.append((cusp, s, *cusp.evaluate(s)))
+    for target, exact in ((1e-4, True), (2.5e-4, False), (1e-6, True)):
+        got = refine_curves(pieces, target, 8, exact)
+        passes = 0
+        for piece, mine in zip(pieces, got, strict=True):
+            want = _one_curve_refinement(*piece, target, 8, None if exact else target)
+            assert all(np.array_equal(a, b) for a, b in zip(mine, want, strict=True))
+            passes = max(passes, len(mine[0]) > len(piece[1]))
+        assert passes  # some curve was refined
