@@ -244,8 +244,103 @@ def helical_solid(segments: list[SectionSegment], lead: float, length: float, to
     pipe.Build()
     if not pipe.IsDone():
         raise ValueError("OpenCASCADE could not sweep the section along its helix")
-    pipe.MakeSolid()
-    return pipe.Shape()
+    solid = _capped_solid(pipe)
+    if solid is None:  # not two plane ends to close it with: OpenCASCADE's own closing
+        pipe.MakeSolid()
+        return pipe.Shape()
+    return solid
+
+
+def _capped_solid(pipe):
+    """Close a swept shell with its two plane end faces into a solid, outward; None when it cannot.
+
+    What ``BRepOffsetAPI_MakePipeShell.MakeSolid`` does (OpenCASCADE's ``BRepFill_PipeShell::MakeSolid``:
+    a plane face on the first and on the last section's wire, each oriented against the side face
+    that shares its first edge, all in one closed shell), without its last step: the classification
+    of a point at infinity against the solid (``BRepClass3d_SolidClassifier``), which intersects a
+    ray with every B-spline face and took 30-40 ms of the 35-50 ms per rotor (README sample,
+    measured). The solid lies between the planes of its ends, so whether it is inside out is read
+    off the end at the smaller z: its face, as it lies in the solid, must face -z (a plane face
+    made on +z is FORWARD when its normal is +z, REVERSED when -z); else the shell is reversed.
+    Measured on the README sample (both hands): the same volume as ``MakeSolid``'s, valid (BRepCheck),
+    3-7 ms.
+
+    Parameters
+    ----------
+    pipe : OCP.BRepOffsetAPI.BRepOffsetAPI_MakePipeShell
+        Built, not yet made a solid.
+
+    Returns
+    -------
+    OCP.TopoDS.TopoDS_Solid or None
+        None when the shell is closed already, an end is missing or not a wire, or a face cannot
+        be made (the caller then uses ``MakeSolid``).
+    """
+    from OCP.BRep import BRep_Builder, BRep_Tool
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
+    from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_SHELL, TopAbs_VERTEX, TopAbs_WIRE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS, TopoDS_Solid
+
+    shell = pipe.Shape()
+    ends = (pipe.FirstShape(), pipe.LastShape())
+    if shell.IsNull() or shell.ShapeType() != TopAbs_SHELL or shell.Closed():
+        return None
+    if any(end.IsNull() or end.ShapeType() != TopAbs_WIRE for end in ends):
+        return None
+    builder = BRep_Builder()
+    caps = []
+    for end in ends:
+        wire = TopoDS.Wire(end)
+        vertex = TopExp_Explorer(wire, TopAbs_VERTEX)
+        if not vertex.More():
+            return None
+        z = BRep_Tool.Pnt_s(TopoDS.Vertex(vertex.Current())).Z()
+        made = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0.0, 0.0, z), gp_Dir(0.0, 0.0, 1.0)), wire, True)
+        if not made.IsDone():
+            return None
+        face = made.Face()
+        opposed = _opposed_on_shared_edge(face, shell)
+        if opposed is None:
+            return None
+        if not opposed:  # as OpenCASCADE's IsSameOriented: a shared edge runs both ways in a closed shell
+            face.Reverse()
+        caps.append((z, face))
+    for _, face in caps:
+        builder.Add(shell, face)
+    shell.Closed(True)
+    solid = TopoDS_Solid()
+    builder.MakeSolid(solid)
+    builder.Add(solid, shell)
+    bottom = min(caps, key=lambda cap: cap[0])[1]
+    explorer = TopExp_Explorer(solid, TopAbs_FACE)
+    while explorer.More() and not explorer.Current().IsSame(bottom):
+        explorer.Next()
+    if not explorer.More():
+        return None
+    if explorer.Current().Orientation() == TopAbs_FORWARD:  # the bottom faces +z: inside out
+        solid = TopoDS_Solid()
+        builder.MakeSolid(solid)
+        builder.Add(solid, shell.Reversed())
+    return solid
+
+
+def _opposed_on_shared_edge(face, shell) -> bool | None:
+    """Tell whether the face's first edge runs the other way in the shell (None: the shell lacks it)."""
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+
+    first = TopExp_Explorer(face, TopAbs_EDGE)
+    if not first.More():
+        return None
+    edge = first.Current()
+    explorer = TopExp_Explorer(shell, TopAbs_EDGE)
+    while explorer.More():
+        if explorer.Current().IsSame(edge):
+            return explorer.Current().Orientation() != edge.Orientation()
+        explorer.Next()
+    return None
 
 
 def faces(shape) -> list:

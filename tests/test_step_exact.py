@@ -167,3 +167,43 @@ def test_the_farthest_point_is_the_r_tree_s_farthest_bit_for_bit(shape):
         assert far not in np.argsort(bound)[-FIRST_MEASURED:]  # found by the second pass
     assert farthest_distance(points, ring) == float(full.max())
     assert float(full.max()) == pytest.approx(float(_brute_force_distance(points, ring).max()), abs=1e-12)
+
+
+@pytest.mark.parametrize("clockwise", [False, True])
+@pytest.mark.parametrize("hand", [1.0, -1.0])
+def test_the_capped_solid_is_opencascade_s_own_make_solid(clockwise, hand):
+    # reference: OpenCASCADE's BRepOffsetAPI_MakePipeShell.MakeSolid (end faces, then a point at
+    # infinity classified against the solid to turn it outward) on the same sweep; helical_solid
+    # closes the shell itself and reads the outward side off the end at z = 0. A clockwise section
+    # sweeps an inside-out shell, which must be turned: the same positive volume (Gauss-Kronrod),
+    # valid (BRepCheck), one face a segment and two ends.
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    import exports.step_exact as step_exact
+
+    d = load_rotor_design(SAMPLES / "rack_involute_5_6.toml")
+    pair = RotorPair(**d["pair"])
+    rotors = build_family(pair, d["family"], d["params"])
+    outline = rotors.male_outline(1e-2)
+    segments = [SectionSegment(s.name, s.points, s.tangents) for s in outline.segments]
+    if clockwise:
+        segments = [SectionSegment(s.name, s.points[::-1], -s.tangents[::-1]) for s in segments[::-1]]
+
+    def volume(shape) -> float:
+        props = GProp_GProps()
+        BRepGProp.VolumePropertiesGK_s(shape, props, 1e-9, False, True)
+        return float(props.Mass())
+
+    ours = step_exact.helical_solid(segments, hand * pair.lead, pair.length, 1e-3)
+    made = step_exact._capped_solid  # the reference: the same sweep closed by OpenCASCADE
+    try:
+        step_exact._capped_solid = lambda pipe: None
+        theirs = step_exact.helical_solid(segments, hand * pair.lead, pair.length, 1e-3)
+    finally:
+        step_exact._capped_solid = made
+    area = shapely.Polygon(rotors.male_outline(1e-5).points).area
+    assert volume(theirs) == pytest.approx(area * pair.length, rel=1e-4)  # the reference is outward
+    assert volume(ours) == pytest.approx(volume(theirs), rel=1e-9)
+    assert BRepCheck_Analyzer(ours).IsValid() and len(faces(ours)) == len(segments) + 2
