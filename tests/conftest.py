@@ -100,3 +100,29 @@ def built_once(tmp_path_factory: pytest.TempPathFactory) -> Callable[[str, Calla
         return lambda name, build: build()
     root = tmp_path_factory.getbasetemp().parent  # the run's folder, above each worker's own
     return lambda name, build: _built_once(root, name, build)
+
+
+@pytest.fixture(scope="session")
+def rack_report(tmp_path_factory: pytest.TempPathFactory, built_once) -> tuple[dict, Path]:
+    """``rotorcad report samples/rack_involute_5_6.toml --out report.html --files files --json``, run
+    once in this run (some 2.5 s of CPU) for the tests that read its page: tests/test_report.py (the
+    page in Chromium, the files) and tests/test_units_declared.py (the units on the page). Returns
+    the command's JSON and the page's path."""
+
+    def build() -> tuple[dict, Path]:
+        import contextlib
+        import io
+        import json
+
+        from rotorcad.cli.main import main
+
+        folder = tmp_path_factory.mktemp("rack-report")
+        page = folder / "report.html"
+        design = Path(__file__).resolve().parents[1] / "samples" / "rack_involute_5_6.toml"
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            code = main(["report", str(design), "--out", str(page), "--files", str(folder / "files"), "--json"])
+        assert code == 0, out.getvalue()
+        return json.loads(out.getvalue()), page
+
+    return built_once("conftest.rack_report", build)

@@ -6,6 +6,8 @@ Timoshenko beam, the paper's printed eq. (9), shapely's gas space of independent
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import os
 import stat
@@ -375,7 +377,21 @@ def test_deflect_needs_pressures(tmp_path, capsys):
     assert "discharge_pressure_bar" in capsys.readouterr().err
 
 
-def test_indicator_diagram_gives_the_built_in_result_when_it_is_the_same_curve(tmp_path, capsys):
+@pytest.fixture(scope="module")
+def built_in_deflect(tmp_path_factory) -> tuple[dict, Path]:
+    """``deflect`` of the rack-involute sample at 17 deg with 5 terms, ``--json`` and an SVG
+    ``--plot``: its JSON and the picture. One run (some 2.5 s of CPU, the chamber table) read by two
+    tests: the indicator diagram's (the built-in port model's result) and the picture's."""
+    svg = tmp_path_factory.mktemp("deflect") / "d.svg"
+    design = ROOT / "samples" / "rack_involute_5_6.toml"
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        code = main(["deflect", str(design), "--json", "--angle", "17", "--terms", "5", "--plot", str(svg)])
+    assert code == 0
+    return json.loads(out.getvalue()), svg
+
+
+def test_indicator_diagram_gives_the_built_in_result_when_it_is_the_same_curve(tmp_path, capsys, built_in_deflect):
     # The built-in port model's pressure written as an indicator diagram (chamber angle in deg,
     # absolute bar) must give the same deflection: the CSV path reads angles and units as documented.
     from rotorcad.cli.export_cmd import _rotor_options
@@ -388,11 +404,9 @@ def test_indicator_diagram_gives_the_built_in_result_when_it_is_the_same_curve(t
     csv = tmp_path / "indicator.csv"
     rows = "\n".join(f"{np.degrees(t):.6f},{p * 10:.9f}" for t, p in zip(cycle.angle, cycle.pressure, strict=True))
     csv.write_text("angle_deg,pressure_bar\n" + rows + "\n")
-    results = []
-    for extra in ([], ["--indicator", str(csv)]):
-        assert main(["deflect", str(design), "--json", "--angle", "17", "--terms", "5", *extra]) == 0
-        results.append(json.loads(capsys.readouterr().out))
-    built_in, given = results
+    built_in, _ = built_in_deflect  # the same command line without --indicator (and with --plot)
+    assert main(["deflect", str(design), "--json", "--angle", "17", "--terms", "5", "--indicator", str(csv)]) == 0
+    given = json.loads(capsys.readouterr().out)
     assert given["male_max_deflection"] == pytest.approx(built_in["male_max_deflection"], rel=2e-3)
     assert given["female_max_deflection"] == pytest.approx(built_in["female_max_deflection"], rel=2e-3)
     assert "volume_ratio" not in given  # no port model with an indicator diagram
@@ -439,12 +453,11 @@ def test_indicator_must_cover_the_cycle(tmp_path, capsys):
     assert "--indicator must cover the chamber's cycle from 0 to" in err and "200.0" in err
 
 
-def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys):
+def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys, built_in_deflect):
     import xml.etree.ElementTree as ET
 
     design = str(ROOT / "samples" / "rack_involute_5_6.toml")
-    svg = tmp_path / "d.svg"
-    assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(svg)]) == 0
+    _, svg = built_in_deflect  # `deflect SAMPLE --json --angle 17 --terms 5 --plot d.svg`
     assert ET.parse(svg).getroot().tag.endswith("svg")
     from test_pictures import check_picture  # units on every axis, the case in the title (issue 16)
 

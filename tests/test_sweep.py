@@ -4,6 +4,7 @@ after the sweep is killed."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
@@ -11,6 +12,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -87,8 +89,8 @@ def test_bad_plans_are_refused_with_the_key(data, words):
 
 # --- running ----------------------------------------------------------------------------------
 
-LHS_200 = """method = "latin-hypercube"
-samples = 200
+LHS_80 = """method = "latin-hypercube"
+samples = 80
 seed = 3
 
 [vary]
@@ -99,19 +101,21 @@ seed = 3
 
 
 def test_sweep_rows_equal_rotor_json_of_each_variants_design(tmp_path, capsys):
-    # 200 variants; 10 of them written as design files (tomli-w) and run through `rotorcad rotor
-    # --json`: the same numbers, row by row
-    sweep_file = _write(tmp_path, LHS_200)
+    # 80 variants on two Dask workers (16 batches of 5, finished out of order and joined in variant
+    # order); 10 of them written as design files (tomli-w) and run through `rotorcad rotor --json`:
+    # the same numbers, row by row. 80, not more: each variant is ~22 ms of CPU, and the check is
+    # row against command, not the count (all 80 of this range build; 200 did too)
+    sweep_file = _write(tmp_path, LHS_80)
     out = tmp_path / "r.parquet"
     assert main(["sweep", str(sweep_file), "--out", str(out), "--workers", "2", "--json", "--csv", str(tmp_path / "r.csv")]) == 0
     summary = json.loads(capsys.readouterr().out)
     table = pd.read_parquet(out)
-    assert summary["variants"] == len(table) == 200 and table["key"].is_unique
-    assert list(table["variant"]) == list(range(200))
-    assert len(pd.read_csv(tmp_path / "r.csv")) == 200
+    assert summary["variants"] == len(table) == 80 and table["key"].is_unique
+    assert list(table["variant"]) == list(range(80))
+    assert len(pd.read_csv(tmp_path / "r.csv")) == 80
     plan, _, _ = load_sweep(sweep_file)
     variants = plan.variants()
-    for index in np.linspace(0, 199, 10).astype(int):
+    for index in np.linspace(0, 79, 10).astype(int):
         row = table.iloc[index]
         design = tmp_path / f"variant_{index}.toml"
         design.write_text(tomli_w.dumps(apply(plan.base, variants[index].values)))
@@ -126,7 +130,7 @@ def test_sweep_rows_equal_rotor_json_of_each_variants_design(tmp_path, capsys):
             rel = FLUTE_AREA_RTOL if "flute" in key or "displacement" in key else 1e-12
             assert row[column] == pytest.approx(reference[key], rel=rel, abs=1e-12)
         assert row["max_sliding_velocity_m_s"] == pytest.approx(reference["max_sliding_velocity"], rel=1e-12)
-    assert table["ok"].sum() > 150  # most of this range builds
+    assert table["ok"].sum() > 60  # most of this range builds
 
 
 def test_failing_variants_are_rows_with_their_reason(tmp_path, capsys):
@@ -160,8 +164,27 @@ def test_a_running_dask_cluster_gives_the_same_table(tmp_path, capsys):
     pd.testing.assert_frame_equal(a, b)
 
 
-def test_killed_sweep_resumes_without_repeating_or_losing_a_variant(tmp_path):
-    sweep_file = _write(tmp_path, LHS_200.replace("samples = 200", "samples = 400"))
+@contextlib.contextmanager
+def _another_dashboard() -> Iterator[None]:
+    """Port 8787 (Dask's dashboard) held by a listener of this process, unless something holds it already."""
+    import socket
+
+    holder = socket.socket()
+    try:
+        holder.bind(("", 8787))
+        holder.listen()
+    except OSError:
+        pass  # something holds it already: the case to test
+    try:
+        yield
+    finally:
+        holder.close()
+
+
+def test_killed_sweep_resumes_without_repeating_or_losing_a_variant_with_no_dashboard_warning(tmp_path):
+    # 200 variants on two workers: 16 batches of 12 and one of 8, ~22 ms of CPU a variant; killed
+    # once 3 parts are written, with some 160 variants (~3.5 s of CPU) still to go
+    sweep_file = _write(tmp_path, LHS_80.replace("samples = 80", "samples = 200"))
     out = tmp_path / "r.parquet"
     command = [sys.executable, "-m", "rotorcad.cli.main", "sweep", str(sweep_file), "--out", str(out), "--workers", "2", "--json"]
     first = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
@@ -177,14 +200,16 @@ def test_killed_sweep_resumes_without_repeating_or_losing_a_variant(tmp_path):
     assert "leaked" not in killed_err.decode() and "Traceback" not in killed_err.decode()  # issue 24
     parts = sorted(parts_folder(out).glob("part-*.parquet"))
     done = pd.concat([pd.read_parquet(p) for p in parts])
-    assert 0 < len(done) < 400 and not out.exists()
-    second = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert 0 < len(done) < 200 and not out.exists()
+    with _another_dashboard():
+        second = subprocess.run(command, capture_output=True, text=True, timeout=300)
     assert second.returncode == 0, second.stderr
-    assert second.stderr == ""  # no log lines of Dask's on a successful run
+    # no log lines of Dask's on a successful run, not a word of another dashboard on port 8787 (issue 24)
+    assert second.stderr == ""
     summary = json.loads(second.stdout)
-    assert summary["resumed"] == len(done) and summary["computed"] == 400 - len(done)
+    assert summary["resumed"] == len(done) and summary["computed"] == 200 - len(done)
     table = pd.read_parquet(out)
-    assert len(table) == 400 and table["key"].is_unique and sorted(table["variant"]) == list(range(400))
+    assert len(table) == 200 and table["key"].is_unique and sorted(table["variant"]) == list(range(200))
     assert not parts_folder(out).exists()
     kept = table.set_index("key").loc[done["key"], "blow_hole_area_mm2"].to_numpy()
     assert np.allclose(kept, done["blow_hole_area_mm2"].to_numpy(), equal_nan=True)  # the first run's rows kept
@@ -452,9 +477,12 @@ def test_the_plan_is_streamed_its_memory_flat_and_a_table_too_large_is_refused()
         assert n == count
         return top
 
-    small, large, held = peak(5_000), peak(40_000), peak(40_000, whole=True)
-    assert large < 2 * small  # eight times the variants, about the same memory (blocks of 4096)
-    assert large < held / 10  # the list of the same 40 000 variants, for scale
+    peak(1_000)  # the first plan's one-off allocations (lazy imports) are not the stream's memory
+    # 20 000 variants (five blocks of 4096) against 5 000 (two): a list-like plan would take 4x; the
+    # streamed one took 1.6x at 20 000 and the same at 40 000 (measured)
+    small, large, held = peak(5_000), peak(20_000), peak(20_000, whole=True)
+    assert large < 2 * small  # four times the variants, about the same memory (blocks of 4096)
+    assert large < held / 10  # the list of the same 20 000 variants, for scale (17x measured)
     # Latin hypercube of the streamed plan: one sample in each of n strata (McKay et al. 1979)
     data = {"sweep": {"method": "latin-hypercube", "samples": 9_000, "seed": 5}, "vary": {"pair.lead": {"min": 0.0, "max": 1.0}}}
     lead = np.array([v.values["pair.lead"] for v in sweep_plan(data, base).iter_variants()])
@@ -518,25 +546,12 @@ def test_steering_refusals_name_the_key(tmp_path):
             load_steering(sweep_file, plan)
 
 
-def test_bad_scheduler_is_refused_at_once_and_no_dashboard_warning(tmp_path, capsys):
-    import socket
-
+def test_bad_scheduler_is_refused_at_once(tmp_path, capsys):
+    # (a successful run's stderr with another dashboard on port 8787, issue 24, is checked on the
+    # resumed run of test_killed_sweep_resumes_..._with_no_dashboard_warning: one process fewer)
     sweep_file = _write(tmp_path, '[vary]\n"profile.lobe_width" = [0.66, 0.7]\n')
     out = tmp_path / "r.parquet"
     start = time.monotonic()
     assert main(["sweep", str(sweep_file), "--out", str(out), "--scheduler", "tcp://127.0.0.1:1"]) == 2
     assert "--scheduler must be" in capsys.readouterr().err
     assert time.monotonic() - start < 8 and not parts_folder(out).exists() and not out.exists()
-    # another dashboard on port 8787: not a word of it on stderr (issue 24)
-    holder = socket.socket()
-    try:
-        holder.bind(("", 8787))
-        holder.listen()
-    except OSError:
-        pass  # something holds it already: the case to test
-    try:
-        command = [sys.executable, "-m", "rotorcad.cli.main", "sweep", str(sweep_file), "--out", str(out), "--workers", "1"]
-        run = subprocess.run([*command, "--json", "--quiet"], capture_output=True, text=True, timeout=300)
-    finally:
-        holder.close()
-    assert run.returncode == 0 and run.stderr == ""

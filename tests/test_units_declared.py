@@ -309,12 +309,11 @@ def test_every_declaration_names_a_module_that_exists():
     assert all(q.unit and q.label for q in quantities.QUANTITIES.values())
 
 
-def test_the_report_page_shows_the_declared_units(tmp_path):
+def test_the_report_page_shows_the_declared_units(rack_report):
     # the page's result tables (sections numbers and hob; the design's own keys have their table)
-    # show each number with its declared unit, ° for degrees and – for a pure number
-    page = tmp_path / "report.html"
-    code, _ = run(["report", RACK, "--out", page, "--quiet"])
-    assert code == 0
+    # show each number with its declared unit, ° for degrees and – for a pure number; the page of
+    # `report RACK --out report.html --files files --json`, run once in the run (tests/conftest.py)
+    _, page = rack_report
     html = page.read_text()
     checked = 0
     for section in ("numbers", "hob"):
