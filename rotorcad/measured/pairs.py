@@ -22,6 +22,7 @@ from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.measured.tangent import tip_tangent_accuracy
 from rotorcad.roles import Flank, PieceRole, Side
+from rotorcad.roots import bisect_levels
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -252,16 +253,15 @@ def _mate_corner_runs(
 
     wander = tolerance + mate_wander(rack_curve, mate, s, accuracy, turn)  # how far the mate's point may stray
 
+    def within(corner: np.ndarray, x: np.ndarray) -> np.ndarray:
+        q = mate.evaluate(x)[0]
+        bound = tolerance + mate_wander(rack_curve, mate, x, accuracy, turn)
+        with np.errstate(invalid="ignore"):
+            return np.isfinite(q).all(axis=1) & (np.hypot(*(q - corner).T) <= bound)
+
     def leave(corner: np.ndarray, inside: float, outside: float) -> float:
         start = inside  # the last sample inside: the hand-over lies no further back
-        for _ in range(30):
-            mid = 0.5 * (inside + outside)
-            q = mate.evaluate(np.array([mid]))[0][0]
-            bound = tolerance + mate_wander(rack_curve, mate, np.array([mid]), accuracy, turn)[0]
-            if np.all(np.isfinite(q)) and np.hypot(*(q - corner)) <= bound:
-                inside = mid
-            else:
-                outside = mid
+        inside, outside = bisect_levels(lambda x: within(corner, x), inside, outside, 30, levels=6)
         return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
     out, last = [], rack_curve.s0
