@@ -90,11 +90,21 @@ class Curve:
     @property
     def start(self) -> Array:
         """Point where the travel starts (at ``s0``), (2,) float array, mm."""
-        return self.point(self.s0)
+        return self._start.copy()
 
     @property
     def end(self) -> Array:
         """Point where the travel ends (at ``s1``), (2,) float array, mm."""
+        return self._end.copy()
+
+    @cached_property
+    def _start(self) -> Array:
+        """:attr:`start`, evaluated once (a curve does not change; readers ask for its ends many times)."""
+        return self.point(self.s0)
+
+    @cached_property
+    def _end(self) -> Array:
+        """:attr:`end`, evaluated once."""
         return self.point(self.s1)
 
     def trimmed(self, s0: float, s1: float) -> Curve:

@@ -6,6 +6,8 @@ positive. Nothing here loops over points.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 Array = np.ndarray
@@ -396,19 +398,116 @@ def distance_to_polyline(points: Array, polyline: Array, max_distance: float | N
     (n,) float array, mm
         Unsigned distance of each point to the polyline (``inf`` beyond ``max_distance``).
     """
-    import shapely
-
     pts = as_points(points)
     line = as_points(polyline)
     keep = np.concatenate([[True], np.hypot(*np.diff(line, axis=0).T) > 1e-12])
     line = line[keep]
     if len(line) < 2:
         return np.hypot(*(pts - line[0]).T)
-    segments = shapely.linestrings(np.stack([line[:-1], line[1:]], axis=1))
-    tree = shapely.STRtree(segments)
+    return _nearest_segment_distance(pts, np.stack([line[:-1], line[1:]], axis=1), max_distance)
+
+
+def distance_to_polylines(points: Array, polylines: list[Array], near: float = 0.01) -> Array:
+    """Return the exact distance of each point to the nearest of several open polylines.
+
+    ``min(distance_to_polyline(points, p) for p in polylines)``, the same numbers, from one R-tree of
+    all their segments, searched first within ``near`` of each point (a bounded search of the
+    R-tree is many times faster) and then, for the points with no segment that near, without bound.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The points to measure.
+    polylines : list of (m_k, 2) float arrays, mm
+        Vertices of each open polyline, in order; each has at least two distinct vertices.
+
+    Returns
+    -------
+    (n,) float array, mm
+        Unsigned distance of each point to the nearest polyline.
+    """
+    segments = []
+    for polyline in polylines:
+        line = as_points(polyline)
+        line = line[np.concatenate([[True], np.hypot(*np.diff(line, axis=0).T) > 1e-12])]
+        segments.append(np.stack([line[:-1], line[1:]], axis=1))
+    pts = as_points(points)
+    import shapely
+
+    tree = shapely.STRtree(shapely.linestrings(np.concatenate(segments)))
+    out = _nearest_in_tree(tree, pts, near)
+    far = ~np.isfinite(out)
+    if far.any():
+        out[far] = _nearest_in_tree(tree, pts[far], None)
+    return out
+
+
+def _nearest_segment_distance(pts: Array, segments: Array, max_distance: float | None) -> Array:
+    """Distance of each point (n, 2) to the nearest of ``segments`` (m, 2, 2), by shapely's STRtree; mm."""
+    import shapely
+
+    return _nearest_in_tree(shapely.STRtree(shapely.linestrings(segments)), pts, max_distance)
+
+
+def _nearest_in_tree(tree: Any, pts: Array, max_distance: float | None) -> Array:
+    """Distance of each point (n, 2) to the nearest geometry of a shapely STRtree (inf beyond ``max_distance``); mm."""
+    import shapely
+
     (which, _seg), dist = tree.query_nearest(
         shapely.points(pts), max_distance=max_distance, return_distance=True, all_matches=False
     )
     out = np.full(len(pts), np.inf)
     np.minimum.at(out, which, dist)
     return out
+
+
+def closest_pair(p: Array, q: Array, block: int = 16) -> tuple[int, int, float]:
+    """Return the indices and distance of the closest pair of points of ``p`` and ``q``.
+
+    The same pair as ``np.argmin`` over the whole distance matrix
+    ``hypot(p[:, None] - q[None])`` (the first of equal distances in row-major order) and the same
+    distance, without forming that matrix: the points are taken in blocks of ``block`` consecutive
+    ones, the blocks' first points measured against each other, and only the block pairs whose
+    distance less both blocks' radii (about those first points; the triangle inequality) can undercut
+    the closest first points are measured in full. For two sampled curves crossing or passing each
+    other that is a few block pairs out of thousands.
+
+    Parameters
+    ----------
+    p : (n, 2) float array, mm
+    q : (m, 2) float array, mm
+        The points (of non-finite ones, the whole matrix is formed).
+    block : int
+        Points per block.
+
+    Returns
+    -------
+    i, j : int
+        The pair ``p[i]``, ``q[j]``.
+    gap : float, mm
+        Their distance.
+    """
+    p, q = as_points(p), as_points(q)
+    n, m = len(p), len(q)
+    if n * m <= 16 * block * block or not (np.isfinite(p).all() and np.isfinite(q).all()):
+        gap = np.hypot(*(p[:, None, :] - q[None, :, :]).transpose(2, 0, 1))
+        i, j = np.unravel_index(int(np.argmin(gap)), gap.shape)
+        return int(i), int(j), float(gap[i, j])
+    first_p, first_q = np.arange(0, n, block), np.arange(0, m, block)
+    radius_p = np.maximum.reduceat(np.hypot(*(p - p[first_p].repeat(block, axis=0)[:n]).T), first_p)
+    radius_q = np.maximum.reduceat(np.hypot(*(q - q[first_q].repeat(block, axis=0)[:m]).T), first_q)
+    coarse = np.hypot(*(p[first_p][:, None, :] - q[first_q][None, :, :]).transpose(2, 0, 1))
+    best = float(coarse.min())
+    slack = 1e-9 * (best + float(radius_p.max()) + float(radius_q.max()))  # rounding of the bound: a few more blocks
+    bp, bq = np.nonzero(coarse - radius_p[:, None] - radius_q[None, :] <= best + slack)
+    offsets = np.arange(block)
+    rows = first_p[bp][:, None] + offsets  # (k, block) each candidate block pair's indices
+    cols = first_q[bq][:, None] + offsets
+    valid = (rows < n)[:, :, None] & (cols < m)[:, None, :]
+    rows, cols = np.minimum(rows, n - 1), np.minimum(cols, m - 1)
+    gap = np.hypot(*(p[rows][:, :, None, :] - q[cols][:, None, :, :]).transpose(3, 0, 1, 2))
+    gap = np.where(valid, gap, np.inf)
+    flat = rows[:, :, None] * m + cols[:, None, :]  # the index in the whole matrix: the first of equal gaps wins
+    least = gap.min()
+    k = int(flat[gap == least].min())
+    return k // m, k % m, float(least)

@@ -16,7 +16,8 @@ Used by the hob (:mod:`hob.rack`: hobbability, hob tooth) and by the meshing cle
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import weakref
+from dataclasses import dataclass, fields, replace
 from typing import Any
 
 import numpy as np
@@ -597,9 +598,47 @@ def rotor_rack(
     DerivedRack
         Rack points (n, 2), mm, with y > 0 away from this rotor's centre (see
         :meth:`DerivedRack.in_contract_frame`), its ``side`` set and the helix angle at the
-        pitch cylinder, tan(beta) = 2 pi r_w / h.
+        pitch cylinder, tan(beta) = 2 pi r_w / h. Of the pair's own lobe (no ``pieces``) one rack
+        per pair and options, derived once and shared: its arrays are read-only.
     """
-    side = Side(side)
+    options = (tolerance, samples, contact_step, min_turn, clip_at_tip, join_gap, cut_loops)
+    if pieces is not None:
+        return _rotor_rack(rotors, Side(side), pieces, *options)
+    # the lobe of a pair, as its rotors (immutable) give it: derived once per pair and options
+    racks = _LOBE_RACKS.setdefault(rotors, {})
+    key = (Side(side), *options)
+    if key not in racks:
+        racks[key] = _read_only(_rotor_rack(rotors, Side(side), None, *options))
+    return racks[key]
+
+
+_LOBE_RACKS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+"""The racks of a pair's own lobes (:func:`rotor_rack` without ``pieces``) per pair and options,
+while the pair lives: `rotorcad hob` and :func:`hob.rack.rack_deviation` each derive both."""
+
+
+def _read_only(rack: DerivedRack) -> DerivedRack:
+    """Return ``rack`` with its arrays made read-only (it is shared by every caller asking for it)."""
+    for f in fields(rack):
+        value = getattr(rack, f.name)
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+    return rack
+
+
+def _rotor_rack(
+    rotors: Any,
+    side: Side,
+    pieces: list[tuple[str, Curve]] | None,
+    tolerance: float,
+    samples: int,
+    contact_step: float,
+    min_turn: float,
+    clip_at_tip: bool | None,
+    join_gap: float,
+    cut_loops: bool,
+) -> DerivedRack:
+    """:func:`rotor_rack`, derived."""
     pair = getattr(rotors, "pair", rotors)
     if pieces is None:
         lobe = side.pick(rotors.male_pieces, rotors.female_pieces)

@@ -182,17 +182,12 @@ def _loops(
     parameter) where it starts and where it ends, and the parts wholly inside it; nested loops
     are reported by their outermost crossing only.
     """
-    import shapely
-
     pts = np.vstack([p for _, _, p, _ in chain])
     beyond = np.hypot(*(pts - centre).T) > tip + TIP_SLACK
     owner = np.concatenate([np.full(len(p), j) for j, (_, _, p, _) in enumerate(chain)])
     local = np.concatenate([np.arange(len(p)) for _, _, p, _ in chain])
     seg_ok = owner[:-1] == owner[1:]  # segments within a part, not the jumps between parts
-    idx = np.flatnonzero(seg_ok)
-    segs = shapely.linestrings(np.stack([pts[idx], pts[idx + 1]], axis=1))
-    a, b = shapely.STRtree(segs).query(segs, predicate="intersects")
-    a, b = idx[a], idx[b]
+    a, b = _touching_segments(pts, np.flatnonzero(seg_ok))
     last = np.array([len(c[2]) - 1 for c in chain])[owner[a]] == local[a + 1]
     joint = (owner[b] == owner[a] + 1) & (local[b] == 0) & last  # consecutive parts meeting at their ends
     keep = (b > a + 1) & ~joint
@@ -217,6 +212,55 @@ def _loops(
         reach = int(b[i])
         loops.append(((chain[ja][3], cross_at[0]), (chain[jb][3], cross_at[1]), {chain[j][3] for j in range(ja + 1, jb)}))
     return loops
+
+
+BLOCK = 4
+"""Consecutive segments boxed together by :func:`_touching_segments`."""
+
+
+def _touching_segments(pts: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return the pairs of a polyline's segments that intersect (touch or cross), not neighbours, the first first.
+
+    Segment ``i`` runs from ``pts[i]`` to ``pts[i + 1]`` for ``i`` in ``idx`` (increasing). Of every
+    pair (a, b), a < b, that shapely's ``intersects`` holds for, the same pairs as an STRtree
+    query of all the segments against themselves, without making a geometry per segment: the
+    segments are boxed in runs of :data:`BLOCK`, only runs whose boxes meet (an STRtree of the
+    boxes) are paired segment by segment, of those only segments whose own boxes meet, and only
+    those pairs go to shapely's ``intersects`` (a smooth curve's segments a few apart have boxes
+    that meet only where it turns back in x or y).
+
+    Returns
+    -------
+    a, b : (k,) int arrays
+        The segments' first points, ``a + 1 < b`` (a segment and the next one always meet),
+        ordered by ``a`` then ``b``.
+    """
+    import shapely
+
+    m = len(idx)
+    start, end = pts[idx], pts[idx + 1]
+    lo, hi = np.minimum(start, end), np.maximum(start, end)
+    first = np.arange(0, m, BLOCK)
+    box_lo, box_hi = np.minimum.reduceat(lo, first, axis=0), np.maximum.reduceat(hi, first, axis=0)
+    boxes = shapely.box(box_lo[:, 0], box_lo[:, 1], box_hi[:, 0], box_hi[:, 1])
+    ba, bb = shapely.STRtree(boxes).query(boxes)  # envelopes that meet (a box of one point or line too)
+    ba, bb = ba[ba <= bb], bb[ba <= bb]
+    offsets = np.arange(BLOCK)
+    sa = (first[ba][:, None] + offsets)[:, :, None]  # (k, BLOCK, 1): the segments of each pair of runs
+    sb = (first[bb][:, None] + offsets)[:, None, :]  # (k, 1, BLOCK)
+    sa, sb = np.broadcast_arrays(sa, sb)
+    ok = (sa < sb) & (sb < m)
+    sa, sb = sa[ok], sb[ok]
+    apart = idx[sb] > idx[sa] + 1  # a segment meets the next at their shared point: not a loop (the caller's rule)
+    sa, sb = sa[apart], sb[apart]
+    meet = (lo[sa, 0] <= hi[sb, 0]) & (lo[sb, 0] <= hi[sa, 0]) & (lo[sa, 1] <= hi[sb, 1]) & (lo[sb, 1] <= hi[sa, 1])
+    sa, sb = sa[meet], sb[meet]
+    order = np.lexsort((sb, sa))
+    sa, sb = sa[order], sb[order]
+    lines = shapely.linestrings(np.stack([start, end], axis=1)[np.concatenate([sa, sb])])
+    shapely.prepare(lines[: len(sa)])  # the first prepared, as the query's input is (its answer for a segment of one point)
+    hit = shapely.intersects(lines[: len(sa)], lines[len(sa) :])
+    return idx[sa[hit]], idx[sb[hit]]
 
 
 def _refine(

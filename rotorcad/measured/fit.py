@@ -15,7 +15,7 @@ import numpy as np
 
 from rotorcad.curves import Arc, Curve, Spline, rotated, sample_curve
 from rotorcad.errors import DesignError
-from rotorcad.geometry import distance_to_polyline, rotate, wrap_angle
+from rotorcad.geometry import distance_to_polylines, rotate, wrap_angle
 from rotorcad.measured.outline import UNEVEN_SPACING, Outline, corners, lands, raw_scatter, read_outline, scatter, whole_outline
 from rotorcad.measured.rack_pieces import step_splines
 from rotorcad.roles import Side
@@ -783,7 +783,7 @@ def fit_residual(
     lobe = np.vstack([sample_curve(c, 1e-4)[1] for _, c in pieces])
     # each point's exact distance to the nearest segment of the lobes (an R-tree: shapely.distance to
     # the whole MultiLineString scans every segment for every point, 2-3 times the CPU)
-    gaps = np.min([distance_to_polyline(whole, rotate(lobe, k * 2 * np.pi / teeth)) for k in range(teeth)], axis=0)
+    gaps = distance_to_polylines(whole, [rotate(lobe, k * 2 * np.pi / teeth) for k in range(teeth)])
     return float(np.quantile(gaps, 0.9))
 
 

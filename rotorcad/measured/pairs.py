@@ -22,6 +22,7 @@ from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.measured.tangent import tip_tangent_accuracy
 from rotorcad.roles import Flank, PieceRole, Side
+from rotorcad.roots import bisect_levels
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -83,7 +84,14 @@ flanks' geometric contact ran without timing gears where the design does not. Th
 (:data:`rotorcad.meshing.MESHLINE_GAIN`)."""
 
 
-def mate_wander(rack_curve: Curve, mate: Generated, s: np.ndarray, accuracy: float, turn: float | np.ndarray) -> np.ndarray:
+def mate_wander(
+    rack_curve: Curve,
+    mate: Generated,
+    s: np.ndarray,
+    accuracy: float,
+    turn: float | np.ndarray,
+    known: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+) -> np.ndarray:
     """Return how far (mm) the mate's point generated at rack parameters ``s`` may lie from the true one.
 
     A rack derived from a rotor's points carries that profile's errors: a position error of up to
@@ -110,14 +118,16 @@ def mate_wander(rack_curve: Curve, mate: Generated, s: np.ndarray, accuracy: flo
         Position accuracy of the profile the rack comes from.
     turn : float or (n,) float array, rad
         Accuracy of its tangent direction (at each parameter).
+    known : tuple of three (n, 2) float arrays, optional
+        ``rack_curve.evaluate(s)`` (points, mm, and tangents) and ``mate.evaluate(s)[0]`` (mm),
+        where the caller has them already.
 
     Returns
     -------
     (n,) float array, mm
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
-    p, tg = rack_curve.evaluate(s)
-    base = mate.evaluate(s)[0]
+    p, tg, base = known if known is not None else (*rack_curve.evaluate(s), mate.evaluate(s)[0])
     normal = np.column_stack([tg[:, 1], -tg[:, 0]])
     moved = np.zeros(len(s))
     turn = np.broadcast_to(np.asarray(turn, dtype=float), len(s))
@@ -234,7 +244,7 @@ def _mate_corner_runs(
     """
     span = rack_curve.s1 - rack_curve.s0
     s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
-    pr, _ = rack_curve.evaluate(s)
+    pr, tr = rack_curve.evaluate(s)
     pm, _ = mate.evaluate(s)
     k = 20 if scattered else 4  # stencil of k samples either side (1/40, 1/200 of the curve)
     threshold = SCATTERED_STALL if scattered else threshold
@@ -250,18 +260,17 @@ def _mate_corner_runs(
     if not runs:
         return [(rack_curve.s0, rack_curve.s1, False)]
 
-    wander = tolerance + mate_wander(rack_curve, mate, s, accuracy, turn)  # how far the mate's point may stray
+    wander = tolerance + mate_wander(rack_curve, mate, s, accuracy, turn, (pr, tr, pm))  # how far the mate's point may stray
+
+    def within(corner: np.ndarray, x: np.ndarray) -> np.ndarray:
+        q = mate.evaluate(x)[0]
+        bound = tolerance + mate_wander(rack_curve, mate, x, accuracy, turn, (*rack_curve.evaluate(x), q))
+        with np.errstate(invalid="ignore"):
+            return np.isfinite(q).all(axis=1) & (np.hypot(*(q - corner).T) <= bound)
 
     def leave(corner: np.ndarray, inside: float, outside: float) -> float:
         start = inside  # the last sample inside: the hand-over lies no further back
-        for _ in range(30):
-            mid = 0.5 * (inside + outside)
-            q = mate.evaluate(np.array([mid]))[0][0]
-            bound = tolerance + mate_wander(rack_curve, mate, np.array([mid]), accuracy, turn)[0]
-            if np.all(np.isfinite(q)) and np.hypot(*(q - corner)) <= bound:
-                inside = mid
-            else:
-                outside = mid
+        inside, outside = bisect_levels(lambda x: within(corner, x), inside, outside, 30, levels=6)
         return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
     out, last = [], rack_curve.s0

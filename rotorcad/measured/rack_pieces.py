@@ -176,23 +176,20 @@ def find_paths(
     m = PATH_POINTS
     out: list[tuple[int, int, float]] = []
     covered = ~free.copy()
-    i = 0
-    while i + m <= n:
-        if covered[i : i + m].any():
-            i += 1
+    if n < m:
+        return out
+    # every window's proposal on each branch at once: its corners' median, and whether all agree with it
+    windows = np.lib.stride_tricks.sliding_window_view(dx, m, axis=0)  # (n - m + 1, 2, m)
+    steep = np.lib.stride_tricks.sliding_window_view(gain, m, axis=0)
+    finite = np.isfinite(windows).all(axis=2)
+    with np.errstate(invalid="ignore"):
+        centres = np.median(windows, axis=2)
+        agree = finite & np.all(np.abs(windows - centres[:, :, None]) * steep <= tol, axis=2)
+    start = 0  # the first window not yet passed (the one after the last run found)
+    for i in np.flatnonzero(agree.any(axis=1)).tolist():
+        if i < start or covered[i : i + m].any():
             continue
-        found = None
-        for b in (0, 1):
-            w = dx[i : i + m, b]
-            if not np.all(np.isfinite(w)):
-                continue
-            centre = float(np.median(w))
-            if np.all(np.abs(w - centre) * gain[i : i + m, b] <= tol):
-                found = centre
-                break
-        if found is None:
-            i += 1
-            continue
+        found = float(centres[i, 0] if agree[i, 0] else centres[i, 1])
         # refine the position on the window's steepest points and grow the run
         on = _close_gaps(np.nanmin(np.nan_to_num(np.abs(dx - found) * gain, nan=np.inf), axis=1) <= tol) & free
         a, z = i, i + m - 1
@@ -208,9 +205,7 @@ def find_paths(
             vals, g = dx[rows, k], gain[rows, k]
             out.append((a, z, float(np.sum(g**2 * vals) / max(float(np.sum(g**2)), 1e-300))))
             covered[a : z + 1] = True
-            i = z + 1
-        else:
-            i += 1
+            start = z + 1
     return out
 
 

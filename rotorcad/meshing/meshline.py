@@ -17,7 +17,7 @@ from functools import cached_property
 import numpy as np
 
 from rotorcad.envelope import Generated, meshline_contacts
-from rotorcad.geometry import dots, hypot_within, row_norms, take_rows
+from rotorcad.geometry import closest_pair, dots, hypot_within, row_norms, take_rows
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece
@@ -380,10 +380,9 @@ def turn_corner(
             corner = ext[1 - k][j] + w * (ext[1 - k][j + 1] - ext[1 - k][j])
             corner = centre + (corner - centre) * radius / np.hypot(*(corner - centre))
             return corner if np.hypot(*(corner - points[i])) <= reach else None
-    gap = np.hypot(*(ext[0][:, None, :] - ext[1][None, :, :]).transpose(2, 0, 1))
-    a, b = np.unravel_index(int(np.argmin(gap)), gap.shape)
+    a, b, gap = closest_pair(ext[0], ext[1])
     corner = 0.5 * (ext[0][a] + ext[1][b])
-    if gap[a, b] > 0.1 * reach or np.hypot(*(corner - points[i])) > reach:
+    if gap > 0.1 * reach or np.hypot(*(corner - points[i])) > reach:
         return None
     return corner
 

@@ -117,21 +117,30 @@ def on_pitch_circle(piece: MeshlinePiece, pair: RotorPair, band: float) -> bool:
 
 
 def _corner_zero(
-    pieces: list[MeshlinePiece], j: int, i: int, centre: np.ndarray, c: np.ndarray, reach: float, circles: tuple, accuracy: float
+    run: tuple[np.ndarray, np.ndarray, int],
+    i: int,
+    centre: np.ndarray,
+    c: np.ndarray,
+    reach: float,
+    circles: tuple,
+    accuracy: float,
 ) -> tuple[np.ndarray, float] | None:
-    """Return the corner of a meshline turn at sample ``i`` of piece ``j`` where the rotor's v_t vanishes, and its lever.
+    """Return the corner of a meshline turn at sample ``i`` of a piece where the rotor's v_t vanishes, and its lever.
+
+    ``run`` is the piece's samples joined with its neighbours (:func:`with_neighbours`), their arc
+    length and the index of the piece's first sample in them (one per piece, for all its samples).
 
     The rounded turn's sample has a lever ``l`` (:func:`tangential_lever`); the corner
     (:func:`turn_corner`, from the branches either side) has ``l_c``. v_t vanishes at the corner
     where the two have opposite signs (the rounding cut across the zero) or ``l_c`` lies within what
     the corner's placing moves it (``reach`` / 10, how near the extended branches must pass each other).
     """
-    run, at = with_neighbours(pieces, j, i, reach)
-    arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
-    corner = turn_corner(run, arclen, at, reach, circles, accuracy)
+    points, arclen, first = run
+    at = first + i
+    corner = turn_corner(points, arclen, at, reach, circles, accuracy)
     if corner is None or np.hypot(*(corner - c)) <= 0:
         return None
-    (lever, gain), (mine, _) = tangential_lever(corner[None], centre, c), tangential_lever(run[at][None], centre, c)
+    (lever, gain), (mine, _) = tangential_lever(corner[None], centre, c), tangential_lever(points[at][None], centre, c)
     if lever[0] * mine[0] <= 0 or abs(lever[0]) <= gain[0] * 0.1 * reach:
         return corner, float(lever[0])
     return None
@@ -204,9 +213,14 @@ def slip_singularities(
             }
         )
 
+    def joined(j: int) -> tuple[np.ndarray, np.ndarray, int]:
+        run, first = with_neighbours(pieces, j, 0, reach)
+        return run, np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))]), first
+
     start = 0
     for j, piece in enumerate(pieces):
         n = len(piece.t)
+        run = None  # piece j with its neighbours, joined once for all its samples
         sl = slice(start, start + n)
         start += n
         if on_pitch_circle(piece, pair, band if band > 0 else 1e-9 * a):
@@ -231,7 +245,8 @@ def slip_singularities(
             lever, gain = tangential_lever(piece.points, centres[rotor], c)
             least = np.flatnonzero((mag[1:-1] <= mag[:-2]) & (mag[1:-1] <= mag[2:])) + 1
             for i in least[np.abs(lever[least]) <= gain[least] * reach]:
-                zero = _corner_zero(pieces, j, int(i), centres[rotor], c, reach, circles, accuracy)
+                run = joined(j) if run is None else run
+                zero = _corner_zero(run, int(i), centres[rotor], c, reach, circles, accuracy)
                 if zero is not None:
                     add(rotor, zero[0], piece.t[i], piece.roles[i])
     return found
