@@ -233,7 +233,7 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
     if not kinks[:-1].any() and not drawn:  # the last joint closes a lobe (a corner or nothing)
         return None
     spacing = _drawn_spacing(curves)
-    with_arcs = any(isinstance(c, Arc) for c in curves)
+    with_arcs = sum(isinstance(c, Arc) for c in curves) >= ARCS_THROUGH_POINTS  # arcs fitted to points
     after = _joint_turns(curves)
     before = np.roll(after, 1)  # the turns at each curve's start and end
     pts = []
@@ -244,12 +244,18 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
         elif isinstance(c, Line):  # its start; among arcs drawn through points, at their spacing (three in a line)
             pieces = max(1, round(abs(c.s1 - c.s0) / spacing)) if with_arcs and spacing > 0 else 1
             pts.append(c.evaluate(c.s0 + (c.s1 - c.s0) * np.arange(pieces) / pieces)[0])
-        elif isinstance(c, Arc):
+        elif isinstance(c, Arc) and with_arcs:
             beside = (curves[i - 1], curves[(i + 1) % len(curves)])
             pts.append(_arc_points(c, spacing, np.radians(corner_angle_deg), (joint_before, joint_after), beside))
-        else:  # another curve to 0.1 um chord, at least its middle
+        else:  # a designed drawing's few arcs, another curve: to 0.1 um chord, at least its middle
             pts.append(sample_curve(c, 1e-4, minimum=3)[1][:-1])
     return np.vstack(pts)
+
+
+ARCS_THROUGH_POINTS = 40
+"""A drawing read as points that holds at least this many arcs is arcs fitted to points (one lobe of
+80 CMM points drawn as 3-point arcs holds 40): each arc is read as the points it was drawn through
+(:func:`_arc_points`). A designed drawing's few arcs are sampled at 0.1 µm chord, as before."""
 
 
 def _drawn_spacing(curves: list[Curve]) -> float:
@@ -419,6 +425,7 @@ def _knot_parameters(spline: Spline) -> np.ndarray:
 
 
 __all__ = [
+    "ARCS_THROUGH_POINTS",
     "DRAWN_SPANS",
     "LAND_ANGLE",
     "LAND_SPREAD",
