@@ -213,3 +213,33 @@ def test_good_scattered_points_run(capsys, tmp_path, male):
     path = write(tmp_path / "good.csv", good_forms(male)["2 um"])
     capsys.readouterr()
     assert main(["rotor", str(SAMPLE), "--male-points", str(path), "--json", "--quiet"]) == 0
+
+
+def test_clearance_refuses_a_lobe_count_the_points_do_not_have(capsys, tmp_path, male):
+    """One lobe of the 5-lobe male given to `clearance` with --male-teeth 4 (a span of 0.8 of the 90 deg pitch
+    4 lobes imply, read as one tooth and a root land) read -4865 µm and interference: true (a new user's
+    finding). Reference: the construction, one 72 deg lobe of the design's male, whose root radius 52.73 mm lies
+    6 mm outside the pitch circle a z1 / (z1 + z2) = 116 * 4 / 10 = 46.4 mm that 4 lobes give: refused naming
+    --male-teeth and the 5 lobes the span implies, exit 2, one line."""
+    m, f = write(tmp_path / "m.csv", male["lobe"]), write(tmp_path / "f.csv", male["female"])
+    capsys.readouterr()
+    args = ["clearance", "--male-points", str(m), "--female-points", str(f), "--female-teeth", "6"]
+    status = main([*args, "--male-teeth", "4", "--center-distance", f"{male['a']:g}", "--quiet"])
+    _, err = capsys.readouterr()
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert status == 2 and len(lines) == 1 and "Traceback" not in err, err
+    assert lines[0].startswith("rotorcad: error: --male-teeth must be "), err
+    assert "r = 46.4 mm" in err and "one lobe of a 5-lobe rotor (give --male-teeth 5)" in err, err
+
+
+def test_more_points_than_are_fitted_are_refused_saying_how_to_thin(capsys, tmp_path, male, monkeypatch):
+    """200 000 scattered points of a male were refused "3.2 % of the lobe has no rack point" (11 000 of the same work),
+    100 000 took 5.1 GB and 2 000 000 1.5 GB without a result: an outline of more than MAX_OUTLINE_POINTS is refused
+    saying which share to keep. The limit lowered here to 1000 (the construction: 1500 points, keep one in 2),
+    never a file of 50 000 points; thinned so, the points are read."""
+    from rotorcad.measured import outline
+
+    monkeypatch.setattr(outline, "MAX_OUTLINE_POINTS", 1000)
+    line = refusal(capsys, tmp_path, male["whole"])
+    assert "at most 1000 points (200 a lobe)" in line and "has 1500; keep one point in 2" in line, line
+    assert len(outline.read_outline(male["whole"][::2], 5, "--male-points").whole) == 750

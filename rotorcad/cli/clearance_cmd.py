@@ -16,6 +16,7 @@ from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
 from rotorcad.measured.fit import close_smoothing
 from rotorcad.measured.outline import own_frame
+from rotorcad.measured.point_checks import refuse_pitch_off_profile
 from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import as_given, lobe_pieces, profile_points
@@ -155,6 +156,12 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
                 f"{option} must be a lobe within the --center-distance of {a:g} mm, but its largest radius is "
                 f"{radii.max():.6g} mm (a drawing in other units?)."
             )
+    z1, z2 = opts["male_teeth"], opts["female_teeth"]
+    try:  # the lobe count against the points (one lobe of a 5-lobe male read with 4 lobes: -4865 µm)
+        for option, z, points in (("--male-teeth", z1, male), ("--female-teeth", z2, female)):
+            refuse_pitch_off_profile(profile_points(points), z, a * z / (z1 + z2), option)
+    except DesignError as exc:
+        raise InputError(exc.sentence()) from None
     names = {
         "male points": "--male-points",
         "female points": "--female-points",

@@ -212,8 +212,8 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
     that does not carry its tangents (:func:`carries_tangents`: a spline through points, as CAD
     draws one on measured points; export's Hermite splines of 16-25 pieces are exact curves): the rack of a
     straight piece would be a single point, a kink a gap, and a spline drawn across a sharp corner
-    rings. The points are each line's start, each arc sampled to 0.1 µm chord (at least its
-    start and middle, the bulge's point) and a spline's points at its knots; they are then
+    rings. The points are each line's start, each arc's start and middle (the points it was drawn
+    through, :func:`_arc_points`) and a spline's points at its knots; they are then
     fitted, smoothed and cut at corners as measured points are, to the accuracy they carry
     (:func:`rotorcad.measured.outline.points_accuracy`).
 
@@ -232,24 +232,118 @@ def drawing_points(curves: list[Curve], corner_angle_deg: float = 30.0) -> np.nd
     drawn = [c for c in curves if isinstance(c, Spline) and _drawn_through_points(c)]
     if not kinks[:-1].any() and not drawn:  # the last joint closes a lobe (a corner or nothing)
         return None
+    spacing = _drawn_spacing(curves)
+    with_arcs = sum(isinstance(c, Arc) for c in curves) >= ARCS_THROUGH_POINTS  # arcs fitted to points
+    after = _joint_turns(curves)
+    before = np.roll(after, 1)  # the turns at each curve's start and end
     pts = []
-    for c in curves:
+    for i, (c, joint_before, joint_after) in enumerate(zip(curves, before, after, strict=True)):
         if isinstance(c, Spline):
             u = _knot_parameters(c)
             pts.append(c.evaluate(u[:-1])[0])
-        elif isinstance(c, Line):
-            pts.append(c.start[None, :])
-        else:  # an arc to 0.1 um chord, at least its middle (a land stays a land of many points)
+        elif isinstance(c, Line):  # its start; among arcs drawn through points, at their spacing (three in a line)
+            pieces = max(1, round(abs(c.s1 - c.s0) / spacing)) if with_arcs and spacing > 0 else 1
+            pts.append(c.evaluate(c.s0 + (c.s1 - c.s0) * np.arange(pieces) / pieces)[0])
+        elif isinstance(c, Arc) and with_arcs:
+            beside = (curves[i - 1], curves[(i + 1) % len(curves)])
+            pts.append(_arc_points(c, spacing, np.radians(corner_angle_deg), (joint_before, joint_after), beside))
+        else:  # a designed drawing's few arcs, another curve: to 0.1 um chord, at least its middle
             pts.append(sample_curve(c, 1e-4, minimum=3)[1][:-1])
     return np.vstack(pts)
 
 
-def _kinks(curves: list[Curve], corner_angle_deg: float) -> np.ndarray:
-    """(n,) bool: the joint after each curve turns by more than :data:`SMOOTH_JOINT` and less than a corner."""
+ARCS_THROUGH_POINTS = 40
+"""A drawing read as points that holds at least this many arcs is arcs fitted to points (one lobe of
+80 CMM points drawn as 3-point arcs holds 40): each arc is read as the points it was drawn through
+(:func:`_arc_points`). A designed drawing's few arcs are sampled at 0.1 µm chord, as before."""
+
+
+def _drawn_spacing(curves: list[Curve]) -> float:
+    """Return the spacing of the points a drawing was drawn through (mm).
+
+    The median over its pieces of the length each spans per point: a line was drawn from one point
+    (its start), an arc through three (its start, one point between and its end): half its length.
+    """
+    keep = [c for c in curves if isinstance(c, Line | Arc)]
+    length = np.array([abs(c.s1 - c.s0) * (c.radius if isinstance(c, Arc) else 1.0) for c in keep])
+    per = np.array([2.0 if isinstance(c, Arc) else 1.0 for c in keep])
+    return float(np.median(length / per)) if keep else 0.0
+
+
+def _arc_points(
+    arc: Arc, spacing: float, corner_angle: float, joints: tuple[float, float], beside: tuple[Curve, Curve]
+) -> np.ndarray:
+    """Return the points an arc of a drawing stands for, its end left to the next piece.
+
+    An arc was drawn through three points (CAD's 3-point arc, a polyline's bulge through a point
+    between its ends): its start, one point between and its end. Where the outline is smooth the
+    one between is its middle, the point equidistant from both ends, to within the arc's
+    third-order deviation (the circle through three points of a curve leaves it by O(h^3 k'), h
+    the spacing). Not densely sampled: the arc's own rounding between the points is no part of the
+    outline (the arc through the three points around a sharp tip rounds it to r = 0.3-0.9 mm, which
+    read the blow-hole of three samples as 0.01-0.02 mm² against 2.8-22.7, the meshline closed).
+
+    An arc that turns, with the larger turn at its ends, by more than a corner's angle holds a
+    corner between its points (its middle lies inside the corner, 4-17 µm on the asymmetric SRM's
+    tip). Two of its three points lie on one side of the corner, one spacing apart (the points are
+    evenly spaced along the outline): the point between is the one on the arc one spacing's chord
+    from its start or from its end, whichever lies on the neighbouring piece on that side extended
+    (:func:`_off_extension`; on the samples' drawings the right one lies within 0.2 µm of it, the
+    other 33-300 µm off, and it is the point drawn through to 0.05 µm). A longer arc (a land drawn
+    as one arc among lines) is read at the drawing's spacing, a land of many points.
+
+    Parameters
+    ----------
+    arc : Arc
+        The drawing's arc.
+    spacing : float, mm
+        The spacing of the points the drawing was drawn through (:func:`_drawn_spacing`).
+    corner_angle : float, rad
+        Turn above which a joint is a sharp corner.
+    joints : (float, float), rad
+        The turns at the joints at the arc's start and at its end (:func:`_joint_turns`).
+    beside : (Curve, Curve)
+        The drawing's pieces before and after the arc.
+
+    Returns
+    -------
+    (m, 2) float array, mm
+    """
+    sweep = arc.s1 - arc.s0
+    pieces = max(2, round(abs(sweep) * arc.radius / spacing)) if spacing > 0 else 2
+    if pieces > 2 or abs(sweep) + max(joints) <= corner_angle:
+        return arc.evaluate(arc.s0 + sweep * np.arange(pieces) / pieces)[0]
+    step = 2.0 * np.arcsin(min(1.0, spacing / (2.0 * arc.radius))) * np.sign(sweep)  # one spacing's chord
+    if not abs(step) < abs(sweep):  # no room for a point between: its start only
+        return arc.evaluate(np.array([arc.s0]))[0]
+    after_start, before_end = arc.evaluate(np.array([arc.s0 + step, arc.s1 - step]))[0]
+    start_side = _off_extension(after_start, beside[0], True) <= _off_extension(before_end, beside[1], False)
+    return np.vstack([arc.start, after_start if start_side else before_end])
+
+
+def _off_extension(point: np.ndarray, curve: Curve, at_end: bool) -> float:
+    """Distance (mm) of a point from a drawing's piece extended past a joint.
+
+    An arc's circle; another piece's tangent line at its end (``at_end``) or its start.
+    """
+    if isinstance(curve, Arc):
+        return abs(float(np.hypot(*(point - np.asarray(curve.center)))) - curve.radius)
+    p, t = curve.evaluate(np.array([curve.s1 if at_end else curve.s0]))
+    d = point - p[0]
+    return abs(float(t[0, 0] * d[1] - t[0, 1] * d[0]))
+
+
+def _joint_turns(curves: list[Curve]) -> np.ndarray:
+    """(n,) float, rad: how far the tangent turns at the joint after each curve (the last: back to the first)."""
     ends = np.array([c.evaluate(np.array([c.s1]))[1][0] for c in curves])
     starts = np.array([c.evaluate(np.array([c.s0]))[1][0] for c in curves])
     following = np.roll(starts, -1, axis=0)
-    turn = np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
+    return np.abs(np.arctan2(ends[:, 0] * following[:, 1] - ends[:, 1] * following[:, 0], np.einsum("ij,ij->i", ends, following)))
+
+
+def _kinks(curves: list[Curve], corner_angle_deg: float) -> np.ndarray:
+    """(n,) bool: the joint after each curve turns by more than :data:`SMOOTH_JOINT` and less than a corner."""
+    turn = _joint_turns(curves)
     return (turn > SMOOTH_JOINT) & (turn < np.radians(corner_angle_deg))
 
 
@@ -331,6 +425,7 @@ def _knot_parameters(spline: Spline) -> np.ndarray:
 
 
 __all__ = [
+    "ARCS_THROUGH_POINTS",
     "DRAWN_SPANS",
     "LAND_ANGLE",
     "LAND_SPREAD",

@@ -386,7 +386,7 @@ def _refined_corners(
         i_next = edges[(j + 1) % len(edges)] + (n if j + 1 == len(edges) else 0)
         inner = ring[i + 1 : i_next + 1]
         # without the points within a few scatters of either corner: which side of it they fall is the scatter's choice
-        inner = inner[(np.hypot(*(inner - points[j]).T) > near) & (np.hypot(*(inner - points[(j + 1) % len(edges)]).T) > near)]
+        inner = inner[(np.hypot(*(inner - points[j]).T) >= near) & (np.hypot(*(inner - points[(j + 1) % len(edges)]).T) >= near)]
         fits.append(Spline.fit(inner, smoothing=_smoothing(inner, sigma, smoothing)) if len(inner) >= 4 else None)
     h = float(np.median(np.hypot(*np.diff(whole, axis=0).T)))
     out = np.array(points, dtype=float)

@@ -308,6 +308,63 @@ def refuse_other_units(whole: np.ndarray, root: float, tip: float, label: str) -
             )
 
 
+PITCH_MARGIN = 0.05
+"""Share of the lobe depth by which a rotor's pitch circle may lie outside its points' radii (a
+profile thinned by a clearance, or measured hot, whose root or tip lies on the pitch circle)."""
+
+
+def refuse_pitch_off_profile(points: np.ndarray, teeth: int, pitch_radius: float, option: str) -> None:
+    """Refuse a lobe count whose pitch circle misses the rotor's points, naming the count their span implies.
+
+    The rack that generates a pair rolls on each rotor's pitch circle, r_w = a z / (z1 + z2), and each
+    rotor's profile reaches it (the pitch circles roll on each other; a screw rotor's male addendum
+    lies outside its pitch circle, the female's dedendum inside hers). One lobe of a 5-lobe male with
+    ``--male-teeth 4`` (a span of 0.8 of the pitch 4 lobes imply, read as one tooth and its root land)
+    put the pitch circle 6 mm inside the root, and ``clearance`` read -4865 µm and interference.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The rotor's points (one lobe, groove or tooth, or the whole outline) in its own frame.
+    teeth : int
+        The lobe count given.
+    pitch_radius : float, mm
+        The pitch radius that count gives.
+    option : str
+        The option that gave the count (``--male-teeth``).
+
+    Raises
+    ------
+    DesignError
+        Naming ``option``, the pitch radius against the points' radii, and the lobe count the points'
+        span implies (one lobe of a rotor of 360 deg / span lobes, when the span is that within 2 %).
+        A whole outline is left to the count of its lobes when it is read
+        (:func:`rotorcad.measured.outline.whole_outline`).
+    """
+    pts = np.asarray(points, dtype=float)
+    r = np.hypot(*pts.T)
+    low, high = float(r.min()), float(r.max())
+    margin = PITCH_MARGIN * (high - low)
+    if not (np.isfinite(pitch_radius) and pitch_radius > 0) or low - margin <= pitch_radius <= high + margin:
+        return
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    span = float(abs(ang[-1] - ang[0]))
+    if span > 1.5 * np.pi:  # a whole outline: its lobes are counted when it is read (it has 5 lobes)
+        return
+    implied = round(2 * np.pi / span) if span > 0 else 0
+    if implied >= 2 and abs(span * implied / (2 * np.pi) - 1.0) < 0.02:
+        hint = f"its points span {np.degrees(span):.4g} deg, one lobe of a {implied}-lobe rotor (give {option} {implied})"
+    else:
+        share = span / (2 * np.pi / teeth)
+        hint = f"its points span {np.degrees(span):.4g} deg, {share:.3g} times the lobe pitch {teeth} lobes imply"
+    raise DesignError(
+        option,
+        "the rotor's lobe count, whose pitch circle crosses its points",
+        teeth,
+        f"{teeth} lobes put the pitch circle at r = {pitch_radius:.4g} mm, off the points' radii {low:.4g}-{high:.4g} mm; {hint}",
+    )
+
+
 __all__ = [
     "ALONG_ANGLE",
     "CORNER_TURN",
@@ -316,6 +373,7 @@ __all__ = [
     "OUTLIER_LOCAL",
     "OUTLIER_SIGMAS",
     "OUTLIER_SPACING",
+    "PITCH_MARGIN",
     "UNIT_FACTORS",
     "crossing",
     "file_lines",
@@ -324,6 +382,7 @@ __all__ = [
     "refuse_crossing",
     "refuse_other_units",
     "refuse_outliers",
+    "refuse_pitch_off_profile",
 ]
 
 
