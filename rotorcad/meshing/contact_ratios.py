@@ -30,9 +30,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner
+from rotorcad.meshing.defects import MESHLINE_GAIN, TIP_CIRCLE_NEAR, Defect, is_tip_corner, tip_circle_runs
 from rotorcad.meshing.meshline import MeshlinePiece
-from rotorcad.roles import Flank, PieceRole
+from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 
 
@@ -279,7 +279,7 @@ def handover_length(accuracy: float, scale: float) -> float:
     return float(np.sqrt(8.0 * scale * MESHLINE_GAIN * accuracy))
 
 
-def on_tip_circles(piece: MeshlinePiece, pair: RotorPair, band: float) -> np.ndarray:
+def on_tip_circles(piece: MeshlinePiece, pair: RotorPair, band: float, reach: float = 0.0) -> np.ndarray:
     """Return which of a piece's contacts lie on either rotor's tip circle to the meshline's accuracy ``band``.
 
     A contact on a rotor's tip circle is that rotor's tip (Rinder sec. 2.2.2: at the tip only a corner
@@ -288,7 +288,12 @@ def on_tip_circles(piece: MeshlinePiece, pair: RotorPair, band: float) -> np.nda
     mate generated from it touches the rounding along the tip circle: the Lysholm female as 300 exact
     points a lobe (e = 0.8 µm) gave a curve piece 0.91-1.04 mm long on the male tip circle (its contact
     on the male within 0.03-0.04 mm of the tip corner), counted as sealing working part, and the
-    overlap 2.31 made the flank run where the design's has no working part.
+    overlap 2.31 made the flank run where the design's has no working part. A stretch longer than
+    ``reach`` that keeps within :data:`~rotorcad.meshing.defects.TIP_CIRCLE_NEAR` of the centre distance
+    of a tip circle, its contacts standing still on the rotor, is that tip corner's path too
+    (:func:`~rotorcad.meshing.defects.tip_circle_runs`):
+    the narrow-tip male as 1000 exact points a lobe put 9.8 mm of the female tip corner's path 1-7 µm
+    off its tip circle, and the sealing working length read 19.1 mm for the design's 12.2.
 
     Parameters
     ----------
@@ -299,6 +304,8 @@ def on_tip_circles(piece: MeshlinePiece, pair: RotorPair, band: float) -> np.nda
     band : float, mm
         The meshline's accuracy (:data:`~rotorcad.meshing.defects.MESHLINE_GAIN` e); 0 for a design
         (no contact is read as a tip).
+    reach : float, mm
+        The meshline's resolution; 0: no stretch test.
 
     Returns
     -------
@@ -307,9 +314,15 @@ def on_tip_circles(piece: MeshlinePiece, pair: RotorPair, band: float) -> np.nda
     if band <= 0:
         return np.zeros(len(piece.t), dtype=bool)
     x, y = piece.points[:, 0], piece.points[:, 1]
-    male = np.abs(np.hypot(x, y) - pair.male_tip_radius) <= band
-    female = np.abs(np.hypot(x - pair.center_distance, y) - pair.female_tip_radius) <= band
-    return male | female
+    r1, r2 = np.hypot(x, y), np.hypot(x - pair.center_distance, y)
+    out = (np.abs(r1 - pair.male_tip_radius) <= band) | (np.abs(r2 - pair.female_tip_radius) <= band)
+    if reach > 0 and len(x) > 1:
+        arclen = np.concatenate([[0.0], np.cumsum(piece.steps)])
+        near = max(TIP_CIRCLE_NEAR * pair.center_distance, band)
+        for side in (Side.MALE, Side.FEMALE):
+            for i, j in tip_circle_runs(piece.points, piece.t, arclen, pair, side, near, reach):
+                out[i : j + 1] = True
+    return out
 
 
 def _corner_path_points(pieces: list[MeshlinePiece]) -> dict[PieceRole, np.ndarray]:
@@ -332,8 +345,12 @@ def is_corner_handover(
     stretch of curve contact between the two paths. It is told from a working part by its length: one
     shorter than the meshline's resolution ``handover`` (:func:`handover_length`) whose ends lie
     within that of a male tip corner's path and of a female tip corner's path (one at each end, either
-    way round) is the hand-over, not a flank the input resolves. A working part between the two paths
-    longer than that (SRM-B's and the asymmetric SRM's sealing flanks, 13 mm) is kept.
+    way round) is the hand-over, not a flank the input resolves; so is one whose ends lie within that
+    of one corner's path both, a piece of that path the fit broke off (the Lysholm female as 2000 exact
+    points a lobe: 0.61-0.78 mm of curve contact between two pieces of the male tip corner's path, its
+    contacts within 1-18 µm of the male tip circle, read as sealing working part, and the flank ran). A
+    working part between the two paths longer than that (SRM-B's and the asymmetric SRM's sealing
+    flanks, 13 mm) is kept.
 
     Parameters
     ----------
@@ -353,16 +370,18 @@ def is_corner_handover(
     bool
     """
     males, females = paths.get(PieceRole.MALE_CORNER_PATH), paths.get(PieceRole.FEMALE_CORNER_PATH)
-    if handover <= 0 or length >= handover or males is None or females is None or not steps.any():
+    if handover <= 0 or length >= handover or (males is None and females is None) or not steps.any():
         return False
     idx = np.flatnonzero(steps)
     ends = piece.points[[idx[0], idx[-1] + 1]]  # (2, 2): the stretch's first and last contact
 
-    def near(path: np.ndarray) -> np.ndarray:
+    def near(path: np.ndarray | None) -> np.ndarray:
+        if path is None:
+            return np.zeros(2, dtype=bool)
         return np.hypot(path[None, :, 0] - ends[:, None, 0], path[None, :, 1] - ends[:, None, 1]).min(axis=1) <= handover
 
     m, f = near(males), near(females)
-    return bool((m[0] and f[1]) or (f[0] and m[1]))
+    return bool((m[0] and f[1]) or (f[0] and m[1]) or (m[0] and m[1]) or (f[0] and f[1]))
 
 
 def flank_reports(
@@ -373,6 +392,7 @@ def flank_reports(
     shortest: float = 0.0,
     band: float = 0.0,
     handover: float = 0.0,
+    generated: list[np.ndarray] | None = None,
 ) -> dict[Flank, FlankReport]:
     """Return per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
@@ -410,6 +430,12 @@ def flank_reports(
         on the flank shorter than this that runs from the male tip corner's path to the female's is the
         corner-to-corner hand-over the fit rounds (:func:`is_corner_handover`), no working part; 0 for a
         design.
+    generated : list of (n,) bool arrays, optional
+        Of a given profile, per piece the samples the defect rules found point-generated (a cusp's
+        stretch, :func:`rotorcad.meshing.defects.meshline_defects`): a corner's path, no working part
+        (the Lysholm male as 2000 exact points a lobe: a curve piece along the female tip corner's path,
+        35.2 mm read as one point-generated cusp, counted 8.0 mm of sealing working part, and the
+        flank ran where the design's has none). None for a design.
 
     Returns
     -------
@@ -423,10 +449,11 @@ def flank_reports(
     steps = [piece.steps for piece in pieces]  # chord lengths, once (shared with the defect rules)
     gaps = corner_gaps(pieces, pair) if band > 0 else [np.zeros((0, 2))] * len(pieces)
     paths = _corner_path_points(pieces) if handover > 0 else {}
+    held = generated if generated is not None else [None] * len(pieces)
     for flank in (Flank.DRIVING, Flank.SEALING):
         total = geometric = working = 0.0
         spans: list[np.ndarray] = []  # (m, 2): the male rotation between consecutive working contacts
-        for piece, seg, gap in zip(pieces, steps, gaps, strict=True):
+        for piece, seg, gap, pg in zip(pieces, steps, gaps, held, strict=True):
             mask = piece.flank_mask(flank)
             if mask.sum() < 2:
                 continue
@@ -440,10 +467,18 @@ def flank_reports(
                 and length >= shortest
                 and not is_corner_handover(piece, both, length, paths, handover)
             ):
+                before = working
+                tip = on_tip_circles(piece, pair, band, shortest)
+                on_tip = tip[:-1] & tip[1:]
                 work = resolved_steps(piece, both, gap, band, shortest)
-                geometric += length
-                tip = on_tip_circles(piece, pair, band)
-                working += float(seg[both & ~(tip[:-1] & tip[1:])].sum())
+                if pg is not None:  # a point-generated stretch of the defect rules: a corner's path
+                    on_tip |= pg[:-1] & pg[1:]
+                    work &= ~(pg[:-1] & pg[1:])
+                if band > 0:  # a contact within the meshline's accuracy of a tip corner is that corner (resolved_steps)
+                    corner = gap.min(axis=1) <= band
+                    on_tip |= corner[:-1] | corner[1:]
+                working += float(seg[both & ~on_tip].sum())
+                geometric += working - before
                 spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks

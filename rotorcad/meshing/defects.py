@@ -4,8 +4,10 @@ A defect (:class:`Defect`) is where the meshline normal passes through O1 or O2 
 pitch point C (jamming, except on an arc about C) or where the meshline crosses O1O2 away from C
 (slipping). Each test is judged to the accuracy of the profile (:func:`resolution`,
 :func:`robust_zeros`), so that a profile given by points makes no defect its design has not; a cusp
-on a tip circle is that tip's corner (:func:`is_tip_corner`). The criteria are stated in
-:mod:`rotorcad.meshing`.
+on a tip circle is that tip's corner (:func:`is_tip_corner`), and a given profile's meshline that runs
+along a tip circle with its contact standing still on that rotor is the corner's path, known from the
+positions (:func:`tip_circle_runs`). A slipping point is named by where it lies (:func:`slipping_name`).
+The criteria are stated in :mod:`rotorcad.meshing`.
 """
 
 from __future__ import annotations
@@ -158,6 +160,78 @@ def largest_scatter(depth: float, scale: float) -> float:
     float, mm
     """
     return float((VERDICT_SHARE * depth) ** 2 / (16.0 * scale))
+
+
+TIP_CIRCLE_NEAR = 1e-4
+"""Share of the centre distance within which a given profile's meshline lies on a rotor's tip circle
+(:func:`tip_circle_runs`; 11.6 µm at a = 116 mm), as :attr:`MeshingAnalysis.tip_corner_tolerance`
+takes a cusp for that tip's corner."""
+
+
+def tip_circle_runs(
+    points: np.ndarray, t: np.ndarray, arclen: np.ndarray, pair: RotorPair, rotor: Side, near: float, longest: float
+) -> list[tuple[int, int]]:
+    """Return the stretches of a given profile's meshline that are a rotor's tip corner's path, from the positions alone.
+
+    Rinder (sec. 2.2.2): at a rotor's tip only a corner (or point) is possible as a flank, and its
+    meshline is the tip circle itself (the corner turns with the rotor). A stretch of meshline that
+    keeps within ``near`` of the tip circle over ``longest`` (the meshline's resolution,
+    :func:`resolution`) or more, and whose contacts, turned back into the rotor, stay within ``near``
+    of one point (90 % of them: the rotor's point stands still), is that corner's path, a
+    point-generated flank of the mate. The fit's tangent there is no witness: the narrow-tip male as
+    1000 exact points a lobe puts 9.8 mm of the female tip corner's 20.5 mm path in a curve piece
+    whose samples keep within 7 µm of the female tip circle (their female points within 3 µm of the
+    corner) while their fitted tangent turns 0.03 rad either way (its normal passing O2 by up to 2 mm),
+    and the path read as three cusps. A tip rounding is no corner: the N rack male's 0.67 mm rounding
+    keeps its meshline within 12 µm of the male tip circle over 4.2 mm, but its contacts move 0.06-0.2 mm
+    along it.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The meshline samples, fixed frame.
+    t : (n,) float array, rad
+        The male rotation at each.
+    arclen : (n,) float array, mm
+        Arc length of the samples along the meshline.
+    pair : RotorPair
+        The pair (tip radii, centre distance, the mesh's rotor frames).
+    rotor : Side
+        Whose tip circle.
+    near, longest : float, mm
+        How near the tip circle (and the corner), and over how much meshline at least.
+
+    Returns
+    -------
+    list of (int, int)
+        First and last sample of each stretch, in order.
+    """
+    male = rotor is Side.MALE
+    centre = np.array([0.0 if male else pair.center_distance, 0.0])
+    radius = pair.male_tip_radius if male else pair.female_tip_radius
+    distance = np.hypot(points[:, 0] - centre[0], points[:, 1] - centre[1])
+    on = np.concatenate([[False], np.abs(distance - radius) <= near, [False]])
+    edges = np.flatnonzero(on[1:] != on[:-1])
+    body = pair.mesh.male if male else pair.mesh.female
+    out = []
+    for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
+        if arclen[b] - arclen[a] < longest:
+            continue
+        own = body.to_body(points[a : b + 1], t[a : b + 1])  # the rotor's point touching at each
+        if np.quantile(np.hypot(*(own - np.median(own, axis=0)).T), 0.9) <= near:
+            out.append((int(a), int(b)))
+    return out
+
+
+def _with_runs(stretches: list[tuple[int, int]], runs: list[tuple[int, int]]) -> list[tuple[int, int]]:
+    """Return ``stretches`` with ``runs`` added, overlapping ones made one (sample index pairs, in order)."""
+    out: list[tuple[int, int]] = []
+    for a, b in sorted(stretches + runs):
+        if out and a <= out[-1][1] + 1:
+            out[-1] = (out[-1][0], max(out[-1][1], b))
+        else:
+            out.append((a, b))
+    return out
 
 
 def _median(values: np.ndarray) -> float:
@@ -364,7 +438,7 @@ def _merged(defects: list[Defect], distance: float, spans: dict[int, np.ndarray]
 
     Nearness is between the meshline points each defect holds (a stretch's, given in ``spans`` by
     the defect's ``id``; a point's own). The first of a group stands for it (a point-generated one
-    before a point); extents add up.
+    before a point; of two point-generated ones the longer); extents add up.
     """
     spans = spans or {}
     held: list[np.ndarray] = []
@@ -376,7 +450,9 @@ def _merged(defects: list[Defect], distance: float, spans: dict[int, np.ndarray]
                 continue
             gap = np.hypot(*(held[k][:, None, :] - mine[None, :, :]).transpose(2, 0, 1)).min()
             if gap < distance:
-                out[k] = replace(e, extent=e.extent + d.extent if d.point_generated else e.extent)
+                # two stretches: the longer names and places the whole (a corner's path split between pieces)
+                first = d if d.point_generated and d.extent > e.extent else e
+                out[k] = replace(first, extent=e.extent + d.extent if d.point_generated else e.extent)
                 held[k] = np.vstack([held[k], mine])
                 break
         else:
@@ -494,7 +570,12 @@ def is_tip_corner(defect: Defect, pair: RotorPair, tolerance: float) -> bool:
 
 
 def meshline_defects(
-    pieces: list[MeshlinePiece], pair: RotorPair, accuracy: float, tolerance: float, given: bool
+    pieces: list[MeshlinePiece],
+    pair: RotorPair,
+    accuracy: float,
+    tolerance: float,
+    given: bool,
+    generated: list[np.ndarray] | None = None,
 ) -> list[Defect]:
     """Return the cusps, jamming and slipping points on the meshline (Rinder sec. 2.2.1), a list of :class:`Defect`.
 
@@ -534,6 +615,9 @@ def meshline_defects(
     given : bool
         The profile comes from points or a drawing (:attr:`MeshingAnalysis.is_given`), not the
         design's exact curves.
+    generated : list, optional
+        Receives per piece an (n,) bool array: the samples inside a point-generated stretch of a cusp
+        (the corner's path a flank part does not drive along, :func:`rotorcad.meshing.contact_ratios.flank_reports`).
 
     Returns
     -------
@@ -553,6 +637,9 @@ def meshline_defects(
     on_line = max(1e-3 * scale, longest if given else 0.0)  # through a centre or on O1O2 within the resolution
     for piece in pieces:
         pts = piece.points
+        held = np.zeros(len(pts), dtype=bool)  # the samples of this piece's point-generated stretches
+        if generated is not None:
+            generated.append(held)
         steps = piece.steps  # the chord lengths (shared with the flank reports)
         arclen = np.concatenate([[0.0], np.cumsum(steps)])
         length = float(arclen[-1])
@@ -574,19 +661,29 @@ def meshline_defects(
         bands = mesh_acc + max(tol, mesh_acc / reach) * np.hypot(to_x, to_y)
         reach_q = np.maximum(np.abs(to_x).max(axis=1), np.abs(to_y).max(axis=1))  # max |q - p| over both coordinates
         misses = []
+        on_tip: list[list[tuple[int, int]]] = []  # per centre, the stretches on its rotor's tip circle (given profiles)
         for m in range(len(tests)):
             f, band = fs[m], bands[m]
             whole = m == path_of or _median_below(np.abs(f), tol * max(1.0, reach_q[m]))
             # an arc about C (Rinder's exception) known from the points' distance from C, not from the tangent
             arcs = arcs_about(np.hypot(to_x[m], to_y[m]), arclen, 2.0 * reach, mesh_acc) if m == 2 else None
-            misses.append((f, band, whole, *robust_zeros(f, band, arclen, reach, whole, turns, arcs)))
+            runs = []
+            if given and m < 2 and not whole:  # a tip corner's path known from the positions (Rinder sec. 2.2.2)
+                near = max(TIP_CIRCLE_NEAR * scale, mesh_acc)
+                runs = tip_circle_runs(pts, piece.t, arclen, pair, Side.MALE if m == 0 else Side.FEMALE, near, reach)
+                arcs = runs
+            crossings, stretches = robust_zeros(f, band, arclen, reach, whole, turns, arcs)
+            on_tip.append(runs)
+            misses.append((f, band, whole, crossings, _with_runs(stretches, runs) if runs else stretches))
         at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
         for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
             for i, j in stretches:
                 if kind == "jamming":
                     continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
+                positional = any(a <= j and i <= b for a, b in on_tip[k])  # holds a stretch on a tip circle
                 if (
                     not whole
+                    and not positional
                     and (given or np.abs(pts[i : j + 1, 1]).min() < 1e-3 * scale)
                     and _ramps(f[i : j + 1] / band[i : j + 1], arclen[i : j + 1])  # f runs through the band: no arc
                 ):
@@ -594,6 +691,9 @@ def meshline_defects(
                     # a given profile anywhere: its wider band holds a normal that passes q slowly or nearby
                 if given and np.hypot(*shifted(pts[i : j + 1], c, -1.0).T).max() < on_line:
                     continue  # a stretch within the resolution of C: the contact at the pitch point, no arc
+                if given and arclen[j] - arclen[i] < reach and np.abs(pts[i : j + 1, 1]).max() < on_line:
+                    continue  # a land's touch on O1O2, shorter than the resolution: the slipping rule's (the
+                    # rack-involute male's tip land from 2000 exact points a lobe: a 28 um female cusp)
                 mid = i + int(np.searchsorted(arclen[i : j + 1], 0.5 * (arclen[i] + arclen[j])))
                 found.append(
                     Defect(
@@ -607,6 +707,7 @@ def meshline_defects(
                         _stretch_role(pts[i : j + 1], arclen[i : j + 1], piece.roles[mid], c[0], reach),
                     )
                 )
+                held[i : j + 1] = True
                 spans[id(found[-1])] = pts[i : j + 1 : max(1, (j - i) // 200)]
                 times[id(found[-1])] = piece.t[i : j + 1 : max(1, (j - i) // 200)]
             others = np.concatenate([at[m] for m in range(len(tests)) if m != k]) if crossings else None
@@ -638,7 +739,7 @@ def meshline_defects(
                 ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
                 role = piece.roles[i] if piece.roles[i] == piece.roles[i + 1] else (Flank.TIP if p[0] > c[0] else Flank.ROOT)
                 at = (float(p[0]), float(p[1]), float(np.degrees(ang)))
-                found.append(Defect("slipping", "male", *at, piece.name, role=role))
+                found.append(Defect("slipping", "male", *at, slipping_name(p[0], c[0]), role=role))
     found.extend(slipping_between_pieces(pieces, pair, accuracy, given))
     return _merged(_joined_across_o1o2(found, spans, times, longest, pair, reach), longest, spans)
 
@@ -669,8 +770,21 @@ def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accura
     found = []
     for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
         if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > away:  # not at C
-            tip = p[0] > c_x
-            land = "male tip on the female root" if tip else "female tip on the male root"
-            role = Flank.TIP if tip else Flank.ROOT
-            found.append(Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), land, role=role))
+            role = Flank.TIP if p[0] > c_x else Flank.ROOT
+            found.append(
+                Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), slipping_name(p[0], c_x), role=role)
+            )
     return found
+
+
+def slipping_name(x: float, pitch_x: float) -> str:
+    """Name a slipping point by where it lies on O1O2: which rotor's tip meets which root.
+
+    Rinder sec. 2.2.1: the meshline crosses O1O2 away from the pitch point C where a tip touches the
+    mate's root; beyond C (x > ``pitch_x``, mm, the male pitch radius) the male tip on the female root,
+    before it the female tip on the male root. The name depends on the place alone, not on the piece of
+    the meshline the crossing falls in: from points, the design's "male tip on the female root" of the
+    narrow-tip pair fell inside a piece or between two, and read 'driving flank', 'tip land' or
+    'sealing flank' by run.
+    """
+    return "male tip on the female root" if x > pitch_x else "female tip on the male root"
