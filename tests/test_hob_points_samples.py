@@ -177,8 +177,6 @@ KNOWN_VERDICTS = {
     ("rack_involute_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 55.3-57.8 mm, 16.80 deg for 18.13",
     ("rack_involute_5_6", "female", "scatter"): "17.98 deg for 18.13 (hobbable): the male's rack generated from the "
     "scattered female turns 0.15 deg steeper along its flank",
-    ("srm_b_5_6", "female", "scatter"): "0.103 deg for 0 (both not hobbable): the male generated from the "
-    "scattered female reaches its cusp 0.1 deg off the perpendicular",
 }
 KNOWN_RACKS = {
     ("n_rack_5_6", "female", "scatter"): "7.76 um off for the stated 7.49",
