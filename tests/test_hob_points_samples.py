@@ -172,8 +172,8 @@ ENVELOPE_TURNS_BACK = (
     "curvature from a smoothing fit swings the generation factor below 0): 'female undercut'"
 )
 KNOWN_VERDICTS = {
-    ("n_rack_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.5 mm (design 0.033 there), 5.39 deg for 5.73",
-    ("rinder_deix_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.5 mm (design 0.033 there), 5.39 deg for 5.73",
+    ("n_rack_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.5 mm (design 0.033 there), 5.37 deg for 5.73",
+    ("rinder_deix_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.5 mm (design 0.033 there), 5.37 deg for 5.73",
     ("rack_involute_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 55.3-57.8 mm, 16.80 deg for 18.13",
     ("rack_involute_5_6", "female", "scatter"): "17.98 deg for 18.13 (hobbable): the male's rack generated from the "
     "scattered female turns 0.15 deg steeper along its flank",
