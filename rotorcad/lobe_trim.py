@@ -76,6 +76,11 @@ def trimmed_lobe(pieces: list[tuple[str, Curve]], centre: np.ndarray, tip: float
         return float((v - s[0]) / (s[-1] - s[0]))
 
     for (ia, sa), (ib, sb), _ in _loops(chain, centre, tip):
+        if ib - ia >= n:
+            # a crossing a whole lobe or more apart cuts no loop off the blank: it is the lobe's own
+            # stray part (a mate generated from dense rounded points, its flank overshooting the tip
+            # through NaN samples) meeting a neighbouring lobe's copy; cutting it left no female at all
+            continue
         # the loop from part ia at sa to part ib at sb is cut away; a crossing with a neighbouring
         # lobe's copy trims this lobe's end only
         for i in range(max(ia, 0), min(ib, n - 1) + 1):

@@ -16,8 +16,8 @@ References, none produced by the code under test:
   removed (closed-form contact points farther than 50 um from the cut outline).
 
 What the hob sees is what ``rotorcad hob --male-points/--female-points`` builds: the pair generated
-from the measured rotor's rack (``pair_from_rotor_points``), its two racks with the measured-piece
-options, ``rack_deviation`` and ``judge`` at the profile's stated accuracy.
+from the measured rotor's rack (``pair_from_rotor_points``, ``with_exact_cusp_paths``), its two racks with
+the measured-piece options, ``rack_deviation`` and ``judge`` at the profile's stated accuracy.
 """
 
 from __future__ import annotations
@@ -38,6 +38,7 @@ from hob.rack import rack_deviation, rotor_rack
 from hob.verdict import judge
 from rotorcad.cli.main import main
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN
+from rotorcad.measured.cusp_paths import with_exact_cusp_paths
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.rotor_points import pair_from_rotor_points
 
@@ -75,7 +76,7 @@ def points(name: str, rotor: str, form: str) -> np.ndarray:
 @functools.cache
 def hob_view(name: str, rotor: str, form: str):
     """The pair from the points, both racks, the rack deviation and both verdicts (as `rotorcad hob`)."""
-    rotors = pair_from_rotor_points(rotor_pair(name), points(name, rotor, form), rotor)
+    rotors = with_exact_cusp_paths(pair_from_rotor_points(rotor_pair(name), points(name, rotor, form), rotor))
     racks = {side: rotor_rack(rotors, side, **MEASURED) for side in ("male", "female")}
     # each rotor judged as `rotorcad hob` judges it: the measured one as fitted to its points, its mate as an envelope
     verdicts = {side: judge(rack, accuracy=rotors.accuracy, measured=side == rotor) for side, rack in racks.items()}

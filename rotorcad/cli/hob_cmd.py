@@ -21,6 +21,7 @@ from rotorcad.envelope import rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.gear import InvoluteGear
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN
+from rotorcad.measured.cusp_paths import with_exact_cusp_paths
 
 
 @click.command()
@@ -70,6 +71,7 @@ def hob(design: Path | None, **opts: Any) -> None:
             # from their rack overshoots its tip where the rack's rounding meets its flat (its loops are cut)
             measured = {"min_turn": MEASURED_MIN_TURN, "join_gap": MEASURED_JOIN_GAP, "cut_loops": True}
             measured = measured if _measured(rotors) else {}
+            rotors = with_exact_cusp_paths(rotors)  # the mate's tip-corner cycloids of scattered points, for the hob
             racks = {"male": rotor_rack(rotors, "male", **measured), "female": rotor_rack(rotors, "female", **measured)}
             deviation = rack_deviation(rotors, **measured)
         except DesignError as exc:
