@@ -467,18 +467,18 @@ def flank_reports(
                 and length >= shortest
                 and not is_corner_handover(piece, both, length, paths, handover)
             ):
-                before = working
+                geometric += length  # a curve piece's contact is geometric but where the defect rules found a corner's path
                 tip = on_tip_circles(piece, pair, band, shortest)
                 on_tip = tip[:-1] & tip[1:]
                 work = resolved_steps(piece, both, gap, band, shortest)
                 if pg is not None:  # a point-generated stretch of the defect rules: a corner's path
                     on_tip |= pg[:-1] & pg[1:]
                     work &= ~(pg[:-1] & pg[1:])
+                    geometric -= float(seg[both & pg[:-1] & pg[1:]].sum())
                 if band > 0:  # a contact within the meshline's accuracy of a tip corner is that corner (resolved_steps)
                     corner = gap.min(axis=1) <= band
                     on_tip |= corner[:-1] | corner[1:]
                 working += float(seg[both & ~on_tip].sum())
-                geometric += working - before
                 spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
