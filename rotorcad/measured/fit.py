@@ -18,6 +18,7 @@ from rotorcad.errors import DesignError
 from rotorcad.geometry import distance_to_polyline, rotate, wrap_angle
 from rotorcad.measured.outline import UNEVEN_SPACING, Outline, corners, lands, raw_scatter, read_outline, scatter, whole_outline
 from rotorcad.measured.rack_pieces import step_splines
+from rotorcad.measured.stepped_spline import stepped_ring_fit
 from rotorcad.roles import Side
 from rotorcad.roots import bracket_root
 from rotorcad.rotor_pair import RotorPair
@@ -494,9 +495,9 @@ def lobe_pieces(
     roundings : bool
         Read a corner of sparse points that the vertices beside it share as a rounding the points
         step over (:func:`_resolved_corners`): the clearance's reading (its zones: no corner paths
-        on a rounded tip). False keeps it a corner, whose fan of normals gives the rack of a small
-        rounding closer (the 4/6 independent female's 1.5 mm root roundings from scattered points:
-        its rack 1.2 um off the generating rack as corners, 2.3 um as splines).
+        on a rounded tip; a ring's curvature steps between sparse points get knots, :func:`stepped_ring_fit`). False
+        keeps it a corner, whose fan of normals gives the rack of a small rounding closer (the 4/6 independent
+        female's 1.5 mm root roundings from scattered points: its rack 1.2 um off the generating one as corners).
 
     Returns
     -------
@@ -528,8 +529,11 @@ def lobe_pieces(
         runs = _runs_between_corners(whole, edges, corner_points, sigma)
     else:  # no corners: cut the ring in the middle of a land, if it has one
         found = _lands(np.vstack([whole, whole[:1]]), sigma)
-        if not found:
+        fitted = stepped_ring_fit(whole, sigma, side.pick(0.0, np.pi)) if roundings and not found else None
+        if not found and fitted is None:
             return [("flank", lobe_curve(pair, whole, rotor, smoothing))]
+        if fitted is not None:
+            return _cut_lobe(fitted, whole, teeth, rotor, label)
         a, b, _ = found[0]
         start = (a + b) // 2
         ring = np.roll(whole, -start, axis=0)
@@ -619,12 +623,8 @@ def _lands(run: np.ndarray, sigma: float) -> list[tuple[int, int, float]]:
         return found
     kept = []
     for a, b, radius in found:
-        # noise lets the window's trim keep a few points of the roundings beside a land: up to
-        # four at either end may go
-        for cut in range(1):
-            if b - a - 2 * cut + 1 >= 6 and _constant_radius(run[a + cut : b - cut + 1], sigma):
-                kept.append((a + cut, b - cut, radius))
-                break
+        if b - a + 1 >= 6 and _constant_radius(run[a : b + 1], sigma):
+            kept.append((a, b, radius))
     return kept
 
 
