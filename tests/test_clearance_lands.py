@@ -152,7 +152,11 @@ def test_n_rack_rounded_tips_from_80_points_a_lobe_are_contact_zone(n_rack):
     s = mc.summary()
     assert s["contact_zone_share"] > 0.95
     assert s["min_corner_gap"] is None  # the N-rack's tips are roundings: no sharp corner's path
-    assert contact_zone_error(n_rack, male, female, mc) <= s["accuracy"]  # 12.2 um, 18.7 stated
+    error = contact_zone_error(n_rack, male, female, mc)
+    assert error <= s["accuracy"]  # 18.7 um stated
+    # issue 22 item 2: within 10 um from 80 points a lobe. One cubic through points 0.79-1 mm apart rang
+    # across the curvature steps of the roundings (12.2 um); a knot at each step (stepped_spline): 9.3 um
+    assert error < 10e-3
     assert not s["min_normal_clearance"] < -s["accuracy"]
 
 
