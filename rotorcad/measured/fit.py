@@ -18,6 +18,7 @@ from rotorcad.errors import DesignError
 from rotorcad.geometry import distance_to_polylines, rotate, wrap_angle
 from rotorcad.measured.outline import UNEVEN_SPACING, Outline, corners, lands, raw_scatter, read_outline, scatter, whole_outline
 from rotorcad.measured.rack_pieces import step_splines
+from rotorcad.measured.recent import recent_results
 from rotorcad.measured.stepped_spline import stepped_ring_fit
 from rotorcad.roles import Side
 from rotorcad.roots import bracket_root
@@ -177,8 +178,7 @@ def lobe_curve(pair: RotorPair, points: np.ndarray, rotor: Side, smoothing: Smoo
     DesignError
         An outline that a ray from its centre crosses more than once, or a wrong lobe count.
     """
-    rotor = Side(rotor)  # "male" / "female" from a script reads as the rotor
-    side = Side(rotor)
+    side = Side(rotor)  # "male" / "female" from a script reads as the rotor
     teeth = side.pick(pair.male_teeth, pair.female_teeth)
     whole = whole_outline(points, teeth, f"{side.value} points")
     s_fit = _smoothing(whole, scatter(whole), smoothing)
@@ -365,6 +365,7 @@ from it on the flank's side of the corner's edge, bent that fit's end (its mate 
 against a 63 mm tip)."""
 
 
+@recent_results()  # lobe_pieces and tangent_spread locate the same exact outline's corners
 def _refined_corners(
     whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float, smoothing: Smoothing, accuracy: float = 0.0
 ) -> np.ndarray:
@@ -381,12 +382,11 @@ def _refined_corners(
     0.69-2.81 mm² by where the points fell (design 2.778), 2.7777-2.7779 with the splines'
     crossing. A crossing not found within two spacings keeps the chords' one.
     """
-    n = len(whole)
     ring = np.vstack([whole, whole, whole])
     near = NEAR_CORNER * sigma
     fits = []
     for j, i in enumerate(edges):
-        i_next = edges[(j + 1) % len(edges)] + (n if j + 1 == len(edges) else 0)
+        i_next = edges[(j + 1) % len(edges)] + (len(whole) if j + 1 == len(edges) else 0)
         inner = ring[i + 1 : i_next + 1]
         # without the points within a few scatters of either corner: which side of it they fall is the scatter's choice
         inner = inner[(np.hypot(*(inner - points[j]).T) >= near) & (np.hypot(*(inner - points[(j + 1) % len(edges)]).T) >= near)]
@@ -395,7 +395,7 @@ def _refined_corners(
     out = np.array(points, dtype=float)
     # an exact outline's corner that is one of its points (a design's CSV) stays that point, when on both fits
     # beside it (ON_POINT_GAP; not the nearest point of a corner that falls between two)
-    ends = np.stack([whole[edges], whole[(edges + 1) % n]], axis=1)  # (m, 2, 2): each corner edge's points
+    ends = np.stack([whole[edges], whole[(edges + 1) % len(whole)]], axis=1)  # (m, 2, 2): each corner edge's points
     on_point = np.min(np.linalg.norm(out[:, None, :] - ends, axis=2), axis=1) < 1e-9
     for j in range(len(edges)):
         before, after = fits[j - 1], fits[j]  # the run ending at corner j, and the one starting there
