@@ -232,6 +232,24 @@ def test_clearance_refuses_a_lobe_count_the_points_do_not_have(capsys, tmp_path,
     assert "r = 46.4 mm" in err and "one lobe of a 5-lobe rotor (give --male-teeth 5)" in err, err
 
 
+@pytest.mark.parametrize(("scale", "unit"), [(1 / 25.4, "inches"), (0.1, "cm")])
+def test_clearance_names_the_rotor_given_in_other_units(capsys, tmp_path, male, scale, unit):
+    """The male in inches given to `clearance` was refused naming --female-points ("its largest radius must be
+    greater than 113.263 mm so that the tip circles overlap", a new user's finding): the female file was right.
+    Reference: the construction, the design's whole male outline scaled by 1/25.4 (1/10), whose radii then lie
+    25.4 (10) times inside the pitch circle a z1 / (z1 + z2) = 116 * 5 / 11 = 52.73 mm: refused naming
+    --male-points and the unit, exit 2, one line."""
+    m, f = write(tmp_path / "m.csv", male["whole"] * scale), write(tmp_path / "f.csv", male["female"])
+    capsys.readouterr()
+    args = ["clearance", "--male-points", str(m), "--female-points", str(f), "--female-teeth", "6", "--male-teeth", "5"]
+    status = main([*args, "--center-distance", f"{male['a']:g}", "--quiet"])
+    _, err = capsys.readouterr()
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert status == 2 and len(lines) == 1 and "Traceback" not in err, err
+    assert lines[0].startswith("rotorcad: error: --male-points must be points in mm"), err
+    assert f"({unit}? write the points in mm)" in err and "r = 52.73 mm" in err, err
+
+
 def test_more_points_than_are_fitted_are_refused_saying_how_to_thin(capsys, tmp_path, male, monkeypatch):
     """200 000 scattered points of a male were refused "3.2 % of the lobe has no rack point" (11 000 of the same work),
     100 000 took 5.1 GB and 2 000 000 1.5 GB without a result: an outline of more than MAX_OUTLINE_POINTS is refused

@@ -347,6 +347,16 @@ def refuse_pitch_off_profile(points: np.ndarray, teeth: int, pitch_radius: float
     margin = PITCH_MARGIN * (high - low)
     if not (np.isfinite(pitch_radius) and pitch_radius > 0) or low - margin <= pitch_radius <= high + margin:
         return
+    for factor, unit in UNIT_FACTORS.items():  # the pitch circle a unit's factor off the points: the units
+        if low > 0 and low * factor * (1 - 0.1) <= pitch_radius <= high * factor * (1 + 0.1):
+            size = f"{factor:.4g} times smaller" if factor > 1 else f"{1 / factor:.4g} times larger"
+            raise DesignError(
+                option.replace("-teeth", "-points"),
+                "points in mm",
+                None,
+                f"its radii {low:.4g}-{high:.4g} mm are about {size} than its pitch circle r = {pitch_radius:.4g} mm "
+                f"that the centre distance and the lobe counts give ({unit}? write the points in mm)",
+            )
     ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
     span = float(abs(ang[-1] - ang[0]))
     if span > 1.5 * np.pi:  # a whole outline: its lobes are counted when it is read (it has 5 lobes)
