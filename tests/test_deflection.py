@@ -453,7 +453,7 @@ def test_indicator_must_cover_the_cycle(tmp_path, capsys):
     assert "--indicator must cover the chamber's cycle from 0 to" in err and "200.0" in err
 
 
-def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys, built_in_deflect):
+def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys, built_in_deflect, monkeypatch):
     import xml.etree.ElementTree as ET
 
     design = str(ROOT / "samples" / "rack_involute_5_6.toml")
@@ -468,5 +468,11 @@ def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys
     assert "|w| (paper load)" in drawn["text"] and "|w| (rotorcad load)" in drawn["text"]
     fifo = tmp_path / "fifo"
     os.mkfifo(fifo)
+    from rotorcad.cli import deflect_cmd
+
+    def no_work(*args, **kwargs):  # the FIFO is refused before the pair is built (it was after 2.5 s of work)
+        raise AssertionError("deflect built the rotors before checking --plot")
+
+    monkeypatch.setattr(deflect_cmd, "build_rotors", no_work)
     assert main(["deflect", design, "--angle", "17", "--terms", "3", "--plot", str(fifo)]) == 2
     assert "regular file" in capsys.readouterr().err and stat.S_ISFIFO(os.stat(fifo).st_mode)

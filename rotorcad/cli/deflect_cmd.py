@@ -96,21 +96,27 @@ def deflect(
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     given = _gather(design, settings, angle, terms, indicator)
+    out = Outputs()  # the picture's file checked before the work (a FIFO --plot was refused after 2.5 s of it)
+    out.add_figure(
+        plot,
+        lambda: _plot(
+            model,
+            solved.lines,
+            sweep_angles,
+            solved.swept,
+            given.shafts,
+            f"{Path(design).name}: {rotors.family}",
+            solved.other_lines,
+            solved.other_swept,
+        ),
+        "--plot",
+    )
     rotors, _, _ = build_rotors(design, _rotor_options(design), settings)  # the design as read above
     model = _model(rotors, given, LoadModel(method))
     sweep_angles = np.linspace(0.0, 2 * np.pi / rotors.pair.male_teeth, SWEEP_ANGLES, endpoint=False)
     solved = _solve(model, sweep_angles, given, quiet)
     result = _result(model, solved, given, rotors.pair.male_teeth, sweep_angles)
     result["defaults"] = _defaults(given.op, given.de, model, given.exponent, given.terms_label, given.terms)
-    out = Outputs()
-    case = f"{Path(design).name}: {rotors.family}"
-    out.add_figure(
-        plot,
-        lambda: _plot(
-            model, solved.lines, sweep_angles, solved.swept, given.shafts, case, solved.other_lines, solved.other_swept
-        ),
-        "--plot",
-    )
     result["files"] = [str(x) for x in out.write()]
     if as_json:
         emit_json(result)
