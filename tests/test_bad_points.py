@@ -250,6 +250,37 @@ def test_clearance_names_the_rotor_given_in_other_units(capsys, tmp_path, male, 
     assert f"({unit}? write the points in mm)" in err and "r = 52.73 mm" in err, err
 
 
+def test_points_of_another_rotor_are_noted_with_the_radii_they_contradict(capsys, tmp_path, male):
+    """The narrow-tip sample's male given as --male-points with the rack-involute design (0.49 and 1.0 mm off
+    its tip and root radii) gave a verdict without a word (a new user's finding); here the other way round, the
+    rack-involute male with the narrow-tip design. Reference: the two samples' [pair] tables: the note names
+    both radii of the points against the design's, and the design's own male points (the module's fixture)
+    give no note."""
+    from rotorcad.design import rotor_design
+    from rotorcad.geometry import rotate
+    from rotorcad.rotor_build import build_pair, pair_spec
+
+    other = ROOT / "samples" / "rack_involute_5_6.toml"
+    theirs = tomllib.loads(other.read_text())["pair"]
+    ours = tomllib.loads(SAMPLE.read_text())["pair"]
+    rotors = build_pair(pair_spec(rotor_design(tomllib.loads(other.read_text()), other.parent)))
+    lobe = np.vstack([seg.resampled(1e-4).points for seg in rotors.male_lobe().segments])
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(lobe, axis=0).T))])
+    u = np.linspace(0.0, s[-1], 2001)[:-1]  # evenly, 2000 a lobe: a tip corner stepped over by 0.05 mm at most
+    even = np.column_stack([np.interp(u, s, lobe[:, 0]), np.interp(u, s, lobe[:, 1])])
+    whole = np.vstack([rotate(even, k * 2 * np.pi / 5) for k in range(5)])
+    for points, noted in ((whole, True), (male["whole"], False)):
+        path = write(tmp_path / "m.csv", points)
+        capsys.readouterr()
+        assert main(["rotor", str(SAMPLE), "--male-points", str(path), "--json"]) == 0
+        _, err = capsys.readouterr()
+        assert ("against the pair's male root radius" in err) is noted, err
+        if noted:
+            for key in ("root", "tip"):
+                mine, stated = theirs[f"male_{key}_radius"], ours[f"male_{key}_radius"]
+                assert f"its {key} radius {mine:.3f} mm against the pair's male {key} radius {stated:.3f} mm" in err, err
+
+
 def test_more_points_than_are_fitted_are_refused_saying_how_to_thin(capsys, tmp_path, male, monkeypatch):
     """200 000 scattered points of a male were refused "3.2 % of the lobe has no rack point" (11 000 of the same work),
     100 000 took 5.1 GB and 2 000 000 1.5 GB without a result: an outline of more than MAX_OUTLINE_POINTS is refused
