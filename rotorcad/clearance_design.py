@@ -315,10 +315,12 @@ def blended(delta: np.ndarray, s: np.ndarray, perimeter: float, length: float) -
     if steps.size == 0:
         return delta
     ds = np.mod(s[nxt[steps]] - s[steps], perimeter)
-    where = s[steps] + 0.5 * ds  # the step sits between two samples (or at a corner's two samples)
+    # the step sits between two samples (or at a corner's two samples), taken back onto [0, perimeter)
+    where = np.mod(s[steps] + 0.5 * ds, perimeter)
     high = np.maximum(delta[steps], delta[nxt[steps]])
-    d = np.abs(s[None, :] - where[:, None])
-    u = np.minimum(np.minimum(d, perimeter - d) / length, 1.0)
+    d = np.mod(s[None, :] - where[:, None], perimeter)
+    # distance around the closed outline, in [0, perimeter / 2] whatever the rounding of s and perimeter
+    u = np.clip(np.minimum(d, perimeter - d) / length, 0.0, 1.0)
     w = 1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2)
     rise = np.clip(high[:, None] - delta[None, :], 0.0, None) * w
     return delta + rise.max(axis=0)
