@@ -326,4 +326,59 @@ def blended(delta: np.ndarray, s: np.ndarray, perimeter: float, length: float) -
     return delta + rise.max(axis=0)
 
 
-__all__ = ["BLEND", "ClearanceDistribution", "blended", "corrected_female"]
+def thinned_female_fault(
+    rotors: ScrewRotors, thinned: np.ndarray, clearance: ClearanceDistribution, tolerance: float
+) -> str | None:
+    """Say what is wrong with a thinned female outline before it is written, or None.
+
+    An outline check independent of how the female was thinned: every point lies inside the design
+    female (at the same chord tolerance) by no more than the largest transverse clearance
+    delta_n / cos(beta) (module docstring: the factor is at most 1 / cos(beta)), so within the
+    annulus from the root radius less that clearance to the tip radius; and no two consecutive
+    points lie farther apart than the design female's own longest chord (5 % and the tolerance
+    over it: a concave piece's chords grow by (R + delta) / R).
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair as designed.
+    thinned : (n, 2) float array, mm
+        The thinned female outline, own frame, closed without a repeated end point.
+    clearance : ClearanceDistribution
+        The normal clearance designed into it.
+    tolerance : float, mm
+        The chord tolerance it was made to.
+
+    Returns
+    -------
+    str or None
+        What is wrong, in words and mm; None when the outline passes.
+    """
+    import shapely
+
+    pair = rotors.pair
+    beta = np.arctan(2 * np.pi * pair.male_pitch_radius / pair.lead)
+    values = [clearance.driving, clearance.sealing, clearance.lands]
+    if clearance.table is not None:
+        values = list(np.asarray(clearance.table, dtype=float)[:, 1])
+    reach = max(values) / np.cos(beta) + tolerance  # mm: the most a point may lie inside the design
+    if len(thinned) < 3 or not np.all(np.isfinite(thinned)):
+        return "the thinned female has fewer than three finite points"
+    design = rotors.female_outline(tolerance).points
+    r = np.hypot(*thinned.T)
+    low, high = pair.female_root_radius - reach, pair.female_tip_radius + tolerance
+    if r.min() < low or r.max() > high:
+        return f"the thinned female reaches r = {r.min():.4f}-{r.max():.4f} mm, off the annulus {low:.4f}-{high:.4f} mm"
+    body = shapely.Polygon(design)
+    depth = shapely.distance(shapely.points(thinned), body.exterior)
+    outside = ~shapely.contains_xy(body.buffer(tolerance), thinned[:, 0], thinned[:, 1])
+    if outside.any() or depth.max() > reach:
+        return f"the thinned female lies up to {depth.max():.4f} mm from the design female (at most {reach:.4f} mm inside it)"
+    chord = np.hypot(*(np.roll(thinned, -1, axis=0) - thinned).T).max()
+    own = np.hypot(*(np.roll(design, -1, axis=0) - design).T).max()
+    if chord > 1.05 * own + tolerance:
+        return f"the thinned female has a chord of {chord:.4f} mm, the design female's longest is {own:.4f} mm"
+    return None
+
+
+__all__ = ["BLEND", "ClearanceDistribution", "blended", "corrected_female", "thinned_female_fault"]

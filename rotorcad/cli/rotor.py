@@ -12,7 +12,7 @@ import numpy as np
 from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile, read_profile_points
-from rotorcad.clearance_design import ClearanceDistribution, corrected_female
+from rotorcad.clearance_design import ClearanceDistribution, corrected_female, thinned_female_fault
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
 from rotorcad.design.labels import PAIR_FIELDS, PAIR_LABELS, PairNames, required
 from rotorcad.design.rotors import analyse_pair, build_pair, merge_pair
@@ -275,7 +275,13 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
     poly = shapely.make_valid(shapely.Polygon(pts)).intersection(tip)
     if not isinstance(poly, shapely.Polygon):
         poly = max((g for g in getattr(poly, "geoms", []) if isinstance(g, shapely.Polygon)), key=lambda g: g.area)
-    return _exterior(poly)
+    out = _exterior(poly)
+    fault = thinned_female_fault(rotors, out, designed, tol)  # checked before any file is written
+    if fault is not None:
+        raise InputError(
+            f"--clearance at --tolerance {tol:g}: {fault}; nothing written: try another --tolerance from 1e-06 to 1 mm."
+        )
+    return out
 
 
 def rotors_of(design: Path | None, data: dict[str, Any] | None, opts: dict[str, Any]) -> ScrewRotors | None:
