@@ -36,6 +36,7 @@ from rotorcad.profile import Segment
 from rotorcad.screw_rotors import ScrewRotors
 
 BLEND = 1.0  # mm along the female outline: a per-flank clearance step becomes a smooth rise this long
+BLEND_CELLS = 2_000_000  # (step, sample) pairs weighed at once by blended(): some 16 MB an array
 LAND_SLOPE = 0.5  # |sin| of the rack tangent's angle to the pitch line below which a point is a land's image
 
 
@@ -318,12 +319,15 @@ def blended(delta: np.ndarray, s: np.ndarray, perimeter: float, length: float) -
     # the step sits between two samples (or at a corner's two samples), taken back onto [0, perimeter)
     where = np.mod(s[steps] + 0.5 * ds, perimeter)
     high = np.maximum(delta[steps], delta[nxt[steps]])
-    d = np.mod(s[None, :] - where[:, None], perimeter)
-    # distance around the closed outline, in [0, perimeter / 2] whatever the rounding of s and perimeter
-    u = np.clip(np.minimum(d, perimeter - d) / length, 0.0, 1.0)
-    w = 1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2)
-    rise = np.clip(high[:, None] - delta[None, :], 0.0, None) * w
-    return delta + rise.max(axis=0)
+    rise = np.zeros_like(delta)
+    chunk = max(1, BLEND_CELLS // len(delta))  # steps at a time: a few (chunk, n) arrays, not (steps, n)
+    for k in range(0, len(steps), chunk):
+        d = np.mod(s[None, :] - where[k : k + chunk, None], perimeter)
+        # distance around the closed outline, in [0, perimeter / 2] whatever the rounding of s and perimeter
+        u = np.clip(np.minimum(d, perimeter - d) / length, 0.0, 1.0)
+        w = 1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2)
+        rise = np.maximum(rise, (np.clip(high[k : k + chunk, None] - delta[None, :], 0.0, None) * w).max(axis=0))
+    return delta + rise
 
 
 def thinned_female_fault(

@@ -220,3 +220,24 @@ def test_a_corrupt_thinned_female_is_refused_before_it_is_written(tmp_path, caps
     assert not out.exists()
     monkeypatch.setattr(rotor_cli, "corrected_female", lambda *a: good)
     assert main(args) == 0 and out.exists()
+
+
+def test_blend_stays_between_the_flank_values_when_the_length_rounds_over(monkeypatch):
+    # N10's cause: the last sample's arc length 1 ulp over the outline's length put the step at
+    # 1.5 perimeters and the quintic at u = -0.5 perimeter / blend (w ~ 2e7). The quintic fall
+    # w(u) = 1 - (10u^3 - 15u^4 + 6u^5) lies in [0, 1] on [0, 1], so the blend lies between the
+    # smaller and the larger flank value; its closed form at the step's neighbours is checked too,
+    # with the steps weighed one at a time (clearance_design.BLEND_CELLS) as well as all at once.
+    import rotorcad.clearance_design as cd
+
+    s = np.linspace(0.0, 30.0, 3001)
+    delta = np.where(s < 10.0, 0.02, 0.05)
+    perimeter = s[-1] * (1 - 1e-16) - 1e-14  # rounds below the last arc length
+    for cells in (cd.BLEND_CELLS, 1):
+        monkeypatch.setattr(cd, "BLEND_CELLS", cells)
+        out = cd.blended(delta, s, perimeter, 1.0)
+        assert out.min() >= 0.02 and out.max() <= 0.05
+        d = 9.995 - s[(s > 8.0) & (s < 10.0)]  # before the step at 9.995 mm (between samples)
+        u = np.clip(d / 1.0, 0.0, 1.0)
+        expect = 0.02 + 0.03 * (1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2))
+        np.testing.assert_allclose(out[(s > 8.0) & (s < 10.0)], expect, atol=1e-12)

@@ -271,8 +271,11 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
     import shapely
 
     pts = corrected_female(rotors, designed, tol)
-    tip = shapely.Point(0.0, 0.0).buffer(rotors.pair.female_tip_radius + 1e-6, quad_segs=512)
-    poly = shapely.make_valid(shapely.Polygon(pts)).intersection(tip)
+    radius = rotors.pair.female_tip_radius + 1e-6
+    poly = shapely.make_valid(shapely.Polygon(pts))
+    if np.hypot(*pts.T).max() > radius:  # a circle of 2048 chords cut a tip land to 70 nm, past a fine --tolerance
+        step = 2.0 * np.arccos(1.0 - min(tol, radius) / radius)  # rad: the chord of sagitta tol
+        poly = poly.intersection(shapely.Point(0.0, 0.0).buffer(radius, quad_segs=int(np.ceil(0.5 * np.pi / step))))
     if not isinstance(poly, shapely.Polygon):
         poly = max((g for g in getattr(poly, "geoms", []) if isinstance(g, shapely.Polygon)), key=lambda g: g.area)
     out = _exterior(poly)
