@@ -106,8 +106,9 @@ class ClearanceDistribution:
         Parameters
         ----------
         text : str
-            ``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (missing flanks 0), mm;
-            either may add ``blend=`` (mm, default :data:`BLEND`).
+            ``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (a missing flank 0, missing
+            lands the smaller of the two flank values), mm; either may add ``blend=`` (mm, default
+            :data:`BLEND`).
 
         Returns
         -------
@@ -131,6 +132,8 @@ class ClearanceDistribution:
                 values[key] = float(value)
             if set(values) == {"blend"}:
                 raise DesignError("clearance", "a value or driving=, sealing=, lands= (and blend=) values in mm", text)
+            if "lands" not in values:  # the lands take the smaller flank value: no point of the female left at 0
+                values["lands"] = min(values.get("driving", 0.0), values.get("sealing", 0.0))
             return ClearanceDistribution(**values)
         except DesignError:
             raise

@@ -241,3 +241,18 @@ def test_blend_stays_between_the_flank_values_when_the_length_rounds_over(monkey
         u = np.clip(d / 1.0, 0.0, 1.0)
         expect = 0.02 + 0.03 * (1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2))
         np.testing.assert_allclose(out[(s > 8.0) & (s < 10.0)], expect, atol=1e-12)
+
+
+def test_per_flank_clearance_without_lands_thins_the_lands_by_the_smaller_flank_value():
+    # N10: driving=0.02,sealing=0.05 left the tip and root lands at the design's radii (lands 0),
+    # against "inside the design by at least the clearance everywhere". With lands= missing they
+    # get the smaller flank value, 20 um: shapely's erosion of the design female by 20 um (less the
+    # chords) holds every point, and the tip land sits at the design tip radius less 20 um (on a
+    # land the rack is along the pitch line, so the transverse offset is the normal one).
+    rotors = rotors_of("srm_asymmetric_5_6")
+    given = ClearanceDistribution.parse(PER_FLANK)
+    assert given.lands == 0.02 and ClearanceDistribution.parse(PER_FLANK + ",lands=0").lands == 0.0
+    thinned = corrected_female(rotors, given, TOL)
+    eroded = shapely.Polygon(rotors.female_outline(1e-5).points).buffer(-(0.02 - 2e-4), quad_segs=256)
+    assert shapely.contains_xy(eroded, thinned[:, 0], thinned[:, 1]).all()
+    assert np.hypot(*thinned.T).max() == pytest.approx(rotors.pair.female_tip_radius - 0.02, abs=1e-6)

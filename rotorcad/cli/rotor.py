@@ -111,7 +111,9 @@ CONTRACT_KEYS = (
     "--clearance",
     "designed",
     help="Meshing clearance to design into the female written by --female-csv / --dxf, in the normal section [mm]: "
-    "a value (uniform) or driving=D,sealing=S,lands=L (Wu & Chi's measure: rotorcad clearance reads it back).",
+    "a value (uniform) or driving=D,sealing=S,lands=L (a missing flank 0; missing lands: the smaller of D and S, "
+    "so the tip and root lands are thinned too; lands=0 leaves them as designed) "
+    "(Wu & Chi's measure: rotorcad clearance reads it back).",
 )
 @click.option(
     "--clearance-table",
