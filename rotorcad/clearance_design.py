@@ -36,6 +36,7 @@ from rotorcad.profile import Segment
 from rotorcad.screw_rotors import ScrewRotors
 
 BLEND = 1.0  # mm along the female outline: a per-flank clearance step becomes a smooth rise this long
+BLEND_CELLS = 2_000_000  # (step, sample) pairs weighed at once by blended(): some 16 MB an array
 LAND_SLOPE = 0.5  # |sin| of the rack tangent's angle to the pitch line below which a point is a land's image
 
 
@@ -105,8 +106,9 @@ class ClearanceDistribution:
         Parameters
         ----------
         text : str
-            ``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (missing flanks 0), mm;
-            either may add ``blend=`` (mm, default :data:`BLEND`).
+            ``0.05`` (uniform) or ``driving=0.03,sealing=0.05,lands=0.04`` (a missing flank 0, missing
+            lands the smaller of the two flank values), mm; either may add ``blend=`` (mm, default
+            :data:`BLEND`).
 
         Returns
         -------
@@ -130,6 +132,8 @@ class ClearanceDistribution:
                 values[key] = float(value)
             if set(values) == {"blend"}:
                 raise DesignError("clearance", "a value or driving=, sealing=, lands= (and blend=) values in mm", text)
+            if "lands" not in values:  # the lands take the smaller flank value: no point of the female left at 0
+                values["lands"] = min(values.get("driving", 0.0), values.get("sealing", 0.0))
             return ClearanceDistribution(**values)
         except DesignError:
             raise
@@ -315,13 +319,73 @@ def blended(delta: np.ndarray, s: np.ndarray, perimeter: float, length: float) -
     if steps.size == 0:
         return delta
     ds = np.mod(s[nxt[steps]] - s[steps], perimeter)
-    where = s[steps] + 0.5 * ds  # the step sits between two samples (or at a corner's two samples)
+    # the step sits between two samples (or at a corner's two samples), taken back onto [0, perimeter)
+    where = np.mod(s[steps] + 0.5 * ds, perimeter)
     high = np.maximum(delta[steps], delta[nxt[steps]])
-    d = np.abs(s[None, :] - where[:, None])
-    u = np.minimum(np.minimum(d, perimeter - d) / length, 1.0)
-    w = 1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2)
-    rise = np.clip(high[:, None] - delta[None, :], 0.0, None) * w
-    return delta + rise.max(axis=0)
+    rise = np.zeros_like(delta)
+    chunk = max(1, BLEND_CELLS // len(delta))  # steps at a time: a few (chunk, n) arrays, not (steps, n)
+    for k in range(0, len(steps), chunk):
+        d = np.mod(s[None, :] - where[k : k + chunk, None], perimeter)
+        # distance around the closed outline, in [0, perimeter / 2] whatever the rounding of s and perimeter
+        u = np.clip(np.minimum(d, perimeter - d) / length, 0.0, 1.0)
+        w = 1.0 - u**3 * (10.0 - 15.0 * u + 6.0 * u**2)
+        rise = np.maximum(rise, (np.clip(high[k : k + chunk, None] - delta[None, :], 0.0, None) * w).max(axis=0))
+    return delta + rise
 
 
-__all__ = ["BLEND", "ClearanceDistribution", "blended", "corrected_female"]
+def thinned_female_fault(
+    rotors: ScrewRotors, thinned: np.ndarray, clearance: ClearanceDistribution, tolerance: float
+) -> str | None:
+    """Say what is wrong with a thinned female outline before it is written, or None.
+
+    An outline check independent of how the female was thinned: every point lies inside the design
+    female (at the same chord tolerance) by no more than the largest transverse clearance
+    delta_n / cos(beta) (module docstring: the factor is at most 1 / cos(beta)), so within the
+    annulus from the root radius less that clearance to the tip radius; and no two consecutive
+    points lie farther apart than the design female's own longest chord (5 % and the tolerance
+    over it: a concave piece's chords grow by (R + delta) / R).
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair as designed.
+    thinned : (n, 2) float array, mm
+        The thinned female outline, own frame, closed without a repeated end point.
+    clearance : ClearanceDistribution
+        The normal clearance designed into it.
+    tolerance : float, mm
+        The chord tolerance it was made to.
+
+    Returns
+    -------
+    str or None
+        What is wrong, in words and mm; None when the outline passes.
+    """
+    import shapely
+
+    pair = rotors.pair
+    beta = np.arctan(2 * np.pi * pair.male_pitch_radius / pair.lead)
+    values = [clearance.driving, clearance.sealing, clearance.lands]
+    if clearance.table is not None:
+        values = list(np.asarray(clearance.table, dtype=float)[:, 1])
+    reach = max(values) / np.cos(beta) + tolerance  # mm: the most a point may lie inside the design
+    if len(thinned) < 3 or not np.all(np.isfinite(thinned)):
+        return "the thinned female has fewer than three finite points"
+    design = rotors.female_outline(tolerance).points
+    r = np.hypot(*thinned.T)
+    low, high = pair.female_root_radius - reach, pair.female_tip_radius + tolerance
+    if r.min() < low or r.max() > high:
+        return f"the thinned female reaches r = {r.min():.4f}-{r.max():.4f} mm, off the annulus {low:.4f}-{high:.4f} mm"
+    body = shapely.Polygon(design)
+    depth = shapely.distance(shapely.points(thinned), body.exterior)
+    outside = ~shapely.contains_xy(body.buffer(tolerance), thinned[:, 0], thinned[:, 1])
+    if outside.any() or depth.max() > reach:
+        return f"the thinned female lies up to {depth.max():.4f} mm from the design female (at most {reach:.4f} mm inside it)"
+    chord = np.hypot(*(np.roll(thinned, -1, axis=0) - thinned).T).max()
+    own = np.hypot(*(np.roll(design, -1, axis=0) - design).T).max()
+    if chord > 1.05 * own + tolerance:
+        return f"the thinned female has a chord of {chord:.4f} mm, the design female's longest is {own:.4f} mm"
+    return None
+
+
+__all__ = ["BLEND", "ClearanceDistribution", "blended", "corrected_female", "thinned_female_fault"]

@@ -12,7 +12,7 @@ import numpy as np
 from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile, read_profile_points
-from rotorcad.clearance_design import ClearanceDistribution, corrected_female
+from rotorcad.clearance_design import ClearanceDistribution, corrected_female, thinned_female_fault
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
 from rotorcad.design.labels import PAIR_FIELDS, PAIR_LABELS, PairNames, required
 from rotorcad.design.rotors import analyse_pair, build_pair, merge_pair
@@ -111,7 +111,9 @@ CONTRACT_KEYS = (
     "--clearance",
     "designed",
     help="Meshing clearance to design into the female written by --female-csv / --dxf, in the normal section [mm]: "
-    "a value (uniform) or driving=D,sealing=S,lands=L (Wu & Chi's measure: rotorcad clearance reads it back).",
+    "a value (uniform) or driving=D,sealing=S,lands=L (a missing flank 0; missing lands: the smaller of D and S, "
+    "so the tip and root lands are thinned too; lands=0 leaves them as designed) "
+    "(Wu & Chi's measure: rotorcad clearance reads it back).",
 )
 @click.option(
     "--clearance-table",
@@ -271,11 +273,20 @@ def _corrected(rotors: ScrewRotors, designed: ClearanceDistribution, tol: float)
     import shapely
 
     pts = corrected_female(rotors, designed, tol)
-    tip = shapely.Point(0.0, 0.0).buffer(rotors.pair.female_tip_radius + 1e-6, quad_segs=512)
-    poly = shapely.make_valid(shapely.Polygon(pts)).intersection(tip)
+    radius = rotors.pair.female_tip_radius + 1e-6
+    poly = shapely.make_valid(shapely.Polygon(pts))
+    if np.hypot(*pts.T).max() > radius:  # a circle of 2048 chords cut a tip land to 70 nm, past a fine --tolerance
+        step = 2.0 * np.arccos(1.0 - min(tol, radius) / radius)  # rad: the chord of sagitta tol
+        poly = poly.intersection(shapely.Point(0.0, 0.0).buffer(radius, quad_segs=int(np.ceil(0.5 * np.pi / step))))
     if not isinstance(poly, shapely.Polygon):
         poly = max((g for g in getattr(poly, "geoms", []) if isinstance(g, shapely.Polygon)), key=lambda g: g.area)
-    return _exterior(poly)
+    out = _exterior(poly)
+    fault = thinned_female_fault(rotors, out, designed, tol)  # checked before any file is written
+    if fault is not None:
+        raise InputError(
+            f"--clearance at --tolerance {tol:g}: {fault}; nothing written: try another --tolerance from 1e-06 to 1 mm."
+        )
+    return out
 
 
 def rotors_of(design: Path | None, data: dict[str, Any] | None, opts: dict[str, Any]) -> ScrewRotors | None:
