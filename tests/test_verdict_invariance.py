@@ -118,6 +118,7 @@ KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
         ("n_rack_5_6", "scatter-1um", "-9.5 %", _FLANK),
         ("rinder_deix_5_6", "scatter-1um", "-9.5 %", _FLANK),
         ("narrow_tip_5_6", "scatter-1um", "-16.3 %", _TIP),
+        ("srm_asymmetric_5_6", "scatter-1um", "+2.0 %", _TIP),
     )
 }
 
@@ -859,29 +860,18 @@ def fine_csv(tmp_path_factory) -> dict:
     out["design hob"] = _main_json("hob", design)
     pair = tomllib.loads(design.read_text())["pair"]
     given = [f"--{k.replace('_', '-')}={v}" for k, v in pair.items() if k != "hand"]
-    # the male as rotorcad wrote it before: clipped by a 2048-gon inscribed in the tip circle (+1 nm), whose
-    # chords sag 82 nm inside it; the reader must not hook a run at the corner it leaves 72 nm inside the tip
-    old = shapely.Polygon(read_points(files["male"])).intersection(
-        shapely.Point(0, 0).buffer(pair["male_tip_radius"] + 1e-6, quad_segs=512)
-    )
-    files["old male"] = folder / "old_male.csv"
-    write_points(
-        files["old male"], _exterior(old), ["male outline, clipped by an inscribed 2048-gon as rotorcad wrote it before"]
-    )
-    for name, path in files.items():
-        side = name.split()[-1]
-        out[name] = _main_json("rotor", f"--{side}-points", path, *given)
-        out[f"{name} hob"] = _main_json("hob", f"--{side}-points", path, *given)
+    for side, path in files.items():
+        out[side] = _main_json("rotor", f"--{side}-points", path, *given)
+        out[f"{side} hob"] = _main_json("hob", f"--{side}-points", path, *given)
     return out
 
 
 @pytest.mark.parametrize("side", ["male", "female"])
 def test_fine_csv_outline_does_not_cross_itself(fine_csv, side):
-    # newuser4 N1: the section was clipped by an inscribed 2048-gon whose chords sag 82 nm inside the tip;
-    # at a 0.01 um chord the written tip land was those chords and the sealing tip corner 72 nm inside the
-    # tip. References: shapely (GEOS), an independent reader: the closed ring is simple; and the tip circle
-    # (the pair's tip radius): no point outside it, and every chord between two points on it (the tip land)
-    # within the chord tolerance of it at its middle (the sagitta of an arc's chord).
+    # newuser4 N1 asked whether the written outline crosses itself: it does not, but its tip land was the chords
+    # of the section's clip (a 2048-gon), 75-82 nm inside the tip circle at a 10 nm chord. References: shapely
+    # (GEOS), an independent reader: the closed ring is simple; the tip circle (the pair's tip radius): no point
+    # outside it, and every chord between two points on it within the chord tolerance of it at its middle.
     pts = read_points(fine_csv["files"][side])
     assert shapely.LinearRing(pts).is_simple
     tip = tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"][f"{side}_tip_radius"]
@@ -894,13 +884,14 @@ def test_fine_csv_outline_does_not_cross_itself(fine_csv, side):
     assert np.hypot(*middle.T).min() >= tip - FINE_CHORD, np.sort(np.hypot(*middle.T) - tip)[:5]
 
 
-@pytest.mark.parametrize("side", ["male", "female", "old male"])
+@pytest.mark.parametrize("side", ["male", "female"])
 def test_fine_csv_reads_back_as_the_design(fine_csv, side):
     # newuser4 N1: rotorcad's own male outline at a 0.01 um chord read back without its sealing tip-corner
     # cusp, a sealing meshline of 29.20 mm (design 54.56), the slip singularity on both driving flanks, and in
-    # `hob` "not hobbable, 3.434 deg" (design hobbable, 18.127 deg); "old male" is that file as it was written
-    # (the reader's part, rotorcad.measured.corner_fits._turns_back). Reference: the design's own analysis and hob
-    # verdict from its exact curves.
+    # `hob` "not hobbable, 3.434 deg" (design hobbable, 18.127 deg): the section's clip (a 2048-gon inscribed in
+    # the tip circle) wrote the sealing tip corner 72 nm inside the tip, and the reader moved it past the next
+    # point (rotorcad.measured.corner_fits._turns_back). Reference: the design's own analysis and hob verdict
+    # from its exact curves.
     design, given = fine_csv["design"], fine_csv[side]
     assert_same_verdicts(design, given)
     assert given["runs_without_timing_gears"] == design["runs_without_timing_gears"]
