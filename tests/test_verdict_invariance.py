@@ -860,9 +860,15 @@ def fine_csv(tmp_path_factory) -> dict:
     out["design hob"] = _main_json("hob", design)
     pair = tomllib.loads(design.read_text())["pair"]
     given = [f"--{k.replace('_', '-')}={v}" for k, v in pair.items() if k != "hand"]
-    for side, path in files.items():
-        out[side] = _main_json("rotor", f"--{side}-points", path, *given)
-        out[f"{side} hob"] = _main_json("hob", f"--{side}-points", path, *given)
+    # the male as rotor wrote it before: clipped by the 2048-gon inscribed in tip + 1 nm (ScrewRotors.section
+    # without exact_tip), its sealing tip corner 72 nm inside the tip, on a chord of the clip
+    disk = shapely.Point(0, 0).buffer(pair["male_tip_radius"] + 1e-6, quad_segs=512)
+    files["old male"] = folder / "old_male.csv"
+    write_points(files["old male"], _exterior(shapely.Polygon(read_points(files["male"])).intersection(disk)))
+    for name, path in files.items():
+        side = name.split()[-1]
+        out[name] = _main_json("rotor", f"--{side}-points", path, *given)
+        out[f"{name} hob"] = _main_json("hob", f"--{side}-points", path, *given)
     return out
 
 
@@ -884,14 +890,14 @@ def test_fine_csv_outline_does_not_cross_itself(fine_csv, side):
     assert np.hypot(*middle.T).min() >= tip - FINE_CHORD, np.sort(np.hypot(*middle.T) - tip)[:5]
 
 
-@pytest.mark.parametrize("side", ["male", "female"])
+@pytest.mark.parametrize("side", ["male", "female", "old male"])
 def test_fine_csv_reads_back_as_the_design(fine_csv, side):
     # newuser4 N1: rotorcad's own male outline at a 0.01 um chord read back without its sealing tip-corner
     # cusp, a sealing meshline of 29.20 mm (design 54.56), the slip singularity on both driving flanks, and in
     # `hob` "not hobbable, 3.434 deg" (design hobbable, 18.127 deg): the section's clip (a 2048-gon inscribed in
     # the tip circle) wrote the sealing tip corner 72 nm inside the tip, and the reader moved it past the next
-    # point (rotorcad.measured.corner_fits._turns_back). Reference: the design's own analysis and hob verdict
-    # from its exact curves.
+    # point: "old male" is that file, read back since rotorcad.measured.corner_fits._turns_back. Reference: the
+    # design's own analysis and hob verdict from its exact curves.
     design, given = fine_csv["design"], fine_csv[side]
     assert_same_verdicts(design, given)
     assert given["runs_without_timing_gears"] == design["runs_without_timing_gears"]
