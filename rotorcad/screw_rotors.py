@@ -301,11 +301,15 @@ class ScrewRotors:
         """
         return np.asarray(points) + np.array([self.pair.center_distance, 0.0])
 
-    def section(self, rotor: Side | str, tolerance: float | None = None) -> shapely.Polygon:
+    def section(self, rotor: Side | str, tolerance: float | None = None, exact_tip: bool = False) -> shapely.Polygon:
         """Return a rotor's transverse section as a valid polygon in its own frame.
 
         The outline is clipped to the rotor's tip circle (generated curves may overshoot it by the
-        rounding of the rack's corners); of several pieces the largest is kept.
+        rounding of the rack's corners); of several pieces the largest is kept. The clip is a 2048-gon
+        inscribed in tip + 1 nm, whose chords sag 82 nm inside a 69.5 mm tip and replace the tip land;
+        with ``exact_tip`` (the outlines ``rotor`` writes) a polygon within tip + 1 nm whose chords sag
+        0.5 nm (:func:`_tip_clip`), so that the tip land stays as sampled at any chord tolerance (at a
+        0.01 um chord the rack-involute male's sealing tip corner was written 72 nm inside the tip).
 
         Parameters
         ----------
@@ -313,6 +317,8 @@ class ScrewRotors:
             Which rotor (the text is read as ``Side(rotor)``).
         tolerance : float, mm, optional
             Chord tolerance; default the pair's ``tolerance``.
+        exact_tip : bool
+            Clip within 0.5 nm of the tip circle instead of the 2048-gon.
 
         Returns
         -------
@@ -323,11 +329,33 @@ class ScrewRotors:
         outline = self.male_outline(tolerance) if side is Side.MALE else self.female_outline(tolerance)
         tip = side.pick(self.pair.male_tip_radius, self.pair.female_tip_radius)
         poly = shapely.make_valid(shapely.Polygon(outline.points))
-        disk = shapely.Point(0.0, 0.0).buffer(tip + 1e-6, quad_segs=512)
+        disk = _tip_clip(tip) if exact_tip else shapely.Point(0.0, 0.0).buffer(tip + 1e-6, quad_segs=512)
         clipped = poly.intersection(disk)
         if isinstance(clipped, shapely.MultiPolygon | shapely.GeometryCollection):
             clipped = max((g for g in clipped.geoms if isinstance(g, shapely.Polygon)), key=lambda g: g.area)
         return clipped
+
+
+def _tip_clip(tip: float) -> shapely.Polygon:
+    """Return a polygon inside tip + 1 nm that holds every point within tip + 0.5 nm of the centre.
+
+    A regular polygon of circumradius R = tip + 1 nm whose chords sag at most 0.5 nm: n = ceil(pi / acos(1 -
+    0.5 nm / R)) corners (26 200 for a 69.5 mm tip; 5 ms of CPU for a section).
+
+    Parameters
+    ----------
+    tip : float, mm
+        Tip radius of the rotor.
+
+    Returns
+    -------
+    shapely.Polygon
+        Centred at the origin.
+    """
+    radius = tip + 1e-6
+    n = max(64, int(np.ceil(np.pi / np.arccos(1.0 - 0.5e-6 / radius))))
+    t = np.arange(n) * (2.0 * np.pi / n)
+    return shapely.Polygon(np.column_stack([np.cos(t), np.sin(t)]) * radius)
 
 
 def _degenerate(points: np.ndarray) -> bool:

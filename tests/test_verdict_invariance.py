@@ -827,3 +827,85 @@ def test_tip_corner_across_o1o2_from_the_females_points():
     assert_same_verdicts(design, given)
     (tip,) = [d for d in given["defects"] if d["kind"] == "cusp" and d["rotor"] == "male"]
     assert tip["flank_role"] == "tip" and tip["extent"] == pytest.approx(2 * 35.14, rel=0.05)
+
+
+FINE_CHORD = 1e-5  # mm: the finest chord users write the sample at (newuser4 N1)
+
+
+def _main_json(*args) -> dict:
+    """``rotorcad *args --json --quiet`` run in this process; its JSON."""
+    import contextlib
+    import io
+
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer):
+        assert main([str(a) for a in args] + ["--json", "--quiet"]) == 0
+    return json.loads(buffer.getvalue())
+
+
+@pytest.fixture(scope="module")
+def fine_csv(tmp_path_factory) -> dict:
+    """The rack-involute sample's outlines written at a 0.01 um chord and read back by ``rotor`` and ``hob``.
+
+    References: the design's own analysis and hob verdict from its exact curves (``rotor`` and ``hob`` of
+    the sample file), not from any points.
+    """
+    folder = tmp_path_factory.mktemp("fine_csv")
+    design = SAMPLES / "rack_involute_5_6.toml"
+    files = {side: folder / f"{side}.csv" for side in ("male", "female")}
+    out = {"files": files}
+    out["design"] = _main_json(
+        "rotor", design, "--tolerance", FINE_CHORD, "--male-csv", files["male"], "--female-csv", files["female"]
+    )
+    out["design hob"] = _main_json("hob", design)
+    pair = tomllib.loads(design.read_text())["pair"]
+    given = [f"--{k.replace('_', '-')}={v}" for k, v in pair.items() if k != "hand"]
+    # the male as rotor wrote it before: clipped by the 2048-gon inscribed in tip + 1 nm (ScrewRotors.section
+    # without exact_tip), its sealing tip corner 72 nm inside the tip, on a chord of the clip
+    disk = shapely.Point(0, 0).buffer(pair["male_tip_radius"] + 1e-6, quad_segs=512)
+    files["old male"] = folder / "old_male.csv"
+    write_points(files["old male"], _exterior(shapely.Polygon(read_points(files["male"])).intersection(disk)))
+    for name, path in files.items():
+        side = name.split()[-1]
+        out[name] = _main_json("rotor", f"--{side}-points", path, *given)
+        out[f"{name} hob"] = _main_json("hob", f"--{side}-points", path, *given)
+    return out
+
+
+@pytest.mark.parametrize("side", ["male", "female"])
+def test_fine_csv_outline_does_not_cross_itself(fine_csv, side):
+    # newuser4 N1 asked whether the written outline crosses itself: it does not, but its tip land was the chords
+    # of the section's clip (a 2048-gon), 75-82 nm inside the tip circle at a 10 nm chord. References: shapely
+    # (GEOS), an independent reader: the closed ring is simple; the tip circle (the pair's tip radius): no point
+    # outside it, and every chord between two points on it within the chord tolerance of it at its middle.
+    pts = read_points(fine_csv["files"][side])
+    assert shapely.LinearRing(pts).is_simple
+    tip = tomllib.loads((SAMPLES / "rack_involute_5_6.toml").read_text())["pair"][f"{side}_tip_radius"]
+    r = np.hypot(*pts.T)
+    assert r.max() <= tip + FINE_CHORD
+    on_tip = np.abs(r - tip) <= FINE_CHORD
+    both = on_tip & np.roll(on_tip, -1)
+    assert both.sum() >= 10  # the tip lands are there
+    middle = 0.5 * (pts + np.roll(pts, -1, axis=0))[both]
+    assert np.hypot(*middle.T).min() >= tip - FINE_CHORD, np.sort(np.hypot(*middle.T) - tip)[:5]
+
+
+@pytest.mark.parametrize("side", ["male", "female", "old male"])
+def test_fine_csv_reads_back_as_the_design(fine_csv, side):
+    # newuser4 N1: rotorcad's own male outline at a 0.01 um chord read back without its sealing tip-corner
+    # cusp, a sealing meshline of 29.20 mm (design 54.56), the slip singularity on both driving flanks, and in
+    # `hob` "not hobbable, 3.434 deg" (design hobbable, 18.127 deg): the section's clip (a 2048-gon inscribed in
+    # the tip circle) wrote the sealing tip corner 72 nm inside the tip, and the reader moved it past the next
+    # point: "old male" is that file, read back since rotorcad.measured.corner_fits._turns_back. Reference: the
+    # design's own analysis and hob verdict from its exact curves.
+    design, given = fine_csv["design"], fine_csv[side]
+    assert_same_verdicts(design, given)
+    assert given["runs_without_timing_gears"] == design["runs_without_timing_gears"]
+    assert given["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01)
+    for flank, report in design["flanks"].items():
+        assert given["flanks"][flank]["meshline_length"] == pytest.approx(report["meshline_length"], rel=0.01), flank
+    want, got = design["slip_singularities"], given["slip_singularities"]
+    assert Counter(map(_slip_key, got)) == Counter(map(_slip_key, want)), got
+    hob_design, hob_given = fine_csv["design hob"], fine_csv[f"{side} hob"]
+    assert hob_given["hobbable"] == hob_design["hobbable"], hob_given["reasons"]
+    assert hob_given["normal_pressure_angle_min_deg"] == pytest.approx(hob_design["normal_pressure_angle_min_deg"], abs=0.03)

@@ -139,8 +139,8 @@ def rotor(design: Path | None, **opts: Any) -> None:
     out = Outputs()
     _add_plots(out, opts, analysis, clearance)
     designed = _designed_clearance(opts)
-    male_pts = lambda: _exterior(rotors.section(Side.MALE, tol))  # noqa: E731  (--tolerance: the written chords)
-    female_pts = lambda: _exterior(rotors.section(Side.FEMALE, tol))  # noqa: E731
+    male_pts = lambda: _exterior(rotors.section(Side.MALE, tol, exact_tip=True))  # noqa: E731  (--tolerance: the written chords)
+    female_pts = lambda: _exterior(rotors.section(Side.FEMALE, tol, exact_tip=True))  # noqa: E731
     if designed is not None:
         result["designed_clearance"] = (
             {"driving": designed.driving, "sealing": designed.sealing, "lands": designed.lands, "blend": designed.blend}
