@@ -405,18 +405,7 @@ def distance_to_polyline(points: Array, polyline: Array, max_distance: float | N
     line = line[keep]
     if len(line) < 2:
         return np.hypot(*(pts - line[0]).T)
-    segments = np.stack([line[:-1], line[1:]], axis=1)
-    if len(pts) < KD_TREE_POINTS:  # few points (the STEP writer's checks): no scipy.spatial import for them
-        import shapely
-
-        return _nearest_in_tree(shapely.STRtree(shapely.linestrings(segments)), pts, max_distance)
-    return _nearest_segment_distance(pts, segments, max_distance)
-
-
-KD_TREE_POINTS = 2000
-"""Points to measure from which :func:`distance_to_polyline` searches by a k-d tree of segment ends
-(:func:`_nearest_segment_distance`) rather than shapely's STRtree: the same numbers, bit for bit; below
-it the tree of scipy.spatial would cost more to import (0.1 s) than it saves, in the export's worker."""
+    return _nearest_segment_distance(pts, np.stack([line[:-1], line[1:]], axis=1), max_distance)
 
 
 def distance_to_polylines(points: Array, polylines: list[Array], near: float = 0.01) -> Array:

@@ -151,17 +151,12 @@ def test_flank_codes_name_the_flank_roles():
 
 
 @pytest.mark.parametrize("case", range(12))
-def test_distance_to_polyline_is_shapelys_nearest_search(case, monkeypatch):
+def test_distance_to_polyline_is_shapelys_nearest_search(case):
     # Reference: shapely's STRtree nearest search of the segments (GEOS's point-to-segment
     # distance), which distance_to_polyline replaced by a k-d tree of the segments' ends: the same
     # numbers bit for bit, inf beyond max_distance, with long segments among short ones, a
-    # three-vertex line and points far off. The k-d tree searches for any number of points here
-    # (it takes over from KD_TREE_POINTS points on).
-    import shapely
-
-    from rotorcad import geometry
-
-    monkeypatch.setattr(geometry, "KD_TREE_POINTS", 1)
+    # three-vertex line and points far off.
+    shapely = pytest.importorskip("shapely")
     rng = np.random.default_rng(case)
     n = int(rng.integers(2, 2000))
     t = np.sort(rng.random(n)) * 6
