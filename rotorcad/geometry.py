@@ -6,7 +6,6 @@ positive. Nothing here loops over points.
 
 from __future__ import annotations
 
-import itertools
 from typing import Any
 
 import numpy as np
@@ -444,52 +443,10 @@ def distance_to_polylines(points: Array, polylines: list[Array], near: float = 0
 
 
 def _nearest_segment_distance(pts: Array, segments: Array, max_distance: float | None) -> Array:
-    """Distance of each point (n, 2) to the nearest of ``segments`` (m, 2, 2) (inf beyond ``max_distance``); mm.
+    """Distance of each point (n, 2) to the nearest of ``segments`` (m, 2, 2), by shapely's STRtree; mm."""
+    import shapely
 
-    The numbers of shapely's STRtree nearest search (GEOS's point-to-segment distance, bit for bit),
-    2-3 times faster for the many points of a clearance's mesh search: the nearest segment end (a
-    k-d tree) bounds the distance by d_e, and the nearest point of a segment of length L is within
-    L / 2 of one of its ends, so only the segments with an end within min(d_e, max_distance) + L / 2
-    of the point are measured; the longest few (at most 64, above 4 median lengths) for every point.
-    """
-    from scipy.spatial import cKDTree
-
-    a, b = segments[:, 0], segments[:, 1]
-    length = np.sqrt(((b - a) ** 2).sum(axis=1))
-    m = len(length)
-    cut = max(np.partition(length, m - 65)[m - 65] if m > 64 else np.inf, 4.0 * float(np.median(length)))
-    short = np.flatnonzero(length <= cut)
-    reach = np.inf if max_distance is None else float(max_distance)
-    out = np.full(len(pts), np.inf)
-    if len(short):
-        half = 0.5 * float(length[short].max()) * (1 + 1e-12) + 1e-12
-        tree = cKDTree(np.concatenate([a[short], b[short]]))
-        bound = tree.query(pts, distance_upper_bound=reach + half)[0]
-        rows = np.flatnonzero(np.isfinite(bound))
-        near = tree.query_ball_point(pts[rows], np.minimum(bound[rows], reach) + half)
-        count = np.fromiter(map(len, near), dtype=np.intp, count=len(rows))
-        end = np.fromiter(itertools.chain.from_iterable(near), dtype=np.intp, count=int(count.sum()))
-        row, seg = np.repeat(rows, count), short[end % len(short)]
-        np.minimum.at(out, row, _point_to_segment(pts[row], a[seg], b[seg]))
-    long_ = np.flatnonzero(length > cut)
-    for chunk in np.array_split(np.arange(len(pts)), max(1, len(pts) * len(long_) // 2_000_000)):
-        if len(long_) and len(chunk):
-            row, seg = np.repeat(chunk, len(long_)), np.tile(long_, len(chunk))
-            np.minimum.at(out, row, _point_to_segment(pts[row], a[seg], b[seg]))
-    out[out > reach] = np.inf
-    return out
-
-
-def _point_to_segment(p: Array, a: Array, b: Array) -> Array:
-    """GEOS's ``Distance::pointToSegment`` of points ``p`` to segments ``a``-``b`` (all (k, 2), row by row), mm."""
-    dx, dy = (b - a).T
-    len2 = dx * dx + dy * dy
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = ((p[:, 0] - a[:, 0]) * dx + (p[:, 1] - a[:, 1]) * dy) / len2
-        s = ((a[:, 1] - p[:, 1]) * dx - (a[:, 0] - p[:, 0]) * dy) / len2
-    to_a = np.sqrt((p[:, 0] - a[:, 0]) ** 2 + (p[:, 1] - a[:, 1]) ** 2)
-    to_b = np.sqrt((p[:, 0] - b[:, 0]) ** 2 + (p[:, 1] - b[:, 1]) ** 2)
-    return np.where((len2 == 0) | (r <= 0.0), to_a, np.where(r >= 1.0, to_b, np.abs(s) * np.sqrt(len2)))
+    return _nearest_in_tree(shapely.STRtree(shapely.linestrings(segments)), pts, max_distance)
 
 
 def _nearest_in_tree(tree: Any, pts: Array, max_distance: float | None) -> Array:

@@ -17,17 +17,7 @@ import numpy as np
 import pytest
 
 from rotorcad.curves import Line
-from rotorcad.geometry import (
-    distance_to_polyline,
-    dots,
-    filled,
-    hypot_within,
-    nearest_hypot,
-    normalize,
-    shifted,
-    take_rows,
-    to_point,
-)
+from rotorcad.geometry import dots, filled, hypot_within, nearest_hypot, normalize, shifted, take_rows, to_point
 from rotorcad.kinematics import Rotation, Translation
 from rotorcad.meshing.meshline import FLANK_CODE, flank_codes, flank_roles
 
@@ -148,30 +138,3 @@ def test_flank_codes_name_the_flank_roles():
     roles, codes = flank_roles(pts, tan, 40.0, 116.0), flank_codes(pts, tan, 40.0, 116.0)
     for flank, code in FLANK_CODE.items():
         assert np.array_equal(codes == code, roles == flank)
-
-
-@pytest.mark.parametrize("case", range(12))
-def test_distance_to_polyline_is_shapelys_nearest_search(case):
-    # Reference: shapely's STRtree nearest search of the segments (GEOS's point-to-segment
-    # distance), which distance_to_polyline replaced by a k-d tree of the segments' ends: the same
-    # numbers bit for bit, inf beyond max_distance, with long segments among short ones, a
-    # three-vertex line and points far off.
-    shapely = pytest.importorskip("shapely")
-    rng = np.random.default_rng(case)
-    n = int(rng.integers(2, 2000))
-    t = np.sort(rng.random(n)) * 6
-    line = np.column_stack([np.cos(t) * (1 + 0.3 * rng.random(n) ** 8), np.sin(t)])
-    if case % 3 == 0:
-        line = np.vstack([line, [[5.0, 5.0], [5.0, -5.0]]])
-    if case % 4 == 1:
-        line = line[:3]
-    points = rng.normal(size=(int(rng.integers(1, 3000)), 2)) * 2
-    reach = None if case % 2 else float(rng.random())
-    got = distance_to_polyline(points, line, reach)
-    segments = shapely.linestrings(np.stack([line[:-1], line[1:]], axis=1))
-    (which, _), dist = shapely.STRtree(segments).query_nearest(
-        shapely.points(points), max_distance=reach, return_distance=True, all_matches=False
-    )
-    expected = np.full(len(points), np.inf)
-    np.minimum.at(expected, which, dist)
-    np.testing.assert_array_equal(got, expected)
