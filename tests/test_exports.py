@@ -149,6 +149,29 @@ def test_export_command(tmp_path, capsys):
     assert info["valid"] and info["volume"] == pytest.approx(step["volume"], rel=1e-3)
 
 
+def test_export_says_which_outline_crosses_itself(tmp_path, capsys):
+    # The rack-involute family at its default roundings on the 116 mm pair: the generated flanks reverse near
+    # the tips and loop (the solids swept through the loops fail OpenCASCADE's BRepCheck:
+    # tests/test_shapes_api.py::test_rotors_as_solids). Reference: the meshing analysis's cusps on the same
+    # rotors (Rinder's rule, another method); no note for roundings the rotors can follow (their solids are
+    # valid: the same test of test_shapes_api).
+    from rotorcad.meshing import MeshingAnalysis
+
+    pair = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0, lead=300.0, length=10.0)
+    keys = ("male_teeth", "female_teeth", "center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius")
+    table = "\n".join(f"{k} = {getattr(pair, k)}" for k in (*keys, "female_root_radius", "lead", "length"))
+    noted = {}
+    for name, extra in (("loops", ""), ("clean", "tip_rounding = 0.0\nroot_rounding = 0.6\n")):
+        design = tmp_path / f"{name}.toml"
+        design.write_text(f'[pair]\n{table}\n\n[profile]\nfamily = "rack-involute"\n{extra}')
+        rc = main(["export", str(design), "--format", "stl", "--out", str(tmp_path / name), "--tolerance", "0.5", "--json"])
+        out = capsys.readouterr()
+        assert rc == 0, out.err
+        noted[name] = {side for side in ("male", "female") if f"the {side} outline crosses itself" in out.err}
+    cusps = {d.rotor for d in MeshingAnalysis(build_family(pair, "rack-involute", {})).defects if d.kind == "cusp"}
+    assert noted == {"loops": cusps, "clean": set()} and cusps == {"male", "female"}
+
+
 @pytest.mark.parametrize(
     "args,needle",
     [

@@ -220,9 +220,32 @@ def _rotor_bodies(
     _check_solid_work(rotors, tol, label)
     result["clearance"] = clearance
     bodies = rotor_bodies(rotors, pair, float(np.radians(angle)), phase, tol)
+    _note_loops(rotors, min(tol / 2, LOOP_CHORD))
     if housing if housing is not None else bool(settings["housing"]):
         bodies += housing_bodies(pair, clearance, tol)
     return bodies
+
+
+LOOP_CHORD = 1e-4  # mm: outlines checked for loops at least this finely (the exact STEP follows the curves to 0.5 µm)
+
+
+def _note_loops(rotors: ScrewRotors, chord: float) -> None:
+    """Say (an InputNote) which rotor's outline crosses itself: its solid folds through the loop there."""
+    import warnings
+
+    from rotorcad.errors import InputNote
+    from rotorcad.families.checks import outline_loops
+
+    for side, x, y, area in outline_loops(rotors, chord):
+        warnings.warn(
+            f"the {side.value} outline crosses itself at ({x:.3f}, {y:.3f}) mm, r = {np.hypot(x, y):.3f} mm (a loop of "
+            f"{area:.3g} mm²): its generated flank reverses there (the cusp `rotor` reports; the rack undercuts the "
+            "rotor), so its STEP solid's faces fold through the loop (OpenCASCADE does not take it as a valid "
+            "solid) and its meshes leave the loop out; a rack rounding the rotor can follow ([profile]) gives a "
+            "simple outline",
+            InputNote,
+            stacklevel=2,
+        )
 
 
 def _print_files(rows: list[dict[str, Any]], stem: str, folder: Path) -> None:
