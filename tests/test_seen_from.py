@@ -214,3 +214,35 @@ def test_hob_of_a_mirrored_male_seen_from_discharge_is_the_unmirrored_males(caps
         for key in ("hob_tip_thickness", "hob_root_radius"):
             assert fixed["racks"][rotor][key] == pytest.approx(plain["racks"][rotor][key], abs=2e-3), (rotor, key)
     assert sorted(fixed["reasons"]) == sorted(plain["reasons"])
+
+
+def test_clearance_of_a_mirrored_pair_seen_from_discharge_is_the_unmirrored_pairs(capsys, tmp_path):
+    # a pair with a different designed clearance on each flank (driving 10 um, sealing 30 um, rotor --clearance):
+    # the mirrored pair read as it stands brings the racks into contact on the design's sealing flank (mean
+    # clearance 19 um); --seen-from discharge reads the unmirrored pair's figures (reference: the unmirrored files)
+    sample = SAMPLES / "srm_asymmetric_5_6.toml"
+    male, female = tmp_path / "m.csv", tmp_path / "f.csv"
+    designed = ["--clearance", "driving=0.01,sealing=0.03"]
+    rc, _, err = run(capsys, "rotor", sample, *designed, "--male-csv", male, "--female-csv", female)
+    assert rc == 0, err
+    flipped = {}
+    for path in (male, female):
+        pts = read_points(path, "outline")
+        flipped[path] = tmp_path / f"{path.stem}_mirror.csv"
+        write_points(flipped[path], np.column_stack([pts[:, 0], -pts[:, 1]]))
+    dims = ["--male-teeth", 5, "--female-teeth", 6, "--center-distance", 116, "--json", "--quiet"]
+    readings = {}
+    for tag, files, extra in (
+        ("plain", (male, female), []),
+        ("mirror", (flipped[male], flipped[female]), []),
+        ("fixed", (flipped[male], flipped[female]), ["--seen-from", "discharge"]),
+    ):
+        rc, out, err = run(capsys, "clearance", "--male-points", files[0], "--female-points", files[1], *dims, *extra)
+        assert rc == 0, err
+        readings[tag] = json.loads(out)
+    plain, mirror, fixed = readings["plain"], readings["mirror"], readings["fixed"]
+    assert fixed["seen_from"] == "discharge" and plain["seen_from"] == "suction"
+    for key in ("max_normal_clearance", "min_normal_clearance", "mean_clearance", "female_rack_shift"):
+        assert fixed[key] == pytest.approx(plain[key], abs=1e-6), key
+    assert plain["mean_clearance"] == pytest.approx(0.01, abs=2e-3)  # contact on the driving flank: its 10 um
+    assert mirror["mean_clearance"] > plain["mean_clearance"] + 5e-3  # the finding: the other flank's contact
