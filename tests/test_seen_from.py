@@ -246,3 +246,15 @@ def test_clearance_of_a_mirrored_pair_seen_from_discharge_is_the_unmirrored_pair
         assert fixed[key] == pytest.approx(plain[key], abs=1e-6), key
     assert plain["mean_clearance"] == pytest.approx(0.01, abs=2e-3)  # contact on the driving flank: its 10 um
     assert mirror["mean_clearance"] > plain["mean_clearance"] + 5e-3  # the finding: the other flank's contact
+
+
+def test_unmirrored_section_read_from_discharge_says_so(capsys, folder):
+    # the other mistake: --seen-from discharge given for a section seen from the suction end (the design's
+    # own CSV): the note names --seen-from suction
+    _, csv, _ = _design_run("srm_asymmetric_5_6", "male", folder)
+    rc, out, err = run(
+        capsys, "rotor", SAMPLES / "srm_asymmetric_5_6.toml", "--male-points", csv, "--seen-from", "discharge", "--json"
+    )
+    assert rc == 0
+    assert json.loads(out)["seen_from"] == "discharge"
+    assert "give --seen-from suction" in err and err.count("\n") == 1, err

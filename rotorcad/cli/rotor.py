@@ -236,6 +236,12 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
     for f in result["slip_singularities"]:
         click.echo(f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank")
     click.echo(f"  angles: {result['angle_convention']}")
+    fit = result.get("design_deviation")
+    if fit:  # points beside a design: how near its outline they lie, and their mirror image
+        click.echo(
+            f"  section read as seen from the {result['seen_from']} end: {1e3 * fit['as_read']:.3g} µm RMS from the "
+            f"design's outline after the best turn (its mirror image {1e3 * fit['mirrored']:.3g} µm)"
+        )
     for reason in result["running_reasons"]:
         click.echo(f"  does not run without timing gears: {reason}")
     for p in result["files"]:
