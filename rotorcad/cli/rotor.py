@@ -384,7 +384,7 @@ def _build(
     except DesignError as exc:
         raise InputError(exc.sentence(names(exc.param, family))) from None
     found: dict[str, Any] = {"seen_from": str(face)}
-    if d is not None and source in ("male-points", "female-points"):
+    if d is not None and source in ("male-points", "female-points") and not str(d["family"]).endswith("-points"):
         found.update(_against_design(spec, rotors.accuracy, d, given, Side(source.removesuffix("-points")), face))
     if section is not None:
         section.update(found)
@@ -400,7 +400,8 @@ def _against_design(
     :func:`rotorcad.measured.end_face.design_deviation`, of the points as given, after
     ``--seen-from``), and notes a section whose mirror image, not itself, lies on the design's
     outline (:func:`rotorcad.measured.end_face.mirror_note`); nothing when the design's own pair
-    cannot be built with the given values.
+    cannot be built with the given values. (A design whose profile is itself given by points is not
+    compared.)
     """
     import warnings
 
