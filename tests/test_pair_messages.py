@@ -83,3 +83,8 @@ def test_conflict_of_the_value_typed_names_it(capsys):
 def test_refused_value_digits(value, context, text):
     assert value_text(value, context) == text
     assert DesignError("x", context, value).sentence() == f"x must be {context} (got {text})."
+
+
+def test_clearance_missing_points_file_is_named_first(capsys, tmp_path):
+    err = refusal(capsys, "clearance", "--male-points", tmp_path / "nonexist.csv", "--female-points", tmp_path / "f.csv")
+    assert "--male-points" in err and "no such file" in err and "required" not in err

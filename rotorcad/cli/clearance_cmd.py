@@ -10,6 +10,7 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf_profile import read_profile
+from exports.reading import check_regular_file
 from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, pair_quality
 from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, print_table, seen_from_option
 from rotorcad.cli.progress import say_long_run
@@ -138,6 +139,12 @@ def clearance(**opts: Any) -> None:
 
 
 def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
+    for key in ("male_points", "female_points"):  # a missing file before what else the pair needs (as rotor)
+        if opts.get(key) is not None:
+            try:
+                check_regular_file(opts[key], f"--{key.replace('_', '-')}", "points file or DXF drawing")
+            except DesignError as exc:
+                raise InputError(exc.sentence()) from None
     for key in ("male_points", "female_points", "male_teeth", "female_teeth", "center_distance"):
         if opts.get(key) is None:
             raise InputError(f"--{key.replace('_', '-')} is required.")
