@@ -258,3 +258,21 @@ def test_unmirrored_section_read_from_discharge_says_so(capsys, folder):
     assert rc == 0
     assert json.loads(out)["seen_from"] == "discharge"
     assert "give --seen-from suction" in err and err.count("\n") == 1, err
+
+
+def test_mirrored_female_off_its_design_by_a_designed_clearance_is_noted(capsys, tmp_path):
+    # a made rotor lies off its design (here the female thinned by 10 / 30 um on its flanks, rotor --clearance:
+    # 17 um RMS): its mirror image is still noted (the mirror image 4 times nearer than the points as read),
+    # the unmirrored one is not
+    sample = SAMPLES / "srm_asymmetric_5_6.toml"
+    female = tmp_path / "f.csv"
+    rc, _, err = run(capsys, "rotor", sample, "--clearance", "driving=0.01,sealing=0.03", "--female-csv", female)
+    assert rc == 0, err
+    pts = read_points(female, "outline")
+    flipped = tmp_path / "f_mirror.csv"
+    write_points(flipped, np.column_stack([pts[:, 0], -pts[:, 1]]))
+    rc, out, err = run(capsys, "rotor", sample, "--female-points", female, "--json", "--quiet")
+    assert rc == 0 and "--seen-from" not in err, err
+    assert MIRROR_FIT < json.loads(out)["design_deviation"]["as_read"] < 0.03  # off its design by the clearance
+    rc, out, err = run(capsys, "rotor", sample, "--female-points", flipped, "--json", "--quiet")
+    assert rc == 0 and "give --seen-from discharge" in err, err
