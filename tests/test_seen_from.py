@@ -276,3 +276,55 @@ def test_mirrored_female_off_its_design_by_a_designed_clearance_is_noted(capsys,
     assert MIRROR_FIT < json.loads(out)["design_deviation"]["as_read"] < 0.03  # off its design by the clearance
     rc, out, err = run(capsys, "rotor", sample, "--female-points", flipped, "--json", "--quiet")
     assert rc == 0 and "give --seen-from discharge" in err, err
+
+
+def test_drawing_mirrored_in_cad_seen_from_discharge_reads_as_the_drawing(capsys, tmp_path):
+    # export's exact B-spline drawing of the male (MALE_SPLINE), mirrored by ezdxf (Matrix44.scale(1, -1, 1),
+    # a third-party transform of the entities): read with --seen-from discharge, the figures of the drawing
+    # as exported (reference: the unmirrored drawing through the same reader)
+    sample = SAMPLES / "srm_asymmetric_5_6.toml"
+    rc, _, err = run(capsys, "export", sample, "--format", "dxf", "--out", tmp_path, "--no-housing", "--quiet")
+    assert rc == 0, err
+    import ezdxf
+    from ezdxf.math import Matrix44
+
+    drawn = tmp_path / "srm_asymmetric_5_6_male.dxf"
+    doc = ezdxf.readfile(drawn)
+    for entity in doc.modelspace():
+        entity.transform(Matrix44.scale(1, -1, 1))
+    flipped = tmp_path / "male_mirror.dxf"
+    doc.saveas(flipped)
+    common = ["--layer", "MALE_SPLINE", "--json", "--quiet"]
+    readings = {}
+    for tag, path, extra in (("plain", drawn, []), ("fixed", flipped, ["--seen-from", "discharge"])):
+        rc, out, err = run(capsys, "rotor", sample, "--male-points", path, *common, *extra)
+        assert rc == 0 and "--seen-from" not in err, err
+        readings[tag] = json.loads(out)
+    plain, fixed = readings["plain"], readings["fixed"]
+    assert _defects(fixed) == _defects(plain)
+    for flank in ("driving", "sealing"):
+        for key in ("transverse_contact_ratio", "working_length", "meshline_length"):
+            assert fixed["flanks"][flank][key] == pytest.approx(plain["flanks"][flank][key], rel=1e-6, abs=1e-9), (flank, key)
+    assert fixed["blow_hole_area"] == pytest.approx(plain["blow_hole_area"], rel=1e-6)
+
+
+def test_mirrored_curves_are_the_curves_flipped():
+    # each kind of curve a drawing is read into, mirrored, against its own samples flipped y -> -y by numpy
+    from rotorcad.curves import Arc, Line, Mapped, Spline, sample_curve
+
+    spline = Spline.fit(np.column_stack([np.linspace(0, 10, 12), np.sin(np.linspace(0, 3, 12))]))
+    curves = [
+        Line((1.0, 2.0), (3.0, -1.0)),
+        Arc((2.0, 1.0), 3.0, 0.2, 1.4),
+        spline,
+        Mapped(Line((0, 0), (1, 1)), ((2, 0), (0, 1))),
+    ]
+    flipped = mirrored(curves)
+    assert len(flipped) == len(curves)
+    for original, mirror in zip(curves, reversed(flipped), strict=True):
+        s = np.linspace(original.s0, original.s1, 7)
+        p = original.evaluate(s)[0]
+        q = mirror.evaluate(np.linspace(mirror.s1, mirror.s0, 7))[0]  # travelled backwards: the same points
+        np.testing.assert_allclose(q, p * [1.0, -1.0], atol=1e-12)
+    points = sample_curve(curves[1], 1e-3)[1]
+    np.testing.assert_allclose(mirrored(points), (points * [1.0, -1.0])[::-1], atol=0)
