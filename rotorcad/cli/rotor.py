@@ -40,8 +40,16 @@ def _points_option(name: str, text: str):
 
 
 ROTOR_INPUT_DECORATORS = [
-    _points_option("--male-points", "Male profile: CSV x,y [mm] or a DXF drawing, own frame, one lobe or the whole outline."),
-    _points_option("--female-points", "Female profile: CSV x,y [mm] or a DXF drawing, own frame, one lobe or the whole outline."),
+    _points_option(
+        "--male-points",
+        "Male profile: CSV x,y [mm] or a DXF drawing, own frame seen from the suction end (else --seen-from), "
+        "one lobe or the whole outline.",
+    ),
+    _points_option(
+        "--female-points",
+        "Female profile: CSV x,y [mm] or a DXF drawing, own frame seen from the suction end (else --seen-from), "
+        "one lobe or the whole outline.",
+    ),
     _points_option("--rack-points", "One rack period: CSV x,y [mm] or a DXF drawing, rack frame."),
     click.option("--layer", help="Layer of the profile in a DXF points file (default: its only layer)."),
     seen_from_option,
