@@ -138,7 +138,8 @@ def clearance(**opts: Any) -> None:
             click.echo(f"wrote {p}")
 
 
-def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
+def _read_rotors(opts: dict[str, Any]) -> tuple[Any, Any]:
+    """Read both rotors' points as seen from the suction end (``--seen-from``), refusing a missing file first."""
     for key in ("male_points", "female_points"):  # a missing file before what else the pair needs (as rotor)
         if opts.get(key) is not None:
             try:
@@ -152,14 +153,15 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         raise InputError(f"--smoothing must be at least 0 mm^2 (got {opts['smoothing']}).")
     face = end_face(opts.get("seen_from"))  # a section seen from the discharge end: mirrored before anything else
     try:
-        male = seen_from_suction(
-            read_profile(opts["male_points"], "--male-points", opts.get("male_layer") or opts["layer"]), face
-        )
-        female = seen_from_suction(
-            read_profile(opts["female_points"], "--female-points", opts.get("female_layer") or opts["layer"]), face
-        )
+        male = read_profile(opts["male_points"], "--male-points", opts.get("male_layer") or opts["layer"])
+        female = read_profile(opts["female_points"], "--female-points", opts.get("female_layer") or opts["layer"])
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    return seen_from_suction(male, face), seen_from_suction(female, face)
+
+
+def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
+    male, female = _read_rotors(opts)
     female = own_frame(female, Side.FEMALE, opts["center_distance"], "--female-points")  # drawn at (a, 0), as export does
     rm, rf = np.hypot(*profile_points(male).T), np.hypot(*profile_points(female).T)
     # a note before the work when the points would take over a minute (no option makes it faster: fewer points would)
