@@ -10,6 +10,9 @@ sentence of its parent and is caught by ``except DesignError``:
 * :class:`ToleranceError` -- a tolerance that cannot be met (a writer's fit, a sampling);
 * :class:`GeometryError` -- values that are each allowed but describe no part: flanks that never
   meet, a mate generated from points that is no rotor;
+* :class:`ConflictError` -- values that are each allowed but conflict with one another (a tip
+  radius and a root radius over the centre distance), said of each of them in turn, so that a
+  command names the one the user typed;
 * :class:`MissingValueError` -- a value given neither as an option nor in the design file.
 """
 
