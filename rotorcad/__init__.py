@@ -105,7 +105,7 @@ Input that cannot describe a real part is refused in one sentence naming the par
 ...     RotorPair(5, 6, -116.0, 63.0, 45.0, 71.0, 53.0)
 ... except DesignError as error:
 ...     print(error)
-center_distance must be a positive length up to 100000 mm (100 m) (got -116.0).
+center_distance must be a positive length up to 100000 mm (100 m) (got -116).
 """
 
 import importlib

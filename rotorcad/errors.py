@@ -10,10 +10,61 @@ sentence of its parent and is caught by ``except DesignError``:
 * :class:`ToleranceError` -- a tolerance that cannot be met (a writer's fit, a sampling);
 * :class:`GeometryError` -- values that are each allowed but describe no part: flanks that never
   meet, a mate generated from points that is no rotor;
+* :class:`ConflictError` -- values that are each allowed but conflict with one another (a tip
+  radius and a root radius over the centre distance), said of each of them in turn, so that a
+  command names the one the user typed;
 * :class:`MissingValueError` -- a value given neither as an option nor in the design file.
 """
 
 from __future__ import annotations
+
+import re
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def value_text(value: object, context: str = "") -> str:
+    """Write a refused value as a sentence shows it: a float with 6 significant digits, more if needed.
+
+    A float is written with the fewest digits from 6 to 17 at which it lies on the same side of every
+    number in ``context`` as the value itself (the allowed range: "at most 36 mm (got 36.0000004)"),
+    so that the sentence never shows a refused value equal to its limit, or on its other side. Anything else (a whole number, a
+    string, a bool, an array) as ``str``.
+
+    Parameters
+    ----------
+    value : object
+        The value given.
+    context : str
+        The text the value is read against (the sentence's allowed range).
+
+    Returns
+    -------
+    str
+        E.g. ``46.4893`` for ``46.48933484382849`` (was written in full, 16 digits).
+    """
+    dtype = getattr(value, "dtype", None)  # a numpy scalar (numpy's float64 is a float too)
+    is_float = isinstance(value, float) or (getattr(dtype, "kind", "") == "f" and getattr(value, "shape", None) == ())
+    if not is_float:
+        return str(value)
+    v = float(value)  # type: ignore[arg-type]
+    if v != v or v in (float("inf"), float("-inf")):
+        return str(v)
+    numbers = set()
+    for token in _NUMBER.findall(context):
+        try:
+            numbers.add(float(token))
+        except ValueError:  # pragma: no cover - the pattern reads only numbers
+            pass
+
+    def side(x: float, c: float) -> int:
+        return (x > c) - (x < c)
+
+    for digits in range(6, 18):
+        text = f"{v:.{digits}g}"
+        if all(side(float(text), c) == side(v, c) for c in numbers):
+            return text
+    return repr(v)
 
 
 def limit_text(limit: float, value: object) -> str:
@@ -84,10 +135,51 @@ class DesignError(ValueError):
         label = label or self.param
         text = f"{label} must be {self.allowed}"
         if self.value is not None:
-            text += f" (got {self.value})"
+            text += f" (got {value_text(self.value, self.allowed)})"
         if self.detail:
             text += f": {self.detail}"
         return text + "."
+
+
+class ConflictError(DesignError):
+    """Values that are each allowed but conflict with one another, one of them named.
+
+    The library names one of the values in conflict (``param``); ``alternatives`` holds the same
+    conflict said of each of the others (their own allowed range and value), so that a caller that
+    knows which value the user typed (an option beside a design file) names that one
+    (``--male-tip-radius must be at most ...`` rather than the design's ``[pair] female_root_radius``).
+
+    Parameters
+    ----------
+    param, allowed, value, detail
+        As :class:`DesignError`, for the value the library names.
+    alternatives : tuple of DesignError
+        The same conflict named by each other value in it.
+    """
+
+    def __init__(
+        self, param: str, allowed: str, value: object = None, detail: str = "", alternatives: tuple[DesignError, ...] = ()
+    ) -> None:
+        super().__init__(param, allowed, value, detail)
+        self.alternatives = alternatives
+
+    def named_by(self, typed: object) -> DesignError:
+        """Return the conflict said of a value the user typed, when the named one is not.
+
+        Parameters
+        ----------
+        typed : collection of str
+            The library names of the values the user typed (options), as opposed to a design file's.
+
+        Returns
+        -------
+        DesignError
+            Itself when ``param`` was typed or none of the others was; else the first alternative
+            whose value was typed.
+        """
+        if self.param in typed:  # type: ignore[operator]
+            return self
+        return next((alt for alt in self.alternatives if alt.param in typed), self)  # type: ignore[operator]
 
 
 class InputFileError(DesignError):

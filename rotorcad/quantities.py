@@ -480,6 +480,15 @@ SWEEP_COLUMNS: dict[str, Quantity] = {
 }
 """Every numeric column of a sweep's table (Parquet, CSV) with its unit and plot label."""
 
+# --- a section's end face and its fit to the design (rotorcad/measured/end_face.py) ------------------
+_declare(
+    "rotorcad/measured/end_face",
+    [
+        ("design_deviation.as_read", "mm", "RMS distance from the design's outline"),
+        ("design_deviation.mirrored", "mm", "mirror image's RMS distance from the design's outline"),
+    ],
+)
+
 # --- the report page (rotorcad/cli/report_cmd.py) -------------------------------------------------
 _declare("rotorcad/cli/report_cmd", [("defect_count", "1", "defects")])
 

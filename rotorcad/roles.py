@@ -37,6 +37,17 @@ class Side(StrEnum):
         return male if self is Side.MALE else female
 
 
+class EndFace(StrEnum):
+    """The end face of a screw rotor pair a transverse section is seen from.
+
+    rotorcad's sections are seen from the suction end (the male turns counter-clockwise there); a
+    section seen from the discharge end is their mirror image (:mod:`rotorcad.measured.end_face`).
+    """
+
+    SUCTION = "suction"
+    DISCHARGE = "discharge"
+
+
 class PieceRole(Enum):
     """What a piece of a rack chain or of a derived rack does.
 
@@ -100,4 +111,4 @@ class ToothFlank(StrEnum):
         return 1 if self is ToothFlank.LEFT else -1
 
 
-__all__ = ["Flank", "PieceRole", "Side", "ToothFlank"]
+__all__ = ["EndFace", "Flank", "PieceRole", "Side", "ToothFlank"]

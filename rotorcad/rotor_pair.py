@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.errors import DesignError, limit_text
+from rotorcad.errors import ConflictError, DesignError, limit_text
 from rotorcad.kinematics import Mesh, rotor_mesh
 from rotorcad.roles import Side
 
@@ -20,6 +20,11 @@ MAX_LENGTH = 1e5
 larger; the same bound as a DXF profile's extent, :data:`exports.dxf_profile.MAX_EXTENT`)."""
 LENGTH_RANGE = f"a positive length up to {MAX_LENGTH:.0f} mm (100 m)"
 """The allowed range of such a length, phrased to follow "must be"."""
+
+
+def _centre_distance(relation: str, limit: float, a: float, why: str) -> DesignError:
+    """Return the centre distance's side of a conflict with a radius (``must be <relation> <limit> mm (<why>)``)."""
+    return DesignError("center_distance", f"{relation} {limit_text(limit, a)} mm ({why})", a)
 
 
 @dataclass(frozen=True)
@@ -88,32 +93,58 @@ class RotorPair:
             if not self.strict:
                 break  # an assembled or measured pair: its radii need not straddle these pitch circles
             tip, root = getattr(self, f"{rotor}_tip_radius"), getattr(self, f"{rotor}_root_radius")
+            per_a = pitch / a  # the pitch radius a z / (z1 + z2) per mm of centre distance
             if not root < pitch + 1e-9:
-                raise DesignError(f"{rotor}_root_radius", f"at most the {rotor} pitch radius {limit_text(pitch, root)} mm", root)
+                why = f"so that the {rotor} pitch circle lies outside its root circle of {root:.6g} mm"
+                raise ConflictError(
+                    f"{rotor}_root_radius",
+                    f"at most the {rotor} pitch radius {limit_text(pitch, root)} mm",
+                    root,
+                    alternatives=(_centre_distance("at least", root / per_a, a, why),),
+                )
             if not tip > pitch - 1e-9:
-                raise DesignError(f"{rotor}_tip_radius", f"at least the {rotor} pitch radius {limit_text(pitch, tip)} mm", tip)
+                why = f"so that the {rotor} pitch circle lies inside its tip circle of {tip:.6g} mm"
+                raise ConflictError(
+                    f"{rotor}_tip_radius",
+                    f"at least the {rotor} pitch radius {limit_text(pitch, tip)} mm",
+                    tip,
+                    alternatives=(_centre_distance("at most", tip / per_a, a, why),),
+                )
             if not tip < a:
-                raise DesignError(f"{rotor}_tip_radius", f"less than the centre distance {limit_text(a, tip)} mm", tip)
-        if not self.male_tip_radius + self.female_tip_radius > a:
-            raise DesignError(
+                raise ConflictError(
+                    f"{rotor}_tip_radius",
+                    f"less than the centre distance {limit_text(a, tip)} mm",
+                    tip,
+                    alternatives=(_centre_distance("greater than", tip, a, f"the {rotor} tip radius"),),
+                )
+        mt, ft, mr, fr = self.male_tip_radius, self.female_tip_radius, self.male_root_radius, self.female_root_radius
+        overlap = "so that the tip circles overlap"
+        if not mt + ft > a:
+            raise ConflictError(
                 "female_tip_radius",
-                f"greater than {limit_text(a - self.male_tip_radius, self.female_tip_radius)} mm so that the tip circles overlap",
-                self.female_tip_radius,
+                f"greater than {limit_text(a - mt, ft)} mm {overlap}",
+                ft,
+                alternatives=(
+                    DesignError("male_tip_radius", f"greater than {limit_text(a - ft, mt)} mm {overlap}", mt),
+                    DesignError("center_distance", f"less than {limit_text(mt + ft, a)} mm {overlap}", a),
+                ),
             )
-        if self.strict and self.male_tip_radius + self.female_root_radius > a + 1e-9:
-            raise DesignError(
-                "female_root_radius",
-                f"at most {limit_text(a - self.male_tip_radius, self.female_root_radius)} mm "
-                "(centre distance minus male tip radius)",
-                self.female_root_radius,
-            )
-        if self.strict and self.female_tip_radius + self.male_root_radius > a + 1e-9:
-            raise DesignError(
-                "male_root_radius",
-                f"at most {limit_text(a - self.female_tip_radius, self.male_root_radius)} mm "
-                "(centre distance minus female tip radius)",
-                self.male_root_radius,
-            )
+        for tip, root, tip_name, root_name in (
+            (mt, fr, "male tip radius", "female root radius"),
+            (ft, mr, "female tip radius", "male root radius"),
+        ):
+            if self.strict and tip + root > a + 1e-9:
+                tip_limit = f"at most {limit_text(a - root, tip)} mm (centre distance minus {root_name})"
+                a_limit = f"at least {limit_text(tip + root, a)} mm ({tip_name} plus {root_name})"
+                raise ConflictError(
+                    root_name.replace(" ", "_"),
+                    f"at most {limit_text(a - tip, root)} mm (centre distance minus {tip_name})",
+                    root,
+                    alternatives=(
+                        DesignError(tip_name.replace(" ", "_"), tip_limit, tip),
+                        DesignError("center_distance", a_limit, a),
+                    ),
+                )
 
     @property
     def ratio(self) -> float:

@@ -92,7 +92,7 @@ def test_bad_design_key_is_named(capsys, tmp_path):
     assert rc == 2 and "[gear] teeth must be at least 64 for a 20-tooth cutter" in err
     design.write_text("[gear]\nteeth = 60\nmodule = 2.0\nshift = 0.3\naddendum = 0.8\n\n[shaper]\nteeth = 20\nshift = 9.0\n")
     rc, _, err = run(capsys, "gear", design)
-    assert rc == 2 and "[shaper] shift must be between -1 and 1.5 modules (got 9.0)" in err
+    assert rc == 2 and "[shaper] shift must be between -1 and 1.5 modules (got 9)" in err
     design.write_text("[gear]\nteeth = 60\nmodule = 2.0\n\n[shaper]\nteth = 20\n")
     rc, _, err = run(capsys, "gear", design)
     assert rc == 2 and "teth" in err

@@ -10,10 +10,12 @@ import numpy as np
 
 from exports.csv_points import write_points
 from exports.dxf_profile import read_profile
+from exports.reading import check_regular_file
 from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, pair_quality
-from rotorcad.cli.common import InputError, Outputs, emit_json, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, print_table, seen_from_option
 from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
+from rotorcad.measured.end_face import seen_from_suction
 from rotorcad.measured.fit import close_smoothing
 from rotorcad.measured.outline import own_frame
 from rotorcad.measured.point_checks import refuse_pitch_off_profile
@@ -34,6 +36,7 @@ A conjugate pair given by exact points measures 0 within 1 µm (README), so less
 @click.option(
     "--female-points", type=click.Path(path_type=Path, dir_okay=False), help="Female profile points (CSV x,y in mm, own frame)."
 )
+@seen_from_option
 @click.option("--male-teeth", type=int, help="Male lobes z1 (2..12). Required.")
 @click.option("--female-teeth", type=int, help="Female lobes z2 (2..12). Required.")
 @click.option("--center-distance", type=float, help="Centre distance a [mm] at which the pair runs. Required.")
@@ -98,6 +101,7 @@ def clearance(**opts: Any) -> None:
             "male_teeth": mc.pair.male_teeth,
             "female_teeth": mc.pair.female_teeth,
             "center_distance": mc.pair.center_distance,  # hot, with temperatures
+            "seen_from": str(end_face(opts.get("seen_from"))),
         }
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
@@ -134,17 +138,30 @@ def clearance(**opts: Any) -> None:
             click.echo(f"wrote {p}")
 
 
-def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
+def _read_rotors(opts: dict[str, Any]) -> tuple[Any, Any]:
+    """Read both rotors' points as seen from the suction end (``--seen-from``), refusing a missing file first."""
+    for key in ("male_points", "female_points"):  # a missing file before what else the pair needs (as rotor)
+        if opts.get(key) is not None:
+            try:
+                check_regular_file(opts[key], f"--{key.replace('_', '-')}", "points file or DXF drawing")
+            except DesignError as exc:
+                raise InputError(exc.sentence()) from None
     for key in ("male_points", "female_points", "male_teeth", "female_teeth", "center_distance"):
         if opts.get(key) is None:
             raise InputError(f"--{key.replace('_', '-')} is required.")
     if opts["smoothing"] is not None and not (np.isfinite(opts["smoothing"]) and opts["smoothing"] >= 0):
         raise InputError(f"--smoothing must be at least 0 mm^2 (got {opts['smoothing']}).")
+    face = end_face(opts.get("seen_from"))  # a section seen from the discharge end: mirrored before anything else
     try:
         male = read_profile(opts["male_points"], "--male-points", opts.get("male_layer") or opts["layer"])
         female = read_profile(opts["female_points"], "--female-points", opts.get("female_layer") or opts["layer"])
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    return seen_from_suction(male, face), seen_from_suction(female, face)
+
+
+def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
+    male, female = _read_rotors(opts)
     female = own_frame(female, Side.FEMALE, opts["center_distance"], "--female-points")  # drawn at (a, 0), as export does
     rm, rf = np.hypot(*profile_points(male).T), np.hypot(*profile_points(female).T)
     # a note before the work when the points would take over a minute (no option makes it faster: fewer points would)

@@ -22,6 +22,7 @@ from exports.atomic import Writer, check_writable, staging_prefix, write_all
 from exports.background import WorkerPool
 from rotorcad.design.files import MAX_DESIGN_BYTES, load_gear_design, load_rotor_design, load_toml  # noqa: F401 - the commands' names
 from rotorcad.errors import DesignError, InputNote
+from rotorcad.roles import EndFace
 
 
 class InputError(click.ClickException):
@@ -46,6 +47,49 @@ def reraise(exc: DesignError, names: dict[str, str]) -> InputError:
         To be raised by the caller.
     """
     return InputError(exc.sentence(names.get(exc.param, exc.param)))
+
+
+SEEN_FROM_HELP = (
+    "End face the points' transverse section is seen from: suction (rotorcad's convention: the male turns "
+    "counter-clockwise, the driving flanks below the line of centres, y < 0, with a male tip on +x) or discharge "
+    "(a CMM's scan from the other end: the mirror image, mirrored y -> -y before anything else). Default suction."
+)
+
+
+def seen_from_option(fn):
+    """Add ``--seen-from suction|discharge`` to a command that reads a rotor's points (a decorator).
+
+    Read by :func:`end_face`; the points are mirrored by
+    :func:`rotorcad.measured.end_face.seen_from_suction` before anything else reads them.
+    """
+    return click.option("--seen-from", "seen_from", metavar="suction|discharge", help=SEEN_FROM_HELP)(fn)
+
+
+def end_face(value: str | None) -> EndFace:
+    """Return the end face of ``--seen-from`` (suction when not given).
+
+    Parameters
+    ----------
+    value : str or None
+        The option's text as typed (any case), or None.
+
+    Returns
+    -------
+    EndFace
+
+    Raises
+    ------
+    InputError
+        Any other text: one sentence naming the option and its two values.
+    """
+    if value is None:
+        return EndFace.SUCTION
+    try:
+        return EndFace(str(value).strip().lower())
+    except ValueError:
+        raise InputError(
+            f"--seen-from must be suction or discharge, the end face the points' section is seen from (got {value!r})."
+        ) from None
 
 
 def plain(value: Any) -> Any:

@@ -13,7 +13,7 @@ from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.rack import DerivedRack, gear_rack, hob_tooth, rack_deviation, rotor_rack
 from hob.verdict import HobLimits, judge
-from rotorcad.cli.common import InputError, Outputs, emit_json, load_toml, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.hob_worm import add_worm_steps, body_hands, rack_datum, worm_options, worm_summaries, worms_of
 from rotorcad.cli.rotor import rotor_input_options, rotors_of
@@ -88,6 +88,8 @@ def hob(design: Path | None, **opts: Any) -> None:
         body = g
     verdicts, result = judge_racks(racks, deviation, limits, getattr(body, "accuracy", 0.0), _fitted_sides(body))
     result["notes"] = notes if rotors is None else []
+    if opts.get("male_points") or opts.get("female_points"):  # the end face the section was read as seen from
+        result["seen_from"] = str(end_face(opts.get("seen_from")))
     worms = worms_of(racks, body_hands(body), opts, rack_datum(body))
     first = next(iter(racks))
     normal = racks[first].normal()

@@ -10,15 +10,17 @@ import click
 import numpy as np
 
 from exports.dxf_points import read_measured_points
-from rotorcad.cli.common import InputError, Outputs, emit_json, load_toml, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, load_toml, print_table, seen_from_option
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.rotor import rotors_of
-from rotorcad.errors import DesignError
+from rotorcad.errors import DesignError, InputNote
 from rotorcad.inspection.gear_inspection import GearInspection, inspect_gear
 from rotorcad.inspection.nominal import nominal_flanks
 from rotorcad.inspection.profile_deviations import MIN_POINTS
 from rotorcad.inspection.rotor_inspection import RotorInspection, inspect_rotor
 from rotorcad.inspection.tolerances import CLASSES
+from rotorcad.measured.end_face import design_deviation, mirror_note, seen_from_suction
+from rotorcad.roles import EndFace
 
 MIN_POINTS_READ = 10
 """Fewest points an inspection takes."""
@@ -44,6 +46,7 @@ radius) is no point of the rotor."""
 @click.option(
     "--rotor", "body", type=click.Choice(["male", "female"]), help="Rotor of a pair design (default: male); not for a gear."
 )
+@seen_from_option
 @click.option(
     "--class",
     "tolerance_class",
@@ -69,14 +72,15 @@ def inspect(design: Path | None, **opts: Any) -> None:
         except DesignError as exc:
             raise InputError(exc.sentence()) from None
     points = _read_points(opts)
+    face = end_face(opts.pop("seen_from", None))  # a rotor's section seen from the discharge end: mirrored first
     out = Outputs()
     rotors = rotors_of(design, data, opts)
     if rotors is not None:
         if opts["tolerance_class"] is not None:
             raise InputError("--class is for gears (ISO 1328-1); a rotor is judged by its normal deviation only.")
         opts["body"] = opts["body"] or "male"
-        rotor = _inspect_rotor(rotors, opts["body"], points)
-        result = {"body": opts["body"], **rotor.summary()}
+        rotor = _inspect_rotor(rotors, opts["body"], seen_from_suction(points, face), face)
+        result = {"body": opts["body"], "seen_from": str(face), **rotor.summary()}
         if opts["plot"] is not None:
             from rotorcad.inspection.charts import rotor_chart
 
@@ -85,6 +89,8 @@ def inspect(design: Path | None, **opts: Any) -> None:
     else:
         if opts["body"] is not None:
             raise InputError(f"--rotor is for a screw-rotor pair design ([pair]); a gear has no {opts['body']} rotor.")
+        if face is not EndFace.SUCTION:
+            raise InputError("--seen-from is for a screw rotor's section; a gear's flanks are named from its reference face.")
         gear, result = _inspect_gear(design, data, opts, points)
         if opts["plot"] is not None:
             from rotorcad.inspection.charts import profile_chart
@@ -158,14 +164,21 @@ def _inspect_gear(
     return result, summary
 
 
-def _inspect_rotor(rotors: Any, body: str, points: np.ndarray) -> RotorInspection:
-    """Inspect the points against the male's or the female's outline; refuse points far from it."""
+def _inspect_rotor(rotors: Any, body: str, points: np.ndarray, face: EndFace = EndFace.SUCTION) -> RotorInspection:
+    """Inspect the points against the male's or the female's outline; refuse points far from it.
+
+    Points whose mirror image lies on the outline and they do not (a section seen from the other end
+    face, :func:`rotorcad.measured.end_face.mirror_note`) are said so: in the refusal, or in a note.
+    """
+    import warnings
+
     pair = rotors.pair
     if body == "male":
         outline, lobes = rotors.male_outline(1e-4), pair.male_teeth
     else:
         outline, lobes = rotors.female_outline(1e-4), pair.female_teeth
     result = inspect_rotor(points, outline, lobes)
+    note = mirror_note(*design_deviation(points, outline.points, lobes), 0.0, face, "--points")
     r = np.hypot(*outline.points.T)
     far = FAR_DEPTH * float(r.max() - r.min())
     off = np.abs(result.deviation)
@@ -174,8 +187,10 @@ def _inspect_rotor(rotors: Any, body: str, points: np.ndarray) -> RotorInspectio
         raise InputError(
             f"--points must lie within {far:.4g} mm ({FAR_DEPTH:g} of the profile depth) of the {body}'s outline after "
             f"the best-fit rotation of {math.degrees(result.rotation):.4f} deg; the point ({x:.4f}, {y:.4f}) lies "
-            f"{off.max():.4f} mm off."
+            f"{off.max():.4f} mm off" + ("" if note is None else f" ({note})") + "."
         )
+    if note is not None:
+        warnings.warn(note, InputNote, stacklevel=2)
     return result
 
 

@@ -12,15 +12,17 @@ import numpy as np
 from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
 from exports.dxf_profile import read_profile, read_profile_points
+from exports.reading import check_regular_file
 from rotorcad.clearance_design import ClearanceDistribution, corrected_female, thinned_female_fault
-from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, print_table
+from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, load_rotor_design, print_table, seen_from_option
 from rotorcad.design.labels import PAIR_FIELDS, PAIR_LABELS, PairNames, required
-from rotorcad.design.rotors import analyse_pair, build_pair, merge_pair
+from rotorcad.design.rotors import PairSpec, analyse_pair, build_pair, merge_pair
 from rotorcad.envelope import rack_frame
-from rotorcad.errors import DesignError, MissingValueError
+from rotorcad.errors import ConflictError, DesignError, MissingValueError
+from rotorcad.measured.end_face import design_deviation, mirror_note, section_points, seen_from_suction
 from rotorcad.meshing import MESHLINE_GAIN, resolution
 from rotorcad.profile import Segment
-from rotorcad.roles import Side
+from rotorcad.roles import EndFace, Side
 from rotorcad.screw_rotors import ScrewRotors
 
 PAIR_OPTIONS = PAIR_FIELDS
@@ -38,10 +40,19 @@ def _points_option(name: str, text: str):
 
 
 ROTOR_INPUT_DECORATORS = [
-    _points_option("--male-points", "Male profile: CSV x,y [mm] or a DXF drawing, own frame, one lobe or the whole outline."),
-    _points_option("--female-points", "Female profile: CSV x,y [mm] or a DXF drawing, own frame, one lobe or the whole outline."),
+    _points_option(
+        "--male-points",
+        "Male profile: CSV x,y [mm] or a DXF drawing, own frame seen from the suction end (else --seen-from), "
+        "one lobe or the whole outline.",
+    ),
+    _points_option(
+        "--female-points",
+        "Female profile: CSV x,y [mm] or a DXF drawing, own frame seen from the suction end (else --seen-from), "
+        "one lobe or the whole outline.",
+    ),
     _points_option("--rack-points", "One rack period: CSV x,y [mm] or a DXF drawing, rack frame."),
     click.option("--layer", help="Layer of the profile in a DXF points file (default: its only layer)."),
+    seen_from_option,
     click.option("--male-teeth", type=int, help="Male lobes z1 (2..12)."),
     click.option("--female-teeth", type=int, help="Female lobes z2 (2..12)."),
     click.option("--male-tip-radius", type=float, help="Male tip radius [mm]."),
@@ -128,13 +139,15 @@ def rotor(design: Path | None, **opts: Any) -> None:
     With Rinder's meshing analysis: meshline, cusps / jamming / slipping, tightness and blow-hole,
     contact-line length, flute areas, displacement, sliding velocity and slip.
     """
-    rotors, speed, clearance = _build(design, opts)
+    section: dict[str, Any] = {}
+    rotors, speed, clearance = _build(design, opts, section=section)
     if not (1e-6 <= opts["tolerance"] <= 1.0):  # also NaN; finer than 1 um gives millions of points
         raise InputError(f"--tolerance must be a chord tolerance from 1e-06 to 1 mm (got {opts['tolerance']}).")
     try:
         analysis, result = analyse_pair(rotors, speed)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
+    result.update(section)
     tol = opts["tolerance"]
     out = Outputs()
     _add_plots(out, opts, analysis, clearance)
@@ -231,6 +244,12 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
     for f in result["slip_singularities"]:
         click.echo(f"  infinite {f['rotor']} slip at ({f['x']:.3f}, {f['y']:.3f}) mm, {f['angle_deg']:+.1f}°, {f['flank']} flank")
     click.echo(f"  angles: {result['angle_convention']}")
+    fit = result.get("design_deviation")
+    if fit:  # points beside a design: how near its outline they lie, and their mirror image
+        click.echo(
+            f"  section read as seen from the {result['seen_from']} end: {1e3 * fit['as_read']:.3g} µm RMS from the "
+            f"design's outline after the best turn (its mirror image {1e3 * fit['mirrored']:.3g} µm)"
+        )
     for reason in result["running_reasons"]:
         click.echo(f"  does not run without timing gears: {reason}")
     for p in result["files"]:
@@ -247,7 +266,7 @@ def _measured_points(opts: dict[str, Any]) -> tuple[str, np.ndarray, str] | None
         path = opts.get(f"{side}_points")
         if path is None:
             continue
-        data = read_profile(path, f"--{side}-points", opts.get("layer"))
+        data = seen_from_suction(read_profile(path, f"--{side}-points", opts.get("layer")), end_face(opts.get("seen_from")))
         return (side, np.asarray(data, dtype=float), Path(path).name) if isinstance(data, np.ndarray) else None
     return None
 
@@ -296,8 +315,10 @@ def rotors_of(design: Path | None, data: dict[str, Any] | None, opts: dict[str, 
     pair, the points and their smoothing, without speed (:func:`_build` merges them with the design).
     """
     if not (any(opts.get(k) for k in ("male_points", "female_points", "rack_points")) or (data is not None and "pair" in data)):
+        if end_face(opts.get("seen_from")) is not EndFace.SUCTION:
+            raise InputError(_SEEN_FROM_ALONE)
         return None
-    rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer")}
+    rotor_opts = {k: opts.get(k) for k in (*PAIR_OPTIONS, "male_points", "female_points", "rack_points", "layer", "seen_from")}
     rotor_opts.update({"smoothing": opts.get("smoothing"), "speed": None})
     settings = None
     if data is not None:
@@ -308,26 +329,43 @@ def rotors_of(design: Path | None, data: dict[str, Any] | None, opts: dict[str, 
     return _build(design, rotor_opts, settings)[0]
 
 
-def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None) -> tuple[ScrewRotors, float, float]:
+_SEEN_FROM_ALONE = (
+    "--seen-from discharge needs --male-points or --female-points: a design's profile is seen from the suction end."
+)
+
+
+def _build(
+    design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None, section: dict[str, Any] | None = None
+) -> tuple[ScrewRotors, float, float]:
     """Build the rotors of a design file or of measured points, with the command-line overrides.
 
     The values merge in the core (:func:`rotorcad.design.rotors.merge_pair`); here the points
-    files are read and every refusal names the option or design key the user typed
-    (:class:`rotorcad.design.labels.PairNames`). ``settings`` is the design already read and
-    checked by :func:`rotorcad.design.files.load_rotor_design`, so that the file is read once.
-    Returns the rotors, the speed (rpm) and the housing's radial clearance (mm).
+    files are read (a missing one refused first), mirrored when seen from the discharge end
+    (``--seen-from``), and every refusal names the option or design key the user typed
+    (:class:`rotorcad.design.labels.PairNames`; of values in conflict, the one typed as an option).
+    ``settings`` is the design already read and checked by
+    :func:`rotorcad.design.files.load_rotor_design`, so that the file is read once. Returns the
+    rotors, the speed (rpm) and the housing's radial clearance (mm); ``section``, when given, gets
+    the result's keys of the section read (``seen_from``; ``design_deviation`` when points come
+    with a design).
     """
     sources = [k for k in ("male_points", "female_points", "rack_points") if opts.get(k)]
     if len(sources) > 1:
         raise InputError("give only one of --male-points, --female-points, --rack-points.")
     if design is None and not sources:
         raise InputError("give a design file or one of --male-points, --female-points, --rack-points.")
+    face = end_face(opts.get("seen_from"))
+    source = sources[0].replace("_", "-") if sources else None
+    if source is not None:
+        try:  # a missing or unreadable file before what else the pair needs (a new user's N9)
+            check_regular_file(opts[sources[0]], f"--{source}", "points file or DXF drawing")
+        except DesignError as exc:
+            raise InputError(exc.sentence()) from None
     try:
         d = None if design is None else load_rotor_design(design) if settings is None else settings
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
     given = {k: opts.get(k) for k in PAIR_OPTIONS} | {"speed_rpm": opts.get("speed"), "smoothing": opts["smoothing"]}
-    source = sources[0].replace("_", "-") if sources else None
     names = PairNames(
         design is not None, frozenset(k for k, v in given.items() if v is not None), source, frozenset(d["params"] if d else ())
     )
@@ -336,20 +374,60 @@ def _build(design: Path | None, opts: dict[str, Any], settings: dict[str, Any] |
     except MissingValueError as exc:
         raise InputError(required(PAIR_LABELS[exc.param])) from None
     except DesignError as exc:
+        exc = exc.named_by(names.options) if isinstance(exc, ConflictError) else exc
         raise InputError(exc.sentence(names(exc.param))) from None
     except TypeError as exc:
         raise InputError(f"the pair is not described completely: {exc}.") from None
     family = spec.family
+    if face is not EndFace.SUCTION and family not in ("male-points", "female-points"):
+        rack = "--seen-from applies to a rotor's points, not to a rack."
+        raise InputError(_SEEN_FROM_ALONE if family != "rack-points" else rack)
     try:
         path = opts[sources[0]] if sources else d["points"]
         if family == "rack-points":
             spec = replace(spec, points=read_profile_points(path, f"--{family}", opts.get("layer")))
         elif family in ("male-points", "female-points"):
-            spec = replace(spec, points=read_profile(path, f"--{family}", opts.get("layer")))
+            spec = replace(spec, points=seen_from_suction(read_profile(path, f"--{family}", opts.get("layer")), face))
         rotors = build_pair(spec, label=f"--{family}")
     except DesignError as exc:
         raise InputError(exc.sentence(names(exc.param, family))) from None
+    found: dict[str, Any] = {"seen_from": str(face)}
+    if d is not None and source in ("male-points", "female-points") and not str(d["family"]).endswith("-points"):
+        found.update(_against_design(spec, rotors.accuracy, d, given, Side(source.removesuffix("-points")), face))
+    if section is not None:
+        section.update(found)
     return rotors, spec.speed_rpm, spec.radial_clearance
+
+
+def _against_design(
+    spec: PairSpec, accuracy: float, d: dict[str, Any], given: dict[str, Any], side: Side, face: EndFace
+) -> dict[str, Any]:
+    """Compare the rotor's points with the design's outline of that rotor and with its mirror image.
+
+    Returns ``{"design_deviation": {"as_read": mm, "mirrored": mm}}`` (RMS after the best turn,
+    :func:`rotorcad.measured.end_face.design_deviation`, of the points as given, after
+    ``--seen-from``), and notes a section whose mirror image, not itself, lies on the design's
+    outline (:func:`rotorcad.measured.end_face.mirror_note`); nothing when the design's own pair
+    cannot be built with the given values. (A design whose profile is itself given by points is not
+    compared.)
+    """
+    import warnings
+
+    from rotorcad.errors import InputNote
+
+    try:
+        nominal = build_pair(merge_pair(d, given, None))
+    except (DesignError, TypeError):
+        return {}
+    pair, label = spec.pair, f"--{side}-points"
+    teeth = int(side.pick(pair.male_teeth, pair.female_teeth))
+    points = section_points(spec.points, side, teeth, pair.center_distance, label)
+    design = (nominal.male_outline if side is Side.MALE else nominal.female_outline)(1e-3).points
+    as_read, mirror = design_deviation(points, design, teeth)
+    note = mirror_note(as_read, mirror, accuracy, face, label)
+    if note is not None:
+        warnings.warn(note, InputNote, stacklevel=2)
+    return {"design_deviation": {"as_read": as_read, "mirrored": mirror}}
 
 
 def _exterior(polygon) -> np.ndarray:
