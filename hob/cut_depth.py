@@ -78,7 +78,7 @@ def _contact(profile: np.ndarray, rack_points: np.ndarray, tangents: np.ndarray,
     return best, offset, float(np.max(np.abs(shift - offset)))
 
 
-def cut_depth(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) -> float:
+def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) -> tuple[int, np.ndarray]:
     """Return how far (mm) the rack reaches past the rotor points that generate ``rack.points[first:stop]``.
 
     Each point's relative path (module docstring) over three rack periods of roll around its
@@ -99,7 +99,7 @@ def cut_depth(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) 
     float, mm
     """
     if rack.profile is None or stop <= first:
-        return 0.0
+        return first, np.zeros(0)
     pts = rack.points
     radius = rack.pitch_radius
     # the frame's hand along the pitch line: the one in which the run's points reach their own rack points
@@ -125,14 +125,19 @@ def cut_depth(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) 
     if not tool.is_valid:
         tool = shapely.make_valid(tool)
     near = (paths[:, 1] >= y0 - 1e-9) & (paths[:, 1] <= y1 + 1e-9)
-    candidates = paths[near]
-    if not len(candidates):
-        return 0.0
-    shapely.prepare(tool)
-    inside = shapely.contains_xy(tool, candidates[:, 0], candidates[:, 1])
-    if not inside.any():
-        return 0.0
-    return float(distance_to_polyline(candidates[inside], chain).max())
+    depth = np.zeros(len(paths))
+    if near.any():
+        shapely.prepare(tool)
+        inside = np.zeros(len(paths), dtype=bool)
+        inside[near] = shapely.contains_xy(tool, paths[near, 0], paths[near, 1])
+        if inside.any():
+            depth[inside] = distance_to_polyline(paths[inside], chain)
+    return lo, depth.reshape(len(profile), STEPS).max(axis=1)
 
 
-__all__ = ["cut_depth"]
+def cut_depth(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) -> float:
+    """Return the largest of :func:`cut_depths` (mm): how deep the rack cuts into the run's rotor points."""
+    return float(cut_depths(rack, first, stop, margin)[1].max(initial=0.0))
+
+
+__all__ = ["cut_depth", "cut_depths"]

@@ -277,9 +277,9 @@ def undercut_reasons(
     (:func:`hob.cut_depth.cut_depth`): where the design's generation factor touches 0 (a slip
     singularity, the rack-involute female at r = 56.87 mm) the fit's curvature errors swing it below
     0, and the envelope turns back by a hair. Measured (rack-involute female from the male's points):
-    0.000 um deep from exact points at 300 a lobe (turned by any datum angle), 0.05 um at 2000, 0.6-1.6 um
-    at 1-2 um of scatter (accuracy of one point 2.0-4.3 um); the 5/6 arc-flank male, undercut by its rack
-    (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
+    0.000 um deep from a new user's exact points at 300 a lobe (turned by any datum angle), 0.05 um at 2000,
+    0.6-7.0 um at 1-2 um of scatter (:func:`undercut_tolerance`); the 5/6 arc-flank male, undercut by its
+    rack (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
     from exact points (80-2000 a lobe) and 1 um of scatter. Such a stretch goes to ``notes`` instead.
     """
     if rack.side is None or rack.profile is None:
@@ -312,22 +312,26 @@ def undercut_reasons(
 def undercut_tolerance(rotors: object) -> float:
     """Return how deep (mm) a rack must cut into a rotor generated from points for an undercut.
 
-    :data:`FOLD_TOLERANCE` for exact points (their fit's envelope turns back by 0.05 um at most where
-    the design's does not: :func:`undercut_reasons`); of scattered points (a tangent accuracy stated),
-    the accuracy of one point (2 sigma of the scatter, or the fit's residual), within which the fit's
-    curvature swings the generation: the envelope cut 0.6-1.6 um deep from 1-2 um of scatter.
+    Of scattered points (a tangent accuracy stated), twice the profile's accuracy (the bound on the
+    largest deviation over the lobe): the depth compares a generated point of the mate with the rack
+    at another position, each known to that accuracy. Measured where the rack-involute design's
+    generation factor touches 0 (the female at r = 56.87 mm, from the male's points, 500 a lobe with
+    1 um of scatter, accuracy 3.9-4.1 um): the rack cut 0.6-7.0 um into the generated female; the
+    undercut 5/6 arc-flank male from its female's points (2000 a lobe, 1 um, accuracy 4.2 um): 13.9 um.
+    Of exact points :data:`FOLD_TOLERANCE`: their accuracy is the interpolation's bound between the
+    points (17.7 um at 80 a lobe), a smooth error that does not make two nearby generated parts cross;
+    the 5/6 male from its female's 80 exact points a lobe is cut 5.2 um deep.
 
     Parameters
     ----------
     rotors : ScrewRotors
-        The pair (``accuracy``, ``point_accuracy``, ``tangent_accuracy``); a design or a gear gives 0.
+        The pair (``accuracy``, ``tangent_accuracy``); a design or a gear gives 0.
     """
-    if not getattr(rotors, "accuracy", 0.0):
+    accuracy = float(getattr(rotors, "accuracy", 0.0))
+    if not accuracy:
         return 0.0
     scattered = getattr(rotors, "tangent_accuracy", 0.0) > 0
-    point = getattr(rotors, "point_accuracy", None)
-    one = float(rotors.accuracy if point is None else point)  # type: ignore[attr-defined]
-    return max(FOLD_TOLERANCE, one if scattered else 0.0)
+    return max(FOLD_TOLERANCE, 2.0 * accuracy if scattered else 0.0)
 
 
 def _tip_thickness(pts: np.ndarray, period: float, fold: float = FOLD_TOLERANCE) -> float:
