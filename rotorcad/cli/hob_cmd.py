@@ -89,6 +89,7 @@ def hob(design: Path | None, **opts: Any) -> None:
     verdicts, result = judge_racks(
         racks, deviation, limits, getattr(body, "accuracy", 0.0), _fitted_sides(body), undercut_tolerance(body)
     )
+    result["smallest_flank_angle_accuracy_deg"] = _angle_accuracy(body, racks, result["normal_pressure_angle_min_deg"])
     result["notes"] = (notes if rotors is None else []) + result["notes"]
     worms = worms_of(racks, body_hands(body), opts, rack_datum(body))
     first = next(iter(racks))
@@ -198,6 +199,14 @@ def judge_racks(
         },
     }
     return verdicts, result
+
+
+def _angle_accuracy(body: Any, racks: dict[str, DerivedRack], smallest: float) -> float:
+    """Return the accuracy (deg) of the smallest flank angle read from a rotor's points; 0 for a design or a gear."""
+    from hob.angle_accuracy import smallest_angle_accuracy
+
+    given = [side for side, fitted in _fitted_sides(body).items() if fitted]
+    return smallest_angle_accuracy(body, racks, given[0], smallest) if given and "male" in racks else 0.0
 
 
 def _fitted_sides(body: Any) -> dict[str, bool]:
