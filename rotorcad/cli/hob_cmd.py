@@ -168,7 +168,8 @@ def judge_racks(
         The verdict on each rack.
     result : dict
         ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg``,
-        ``accuracy`` (mm), ``undercut_accuracy`` (mm), ``notes`` (what was judged within the accuracy) and per
+        ``accuracy`` (mm), ``undercut_accuracy`` (mm), ``smallest_flank_angle_accuracy_deg`` (0 here),
+        ``notes`` (what was judged within the accuracy) and per
         rack its figures (radii and tip thickness in mm, angles in deg).
     """
     verdicts = {
@@ -182,6 +183,7 @@ def judge_racks(
         "normal_pressure_angle_min_deg": min(v.normal_pressure_angle_min_deg for v in verdicts.values()),
         "accuracy": float(accuracy),
         "undercut_accuracy": float(max(undercut_accuracy, FOLD_TOLERANCE)) if accuracy > 0 else 0.0,
+        "smallest_flank_angle_accuracy_deg": 0.0,  # of a design; `hob` states it for points (_angle_accuracy)
         "notes": [f"{name}: {n}" if len(verdicts) > 1 else n for name, v in verdicts.items() for n in v.notes],
         "racks": {
             name: {
