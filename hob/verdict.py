@@ -277,8 +277,9 @@ def undercut_reasons(
     (:func:`hob.cut_depth.cut_depth`): where the design's generation factor touches 0 (a slip
     singularity, the rack-involute female at r = 56.87 mm) the fit's curvature errors swing it below
     0, and the envelope turns back by a hair. Measured (rack-involute female from the male's points):
-    0.000 um deep from a new user's exact points at 300 a lobe (turned by any datum angle), 0.05 um at 2000,
-    0.6-7.0 um at 1-2 um of scatter (:func:`undercut_tolerance`); the 5/6 arc-flank male, undercut by its
+    0.000 um deep from a new user's exact points at 300 a lobe (turned by any datum angle), 0.00-0.82 um from
+    exact points at 300 a lobe started elsewhere, 0.02 um at 2000, 0.6-2.3 um at 1-2 um of scatter (one seed of
+    1 um: 19.5 um; :func:`undercut_tolerance`); the 5/6 arc-flank male, undercut by its
     rack (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
     from exact points (80-2000 a lobe) and 1 um of scatter. Such a stretch goes to ``notes`` instead.
     """
@@ -316,7 +317,8 @@ def undercut_tolerance(rotors: object) -> float:
     largest deviation over the lobe): the depth compares a generated point of the mate with the rack
     at another position, each known to that accuracy. Measured where the rack-involute design's
     generation factor touches 0 (the female at r = 56.87 mm, from the male's points, 500 a lobe with
-    1 um of scatter, accuracy 3.9-4.1 um): the rack cut 0.6-7.0 um into the generated female; the
+    1 um of scatter, accuracy 3.9-4.1 um): the rack cut 0.6-2.3 um into the generated female (one seed of
+    eight 19.5 um); the
     undercut 5/6 arc-flank male from its female's points (2000 a lobe, 1 um, accuracy 4.2 um): 13.9 um.
     Of exact points :data:`FOLD_TOLERANCE`: their accuracy is the interpolation's bound between the
     points (17.7 um at 80 a lobe), a smooth error that does not make two nearby generated parts cross;
