@@ -79,11 +79,11 @@ def _contact(profile: np.ndarray, rack_points: np.ndarray, tangents: np.ndarray,
 
 
 def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) -> tuple[int, np.ndarray]:
-    """Return how far (mm) the rack reaches past the rotor points that generate ``rack.points[first:stop]``.
+    """Return how far (mm) the rack reaches past each rotor point around ``rack.points[first:stop]``.
 
     Each point's relative path (module docstring) over three rack periods of roll around its
-    contact, against the tool side of the rack (three periods of it, closed beyond its far side):
-    the largest distance from the rack curve of a path point inside the tool. 0 when no path enters.
+    contact, against the tool side of the rack (five periods of it, closed beyond its far side):
+    the largest distance from the rack curve of a path point inside the tool; 0 where no path enters.
 
     Parameters
     ----------
@@ -96,7 +96,10 @@ def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN)
 
     Returns
     -------
-    float, mm
+    first : int
+        The index of the first rack point measured (``margin`` before the run).
+    depth : (m,) float array, mm
+        The depth at each rack point's rotor point from there on.
     """
     if rack.profile is None or stop <= first:
         return first, np.zeros(0)
