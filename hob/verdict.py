@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from hob.cut_depth import cut_depth
 from hob.rack import DerivedRack
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
@@ -73,6 +74,9 @@ class Verdict:
         Smallest hob tip and root radius the rack asks for (0 at a sharp corner, inf when straight).
     tip_thickness : float, mm
         Width of the hob tooth at 5 % of the rack depth above its tip.
+    notes : tuple of str
+        What was judged within the profile's accuracy and so is no reason (an envelope that turns back
+        by less than the points can show).
     """
 
     hobbable: bool
@@ -81,9 +85,16 @@ class Verdict:
     min_tip_radius: float
     min_root_radius: float
     tip_thickness: float
+    notes: tuple[str, ...] = ()
 
 
-def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 0.0, measured: bool | None = None) -> Verdict:
+def judge(
+    rack: DerivedRack,
+    limits: HobLimits | None = None,
+    accuracy: float = 0.0,
+    measured: bool | None = None,
+    undercut_accuracy: float | None = None,
+) -> Verdict:
     """Judge a derived rack in its normal section (module docstring).
 
     Parameters
@@ -102,6 +113,10 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
         so that a sharp corner below its tip shows as a stall across which the fit turns
         (:func:`undercut_reasons`); default ``accuracy > 0``. A pair generated from a rack's points
         has envelopes for its rotors, whose undercut is their envelope turning back, as a design's.
+    undercut_accuracy : float, mm, optional
+        Of a rotor generated from points (``accuracy > 0``, not ``measured``): how deep the rack must
+        cut into its generated points for an undercut (:func:`undercut_reasons`); default
+        :data:`FOLD_TOLERANCE`, and never below it (:func:`undercut_tolerance` gives it for a pair).
 
     Returns
     -------
@@ -215,14 +230,17 @@ def judge(rack: DerivedRack, limits: HobLimits | None = None, accuracy: float = 
     if 0 < root_r < lim.min_root_radius:
         i = int(np.argmin(kappa))
         reasons.append(f"the hob root radius is {root_r:.4f} mm {at(i)}, below the minimum {lim.min_root_radius:g} mm.")
-    reasons += undercut_reasons(rack, measured=accuracy > 0 if measured is None else measured)
+    fitted = accuracy > 0 if measured is None else measured
+    depth_tolerance = max(FOLD_TOLERANCE, undercut_accuracy or 0.0) if accuracy > 0 and not fitted else None
+    notes: list[str] = []
+    reasons += undercut_reasons(rack, measured=fitted, tolerance=depth_tolerance, notes=notes)
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
         reasons.append(
             f"the hob tooth is {thickness:.3f} mm thick near its tip (5 % of the depth above it), below the minimum "
             f"{lim.min_tip_thickness:g} mm."
         )
-    return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness)
+    return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness, tuple(notes))
 
 
 def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: float, kink: float) -> float:
@@ -244,13 +262,26 @@ def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: fl
     return turn if abs(turn) > kink else 0.0
 
 
-def undercut_reasons(rack: DerivedRack, measured: bool = False) -> list[str]:
+def undercut_reasons(
+    rack: DerivedRack, measured: bool = False, tolerance: float | None = None, notes: list[str] | None = None
+) -> list[str]:
     """Return the undercut of a rotor by its rack, one sentence per stretch (none for a gear's rack).
 
     The stretches of :func:`rotorcad.inverse_rack.stalls`: the rotor's envelope turns back there
     (its flank undercut by its rack), or, for a profile given by points (``measured``), its points
     stand still across a sharp corner below its tip (two generated parts of its flank cross: a
     rotor that was undercut when it was cut).
+
+    With ``tolerance`` (a rotor generated from another rotor's points), an envelope that turns back
+    is an undercut only where the rack cuts deeper than ``tolerance`` into the rotor's points there
+    (:func:`hob.cut_depth.cut_depth`): where the design's generation factor touches 0 (a slip
+    singularity, the rack-involute female at r = 56.87 mm) the fit's curvature errors swing it below
+    0, and the envelope turns back by a hair. Measured (rack-involute female from the male's points):
+    0.000 um deep from a new user's exact points at 300 a lobe (turned by any datum angle), 0.00-0.82 um from
+    exact points at 300 a lobe started elsewhere, 0.02 um at 2000, 0.6-2.3 um at 1-2 um of scatter (one seed of
+    1 um: 19.5 um; :func:`undercut_tolerance`); the 5/6 arc-flank male, undercut by its
+    rack (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
+    from exact points (80-2000 a lobe) and 1 um of scatter. Such a stretch goes to ``notes`` instead.
     """
     if rack.side is None or rack.profile is None:
         return []
@@ -258,13 +289,51 @@ def undercut_reasons(rack: DerivedRack, measured: bool = False) -> list[str]:
     out = []
     for a, b, back in stalls(rack, measured, sharp_span=SHARP_SPAN):
         r = radius[a:b]
+        where = f"r = {r.min():.2f}-{r.max():.2f} mm"
+        deep = ""
+        if back and tolerance is not None:
+            depth = cut_depth(rack, a, b)
+            if depth <= tolerance:
+                if notes is not None:
+                    notes.append(
+                        f"the {rack.side.value}'s envelope turns back at {where}, but the rack cuts only {1000 * depth:.2f} um "
+                        f"into it there, within the {1000 * tolerance:.2f} um the points are known to: not judged an undercut."
+                    )
+                continue
+            deep = f" (the rack cuts {1000 * depth:.1f} um into it, more than the points' {1000 * tolerance:.2f} um)"
         how = "its envelope turns back there" if back else "its points stand still there (a sharp corner)"
         out.append(
-            f"the {rack.side.value} is undercut at r = {r.min():.2f}-{r.max():.2f} mm, {radius.max() - r.max():.2f} mm below "
-            f"its tip: {how} while the rack runs from x = {rack.points[a, 0]:.3f} to {rack.points[b - 1, 0]:.3f} mm, so two "
-            "generated parts of its flank cross and a hob makes only their outer envelope."
+            f"the {rack.side.value} is undercut at {where}, {radius.max() - r.max():.2f} mm below "
+            f"its tip: {how}{deep} while the rack runs from x = {rack.points[a, 0]:.3f} to {rack.points[b - 1, 0]:.3f} mm, "
+            "so two generated parts of its flank cross and a hob makes only their outer envelope."
         )
     return out
+
+
+def undercut_tolerance(rotors: object) -> float:
+    """Return how deep (mm) a rack must cut into a rotor generated from points for an undercut.
+
+    Of scattered points (a tangent accuracy stated), twice the profile's accuracy (the bound on the
+    largest deviation over the lobe): the depth compares a generated point of the mate with the rack
+    at another position, each known to that accuracy. Measured where the rack-involute design's
+    generation factor touches 0 (the female at r = 56.87 mm, from the male's points, 500 a lobe with
+    1 um of scatter, accuracy 3.9-4.1 um): the rack cut 0.6-2.3 um into the generated female (one seed of
+    eight 19.5 um); the
+    undercut 5/6 arc-flank male from its female's points (2000 a lobe, 1 um, accuracy 4.2 um): 13.9 um.
+    Of exact points :data:`FOLD_TOLERANCE`: their accuracy is the interpolation's bound between the
+    points (17.7 um at 80 a lobe), a smooth error that does not make two nearby generated parts cross;
+    the 5/6 male from its female's 80 exact points a lobe is cut 5.2 um deep.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair (``accuracy``, ``tangent_accuracy``); a design or a gear gives 0.
+    """
+    accuracy = float(getattr(rotors, "accuracy", 0.0))
+    if not accuracy:
+        return 0.0
+    scattered = getattr(rotors, "tangent_accuracy", 0.0) > 0
+    return max(FOLD_TOLERANCE, 2.0 * accuracy if scattered else 0.0)
 
 
 def _tip_thickness(pts: np.ndarray, period: float, fold: float = FOLD_TOLERANCE) -> float:

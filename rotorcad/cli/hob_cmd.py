@@ -12,7 +12,7 @@ import shapely
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.rack import DerivedRack, gear_rack, hob_tooth, rack_deviation, rotor_rack
-from hob.verdict import HobLimits, judge
+from hob.verdict import FOLD_TOLERANCE, HobLimits, judge, undercut_tolerance
 from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.hob_worm import add_worm_steps, body_hands, rack_datum, worm_options, worm_summaries, worms_of
@@ -86,8 +86,11 @@ def hob(design: Path | None, **opts: Any) -> None:
         deviation = _basic_rack_deviation(g, racks["gear"])
         scale = g.module
         body = g
-    verdicts, result = judge_racks(racks, deviation, limits, getattr(body, "accuracy", 0.0), _fitted_sides(body))
-    result["notes"] = notes if rotors is None else []
+    verdicts, result = judge_racks(
+        racks, deviation, limits, getattr(body, "accuracy", 0.0), _fitted_sides(body), undercut_tolerance(body)
+    )
+    result["smallest_flank_angle_accuracy_deg"] = _angle_accuracy(body, racks, result["normal_pressure_angle_min_deg"])
+    result["notes"] = (notes if rotors is None else []) + result["notes"]
     if opts.get("male_points") or opts.get("female_points"):  # the end face the section was read as seen from
         result["seen_from"] = str(end_face(opts.get("seen_from")))
     worms = worms_of(racks, body_hands(body), opts, rack_datum(body))
@@ -136,6 +139,7 @@ def judge_racks(
     limits: HobLimits,
     accuracy: float = 0.0,
     measured: dict[str, bool] | None = None,
+    undercut_accuracy: float = 0.0,
 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
 
@@ -156,6 +160,9 @@ def judge_racks(
         default ``accuracy > 0`` for every rack. False for the mate generated from a rotor's points and
         for both rotors of a pair generated from a rack's points: they are envelopes, undercut only
         where they turn back, as a design's.
+    undercut_accuracy : float, mm
+        How deep the rack must cut into a mate generated from points for an undercut
+        (:func:`hob.verdict.undercut_tolerance`); 0 for a design.
 
     Returns
     -------
@@ -163,10 +170,12 @@ def judge_racks(
         The verdict on each rack.
     result : dict
         ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg``,
-        ``accuracy`` (mm) and per rack its figures (radii and tip thickness in mm, angles in deg).
+        ``accuracy`` (mm), ``undercut_accuracy`` (mm), ``smallest_flank_angle_accuracy_deg`` (0 here),
+        ``notes`` (what was judged within the accuracy) and per
+        rack its figures (radii and tip thickness in mm, angles in deg).
     """
     verdicts = {
-        name: judge(rack, limits, accuracy, None if measured is None else measured.get(name, False))
+        name: judge(rack, limits, accuracy, None if measured is None else measured.get(name, False), undercut_accuracy)
         for name, rack in racks.items()
     }
     result: dict[str, Any] = {
@@ -175,6 +184,9 @@ def judge_racks(
         "rack_deviation": deviation,
         "normal_pressure_angle_min_deg": min(v.normal_pressure_angle_min_deg for v in verdicts.values()),
         "accuracy": float(accuracy),
+        "undercut_accuracy": float(max(undercut_accuracy, FOLD_TOLERANCE)) if accuracy > 0 else 0.0,
+        "smallest_flank_angle_accuracy_deg": 0.0,  # of a design; `hob` states it for points (_angle_accuracy)
+        "notes": [f"{name}: {n}" if len(verdicts) > 1 else n for name, v in verdicts.items() for n in v.notes],
         "racks": {
             name: {
                 "hobbable": v.hobbable,
@@ -191,6 +203,14 @@ def judge_racks(
         },
     }
     return verdicts, result
+
+
+def _angle_accuracy(body: Any, racks: dict[str, DerivedRack], smallest: float) -> float:
+    """Return the accuracy (deg) of the smallest flank angle read from a rotor's points; 0 for a design or a gear."""
+    from hob.angle_accuracy import smallest_angle_accuracy
+
+    given = [side for side, fitted in _fitted_sides(body).items() if fitted]
+    return smallest_angle_accuracy(body, racks, given[0], smallest) if given and "male" in racks else 0.0
 
 
 def _fitted_sides(body: Any) -> dict[str, bool]:

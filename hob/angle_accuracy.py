@@ -1,0 +1,161 @@
+"""How well a rotor's points give the smallest flank angle of its hob (the normal rack's).
+
+A rack point and its rotor point share their normal at contact, where that normal passes the
+pitch point C (Wu & Chi, *Meshing clearance evaluation*, sec. 2, eq. 4). Turn the rotor's normal by
+d theta about its point: the normal meets the pitch circle elsewhere, by d theta |P - C| / sin(gamma)
+along it (gamma the angle between the normal and the pitch line), so the rotor touches at another
+roll and the rack tangent turns by
+
+    d psi = d theta (1 + y / (r_w t_x^2)),
+
+y the rack point's height (away from the rotor's centre) and t_x its unit tangent's component
+along the pitch line (|P - C| = |y / t_x|, sin(gamma) = |t_x|): the generation factor of
+:func:`rotorcad.inverse_rack.generation_factor` without its curvature term. The normal section
+(Wu & Chi eq. 7, tan(alpha_n) = tan(alpha_t) cos(beta)) scales it by
+cos(beta) / (cos^2(alpha_t) + cos^2(beta) sin^2(alpha_t)).
+
+The rotor's tangent is known to the profile's tangent accuracy: of scattered points, one point's
+accuracy over one spacing (:attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy`); of exact
+points, the spread of two interpolants' tangents at the points
+(:func:`rotorcad.measured.fit.tangent_spread`), which is largest where the points do not resolve the
+outline (a land meeting a flank). The smallest angle read from the points may then lie anywhere
+within the smallest of the angles less their errors and the smallest of the angles plus their
+errors.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorcad.inverse_rack import DerivedRack
+from rotorcad.roles import PieceRole, Side
+
+STEEP = 0.05
+"""|t_x| below which the rack runs within 3 deg of perpendicular to the pitch line (as
+:func:`rotorcad.inverse_rack.generation_factor`): the gain is taken there."""
+RADIUS_WINDOW = 0.3
+"""mm: a rack point takes the largest tangent spread of the given points within this radius of its rotor point."""
+
+
+def _spread_at(radii: np.ndarray, spread: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """Return the largest ``spread`` (rad) of the points whose radius lies within :data:`RADIUS_WINDOW` of each of ``at``."""
+    if not len(radii):
+        return np.zeros(len(at))
+    order = np.argsort(radii)
+    r, s = radii[order], spread[order]
+    lo = np.searchsorted(r, at - RADIUS_WINDOW)
+    hi = np.searchsorted(r, at + RADIUS_WINDOW, side="right")
+    # the largest over each window from a sparse table of maxima (no loop over the points)
+    levels = [s]
+    while 2 ** len(levels) <= len(s):
+        prev, step = levels[-1], 2 ** (len(levels) - 1)
+        levels.append(np.maximum(prev[:-step], prev[step:]))
+    out = np.zeros(len(at))
+    has = hi > lo
+    width = np.where(has, hi - lo, 1)
+    k = np.floor(np.log2(width)).astype(int)
+    for level in np.unique(k[has]):
+        pick = has & (k == level)
+        table = levels[level]
+        out[pick] = np.maximum(table[lo[pick]], table[hi[pick] - 2**level])
+    return out
+
+
+def flank_angle_errors(rack: DerivedRack, tangent_accuracy: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+    """Return each rack point's normal flank angle and how far the profile's tangent accuracy may move it (deg).
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        The rack of the rotor given by points, in its own frame, with its ``profile``.
+    tangent_accuracy : float or (n,) float array, rad
+        The profile's tangent accuracy at each rack point's rotor point.
+
+    Returns
+    -------
+    angle : (n,) float array, deg
+        The normal flank angle (from the normal to the pitch line) of each cutting flank point; inf elsewhere.
+    error : (n,) float array, deg
+        Its bound from the tangent accuracy (module docstring).
+    """
+    cb = np.cos(rack.helix_angle)
+    t = rack.tangents
+    normal = t * np.array([cb, 1.0])
+    normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+    cutting = np.array([role is not PieceRole.CORNER_FAN for role in rack.roles], dtype=bool)[rack.piece_index]
+    flank = cutting & (np.abs(normal[:, 1]) > 1e-9)
+    angle = np.where(flank, np.degrees(np.arctan2(np.abs(normal[:, 0]), np.abs(normal[:, 1]))), np.inf)
+    y = rack.points[:, 1] * (-1.0 if rack.contract_frame and rack.side is Side.FEMALE else 1.0)  # own frame
+    # within 3 deg of perpendicular to the pitch line the normal runs along it and the contact is far off
+    # (a cusp on the pitch line makes the rack perpendicular there whatever the tangent): there the angle is
+    # stated to those 3 deg
+    steep = np.abs(t[:, 0]) < STEEP
+    tx = np.where(steep, 1.0, t[:, 0])
+    gain = np.abs(1.0 + y / (rack.pitch_radius * tx**2))
+    alpha_t = np.arctan2(np.abs(t[:, 0]), np.abs(t[:, 1]))
+    section = cb / (np.cos(alpha_t) ** 2 + cb**2 * np.sin(alpha_t) ** 2)
+    error = gain * np.broadcast_to(np.asarray(tangent_accuracy, dtype=float), len(t))
+    error = np.degrees(section * np.where(steep, np.arcsin(STEEP), error))
+    return angle, np.where(flank, error, 0.0)
+
+
+def smallest_angle_accuracy(rotors: object, racks: dict[str, DerivedRack], given: str, smallest: float) -> float:
+    """Return the accuracy (deg) of the smallest normal flank angle read from a rotor's points.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        A pair generated from a rotor's points (``accuracy``, ``tangent_accuracy``, ``tangent_spread``);
+        a design, a rack's points or a gear give 0.
+    racks : dict of DerivedRack
+        ``male`` and ``female`` racks of the pair (:func:`rotorcad.inverse_rack.rotor_rack`), own frames.
+    given : {"male", "female"}
+        The rotor given by points. The mate's rack is the same rack where the two touch: each of its
+        points takes the error of the given rack's nearest point (rack frame of CONTRACT.md).
+    smallest : float, deg
+        The smallest angle read (of both racks).
+
+    Returns
+    -------
+    float, deg
+        How far the smallest angle may lie from the true one either way (module docstring).
+    """
+    from scipy.spatial import cKDTree
+
+    rack = racks.get(given)
+    if not getattr(rotors, "accuracy", 0.0) or rack is None or rack.profile is None:
+        return 0.0
+    turn = float(getattr(rotors, "tangent_accuracy", 0.0))
+    spread = getattr(rotors, "tangent_spread", None)
+    if turn > 0:
+        accuracy: np.ndarray | float = turn
+    elif spread is not None:
+        accuracy = _spread_at(np.asarray(spread[0]), np.asarray(spread[1]), np.hypot(*rack.profile.T))
+    else:
+        return 0.0
+    angle, error = flank_angle_errors(rack, accuracy)
+    angles, errors = [angle], [error]
+    own = rack.in_contract_frame()
+    if own.points[0, 0] != rack.points[0, 0]:  # travelled the other way: the errors follow the points
+        error = error[::-1]
+    period = np.array([rack.period, 0.0])
+    tree = cKDTree(np.vstack([own.points - period, own.points, own.points + period]))
+    for side, mate in racks.items():
+        if side == given:
+            continue
+        mate_angle, mate_error = flank_angle_errors(mate, 0.0)  # its steep points' bound only
+        near = tree.query(mate.in_contract_frame().points)[1] % len(own.points)
+        flipped = mate.in_contract_frame().points[0, 0] != mate.points[0, 0]
+        borrowed = error[near][::-1] if flipped else error[near]
+        angles.append(mate_angle)
+        errors.append(np.maximum(mate_error, borrowed))
+    angle, error = np.concatenate(angles), np.concatenate(errors)
+    finite = np.isfinite(angle)
+    if not finite.any():
+        return 0.0
+    low = max(float(np.min(angle[finite] - error[finite])), 0.0)  # a flank angle is 0-90 deg
+    high = min(float(np.min(angle[finite] + error[finite])), 90.0)
+    return max(smallest - low, high - smallest, 0.0)
+
+
+__all__ = ["flank_angle_errors", "smallest_angle_accuracy"]
