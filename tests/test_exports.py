@@ -149,12 +149,13 @@ def test_export_command(tmp_path, capsys):
     assert info["valid"] and info["volume"] == pytest.approx(step["volume"], rel=1e-3)
 
 
-def test_export_says_which_outline_crosses_itself(tmp_path, capsys):
+def test_export_refuses_exact_curves_through_a_loop(tmp_path, capsys):
     # The rack-involute family at its default roundings on the 116 mm pair: the generated flanks reverse near
-    # the tips and loop (the solids swept through the loops fail OpenCASCADE's BRepCheck:
-    # tests/test_shapes_api.py::test_rotors_as_solids). Reference: the meshing analysis's cusps on the same
-    # rotors (Rinder's rule, another method); no note for roundings the rotors can follow (their solids are
-    # valid: the same test of test_shapes_api).
+    # the tips and loop, and the male's runs out 0.87 mm past its tip circle (a new user's finding: the STEP
+    # was listed at its tolerance and volume, and read back invalid, 43 % smaller). The solids swept through
+    # the loops fail OpenCASCADE's BRepCheck (tests/test_shapes_api.py::test_rotors_as_solids). Reference:
+    # the meshing analysis's cusps on the same rotors (Rinder's rule, another method); no note and no refusal
+    # for roundings the rotors can follow (their solids are valid: the same test of test_shapes_api).
     from rotorcad.meshing import MeshingAnalysis
 
     pair = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0, lead=300.0, length=10.0)
@@ -170,6 +171,11 @@ def test_export_says_which_outline_crosses_itself(tmp_path, capsys):
         noted[name] = {side for side in ("male", "female") if f"the {side} outline crosses itself" in out.err}
     cusps = {d.rotor for d in MeshingAnalysis(build_family(pair, "rack-involute", {})).defects if d.kind == "cusp"}
     assert noted == {"loops": cusps, "clean": set()} and cusps == {"male", "female"}
+    # the exact curves: refused before anything is written, naming the formats and what is written instead
+    rc = main(["export", str(tmp_path / "loops.toml"), "--format", "stl,step", "--out", str(tmp_path / "s"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and not (tmp_path / "s").exists()
+    assert err.count("\n") == 1 and "--format step cannot be written" in err and "beyond its tip circle" in err
 
 
 @pytest.mark.parametrize(

@@ -20,6 +20,7 @@ from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design.files import is_gear_design
 from rotorcad.errors import DesignError
+from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -145,7 +146,7 @@ def export(
         label = "--tolerance" if tolerance is not None else "[export] tolerance"
 
         def make_bodies() -> list[PlacedBody]:
-            return _rotor_bodies(design, settings, tol, label, angle, (center_distance, phase_deg, housing), result)
+            return _rotor_bodies(design, settings, (tol, fmts), label, angle, (center_distance, phase_deg, housing), result)
 
     # STEP and DXF are written by a worker process (exports.background), forked before the
     # progress bar's thread, while this one sweeps and meshes
@@ -202,7 +203,7 @@ def _surface_tolerance(tol: float) -> float:
 def _rotor_bodies(
     design: Path,
     settings: dict[str, Any],
-    tol: float,
+    asked: tuple[float, list[ExportFormat]],
     label: str,
     angle: float,
     assembly: tuple[float | None, float, bool | None],
@@ -210,42 +211,58 @@ def _rotor_bodies(
 ) -> list[PlacedBody]:
     """Build the rotors of a design and return them placed as assembled, with the housing when asked.
 
-    ``assembly`` is (--center-distance, --phase-deg, --housing); the housing's radial clearance is
-    put in ``result`` (key ``clearance``). A request whose solids would not fit in memory is
-    refused naming ``label`` (:func:`rotorcad.assembly.check_solid_work`).
+    ``asked`` is the surface tolerance (mm) and the formats; ``assembly`` is (--center-distance,
+    --phase-deg, --housing); the housing's radial clearance is put in ``result`` (key ``clearance``). A
+    request whose solids would not fit in memory is refused naming ``label``
+    (:func:`rotorcad.assembly.check_solid_work`), one whose exact formats would follow a looping outline
+    too (:func:`_check_outlines`).
     """
+    tol, fmts = asked
     center_distance, phase_deg, housing = assembly
     rotors, _, clearance = build_rotors(design, _rotor_options(design), settings)
     pair, phase = _assemble(rotors.pair, center_distance, phase_deg, clearance)
     _check_solid_work(rotors, tol, label)
     result["clearance"] = clearance
     bodies = rotor_bodies(rotors, pair, float(np.radians(angle)), phase, tol)
-    _note_loops(rotors, min(tol / 2, LOOP_CHORD))
+    _check_outlines(rotors, min(tol / 2, LOOP_CHORD), fmts)
     if housing if housing is not None else bool(settings["housing"]):
         bodies += housing_bodies(pair, clearance, tol)
     return bodies
 
 
 LOOP_CHORD = 1e-4  # mm: outlines checked for loops at least this finely (the exact STEP follows the curves to 0.5 µm)
+CURVE_FORMATS = ("step", "dxf")  # the formats that sweep or draw the outline's generated curves, not the section
 
 
-def _note_loops(rotors: ScrewRotors, chord: float) -> None:
-    """Say (an InputNote) which rotor's outline crosses itself: its solid folds through the loop there."""
+def _check_outlines(rotors: ScrewRotors, chord: float, fmts: list[ExportFormat]) -> None:
+    """Refuse the exact formats of a rotor whose outline crosses itself or leaves its tip circle; else a note.
+
+    The meshes and the DXF polyline are made from the section (the outline made valid and clipped to the
+    tip circle: loops and overshoot left out); the STEP solid and the DXF splines follow the generated
+    curves themselves, and would be swept or drawn through the loop.
+    """
     import warnings
 
     from rotorcad.errors import InputNote
-    from rotorcad.families.checks import outline_loops
+    from rotorcad.families.checks import beyond_tip, outline_loops
 
+    faults = {side: [] for side in Side}
     for side, x, y, area in outline_loops(rotors, chord):
-        warnings.warn(
-            f"the {side.value} outline crosses itself at ({x:.3f}, {y:.3f}) mm, r = {np.hypot(x, y):.3f} mm (a loop of "
-            f"{area:.3g} mm²): its generated flank reverses there (the cusp `rotor` reports; the rack undercuts the "
-            "rotor), so its STEP solid's faces fold through the loop (OpenCASCADE does not take it as a valid "
-            "solid) and its meshes leave the loop out; a rack rounding the rotor can follow ([profile]) gives a "
-            "simple outline",
-            InputNote,
-            stacklevel=2,
+        faults[side].append(f"crosses itself at ({x:.3f}, {y:.3f}) mm, r = {np.hypot(x, y):.3f} mm (a loop of {area:.3g} mm²)")
+    for side, reach in beyond_tip(rotors, chord):
+        faults[side].append(f"reaches {reach:.4g} mm beyond its tip circle")
+    said = "; ".join(f"the {side.value} outline {' and '.join(f)}" for side, f in faults.items() if f)
+    if not said:
+        return
+    why = "its generated flank reverses or runs out past the tip (the rack undercuts the rotor)"
+    curves = [f.name for f in fmts if f.name in CURVE_FORMATS]
+    if curves:
+        raise InputError(
+            f"--format {','.join(curves)} cannot be written for this design: {said}: {why}, and the exact curves "
+            "would be swept or drawn through it; the meshes and dxf-r12 are written from the section trimmed to the "
+            "tip circle (e.g. --format stl,dxf-r12), or give [profile] roundings the rotor can follow."
         )
+    warnings.warn(f"{said}: {why}; the meshes are made from the section trimmed to the tip circle", InputNote, stacklevel=2)
 
 
 def _print_files(rows: list[dict[str, Any]], stem: str, folder: Path) -> None:

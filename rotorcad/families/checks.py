@@ -112,4 +112,35 @@ def outline_loops(rotors: ScrewRotors, tolerance: float | None = None) -> list[t
     return found
 
 
-__all__ = ["check_tips", "outline_loops"]
+def beyond_tip(rotors: ScrewRotors, tolerance: float | None = None) -> list[tuple[Side, float]]:
+    """Return how far a rotor's generated outline reaches beyond its tip circle.
+
+    A generated curve may leave the tip circle before its piece ends (a rack rounding whose image runs out
+    past the tip); the rotor's section (:meth:`~rotorcad.screw_rotors.ScrewRotors.section`) is clipped to
+    the tip circle, the outline's pieces are not.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair.
+    tolerance : float, mm, optional
+        Chord tolerance of the outlines checked (default the pair's).
+
+    Returns
+    -------
+    list of (Side, float)
+        Per rotor reaching more than :data:`TIP_REACH` beyond its tip radius: the rotor and how far, mm.
+    """
+    found = []
+    for side in Side:
+        points = side.pick(rotors.male_outline, rotors.female_outline)(tolerance).points
+        tip = side.pick(rotors.pair.male_tip_radius, rotors.pair.female_tip_radius)
+        reach = float(np.hypot(*points.T).max()) - tip
+        if reach > TIP_REACH:
+            found.append((side, reach))
+    return found
+
+
+TIP_REACH = 1e-5  # mm: an outline this far beyond its tip circle is within the exact STEP's 0.5 µm of it
+
+__all__ = ["TIP_REACH", "beyond_tip", "check_tips", "outline_loops"]
