@@ -123,16 +123,58 @@ def test_the_rack_where_both_rotors_touch_it_is_the_generating_rack(name, rotor,
     # N Gaussian errors with 95 % confidence, k_N sigma, k_300 = 3.76: the 4/6 male with 2 um
     # scatter reads 5.5 um over a stretch of its flank, stated 7.5 um, was 2 sigma = 4.0 um).
     rotors, racks, _, _ = hob_view(name, rotor, form)
-    rack = racks[rotor].in_contract_frame()
+    d = zone_error(name, racks[rotor])
+    assert d.max() <= max(2e-3, rotors.accuracy), (d.max(), rotors.accuracy)
+
+
+def zone_error(name: str, rack) -> np.ndarray:
+    """The distance (mm) of each point of a rotor's rack (hob.rack.rotor_rack) on the closed-form contact
+    zone from the closed-form generating rack (brute force: shapely's point-to-polyline distance)."""
+    rack = rack.in_contract_frame()
     reference, zone, _ = closed_form(name)
     period = rotor_pair(name).rack_period
     tiled = np.vstack([reference + [k * period, 0.0] for k in (-1, 0, 1)])
     near = cKDTree(tiled).query(rack.points)[1]
     on_zone = np.tile(zone, 3)[near] & ~rack.corner_path
     assert on_zone.sum() > 200
-    line = shapely.LineString(tiled)
-    d = distance_to_line(rack.points[on_zone], line)
-    assert d.max() <= max(2e-3, rotors.accuracy), (d.max(), rotors.accuracy)
+    return distance_to_line(rack.points[on_zone], shapely.LineString(tiled))
+
+
+SEEDS = (1, 2, 3, 4, 5)
+SEED_CASES = [
+    ("4/6", "male", 300),
+    ("4/6", "female", 300),
+    ("5/6", "female", 300),
+    ("4/6", "male", 80),
+    ("4/6", "female", 80),
+    ("5/6", "female", 80),
+]
+
+
+@pytest.mark.parametrize("name,rotor,per_lobe", SEED_CASES)
+def test_the_stated_accuracy_covers_the_rack_over_seeds(name, rotor, per_lobe):
+    # Issue 22 items 3 and 5, with 2 um of scatter over five seeds (not the one seed of the tests
+    # above): the rack the hob judges, on the closed-form contact zone, within the accuracy the
+    # profile states (the bound k_N sigma on the largest of a lobe's N errors, or the chords' sagitta
+    # of sparse points), and within 2 um over 90 % of the zone at 300 points a lobe (5 um at 80).
+    # Reference: the closed-form generating rack (zone_error). Measured, seeds 1-5, largest / 90th
+    # percentile / stated (um): at 300 a lobe 4/6 male 2.3-5.7 / 1.2-1.7 / 7.6-8.2, 4/6 female
+    # 2.2-4.1 / 0.9-1.8 / 7.8-8.2, 5/6 female 2.4-4.9; at 80 a lobe 4/6 male 4.5-6.5 / 2.3-4.7 / 21-23,
+    # 4/6 female 5.4-8.9 / 2.2-2.9 / 39, 5/6 female 7.4-11.1 / 2.4-3.5 / 18-19. The 2 um asked is not
+    # reached at the root fillets (rack y = +-6.5 mm): the smoothing spline (n sigma^2, Dierckx sec.
+    # 5.2) bends with the scatter where the fillet's curvature meets the involute's; closer fits
+    # (n - sqrt(2 n)) sigma^2, uniform knots 0.8-2.5 mm apart, a penalised spline by cross-validation
+    # read 3.1-5.1, 2.7-34, 3.2-5.3 um there.
+    rp = PAIRS[name]()
+    ring = cut_rotor(rp, rotor)
+    teeth = rp.male_teeth if rotor == "male" else rp.female_teeth
+    length = float(np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T).sum())
+    for seed in SEEDS:
+        pts = resample(ring, length / teeth / per_lobe, noise=2e-3, seed=seed)
+        rotors = with_exact_cusp_paths(pair_from_rotor_points(rotor_pair(name), pts, rotor))
+        d = zone_error(name, rotor_rack(rotors, rotor, **MEASURED))
+        assert d.max() <= rotors.accuracy, (seed, d.max(), rotors.accuracy)
+        assert np.quantile(d, 0.9) <= (2e-3 if per_lobe >= 300 else 5e-3), (seed, np.quantile(d, 0.9))
 
 
 @pytest.mark.parametrize("name,rotor,form", CASES)
