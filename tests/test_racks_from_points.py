@@ -555,7 +555,7 @@ def test_cli_hob_of_the_rack_involute_from_its_own_rack_csv(tmp_path, capsys):
     assert given["rack_deviation"] <= max(2e-3, given["accuracy"])
 
 
-def closed_form_rack_points(name: str, spacing: float = 0.02, noise: float = 0.0, count: int = 0) -> np.ndarray:
+def closed_form_rack_points(name: str, spacing: float = 0.02, noise: float = 0.0, count: int = 0, seed: int = 11) -> np.ndarray:
     """One period of the closed-form generating rack as points (rack frame), with its next period's
     first point; with ``noise``: ``count`` points evenly along it, Gaussian scatter along the normals."""
     rp = PAIRS[name]()
@@ -567,15 +567,15 @@ def closed_form_rack_points(name: str, spacing: float = 0.02, noise: float = 0.0
         u = (np.arange(count) + 0.37) * s[-1] / count
         q = np.column_stack([np.interp(u, s, chain[:, 0]), np.interp(u, s, chain[:, 1])])
         n = np.column_stack([np.interp(u, s[:-1], nrm[:, 0]), np.interp(u, s[:-1], nrm[:, 1])])
-        pts = q + np.random.default_rng(11).normal(0.0, noise, count)[:, None] * n / np.hypot(*n.T)[:, None]
+        pts = q + np.random.default_rng(seed).normal(0.0, noise, count)[:, None] * n / np.hypot(*n.T)[:, None]
     return np.vstack([pts, pts[:1] + [period, 0.0]])
 
 
 @functools.cache
-def rack_view(name: str, noise: float = 0.0) -> dict:
+def rack_view(name: str, noise: float = 0.0, seed: int = 11) -> dict:
     from rotorcad.rotor_points import pair_from_rack_points
 
-    pts = closed_form_rack_points(name) if not noise else closed_form_rack_points(name, noise=noise, count=1500)
+    pts = closed_form_rack_points(name) if not noise else closed_form_rack_points(name, noise=noise, count=1500, seed=seed)
     rotors = pair_from_rack_points(rotor_pair(name), pts)
     return {side: judge(rotor_rack(rotors, side), accuracy=rotors.accuracy, measured=False) for side in ("male", "female")}
 
@@ -617,10 +617,11 @@ def test_the_verdict_from_the_rack_points_is_the_verdict_from_either_rotor(name)
 
 @pytest.mark.xfail(
     strict=True,
-    reason="rack points with 2 um scatter (1500 a period) are fitted by one smoothing spline between the "
-    "rack's sharp corners (their lands and tip-corner trochoids are taken exactly from exact points only: within "
-    "the scatter's 8 um bound the N rack's tip-circle envelopes passed for trochoids): the 4/6 male reads "
-    "undercut at r = 35.2 mm and 23.17 deg for 23.87, the rack deviation 8.8-10.5 mm",
+    reason="rack points with 2 um scatter (1500 a period, seed 11), fitted by the penalised spline "
+    "(rotorcad.measured.penalized_spline): the verdicts are the exact rack's, the 4/6 angles 23.80 / 23.81 deg for "
+    "23.87, the 5/6 female 15.81 for 15.83, but the undercut 5/6 male reads 15.08 for 14.89: its smallest angle lies "
+    "where its envelope turns back, which the fitted rack's curvature sets (before: one FITPACK smoothing spline, "
+    "the 5/6 female read undercut, the 4/6 angles 0.30 / 0.39 deg low)",
 )
 def test_the_verdict_from_scattered_rack_points_is_the_generating_racks():
     # Issue 22 item 3 with 2 um scatter. Reference: the exact rack's verdict and the closed form.
@@ -629,3 +630,41 @@ def test_the_verdict_from_scattered_rack_points_is_the_generating_racks():
         for side in ("male", "female"):
             assert noisy[side].hobbable == exact[side].hobbable, (name, side, noisy[side].reasons)
             assert noisy[side].normal_pressure_angle_min_deg == pytest.approx(exact[side].normal_pressure_angle_min_deg, abs=0.1)
+
+
+@functools.cache
+def scattered_rack_view(name: str, seed: int) -> tuple:
+    """As `rotorcad hob --rack-points` reads 1500 rack points a period with 2 um of scatter: the pair, both
+    verdicts (racks with the measured-piece options) and the rack deviation."""
+    from rotorcad.rotor_points import pair_from_rack_points
+
+    pts = closed_form_rack_points(name, noise=2e-3, count=1500, seed=seed)
+    rotors = with_exact_cusp_paths(pair_from_rack_points(rotor_pair(name), pts))
+    racks = {side: rotor_rack(rotors, side, **MEASURED) for side in ("male", "female")}
+    verdicts = {side: judge(rack, accuracy=rotors.accuracy, measured=False) for side, rack in racks.items()}
+    return rotors, verdicts, rack_deviation(rotors, **MEASURED)
+
+
+@pytest.mark.parametrize("name", ["4/6", "5/6"])
+def test_the_hob_verdict_from_scattered_rack_points_over_seeds(name):
+    # Issue 22 item 3 from the rack's points with 2 um of scatter (1500 a period), seeds 1-5 and 11,
+    # as `rotorcad hob --rack-points` reads them. Reference: the verdicts from the exact rack's points
+    # (test above: the closed form's flank angle within 0.1 deg, the 5/6 male undercut by brute force)
+    # and the truth 0 of the rack deviation (both rotors generated from one rack). Each rotor's verdict
+    # is the exact rack's (hobbable or not, the same kinds of reason: the 5/6 male's undercut only), its
+    # smallest flank angle within 0.85 deg, the rack deviation within the stated accuracy. Before (one
+    # smoothing spline by n sigma^2 between the rack's corners, Dierckx sec. 5.2; the rack deviation
+    # without the measured-piece options, as `hob` judged rack points): seed 11 read the 5/6 female
+    # undercut, the 4/6 angles 0.2-1.07 deg low, the rack deviation 6.7-7.7 mm. Now
+    # (rotorcad.measured.penalized_spline): 4/6 male 0.07-0.61 deg low, female 0.01-0.06 (0.801 at
+    # seed 5), 5/6 male 0.02-0.23 off, female within 0.02; the rack deviation 0.002 / 0.05 um.
+    exact = rack_view(name)
+    for seed in (1, 2, 3, 4, 5, 11):
+        rotors, noisy, deviation = scattered_rack_view(name, seed)
+        for side in ("male", "female"):
+            assert noisy[side].hobbable == exact[side].hobbable, (seed, side, noisy[side].reasons)
+            assert _reason_kinds(noisy[side]) == _reason_kinds(exact[side]), (seed, side, noisy[side].reasons)
+            assert noisy[side].normal_pressure_angle_min_deg == pytest.approx(
+                exact[side].normal_pressure_angle_min_deg, abs=0.85
+            ), (seed, side)
+        assert deviation <= max(2e-3, rotors.accuracy), (seed, deviation)
