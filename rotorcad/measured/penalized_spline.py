@@ -20,8 +20,7 @@ rounding meeting its flank) would pay it and hold lambda down everywhere: each f
 third derivative stands :data:`STEP_FACTOR` times above the median of the spans still penalised, and
 their weights w_j (with :data:`RELEASED` spans either side) are set to :data:`RELEASED_WEIGHT` for the
 next fit, up to :data:`PASSES` fits. The 4/6 rack's straight flank then reads 29.987-30.023 deg for 30
-(29.62-30.44 with one weight, 2.5 um off its rack), the points 1.9 um off at most. Ends may be held on
-given points with given tangents (the exact pieces a rack run meets).
+(29.62-30.44 with one weight, 2.5 um off its rack), the points 1.9 um off at most.
 """
 
 from __future__ import annotations
@@ -91,55 +90,13 @@ def _fit(a: np.ndarray, y: np.ndarray, penalty: np.ndarray, scale: float) -> tup
     return z, float(dof[k]), float(lams[k])
 
 
-def _system(
-    t: np.ndarray, u: np.ndarray, pts: np.ndarray, start: np.ndarray | None, end: np.ndarray | None, hold_ends: bool
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Return the least-squares system of knots ``t`` on the null space of the end conditions.
-
-    (a, y, particular, free, third, width, design): the coefficients are particular + free z; ``third``
-    (spans, m) the third derivative of each basis spline on each span, ``width`` the spans' lengths.
-    """
-    from scipy.linalg import null_space
-
-    m = len(t) - 4
-    basis, design = _basis(t, u)
-    lo, hi = t[3:-4], t[4:-3]
-    width = hi - lo
-    third = np.nan_to_num(basis(0.5 * (lo + hi), 3))  # constant on each span
-    rows, rhs = [], []
-    if hold_ends:
-        rows += [design[0], design[-1]]
-        rhs += [pts[0], pts[-1]]
-    slope = np.nan_to_num(basis(np.array([u[0], u[-1] - 1e-12 * max(1.0, u[-1])]), 1))
-    for k, tangent in ((0, start), (1, end)):
-        if tangent is not None:
-            rows.append(slope[k])
-            rhs.append(np.asarray(tangent, dtype=float))
-    if rows:
-        c_mat = np.array(rows)
-        particular = np.linalg.lstsq(c_mat, np.array(rhs), rcond=None)[0]
-        free = null_space(c_mat)
-    else:
-        particular, free = np.zeros((m, 2)), np.eye(m)
-    return design @ free, pts - design @ particular, particular, free, third, width, design
-
-
-def penalized_spline(
-    points: np.ndarray,
-    start: np.ndarray | None = None,
-    end: np.ndarray | None = None,
-    hold_ends: bool = False,
-) -> Spline | None:
+def penalized_spline(points: np.ndarray) -> Spline | None:
     """Fit the smoothing spline of scattered points that pays for changes of curvature (module docstring).
 
     Parameters
     ----------
     points : (n, 2) float array, mm
         Consecutive scattered points (any frame), parameterised by their chord length.
-    start, end : (2,) float array, optional
-        Unit tangents the spline takes at its first and last point (along the travel).
-    hold_ends : bool
-        Pass through the first and last point exactly (the ends of exact pieces).
 
     Returns
     -------
@@ -156,16 +113,19 @@ def penalized_spline(
     u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
     stride = max(1, int(np.ceil(n / MAX_KNOTS)))
     t = np.r_[[u[0]] * 4, u[2:-2:stride], [u[-1]] * 4]
-    a, y, particular, free, third, width, _ = _system(t, u, pts, start, end, hold_ends)
+    basis, design = _basis(t, u)
+    lo, hi = t[3:-4], t[4:-3]
+    width = hi - lo
+    third = np.nan_to_num(basis(0.5 * (lo + hi), 3))  # (spans, m): the third derivative, constant on each span
     scale = float(np.median(width)) ** 5
     weights = np.ones(len(width))
-    coef = particular
+    coef = np.zeros((design.shape[1], 2))
     for _ in range(PASSES):
-        penalty = free.T @ (third.T @ ((weights * width)[:, None] * third)) @ free
-        found = _fit(a, y, penalty, scale)
+        penalty = third.T @ ((weights * width)[:, None] * third)
+        found = _fit(design, pts, penalty, scale)
         if found is None:
             return None
-        coef = particular + free @ found[0]
+        coef = found[0]
         # the steps of curvature: spans whose third derivative stands out of those still penalised
         size = np.hypot(*(third @ coef).T)
         held = weights >= 1.0
