@@ -444,13 +444,26 @@ def test_deflect_names_the_design_key_of_a_bad_speed(tmp_path, capsys):
     assert "[operating] speed_rpm must be a positive speed" in err and "--speed" not in err
 
 
-def test_indicator_must_cover_the_cycle(tmp_path, capsys):
+def test_indicator_must_cover_the_cycle(tmp_path, capsys, monkeypatch):
     # 0..200 deg only (or angles in radians by mistake) would hold the last pressure silently
+    from rotorcad import deflection
+    from rotorcad.cli.export_cmd import _rotor_options
+    from rotorcad.cli.rotor import _build
+
+    design = ROOT / "samples" / "rack_involute_5_6.toml"
+    rotors, _, _ = _build(design, _rotor_options(design))
+    end = np.degrees(deflection.GasDeflection(rotors, 1.0, 8.0, terms=3).cycle.angle[-1])  # the chamber table's cycle
     csv = tmp_path / "partial.csv"
     csv.write_text("angle_deg,pressure_bar\n0,1\n100,2\n200,4\n")
-    assert main(["deflect", str(ROOT / "samples" / "rack_involute_5_6.toml"), "--indicator", str(csv), "--terms", "3"]) == 2
+
+    def no_table(*args, **kwargs):  # refused before the chamber table (it was after its 2 s of CPU)
+        raise AssertionError("deflect built the chamber table before checking --indicator")
+
+    monkeypatch.setattr(deflection, "chamber_table", no_table)
+    assert main(["deflect", str(design), "--indicator", str(csv), "--terms", "3"]) == 2
     err = capsys.readouterr().err
     assert "--indicator must cover the chamber's cycle from 0 to" in err and "200.0" in err
+    assert f"from 0 to {end:.1f} deg" in err  # the cycle of the table, known before it is built
 
 
 def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys, built_in_deflect, monkeypatch):
