@@ -24,8 +24,14 @@ from rotorcad.working_chamber import chord_table, flute_cycles
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def test_chord_table_is_eq_5_over_each_flutes_cycle():
-    table, male, female, _ = _independent_chamber()
+@pytest.fixture(scope="module")
+def independent_chamber(built_once):
+    """test_deflection's independent 4/6 chamber table, built once in a run for both modules."""
+    return built_once("test_deflection.independent_chamber", _independent_chamber)
+
+
+def test_chord_table_is_eq_5_over_each_flutes_cycle(independent_chamber):
+    table, male, female, _ = independent_chamber
     r1, r2 = np.hypot(*male.T).max(), np.hypot(*female.T).max()
     chord = chord_table(table, 4, 6, r1, r2)
     (m0, m1), (f0, f1) = flute_cycles(4, 6)
