@@ -39,6 +39,8 @@ window. It opens at the suction end (psi0 = -wrap) and ends at psi0 = 2 pi; the 
 from __future__ import annotations
 
 import dataclasses
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,6 +51,7 @@ from rotorcad.roles import Side
 
 GAP = 1e-3  # mm: the gas space is shrunk by this to part pieces that touch at a point or along a tip land (area ~0.03 % less)
 SEAL = 0.01  # mm: a gap narrower than twice this seals (the sections' chords and a contact's neighbourhood)
+RECENT_TABLES = 4  # chamber tables kept for the same sections asked again (a second model, another command in a process)
 
 
 @dataclass(frozen=True)
@@ -152,12 +155,16 @@ class ChamberTable:
         return np.where(inside[..., None], (1.0 - t) * table[i] + t * table[i + 1], 0.0)
 
 
-def _sector(center: tuple[float, float], radius: float, start: float, stop: float, within: shapely.Geometry) -> shapely.Geometry:
-    """Return the circular sector about ``center`` from angle ``start`` to ``stop`` (rad), cut to ``within``."""
+def _sector(center: tuple[float, float], radius: float, start: float, stop: float) -> shapely.Polygon:
+    """Return the wedge about ``center`` from angle ``start`` to ``stop`` (rad), reaching beyond the tip circle ``radius``.
+
+    Cut to the gas of a bore (:attr:`_Section.male_gas`, :attr:`_Section.female_gas`) it is the
+    flute's circular sector of that gas.
+    """
     t = np.linspace(start, stop, 9)
     r = 1.5 * radius / np.cos((stop - start) / 16)  # beyond the tip circle between the 9 rays
     pts = np.vstack([[center], np.c_[center[0] + r * np.cos(t), center[1] + r * np.sin(t)]])
-    return shapely.intersection(shapely.Polygon(pts), within)
+    return shapely.Polygon(pts)
 
 
 def flute_cycles(male_teeth: int, female_teeth: int) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -240,22 +247,28 @@ def chord_table(
     return dataclasses.replace(table, male_force=male, female_force=female)
 
 
-def _female_sector(a: float, r2: float, z1: int, z2: int, psi: float, within: shapely.Geometry) -> shapely.Geometry:
-    """Sector of the female flute that closes with the male flute at phase ``psi``.
+def _female_sector(a: float, r2: float, z1: int, z2: int, psi: float) -> shapely.Polygon:
+    """Wedge of the female flute that closes with the male flute at phase ``psi`` (:func:`_sector`).
 
     At psi = 2 pi the male flute holds the female lobe at angle pi about O2; the female flute that
     reaches the mesh with it lies just below that lobe (it is filled half a male pitch later).
     """
     pitch2 = 2 * np.pi / z2
     centre = float(female_flute_angle(z1, z2, np.asarray(psi)))
-    return _sector((a, 0.0), r2, centre - pitch2 / 2, centre + pitch2 / 2, within)
+    return _sector((a, 0.0), r2, centre - pitch2 / 2, centre + pitch2 / 2)
+
+
+def _band(rotor: shapely.Polygon) -> shapely.Geometry:
+    """Return a thin band about a rotor's outline, from GAP inside it to 3 GAP outside (the gas edges on it lie GAP out)."""
+    return shapely.difference(rotor.buffer(3 * GAP, quad_segs=2), rotor.buffer(-GAP, quad_segs=2))
 
 
 @dataclass(frozen=True)
 class _Section:
-    """The gas space of one transverse section and what it touches."""
+    """The gas space of one transverse section, split by bore, and what it touches."""
 
-    gas: shapely.Geometry
+    male_gas: shapely.Geometry  # the gas in the male bore
+    female_gas: shapely.Geometry  # the gas in the female bore outside the male's (the lens counts with the male)
     to_upper: shapely.Geometry  # the gas joined to the upper (opening-side) cusp
     to_lower: shapely.Geometry
     male_near: shapely.Geometry  # a thin band about the male's outline (prepared)
@@ -264,19 +277,29 @@ class _Section:
     @classmethod
     def at(
         cls,
-        male: shapely.Polygon,
-        female: shapely.Polygon,
+        rotors: tuple[shapely.Polygon, shapely.Polygon],
+        bands: tuple[shapely.Geometry, shapely.Geometry],
         z1: int,
         z2: int,
         a: float,
-        bores: shapely.Geometry,
-        upper: shapely.Point,
-        lower: shapely.Point,
+        bores: tuple[shapely.Geometry, shapely.Geometry, shapely.Geometry],
+        cusps: tuple[shapely.Point, shapely.Point],
         psi: float,
     ) -> _Section:
-        m = shapely.affinity.rotate(male, psi, origin=(0, 0), use_radians=True)
-        f = shapely.affinity.translate(shapely.affinity.rotate(female, -psi * z1 / z2, origin=(0, 0), use_radians=True), a, 0)
-        parts = shapely.get_parts(shapely.difference(bores, shapely.union(m, f)).buffer(-GAP, quad_segs=2))
+        """Build the section at male angle ``psi`` (rad).
+
+        ``rotors`` and their ``bands`` (:func:`_band`) in their own frames, as the male and the female;
+        ``bores``: both bores, the male's and the female's outside the male's; ``cusps``: upper, lower.
+        """
+
+        def turned(male: shapely.Geometry, female: shapely.Geometry) -> tuple[shapely.Geometry, shapely.Geometry]:
+            m = shapely.affinity.rotate(male, psi, origin=(0, 0), use_radians=True)
+            f = shapely.affinity.rotate(female, -psi * z1 / z2, origin=(0, 0), use_radians=True)
+            return m, shapely.affinity.translate(f, a, 0)
+
+        m, f = turned(*rotors)
+        both, male_only, female_only = bores
+        parts = shapely.get_parts(shapely.difference(both, shapely.union(m, f)).buffer(-GAP, quad_segs=2))
         parts = parts[shapely.area(parts) > 100 * GAP**2]  # slivers between a tip land and the bore's polygon
         gas = shapely.union_all(parts)
         # which gas is joined to a cusp: through gaps wider than 2 SEAL only (a morphological opening:
@@ -284,36 +307,43 @@ class _Section:
         # few micrometres still seals
         cores = shapely.get_parts(gas.buffer(-SEAL, quad_segs=4))
         joined = []
-        for cusp in (upper, lower):
+        for cusp in cusps:
             core = shapely.union_all(cores[shapely.dwithin(cores, cusp, 3 * SEAL)])
             joined.append(shapely.intersection(core.buffer(SEAL + GAP, quad_segs=4), gas))
         to_upper, to_lower = joined
-        near = []
-        for rotor in (m, f):
-            band = shapely.difference(rotor.buffer(3 * GAP, quad_segs=2), rotor.buffer(-GAP, quad_segs=2))
+        # the bands turned with the rotors (a band made once: turning the outline and then buffering it
+        # gives the same edges' classification, the gas edges on a rotor lying GAP inside the band's 4 GAP)
+        near = turned(*bands)
+        for band in near:
             shapely.prepare(band)
-            near.append(band)
-        return cls(gas, to_upper, to_lower, near[0], near[1])
+        male_gas, female_gas = shapely.intersection(gas, male_only), shapely.intersection(gas, female_only)
+        return cls(male_gas, female_gas, to_upper, to_lower, near[0], near[1])
 
     @staticmethod
-    def force(gas: shapely.Geometry, near: shapely.Geometry) -> np.ndarray:
-        """Sum the outward normal times length over the edges of ``gas`` that lie in the band ``near``.
+    def edges(gas: shapely.Geometry) -> tuple[np.ndarray, np.ndarray]:
+        """Return the edges of the polygons of ``gas``, each ring run with the gas on its left.
+
+        Returns
+        -------
+        vectors, middles : (k, 2) float arrays, mm
+            Each edge's vector and middle (exteriors counter-clockwise, holes clockwise).
+        """
+        polygons = shapely.get_parts(gas)
+        polygons = shapely.orient_polygons(polygons[(shapely.get_type_id(polygons) == 3) & ~shapely.is_empty(polygons)])
+        points, ring = shapely.get_coordinates(shapely.get_rings(polygons), return_index=True)
+        same = ring[1:] == ring[:-1]  # not from one ring's last point to the next ring's first
+        return np.diff(points, axis=0)[same], (0.5 * (points[1:] + points[:-1]))[same]
+
+    @staticmethod
+    def force(edges: tuple[np.ndarray, np.ndarray], near: shapely.Geometry) -> np.ndarray:
+        """Sum the outward normal times length over the ``edges`` (:meth:`edges`) that lie in the band ``near``.
 
         The band lies about a rotor, so the sum is the force of a unit overpressure on that rotor: a (2,)
         float array, mm (N per N/mm² of overpressure, per mm of length).
         """
-        total = np.zeros(2)
-        for poly in getattr(gas, "geoms", [gas]):  # a handful of pieces
-            if poly.is_empty or not isinstance(poly, shapely.Polygon):
-                continue
-            poly = shapely.geometry.polygon.orient(poly, 1.0)
-            for ring in [poly.exterior, *poly.interiors]:
-                p = np.asarray(ring.coords)
-                e = np.diff(p, axis=0)
-                mid = 0.5 * (p[1:] + p[:-1])
-                on = shapely.contains_xy(near, mid[:, 0], mid[:, 1])
-                total += np.array([e[on, 1].sum(), -e[on, 0].sum()])  # outward normal (holes run clockwise)
-        return total
+        e, mid = edges
+        on = shapely.contains_xy(near, mid[:, 0], mid[:, 1])
+        return np.array([e[on, 1].sum(), -e[on, 0].sum()])  # outward normal (holes run clockwise)
 
 
 def chamber_table(
@@ -347,10 +377,95 @@ def chamber_table(
         Over the chamber's phases: the male flute's part for psi in [0, 2 pi), the female flute's
         part over its own cycle of 2 pi z2/z1 of male rotation, which ends half a male pitch after the
         male flute's (the female flute is filled by the male lobe that follows the male flute).
+        The same sections and numbers asked again give the same table (the last
+        ``RECENT_TABLES`` are kept; their arrays are read-only).
     """
     if not (0.05 <= step_deg <= 5.0):
         raise DesignError("phase step", "from 0.05 to 5 degrees", step_deg)
-    z1, z2, a = int(male_teeth), int(female_teeth), float(center_distance)
+    numbers = (int(male_teeth), int(female_teeth), float(center_distance), float(lead), float(length), float(step_deg))
+    key = (shapely.to_wkb(male), shapely.to_wkb(female), numbers)  # WKB: every coordinate's bits
+    with _RECENT_LOCK:
+        table = _RECENT.get(key)
+    if table is None:
+        table = _chamber_table(male, female, *numbers)
+        for values in (table.phase, table.area, table.male_force, table.female_force):
+            values.flags.writeable = False  # shared by every caller that asks for these sections
+        with _RECENT_LOCK:
+            _RECENT[key] = table
+            while len(_RECENT) > RECENT_TABLES:
+                _RECENT.popitem(last=False)
+    return table
+
+
+_RECENT: OrderedDict[tuple, ChamberTable] = OrderedDict()
+_RECENT_LOCK = threading.Lock()  # a sweep's threads may build models at once
+
+
+def table_phases(male_teeth: int, female_teeth: int, step_deg: float = 1.0) -> tuple[np.ndarray, int, int]:
+    """Return the flute phases of the chamber table (:func:`chamber_table`), which depend on the tooth counts only.
+
+    Parameters
+    ----------
+    male_teeth, female_teeth : int
+        z1, z2.
+    step_deg : float
+        Phase step asked (deg); the step taken divides the male pitch into whole steps.
+
+    Returns
+    -------
+    psi : (m,) float, rad
+        The phases, equally spaced: from a male pitch before the earlier of the two flutes' cycles
+        (:func:`flute_cycles`) to a male pitch after the later one's end.
+    first : int
+        ``psi[0]`` in steps.
+    per_pitch : int
+        Steps per male pitch.
+    """
+    pitch1 = 2 * np.pi / male_teeth
+    per_pitch = max(1, round(pitch1 / np.radians(step_deg)))
+    step = pitch1 / per_pitch  # a whole number of steps per pitch: the gas space is reused exactly
+    # cycles (phase windows) of the two flutes; gas still joined to the chamber's cusp just beyond
+    # them (a pocket closing after the flute is filled, one opening before) counts as well
+    male_cycle, female_cycle = flute_cycles(male_teeth, female_teeth)
+    first = int(np.floor((min(male_cycle[0], female_cycle[0]) - pitch1) / step))
+    last = int(np.ceil((max(male_cycle[1], female_cycle[1]) + pitch1) / step))
+    return np.arange(first, last) * step, first, per_pitch
+
+
+def cycle_angle(male_teeth: int, female_teeth: int, lead: float, length: float, step_deg: float = 1.0) -> float:
+    """Return the male rotation (rad) from a chamber's opening at the suction end to its end: the cycle of :func:`chamber_table`.
+
+    Known before the table is built (its phases depend on the tooth counts only): the table's
+    ``cycle`` is its ``span`` widened by the wrap 2 pi L / h.
+
+    Parameters
+    ----------
+    male_teeth, female_teeth : int
+        z1, z2.
+    lead, length : float, mm
+        Male lead h and rotor length L.
+    step_deg : float
+        Phase step asked (deg).
+
+    Returns
+    -------
+    float, rad
+    """
+    psi, _, _ = table_phases(male_teeth, female_teeth, step_deg)
+    return float(psi[-1] + (psi[1] - psi[0]) - psi[0] + 2 * np.pi * length / lead)
+
+
+def _chamber_table(
+    male: shapely.Polygon,
+    female: shapely.Polygon,
+    z1: int,
+    z2: int,
+    a: float,
+    lead: float,
+    length: float,
+    step_deg: float,
+) -> ChamberTable:
+    """:func:`chamber_table`, built."""
     r1 = float(np.hypot(*np.asarray(male.exterior.coords).T).max())
     r2 = float(np.hypot(*np.asarray(female.exterior.coords).T).max())
     if not r1 + r2 > a:
@@ -361,18 +476,14 @@ def chamber_table(
     cusp_y = np.sqrt(max(r1**2 - cusp_x**2, 0.0))
     upper, lower = shapely.Point(cusp_x, cusp_y), shapely.Point(cusp_x, -cusp_y)
     pitch1 = 2 * np.pi / z1
-    step = np.radians(step_deg)
-    per_pitch = max(1, round(pitch1 / step))
-    step = pitch1 / per_pitch  # a whole number of steps per pitch: the gas space is reused exactly
-    # cycles (phase windows) of the two flutes; gas still joined to the chamber's cusp just beyond
-    # them (a pocket closing after the flute is filled, one opening before) counts as well
+    psi, first, per_pitch = table_phases(z1, z2, step_deg)
+    step = pitch1 / per_pitch
     male_cycle, female_cycle = flute_cycles(z1, z2)
-    first = int(np.floor((min(male_cycle[0], female_cycle[0]) - pitch1) / step))
-    last = int(np.ceil((max(male_cycle[1], female_cycle[1]) + pitch1) / step))
-    psi = np.arange(first, last) * step
-    sections = [_Section.at(male, female, z1, z2, a, bores, upper, lower, j * step) for j in range(per_pitch)]
     male_only = shapely.intersection(disc1, bores)
     female_only = shapely.difference(disc2, disc1)  # the lens between the bores counts with the male flute
+    rotors, bands = (male, female), (_band(male), _band(female))
+    cusps = (upper, lower)
+    sections = [_Section.at(rotors, bands, z1, z2, a, (bores, male_only, female_only), cusps, j * step) for j in range(per_pitch)]
     area = np.zeros(len(psi))
     male_force = np.zeros((len(psi), 2))
     female_force = np.zeros((len(psi), 2))
@@ -383,11 +494,10 @@ def chamber_table(
             if not lo - pitch1 <= p < hi + pitch1:
                 continue
             opening = p < 0.5 * (lo + hi)
-            if flute is Side.MALE:
-                sector = _sector((0.0, 0.0), r1, p - pitch1 / 2, p + pitch1 / 2, male_only)
+            if flute is Side.MALE:  # the flute's sector of its bore's gas
+                gas = shapely.intersection(section.male_gas, _sector((0.0, 0.0), r1, p - pitch1 / 2, p + pitch1 / 2))
             else:
-                sector = _female_sector(a, r2, z1, z2, p, female_only)
-            gas = shapely.intersection(section.gas, sector)
+                gas = shapely.intersection(section.female_gas, _female_sector(a, r2, z1, z2, p))
             if p < lo:  # before the cycle: only gas already open to the suction side
                 parts.append(shapely.intersection(gas, section.to_upper))
             elif p >= hi:  # after it: only gas still closing towards the discharge
@@ -396,8 +506,9 @@ def chamber_table(
                 parts.append(shapely.difference(gas, section.to_lower if opening else section.to_upper))
         for part in parts:
             area[i] += part.area
-            male_force[i] += section.force(part, section.male_near)
-            female_force[i] += section.force(part, section.female_near)
+            edges = section.edges(part)
+            male_force[i] += section.force(edges, section.male_near)
+            female_force[i] += section.force(edges, section.female_near)
     flute1 = (np.pi * r1**2 - male.area) / z1
     flute2 = (np.pi * r2**2 - female.area) / z2
     return ChamberTable(psi, area, male_force, female_force, float(flute1), float(flute2), float(lead), float(length))

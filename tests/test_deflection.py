@@ -250,10 +250,17 @@ def _independent_chamber():
     return table, male, female, pair
 
 
-def test_chambers_share_out_the_whole_gas_space():
+@pytest.fixture(scope="module")
+def independent_chamber(built_once):
+    """:func:`_independent_chamber`, built once in a run for this module and tests/test_paper_deflection.py
+    (whichever worker runs them: ~1.3 s of CPU, the chamber table)."""
+    return built_once("test_deflection.independent_chamber", _independent_chamber)
+
+
+def test_chambers_share_out_the_whole_gas_space(independent_chamber):
     # At any male angle the chambers alive hold, together, the whole gas space between the bores and
     # the rotors (shapely, here) times the length: every bit of gas in exactly one chamber.
-    table, male, female, pair = _independent_chamber()
+    table, male, female, pair = independent_chamber
     a = pair.center_distance
     r1, r2 = np.hypot(*male.T).max(), np.hypot(*female.T).max()
     bores = shapely.union(shapely.Point(0, 0).buffer(r1, quad_segs=512), shapely.Point(a, 0).buffer(r2, quad_segs=512))
@@ -269,10 +276,10 @@ def test_chambers_share_out_the_whole_gas_space():
         assert total == pytest.approx(gas, rel=1e-3)  # the 1 um shrink that parts touching pieces: ~3e-4
 
 
-def test_largest_chamber_is_one_male_and_one_female_flute_over_the_length():
+def test_largest_chamber_is_one_male_and_one_female_flute_over_the_length(independent_chamber):
     # V_max = (A1f + A2f) L with A_f = (pi r_tip^2 - A) / z from the sections alone (wrap 180 deg
     # leaves a phase at which both flutes are open over the whole length)
-    table, male, female, _ = _independent_chamber()
+    table, male, female, _ = independent_chamber
     flutes = sum((np.pi * np.hypot(*ring.T).max() ** 2 - shapely.Polygon(ring).area) / z for ring, z in ((male, 4), (female, 6)))
     start, stop = table.cycle
     v = table.volume(np.linspace(start, stop, 4001))
@@ -280,11 +287,11 @@ def test_largest_chamber_is_one_male_and_one_female_flute_over_the_length():
     assert v[0] == pytest.approx(0.0, abs=1e-6 * v.max()) and v[-1] == pytest.approx(0.0, abs=1e-6 * v.max())
 
 
-def test_open_flute_load_is_the_chord_times_the_pressure():
+def test_open_flute_load_is_the_chord_times_the_pressure(independent_chamber):
     # Rinder & Deix eq. 5: the resultant of a uniform pressure on a flute is p times the chord
     # between the flute's ends on the tip circle, normal to it, towards the axis. The ends are found
     # here from the cut outline (where it leaves the tip circle).
-    table, male, _, _ = _independent_chamber()
+    table, male, _, _ = independent_chamber
     r = np.hypot(*male.T)
     ang = np.arctan2(male[:, 1], male[:, 0])
     on_tip = r > r.max() - 1e-3
@@ -444,13 +451,26 @@ def test_deflect_names_the_design_key_of_a_bad_speed(tmp_path, capsys):
     assert "[operating] speed_rpm must be a positive speed" in err and "--speed" not in err
 
 
-def test_indicator_must_cover_the_cycle(tmp_path, capsys):
+def test_indicator_must_cover_the_cycle(tmp_path, capsys, monkeypatch):
     # 0..200 deg only (or angles in radians by mistake) would hold the last pressure silently
+    from rotorcad import deflection
+    from rotorcad.cli.export_cmd import _rotor_options
+    from rotorcad.cli.rotor import _build
+
+    design = ROOT / "samples" / "rack_involute_5_6.toml"
+    rotors, _, _ = _build(design, _rotor_options(design))
+    end = np.degrees(deflection.GasDeflection(rotors, 1.0, 8.0, terms=3).cycle.angle[-1])  # the chamber table's cycle
     csv = tmp_path / "partial.csv"
     csv.write_text("angle_deg,pressure_bar\n0,1\n100,2\n200,4\n")
-    assert main(["deflect", str(ROOT / "samples" / "rack_involute_5_6.toml"), "--indicator", str(csv), "--terms", "3"]) == 2
+
+    def no_table(*args, **kwargs):  # refused before the chamber table (it was after its 2 s of CPU)
+        raise AssertionError("deflect built the chamber table before checking --indicator")
+
+    monkeypatch.setattr(deflection, "chamber_table", no_table)
+    assert main(["deflect", str(design), "--indicator", str(csv), "--terms", "3"]) == 2
     err = capsys.readouterr().err
     assert "--indicator must cover the chamber's cycle from 0 to" in err and "200.0" in err
+    assert f"from 0 to {end:.1f} deg" in err  # the cycle of the table, known before it is built
 
 
 def test_plot_as_svg_by_its_suffix_and_no_special_file_replaced(tmp_path, capsys, built_in_deflect, monkeypatch):

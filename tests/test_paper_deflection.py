@@ -24,8 +24,14 @@ from rotorcad.working_chamber import chord_table, flute_cycles
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def test_chord_table_is_eq_5_over_each_flutes_cycle():
-    table, male, female, _ = _independent_chamber()
+@pytest.fixture(scope="module")
+def independent_chamber(built_once):
+    """test_deflection's independent 4/6 chamber table, built once in a run for both modules."""
+    return built_once("test_deflection.independent_chamber", _independent_chamber)
+
+
+def test_chord_table_is_eq_5_over_each_flutes_cycle(independent_chamber):
+    table, male, female, _ = independent_chamber
     r1, r2 = np.hypot(*male.T).max(), np.hypot(*female.T).max()
     chord = chord_table(table, 4, 6, r1, r2)
     (m0, m1), (f0, f1) = flute_cycles(4, 6)
@@ -106,7 +112,9 @@ def test_rinder_deix_worst_angle_is_eq_10_and_each_line_lies_in_a_plane(rinder_d
 
     design = ROOT / "samples" / "rinder_deix_5_6.toml"
     rotors, _, _ = _build(design, _rotor_options(design), load_rotor_design(design))
-    model = GasDeflection(rotors, 1.0, 12.0, volume_ratio=5.0, load=LoadModel.CHORD, terms=10, step_deg=2.0, cells=400)
+    # the chamber table of the command's own run (the fixture's: phase step 1 deg, taken from working_chamber's
+    # recent tables, not built again at 2 deg)
+    model = GasDeflection(rotors, 1.0, 12.0, volume_ratio=5.0, load=LoadModel.CHORD, terms=10, cells=400)
     lines = model.at(np.radians(rinder_deix["angle_deg"]))
     for rotor in ("male", "female"):
         w = getattr(lines, rotor)

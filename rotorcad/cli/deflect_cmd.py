@@ -17,11 +17,13 @@ from rotorcad.cli.defaults import print_defaults, taken
 from rotorcad.cli.export_cmd import _rotor_options
 from rotorcad.cli.progress import Steps
 from rotorcad.cli.rotor import _build as build_rotors
-from rotorcad.deflection import AIR_EXPONENT, STEEL, GasDeflection, LoadModel, Shaft
+from rotorcad.deflection import AIR_EXPONENT, MAX_WRAP_DEG, STEEL, GasDeflection, LoadModel, Shaft
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
+from rotorcad.working_chamber import cycle_angle
 
 SWEEP_ANGLES = 100  # male angles over one male pitch
+STEP_DEG = 1.0  # deg: the chamber table's phase step (GasDeflection's default)
 # Rinder & Deix sec. 3.5 (text under Figs. 9 and 10): the largest deflections of their 5/6 pair at 12 bar,
 # mm: (helical part, with the journals of their Fig. 8); the curves of Figs. 9/10 are not in the text
 PAPER_MAX = {"male": (0.0005, 0.0022), "female": (0.002, 0.0075)}
@@ -112,6 +114,7 @@ def deflect(
         "--plot",
     )
     rotors, _, _ = build_rotors(design, _rotor_options(design), settings)  # the design as read above
+    _check_indicator_covers(rotors.pair, given)  # before the chamber table (2 s of CPU), not after it
     model = _model(rotors, given, LoadModel(method))
     sweep_angles = np.linspace(0.0, 2 * np.pi / rotors.pair.male_teeth, SWEEP_ANGLES, endpoint=False)
     solved = _solve(model, sweep_angles, given, quiet)
@@ -233,7 +236,7 @@ def _indicator(source: Path, label: str) -> np.ndarray:
 
 
 def _model(rotors, given: _Given, load: LoadModel) -> GasDeflection:
-    """Build the gas-load model of the pair; a model the design cannot make, or an indicator that falls short, is refused."""
+    """Build the gas-load model of the pair; a model the design cannot make is refused."""
     op, de, edge = given.op, given.de, given.op.get("discharge_edge_deg")
     try:
         model = GasDeflection(
@@ -249,19 +252,25 @@ def _model(rotors, given: _Given, load: LoadModel) -> GasDeflection:
             male_shaft=given.male_shaft,
             female_shaft=given.female_shaft,
             terms=given.terms,
+            step_deg=STEP_DEG,
             load=load,
         )
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    if given.curve is not None:
-        end = float(np.degrees(model.cycle.angle[-1]))
-        first, last = np.degrees(given.curve[0, 0]), np.degrees(given.curve[-1, 0])
-        if first > 1.0 or last < end - 1.0:
-            raise InputError(
-                f"{given.curve_label} must cover the chamber's cycle from 0 to {end:.1f} deg (male rotation since the chamber "
-                f"opened at the suction end; it covers {first:.1f} to {last:.1f} deg)."
-            )
     return model
+
+
+def _check_indicator_covers(pair, given: _Given) -> None:
+    """Refuse an indicator diagram that does not cover the chamber's cycle (known from the pair before its chamber table)."""
+    if given.curve is None or not 360.0 * pair.length / pair.lead <= MAX_WRAP_DEG:  # a wrap the model refuses itself
+        return
+    end = float(np.degrees(cycle_angle(pair.male_teeth, pair.female_teeth, pair.lead, pair.length, STEP_DEG)))
+    first, last = np.degrees(given.curve[0, 0]), np.degrees(given.curve[-1, 0])
+    if first > 1.0 or last < end - 1.0:
+        raise InputError(
+            f"{given.curve_label} must cover the chamber's cycle from 0 to {end:.1f} deg (male rotation since the chamber "
+            f"opened at the suction end; it covers {first:.1f} to {last:.1f} deg)."
+        )
 
 
 @dataclass(frozen=True)
