@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorcad.meshing.defects import MESHLINE_GAIN, TIP_CIRCLE_NEAR, Defect, is_tip_corner, tip_circle_runs
-from rotorcad.meshing.meshline import MeshlinePiece
+from rotorcad.meshing.meshline import MeshlinePiece, resolved_lengths
 from rotorcad.meshing.ratio_accuracy import covered_rotation, end_spans, ratio_uncertainty, step_spans
 from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
@@ -431,7 +431,8 @@ def flank_reports(
     overlap = float(pair.wrap_angle / pitch_angle)  # Sprungüberdeckung: wrap angle per angular pitch
     tol = tip_tolerance
     out = {}
-    steps = [piece.steps for piece in pieces]  # chord lengths, once (shared with the defect rules)
+    # chord lengths (shared with the defect rules); of a given profile measured at twice its resolution
+    steps = [resolved_lengths(piece.points, piece.t, 2.0 * shortest) if band > 0 else piece.steps for piece in pieces]
     gaps = corner_gaps(pieces, pair) if band > 0 else [np.zeros((0, 2))] * len(pieces)
     paths = _corner_path_points(pieces) if handover > 0 else {}
     held = generated if generated is not None else [None] * len(pieces)
