@@ -16,7 +16,7 @@ working part (near a tip corner, on a tip circle, a corner-to-corner hand-over,
 
 So the stated accuracy of the ratio is the measure of the union of those rotations, per angular pitch
 (:func:`ratio_uncertainty`): an honest bound built from the input's own meshline, checked against the
-designs' ratios over samples, densities and seeds of scatter in tests/test_contact_ratio_accuracy.py.
+designs' ratios over samples, densities and seeds of scatter in tests/test_moderate_densities.py.
 """
 
 from __future__ import annotations
