@@ -468,8 +468,9 @@ def flank_reports(
                     on_tip |= corner[:-1] | corner[1:]
                 working += float(seg[both & ~on_tip].sum())
                 spans.append(step_spans(piece, work))
-                if band > 0:
-                    undecided.append(step_spans(piece, both & ~work))
+                if band > 0:  # curve contact taken for none may work, but a corner's path the defect rules found
+                    held_back = both & ~work if pg is None else both & ~work & ~(pg[:-1] & pg[1:])
+                    undecided.append(step_spans(piece, held_back))
                 at_ends, whole = end_spans(piece, work, pair, shortest)
                 ends += at_ends
                 undecided.append(whole)
