@@ -168,6 +168,7 @@ _FLANK = [
     ("transverse_contact_ratio", "1", "transverse contact ratio"),
     ("overlap_contact_ratio", "1", "overlap contact ratio"),
     ("total_contact_ratio", "1", "total contact ratio"),
+    ("transverse_contact_ratio_accuracy", "1", "accuracy of the transverse contact ratio"),
 ]
 _declare(
     "rotorcad/meshing",

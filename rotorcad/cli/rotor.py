@@ -238,7 +238,8 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
         click.echo(
             f"  {flank} flank: {verdict}; geometric contact on {100 * report['geometric_share']:.0f} % of "
             f"{report['meshline_length']:.2f} mm of meshline, "
-            f"transverse contact ratio {report['transverse_contact_ratio']:.3f} + overlap "
+            f"transverse contact ratio {report['transverse_contact_ratio']:.3f} "
+            f"(± {report['transverse_contact_ratio_accuracy']:.3f}) + overlap "
             f"{report['overlap_contact_ratio']:.3f} = {report['total_contact_ratio']:.3f}"
         )
     for f in result["slip_singularities"]:

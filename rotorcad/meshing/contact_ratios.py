@@ -31,7 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorcad.meshing.defects import MESHLINE_GAIN, TIP_CIRCLE_NEAR, Defect, is_tip_corner, tip_circle_runs
-from rotorcad.meshing.meshline import MeshlinePiece
+from rotorcad.meshing.meshline import MeshlinePiece, resolved_lengths
+from rotorcad.meshing.ratio_accuracy import covered_rotation, end_spans, ratio_uncertainty, step_spans
 from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
 
@@ -68,6 +69,10 @@ class FlankReport:
     tip_corners : tuple of str
         The rotors ("male", "female") whose tip corner ends the working part or generates the
         flank's point-generated part (a cusp on a tip circle, Rinder sec. 2.2.2).
+    transverse_contact_ratio_accuracy : float
+        How far the transverse ratio may lie from the one of the exact profile the input stands for
+        (:func:`ratio_uncertainty`): the rotation over which the input's accuracy does not tell working
+        contact from a tip corner's path, per angular pitch.
     """
 
     flank: Flank
@@ -78,6 +83,7 @@ class FlankReport:
     working_length: float = 0.0
     overlap_contact_ratio: float = 0.0
     tip_corners: tuple[str, ...] = ()
+    transverse_contact_ratio_accuracy: float = 0.0
 
     @property
     def total_contact_ratio(self) -> float:
@@ -103,7 +109,7 @@ class FlankReport:
             ``meshline_length`` and ``working_length`` (mm), ``geometric_contact`` (bool),
             ``geometric_share`` (0 to 1), ``defects`` (list of str), ``tip_corners`` (list of str),
             ``runs_without_timing_gears`` (bool), ``transverse_contact_ratio``,
-            ``overlap_contact_ratio``, ``total_contact_ratio``.
+            ``overlap_contact_ratio``, ``total_contact_ratio``, ``transverse_contact_ratio_accuracy``.
         """
         return {
             "meshline_length": self.meshline_length,
@@ -116,29 +122,8 @@ class FlankReport:
             "transverse_contact_ratio": self.transverse_contact_ratio,
             "overlap_contact_ratio": self.overlap_contact_ratio,
             "total_contact_ratio": self.total_contact_ratio,
+            "transverse_contact_ratio_accuracy": self.transverse_contact_ratio_accuracy,
         }
-
-
-def covered_rotation(lo: np.ndarray, hi: np.ndarray) -> float:
-    """Return the measure of the union of the intervals ``[lo, hi]`` (rad): the rotation they cover.
-
-    Parameters
-    ----------
-    lo, hi : (n,) float array, rad
-        Each interval's ends (``lo <= hi``): a flank's contact between two consecutive samples.
-
-    Returns
-    -------
-    float, rad
-        The rotation over which at least one interval holds; 0 for none (an interval of one instant,
-        a circle about C touching all along at once, adds nothing).
-    """
-    if len(lo) == 0:
-        return 0.0
-    order = np.argsort(lo, kind="stable")
-    lo, hi = lo[order], hi[order]
-    reach = np.concatenate([[-np.inf], np.maximum.accumulate(hi)[:-1]])  # the farthest end of the intervals before
-    return float(np.maximum(hi - np.maximum(lo, reach), 0.0).sum())
 
 
 def _tip_corners(pieces: list[MeshlinePiece], pair: RotorPair) -> dict[PieceRole, np.ndarray]:
@@ -248,7 +233,7 @@ def resolved_steps(piece: MeshlinePiece, steps: np.ndarray, gaps: np.ndarray, ba
     axis = np.abs(piece.points[:, 1]) <= band
     work = steps & ~near[:-1] & ~near[1:] & ~(axis[:-1] & axis[1:])
     for i, j in _runs(work):
-        if np.maximum(gaps[i:j], gaps[i + 1 : j + 1]).min(axis=1).max() <= reach:
+        if (np.maximum(gaps[i:j], gaps[i + 1 : j + 1]).max(axis=0) <= reach).any():
             work[i:j] = False
     return work
 
@@ -446,13 +431,16 @@ def flank_reports(
     overlap = float(pair.wrap_angle / pitch_angle)  # Sprungüberdeckung: wrap angle per angular pitch
     tol = tip_tolerance
     out = {}
-    steps = [piece.steps for piece in pieces]  # chord lengths, once (shared with the defect rules)
+    # chord lengths (shared with the defect rules); of a given profile measured at twice its resolution
+    steps = [resolved_lengths(piece.points, piece.t, 2.0 * shortest) if band > 0 else piece.steps for piece in pieces]
     gaps = corner_gaps(pieces, pair) if band > 0 else [np.zeros((0, 2))] * len(pieces)
     paths = _corner_path_points(pieces) if handover > 0 else {}
     held = generated if generated is not None else [None] * len(pieces)
     for flank in (Flank.DRIVING, Flank.SEALING):
         total = geometric = working = 0.0
         spans: list[np.ndarray] = []  # (m, 2): the male rotation between consecutive working contacts
+        undecided: list[np.ndarray] = []  # (m, 2): curve contact taken for none that may work
+        ends = 0.0  # rad: how far the ends of the decided working stretches may be off, summed
         for piece, seg, gap, pg in zip(pieces, steps, gaps, held, strict=True):
             mask = piece.flank_mask(flank)
             if mask.sum() < 2:
@@ -462,11 +450,11 @@ def flank_reports(
             if length < 1e-6 * pair.center_distance:
                 continue
             total += length
-            if (
-                piece.kind is PieceRole.CURVE
-                and length >= shortest
-                and not is_corner_handover(piece, both, length, paths, handover)
-            ):
+            if piece.kind is not PieceRole.CURVE:
+                continue
+            if length < shortest or is_corner_handover(piece, both, length, paths, handover):
+                undecided.append(step_spans(piece, both))  # curve contact taken for none: it may work
+            else:
                 geometric += length  # a curve piece's contact is geometric but where the defect rules found a corner's path
                 tip = on_tip_circles(piece, pair, band, shortest)
                 on_tip = tip[:-1] & tip[1:]
@@ -479,7 +467,13 @@ def flank_reports(
                     corner = gap.min(axis=1) <= band
                     on_tip |= corner[:-1] | corner[1:]
                 working += float(seg[both & ~on_tip].sum())
-                spans.append(np.sort(np.column_stack([piece.t[:-1][work], piece.t[1:][work]]), axis=1))
+                spans.append(step_spans(piece, work))
+                if band > 0:  # curve contact taken for none may work, but a corner's path the defect rules found
+                    held_back = both & ~work if pg is None else both & ~work & ~(pg[:-1] & pg[1:])
+                    undecided.append(step_spans(piece, held_back))
+                at_ends, whole = end_spans(piece, work, pair, shortest)
+                ends += at_ends
+                undecided.append(whole)
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
         across = [d for d in defects if d.role in (Flank.TIP, Flank.ROOT) and d.kind == "cusp"]
@@ -487,6 +481,9 @@ def flank_reports(
         kinds = tuple(sorted({d.kind for d in mine if not is_tip_corner(d, pair, tol)}))
         span = np.vstack(spans) if spans else np.zeros((0, 2))
         ratio = covered_rotation(span[:, 0], span[:, 1]) / pitch_angle
+        # and each end placed on the meshline to the resolution, 2 sqrt(8 a e) / p_t (p_t = r1w 2 pi / z1)
+        placed = 2.0 * shortest / (pair.male_teeth * pair.center_distance / (pair.male_teeth + pair.female_teeth) * pitch_angle)
+        accuracy = ratio_uncertainty(undecided, ends) / pitch_angle + placed
         out[flank] = FlankReport(
             flank,
             total,
@@ -496,6 +493,7 @@ def flank_reports(
             working,
             overlap if working > 0 else 0.0,
             corners,
+            accuracy,
         )
     return out
 

@@ -759,7 +759,11 @@ def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accura
     # away from C: a point's place on O1O2 is known to far better than the resolution along the meshline
     # (the rack-involute's female tip on the male root lies 1 mm from C, the resolution at 2 µm is 1.3 mm)
     away = max(1e-6 * scale, min(near, 1e-3 * scale + 20.0 * accuracy) if given else 0.0)
-    off = accuracy if given else 1e-9 * scale  # a side of O1O2 beyond the accuracy
+    # a piece's side of O1O2 where it lies beyond the meshline's scatter: a given profile's meshline lies MESHLINE_GAIN
+    # times its accuracy off the design's at the median and up to 3 times that (the rack-involute female as 300 exact
+    # points a lobe began its driving flank 2 um on the sealing side, and lost the female tip's slipping on the male
+    # root; the N rack's female with 1 um ends its sealing flank 27 um on the driving side)
+    off = 3.0 * MESHLINE_GAIN * accuracy if given else 1e-9 * scale
     ends = []  # per piece: sign of y leaving its start, reaching its end, its end point, its angle
     for piece in pieces:
         y = piece.points[:, 1]

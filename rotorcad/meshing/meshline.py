@@ -484,3 +484,53 @@ def with_neighbours(pieces: list[MeshlinePiece], j: int, local: int, reach: floa
     if j + 1 < len(pieces) and len(pieces[j + 1].points) and np.hypot(*(pieces[j + 1].points[0] - run[-1])) <= reach:
         run = np.vstack([run, pieces[j + 1].points[1:]])
     return run, at
+
+
+ZIGZAG = 4
+"""How many times a given profile's meshline piece may turn back in male rotation before its length is
+measured on averaged points (:func:`resolved_lengths`): a design's and a smooth fit's pieces turn at
+their cusps only; the narrow-tip male as 9900 points a lobe with 1 µm turned its sealing curve piece
+back some 200 times."""
+
+
+def resolved_lengths(points: np.ndarray, t: np.ndarray, width: float) -> np.ndarray:
+    """Return the lengths of a piece's steps measured on its points averaged over ``width`` of its length, (n - 1,) mm.
+
+    A given profile's meshline is placed to its accuracy, and where the profile's fit carries curvature
+    noise its points zig-zag about the true meshline at a wavelength far below the resolution
+    sqrt(8 a e) (:func:`~rotorcad.meshing.defects.resolution`): the narrow-tip male as 9900 points a
+    lobe with 1 µm of scatter put its sealing flank's curve piece on 31.9 mm of polyline for the
+    design's 12.2 (the male rotation running back and forth by 0.1-0.5 deg), and the working length
+    read 31.7 mm. On a piece whose male rotation turns back more than :data:`ZIGZAG` times, each point
+    is replaced by the mean of the points within ``width`` / 2 of it along the polyline (nearer an
+    end, within its distance to that end: the ends stay), which takes the zig-zag out (22.1 mm for 26.5
+    on the driving flank, design 21.9); a piece that does not zig-zag keeps its chords (averaging a
+    smooth meshline over twice the resolution shortens it by up to 1-2 % at 80 points a lobe).
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The piece's meshline points in order.
+    t : (n,) float array, rad
+        The male rotation at each.
+    width : float, mm
+        The length averaged over (twice the resolution); 0: the chords themselves (a design).
+
+    Returns
+    -------
+    (n - 1,) float array, mm
+    """
+    d = np.diff(points, axis=0)
+    chords = np.hypot(d[:, 0], d[:, 1])
+    dt = np.diff(t)
+    dt = dt[dt != 0]
+    if width <= 0 or len(points) < 3 or np.count_nonzero(dt[1:] * dt[:-1] < 0) <= ZIGZAG:
+        return chords
+    s = np.concatenate([[0.0], np.cumsum(chords)])
+    half = np.minimum(0.5 * width, np.minimum(s, s[-1] - s))
+    lo = np.searchsorted(s, s - half, side="left")
+    hi = np.searchsorted(s, s + half, side="right")
+    total = np.vstack([np.zeros((1, 2)), np.cumsum(points, axis=0)])
+    mean = (total[hi] - total[lo]) / (hi - lo)[:, None]
+    e = np.diff(mean, axis=0)
+    return np.hypot(e[:, 0], e[:, 1])
