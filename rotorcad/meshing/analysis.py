@@ -23,9 +23,9 @@ from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
-from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner, with_neighbours
+from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
 from rotorcad.meshing.slip import slip, slip_singularities
-from rotorcad.meshing.tip_apex import LOCAL_EXTRAPOLATION, TURN_WINDOW, corner_handover, flank_extrapolation
+from rotorcad.meshing.tip_apex import tip_apex
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
@@ -301,7 +301,7 @@ class MeshingAnalysis:
             lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
         if self.is_given:
             tips = ((np.zeros(2), pair.male_tip_radius), (o2, pair.female_tip_radius))
-            on_tip = self._tip_apex(j, local, pts[i], tips)
+            on_tip = self._tip_apex(j, local, tips)
             if on_tip is not None:
                 return on_tip, None
             on_arc = self._arc_apex(best, best_t, tips)
@@ -309,46 +309,21 @@ class MeshingAnalysis:
                 return on_arc
         return best, None
 
-    def _tip_apex(self, j: int, local: int, near: np.ndarray, tips: tuple) -> np.ndarray | None:
-        """Return a given profile's apex where the meshline turns or a tip corner's path hands over to a flank, or None.
+    def _tip_apex(self, j: int, local: int, tips: tuple) -> np.ndarray | None:
+        """Return a given profile's apex where the meshline turns or a tip corner's path hands over, or None.
 
-        Of :func:`rotorcad.meshing.meshline.turn_corner` (both branches extrapolated), the flank's meshline
-        extrapolated to the corner path's tip circle (:func:`rotorcad.meshing.tip_apex.flank_extrapolation`)
-        and the joint of the given rotor's own corner path with the flank
-        (:func:`rotorcad.meshing.tip_apex.corner_handover`): of scattered points the flank's extrapolation
-        first (it leaves out the fit's rounding of the hand-over), of exact points the turn's; either only
-        where its window is local (:data:`rotorcad.meshing.tip_apex.LOCAL_EXTRAPOLATION` of the flank's piece,
-        or of the turn's shorter branch), else the joint, else None. The turn's quadratics over 8 resolutions
-        of the symmetric SRM's meshline at 80 points a lobe (23 mm; 1 um of scatter) read -13..-32 % where
-        the sample nearest the cusp read within 5 %. All of them that hold are kept for
+        :func:`rotorcad.meshing.tip_apex.tip_apex`; the places of it that hold are kept for
         :attr:`blow_hole_uncertainty` (``_tip_candidates``, :attr:`_candidates_spread`).
         """
-        pair = self.rotors.pair
-        reach = resolution(self.judged_accuracy, pair.center_distance)
-        run, at = with_neighbours(self.pieces, j, local, reach)  # a turn at a piece's end too
-        arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
-        corner = turn_corner(run, arclen, at, reach, tips, self.judged_accuracy)
-        own = PieceRole.FEMALE_CORNER_PATH if self.rotors.family.startswith("female") else PieceRole.MALE_CORNER_PATH
-        handover = corner_handover(self.pieces, j, local, own, MESHLINE_GAIN * self.judged_accuracy)
-        # the flank's extrapolation skips the smoothing's rounding of the hand-over, where the scatter sets the
-        # resolution (the accuracy of the points' set above one point's: rotorcad.measured.pairs.scatter_bound);
-        # where the chords' sagitta sets it (80 points a lobe) the window reaches into the flank's bend (the
-        # narrow-tip male with 1 um of scatter: +16..+22 % extrapolated, its joint -8..+1 %)
-        smoothed = float(getattr(self.rotors, "accuracy", 0.0)) > float(getattr(self.rotors, "point_accuracy", None) or np.inf)
-        acc = self.judged_accuracy
-        extended = [flank_extrapolation(self.pieces, run, at, reach, tips, acc, deg) if smoothed else None for deg in (2, 3)]
-        branches = min(arclen[at], arclen[-1] - arclen[at])  # the turn's two branches, mm
-        length = next((c[1] for c in (handover, extended[0]) if c is not None), branches)
-        turn = corner if corner is not None and TURN_WINDOW * reach <= LOCAL_EXTRAPOLATION * length else None
-        scattered = float(getattr(self.rotors, "tangent_accuracy", 0.0)) > 0.0
-        flank = [None if e is None else e[0] for e in extended]
-        joint = None if handover is None else handover[0]
-        found = [c for c in (*flank, turn, joint) if c is not None]
+        rotors = self.rotors
+        own = PieceRole.FEMALE_CORNER_PATH if rotors.family.startswith("female") else PieceRole.MALE_CORNER_PATH
+        scattered = float(getattr(rotors, "tangent_accuracy", 0.0)) > 0.0
+        smoothed = float(getattr(rotors, "accuracy", 0.0)) > float(getattr(rotors, "point_accuracy", None) or np.inf)
+        apex, found = tip_apex(
+            self.pieces, j, local, tips, self.judged_accuracy, rotors.pair.center_distance, own, scattered, smoothed
+        )
         self.__dict__["_tip_candidates"] = found  # read by blow_hole_uncertainty (cached, as a cached_property is)
-        for apex in (flank[0], turn) if scattered else (turn, flank[0]):
-            if apex is not None:
-                return apex
-        return joint  # None: no local extrapolation nor joint (the sample nearest the cusp, or an arc's apex)
+        return apex
 
     def _arc_apex(self, end: np.ndarray, t: float, bores: tuple) -> tuple[np.ndarray, tuple] | None:
         """Return the apex from the closed-form meshline of a male arc (:mod:`rotorcad.meshing.apex`), or None.

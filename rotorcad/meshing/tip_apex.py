@@ -27,7 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.meshing.meshline import MeshlinePiece
+from rotorcad.meshing.defects import MESHLINE_GAIN, resolution
+from rotorcad.meshing.meshline import MeshlinePiece, turn_corner, with_neighbours
 from rotorcad.roles import PieceRole
 
 TURN_WINDOW = 8.0
@@ -190,4 +191,69 @@ def flank_extrapolation(
     return apex, float(s[-1])
 
 
-__all__ = ["FLANK_WINDOW", "LOCAL_EXTRAPOLATION", "TURN_WINDOW", "corner_handover", "flank_extrapolation"]
+def tip_apex(
+    pieces: list[MeshlinePiece],
+    j: int,
+    local: int,
+    tips: tuple[tuple[np.ndarray, float], ...],
+    accuracy: float,
+    center_distance: float,
+    own: PieceRole,
+    scattered: bool,
+    smoothed: bool,
+) -> tuple[np.ndarray | None, list[np.ndarray]]:
+    """Return a given profile's apex where the meshline turns or a tip corner's path hands over to a flank.
+
+    Of :func:`rotorcad.meshing.meshline.turn_corner` (both branches extrapolated), the flank's meshline
+    extrapolated to the corner path's tip circle (:func:`flank_extrapolation`) and the joint of the given
+    rotor's own corner path with the flank (:func:`corner_handover`): of scattered points the flank's
+    extrapolation first (it leaves out the fit's rounding of the hand-over), of exact points the turn's;
+    either only where its window is local (:data:`LOCAL_EXTRAPOLATION` of the flank's piece, or of the
+    turn's shorter branch), else the joint, else None. The turn's quadratics over 8 resolutions of the
+    symmetric SRM's meshline at 80 points a lobe (23 mm; 1 um of scatter) read -13..-32 % where the sample
+    nearest the cusp read within 5 %. The flank's extrapolation only where the scatter sets the resolution
+    (``smoothed``: the accuracy of the points' set above one point's,
+    :func:`rotorcad.measured.pairs.scatter_bound`); where the chords' sagitta sets it (80 points a lobe) its
+    window reaches into the flank's bend (the narrow-tip male with 1 um of scatter: +16..+22 %
+    extrapolated, its joint -8..+1 %).
+
+    Parameters
+    ----------
+    pieces : list of MeshlinePiece
+        The meshline.
+    j, local : int
+        The piece and the sample nearest the housing cusp.
+    tips : tuple of two ((2,) float array, float)
+        Centre and tip radius of the male and of the female (mm).
+    accuracy : float, mm
+        The profile's (:attr:`rotorcad.meshing.MeshingAnalysis.judged_accuracy`).
+    center_distance : float, mm
+    own : PieceRole
+        The corner paths of the given rotor's own corners.
+    scattered, smoothed : bool
+        The points carry scatter; the scatter sets their resolution.
+
+    Returns
+    -------
+    ((2,) float array or None, list of (2,) float arrays), mm
+        The apex (None: none of these holds) and every place of it that holds.
+    """
+    reach = resolution(accuracy, center_distance)
+    run, at = with_neighbours(pieces, j, local, reach)  # a turn at a piece's end too
+    arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
+    corner = turn_corner(run, arclen, at, reach, tips, accuracy)
+    handover = corner_handover(pieces, j, local, own, MESHLINE_GAIN * accuracy)
+    extended = [flank_extrapolation(pieces, run, at, reach, tips, accuracy, deg) if smoothed else None for deg in (2, 3)]
+    branches = min(arclen[at], arclen[-1] - arclen[at])  # the turn's two branches, mm
+    length = next((c[1] for c in (handover, extended[0]) if c is not None), branches)
+    turn = corner if corner is not None and TURN_WINDOW * reach <= LOCAL_EXTRAPOLATION * length else None
+    flank = [None if e is None else e[0] for e in extended]
+    joint = None if handover is None else handover[0]
+    found = [c for c in (*flank, turn, joint) if c is not None]
+    for apex in (flank[0], turn) if scattered else (turn, flank[0]):
+        if apex is not None:
+            return apex, found
+    return joint, found  # joint None: no local extrapolation nor joint (the sample nearest the cusp, or an arc's apex)
+
+
+__all__ = ["FLANK_WINDOW", "LOCAL_EXTRAPOLATION", "TURN_WINDOW", "corner_handover", "flank_extrapolation", "tip_apex"]
