@@ -38,14 +38,11 @@ SAMPLES = Path(__file__).resolve().parents[1] / "samples"
 NAMES = ("narrow_tip_5_6", "rack_involute_5_6", "srm_asymmetric_5_6", "srm_symmetric_4_6")
 FORMS = ((80, 0.0, (0,)), (300, 1.0, (0, 1, 2)), (500, 2.0, (0, 1, 2)))
 """(points a lobe, scatter um, seeds); 80 a lobe with 1 um in test_findings_resolved_within_a_few_percent."""
-KNOWN = {
-    ("srm_symmetric_4_6", "female", 300, 1.0): (
-        "a bias, as before this change (-12.1 % mean of seeds 0-2, each within its uncertainty of 11-12 mm²): the "
-        "male generated from the female's scattered points has its lobe arc's meshline bent towards the cusp where "
-        "it meets the female tip corner's path, so that joint is the meshline's nearest point, 1.7 mm past the "
-        "smooth nearest approach of the design's (62 for 70.7 mm²); no estimate of that smooth minimum is made"
-    ),
-}
+# srm_symmetric_4_6's female at 300 a lobe with 1 um read -12.1 % in every seed (each within its 11-12 mm²): the male
+# generated from its points had its lobe arc's meshline bent towards the cusp where it meets the female tip corner's
+# path, and that joint was the meshline's nearest point, until a male lobe arc's closed-form apex came before a
+# hand-over on the female tip circle (MeshingAnalysis._apex): -0.5..0 %
+KNOWN: dict[tuple[str, str, int, float], str] = {}
 """Known departures with their cause (strict xfails)."""
 PHASE = 0.37  # where the first point falls, in spacings past the lobe's start
 
