@@ -119,6 +119,15 @@ KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
         ("rinder_deix_5_6", "scatter-1um", "-9.5 %", _FLANK),
         ("narrow_tip_5_6", "scatter-1um", "-16.3 %", _TIP),
         ("srm_asymmetric_5_6", "scatter-1um", "+2.0 %", _TIP),
+        (
+            "rack_involute_5_6",
+            "scatter-1um",
+            "+1.6 %",
+            "one draw of the spread that 1 um of scatter gives: the apex from the flank's meshline extrapolated past "
+            "the fit's rounding of the tip corner's hand-over (rotorcad.meshing.tip_apex); over seeds 0-7 of the "
+            "design's outline with 1 um the blow-hole reads -0.82..+1.52 % (rms 0.8 %, mean +0.34 %), each within "
+            "its stated +-0.66..2.05 mm²",
+        ),
     )
 }
 
@@ -687,7 +696,9 @@ _LOST_TIP_PATHS = (
     [
         1,  # read -9.6 % (a lost driving tip path); within 1 % since this branch's pairs.py changes (which one: not isolated)
         2,
-        pytest.param(3, marks=pytest.mark.xfail(strict=True, reason=_LOST_TIP_PATHS.format(3, "sealing", "-13.0 %", "10.1 mm²"))),
+        # seed 3 lost a female tip path (_LOST_TIP_PATHS: -13.0 %, within the stated 10.1 mm²) until a male lobe arc's
+        # closed-form apex came before a hand-over on the female tip circle (MeshingAnalysis._apex)
+        3,
     ],
 )
 def test_symmetric_srm_blow_hole_from_scatter(verdicts, seed):

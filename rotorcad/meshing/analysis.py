@@ -23,8 +23,9 @@ from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
-from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces, turn_corner, with_neighbours
+from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
 from rotorcad.meshing.slip import slip, slip_singularities
+from rotorcad.meshing.tip_apex import tip_apex
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
@@ -300,16 +301,38 @@ class MeshingAnalysis:
             lo, hi = s[max(m - 1, 0)], s[min(m + 1, len(s) - 1)]
         if self.is_given:
             tips = ((np.zeros(2), pair.male_tip_radius), (o2, pair.female_tip_radius))
-            reach = resolution(self.judged_accuracy, pair.center_distance)
-            run, at = with_neighbours(self.pieces, j, local, reach)  # a turn at a piece's end too
-            arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))])
-            corner = turn_corner(run, arclen, at, reach, tips, self.judged_accuracy)
-            if corner is not None:
-                return corner, None
+            on_tip = self._tip_apex(j, local, tips)
+            # a hand-over on the male tip circle (the male tip corner's path ends there) before a given male's lobe
+            # arc; on the female's, the arc first: its closed-form meshline passes the cusp at a smooth nearest
+            # approach that the female tip corner's path beside it took for a hand-over (the symmetric SRM's male
+            # CSV with 1 um of scatter read -10.6 and -12.0 % at seeds 0-1 so; within 1 % from the arc), while an
+            # arc fitted at the asymmetric SRM male's tip hand-over put the apex 0.5 mm inside (+72 %)
+            on_male_tip = on_tip is not None and abs(float(np.hypot(*on_tip)) - pair.male_tip_radius) < 1e-6
+            if on_tip is not None and on_male_tip:
+                return on_tip, None
             on_arc = self._arc_apex(best, best_t, tips)
             if on_arc is not None:
+                self.__dict__["_tip_candidates"] = []  # the arc's own bound holds (blow_hole_uncertainty)
                 return on_arc
+            if on_tip is not None:
+                return on_tip, None
         return best, None
+
+    def _tip_apex(self, j: int, local: int, tips: tuple) -> np.ndarray | None:
+        """Return a given profile's apex where the meshline turns or a tip corner's path hands over, or None.
+
+        :func:`rotorcad.meshing.tip_apex.tip_apex`; the places of it that hold are kept for
+        :attr:`blow_hole_uncertainty` (``_tip_candidates``, :attr:`_candidates_spread`).
+        """
+        rotors = self.rotors
+        own = PieceRole.FEMALE_CORNER_PATH if rotors.family.startswith("female") else PieceRole.MALE_CORNER_PATH
+        scattered = float(getattr(rotors, "tangent_accuracy", 0.0)) > 0.0
+        smoothed = float(getattr(rotors, "accuracy", 0.0)) > float(getattr(rotors, "point_accuracy", None) or np.inf)
+        apex, found = tip_apex(
+            self.pieces, j, local, tips, self.judged_accuracy, rotors.pair.center_distance, own, scattered, smoothed
+        )
+        self.__dict__["_tip_candidates"] = found  # read by blow_hole_uncertainty (cached, as a cached_property is)
+        return apex
 
     def _arc_apex(self, end: np.ndarray, t: float, bores: tuple) -> tuple[np.ndarray, tuple] | None:
         """Return the apex from the closed-form meshline of a male arc (:mod:`rotorcad.meshing.apex`), or None.
@@ -424,8 +447,8 @@ class MeshingAnalysis:
         """
         delta = float(getattr(self.rotors, "tangent_accuracy", 0.0))
         spread = getattr(self.rotors, "tangent_spread", None)
-        if delta <= 0.0 and spread is None:
-            return 0.0  # a design: no input accuracy to propagate
+        if delta <= 0.0 and spread is None:  # a design (0), or a drawing's exact curves
+            return max(self._drawing_uncertainty, self._candidates_spread) if self.is_given else 0.0
         arc = self._apex[1]
         arc_bound = np.inf
         if arc is not None and delta > 0.0:
@@ -438,7 +461,44 @@ class MeshingAnalysis:
                 apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, self.cusp, near, reach, bores, window)
                 moved.append(np.inf if apex is None else self._blow_hole_at(apex).area)
             arc_bound = float(max(abs(m - self.blow_hole_area) for m in moved))
-        return min(arc_bound, self._tangent_uncertainty(delta, spread))
+        bound = min(arc_bound, self._tangent_uncertainty(delta, spread))
+        return max(bound, self._candidates_spread)
+
+    @property
+    def _drawing_uncertainty(self) -> float:
+        """The blow-hole's uncertainty (mm²) of a profile drawn as exact curves (no points, no tangent bound).
+
+        A drawing within e (:attr:`judged_accuracy`, its curves' deviation) of the outline places a point of
+        the meshline no better than the resolution sqrt(8 a e) (:func:`rotorcad.meshing.defects.resolution`):
+        where a flank meets a corner's point-generated part with a common tangent (a curvature step alone)
+        the drawing cannot tell where within that length the hand-over lies. The apex moved by it either way
+        along its circle about O1. The rack-involute female's export splines (0.85 um) read the blow-hole
+        +0.28 % (22.800 mm² for 22.737) and stated +-0.000 before.
+        """
+        e = self.meshline_end
+        r = float(np.hypot(*e))
+        if r < 1e-9:
+            return 0.0
+        turn = resolution(self.judged_accuracy, self.rotors.pair.center_distance) / r
+        phi, area = float(np.arctan2(e[1], e[0])), self.blow_hole_area
+        moved = [self._blow_hole_at(r * np.array([np.cos(phi + t), np.sin(phi + t)])).area for t in (turn, -turn)]
+        return float(max(abs(m - area) for m in moved))
+
+    @property
+    def _candidates_spread(self) -> float:
+        """The largest change of the blow-hole area (mm²) between the apex and its other places (:meth:`_tip_apex`).
+
+        The apex of a tip corner's hand-over is placed from several parts of the fit (the joint of the
+        corner's path and the flank, the flank's meshline extrapolated by a quadratic and by a cubic, the
+        turn of both branches); where they part by more than the tangent's bound the points do not place
+        the apex that well: the narrow-tip male at 80 points a lobe with 1 um of scatter read +16..+22 %
+        extrapolated over a window of 0.33 of its flank's meshline, stating +-0.32..0.43 mm²; its joint
+        read 2.56-2.81 mm² (design 2.778).
+        """
+        self._apex  # noqa: B018 (sets _tip_candidates)
+        found = self.__dict__.get("_tip_candidates", [])
+        area = self.blow_hole_area
+        return float(max((abs(self._blow_hole_at(c).area - area) for c in found), default=0.0))
 
     def _tangent_uncertainty(self, delta: float, spread: tuple | None) -> float:
         """Return the blow-hole's uncertainty (mm²) from the tangent's accuracy ``delta`` (rad) (:attr:`blow_hole_uncertainty`).

@@ -1,0 +1,162 @@
+"""The blow-hole read from points is unbiased and its stated uncertainty covers its error (issue 21 item 3).
+
+Reference: the design's blow-hole from its exact curves (``MeshingAnalysis`` of the design: its apex, the
+meshline's end nearest the housing cusp, is checked against closed forms in
+tests/test_verdict_invariance.py::test_blow_hole_apex_moves_with_tangent_as_stated and
+::test_n_rack_tip_round_meshline_from_points, its area by quadrature in
+tests/test_families.py::test_spatial_blow_hole_lies_on_the_tips_and_the_cusp_and_its_area_is_independent).
+The points are the design's outline (each rotor's lobe drawn to a 0.01 um chord, patterned round the rotor)
+resampled evenly at 80, 300 and 500 points a lobe, the corners between the points (as a CMM scans,
+tests/independent_pairs.py ``scan``), exact or with 1 or 2 um of normal scatter on each coordinate (seeds
+0-2). Whenever ``blow_hole_resolved`` is true the error lies within ``blow_hole_uncertainty``; over the seeds
+the mean error lies within the mean uncertainty over sqrt(n) (no bias beyond what the uncertainty allows).
+
+Before (a new user's findings, newuser3 #5 and N3): the rack-involute male at 80 a lobe read -19 % exact
+and -40 % with 1 um (5-6 times the stated uncertainty, resolved), the narrow-tip female with 1 um +34..+44 %
+in every seed (300 a lobe, resolved), the asymmetric SRM's female +62..+84 %, the symmetric SRM's male at 80
+a lobe with 1 um -29 % (resolved, 1.7 U).
+"""
+
+from __future__ import annotations
+
+import functools
+import tomllib
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from independent_pairs import patterned, scan
+
+from exports.dxf_profile import read_profile
+from rotorcad.cli.main import main
+from rotorcad.design import rotor_design
+from rotorcad.errors import InputNote
+from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+NAMES = ("narrow_tip_5_6", "rack_involute_5_6", "srm_asymmetric_5_6", "srm_symmetric_4_6")
+FORMS = ((80, 0.0, (0,)), (300, 1.0, (0, 1, 2)), (500, 2.0, (0, 1, 2)))
+"""(points a lobe, scatter um, seeds); 80 a lobe with 1 um in test_findings_resolved_within_a_few_percent."""
+# srm_symmetric_4_6's female at 300 a lobe with 1 um read -12.1 % in every seed (each within its 11-12 mm²): the male
+# generated from its points had its lobe arc's meshline bent towards the cusp where it meets the female tip corner's
+# path, and that joint was the meshline's nearest point, until a male lobe arc's closed-form apex came before a
+# hand-over on the female tip circle (MeshingAnalysis._apex): -0.5..0 %
+KNOWN: dict[tuple[str, str, int, float], str] = {}
+"""Known departures with their cause (strict xfails)."""
+PHASE = 0.37  # where the first point falls, in spacings past the lobe's start
+
+
+@functools.cache
+def _design(name: str) -> dict:
+    """The sample's spec, its design's blow-hole (the reference) and each rotor's lobe to a 0.01 um chord."""
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
+    rotors = build_pair(spec)
+    out = {"spec": spec, "area": analyse_pair(rotors, spec.speed_rpm)[1]["blow_hole_area"]}
+    for side, lobe in (("male", rotors.male_lobe()), ("female", rotors.female_lobe())):
+        out[side] = np.vstack([seg.resampled(1e-5).points for seg in lobe.segments])
+    return out
+
+
+@functools.cache
+def _read(name: str, side: str, per: int, scatter_um: float, seed: int) -> tuple[float, float, bool]:
+    """The blow-hole (mm²), its stated uncertainty (mm²) and ``blow_hole_resolved`` of the rotor's points."""
+    design = _design(name)
+    spec = design["spec"]
+    teeth = spec.pair.male_teeth if side == "male" else spec.pair.female_teeth
+    pts = scan(patterned(design[side], teeth), per * teeth, PHASE)
+    if scatter_um:
+        pts = pts + np.random.default_rng(seed).normal(0.0, scatter_um * 1e-3, pts.shape)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InputNote)
+        given = build_pair(PairSpec(spec.pair, f"{side}-points", {}, pts, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
+    result = analyse_pair(given, spec.speed_rpm)[1]
+    return result["blow_hole_area"], result["blow_hole_uncertainty"], result["blow_hole_resolved"]
+
+
+FEMALE_FORMS = {"narrow_tip_5_6": ((500, 1.0, (0, 1, 2)),)}
+"""More forms of a female: newuser4's N3 (the narrow-tip female at 500 a lobe with 1 um, +34..+43 % in every seed)."""
+
+
+def _cases() -> list:
+    """Every sample's male in every form; the females at 80 and 300 a lobe (the symmetric SRM's at 300, the
+    rack-involute female's pair takes 1.2 s to build: kept to those), with FEMALE_FORMS."""
+    out = []
+    for name in NAMES:
+        females = [FORMS[1]] if name == "srm_symmetric_4_6" else [*FORMS[:2], *FEMALE_FORMS.get(name, ())]
+        for side, forms in (("male", FORMS), ("female", females)):
+            for per, scatter, seeds in forms:
+                reason = KNOWN.get((name, side, per, scatter))
+                marks = pytest.mark.xfail(strict=True, reason=reason) if reason else ()
+                out.append(pytest.param(name, side, per, scatter, seeds, marks=marks, id=f"{name}-{side}-{per}-{scatter:g}um"))
+    return out
+
+
+@pytest.mark.parametrize(("name", "side", "per", "scatter_um", "seeds"), _cases())
+def test_blow_hole_from_points_within_its_uncertainty_and_unbiased(name, side, per, scatter_um, seeds):
+    reference = _design(name)["area"]
+    reads = [_read(name, side, per, scatter_um, seed) for seed in seeds]
+    for seed, (area, stated, resolved) in zip(seeds, reads, strict=True):
+        assert stated > 0.0  # points always carry an accuracy
+        if resolved:  # resolved: the error within the stated uncertainty
+            assert abs(area - reference) <= stated, (seed, area, stated, reference)
+    if len(seeds) > 1:  # no bias beyond what the stated uncertainty allows over n seeds
+        error = np.mean([area - reference for area, _, _ in reads])
+        assert abs(error) <= np.mean([stated for _, stated, _ in reads]) / np.sqrt(len(seeds)), (error, reads)
+
+
+@pytest.mark.parametrize(
+    ("name", "side", "per", "was"),
+    [
+        ("rack_involute_5_6", "male", 80, "-40 %, 5-6 U"),
+        ("narrow_tip_5_6", "female", 300, "+34..+44 %"),
+        ("srm_asymmetric_5_6", "female", 300, "+62..+84 %, 0.9-1.2 U"),
+        ("srm_symmetric_4_6", "male", 80, "-29 %, 1.7 U"),
+    ],
+)
+def test_findings_resolved_within_a_few_percent(name, side, per, was):
+    # the findings' cases with 1 um of scatter (seeds 0-2), each resolved before with the error ``was``: now
+    # resolved and within 12 % of the reference, the design's blow-hole (a few per cent each: the apex of a tip
+    # corner's hand-over from the flank's meshline, the joint of the corner's path, or the turn, where local)
+    reference = _design(name)["area"]
+    for seed in (0, 1, 2):
+        area, _, resolved = _read(name, side, per, 1.0, seed)
+        assert resolved
+        assert area == pytest.approx(reference, rel=0.12), (seed, area, was)
+
+
+def test_sparse_exact_land_corner_within_one_percent():
+    # the rack-involute male's exact points at 80 a lobe read -19.4 %: its tip land (3-4 points) extended as a
+    # spline crossed the flank's 10 um off the tip circle and bent the flank's end tangent by 27 mrad. Reference:
+    # the design's blow-hole, within 1 % (issue 21 item 3)
+    area, _, resolved = _read("rack_involute_5_6", "male", 80, 0.0, 0)
+    assert resolved
+    assert area == pytest.approx(_design("rack_involute_5_6")["area"], rel=0.01)
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory) -> Path:
+    """The rack-involute sample's drawings as ``rotorcad export --format dxf`` writes them."""
+    folder = tmp_path_factory.mktemp("export")
+    args = ["export", str(SAMPLES / "rack_involute_5_6.toml"), "--format", "dxf", "--out", str(folder), "--no-housing"]
+    assert main([*args, "--quiet"]) == 0
+    return folder
+
+
+@pytest.mark.parametrize("side", ["male", "female"])
+def test_spline_drawing_states_an_uncertainty_that_covers_its_error(exported, side):
+    # newuser4 N5: the export's spline layer read back stated +-0.000 mm² for a blow-hole 0.063 mm² off
+    # (+0.28 %, the female). Reference: the design's blow-hole. The drawing's curves lie within their
+    # accuracy of the outline, which places the hand-over on the meshline no better than sqrt(8 a e)
+    design = _design("rack_involute_5_6")
+    spec = design["spec"]
+    path = next(exported.glob(f"*_{side}.dxf"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InputNote)
+        data = read_profile(path, f"--{side}-points", f"{side.upper()}_SPLINE")
+        given = build_pair(PairSpec(spec.pair, f"{side}-points", {}, data, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
+    result = analyse_pair(given, spec.speed_rpm)[1]
+    area, stated = result["blow_hole_area"], result["blow_hole_uncertainty"]
+    assert 0.0 < stated < area  # non-zero, and still says something
+    assert abs(area - design["area"]) <= stated
+    assert area == pytest.approx(design["area"], rel=0.01)
