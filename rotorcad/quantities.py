@@ -224,6 +224,7 @@ _declare(
         ("normal_pressure_angle_min_deg", "deg", "smallest normal pressure angle"),
         ("smallest_flank_angle_accuracy_deg", "deg", "accuracy of the smallest flank angle read from points"),
         ("undercut_accuracy", "mm", "depth below which a mate's turned-back envelope is no undercut"),
+        ("undercut_limit_shift", "1", "profile shift from which the gear is not undercut"),
         ("hob_tip_radius", "mm", "hob tip radius"),
         ("hob_root_radius", "mm", "hob root radius"),
         ("hob_tip_thickness", "mm", "hob tip thickness"),
