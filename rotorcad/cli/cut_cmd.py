@@ -13,7 +13,7 @@ from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.cutting import MAX_UNION_VERTICES, cutting_work, simulate_cutting, simulated_form_radius
 from hob.tools import TrapezoidalHob
-from hob.undercut import effective_addendum, kollek_model
+from hob.undercut import model_keys
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
 from rotorcad.cli.gear import GEAR_OPTION, SPEC, build_gear, gear_options, merge_gear_params
 from rotorcad.cli.gear_internal import internal_options, refuse_internal_options
@@ -79,15 +79,12 @@ def cut(design: Path | None, **opts: Any) -> None:
             )
     except DesignError as exc:
         raise reraise(exc, GEAR_OPTION) from None
-    model = kollek_model(
-        g.teeth, g.module, g.pressure_angle, g.shift, effective_addendum(g.dedendum, g.tip_radius_factor, g.pressure_angle)
-    )
     exact = g.pitch_thickness()  # None: the reference circle lies below the root circle
     result: dict[str, Any] = {
         "undercut": g.undercut,
         "undercut_radius": _undercut_radius(g, res, tol),
         "undercut_radius_exact": g.form_radius if g.undercut else None,
-        "undercut_radius_model": model.active_base_radius if model.undercut else None,
+        **model_keys(g),
         "max_deviation_from_envelope": res.max_deviation,
         "flank_deviation_from_envelope": res.flank_deviation,
         "tooth_thickness_pitch": None if exact is None else 2 * g.pitch_radius * _half_angle(res.tooth, g.pitch_radius),

@@ -172,9 +172,8 @@ def judge_racks(
         How deep the rack must cut into a mate generated from points for an undercut
         (:func:`hob.verdict.undercut_tolerance`); 0 for a design.
     gear : InvoluteGear, optional
-        The gear of the rack ``gear``: its undercut (:func:`hob.undercut.gear_undercut`) is stated
-        in ``notes`` and the keys ``undercut``, ``undercut_radius`` (mm) and ``undercut_limit_shift``:
-        a hob makes it, so ``hobbable`` stays true.
+        The gear of the rack ``gear``: its undercut (:func:`hob.undercut.gear_undercut`), which a hob
+        makes, is stated in ``notes`` and the keys below, not in ``reasons``.
 
     Returns
     -------
