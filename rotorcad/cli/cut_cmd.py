@@ -43,8 +43,9 @@ def cut(design: Path | None, **opts: Any) -> None:
     """Cut a gear with the ISO 53 basic-rack tool (a trapezoidal hob) by polygon booleans.
 
     The simulated gear is compared with the analytic envelope; the undercut radius comes from the
-    simulation and from Kollek & Osiński's model (eq. 1). An internal gear ([shaper] or --internal)
-    is shaped instead by its shaper cutter, and compared with its envelope.
+    simulation, the exact envelope and Kollek & Osiński's model (eq. 1, exact at the onset of
+    undercut, above the exact point deeper in: its deviation and a note are given). An internal gear
+    ([shaper] or --internal) is shaped instead by its shaper cutter, and compared with its envelope.
     """
     if opts.get("hob_addendum") is not None:
         if not (np.isfinite(opts["hob_addendum"]) and 0.1 <= opts["hob_addendum"] <= 3.0):
