@@ -26,7 +26,7 @@ Adding a format is one writer, one row and one test (README.md, developer sectio
         points = body.placed_points()
         return lambda path: np.savetxt(path, points)
 
-    register(ExportFormat("xyz", "_section.xyz", plan_xyz, "the section's chords"))
+    register(ExportFormat("xyz", "_section.xyz", plan_xyz, "the section's chords", meshes=False))
 """
 
 from __future__ import annotations
