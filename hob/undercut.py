@@ -25,7 +25,7 @@ instead, this model gives r'_z within 2 um of eq. (1) (module 4, z = 8 to 17); s
 right, and eq. (1)'s error is the model's: the rack also slides along the flank relative to the
 rolling line of action (A's distance from it is p + r_z tan(alpha0) gamma, not p), which the
 model leaves out. Exact at the onset of undercut (p = 0), it puts the undercut point above the
-exact envelope's by 0.25 p to 0.33 p (module 4, x = 0: +0.58 mm for z = 8, +0.43 for 11, +0.09 for 16,
+exact envelope's by 0.25 p to 0.34 p (module 4, x = 0: +0.58 mm for z = 8, +0.43 for 11, +0.09 for 16,
 +0.008 for 17), and :func:`transverse_model` evaluates it in the transverse section of a helical
 gear. The effective tool addendum is the tool's addendum less the tip clearance l_w by which the
 tip rounding or chamfer shifts the decisive tip line towards the tool root (the paper's sec. 2):
@@ -349,7 +349,7 @@ def model_keys(g: InvoluteGear) -> dict[str, object]:
             "Kollek & Osinski eq. (1) takes the tool's effective tip corner for an extended involute of the base circle "
             f"at the constant distance p = {model.p:.3f} mm from the line of action, leaving out the rack's slide along "
             f"the flank: exact at the onset of undercut (p = 0), it lies {radius - g.form_radius:+.3f} mm from the exact "
-            "undercut point here (0.25-0.33 p above it); undercut_radius_exact is the exact envelope's."
+            "undercut point here (0.25-0.34 p above it); undercut_radius_exact is the exact envelope's."
         )
     return {
         "undercut_radius_model": radius,

@@ -104,7 +104,9 @@ def cut(design: Path | None, **opts: Any) -> None:
     if opts["as_json"]:
         emit_json(result)
     else:
+        note = result.pop("undercut_model_note")
         print_table(f"cutting simulation z={g.teeth}, m={g.module:g} mm, x={g.shift:g}", result)
+        click.echo(f"  - {note}")
 
 
 def _undercut_radius(g, res, tol: float) -> float | None:
