@@ -320,6 +320,7 @@ def _register() -> None:
             "the section's chords: half the surface tolerance asked (a quarter for a gear)",
             SWEPT_BODIES,
             kind_extensions=((BodyKind.GEAR, ".csv"),),  # a gear's points file: <design>_<body>.csv, as before
+            meshes=False,
         )
     )
 

@@ -291,7 +291,9 @@ def _register() -> None:
 
     chords = "the section's chords: half the surface tolerance asked (a quarter for a gear)"
     for name, extension in (("dxf", ".dxf"), ("dxf-r12", "_r12.dxf")):
-        register(ExportFormat(name, extension, _plan_drawing, chords, SWEPT_BODIES, background=True, preload=("ezdxf",)))
+        register(
+            ExportFormat(name, extension, _plan_drawing, chords, SWEPT_BODIES, background=True, preload=("ezdxf",), meshes=False)
+        )
     for name, extension in (("dxf-mesh", "_mesh.dxf"), ("dxf-mesh-r12", "_mesh_r12.dxf")):
         register(
             ExportFormat(

@@ -26,7 +26,7 @@ Adding a format is one writer, one row and one test (README.md, developer sectio
         points = body.placed_points()
         return lambda path: np.savetxt(path, points)
 
-    register(ExportFormat("xyz", "_section.xyz", plan_xyz, "the section's chords"))
+    register(ExportFormat("xyz", "_section.xyz", plan_xyz, "the section's chords", meshes=False))
 """
 
 from __future__ import annotations
@@ -102,6 +102,12 @@ class ExportFormat:
     kind_extensions : tuple of (BodyKind, str)
         Endings for a kind of body where they differ from ``extension`` (a gear's points file keeps
         the name ``<design>_<body>.csv`` it has always had).
+    meshes : bool
+        Its writer triangulates the swept solid (:func:`meshed`), so that the triangles the surface
+        tolerance asks must fit in memory (:func:`makes_meshes`); False for the files made from the
+        exact curves or the section (``step``, ``dxf``, ``csv``), whose size does not grow with the
+        triangles (a new user's STEP-only export at ``--tolerance 0.001`` was refused for 10.7
+        million triangles no file would hold).
     """
 
     name: str
@@ -113,6 +119,7 @@ class ExportFormat:
     background: bool = False
     preload: tuple[str, ...] = ()
     kind_extensions: tuple[tuple[BodyKind, str], ...] = ()
+    meshes: bool = True
 
     def ending(self, kind: BodyKind) -> str:
         """Return the file ending after ``<design>_<body>`` for a body of ``kind``."""
@@ -220,6 +227,15 @@ def meshed(fmt: ExportFormat, body: PlacedBody, tolerance: float, row: dict[str,
         refuse_mesh_size(fmt, body, faces, tolerance)
     row.update(triangles=faces, volume=made.volume, tolerance=made.tolerance)
     return made
+
+
+def makes_meshes(fmts: Iterable[ExportFormat]) -> bool:
+    """Tell whether any of the formats triangulates the swept solids (:attr:`ExportFormat.meshes`).
+
+    Only then is a request refused for triangles that would not fit in memory
+    (:func:`rotorcad.assembly.check_solid_work`).
+    """
+    return any(fmt.meshes for fmt in fmts)
 
 
 def check_limits(fmts: Iterable[ExportFormat], bodies: Iterable[PlacedBody], tolerance: float) -> None:

@@ -278,6 +278,7 @@ def _register() -> None:
             "(the housing: exact box and cylinders)",
             background=True,
             preload=("OCP.STEPControl",),
+            meshes=False,
         )
     )
     register(

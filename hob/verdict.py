@@ -76,7 +76,9 @@ class Verdict:
         Width of the hob tooth at 5 % of the rack depth above its tip.
     notes : tuple of str
         What was judged within the profile's accuracy and so is no reason (an envelope that turns back
-        by less than the points can show).
+        by less than the points can show).    undercut : bool
+        Whether a rotor is undercut by its rack (:func:`undercut_reasons` found a stretch); a gear's
+        undercut is :func:`hob.undercut.gear_undercut`'s (a hob makes it: no reason).
     """
 
     hobbable: bool
@@ -86,6 +88,7 @@ class Verdict:
     min_root_radius: float
     tip_thickness: float
     notes: tuple[str, ...] = ()
+    undercut: bool = False
 
 
 def judge(
@@ -233,14 +236,15 @@ def judge(
     fitted = accuracy > 0 if measured is None else measured
     depth_tolerance = max(FOLD_TOLERANCE, undercut_accuracy or 0.0) if accuracy > 0 and not fitted else None
     notes: list[str] = []
-    reasons += undercut_reasons(rack, measured=fitted, tolerance=depth_tolerance, notes=notes)
+    undercut = undercut_reasons(rack, measured=fitted, tolerance=depth_tolerance, notes=notes)
+    reasons += undercut
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
         reasons.append(
             f"the hob tooth is {thickness:.3f} mm thick near its tip (5 % of the depth above it), below the minimum "
             f"{lim.min_tip_thickness:g} mm."
         )
-    return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness, tuple(notes))
+    return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness, tuple(notes), bool(undercut))
 
 
 def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: float, kink: float) -> float:

@@ -130,6 +130,7 @@ _declare(
         ("undercut_radius", "mm", "undercut radius"),
         ("undercut_radius_exact", "mm", "undercut radius, exact"),
         ("undercut_radius_model", "mm", "undercut radius, model"),
+        ("undercut_radius_model_deviation", "mm", "undercut radius, model less exact"),
         ("max_deviation_from_envelope", "mm", "largest deviation from the envelope"),
         ("flank_deviation_from_envelope", "mm", "flank deviation from the envelope"),
         ("tooth_thickness_pitch_exact", "mm", "tooth thickness at the pitch circle, exact"),
@@ -225,6 +226,7 @@ _declare(
         ("normal_pressure_angle_min_deg", "deg", "smallest normal pressure angle"),
         ("smallest_flank_angle_accuracy_deg", "deg", "accuracy of the smallest flank angle read from points"),
         ("undercut_accuracy", "mm", "depth below which a mate's turned-back envelope is no undercut"),
+        ("undercut_limit_shift", "1", "profile shift from which the gear is not undercut"),
         ("hob_tip_radius", "mm", "hob tip radius"),
         ("hob_root_radius", "mm", "hob root radius"),
         ("hob_tip_thickness", "mm", "hob tip thickness"),
@@ -494,7 +496,6 @@ _declare(
 
 # --- the report page (rotorcad/cli/report_cmd.py) -------------------------------------------------
 _declare("rotorcad/cli/report_cmd", [("defect_count", "1", "defects")])
-
 
 # --- design-file inputs shown beside the results (rotorcad/design.py; the report's design table) ---
 _declare(

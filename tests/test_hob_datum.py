@@ -252,6 +252,7 @@ def test_a_real_undercut_still_reads_undercut(form):
     verdicts = undercut_56_view(form)
     assert not verdicts["male"].hobbable
     assert any("the male is undercut at r = 42." in r for r in verdicts["male"].reasons), verdicts["male"].reasons
+    assert verdicts["male"].undercut  # `hob --json`'s key undercut (a gear's: tests/test_gear_undercut_verdict.py)
 
 
 def test_cut_depth_is_the_brute_force_cut():

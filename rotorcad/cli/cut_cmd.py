@@ -13,7 +13,7 @@ from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.cutting import MAX_UNION_VERTICES, cutting_work, simulate_cutting, simulated_form_radius
 from hob.tools import TrapezoidalHob
-from hob.undercut import effective_addendum, kollek_model
+from hob.undercut import model_keys
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
 from rotorcad.cli.gear import GEAR_OPTION, SPEC, build_gear, gear_options, merge_gear_params
 from rotorcad.cli.gear_internal import internal_options, refuse_internal_options
@@ -43,8 +43,9 @@ def cut(design: Path | None, **opts: Any) -> None:
     """Cut a gear with the ISO 53 basic-rack tool (a trapezoidal hob) by polygon booleans.
 
     The simulated gear is compared with the analytic envelope; the undercut radius comes from the
-    simulation and from Kollek & Osiński's model (eq. 1). An internal gear ([shaper] or --internal)
-    is shaped instead by its shaper cutter, and compared with its envelope.
+    simulation, the exact envelope and Kollek & Osiński's model (eq. 1, exact at the onset of
+    undercut, above the exact point deeper in: its deviation and a note are given). An internal gear
+    ([shaper] or --internal) is shaped instead by its shaper cutter, and compared with its envelope.
     """
     if opts.get("hob_addendum") is not None:
         if not (np.isfinite(opts["hob_addendum"]) and 0.1 <= opts["hob_addendum"] <= 3.0):
@@ -79,15 +80,12 @@ def cut(design: Path | None, **opts: Any) -> None:
             )
     except DesignError as exc:
         raise reraise(exc, GEAR_OPTION) from None
-    model = kollek_model(
-        g.teeth, g.module, g.pressure_angle, g.shift, effective_addendum(g.dedendum, g.tip_radius_factor, g.pressure_angle)
-    )
     exact = g.pitch_thickness()  # None: the reference circle lies below the root circle
     result: dict[str, Any] = {
         "undercut": g.undercut,
         "undercut_radius": _undercut_radius(g, res, tol),
         "undercut_radius_exact": g.form_radius if g.undercut else None,
-        "undercut_radius_model": model.active_base_radius if model.undercut else None,
+        **model_keys(g),
         "max_deviation_from_envelope": res.max_deviation,
         "flank_deviation_from_envelope": res.flank_deviation,
         "tooth_thickness_pitch": None if exact is None else 2 * g.pitch_radius * _half_angle(res.tooth, g.pitch_radius),
@@ -106,7 +104,9 @@ def cut(design: Path | None, **opts: Any) -> None:
     if opts["as_json"]:
         emit_json(result)
     else:
+        note = result.pop("undercut_model_note")
         print_table(f"cutting simulation z={g.teeth}, m={g.module:g} mm, x={g.shift:g}", result)
+        click.echo(f"  - {note}")
 
 
 def _undercut_radius(g, res, tol: float) -> float | None:

@@ -12,7 +12,7 @@ from rich.console import Console
 from rich.table import Table
 
 from exports.background import WorkerPool
-from exports.formats import ExportFormat, check_limits, names, plan_files, preload, table
+from exports.formats import ExportFormat, check_limits, makes_meshes, names, plan_files, preload, table
 from rotorcad.assembly import BodyKind, PlacedBody, assemble, check_solid_work, housing_bodies, rotor_bodies
 from rotorcad.cli.common import InputError, Outputs, emit_json, load_rotor_design, load_toml, output_folder
 from rotorcad.cli.progress import Steps
@@ -213,7 +213,7 @@ def _rotor_bodies(
 
     ``asked`` is the surface tolerance (mm) and the formats; ``assembly`` is (--center-distance,
     --phase-deg, --housing); the housing's radial clearance is put in ``result`` (key ``clearance``). A
-    request whose solids would not fit in memory is refused naming ``label``
+    request for a mesh format whose solids would not fit in memory is refused naming ``label``
     (:func:`rotorcad.assembly.check_solid_work`), one whose exact formats would follow a looping outline
     too (:func:`_check_outlines`).
     """
@@ -221,7 +221,8 @@ def _rotor_bodies(
     center_distance, phase_deg, housing = assembly
     rotors, _, clearance = build_rotors(design, _rotor_options(design), settings)
     pair, phase = _assemble(rotors.pair, center_distance, phase_deg, clearance)
-    _check_solid_work(rotors, tol, label)
+    if makes_meshes(fmts):  # the exact STEP, the drawings and the points hold no triangles
+        _check_solid_work(rotors, tol, label)
     result["clearance"] = clearance
     bodies = rotor_bodies(rotors, pair, float(np.radians(angle)), phase, tol)
     _check_outlines(rotors, min(tol / 2, LOOP_CHORD), fmts)

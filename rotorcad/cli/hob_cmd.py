@@ -12,6 +12,7 @@ import shapely
 from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.rack import DerivedRack, gear_rack, hob_tooth, rack_deviation, rotor_rack
+from hob.undercut import gear_undercut
 from hob.verdict import FOLD_TOLERANCE, HobLimits, judge, undercut_tolerance
 from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
@@ -87,7 +88,13 @@ def hob(design: Path | None, **opts: Any) -> None:
         scale = g.module
         body = g
     verdicts, result = judge_racks(
-        racks, deviation, limits, getattr(body, "accuracy", 0.0), _fitted_sides(body), undercut_tolerance(body)
+        racks,
+        deviation,
+        limits,
+        getattr(body, "accuracy", 0.0),
+        _fitted_sides(body),
+        undercut_tolerance(body),
+        body if rotors is None else None,
     )
     result["smallest_flank_angle_accuracy_deg"] = _angle_accuracy(body, racks, result["normal_pressure_angle_min_deg"])
     result["notes"] = (notes if rotors is None else []) + result["notes"]
@@ -140,6 +147,7 @@ def judge_racks(
     accuracy: float = 0.0,
     measured: dict[str, bool] | None = None,
     undercut_accuracy: float = 0.0,
+    gear: InvoluteGear | None = None,
 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
 
@@ -163,6 +171,9 @@ def judge_racks(
     undercut_accuracy : float, mm
         How deep the rack must cut into a mate generated from points for an undercut
         (:func:`hob.verdict.undercut_tolerance`); 0 for a design.
+    gear : InvoluteGear, optional
+        The gear of the rack ``gear``: its undercut (:func:`hob.undercut.gear_undercut`), which a hob
+        makes, is stated in ``notes`` and the keys below, not in ``reasons``.
 
     Returns
     -------
@@ -171,8 +182,9 @@ def judge_racks(
     result : dict
         ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg``,
         ``accuracy`` (mm), ``undercut_accuracy`` (mm), ``smallest_flank_angle_accuracy_deg`` (0 here),
-        ``notes`` (what was judged within the accuracy) and per
-        rack its figures (radii and tip thickness in mm, angles in deg).
+        ``notes`` (what was judged within the accuracy), ``undercut`` (bool: a rotor undercut by its
+        rack, or the gear's undercut), for a gear ``undercut_radius`` (mm) and ``undercut_limit_shift``,
+        and per rack its figures (radii and tip thickness in mm, angles in deg).
     """
     verdicts = {
         name: judge(rack, limits, accuracy, None if measured is None else measured.get(name, False), undercut_accuracy)
@@ -202,6 +214,11 @@ def judge_racks(
             for name, v in verdicts.items()
         },
     }
+    result["undercut"] = any(v.undercut for v in verdicts.values())
+    if gear is not None:  # a hob makes a gear's undercut: a note and its figures, not a reason
+        cut = gear_undercut(gear)
+        result.update(undercut=cut.undercut, undercut_radius=cut.radius, undercut_limit_shift=cut.limit_shift)
+        result["notes"] += [cut.note] if cut.note else []
     return verdicts, result
 
 

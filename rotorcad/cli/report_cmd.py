@@ -336,7 +336,7 @@ def _gear_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
     result.update(shop)
     racks = {"gear": gear_rack(g)}
     deviation = hob_cmd._basic_rack_deviation(g, racks["gear"])
-    verdicts, hob = hob_cmd.judge_racks(racks, deviation, HobLimits())
+    verdicts, hob = hob_cmd.judge_racks(racks, deviation, HobLimits(), gear=g)
     root_clearance = 0.25 * g.module
     case = f"gear z = {g.teeth}, m = {g.module:g} mm" + (f" with mate z = {pair.mate.teeth}" if pair is not None else "")
     figures = {
