@@ -17,6 +17,8 @@ flank's end) towards its own tip, and each pair governs the delivery for one bas
 the start of its contact (the new contact closes the discharge). For two equal gears the start is
 u = -g_a/2, g_a = eps p_b, and with s = u + g_a/2 in [0, p_b) this is Kollek's eq. (2),
 q = Q_min + b w (s l - s^2), l = eps p_b, of mean b w (r_a^2 - r_w^2 - p_b^2 (eps^2/4 - eps/2 + 1/3)).
+For unequal gears the same parabola reads q = Q_min + b w1 (1 + z1/z2)/2 (s l - s^2) with s from the
+start of contact u = -g_f (g_f the path of approach, from the mate's tip circle to C) and l = 2 g_f.
 
 A helical pair's transverse sections mesh with their phases shifted along the face: at axial
 position zeta the contact lies zeta tan(beta_b) further along the line of action, so the delivery

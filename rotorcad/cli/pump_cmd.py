@@ -172,10 +172,16 @@ def _plot(p: GearPump) -> Figure:
     ax2.set_ylabel(ps.label("amplitude / mean flow", "1"))
     ax2.set_title(f"harmonics of the delivery at k × the pump frequency {p.pump_frequency:.4g} Hz")
     ps.legend_outside(ax2)
+    mate = p.pair.mate
+    helix = (
+        f", β = {np.degrees(g.helix_angle):g}°, ε_β = {p.overlap_ratio:.3f} (delivery of the whole face)"
+        if p.overlap_ratio
+        else ""
+    )
     ps.title(
         fig,
-        f"external gear pump z = {g.teeth}, m = {g.module:g} mm, x = {g.shift:g}",
-        f"α = {np.degrees(g.pressure_angle):g}°, b = {p.face_width:g} mm, n = {p.speed_rpm:g} rpm; ε = {p.contact_ratio:.3f}, "
-        f"f = {p.pump_frequency:.4g} Hz",
+        f"external gear pump z = {g.teeth}/{mate.teeth}, m = {g.module:g} mm, x = {g.shift:g}/{mate.shift:.4g}",
+        f"α = {np.degrees(g.pressure_angle):g}°, b = {p.face_width:g} mm, n = {p.speed_rpm:g} rpm; ε = {p.contact_ratio:.3f}"
+        f"{helix}, f = {p.pump_frequency:.4g} Hz",
     )
     return fig
