@@ -13,7 +13,17 @@ from hob.nomogram import plot_nomogram
 from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
 from rotorcad.cli.defaults import print_defaults, taken
-from rotorcad.cli.gear import DEFAULTS, DESIGN_PARAM, FROM_DESIGN, build_gear, check_contact, gear_options, merge_gear_params
+from rotorcad.cli.gear import (
+    DEFAULTS,
+    DESIGN_PARAM,
+    FROM_DESIGN,
+    SPEC,
+    build_gear,
+    check_contact,
+    gear_options,
+    merge_gear_params,
+)
+from rotorcad.design.labels import contact_names
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
 from rotorcad.pump import GearPump, kollek_coefficients
@@ -78,12 +88,14 @@ def pump(design: Path | None, **opts: Any) -> None:
         eps = p.contact_ratio
     except DesignError as exc:
         raise reraise(exc, PUMP_OPTION) from None
-    names = "--teeth, --shift, --addendum and --pressure-angle" + (" and the mate" if mate else "")
+    names = "--teeth, --shift, --addendum and --pressure-angle"
+    if pair is not None:  # the mate's values too, named as the user gave them (options or [mate] keys)
+        names = contact_names(params[SPEC].from_design, pair.center_distance is not None)
     check_contact(eps, names)
     _check_in_mesh(p, names)
     if not (np.isfinite(p.mean_flow) and p.mean_flow > 0 and np.isfinite(p.irregularity) and p.irregularity >= 0):
         raise InputError(
-            "--teeth, --shift and --addendum must give a pump that delivers (a positive mean flow; got "
+            f"{names} must give a pump that delivers (a positive mean flow; got "
             f"{p.mean_flow * MM3_PER_S_TO_L_PER_MIN:.4g} L/min): the tips reach too little beyond the working pitch circle."
         )
     paper, swept = p.mean_flow * MM3_PER_S_TO_L_PER_MIN, p.swept_volume_flow * MM3_PER_S_TO_L_PER_MIN
