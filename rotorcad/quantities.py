@@ -148,9 +148,10 @@ _declare(
         ("mean_flow_paper_to_swept_volume", "1", "mean flow, paper to swept volume"),
         ("flow_irregularity", "1", "flow irregularity"),
         ("pump_frequency_hz", "Hz", "pump frequency"),
+        ("mate_teeth", "1", "teeth of the mate"),
         ("harmonics[]", "1", "harmonic amplitude (share of the mean flow)"),
-        ("kollek_series.numerical[]", "1", "Kollek coefficient, numerical"),
-        ("kollek_series.eqs_4_6[]", "1", "Kollek coefficient, eqs. 4-6"),
+        *((f"kollek_series.{k}[]", "1", f"Kollek coefficient, {k.replace('_', ' ')}") for k in ("numerical", "eqs_4_6")),
+        ("total_contact_ratio", "1", "total contact ratio"),
     ],
 )
 

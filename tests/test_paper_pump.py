@@ -42,7 +42,9 @@ def test_pump_reports_both_flows_and_the_defaults_it_took(capsys):
     # 2 pi b m^2 z n in L/min
     assert r["mean_flow_swept_volume"] == pytest.approx(2 * np.pi * 20 * 9 * 12 * 1500 * 1e-6, rel=1e-12)
     assert r["mean_flow_paper_to_swept_volume"] == pytest.approx(r["mean_flow_paper"] / r["mean_flow_swept_volume"])
-    assert set(r["defaults"]) == {"--pressure-angle", "--helix-angle", "--addendum"}  # --shift was given
+    # --shift was given; no mate: two equal gears
+    assert set(r["defaults"]) == {"--pressure-angle", "--helix-angle", "--addendum", "--mate-teeth"}
+    assert r["defaults"]["--mate-teeth"] == "12 and --mate-shift 0.3 (default: two equal gears)"
     assert r["defaults"]["--pressure-angle"] == "20 deg (default: ISO 53 basic rack)"
     assert main([*args, "--method", "swept-volume"]) == 0
     r = json.loads(capsys.readouterr().out)

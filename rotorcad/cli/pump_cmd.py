@@ -1,4 +1,4 @@
-"""``rotorcad pump``: external gear pump of two equal gears (CONTRACT.md)."""
+"""``rotorcad pump``: external gear pump of two gears in mesh (CONTRACT.md)."""
 
 from __future__ import annotations
 
@@ -13,14 +13,24 @@ from hob.nomogram import plot_nomogram
 from rotorcad import plot_style as ps
 from rotorcad.cli.common import InputError, Outputs, emit_json, print_table, reraise
 from rotorcad.cli.defaults import print_defaults, taken
-from rotorcad.cli.gear import DEFAULTS, DESIGN_PARAM, FROM_DESIGN, build_gear, check_contact, gear_options, merge_gear_params
+from rotorcad.cli.gear import (
+    DEFAULTS,
+    DESIGN_PARAM,
+    FROM_DESIGN,
+    SPEC,
+    build_gear,
+    check_contact,
+    gear_options,
+    merge_gear_params,
+)
+from rotorcad.design.labels import contact_names
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
 from rotorcad.pump import GearPump, kollek_coefficients
 
 MM3_PER_S_TO_L_PER_MIN = 60.0 / 1e6
 PUMP_OPTION = {
-    "shifts": "--shift of the two equal gears",
+    "shifts": "--shift and --mate-shift",
     "mesh": "--teeth, --shift, --addendum and --pressure-angle",
 }
 
@@ -48,10 +58,12 @@ PUMP_OPTION = {
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def pump(design: Path | None, **opts: Any) -> None:
-    """Delivery of an external gear pump of two equal gears (Kollek & Osinski eqs. 2-9).
+    """Delivery of an external gear pump: the gear drives its mate (Kollek & Osinski eqs. 2-9).
 
-    Mean flow (eq. 2, and the textbook swept volume 2 pi b m^2 z n beside it), irregularity,
-    harmonics and pump frequency f = n z / 60. Every default taken is printed.
+    Mean flow (eq. 2 for the pair given, and the textbook swept volume 2 pi b m^2 z n beside it),
+    irregularity, harmonics and pump frequency f = n z / 60. Without --mate-teeth (or a [mate]
+    table) the mate equals the gear. Helical gears: the delivery of the whole face (each transverse
+    section's, shifted along the helix). Every default taken is printed.
     """
     # the face width up to 10 m as [gear] face_width of `export`, the speed up to 1e6 rpm as `coupling`'s
     for key, flag, top, unit in (("face_width", "--face-width", 10_000.0, "mm"), ("speed", "--speed", 1e6, "rpm")):
@@ -69,24 +81,21 @@ def pump(design: Path | None, **opts: Any) -> None:
         for k in ("pressure_angle", "helix_angle", "shift", "addendum")
         if opts.get(k) is None and DESIGN_PARAM.get(k, k) not in named
     ]
-    g, _ = build_gear(params, 1e-4)
-    p = GearPump(g, opts["face_width"], opts["speed"])
+    g, pair = build_gear(params, 1e-4)
+    mate = None if pair is None else (pair.mate, pair.center_distance)
+    p = GearPump(g, opts["face_width"], opts["speed"], *(mate or ()))
     try:
         eps = p.contact_ratio
     except DesignError as exc:
         raise reraise(exc, PUMP_OPTION) from None
-    check_contact(eps, "--teeth, --shift, --addendum and --pressure-angle")
-    if eps < 1.0:
-        # Kollek & Osinski (sec. 2, Fig. 4): the meshing teeth separate the discharge from the
-        # suction side only while a pair is in contact; below eps = 1 no pair is for part of each pitch
-        raise InputError(
-            f"--teeth, --shift, --addendum and --pressure-angle must give a gear pump a contact ratio of at least 1 (got "
-            f"{eps:.4g}): below it no pair of teeth is in mesh for part of each pitch and the discharge opens to the suction; "
-            "raise --shift or --addendum (see --nomogram)."
-        )
+    names = "--teeth, --shift, --addendum and --pressure-angle"
+    if pair is not None:  # the mate's values too, named as the user gave them (options or [mate] keys)
+        names = contact_names(params[SPEC].from_design, pair.center_distance is not None)
+    check_contact(eps, names)
+    _check_in_mesh(p, names)
     if not (np.isfinite(p.mean_flow) and p.mean_flow > 0 and np.isfinite(p.irregularity) and p.irregularity >= 0):
         raise InputError(
-            "--teeth, --shift and --addendum must give a pump that delivers (a positive mean flow; got "
+            f"{names} must give a pump that delivers (a positive mean flow; got "
             f"{p.mean_flow * MM3_PER_S_TO_L_PER_MIN:.4g} L/min): the tips reach too little beyond the working pitch circle."
         )
     paper, swept = p.mean_flow * MM3_PER_S_TO_L_PER_MIN, p.swept_volume_flow * MM3_PER_S_TO_L_PER_MIN
@@ -106,6 +115,10 @@ def pump(design: Path | None, **opts: Any) -> None:
         "flow_irregularity": p.irregularity,
         "pump_frequency_hz": p.pump_frequency,
         "contact_ratio": eps,
+        "overlap_contact_ratio": p.overlap_ratio,
+        "total_contact_ratio": p.total_contact_ratio,
+        "mate_teeth": p.pair.mate.teeth,
+        "center_distance": p.pair.working_center_distance,
         "harmonics": p.harmonics(opts["count"]).tolist(),
         "kollek_series": {
             "numerical": p.cosine_series(opts["count"]).tolist(),
@@ -116,12 +129,37 @@ def pump(design: Path | None, **opts: Any) -> None:
     out.add_figure(opts["plot"], lambda: _plot(p), "--plot")
     out.add_figure(opts["nomogram"], lambda: plot_nomogram(g.teeth, g.pressure_angle), "--nomogram")
     result["defaults"] = {f"--{k.replace('_', '-')}": taken(f"{DEFAULTS[k]:g}{unit[k]}", how[k]) for k in defaulted}
+    if mate is None:
+        result["defaults"]["--mate-teeth"] = taken(f"{g.teeth} and --mate-shift {g.shift:g}", "two equal gears")
     result["files"] = [str(x) for x in out.write()]
     if opts["as_json"]:
         emit_json(result)
     else:
-        print_table(f"gear pump z={g.teeth}, b={opts['face_width']:g} mm, n={opts['speed']:g} rpm", result)
+        print_table(f"gear pump z={g.teeth}/{p.pair.mate.teeth}, b={opts['face_width']:g} mm, n={opts['speed']:g} rpm", result)
         print_defaults(result["defaults"])
+
+
+def _check_in_mesh(p: GearPump, names: str) -> None:
+    """Refuse a pump whose teeth leave the discharge open to the suction, or whose delivery is not modelled.
+
+    Kollek & Osinski (sec. 2, Fig. 4): the meshing teeth separate the discharge from the suction side
+    only while a pair is in contact: a spur pair needs eps_alpha >= 1, a helical one eps_gamma =
+    eps_alpha + eps_beta >= 1 (the contact line then always crosses the face somewhere).
+    """
+    eps, total = p.contact_ratio, p.total_contact_ratio
+    if total < 1.0:
+        what = "contact ratio" if p.overlap_ratio == 0.0 else "total contact ratio (transverse + overlap)"
+        raise InputError(
+            f"{names} must give a gear pump a {what} of at least 1 (got {total:.4g}): below it no pair of teeth is in mesh "
+            "for part of each pitch and the discharge opens to the suction; raise --shift or --addendum (see --nomogram)"
+            + (" or --face-width." if p.overlap_ratio else ".")
+        )
+    if eps < 1.0:
+        raise InputError(
+            f"{names} must give a transverse contact ratio of at least 1 (got {eps:.4g}; total contact ratio {total:.4g}): "
+            "a pair stays in mesh along the face, but the delivery of the transverse sections left without a contact is not "
+            "modelled by rotorcad pump; raise --shift or --addendum (see --nomogram)."
+        )
 
 
 @styled
@@ -146,10 +184,16 @@ def _plot(p: GearPump) -> Figure:
     ax2.set_ylabel(ps.label("amplitude / mean flow", "1"))
     ax2.set_title(f"harmonics of the delivery at k × the pump frequency {p.pump_frequency:.4g} Hz")
     ps.legend_outside(ax2)
+    mate = p.pair.mate
+    helix = (
+        f", β = {np.degrees(g.helix_angle):g}°, ε_β = {p.overlap_ratio:.3f} (delivery of the whole face)"
+        if p.overlap_ratio
+        else ""
+    )
     ps.title(
         fig,
-        f"external gear pump z = {g.teeth}, m = {g.module:g} mm, x = {g.shift:g}",
-        f"α = {np.degrees(g.pressure_angle):g}°, b = {p.face_width:g} mm, n = {p.speed_rpm:g} rpm; ε = {p.contact_ratio:.3f}, "
-        f"f = {p.pump_frequency:.4g} Hz",
+        f"external gear pump z = {g.teeth}/{mate.teeth}, m = {g.module:g} mm, x = {g.shift:g}/{mate.shift:.4g}",
+        f"α = {np.degrees(g.pressure_angle):g}°, b = {p.face_width:g} mm, n = {p.speed_rpm:g} rpm; ε = {p.contact_ratio:.3f}"
+        f"{helix}, f = {p.pump_frequency:.4g} Hz",
     )
     return fig
