@@ -37,6 +37,7 @@ from functools import cached_property
 import numpy as np
 
 from rotorcad.clearance_accuracy import ACCURACY_FLOOR, estimated_accuracy, pair_quality, points_quality, trends
+from rotorcad.clearance_flanks import flank_codes, flank_figures, point_weights
 from rotorcad.clearance_normals import normal_clearance, normal_crossing
 from rotorcad.clearance_phase import alignment_curve, complementary_shift, search_steps
 from rotorcad.clearance_thermal import ThermalState
@@ -89,21 +90,6 @@ class ClearanceZone(IntEnum):
     GAP = 2
     CORNER = 3
     UNRESOLVED = 4
-
-
-def _running_mean(values: Array, arc: Array, width: float) -> Array:
-    """Mean of ``values`` (n,) over a window ``width`` (mm) about each point, by arc length ``arc`` (n,), increasing."""
-    if width <= 0 or len(values) < 2:
-        return values
-    total = np.concatenate([[0.0], np.cumsum(values)])
-    lo = np.searchsorted(arc, arc - width / 2, side="left")
-    hi = np.searchsorted(arc, arc + width / 2, side="right")
-    return (total[hi] - total[lo]) / (hi - lo)
-
-
-def _turned(points: Array, angles: Array) -> Array:
-    """Turn points (n, 2) each by its own angle (n,) (rad, counter-clockwise) about the origin."""
-    return rotate(points, angles)
 
 
 @dataclass(frozen=True, eq=False)
@@ -467,6 +453,11 @@ class MeshingClearance:
         return zone.astype(int)
 
     @property
+    def flanks(self) -> Array:
+        """(n,) int: the flank of each datum point (1 driving, 2 sealing, 3, 4 lands: :func:`flank_codes`)."""
+        return flank_codes(self.female_rack.points, self.female_rack.tangents)
+
+    @property
     def contact_zone(self) -> Array:
         """(n,) bool: the datum points on the conjugate contact zone (:attr:`ClearanceZone.CONTACT`)."""
         return self.zones == ClearanceZone.CONTACT
@@ -483,9 +474,9 @@ class MeshingClearance:
         """Female points (own frame, (..., 2)) in the male's own frame at male angles ``angle`` (...), rad."""
         pair = self.pair
         phi2 = -angle * pair.male_teeth / pair.female_teeth
-        fixed = _turned(female.reshape(-1, 2), np.broadcast_to(phi2, female.shape[:-1]).ravel())
+        fixed = rotate(female.reshape(-1, 2), np.broadcast_to(phi2, female.shape[:-1]).ravel())
         fixed = fixed + np.array([pair.center_distance, 0.0])
-        return _turned(fixed, -np.broadcast_to(angle, female.shape[:-1]).ravel()).reshape(female.shape)
+        return rotate(fixed, -np.broadcast_to(angle, female.shape[:-1]).ravel()).reshape(female.shape)
 
     def _approach(self, female: Array, angle: Array, window: float) -> Array:
         """Closest approach of female points to the male over the mesh, (n,) float, mm.
@@ -530,7 +521,7 @@ class MeshingClearance:
         contact, angle = self._contacts(self.shift)
         pair = self.pair
         phi2 = -angle * pair.male_teeth / pair.female_teeth
-        female = _turned(contact - np.array([pair.center_distance, 0.0]), -phi2)
+        female = rotate(contact - np.array([pair.center_distance, 0.0]), -phi2)
         corner = (zone == ClearanceZone.CORNER) & self.female_rack.corner_path
         if corner.any():
             at = self._female_in_male_frame(female[corner], angle[corner])
@@ -607,7 +598,7 @@ class MeshingClearance:
         wetted perimeter (mm); largest and smallest gap of the parts that never touch and smallest
         gap of a sharp corner's path (mm, None where there are none); largest and smallest normal
         clearance where the points cannot resolve the contact (mm, None where there is none) and its
-        share of the contact line's points.
+        share of the contact line's length.
         """
         pair = self.pair
         contact, angle = self._contacts(self.shift)
@@ -651,6 +642,9 @@ class MeshingClearance:
         def figure(values: Array, sel: Array, pick) -> float | None:
             return float(pick(values[sel])) if sel.any() else None
 
+        def share(sel: Array) -> float:  # of the contact line's length (its points crowd a corner's fan)
+            return float(dl[seg & sel[:-1] & sel[1:]].sum() / length) if length > 0 else float(sel.sum() / use.sum())
+
         return {
             "max_normal_clearance": float(c[on].max()),
             "min_normal_clearance": float(c[on].min()),
@@ -662,10 +656,10 @@ class MeshingClearance:
             "max_gap": figure(self.gap, gap, np.max),
             "min_gap": figure(self.gap, gap, np.min),
             "min_corner_gap": figure(self.gap, corner, np.min),
-            "contact_zone_share": float(on.sum() / use.sum()),
+            "contact_zone_share": share(on),
             "max_unresolved_clearance": figure(c, unresolved, np.max),
             "min_unresolved_clearance": figure(c, unresolved, np.min),
-            "unresolved_share": float(unresolved.sum() / use.sum()),
+            "unresolved_share": share(unresolved),
         }
 
     def rinder_angle(self, angle: Array) -> Array:
@@ -725,8 +719,8 @@ class MeshingClearance:
         stretch = np.sqrt(tan[:, 1] ** 2 / np.cos(self.helix_angle) ** 2 + tan[:, 0] ** 2)
         gap_t = np.nan_to_num(delta) * stretch
         phi2 = -angle * pair.male_teeth / pair.female_teeth
-        female = _turned(contact - np.array([pair.center_distance, 0.0]), -phi2)
-        male = _turned(contact + gap_t[:, None] * towards_male, -angle)
+        female = rotate(contact - np.array([pair.center_distance, 0.0]), -phi2)
+        male = rotate(contact + gap_t[:, None] * towards_male, -angle)
         pts = self.datum_rack
         return {
             "x": pts[:, 0],
@@ -743,6 +737,7 @@ class MeshingClearance:
             "in_contact": use.astype(float),
             "zone": self.zones.astype(float),
             "gap": self.gap,
+            "flank": self.flanks.astype(float),
         }
 
     def summary(self) -> dict[str, float]:
@@ -756,15 +751,18 @@ class MeshingClearance:
             (mm²) over the whole contact line, ``contact_line_length``, ``wetted_perimeter`` (mm),
             ``max_gap``, ``min_gap`` (mm, the parts that never touch), ``min_corner_gap`` (mm, the
             closest approach of a sharp female corner's path), ``contact_zone_share`` (of the
-            contact line's points), ``max_unresolved_clearance``, ``min_unresolved_clearance`` (mm,
+            contact line's length), ``max_unresolved_clearance``, ``min_unresolved_clearance`` (mm,
             the normal clearance where the points cannot resolve the contact,
             :attr:`ClearanceZone.UNRESOLVED`, not judged), ``unresolved_share`` (of the contact line's
-            points), ``accuracy`` (mm, :attr:`accuracy`), ``gap_accuracy`` (mm, :attr:`gap_accuracy`: of
+            length), ``accuracy`` (mm, :attr:`accuracy`), ``gap_accuracy`` (mm, :attr:`gap_accuracy`: of
             ``max_gap``, ``min_gap``, ``min_corner_gap``), ``female_rack_shift`` (mm,
             the shift applied to position the racks) and ``helix_angle_deg`` (deg).
         """
+        pts_n, _, _ = self._datum
+        per_flank = flank_figures(self.clearance, self.contact_zone, self.flanks, point_weights(pts_n))
         return {
             **self._band,
+            **per_flank,
             "accuracy": self.accuracy,
             "gap_accuracy": self.gap_accuracy,
             "female_rack_shift": self.shift,
