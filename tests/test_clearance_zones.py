@@ -219,7 +219,9 @@ def test_the_contact_that_sparse_points_cannot_resolve_is_left_out(noise, seed):
     mc, rows, _, truth = undercut_pair_from_points(80, noise, seed)
     s = mc.summary()
     off = np.isfinite(truth)
-    assert 0.0 < s["unresolved_share"] < 0.1  # of the contact line's length: 0.085 exact (of its points: under 0.06)
+    # of the contact line's length, with the flank within two spacings of a sharp corner (0.19 at 80 points
+    # a lobe; the undercut's crossing alone 0.085, of the contact line's points under 0.06)
+    assert 0.0 < s["unresolved_share"] < 0.25
     assert s["max_unresolved_clearance"] == pytest.approx(np.nanmax(mc.clearance[mc.zones == ClearanceZone.UNRESOLVED]))
     excluded = float(np.abs(mc.clearance[rows][off] - truth[off]).max())
     assert excluded > 10e-3
@@ -256,7 +258,8 @@ def test_cli_states_the_accuracy_and_the_zones(tmp_path, capsys):
     lines = (tmp_path / "c.csv").read_text().splitlines()
     header = next(line for line in lines if line.startswith("x,y,clearance"))
     # the columns scripts read keep their order; flank (1 driving, 2 sealing, 3/4 lands) is added last
-    assert header == "x,y,clearance,male_angle_deg,z,contact_x,contact_y,female_x,female_y,male_x,male_y,in_contact,zone,gap,flank"
+    expected = "x,y,clearance,male_angle_deg,z,contact_x,contact_y,female_x,female_y,male_x,male_y,in_contact,zone,gap"
+    assert header == expected + ",flank"
     rows = np.loadtxt([line for line in lines if line[:1].isdigit() or line[:1] == "-"], delimiter=",")
     assert set(np.unique(rows[:, 14])) <= {1.0, 2.0, 3.0, 4.0} and {1.0, 2.0} <= set(np.unique(rows[:, 14]))
     for name in ("driving", "sealing"):  # the conjugate pair: every flank zero within the stated accuracy
