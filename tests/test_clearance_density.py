@@ -43,8 +43,8 @@ def per_lobe(ring: np.ndarray, teeth: int, points: int) -> float:
 
 
 @functools.cache
-def share(name: str, points: int, noise: float) -> float:
-    """``contact_zone_share`` of the pair ``name`` from ``points`` a lobe with ``noise`` (mm) of scatter (0: the cut outlines)."""
+def summary(name: str, points: int, noise: float) -> dict:
+    """The figures of the pair ``name`` from ``points`` a lobe with ``noise`` (mm) of scatter (0: the cut outlines)."""
     rack_pair, male, female = outlines(name)
     z1, z2 = rack_pair.male_teeth, rack_pair.female_teeth
     if points:
@@ -58,7 +58,12 @@ def share(name: str, points: int, noise: float) -> float:
         contact="as-given",
         **pair_quality(male, female, (z1, z2)),
     )
-    return mc.summary()["contact_zone_share"]
+    return mc.summary()
+
+
+def share(name: str, points: int, noise: float) -> float:
+    """``contact_zone_share`` of :func:`summary`."""
+    return summary(name, points, noise)["contact_zone_share"]
 
 
 @pytest.mark.parametrize("name", ["4/6", "5/6"])
@@ -68,3 +73,18 @@ def test_the_contact_zone_share_does_not_move_with_the_points(name, points, nois
     dense = share(name, 0, 0.0)
     assert 0.5 < dense < 0.9  # both pairs leave the female root below the sharp male tip untouched
     assert abs(share(name, points, noise) - dense) <= SHARE_TOLERANCE
+
+
+@pytest.mark.parametrize("name", ["4/6", "5/6"])
+@pytest.mark.parametrize("points", [80, 300, 2000])
+@pytest.mark.parametrize("noise", [0.0, 1e-3, 2e-3])
+def test_the_gaps_from_points_are_within_their_stated_accuracy_of_the_dense_ones(name, points, noise):
+    # the gap of the female root below the sharp male tip (about 0.1 mm at its largest, 0 where it meets
+    # the contact zone): the dense cut outlines' values are the brute-force closest approach's within 2 um
+    # (test_clearance_zones::test_each_zone_reads_the_brute_force_closest_approach); from points, within
+    # gap_accuracy of them (the contact zone's accuracy and the triangle a sharp corner between two points
+    # may lie in)
+    dense, read = summary(name, 0, 0.0), summary(name, points, noise)
+    assert dense["max_gap"] > 0.05
+    for key in ("max_gap", "min_gap"):
+        assert abs(read[key] - dense[key]) <= read["gap_accuracy"] + 2e-3, key
