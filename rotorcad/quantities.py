@@ -291,6 +291,15 @@ _declare(
         ("max_unresolved_clearance", "mm", "largest normal clearance the points cannot resolve"),
         ("min_unresolved_clearance", "mm", "smallest normal clearance the points cannot resolve"),
         ("unresolved_share", "1", "unresolved share"),
+        ("driving_min_normal_clearance", "mm", "smallest normal clearance, driving flank"),
+        ("driving_max_normal_clearance", "mm", "largest normal clearance, driving flank"),
+        ("driving_mean_clearance", "mm", "mean normal clearance, driving flank"),
+        ("sealing_min_normal_clearance", "mm", "smallest normal clearance, sealing flank"),
+        ("sealing_max_normal_clearance", "mm", "largest normal clearance, sealing flank"),
+        ("sealing_mean_clearance", "mm", "mean normal clearance, sealing flank"),
+        ("lands_min_normal_clearance", "mm", "smallest normal clearance, lands"),
+        ("lands_max_normal_clearance", "mm", "largest normal clearance, lands"),
+        ("lands_mean_clearance", "mm", "mean normal clearance, lands"),
         ("accuracy", "mm", "accuracy of the points"),
         ("gap_accuracy", "mm", "accuracy of the gaps and corner gap"),
         ("female_rack_shift", "mm", "female rack shift"),
@@ -311,6 +320,7 @@ CLEARANCE_CSV_COLUMNS: dict[str, str] = {
     "in_contact": "1",
     "zone": "1",
     "gap": "mm",
+    "flank": "1",
 }
 """Units of the columns of ``rotorcad clearance --csv`` (rotorcad.clearance.MeshingClearance.distribution)."""
 

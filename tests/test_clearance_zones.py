@@ -219,7 +219,9 @@ def test_the_contact_that_sparse_points_cannot_resolve_is_left_out(noise, seed):
     mc, rows, _, truth = undercut_pair_from_points(80, noise, seed)
     s = mc.summary()
     off = np.isfinite(truth)
-    assert 0.0 < s["unresolved_share"] < 0.06
+    # of the contact line's length, with the flank within two spacings of a sharp corner (0.19 at 80 points
+    # a lobe; the undercut's crossing alone 0.085, of the contact line's points under 0.06)
+    assert 0.0 < s["unresolved_share"] < 0.25
     assert s["max_unresolved_clearance"] == pytest.approx(np.nanmax(mc.clearance[mc.zones == ClearanceZone.UNRESOLVED]))
     excluded = float(np.abs(mc.clearance[rows][off] - truth[off]).max())
     assert excluded > 10e-3
@@ -255,4 +257,31 @@ def test_cli_states_the_accuracy_and_the_zones(tmp_path, capsys):
     assert data["max_gap"] == pytest.approx(0.1, abs=0.01)
     lines = (tmp_path / "c.csv").read_text().splitlines()
     header = next(line for line in lines if line.startswith("x,y,clearance"))
-    assert header.endswith(",in_contact,zone,gap")
+    # the columns scripts read keep their order; flank (1 driving, 2 sealing, 3/4 lands) is added last
+    expected = "x,y,clearance,male_angle_deg,z,contact_x,contact_y,female_x,female_y,male_x,male_y,in_contact,zone,gap"
+    assert header == expected + ",flank"
+    rows = np.loadtxt([line for line in lines if line[:1].isdigit() or line[:1] == "-"], delimiter=",")
+    assert set(np.unique(rows[:, 14])) <= {1.0, 2.0, 3.0, 4.0} and {1.0, 2.0} <= set(np.unique(rows[:, 14]))
+    for name in ("driving", "sealing"):  # the conjugate pair: every flank zero within the stated accuracy
+        assert abs(data[f"{name}_max_normal_clearance"]) <= data["accuracy"]
+        assert abs(data[f"{name}_min_normal_clearance"]) <= data["accuracy"]
+
+
+def test_a_designed_flank_offset_reads_back_on_its_own_flank():
+    # issue 22 (newuser4 N11): a clearance designed on one flank is read back per flank. The 4/6
+    # female's trailing rack flank is cut 20 um deeper (its construction, independent_pairs.TrapezoidRack
+    # flank_offset), the other flank not at all: one of driving/sealing reads 20 um at most, the other
+    # 0, and each flank's largest and smallest value is the brute-force closest approach's (1500 mesh
+    # positions) over that flank's rows (picked every 40th and each zone's largest, exact() above)
+    mc, pick, ref, _ = exact("sharp")
+    s = mc.summary()
+    on = mc.zones[pick] == ClearanceZone.CONTACT
+    highs = sorted([s["driving_max_normal_clearance"], s["sealing_max_normal_clearance"]])
+    assert highs[0] == pytest.approx(0.0, abs=1.5e-3)
+    assert highs[1] == pytest.approx(OFFSET, abs=1.5e-3)
+    for code, name in ((1, "driving"), (2, "sealing")):
+        rows = on & (mc.flanks[pick] == code)
+        assert rows.sum() > 5
+        assert s[f"{name}_max_normal_clearance"] >= ref[rows].max() - 1.5e-3
+        assert s[f"{name}_min_normal_clearance"] == pytest.approx(max(ref[rows].min(), 0.0), abs=1.5e-3)
+        assert s[f"{name}_min_normal_clearance"] <= s[f"{name}_mean_clearance"] <= s[f"{name}_max_normal_clearance"]

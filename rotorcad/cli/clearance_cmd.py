@@ -82,7 +82,7 @@ A conjugate pair given by exact points measures 0 within 1 µm (README), so less
     "csv_path",
     type=click.Path(path_type=Path, dir_okay=False),
     help="Write the clearance distribution: datum (female) normal rack x, y, clearance [mm], male angle [deg], z, "
-    "contact point, female and male profile points [mm], in_contact.",
+    "contact point, female and male profile points [mm], in_contact, zone, gap [mm], flank (1 driving, 2 sealing, 3/4 lands).",
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def clearance(**opts: Any) -> None:
@@ -125,8 +125,8 @@ def clearance(**opts: Any) -> None:
             "meshing clearance (Wu & Chi) per female normal rack point (datum): x, y [mm], clearance along its normal [mm],",
             "male angle [deg, rotation to go until the nearest male tip's middle reaches O1O2, within +-180/z1] and z [mm] of",
             "the contact (0: first inside both bores), contact point (fixed frame), female and male profile points there [mm,",
-            "own frames], in_contact 1 inside both bores and length, zone 1 contact zone, 2 never touches (root below a sharp",
-            "tip), 3 a sharp female corner's path, 4 a contact the points cannot resolve (not judged), 0 outside; gap [mm] 2, 3",
+            "own frames], in_contact 1 in both bores and length; zone 1 contact, 2 never touches (root below a sharp tip),",
+            "3 a sharp female corner's path, 4 not resolved, 0 outside; gap [mm] of 2, 3; flank 1 driving, 2 sealing, 3/4 lands",
         ]
         out.add(opts["csv_path"], lambda p: write_points(p, rows[ok], notes, header=",".join(dist)), "--csv")
     result["files"] = [str(p) for p in out.write()]
