@@ -25,6 +25,7 @@ from rotorcad.errors import DesignError
 from rotorcad.gas_load import PressureCycle, line_loads, pressure_cycle
 from rotorcad.roles import Side
 from rotorcad.rotor_beam import (
+    FIT_CENTER_DISTANCE,
     KAPPA_ROUND,
     Beam,
     ShaftSegment,
@@ -100,6 +101,7 @@ def rotor_beam(
     length: float,
     young: float = STEEL[0],
     poisson: float = STEEL[1],
+    center_distance: float = FIT_CENTER_DISTANCE,
 ) -> RotorBeam:
     """Make the equivalent beam of a rotor from its transverse outline (Rinder & Deix eqs. 1-4).
 
@@ -117,6 +119,9 @@ def rotor_beam(
         Young's modulus E.
     poisson : float
         Poisson's ratio mu.
+    center_distance : float, mm
+        Centre distance a of the rotor's pair: eq. (2)'s fit is read at the same-shaped pair's
+        size a = 82 mm (``rotor_beam`` module docstring), so the beam scales with the rotor.
 
     Returns
     -------
@@ -137,7 +142,7 @@ def rotor_beam(
     j = values.j
     kappa = shear_correction_over_turn(outline, np.linspace(0.0, np.pi, 19))
     j_core = circle_values(2 * root_radius)[1]
-    j_red = reduced_second_moment(j, j_core, 2 * root_radius, 2 * tip_radius, wrap_deg / length)
+    j_red = reduced_second_moment(j, j_core, 2 * root_radius, 2 * tip_radius, wrap_deg, length, center_distance)
     d = equivalent_diameter(values.area, j_red, length, poisson, KAPPA_ROUND)
     return RotorBeam(
         area=values.area,
@@ -345,10 +350,12 @@ class GasDeflection:
         )
         wrap1 = np.degrees(self.table.wrap)
         wrap2 = wrap1 * pair.male_teeth / pair.female_teeth
-        fine1 = rotors.male_outline(1e-3).points
-        fine2 = rotors.female_outline(1e-3).points
-        self.male = rotor_beam(fine1, pair.male_root_radius, pair.male_tip_radius, wrap1, pair.length, young, poisson)
-        self.female = rotor_beam(fine2, pair.female_root_radius, pair.female_tip_radius, wrap2, pair.length, young, poisson)
+        size = pair.center_distance / FIT_CENTER_DISTANCE  # the outline's chord tolerance in proportion to the pair
+        fine1 = rotors.male_outline(1e-3 * size).points
+        fine2 = rotors.female_outline(1e-3 * size).points
+        a = pair.center_distance
+        self.male = rotor_beam(fine1, pair.male_root_radius, pair.male_tip_radius, wrap1, pair.length, young, poisson, a)
+        self.female = rotor_beam(fine2, pair.female_root_radius, pair.female_tip_radius, wrap2, pair.length, young, poisson, a)
         self.z = (np.arange(cells) + 0.5) * pair.length / cells
         self._young, self._poisson = young, poisson
         self._shafts = {
