@@ -16,6 +16,7 @@ the rotors' frame (male at the origin, female at (a, 0)).
 from __future__ import annotations
 
 import copy
+import dataclasses
 from dataclasses import dataclass, field
 from enum import Enum
 
@@ -267,6 +268,51 @@ class DeflectionLines:
         return float(mag[i]), float(z[i]), float(np.degrees(np.arctan2(w[i, 1], w[i, 0])) % 360.0)
 
 
+def _similar_chamber_table(rotors, pair, step_deg: float) -> ChamberTable:
+    """Return the chamber table of the pair, cut at the size a = 82 mm and scaled back (size-similar).
+
+    ``rotorcad.working_chamber`` cuts the gas space with tolerances in mm (``GAP``, ``SEAL``, the
+    sections' 0.01 mm chords); cut at one size, the table of a pair k times as large is the same
+    with areas times k^2 and forces per unit length and pressure times k, so its deflections scale as
+    k exactly (tests/test_deflect_scaling.py). At a = 82 mm (the samples' size) nothing is rescaled.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair's rotors (their sections in their own frames).
+    pair : Pair
+        Its dimensions, mm.
+    step_deg : float, deg
+        Phase step of the table.
+
+    Returns
+    -------
+    ChamberTable
+        In the pair's own size, mm.
+    """
+    import shapely.affinity
+
+    size = pair.center_distance / FIT_CENTER_DISTANCE
+    male = rotors.section(Side.MALE, 0.01 * size)
+    female = rotors.section(Side.FEMALE, 0.01 * size)
+    if size != 1.0:
+        male, female = (shapely.affinity.scale(s, 1 / size, 1 / size, origin=(0.0, 0.0)) for s in (male, female))
+    a, lead, length = pair.center_distance / size, pair.lead / size, pair.length / size
+    table = chamber_table(male, female, pair.male_teeth, pair.female_teeth, a, lead, length, step_deg)
+    if size == 1.0:
+        return table
+    return dataclasses.replace(
+        table,
+        area=table.area * size**2,
+        male_force=table.male_force * size,
+        female_force=table.female_force * size,
+        male_flute_area=table.male_flute_area * size**2,
+        female_flute_area=table.female_flute_area * size**2,
+        lead=pair.lead,
+        length=pair.length,
+    )
+
+
 class GasDeflection:
     """Deflection of a rotor pair under the pressure of its working chambers (Rinder & Deix).
 
@@ -338,11 +384,7 @@ class GasDeflection:
             )
         self.pair = pair
         self.terms = int(terms)
-        male = rotors.section(Side.MALE, 0.01)
-        female = rotors.section(Side.FEMALE, 0.01)
-        self.table: ChamberTable = chamber_table(
-            male, female, pair.male_teeth, pair.female_teeth, pair.center_distance, pair.lead, pair.length, step_deg
-        )
+        self.table: ChamberTable = _similar_chamber_table(rotors, pair, step_deg)
         self.load = LoadModel.CHAMBER
         self.chamber_table = self.table
         self.cycle: PressureCycle = pressure_cycle(
@@ -540,8 +582,8 @@ class GasDeflection:
             out[i] = [lines.largest(Side.MALE, shaft)[0], lines.largest(Side.FEMALE, shaft)[0]]
         return out
 
-    def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False) -> float:
-        """Find the male angle of the largest deflection of either rotor.
+    def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False, side: Side | None = None) -> float:
+        """Find the male angle of the largest deflection of either rotor (or of ``side``).
 
         The best of a sweep, refined by a bounded scalar search between its neighbours.
 
@@ -553,6 +595,8 @@ class GasDeflection:
             The larger of the two rotors' deflections at each angle.
         shaft : bool
             True: along the whole shafts on their bearings.
+        side : Side, optional
+            The rotor whose deflection is maximised (then ``largest`` is its own); default: either.
 
         Returns
         -------
@@ -566,7 +610,7 @@ class GasDeflection:
 
         def minus(a: float) -> float:
             lines = self.at(a, points=101)
-            return -max(lines.largest(Side.MALE, shaft)[0], lines.largest(Side.FEMALE, shaft)[0])
+            return -max(lines.largest(rotor, shaft)[0] for rotor in ((side,) if side else (Side.MALE, Side.FEMALE)))
 
         best = minimize_scalar(minus, bounds=(angles[i] - step, angles[i] + step), method="bounded", options={"xatol": 1e-4})
         return float(best.x) if -best.fun >= largest[i] else float(angles[i])
