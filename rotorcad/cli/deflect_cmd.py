@@ -20,7 +20,6 @@ from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.deflection import AIR_EXPONENT, STEEL, GasDeflection, LoadModel, Shaft
 from rotorcad.errors import DesignError
 from rotorcad.plot_style import styled
-from rotorcad.roles import Side
 
 SWEEP_ANGLES = 100  # male angles over one male pitch
 # Rinder & Deix sec. 3.5 (text under Figs. 9 and 10): the largest deflections of their 5/6 pair at 12 bar,
@@ -313,6 +312,8 @@ def _own_worst_angle(model: GasDeflection, solved: _Solved, given: _Given, sweep
     swept = solved.swept[:, column]
     if given.angle is None and swept.max() >= solved.swept.max():  # this rotor's maximum is angle_deg's
         return float(np.degrees(solved.at))
+    from rotorcad.roles import Side
+
     side = (Side.MALE, Side.FEMALE)[column]
     return float(np.degrees(model.refine_worst(sweep_angles, swept, shaft=given.shafts, side=side)))
 
