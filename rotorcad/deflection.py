@@ -16,6 +16,7 @@ the rotors' frame (male at the origin, female at (a, 0)).
 from __future__ import annotations
 
 import copy
+import dataclasses
 from dataclasses import dataclass, field
 from enum import Enum
 
@@ -25,6 +26,7 @@ from rotorcad.errors import DesignError
 from rotorcad.gas_load import PressureCycle, line_loads, pressure_cycle
 from rotorcad.roles import Side
 from rotorcad.rotor_beam import (
+    FIT_CENTER_DISTANCE,
     KAPPA_ROUND,
     Beam,
     ShaftSegment,
@@ -100,6 +102,7 @@ def rotor_beam(
     length: float,
     young: float = STEEL[0],
     poisson: float = STEEL[1],
+    center_distance: float = FIT_CENTER_DISTANCE,
 ) -> RotorBeam:
     """Make the equivalent beam of a rotor from its transverse outline (Rinder & Deix eqs. 1-4).
 
@@ -117,6 +120,9 @@ def rotor_beam(
         Young's modulus E.
     poisson : float
         Poisson's ratio mu.
+    center_distance : float, mm
+        Centre distance a of the rotor's pair: eq. (2)'s fit is read at the same-shaped pair's
+        size a = 82 mm (``rotor_beam`` module docstring), so the beam scales with the rotor.
 
     Returns
     -------
@@ -137,7 +143,7 @@ def rotor_beam(
     j = values.j
     kappa = shear_correction_over_turn(outline, np.linspace(0.0, np.pi, 19))
     j_core = circle_values(2 * root_radius)[1]
-    j_red = reduced_second_moment(j, j_core, 2 * root_radius, 2 * tip_radius, wrap_deg / length)
+    j_red = reduced_second_moment(j, j_core, 2 * root_radius, 2 * tip_radius, wrap_deg, length, center_distance)
     d = equivalent_diameter(values.area, j_red, length, poisson, KAPPA_ROUND)
     return RotorBeam(
         area=values.area,
@@ -262,6 +268,51 @@ class DeflectionLines:
         return float(mag[i]), float(z[i]), float(np.degrees(np.arctan2(w[i, 1], w[i, 0])) % 360.0)
 
 
+def _similar_chamber_table(rotors, pair, step_deg: float) -> ChamberTable:
+    """Return the chamber table of the pair, cut at the size a = 82 mm and scaled back (size-similar).
+
+    ``rotorcad.working_chamber`` cuts the gas space with tolerances in mm (``GAP``, ``SEAL``, the
+    sections' 0.01 mm chords); cut at one size, the table of a pair k times as large is the same
+    with areas times k^2 and forces per unit length and pressure times k, so its deflections scale as
+    k exactly (tests/test_deflect_scaling.py). At a = 82 mm (the samples' size) nothing is rescaled.
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair's rotors (their sections in their own frames).
+    pair : Pair
+        Its dimensions, mm.
+    step_deg : float, deg
+        Phase step of the table.
+
+    Returns
+    -------
+    ChamberTable
+        In the pair's own size, mm.
+    """
+    import shapely.affinity
+
+    size = pair.center_distance / FIT_CENTER_DISTANCE
+    male = rotors.section(Side.MALE, 0.01 * size)
+    female = rotors.section(Side.FEMALE, 0.01 * size)
+    if size != 1.0:
+        male, female = (shapely.affinity.scale(s, 1 / size, 1 / size, origin=(0.0, 0.0)) for s in (male, female))
+    a, lead, length = pair.center_distance / size, pair.lead / size, pair.length / size
+    table = chamber_table(male, female, pair.male_teeth, pair.female_teeth, a, lead, length, step_deg)
+    if size == 1.0:
+        return table
+    return dataclasses.replace(
+        table,
+        area=table.area * size**2,
+        male_force=table.male_force * size,
+        female_force=table.female_force * size,
+        male_flute_area=table.male_flute_area * size**2,
+        female_flute_area=table.female_flute_area * size**2,
+        lead=pair.lead,
+        length=pair.length,
+    )
+
+
 class GasDeflection:
     """Deflection of a rotor pair under the pressure of its working chambers (Rinder & Deix).
 
@@ -333,11 +384,7 @@ class GasDeflection:
             )
         self.pair = pair
         self.terms = int(terms)
-        male = rotors.section(Side.MALE, 0.01)
-        female = rotors.section(Side.FEMALE, 0.01)
-        self.table: ChamberTable = chamber_table(
-            male, female, pair.male_teeth, pair.female_teeth, pair.center_distance, pair.lead, pair.length, step_deg
-        )
+        self.table: ChamberTable = _similar_chamber_table(rotors, pair, step_deg)
         self.load = LoadModel.CHAMBER
         self.chamber_table = self.table
         self.cycle: PressureCycle = pressure_cycle(
@@ -345,10 +392,12 @@ class GasDeflection:
         )
         wrap1 = np.degrees(self.table.wrap)
         wrap2 = wrap1 * pair.male_teeth / pair.female_teeth
-        fine1 = rotors.male_outline(1e-3).points
-        fine2 = rotors.female_outline(1e-3).points
-        self.male = rotor_beam(fine1, pair.male_root_radius, pair.male_tip_radius, wrap1, pair.length, young, poisson)
-        self.female = rotor_beam(fine2, pair.female_root_radius, pair.female_tip_radius, wrap2, pair.length, young, poisson)
+        size = pair.center_distance / FIT_CENTER_DISTANCE  # the outline's chord tolerance in proportion to the pair
+        fine1 = rotors.male_outline(1e-3 * size).points
+        fine2 = rotors.female_outline(1e-3 * size).points
+        a = pair.center_distance
+        self.male = rotor_beam(fine1, pair.male_root_radius, pair.male_tip_radius, wrap1, pair.length, young, poisson, a)
+        self.female = rotor_beam(fine2, pair.female_root_radius, pair.female_tip_radius, wrap2, pair.length, young, poisson, a)
         self.z = (np.arange(cells) + 0.5) * pair.length / cells
         self._young, self._poisson = young, poisson
         self._shafts = {
@@ -533,8 +582,8 @@ class GasDeflection:
             out[i] = [lines.largest(Side.MALE, shaft)[0], lines.largest(Side.FEMALE, shaft)[0]]
         return out
 
-    def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False) -> float:
-        """Find the male angle of the largest deflection of either rotor.
+    def refine_worst(self, angles: np.ndarray, largest: np.ndarray, shaft: bool = False, side: Side | None = None) -> float:
+        """Find the male angle of the largest deflection of either rotor (or of ``side``).
 
         The best of a sweep, refined by a bounded scalar search between its neighbours.
 
@@ -546,6 +595,8 @@ class GasDeflection:
             The larger of the two rotors' deflections at each angle.
         shaft : bool
             True: along the whole shafts on their bearings.
+        side : Side, optional
+            The rotor whose deflection is maximised (then ``largest`` is its own); default: either.
 
         Returns
         -------
@@ -559,7 +610,7 @@ class GasDeflection:
 
         def minus(a: float) -> float:
             lines = self.at(a, points=101)
-            return -max(lines.largest(Side.MALE, shaft)[0], lines.largest(Side.FEMALE, shaft)[0])
+            return -max(lines.largest(rotor, shaft)[0] for rotor in ((side,) if side else (Side.MALE, Side.FEMALE)))
 
         best = minimize_scalar(minus, bounds=(angles[i] - step, angles[i] + step), method="bounded", options={"xatol": 1e-4})
         return float(best.x) if -best.fun >= largest[i] else float(angles[i])

@@ -6,10 +6,24 @@ Equation fixes (the OCR'd paper has misprints; each choice is checked by a limit
   X = 0.5272 (d_F/d_K)^1.3161 (phi_L / l)^1.684. The printed "+" before J_F in the denominator
   would make J_red tend to J_ges J_F / (J_ges + 2 J_F) for large wraps, not to J_F as the text
   says; with "-" J_red runs from J_ges (X = 0, no twist) to J_F (X -> inf).
-- phi_L / l in degrees per millimetre (l is given in mm in the paper's legend). For a usual
-  rotor (wrap 200-300 deg, l 100-300 mm, d_F/d_K ~ 0.6) this puts X near 1, in the middle of the
-  arctan, where the paper's Fig. 2 and 4 show the wrap to matter; in rad/mm J_red would stay within
-  0.1 % of J_ges for every practical rotor, in deg/m or rad/m it would be J_F for all of them.
+- phi_L / l: the fit is stated in degrees per millimetre (l in mm in the paper's legend) for rotors
+  of one size, so read literally it depends on absolute size (a pair twice as large, same shape,
+  would get another J_red / J_ges, and a design typed in inches another answer). The physics of
+  the paper's spring-and-bar model (sec. 2.2: the teeth are helical springs wound on the core)
+  depends on the wrap per length times a length of the section, e.g. the tip helix
+  tan beta_K = (phi_L / l) d_K / 2 in rad: dimensionless. So the rotor's phi_L / l is converted to
+  that of the pair of the same shape at the fit's size, centre distance
+  ``FIT_CENTER_DISTANCE`` = 82 mm: (phi_L / l)_fit = (phi_L / l) a / 82 mm, in deg/mm, and put into
+  eq. (2). The paper prints neither its example pair's dimensions nor the sizes of the FE study's
+  rotors; 82 mm is the size of rotorcad's sample of the paper's 5/6 example
+  (samples/rinder_deix_5_6.toml), at which this reading gives the paper's 0.002 mm (female) to
+  4 % (README, "Rinder & Deix's example"); no other size fits both rotors (at 60 mm the female
+  gives 2.26 um, the male 0.47 um; the male's 0.5 um would need about 45 mm). With the
+  conversion every length of a pair scaled by k at the same pressures scales J_red by k^4, d_aeq
+  and the deflection by k, exactly (the beam
+  argument: q ~ p d, w ~ q l^4 / (E d^4)). In deg/mm X is near 1 for such a rotor, in the middle of
+  the arctan, where the paper's Fig. 2 and 4 show the wrap to matter; in rad/mm J_red would stay
+  within 0.1 % of J_ges for every practical rotor, in deg/m or rad/m it would be J_F for all of them.
 - eq. (3) is the round bar whose midspan deflection under a central force equals that of the
   rotor beam (J_red, G A_ges / kappa): with F l^3/(48 E J) + kappa F l / (4 G A) and
   G = E / (2 (1 + mu)) the quadratic in d^2 has exactly the printed u and v (derived in the test).
@@ -32,12 +46,19 @@ import numpy as np
 from rotorcad.errors import DesignError
 
 KAPPA_ROUND = 10.0 / 9.0  # shear correction of a full circle (eq. 1): the paper's 1.111
+FIT_CENTER_DISTANCE = 82.0  # mm: the pair size eq. (2)'s deg/mm fit is read at (module docstring)
 
 
 def reduced_second_moment(
-    j_total: float, j_core: float, root_diameter: float, tip_diameter: float, wrap_deg_per_mm: float
+    j_total: float,
+    j_core: float,
+    root_diameter: float,
+    tip_diameter: float,
+    wrap_deg: float,
+    length: float,
+    center_distance: float = FIT_CENTER_DISTANCE,
 ) -> float:
-    """J_red of the equivalent beam, eq. (2) with the sign fixed (module docstring).
+    """J_red of the equivalent beam, eq. (2) with the sign fixed and made size-similar (module docstring).
 
     Parameters
     ----------
@@ -47,11 +68,44 @@ def reduced_second_moment(
         J_F of the root (core) circle.
     root_diameter, tip_diameter : float, mm
         d_F, d_K.
-    wrap_deg_per_mm : float, deg/mm
-        phi_L / l.
+    wrap_deg : float, deg
+        phi_L, the wrap of the rotor over ``length``.
+    length : float, mm
+        l, the helical length.
+    center_distance : float, mm
+        a of the pair the rotor belongs to: phi_L / l is put into eq. (2) as
+        ``wrap_per_length_at_fit_size`` (that of the same-shaped pair at a = 82 mm).
+
+    Returns
+    -------
+    float, mm^4
+        J_red, from J_ges (no wrap) to J_F (large wrap per length).
     """
-    x = 0.5272 * (root_diameter / tip_diameter) ** 1.3161 * abs(wrap_deg_per_mm) ** 1.684
+    x = (
+        0.5272
+        * (root_diameter / tip_diameter) ** 1.3161
+        * wrap_per_length_at_fit_size(wrap_deg, length, center_distance) ** 1.684
+    )
     return float(np.pi * j_total * j_core / (np.pi * j_core + 2.0 * (j_total - j_core) * np.arctan(x)))
+
+
+def wrap_per_length_at_fit_size(wrap_deg: float, length: float, center_distance: float) -> float:
+    """Return the wrap per length phi_L / l that eq. (2)'s fit is read with, deg/mm (module docstring).
+
+    Parameters
+    ----------
+    wrap_deg : float, deg
+        phi_L.
+    length, center_distance : float, mm
+        l and the pair's centre distance a.
+
+    Returns
+    -------
+    float, deg/mm
+        |phi_L| / l * a / ``FIT_CENTER_DISTANCE``: the phi_L / l of the same-shaped pair at the fit's
+        size; a function of the shape alone (phi_L and l / a).
+    """
+    return abs(wrap_deg) / length * center_distance / FIT_CENTER_DISTANCE
 
 
 def equivalent_diameter(area: float, j_red: float, length: float, poisson: float, kappa: float = KAPPA_ROUND) -> float:

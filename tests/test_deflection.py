@@ -109,9 +109,9 @@ def test_rotor_sections_are_isotropic_and_kappa_stays_near_a_circles():
 def test_reduced_second_moment_runs_from_whole_section_to_core():
     # eq. (2) with "-" (the misprint fixed): no twist -> J_ges, large wrap per length -> J_F
     j_ges, j_f = 8.0e6, 3.2e6
-    assert reduced_second_moment(j_ges, j_f, 90.0, 126.0, 0.0) == pytest.approx(j_ges, rel=1e-12)
-    assert reduced_second_moment(j_ges, j_f, 90.0, 126.0, 1e6) == pytest.approx(j_f, rel=1e-6)
-    values = [reduced_second_moment(j_ges, j_f, 90.0, 126.0, w) for w in np.linspace(0.0, 5.0, 21)]
+    assert reduced_second_moment(j_ges, j_f, 90.0, 126.0, 0.0, 190.0) == pytest.approx(j_ges, rel=1e-12)
+    assert reduced_second_moment(j_ges, j_f, 90.0, 126.0, 1e6, 1.0) == pytest.approx(j_f, rel=1e-6)
+    values = [reduced_second_moment(j_ges, j_f, 90.0, 126.0, w, 190.0) for w in np.linspace(0.0, 950.0, 21)]
     assert np.all(np.diff(values) < 0)  # the paper: the more wrap per length, the softer
 
 

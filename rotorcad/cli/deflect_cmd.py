@@ -52,7 +52,14 @@ def _shaft(value: Any, key: str) -> tuple[tuple[float, float], ...]:
 @click.command()
 @click.argument("design", type=click.Path(path_type=Path, dir_okay=False))
 @click.option("--angle", type=float, help="Male angle [deg] to evaluate. Default: the worst over one male pitch (swept).")
-@click.option("--terms", type=int, help="Sine terms of the Ritz-Galerkin series (1..400). Default: the design's, else 40.")
+@click.option(
+    "--terms",
+    type=int,
+    help=(
+        "Sine terms of the Ritz-Galerkin series of the helical part (1..400; the rotor on its bearings "
+        "with journals is integrated along its length instead). Default: the design's, else 40."
+    ),
+)
 @click.option(
     "--indicator",
     type=click.Path(path_type=Path, dir_okay=False),
@@ -309,6 +316,17 @@ def _solve(model: GasDeflection, sweep_angles: np.ndarray, given: _Given, quiet:
     return _Solved(at, swept, lines, two, other, other_at, other_swept, other_lines)
 
 
+def _own_worst_angle(model: GasDeflection, solved: _Solved, given: _Given, sweep_angles: np.ndarray, column: int) -> float:
+    """Return one rotor's worst male angle [deg] over the sweep, refined as ``angle_deg`` is (whatever --angle)."""
+    swept = solved.swept[:, column]
+    if given.angle is None and swept.max() >= solved.swept.max():  # this rotor's maximum is angle_deg's
+        return float(np.degrees(solved.at))
+    from rotorcad.roles import Side
+
+    side = (Side.MALE, Side.FEMALE)[column]
+    return float(np.degrees(model.refine_worst(sweep_angles, swept, shaft=given.shafts, side=side)))
+
+
 def _result(model: GasDeflection, solved: _Solved, given: _Given, male_teeth: int, sweep_angles: np.ndarray) -> dict[str, Any]:
     """Return the result keys (CONTRACT.md, ``deflect``; units declared in :mod:`rotorcad.quantities`)."""
     lines, at = solved.lines, solved.at
@@ -328,7 +346,7 @@ def _result(model: GasDeflection, solved: _Solved, given: _Given, male_teeth: in
         result[f"{rotor}_second_moment_core"] = beam.j_core
         result[f"{rotor}_second_moment_reduced"] = beam.j_reduced
         result[f"{rotor}_kappa_min"], result[f"{rotor}_kappa_max"] = beam.kappa_range
-        result[f"{rotor}_worst_angle_deg"] = float(np.degrees(sweep_angles[int(np.argmax(solved.swept[:, column]))]))
+        result[f"{rotor}_worst_angle_deg"] = _own_worst_angle(model, solved, given, sweep_angles, column)
     result["angle_deg"] = float(np.degrees(at))
     cycle = model.cycle
     if np.isfinite(cycle.opening):
