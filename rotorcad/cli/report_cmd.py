@@ -222,9 +222,11 @@ def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
         settings = load_rotor_design(design, data)
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
-    rotors, speed, clearance = rotor_cmd._build(design, dict(ROTOR_OPTIONS), settings)
+    section: dict[str, Any] = {}  # the keys of the section read that `rotor` reports (seen_from)
+    rotors, speed, clearance = rotor_cmd._build(design, dict(ROTOR_OPTIONS), settings, section)
     try:
         analysis, result = analyse_pair(rotors, speed)
+        result.update(section)
         racks = {"male": rotor_rack(rotors, "male"), "female": rotor_rack(rotors, "female")}
         deviation = rack_deviation(rotors)
     except DesignError as exc:
