@@ -265,6 +265,12 @@ def test_cli_states_the_accuracy_and_the_zones(tmp_path, capsys):
     for name in ("driving", "sealing"):  # the conjugate pair: every flank zero within the stated accuracy
         assert abs(data[f"{name}_max_normal_clearance"]) <= data["accuracy"]
         assert abs(data[f"{name}_min_normal_clearance"]) <= data["accuracy"]
+    # no --lead / --length: the values taken are said (a new user's finding: they changed the N rack's
+    # largest clearance by 8 um, silently); given as those values, the same numbers and nothing taken
+    assert set(data["defaults"]) == {"--lead", "--length"} and data["defaults"]["--lead"].startswith("300 mm (default")
+    assert main([*args[:-2], "--lead", "300", "--length", "190"]) == 0
+    given = json.loads(capsys.readouterr().out)
+    assert given["defaults"] == {} and given["max_normal_clearance"] == data["max_normal_clearance"]
 
 
 def test_a_designed_flank_offset_reads_back_on_its_own_flank():

@@ -27,6 +27,7 @@ from rotorcad.work import clearance_seconds, long_run_note
 INTERFERENCE_THRESHOLD = 2e-3
 """mm: a clearance below minus this (or minus the stated accuracy, the larger) is an interference.
 A conjugate pair given by exact points measures 0 within 1 µm (README), so less is no finding."""
+DEFAULT_LEAD, DEFAULT_LENGTH = 300.0, 190.0  # mm: taken when --lead / --length are not given, and said so (result's defaults)
 
 
 @click.command()
@@ -40,8 +41,12 @@ A conjugate pair given by exact points measures 0 within 1 µm (README), so less
 @click.option("--male-teeth", type=int, help="Male lobes z1 (2..12). Required.")
 @click.option("--female-teeth", type=int, help="Female lobes z2 (2..12). Required.")
 @click.option("--center-distance", type=float, help="Centre distance a [mm] at which the pair runs. Required.")
-@click.option("--lead", type=float, default=300.0, show_default=True, help="Male lead h1 [mm].")
-@click.option("--length", type=float, default=190.0, show_default=True, help="Rotor length L [mm].")
+@click.option(
+    "--lead",
+    type=float,
+    help=f"Male lead h1 [mm]: the normal section and the contact line follow from it. Default {DEFAULT_LEAD:g} (said so).",
+)
+@click.option("--length", type=float, help=f"Rotor length L [mm] (the contact line's). Default {DEFAULT_LENGTH:g} (said so).")
 @click.option(
     "--contact",
     type=click.Choice(CONTACT_SIDES),
@@ -91,8 +96,15 @@ def clearance(**opts: Any) -> None:
     The normal racks of both rotors, brought into contact, the normal clearance along the female's
     rack, and the clearance band on the 3D contact line (area, equal clearance, wetted perimeter).
     """
+    from rotorcad.cli.defaults import print_defaults, taken
     from rotorcad.cli.progress import Steps
 
+    defaults = {
+        f"--{key}": taken(f"{value:g} mm", "not given: give the rotors' own, the normal clearance and the band change with it")
+        for key, value in (("lead", DEFAULT_LEAD), ("length", DEFAULT_LENGTH))
+        if opts[key] is None
+    }
+    opts = {**opts, **{key: value for key, value in (("lead", DEFAULT_LEAD), ("length", DEFAULT_LENGTH)) if opts[key] is None}}
     with Steps("clearance: racks, contact and band", None, opts["quiet"]):  # seconds of work: a bar on a terminal
         mc = _evaluate(opts)
     try:
@@ -102,6 +114,7 @@ def clearance(**opts: Any) -> None:
             "female_teeth": mc.pair.female_teeth,
             "center_distance": mc.pair.center_distance,  # hot, with temperatures
             "seen_from": str(end_face(opts.get("seen_from"))),
+            "defaults": defaults,
         }
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
@@ -134,6 +147,7 @@ def clearance(**opts: Any) -> None:
         emit_json(result)
     else:
         print_table(f"meshing clearance {result['male_teeth']}/{result['female_teeth']}", result)
+        print_defaults(defaults)
         for p in result["files"]:
             click.echo(f"wrote {p}")
 
