@@ -1,7 +1,8 @@
 """Rotors and housing at working temperature: the hot pair and profiles the meshing clearance compares.
 
-After the Chinese paper in Wu & Chi's seed (sec. 1.2): a body grows by dL = L zeta (t_c - t0) (its
-eq. 1). Used by :class:`rotorcad.clearance.MeshingClearance` through ``rotorcad clearance``.
+After Miao Huijun et al., *Calculation method of mesh clearance of screw steam compressor under
+extreme condition*, sec. 1.2: a body grows by dL = L zeta (t_c - t0) (eq. 1). Used by
+:class:`rotorcad.clearance.MeshingClearance` through ``rotorcad clearance``.
 """
 
 from __future__ import annotations
@@ -15,12 +16,19 @@ from rotorcad.errors import DesignError
 from rotorcad.geometry import Array
 from rotorcad.rotor_pair import RotorPair
 
+REFERENCE_TEMPERATURE = 20.0
+"""degC: the temperature at which the points (the design's dimensions) hold, by default (ISO 1)."""
+STEEL_EXPANSION = 11.5e-6
+"""1/K: linear expansion coefficient of the rotors by default (steel)."""
+GREY_CAST_IRON_EXPANSION = 10.5e-6
+"""1/K: linear expansion coefficient of the housing by default (grey cast iron)."""
+
 
 @dataclass(frozen=True)
 class ThermalState:
     """Rotors and housing at working temperature.
 
-    After the Chinese paper in Wu & Chi's seed (sec. 1.2): a body grows by dL = L zeta (t_c - t0)
+    After Miao Huijun et al. (sec. 1.2): a body grows by dL = L zeta (t_c - t0)
     (its eq. 1); the rotor's computation temperature is the arithmetic mean of suction and discharge
     temperature, and the centre distance follows the housing.
 
@@ -45,9 +53,9 @@ class ThermalState:
 
     suction_temperature: float
     discharge_temperature: float
-    reference_temperature: float = 20.0
-    rotor_expansion: float = 11.5e-6  # steel
-    housing_expansion: float = 10.5e-6  # grey cast iron
+    reference_temperature: float = REFERENCE_TEMPERATURE
+    rotor_expansion: float = STEEL_EXPANSION
+    housing_expansion: float = GREY_CAST_IRON_EXPANSION
     housing_temperature: float | None = None  # default: the rotors' computation temperature
 
     def __post_init__(self) -> None:
@@ -71,10 +79,37 @@ class ThermalState:
         return 1.0 + self.rotor_expansion * (self.rotor_temperature - self.reference_temperature)
 
     @property
+    def housing_temperature_used(self) -> float:
+        """Housing temperature the centre distance follows, degC: the one given, else the rotors'."""
+        return self.rotor_temperature if self.housing_temperature is None else self.housing_temperature
+
+    @property
     def housing_scale(self) -> float:
         """Growth factor of the housing (and so of the centre distance), 1 + zeta_housing (t_housing - t_ref)."""
-        t = self.rotor_temperature if self.housing_temperature is None else self.housing_temperature
-        return 1.0 + self.housing_expansion * (t - self.reference_temperature)
+        return 1.0 + self.housing_expansion * (self.housing_temperature_used - self.reference_temperature)
+
+    def keys(self, center_distance_cold: float) -> dict[str, float]:
+        """Return the temperatures and coefficients of the hot pair, as ``rotorcad clearance`` reports them.
+
+        Parameters
+        ----------
+        center_distance_cold : float, mm
+            Centre distance of the pair at the reference temperature (the one given).
+
+        Returns
+        -------
+        dict of str to float
+            ``rotor_temperature``, ``housing_temperature``, ``reference_temperature`` (degC),
+            ``rotor_expansion``, ``housing_expansion`` (1/K) and ``center_distance_cold`` (mm).
+        """
+        return {
+            "rotor_temperature": self.rotor_temperature,
+            "housing_temperature": self.housing_temperature_used,
+            "reference_temperature": self.reference_temperature,
+            "rotor_expansion": self.rotor_expansion,
+            "housing_expansion": self.housing_expansion,
+            "center_distance_cold": center_distance_cold,
+        }
 
     def apply(self, pair: RotorPair, male: Array, female: Array) -> tuple[RotorPair, Array, Array]:
         """Return the hot pair and the hot profile points.
@@ -115,11 +150,4 @@ def _scaled(profile: Array | list[Curve], k: float) -> Array | list[Curve]:
     return np.asarray(profile) * k
 
 
-def _scaled(profile: Array | list[Curve], k: float) -> Array | list[Curve]:
-    """Grow points (n, 2) or exact curves by the factor ``k`` about the rotor's centre."""
-    if isinstance(profile, list | tuple):
-        return [Mapped(c, ((k, 0.0), (0.0, k))) for c in profile]
-    return np.asarray(profile) * k
-
-
-__all__ = ["ThermalState"]
+__all__ = ["GREY_CAST_IRON_EXPANSION", "REFERENCE_TEMPERATURE", "STEEL_EXPANSION", "ThermalState"]

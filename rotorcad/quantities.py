@@ -305,6 +305,17 @@ _declare(
         ("female_rack_shift", "mm", "female rack shift"),
     ],
 )
+_declare(  # the hot pair, with --suction/--discharge-temperature (rotorcad/clearance_thermal.py; Miao et al. sec. 1.2)
+    "rotorcad/clearance_thermal",
+    [
+        ("rotor_temperature", "degC", "rotor temperature (mean of suction and discharge)"),
+        ("housing_temperature", "degC", "housing temperature"),
+        ("reference_temperature", "degC", "temperature of the points"),
+        ("rotor_expansion", "1/K", "rotors' expansion coefficient"),
+        ("housing_expansion", "1/K", "housing's expansion coefficient"),
+        ("center_distance_cold", "mm", "centre distance at the reference temperature"),
+    ],
+)
 CLEARANCE_CSV_COLUMNS: dict[str, str] = {
     "x": "mm",
     "y": "mm",
@@ -610,7 +621,7 @@ def unit_of(key: str) -> str:
     return q.unit if q is not None else ""
 
 
-_SYMBOLS = {"deg": "°", "1": "–", "": "–"}
+_SYMBOLS = {"deg": "°", "degC": "°C", "1": "–", "": "–"}
 _ASCII = {
     "mm²": "mm2",
     "mm³": "mm3",

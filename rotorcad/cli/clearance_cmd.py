@@ -12,6 +12,7 @@ from exports.csv_points import write_points
 from exports.dxf_profile import read_profile
 from exports.reading import check_regular_file
 from rotorcad.clearance import CONTACT_SIDES, MeshingClearance, ThermalState, pair_quality
+from rotorcad.clearance_thermal import GREY_CAST_IRON_EXPANSION, REFERENCE_TEMPERATURE, STEEL_EXPANSION
 from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, print_table, seen_from_option
 from rotorcad.cli.progress import say_long_run
 from rotorcad.errors import DesignError
@@ -69,16 +70,19 @@ DEFAULT_LEAD, DEFAULT_LENGTH = 300.0, 190.0  # mm: taken when --lead / --length 
 )
 @click.option("--discharge-temperature", type=float, help="Discharge temperature [degC]; the rotors take the mean of the two.")
 @click.option("--housing-temperature", type=float, help="Housing temperature [degC]. Default: the rotors' temperature.")
-@click.option("--reference-temperature", type=float, default=20.0, show_default=True, help="Temperature of the points [degC].")
 @click.option(
-    "--rotor-expansion", type=float, default=11.5e-6, show_default=True, help="Rotors' linear expansion coefficient [1/K], steel."
+    "--reference-temperature",
+    type=float,
+    help=f"Temperature of the points [degC]. Default {REFERENCE_TEMPERATURE:g} (said so, with temperatures).",
+)
+@click.option(
+    "--rotor-expansion", type=float, help=f"Rotors' linear expansion coefficient [1/K]. Default {STEEL_EXPANSION:g} (steel)."
 )
 @click.option(
     "--housing-expansion",
     type=float,
-    default=10.5e-6,
-    show_default=True,
-    help="Housing's linear expansion coefficient [1/K] (grey cast iron): sets the hot centre distance.",
+    help=f"Housing's linear expansion coefficient [1/K]: sets the hot centre distance. Default {GREY_CAST_IRON_EXPANSION:g} "
+    "(grey cast iron).",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout.")
 @click.option("--plot", type=click.Path(path_type=Path, dir_okay=False), help="PNG of the clearance along the datum rack.")
@@ -107,14 +111,16 @@ def clearance(**opts: Any) -> None:
     opts = {**opts, **{key: value for key, value in (("lead", DEFAULT_LEAD), ("length", DEFAULT_LENGTH)) if opts[key] is None}}
     with Steps("clearance: racks, contact and band", None, opts["quiet"]):  # seconds of work: a bar on a terminal
         mc = _evaluate(opts)
+    thermal = _thermal(opts)
     try:
         result = {
             **mc.summary(),
             "male_teeth": mc.pair.male_teeth,
             "female_teeth": mc.pair.female_teeth,
-            "center_distance": mc.pair.center_distance,  # hot, with temperatures
+            "center_distance": mc.pair.center_distance,  # the one the pair runs at: hot, with temperatures
+            **({} if thermal is None else thermal.keys(opts["center_distance"])),
             "seen_from": str(end_face(opts.get("seen_from"))),
-            "defaults": defaults,
+            "defaults": {**defaults, **_thermal_defaults(opts, thermal)},
         }
     except DesignError as exc:
         raise InputError(exc.sentence()) from None
@@ -147,7 +153,7 @@ def clearance(**opts: Any) -> None:
         emit_json(result)
     else:
         print_table(f"meshing clearance {result['male_teeth']}/{result['female_teeth']}", result)
-        print_defaults(defaults)
+        print_defaults(result["defaults"])
         for p in result["files"]:
             click.echo(f"wrote {p}")
 
@@ -249,14 +255,29 @@ def _thermal(opts: dict[str, Any]) -> ThermalState | None:
         return None
     if not all(given):
         raise InputError("give both --suction-temperature and --discharge-temperature for the hot pair.")
+    given = {k: opts[k] for k in ("reference_temperature", "rotor_expansion", "housing_expansion") if opts.get(k) is not None}
     return ThermalState(
-        opts["suction_temperature"],
-        opts["discharge_temperature"],
-        opts["reference_temperature"],
-        opts["rotor_expansion"],
-        opts["housing_expansion"],
-        opts["housing_temperature"],
+        opts["suction_temperature"], opts["discharge_temperature"], housing_temperature=opts["housing_temperature"], **given
     )
+
+
+def _thermal_defaults(opts: dict[str, Any], thermal: ThermalState | None) -> dict[str, str]:
+    """Return the hot pair's inputs taken by default, "value (default: how it was chosen)" (none for a cold pair)."""
+    from rotorcad.cli.defaults import taken
+
+    if thermal is None:
+        return {}
+    how = {
+        "--housing-temperature": (
+            f"{thermal.housing_temperature_used:g} degC",
+            "the rotors' temperature, the mean of suction and discharge (Miao et al., sec. 1.2): "
+            "a cooler housing closes the clearance",
+        ),
+        "--reference-temperature": (f"{thermal.reference_temperature:g} degC", "the points' temperature, ISO 1's 20 degC"),
+        "--rotor-expansion": (f"{thermal.rotor_expansion:g} 1/K", "steel"),
+        "--housing-expansion": (f"{thermal.housing_expansion:g} 1/K", "grey cast iron"),
+    }
+    return {key: taken(*text) for key, text in how.items() if opts.get(key[2:].replace("-", "_")) is None}
 
 
 def _plot(mc: MeshingClearance, opts: dict[str, Any]):
@@ -266,4 +287,5 @@ def _plot(mc: MeshingClearance, opts: dict[str, Any]):
     """
     from rotorcad.clearance_plotting import clearance_state, plot_clearance
 
-    return plot_clearance(mc, clearance_state(mc, _thermal(opts), opts["reference_temperature"]))
+    given = opts.get("reference_temperature")
+    return plot_clearance(mc, clearance_state(mc, _thermal(opts), REFERENCE_TEMPERATURE if given is None else given))
