@@ -84,14 +84,16 @@ HELP = """Lubricant film of a gear coupling with barrel-shaped (crowned) hub tee
 calculation of Belkov, Maksimov & Shitikov (Reynolds equation with Barus viscosity and the elastic gap of a
 cylinder of the flank crown radius on a plane, minimum film where the film carries the tooth load). Steel
 teeth by default, E = 200 GPa and nu = 0.3 (the paper's values; --young-modulus, --poisson-ratio). Inputs that
-make no sense for a coupling (no rolling of the contact, a film thicker than a tenth of the module) exit 2 with
-the paper's message. The regime is one word by a stated rule (no_solution, edge_contact, boundary, mixed,
-starved, full_film: README); no_solution exits 1 with its reason. Both readings of eq. 7 are computed
+outside the model (no rolling of the contact: R_b <= r (1 + sin alpha); a film thicker than a tenth of the
+module) exit 2 naming the option and its range. hydrodynamic is true when the film separates the flanks
+(lambda = h_min / roughness >= 3, on the face); the regime is one word by a stated rule (no_solution,
+edge_contact, boundary, mixed, starved, full_film: README), starved (a short inlet, a rule of thumb) beside a
+hydrodynamic film; no_solution exits 1 with its reason. Both readings of eq. 7 are computed
 (--method rotorcad: eq. 7 is the mean entraining speed; paper: it is the sum of the surface speeds, u half of
 it). Every default taken is printed.
 
 \b
-Keys (JSON and table): hydrodynamic (bool), min_film_thickness [mm], load_capacity [N, one tooth],
+Keys (JSON and table): hydrodynamic (bool: lambda >= 3), min_film_thickness [mm], load_capacity [N, one tooth],
 max_pressure [MPa, in the film], hertz_stress [MPa, dry Hertz line contact], message; further:
 central_film_thickness [mm], ehl_film_thickness [mm, Dowson-Higginson], ehl_ratio [1, h_min / Dowson-Higginson],
 pressure_to_hertz_ratio [1], tooth_load [N, normal], load_per_length [N/mm], pitch_radius, barrel_radius (R0),
