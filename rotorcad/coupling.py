@@ -68,10 +68,11 @@ where the crowned flank's gap x^2 / (2 R_b) stays within ten central films, x = 
 ``starved`` (lambda >= 3: the film separates the flanks; a starved inlet is said beside it).
 
 Verdict (paper: "the coupling does not work: error in the input data, or edge contact" / "the
-hydrodynamic regime is ensured"): the regime is hydrodynamic when eq. 7 gives entrainment, the
+hydrodynamic regime is ensured"): the paper's verdict is hydrodynamic when eq. 7 gives entrainment, the
 contact strip stays on the face width (x_c + b_H <= b/2 with x_c = R_b tan(gamma) and b_H the Hertz
 half-width), the Reynolds-elastic problem has a film, and that film is thin (below a tenth of the
 module; a thicker one means a load too small for the thin-film model: "error in the input data").
+:attr:`CouplingResult.hydrodynamic` adds lambda >= 3 to it (the film separates the flanks).
 """
 
 from __future__ import annotations

@@ -83,7 +83,7 @@ MIN_DERIVED_MISALIGNMENT = 0.01  # deg: below it the derived crowning radius exc
 HELP = """Lubricant film of a gear coupling with barrel-shaped (crowned) hub teeth: the contact-hydrodynamic
 calculation of Belkov, Maksimov & Shitikov (Reynolds equation with Barus viscosity and the elastic gap of a
 cylinder of the flank crown radius on a plane, minimum film where the film carries the tooth load). Steel
-teeth by default, E = 200 GPa and nu = 0.3 (the paper's values; --young-modulus, --poisson-ratio). Inputs that
+teeth by default, E = 200 GPa and nu = 0.3 (the paper's values; --young-modulus, --poisson-ratio). Inputs
 outside the model (no rolling of the contact: R_b <= r (1 + sin alpha); a film thicker than a tenth of the
 module) exit 2 naming the option and its range. hydrodynamic is true when the film separates the flanks
 (lambda = h_min / roughness >= 3, on the face); the regime is one word by a stated rule (no_solution,
