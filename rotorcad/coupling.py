@@ -61,13 +61,18 @@ strip 2 b_H is wider than the contact line l is long: side leakage the model lac
 parameter lambda = h_min / sigma (sigma the composite roughness of the two flanks, an input) is below
 1 / below 3 (the usual limits, e.g. Hamrock, *Fundamentals of Fluid Film Lubrication*, ch. 1);
 ``starved`` when the inlet zone the film needs is longer than the face leaves beyond the
-contact's farthest position (the film is then thinner than computed); else ``full_film``.
+contact's farthest position (the film may then be thinner than the fully flooded one computed);
+else ``full_film``. The inlet zone is rotorcad's rule of thumb, not a published starvation model:
+where the crowned flank's gap x^2 / (2 R_b) stays within ten central films, x = sqrt(20 R_b h_c)
+(the starved film itself is not computed). ``hydrodynamic`` is true for ``full_film`` and
+``starved`` (lambda >= 3: the film separates the flanks; a starved inlet is said beside it).
 
 Verdict (paper: "the coupling does not work: error in the input data, or edge contact" / "the
-hydrodynamic regime is ensured"): the regime is hydrodynamic when eq. 7 gives entrainment, the
+hydrodynamic regime is ensured"): the paper's verdict is hydrodynamic when eq. 7 gives entrainment, the
 contact strip stays on the face width (x_c + b_H <= b/2 with x_c = R_b tan(gamma) and b_H the Hertz
 half-width), the Reynolds-elastic problem has a film, and that film is thin (below a tenth of the
 module; a thicker one means a load too small for the thin-film model: "error in the input data").
+:attr:`CouplingResult.hydrodynamic` adds lambda >= 3 to it (the film separates the flanks).
 """
 
 from __future__ import annotations
@@ -451,8 +456,14 @@ class CouplingResult:
 
     @property
     def hydrodynamic(self) -> bool:
-        """True when the verdict is the hydrodynamic regime and the regime a full film (not starved, mixed, ...)."""
-        return self.verdict is Verdict.HYDRODYNAMIC and self.regime is Regime.FULL_FILM
+        """True when the oil film separates the flanks: a film on the face with lambda = h_min / sigma >= 3.
+
+        The regime is then ``full_film`` or ``starved``: a short inlet (``starved``, :attr:`inlet_off_face`)
+        is reported beside the verdict, not against it (the paper's "hydrodynamic regime is ensured" is
+        the film separating the surfaces; its program, like this one, takes the oil as supplied far
+        upstream). False for ``mixed``, ``boundary``, ``edge_contact`` and ``no_solution``.
+        """
+        return self.verdict is Verdict.HYDRODYNAMIC and self.regime in (Regime.FULL_FILM, Regime.STARVED)
 
     @property
     def edge_contact(self) -> bool:
@@ -582,8 +593,10 @@ class CouplingResult:
             return Regime.MIXED, f"{film} (< {MIXED_LAMBDA:g}: the asperities carry part of the load)"
         if self.inlet_off_face:
             return Regime.STARVED, (
-                f"the inlet zone needs {self.inlet_length:.3g} mm, the face leaves {self.inlet_room:.3g} mm beyond the "
-                f"contact's farthest position: the film is thinner than the computed {self.min_film_thickness * um:.3g} um"
+                f"{film} (>= {MIXED_LAMBDA:g}: the film separates the flanks), but the inlet limits it: the inlet zone "
+                f"needs {self.inlet_length:.3g} mm, the face leaves {self.inlet_room:.3g} mm beyond the contact's farthest "
+                f"position, so near there the film may be thinner than the fully flooded {self.min_film_thickness * um:.3g} um "
+                "(a rule of thumb, the starved film is not computed)"
             )
         return Regime.FULL_FILM, (
             f"{film} (>= {MIXED_LAMBDA:g}); the inlet zone {self.inlet_length:.3g} mm fits the face room "
@@ -598,6 +611,8 @@ class CouplingResult:
         regime, reason = self._regime()
         if regime is Regime.FULL_FILM:
             return f"{self.verdict.value} ({reason})"
+        if regime is Regime.STARVED:
+            return f"{self.verdict.value}; starved inlet: {reason}"
         return f"{regime.value.replace('_', ' ')}: {reason}"
 
 

@@ -44,9 +44,9 @@ def test_both_readings_of_eq_7_and_their_ratio(capsys):
 def test_regime_words_follow_the_stated_rule(capsys):
     # starved: the base case needs more inlet than the face leaves (the numbers in the reason)
     rc, r, _ = _json(capsys, *ARGS)
-    assert rc == 0 and r["regime"] == "starved" and r["hydrodynamic"] is False
+    assert rc == 0 and r["regime"] == "starved" and r["hydrodynamic"] is True  # lambda >= 3: the film separates
     assert r["inlet_length"] > r["inlet_room"] and r["film_parameter"] >= 3
-    assert f"{r['inlet_length']:.3g} mm" in r["regime_reason"] and r["message"].startswith("starved: ")
+    assert f"{r['inlet_length']:.3g} mm" in r["regime_reason"] and "; starved inlet: " in r["message"]
     # full film: a smaller crowning radius keeps the inlet on the face, smooth flanks keep lambda >= 3
     rc, r, _ = _json(capsys, *ARGS, "--barrel-radius", "250", "--roughness", "0.4")
     assert rc == 0 and r["regime"] == "full_film" and r["hydrodynamic"] is True
@@ -55,6 +55,7 @@ def test_regime_words_follow_the_stated_rule(capsys):
     # mixed and boundary: the same film over rougher flanks
     rc, r, _ = _json(capsys, *ARGS, "--barrel-radius", "250", "--roughness", "0.8")
     assert rc == 0 and r["regime"] == "mixed" and 1 <= r["min_film_thickness"] / 0.8e-3 < 3
+    assert r["hydrodynamic"] is False
     rc, r, _ = _json(capsys, *ARGS, "--barrel-radius", "250", "--roughness", "3")
     assert rc == 0 and r["regime"] == "boundary" and r["min_film_thickness"] / 3e-3 < 1
     assert re.search(r"is 0\.\d+ times the composite roughness 3 um", r["regime_reason"])

@@ -83,15 +83,17 @@ MIN_DERIVED_MISALIGNMENT = 0.01  # deg: below it the derived crowning radius exc
 HELP = """Lubricant film of a gear coupling with barrel-shaped (crowned) hub teeth: the contact-hydrodynamic
 calculation of Belkov, Maksimov & Shitikov (Reynolds equation with Barus viscosity and the elastic gap of a
 cylinder of the flank crown radius on a plane, minimum film where the film carries the tooth load). Steel
-teeth by default, E = 200 GPa and nu = 0.3 (the paper's values; --young-modulus, --poisson-ratio). Inputs that
-make no sense for a coupling (no rolling of the contact, a film thicker than a tenth of the module) exit 2 with
-the paper's message. The regime is one word by a stated rule (no_solution, edge_contact, boundary, mixed,
-starved, full_film: README); no_solution exits 1 with its reason. Both readings of eq. 7 are computed
+teeth by default, E = 200 GPa and nu = 0.3 (the paper's values; --young-modulus, --poisson-ratio). Inputs
+outside the model (no rolling of the contact: R_b <= r (1 + sin alpha); a film thicker than a tenth of the
+module) exit 2 naming the option and its range. hydrodynamic is true when the film separates the flanks
+(lambda = h_min / roughness >= 3, on the face); the regime is one word by a stated rule (no_solution,
+edge_contact, boundary, mixed, starved, full_film: README), starved (a short inlet, a rule of thumb) beside a
+hydrodynamic film; no_solution exits 1 with its reason. Both readings of eq. 7 are computed
 (--method rotorcad: eq. 7 is the mean entraining speed; paper: it is the sum of the surface speeds, u half of
 it). Every default taken is printed.
 
 \b
-Keys (JSON and table): hydrodynamic (bool), min_film_thickness [mm], load_capacity [N, one tooth],
+Keys (JSON and table): hydrodynamic (bool: lambda >= 3), min_film_thickness [mm], load_capacity [N, one tooth],
 max_pressure [MPa, in the film], hertz_stress [MPa, dry Hertz line contact], message; further:
 central_film_thickness [mm], ehl_film_thickness [mm, Dowson-Higginson], ehl_ratio [1, h_min / Dowson-Higginson],
 pressure_to_hertz_ratio [1], tooth_load [N, normal], load_per_length [N/mm], pitch_radius, barrel_radius (R0),
@@ -154,9 +156,9 @@ def coupling(**opts: Any) -> None:
     c = _build(opts)
     r = analyse(c)
     if r.verdict is Verdict.NO_ENTRAINMENT:  # the paper's "error in the input data"
-        raise InputError(f"--barrel-radius, --face-width and --misalignment-deg make no sense for a coupling: {r.message}.")
+        raise InputError(_no_entrainment(opts, c))
     if r.verdict is Verdict.THICK_FILM:
-        raise InputError(f"--power, --speed and --viscosity make no sense for a coupling: {r.message}.")
+        raise InputError(_thick_film(opts, r))
     other_reading = Eq7Reading.SUM if c.reading is Eq7Reading.MEAN else Eq7Reading.MEAN
     other = analyse(replace(c, reading=other_reading))
     result = _result(r)
@@ -176,6 +178,48 @@ def coupling(**opts: Any) -> None:
         print_defaults(result["defaults"])
     if r.regime is Regime.NO_SOLUTION:  # a finding, not an error: the coupling has no film to report (CONTRACT.md)
         click.get_current_context().exit(1)
+
+
+def _no_entrainment(opts: dict[str, Any], c: GearCoupling) -> str:
+    """One sentence for eq. 7 giving no rolling: the parameter, its allowed range and why (R_b <= r (1 + sin alpha))."""
+    arm = c.pitch_radius * (1.0 + math.sin(c.pressure_angle))  # mm: R_b must exceed it (eq. 7)
+    got = opts["misalignment_deg"]
+    if got <= 0.0:
+        return (
+            "--misalignment-deg must be above 0 (the paper's range is 0.17-0.4 deg): eq. 7 gives the contact no rolling "
+            f"without it (got {got:g})."
+        )
+    if opts["barrel_radius"] is None:  # R_b = R0 / sin(alpha) = b / (4 tan(gamma))
+        top = math.degrees(math.atan(c.face_width / (4.0 * arm)))
+        least_b = 4.0 * math.tan(c.misalignment) * arm
+        return (
+            f"--misalignment-deg must be below {top:.3g} deg at --face-width {c.face_width:g} (or --face-width above "
+            f"{least_b:.3g} mm at {got:g} deg; the paper's ranges are 0.17-0.4 deg and b = 6-10 m): the crowning they "
+            f"derive, R_b = b / (4 tan(gamma)) = {c.flank_radius:.4g} mm, must exceed r (1 + sin(alpha)) = {arm:.4g} mm "
+            f"for eq. 7 to give the contact a rolling speed (got {got:g})."
+        )
+    least = arm * math.sin(c.pressure_angle)
+    return (
+        f"--barrel-radius must be above {least:.4g} mm for this --teeth, --module and --pressure-angle: the flank crown "
+        f"radius R0 / sin(alpha) = {c.flank_radius:.4g} mm must exceed r (1 + sin(alpha)) = {arm:.4g} mm for eq. 7 to give "
+        f"the contact a rolling speed (got {opts['barrel_radius']:g})."
+    )
+
+
+def _thick_film(opts: dict[str, Any], r: CouplingResult) -> str:
+    """One sentence for a film thicker than m / 10: the model's limit, with the power that reaches it.
+
+    Below the limit the film is the rigid-isoviscous one, h proportional to 1 / load (Martin), so the
+    power at which h_min falls to m / 10 is about P h_min / (m / 10).
+    """
+    c = r.coupling
+    limit = 0.1 * c.module
+    least = opts["power"] * r.min_film_thickness / limit
+    return (
+        f"--power must be above about {least:.3g} kW at this --speed, --viscosity and crowning radius "
+        f"(got {opts['power']:g}): the film h_min = {r.min_film_thickness:.3g} mm is thicker than a tenth of the module, "
+        f"m / 10 = {limit:.3g} mm, where the paper's thin-film model ends (the film falls as 1 / load there)."
+    )
 
 
 def _defaults(opts: dict[str, Any], c: GearCoupling) -> dict[str, str]:
