@@ -295,3 +295,29 @@ def test_pattern_of_a_polygon_read_in_bounded_memory(count):
         tracemalloc.stop()
     assert got == pytest.approx(sagitta, rel=0.2), (got, sagitta)
     assert peak < 100e6, peak
+
+
+def test_a_land_ending_at_the_files_first_point_is_read(tmp_path, capsys):
+    # A new user's file (newuser6): the N-rack sample's male written by `rotor --male-csv` at a 0.01 um
+    # chord, resampled to 300 points a lobe evenly along its length from its first point, as a CMM
+    # steps (6 decimals). Its root land is 6 points that end at the ring's seam: cut in the middle it
+    # left two halves too short to read as lands, the closed run's ends coincided, nothing was fitted,
+    # and `rotor` refused the strictly star-shaped file ("every ray from its centre crosses once").
+    # Reference: the design's own defects and running verdict (`rotor` of the design, exact curves).
+    sample = Path(__file__).resolve().parents[1] / "samples" / "n_rack_5_6.toml"
+    assert main(["rotor", str(sample), "--male-csv", str(tmp_path / "fine.csv"), "--tolerance", "0.00001", "--quiet"]) == 0
+    fine = np.loadtxt(tmp_path / "fine.csv", delimiter=",", comments="#", skiprows=2)
+    ring = np.vstack([fine, fine[:1]]) if not np.allclose(fine[0], fine[-1]) else fine
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(ring, axis=0).T))])
+    t = np.arange(5 * 300) * s[-1] / (5 * 300)
+    pts = np.round(np.column_stack([np.interp(t, s, ring[:, 0]), np.interp(t, s, ring[:, 1])]), 6)
+    angles = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    assert (np.diff(angles) > 0).all()  # star-shaped: every ray from the centre crosses it once
+    write_points(tmp_path / "m.csv", pts)
+    capsys.readouterr()
+    assert main(["rotor", str(sample), "--json", "--quiet"]) == 0
+    design = json.loads(capsys.readouterr().out)
+    assert main(["rotor", str(sample), "--male-points", str(tmp_path / "m.csv"), "--json", "--quiet"]) == 0
+    given = json.loads(capsys.readouterr().out)
+    kinds = [sorted((d["kind"], d["rotor"]) for d in r["defects"]) for r in (design, given)]
+    assert kinds[0] == kinds[1] and given["runs_without_timing_gears"] == design["runs_without_timing_gears"]

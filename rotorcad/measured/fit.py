@@ -423,8 +423,12 @@ def lobe_pieces(
         if fitted is not None:
             return _cut_lobe(fitted, whole, teeth, rotor, label)
         a, b, _ = found[0]
-        start = (a + b) // 2
-        ring = np.roll(whole, -start, axis=0)
+        ring = np.roll(whole, -((a + b) // 2), axis=0)
+        if not _lands(np.vstack([ring, ring[:1]]), sigma):
+            # the land's halves too short to read as lands (a land of 6 exact points ending at the
+            # ring's seam, the N-rack male's root at 300 a lobe): the ring as read, in which the land was
+            # found, else the closed run's ends coincide and nothing was fitted ("every ray ... crosses once")
+            ring = whole
         runs = [np.vstack([ring, ring[:1]])]
     knots = fine_knot_spacing(whole) if sigma <= 0 and smoothing is None else None
     fitted = [piece for run in runs for piece in _fit_run(run, sigma, smoothing, knots)]
