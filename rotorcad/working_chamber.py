@@ -26,8 +26,9 @@ psi > pi; the lower one while it opens). Its area is a(psi); the force of a unit
 male is the integral of the outward normal of that gas space over its edges on the male's outline.
 For a flute open from tip to tip that integral is the chord P1P2 turned by 90 degrees, the load of
 Rinder & Deix eq. (5); where the chamber ends at the contact line or a lobe of the mate fills part of
-the flute it is shorter (eq. 5's full chord puts a gas force 1.13 (male) and 1.76 (female) times the
-real chamber's on the rotors of samples/srm_asymmetric_5_6.toml at their worst angle). Eq. (5) as
+the flute it is shorter (eq. 5's full chord puts a gas force 1.35 (male) and 1.46 (female) times the
+real chamber's on the rotors of samples/srm_asymmetric_5_6.toml at their worst angle; the female's force
+there moves by several per cent within 0.01 deg, where a chamber opens to discharge). Eq. (5) as
 printed, the full chord in every section, is :func:`chord_table`.
 
 The chamber whose flute is at phase psi0 at the discharge end holds the sections with phases
