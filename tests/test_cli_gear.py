@@ -181,3 +181,24 @@ def test_plot_format_follows_the_suffix_for_every_command(tmp_path, capsys):
     assert main(["gear", "--teeth", "17", "--module", "2", "--plot", str(tmp_path / "g.jpg")]) == 2
     assert "--plot must name a .png, .svg or .pdf file" in capsys.readouterr().err
     assert not (tmp_path / "g.jpg").exists()
+
+
+def test_a_pair_that_loses_contact_is_said(capsys):
+    # A new user's finding (newuser5 F8): z = 11/11, m = 4, x = 0 printed contact_ratio 0.971 and
+    # tip_interference true with exit 0 and no word. Reference: ISO 21771 eq. 5.4 written out here (the
+    # tip-to-tip path over the base pitch, 1.396); rotorcad's ratio, on the usable involutes, is below 1.
+    import math
+
+    m, z, alpha = 4.0, 11, math.radians(20.0)
+    r, ra = m * z / 2, m * z / 2 + m
+    rb = r * math.cos(alpha)
+    iso = (2 * math.sqrt(ra**2 - rb**2) - 2 * r * math.sin(alpha)) / (math.pi * m * math.cos(alpha))
+    assert main(["gear", "--teeth", "11", "--module", "4", "--mate-teeth", "11", "--json"]) == 0
+    out = capsys.readouterr()
+    data = json.loads(out.out)
+    assert data["contact_ratio"] < 1 and data["tip_interference"] is True
+    assert out.err.count("\n") == 1 and "warning: the contact ratio is 0.971, below 1" in out.err
+    assert f"tip-to-tip path gives {iso:.3f}" in out.err and "tip interference" in out.err
+    # a pair in full contact: no word (z = 20/30, m = 2: ISO 1.63)
+    assert main(["gear", "--teeth", "20", "--module", "2", "--mate-teeth", "30", "--json"]) == 0
+    assert capsys.readouterr().err == ""
