@@ -321,3 +321,35 @@ def test_a_land_ending_at_the_files_first_point_is_read(tmp_path, capsys):
     given = json.loads(capsys.readouterr().out)
     kinds = [sorted((d["kind"], d["rotor"]) for d in r["defects"]) for r in (design, given)]
     assert kinds[0] == kinds[1] and given["runs_without_timing_gears"] == design["runs_without_timing_gears"]
+
+
+@pytest.mark.parametrize("roll", ["as scanned", "land ending at the first point"])
+def test_a_short_land_of_a_closed_form_outline_is_read(roll):
+    # An outline rotorcad did not make: a 5-lobe star in closed form, r(theta) = R0 on a root land of
+    # +-1.5 deg at one lobe only (7 points of a 1500-point scan) and R0 + H (1 - cos(pi (|phi| - d) /
+    # (p/2 - d))) / 2 beyond it (tangent continuous, no corner). Its land was cut in the middle into two
+    # halves too short to read as lands, and the closed run left was not fitted: "every ray from its
+    # centre crosses once", as scanned and with the land ending at the file's first point (newuser6's
+    # N-rack male). Reference: the closed form, sampled at 200 000 angles.
+    from independent_pairs import scan
+
+    from rotorcad.geometry import distance_to_polyline
+    from rotorcad.measured.fit import lobe_pieces
+    from rotorcad.measured.outline import lands
+    from rotorcad.rotor_pair import RotorPair
+
+    r0, h, pitch = 45.0, 18.0, 2 * np.pi / 5
+    theta = np.linspace(0.0, 2 * np.pi, 200_001)[:-1]
+    phi = np.abs((theta + pitch / 2) % pitch - pitch / 2)
+    half = np.where(np.abs(theta - pitch) < pitch / 2, np.radians(1.5), 0.0)
+    r = np.where(phi <= half, r0, r0 + h * (1 - np.cos(np.pi * (phi - half) / (pitch / 2 - half))) / 2)
+    ring = np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+    pts = scan(ring, 1500)
+    [(first, last, _)] = lands(np.vstack([pts, pts[:1]]), 0.0)
+    assert last - first == 6  # the short land, of 7 points
+    if roll != "as scanned":
+        pts = np.roll(pts, -last, axis=0)
+    pair = RotorPair(5, 6, 116.0, r0 + h, r0, 116.0 - r0, 116.0 - r0 - h, strict=False)
+    pieces = lobe_pieces(pair, pts, "male")
+    fitted = np.vstack([curve.evaluate(np.linspace(curve.s0, curve.s1, 400))[0] for _, curve in pieces])
+    assert distance_to_polyline(fitted, np.vstack([ring, ring[:1]])).max() < 1e-3
