@@ -186,13 +186,20 @@ KNOWN_VERDICTS = {
     ("rinder_deix_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.6 mm, 314 um deep (design 0.033 there), "
     "5.37 deg for 5.73",
     ("rack_involute_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 56.8-57.8 mm, 119 um deep, 16.80 deg for 18.13",
-    ("rack_involute_5_6", "female", "scatter"): "17.98 deg for 18.13 (hobbable): the male's rack generated from the "
-    "scattered female turns 0.15 deg steeper along its flank",
+    ("rack_involute_5_6", "female", "scatter"): "17.98 deg for 18.13 (hobbable): the smallest of the rack's scattered "
+    "angles along its straight flank (the same 18.13 deg over hundreds of points) reads low by the most negative "
+    "error, as on every seed (test_the_smallest_angle_accuracy_covers_the_low_minimum_over_seeds); stated 1.06 deg",
 }
+FIT_BIAS = (
+    "where the fitted female is as far off its design (test_the_rack_bears_the_rotor_fits_error_not_more): the "
+    "smoothing spline by n sigma^2 (Dierckx sec. 5.2) bends off a tip rounding of ~10 points by up to 4 sigma, its "
+    "least-squares variance there 0.5 sigma, so k_N sigma (scatter_bound) does not bound it"
+)
 KNOWN_RACKS = {
-    ("n_rack_5_6", "female", "scatter"): "7.76 um off for the stated 7.49",
-    ("rinder_deix_5_6", "female", "scatter"): "7.76 um off for the stated 7.49",
-    ("rack_involute_5_6", "female", "scatter"): "9.07 um off for the stated 7.81",
+    ("n_rack_5_6", "female", "scatter"): "7.76 um off for the stated 7.49, 7.73 um " + FIT_BIAS,
+    ("rinder_deix_5_6", "female", "scatter"): "7.76 um off for the stated 7.49, 7.73 um " + FIT_BIAS,
+    ("rack_involute_5_6", "female", "scatter"): "9.07 um off for the stated 7.81 (at its sealing tip rounding, r = 63.2 "
+    "mm), 9.01 um " + FIT_BIAS,
 }
 
 
@@ -249,6 +256,38 @@ def test_the_rack_from_points_on_the_contact_zone_is_the_design_rack(name, rotor
     assert rack_off_design(name, rotor, form) <= bound, rotors.accuracy
 
 
+def fit_off_design(name: str, rotor: str, form: str) -> float:
+    """Largest distance (mm) of the fitted rotor from the design's outline (0.1 um chords) at the profile points
+    whose rack points lie on the contact zone (those of rack_off_design)."""
+    _, rotors = design(name)
+    period = rotors.pair.rack_period
+    tiled = np.vstack([closed_form(name)["points"] + [k * period, 0.0] for k in (-1, 0, 1)])
+    rack = from_points(name, rotor, form)[1][rotor].in_contract_frame()
+    free = ~rack.corner_path
+    keep = np.tile(on_zone(name, rotor), 3)[cKDTree(tiled).query(rack.points[free])[1]]
+    lobe = rotors.male_outline(1e-4) if rotor == "male" else rotors.female_outline(1e-4)
+    ring = np.vstack([seg.points for seg in lobe.segments])
+    return float(distance_to_line(rack.profile[free][keep], shapely.LineString(ring)).max())
+
+
+@pytest.mark.parametrize(
+    "name,rotor",
+    [("rack_involute_5_6", "female"), ("rack_involute_5_6", "male"), ("n_rack_5_6", "female"), ("lysholm_4_6", "female")],
+)
+def test_the_rack_bears_the_rotor_fits_error_not_more(name, rotor):
+    # Where the rack from scattered points is off (2 um, 300 a lobe): a rack point is where the fitted rotor's
+    # normal passes the pitch point (Wu & Chi sec. 2, eq. 4); a wrong normal moves the contact to another roll,
+    # but the rotor point's velocity relative to the rack is normal to its line to the pitch point, which is
+    # that normal: the rack point slides along the rack, and to first order the rack is off by what the fit is
+    # off at the contact point, whatever the lever (the distance to the pitch point, large at the root
+    # fillets). So the rack's largest error on the contact zone is the fitted rotor's at those contact points:
+    # within 0.1 um on all 18 rotor samples' cases (rack-involute female 9.07 / 9.01 um, N rack 7.76 / 7.73,
+    # Lysholm 4.14 / 4.16), and the 2 um asked fails at the fit, not at the inverse generation. References: the
+    # design's outline (its exact curves) and its closed-form generating rack.
+    rack, fit = rack_off_design(name, rotor, "scatter"), fit_off_design(name, rotor, "scatter")
+    assert rack <= fit + 0.25e-3, (rack, fit)
+
+
 @pytest.mark.parametrize("name,rotor,form", cases(KNOWN_DEVIATIONS))
 def test_rack_deviation_on_the_contact_zone(name, rotor, form):
     # Issue 22 item 3: `rack_deviation` (the male's rack against the female's of the pair from the points)
@@ -265,14 +304,15 @@ def test_the_smallest_angle_from_points_is_within_its_stated_accuracy(name, roto
     # `smallest_flank_angle_accuracy_deg` (hob.angle_accuracy: the profile's tangent accuracy carried to the
     # normal rack by the contact condition, Wu & Chi eq. 4 and 7) covers the error of the smallest angle read
     # from the points. Reference: the design's closed-form smallest angle. Errors 0.000-1.330 deg (the
-    # rack-involute male with 2 um of scatter: 16.797 for 18.127, stated 1.41); stated 0.26-2.06 deg (2 deg
+    # rack-involute male with 2 um of scatter: 16.797 for 18.127, stated 1.41, now 2.66); stated 0.26-2.66 deg (1.9-2.06
     # where a cusp on the pitch line makes the rack perpendicular: within 3 deg of it, the angle is stated to that).
     rotors, racks, verdicts = from_points(name, rotor, form)
     smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
     stated = smallest_angle_accuracy(rotors, racks, rotor, smallest)
     assert abs(smallest - closed_form_angle(name)) <= stated + 1e-6, (smallest, stated)
-    # a statement, not a shrug: with the lobe's largest error counted (k_N / 2 = 1.9 times one point's) the
-    # rack-involute male with 2 um of scatter states 2.66 deg for its 1.33 deg error, the rest 0.3-2.1 deg
+    # a statement, not a shrug: with the read minimum's error counted at the lobe's largest (k_N / 2 = 1.9 times
+    # one point's) the rack-involute male with 2 um of scatter states 2.66 deg for its 1.33 deg error, the N-rack
+    # male 2.23 for 0.36; the rest 0.26-2.06 deg as before
     assert stated < 3.0
 
 
