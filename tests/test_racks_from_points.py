@@ -164,7 +164,15 @@ def test_the_stated_accuracy_covers_the_rack_over_seeds(name, rotor, per_lobe):
     # reached at the root fillets (rack y = +-6.5 mm): the smoothing spline (n sigma^2, Dierckx sec.
     # 5.2) bends with the scatter where the fillet's curvature meets the involute's; closer fits
     # (n - sqrt(2 n)) sigma^2, uniform knots 0.8-2.5 mm apart, a penalised spline by cross-validation
-    # read 3.1-5.1, 2.7-34, 3.2-5.3 um there.
+    # read 3.1-5.1, 2.7-34, 3.2-5.3 um there. The rack is off by what the fitted rotor is off at the contact
+    # point (test_hob_points_samples::test_the_rack_bears_the_rotor_fits_error_not_more), not by the lever:
+    # each measured point carried to the rack by its foot's contact roll and the carried points fitted by the
+    # penalised spline in the rack frame (lines and arcs) read the 4/6 male's fillets 3.6 / 1.7 / 3.4 um
+    # (seeds 1-3; 3.8 / 3.9 / 5.7 from the rotor's fit) but its flanks 1.5-2.9 um (0.4-1.9) and its angle
+    # 0.27-0.40 deg lower. A rounding of m points fitted even as a known arc (3 parameters) is off by
+    # sigma sqrt(3 / m) at a point, 1.1 um for m = 10 (~2.7 mm at 300 a lobe), and the largest over a lobe's
+    # roundings with 95 % confidence about 2.5 times that: 2 um everywhere needs about 19 points a rounding
+    # (600 a lobe) or sigma below 1.4 um.
     rp = PAIRS[name]()
     ring = cut_rotor(rp, rotor)
     teeth = rp.male_teeth if rotor == "male" else rp.female_teeth
