@@ -192,12 +192,14 @@ KNOWN_VERDICTS = {
 }
 FIT_BIAS = (
     "where the fitted female is as far off its design (test_the_rack_bears_the_rotor_fits_error_not_more): the "
-    "smoothing spline by n sigma^2 (Dierckx sec. 5.2) bends off a tip rounding of ~10 points by up to 4 sigma, its "
-    "least-squares variance there 0.5 sigma, so k_N sigma (scatter_bound) does not bound it"
+    "smoothing spline by n sigma^2 (Dierckx sec. 5.2) bends off a tip rounding of 10-14 points where its curvature "
+    "steps, by up to 4 sigma, its least-squares variance there 0.5 sigma, so k_N sigma (scatter_bound) does not bound it"
 )
 KNOWN_RACKS = {
-    ("n_rack_5_6", "female", "scatter"): "7.76 um off for the stated 7.49, 7.73 um " + FIT_BIAS,
-    ("rinder_deix_5_6", "female", "scatter"): "7.76 um off for the stated 7.49, 7.73 um " + FIT_BIAS,
+    ("n_rack_5_6", "female", "scatter"): "7.76 um off for the stated 7.49 (at its sealing tip circle's end, r = 43.66 "
+    "mm), 7.73 um " + FIT_BIAS,
+    ("rinder_deix_5_6", "female", "scatter"): "7.76 um off for the stated 7.49 (at its sealing tip circle's end, r = "
+    "43.66 mm), 7.73 um " + FIT_BIAS,
     ("rack_involute_5_6", "female", "scatter"): "9.07 um off for the stated 7.81 (at its sealing tip rounding, r = 63.2 "
     "mm), 9.01 um " + FIT_BIAS,
 }
