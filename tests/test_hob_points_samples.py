@@ -282,8 +282,8 @@ def test_the_rack_bears_the_rotor_fits_error_not_more(name, rotor):
     # but the rotor point's velocity relative to the rack is normal to its line to the pitch point, which is
     # that normal: the rack point slides along the rack, and to first order the rack is off by what the fit is
     # off at the contact point, whatever the lever (the distance to the pitch point, large at the root
-    # fillets). So the rack's largest error on the contact zone is the fitted rotor's at those contact points:
-    # within 0.1 um on all 18 rotor samples' cases (rack-involute female 9.07 / 9.01 um, N rack 7.76 / 7.73,
+    # fillets). So the rack's largest error on the contact zone is at most the fitted rotor's at those contact
+    # points plus 0.1 um on all 18 rotor samples' cases (rack-involute female 9.07 / 9.01 um, N rack 7.76 / 7.73,
     # Lysholm 4.14 / 4.16), and the 2 um asked fails at the fit, not at the inverse generation. Not so where the
     # generation stalls (the second-order slide times the rack's curvature): the N-rack male's 0.67 mm sealing
     # tip circle (~3 points a lobe) sets a rack stretch of ~2 mm by its curvature, and its rack reads 11-88 um
