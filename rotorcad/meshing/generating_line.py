@@ -50,6 +50,12 @@ the accuracy): 1 um of scatter, accuracy 2 um, 1.3 mm of resolution, 5 mm of mes
 GROWTH = 1.25
 """Ratio of successive windows (:func:`line_apex`)."""
 
+LEAD_INS = (0.0, 1.0, 2.0, 3.0, 4.0)
+"""Resolutions of the flank's meshline next to the corner's path that :func:`line_apex` may leave out, the first
+that lets a line hold: where a fit rounds the curvature step at the hand-over (the rack-involute female's DXF
+polyline, 2.1 um accuracy: its flank's contacts 2.3-46 um off the rack's line from the corner's path, within 1 um
+from 4 mm on)."""
+
 CORNER_PATHS = (PieceRole.MALE_CORNER_PATH, PieceRole.FEMALE_CORNER_PATH)
 
 
@@ -158,6 +164,35 @@ def line_meshline_cut(
     return cuts[int(np.argmin(np.hypot(*(cuts - near).T)))]
 
 
+def _longest_line(
+    points: np.ndarray, t: np.ndarray, s: np.ndarray, lead: float, shortest: float, accuracy: float, pair: RotorPair
+) -> tuple[tuple, float] | None:
+    """Return the best frame's line over the longest window from ``lead`` (mm of meshline) within ``accuracy``, or None.
+
+    The windows run from ``lead`` over ``shortest`` (mm), growing by :data:`GROWTH` to the piece's end; a
+    window holds a frame's line when every contact lies within ``accuracy`` of it. Returns ((rms, frame,
+    centroid, normal, centre), window length mm) of the longest window that holds, the frame of least RMS.
+    """
+    best = None
+    window = shortest
+    while lead + window <= s[-1] * GROWTH:
+        keep = (s >= lead) & (s <= lead + window)
+        if keep.sum() < 6:
+            break
+        fits = []
+        for name, (mapped, centre) in body_frames(
+            points[keep], t[keep], pair.male_pitch_radius, 1.0 / pair.ratio, pair.center_distance
+        ).items():
+            centroid, normal, residuals = fit_line(mapped)
+            if np.abs(residuals).max() <= accuracy:
+                fits.append((float(np.sqrt(np.mean(residuals**2))), name, centroid, normal, centre))
+        if not fits:
+            break
+        best = (min(fits, key=lambda f: f[0]), float(min(window, s[-1] - lead)))
+        window *= GROWTH
+    return best
+
+
 def _flank_at_corner(pieces: list[MeshlinePiece], point: np.ndarray, limit: float) -> tuple[MeshlinePiece, bool, int] | None:
     """Return the flank's piece that ends at a corner's path near ``point``, whether it starts there, and the path's circle."""
     best = None
@@ -183,9 +218,9 @@ def line_apex(
 
     The flank's meshline piece that ends within :data:`SHORTEST` resolutions of ``point`` (the meshline's sample
     nearest the cusp) at the end of a corner's path is mapped into the male's, the female's and the rack's frame
-    (:func:`body_frames`) and fitted by a line over windows from that end growing by :data:`GROWTH`, from
-    :data:`SHORTEST` resolutions, for as long as every contact lies within ``accuracy`` of the line of some frame;
-    of the longest such window, the frame whose line fits best. Its meshline is cut with the corner path's tip
+    (:func:`body_frames`) and fitted by a line over windows from that end (or past the first of :data:`LEAD_INS`
+    that lets one hold) growing by :data:`GROWTH`, from :data:`SHORTEST` resolutions, for as long as every contact
+    lies within ``accuracy`` of the line of some frame; of the longest such window, the frame whose line fits best. Its meshline is cut with the corner path's tip
     circle (:func:`line_meshline_cut`).
 
     Parameters
@@ -218,20 +253,10 @@ def line_apex(
     s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))])
     c = np.array([pair.male_pitch_radius, 0.0])
     best = None
-    window = shortest
-    while window <= s[-1] * GROWTH:
-        keep = s <= window
-        if keep.sum() < 6:
+    for lead in LEAD_INS:  # the nearest stretch to the corner over which a line holds
+        best = _longest_line(points, t, s, lead * reach, shortest, accuracy, pair)
+        if best is not None:
             break
-        fits = []
-        for name, (mapped, centre) in body_frames(points[keep], t[keep], c[0], 1.0 / pair.ratio, pair.center_distance).items():
-            centroid, normal, residuals = fit_line(mapped)
-            if np.abs(residuals).max() <= accuracy:
-                fits.append((float(np.sqrt(np.mean(residuals**2))), name, centroid, normal, centre))
-        if not fits:
-            break
-        best = (min(fits, key=lambda f: f[0]), float(min(window, s[-1])))
-        window *= GROWTH
     if best is None:
         return None
     (_, name, centroid, normal, centre), length = best
@@ -242,4 +267,4 @@ def line_apex(
     return apex, name, length
 
 
-__all__ = ["GROWTH", "SHORTEST", "body_frames", "fit_line", "line_apex", "line_meshline_cut"]
+__all__ = ["GROWTH", "LEAD_INS", "SHORTEST", "body_frames", "fit_line", "line_apex", "line_meshline_cut"]
