@@ -220,8 +220,8 @@ def line_apex(
     nearest the cusp) at the end of a corner's path is mapped into the male's, the female's and the rack's frame
     (:func:`body_frames`) and fitted by a line over windows from that end (or past the first of :data:`LEAD_INS`
     that lets one hold) growing by :data:`GROWTH`, from :data:`SHORTEST` resolutions, for as long as every contact
-    lies within ``accuracy`` of the line of some frame; of the longest such window, the frame whose line fits best. Its meshline is cut with the corner path's tip
-    circle (:func:`line_meshline_cut`).
+    lies within ``accuracy`` of the line of some frame; of the longest such window, the frame whose line fits
+    best. Its meshline is cut with the corner path's tip circle (:func:`line_meshline_cut`).
 
     Parameters
     ----------
