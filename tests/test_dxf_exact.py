@@ -65,16 +65,11 @@ KNOWN: dict[tuple[str, str, str], str] = {}
 # 0.67 mm tip rounding, where the apex lies, cut short by a false tip corner path: a slow part of the rounding,
 # 0.19 mm inside the male tip circle, read as the male's corner), until only a corner on the mate's tip circle
 # made a corner path of exact points too (rotorcad.measured.pairs._mate_corner_runs): +0.42 % and -0.28 %
-KNOWN_NUMBERS: dict[tuple[str, str, str], str] = {
-    ("rack_involute_5_6", "female", "polyline"): (
-        "-2.3 %: the male generated from the female polyline's points (2.1 um accuracy), whose tip corner's path "
-        "sets the apex: along the rack from the polyline's fit the male's corner point leaves its corner smoothly "
-        "(7 um at rack height 66.44 mm, 630 um at 65.50) before the design's hand-over at 65.75 (the female's "
-        "curvature step there, between the corner's path and the flank's envelope, smoothed by the fit), so "
-        "the path ends 0.7 mm of height early and the male's tip corner is rounded over that; its splines read "
-        "+0.27 %, 300 exact points a lobe within 1 %"
-    ),
-}
+# rack_involute_5_6's female polyline read -2.3 %: the male's tip corner generated from the polyline's fit left its
+# corner smoothly before the design's hand-over (the female's curvature step there smoothed by the fit), and the path
+# ended 0.7 mm of height early, until the apex came from the rack's straight line that generates the flank, fitted to
+# its contacts in the rack's frame past the fit's rounding (rotorcad.meshing.generating_line): -0.02 %
+KNOWN_NUMBERS: dict[tuple[str, str, str], str] = {}
 """Cases whose blow-hole or apex departs by more than 1 %, with the cause: strict xfails."""
 
 KNOWN_RATIOS: dict[tuple[str, str], str] = {}

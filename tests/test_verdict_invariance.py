@@ -72,21 +72,19 @@ KNOWN: dict[tuple[str, str], str] = {}
 # such a hand-over shorter than the meshline's resolution counted as none
 # (rotorcad.meshing.contact_ratios.is_corner_handover)
 KNOWN_VERDICTS: dict[tuple[str, str], str] = {}
-_TIP = (
-    "1 um of scatter moves the blow-hole's apex (where the male tip corner's path hands over to the "
-    "flank's) along the male tip circle: the flank's tangent at the corner, fitted through scattered "
-    "points, is 0.3-2.2 mrad off, and the apex moves 0.12-0.13 mm, the area 7.4-7.6 % per mrad; 1 % "
-    "needs 0.13 mrad, and a fit through all lobes' points and the exact corner, its window and degree "
-    "chosen against the design, leaves 0.31-0.35 mrad RMS (2.3-2.7 %, benchmarks/bench_blow_hole_tangent.py)"
-)
 _FLANK = (
-    "the apex lies 0.2 mm inside the male tip circle, found between the scattered points' meshline samples "
-    "(the nearest 0.36-0.44 mm away) as a turn of the path, and moves 0.03-0.16 mm"
-)
-_DRAW = (
-    "one draw of the spread that 1 um of scatter gives: over seeds 0-7 the blow-hole reads {spread} "
-    "(rms {rms}; before issue 22's corner fix for near-duplicate points {before}), so that seed 0 read within "
-    "1 % was chance"
+    "the apex is where the male's 0.67 mm tip rounding (radius 1.036 mm, tangent to the tip circle) meets the sealing "
+    "flank with a common tangent; the CSV puts 2 points on it (0.34 mm apart), its smoothing spline flattens the "
+    "rounding (largest curvature of the pair's male above r 57 mm, by circles through points 0.02 mm apart, "
+    "0.26 /mm at seeds 0-2 for the design's 0.58), and the meshline's turn lies 0.17-0.32 mm inside the design's "
+    "(r 57.46-57.62 mm for 57.785): over "
+    "seeds 0-7 +36.8..+65.9 %. The flank beside it is a circle of the female (fitted to its contacts in the female's "
+    "frame at seed 0: radius 1.95-2.11 mm for 2.072), but the rounding's circle fitted to its contacts in the male's "
+    "frame reads 0.90-1.02 mm, and where the rounding ends moves the apex 46 times as far along the meshline "
+    "(rotorcad.meshing.generating_line places a straight line's hand-over only). Given where the rounding touches the "
+    "tip circle, a rounding tangent there and to the envelope of that female circle (fitted over 2-25 mm of the "
+    "flank's meshline) puts the apex within -0.3..+0.1 % at seeds 0-3; but that point moves the area 6 % per mrad "
+    "about O1 (1 % needs 10 um along the tip circle), which the points, 2 on the rounding, do not place"
 )
 UNRESOLVED_BLOW_HOLE: dict[tuple[str, str], str] = {
     **{
@@ -114,20 +112,8 @@ within the stated uncertainty, test_exact_points_state_their_blow_hole_uncertain
 KNOWN_BLOW_HOLE: dict[tuple[str, str], str] = {
     (name, form): f"{change} ({why}; within blow_hole_uncertainty)"
     for name, form, change, why in (
-        ("srm_b_5_6", "scatter-1um", "-3.2 %", _DRAW.format(spread="-12..+6.1 %", rms="6.1 %", before="-11..+3.0 %, rms 5.5 %")),
-        ("n_rack_5_6", "scatter-1um", "-9.5 %", _FLANK),
-        ("rinder_deix_5_6", "scatter-1um", "-9.5 %", _FLANK),
-        ("narrow_tip_5_6", "scatter-1um", "-16.3 %", _TIP),
-        ("srm_asymmetric_5_6", "scatter-1um", "+2.0 %", _TIP),
-        (
-            "rack_involute_5_6",
-            "scatter-1um",
-            "+1.6 %",
-            "one draw of the spread that 1 um of scatter gives: the apex from the flank's meshline extrapolated past "
-            "the fit's rounding of the tip corner's hand-over (rotorcad.meshing.tip_apex); over seeds 0-7 of the "
-            "design's outline with 1 um the blow-hole reads -0.82..+1.52 % (rms 0.8 %, mean +0.34 %), each within "
-            "its stated +-0.66..2.05 mm²",
-        ),
+        ("n_rack_5_6", "scatter-1um", "+37.4 %", _FLANK),
+        ("rinder_deix_5_6", "scatter-1um", "+37.4 %", _FLANK),
     )
 }
 
@@ -574,7 +560,9 @@ def test_exact_points_state_their_blow_hole_uncertainty(verdicts, name, form):
 def test_blow_hole_within_uncertainty_other_seeds(verdicts, name, seed):
     # every sample at two more seeds of 1 um scatter (seed 0 above): the design's blow-hole (reference: its
     # exact curves) within the points' stated uncertainty plus the floor of test_same_blow_hole, and where
-    # the design has a blow-hole the uncertainty is less than the area itself (not vacuous)
+    # the design has a blow-hole the uncertainty is less than the area itself (not vacuous); and within 1 %
+    # where seed 0 is (a tip corner's hand-over placed by its flank's generating line, rotorcad.meshing.generating_line:
+    # over seeds 0-7 -0.58..+0.50 %, where the flank's end tangent read -9.8..+7.7 %)
     design = verdicts[(name, "design")]
     male = verdicts[(name, "male")]
     noisy = male + np.random.default_rng(seed).normal(0.0, SCATTER, male.shape)
@@ -584,6 +572,10 @@ def test_blow_hole_within_uncertainty_other_seeds(verdicts, name, seed):
     gap = abs(given["blow_hole_area"] - design["blow_hole_area"])
     assert gap <= given["blow_hole_uncertainty"] + floor
     assert closed or 0.0 < given["blow_hole_uncertainty"] < design["blow_hole_area"]
+    if (name, "scatter-1um") not in KNOWN_BLOW_HOLE:  # issue 21 item 3: within 1 % at these seeds too, not by chance
+        acc = given["defect_accuracy"]  # or the closed meshline's floor of test_same_blow_hole
+        floor = max(1e-3, MESHLINE_GAIN * acc * resolution(acc, given["center_distance"]))
+        assert given["blow_hole_area"] == pytest.approx(design["blow_hole_area"], rel=0.01, abs=floor)
 
 
 def test_blow_hole_apex_moves_with_tangent_as_stated():

@@ -329,7 +329,7 @@ class MeshingAnalysis:
         scattered = float(getattr(rotors, "tangent_accuracy", 0.0)) > 0.0
         smoothed = float(getattr(rotors, "accuracy", 0.0)) > float(getattr(rotors, "point_accuracy", None) or np.inf)
         apex, found = tip_apex(
-            self.pieces, j, local, tips, self.judged_accuracy, rotors.pair.center_distance, own, scattered, smoothed
+            self.pieces, j, local, tips, self.judged_accuracy, rotors.pair.center_distance, own, scattered, smoothed, rotors.pair
         )
         self.__dict__["_tip_candidates"] = found  # read by blow_hole_uncertainty (cached, as a cached_property is)
         return apex

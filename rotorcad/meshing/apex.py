@@ -20,11 +20,11 @@ the arc touches where its normal, the line from its centre, passes through C,
 ``tests/test_verdict_invariance.py``). The apex is the point of that curve nearest the cusp. No
 tangent of the fitted profile enters.
 
-Not covered, because there the apex needs a tangent that the points do not carry: where the apex
-is a male tip corner's hand-over to its flank (the narrow-tip, the asymmetric SRM), it lies where
-the flank's normal at the corner passes through C; 1 % of the blow-hole is 0.13 mrad of that
-tangent, and even a fit through all lobes' points and the exact corner leaves 0.3 mrad
-(``benchmarks/bench_blow_hole_tangent.py``). Only male arcs are looked for (the profile given).
+Not covered here: where the apex is a male tip corner's hand-over to its flank (the narrow-tip, the
+asymmetric SRM), it lies where the flank's normal at the corner passes through C; 1 % of the blow-hole
+is 0.13 mrad of that tangent, and even a fit through all lobes' points and the exact corner leaves
+0.3 mrad (``benchmarks/bench_blow_hole_tangent.py``). There the flank's generating straight line
+places it (:mod:`rotorcad.meshing.generating_line`). Only male arcs are looked for (the profile given).
 """
 
 from __future__ import annotations
