@@ -369,6 +369,13 @@ _declare(
                 ("suction_bearing_load_max_n", "N", "largest suction bearing load"),
             ]
         ),
+        *_rotors(
+            [
+                ("body_deflection", "mm", "largest deflection of the rotor body in its bore"),
+                ("deflection_to_housing_clearance", "1", "body deflection to radial housing clearance"),
+            ]
+        ),
+        ("housing_radial_clearance", "mm", "radial clearance of the housing"),
         ("angle_eq10_deg", "deg", "worst male angle by eq. (10)"),
         ("suction_closing_deg", "deg", "suction closes"),
         ("discharge_opening_deg", "deg", "discharge opens"),
