@@ -153,6 +153,13 @@ _declare(
         ("harmonics[]", "1", "harmonic amplitude (share of the mean flow)"),
         *((f"kollek_series.{k}[]", "1", f"Kollek coefficient, {k.replace('_', ' ')}") for k in ("numerical", "eqs_4_6")),
         ("total_contact_ratio", "1", "total contact ratio"),
+        ("trapped_double_contact_deg", "deg", "rotation over which the space is trapped"),
+        ("trapped_area_max", "mm²", "largest trapped area"),
+        ("trapped_area_min", "mm²", "smallest trapped area"),
+        ("trapped_volume_max", "mm³", "largest trapped volume"),
+        ("trapped_volume_min", "mm³", "smallest trapped volume"),
+        ("trapped_volume_change", "mm³", "trapped volume squeezed out each pitch"),
+        ("trapped_flow_max", "L/min", "largest flow out of or into the trapped space"),
     ],
 )
 

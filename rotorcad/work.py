@@ -99,6 +99,13 @@ as wall time of ``rotorcad clearance --json`` on the symmetric sample's outlines
 --male-csv``) made 100 and 1000 times denser by linear interpolation: 262 800 points 8.2 s,
 2 628 000 points 67 s on the loaded 2-core machine (the line through the two)."""
 
+STEP_FACE_SECONDS = ((702, 5.2), (2102, 17.1), (4202, 58.0), (7002, 213.0))
+"""Wall seconds of writing an exact STEP file of F faces (sewing and checking the faces grows faster
+than their number). Measured with ``rotorcad export --format step`` of helical gears (m = 1 mm,
+b = 20 mm, beta = 20 deg; 7 faces a tooth: z = 100, 300, 600, 1000) on the project's loaded 2-core
+machine, less the 1.5 s the command takes to start; the CPU times were 1.25, 5.6, 17.5 and 57 s, and
+the largest took 761 MB (the gear's limit, :data:`rotorcad.gears.involute_gear.MAX_TEETH`, bounds it)."""
+
 CLUSTER_START_SECONDS = 5.0
 """CPU-seconds to start a local Dask cluster (:data:`rotorcad.sweep.run.IN_PROCESS_BELOW`)."""
 
@@ -138,6 +145,29 @@ def clearance_seconds(points: int) -> float:
         ``constant + points x seconds a point``.
     """
     return CLEARANCE_SECONDS[0] + CLEARANCE_SECONDS[1] * points
+
+
+def step_seconds(faces: float) -> float:
+    """Estimated wall time of writing an exact STEP of ``faces`` faces, s (:data:`STEP_FACE_SECONDS`).
+
+    Interpolated in the measured table on log-log axes, extrapolated along its last slope.
+
+    Parameters
+    ----------
+    faces : float
+        Faces of the file's solid (one per section segment, and the end faces).
+
+    Returns
+    -------
+    float
+    """
+    if not faces > 0:
+        return 0.0
+    f, t = np.log(np.array(STEP_FACE_SECONDS, dtype=float)).T
+    x = np.log(faces)
+    slope = (t[-1] - t[-2]) / (f[-1] - f[-2]) if x > f[-1] else (t[1] - t[0]) / (f[1] - f[0]) if x < f[0] else 0.0
+    edge = f[-1] if x > f[-1] else f[0] if x < f[0] else x
+    return float(np.exp(np.interp(edge, f, t) + slope * (x - edge)))
 
 
 def _duration(seconds: float) -> str:
@@ -182,5 +212,6 @@ __all__ = [
     "long_run_note",
     "points_at",
     "solid_triangles",
+    "step_seconds",
     "sweep_seconds",
 ]

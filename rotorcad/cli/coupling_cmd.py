@@ -268,6 +268,10 @@ def _check_inputs(opts: dict[str, Any]) -> None:
                 else f"an integer of {int(v.bit_length() * 0.30103) + 1} digits"
             )
             raise InputError(f"{flag} must be {allowed} (got {shown}).")
+    from rotorcad.cli.plausible import say_warnings
+    from rotorcad.design.plausibility import module_warnings
+
+    say_warnings(module_warnings(opts["module"], "--module"))  # an inch-typed coupling: 8 s to end in no_solution
     if opts["barrel_radius"] is None and opts["misalignment_deg"] < MIN_DERIVED_MISALIGNMENT:
         raise InputError(
             f"--misalignment-deg must be at least {MIN_DERIVED_MISALIGNMENT} when --barrel-radius is not given "

@@ -162,6 +162,7 @@ def export(
         for path, row, writer in plan_files(fmts, bodies, tol, folder, design.stem):
             outputs.add(path, writer, "--out")
             rows.append(row)
+        _say_long_files(rows, quiet, progress)
         if is_gear_design(data):  # a gear design's rack ([rack]), in its own frame
             from rotorcad.cli.gear_export import design_rack_files
 
@@ -176,6 +177,25 @@ def export(
         emit_json(result)
     else:
         _print_files(rows, design.stem, folder)
+
+
+def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps) -> None:
+    """Say before writing when the exact STEP files will take over a minute (CONTRACT.md, long runs).
+
+    The STEP's faces are known once planned (a gear of 1000 teeth: 7002 faces, some 48 s of CPU
+    and 4 minutes of wall time on a loaded 2-core machine, which a new user waited through without
+    a word); the meshes, drawings and points take seconds (:mod:`rotorcad.work`).
+    """
+    from rotorcad.cli.progress import say_long_run
+    from rotorcad.work import long_run_note, step_seconds
+
+    seconds = sum(step_seconds(row.get("faces", 0)) for row in rows if row["format"] == "step")
+    others = sorted({row["format"] for row in rows if row["format"] != "step"}) or ["stl"]
+    note = long_run_note(seconds, ("--format", ",".join(others), 5.0))
+    if note is not None:
+        progress.stop()  # the note on a line of its own, not through the bar
+        say_long_run(note, quiet)
+        progress.start()
 
 
 def _asked_formats(asked: str | None, default: list[Any], kind: BodyKind) -> list[ExportFormat]:
