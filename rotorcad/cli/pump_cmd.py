@@ -147,10 +147,14 @@ def pump(design: Path | None, **opts: Any) -> None:
 
 
 def _print(result: dict[str, Any], p: GearPump) -> None:
-    """Print the table, the harmonics as rows (k-th at k x the pump frequency, share of the mean flow), and the defaults."""
+    """Print the table, the harmonics as rows ``harmonics.k`` (at k x the pump frequency, over the mean flow), the defaults."""
     shown = dict(result)
-    shown.update({f"harmonic {k} at {k * p.pump_frequency:g} Hz / mean flow": h for k, h in enumerate(result["harmonics"], 1)})
-    print_table(f"gear pump z={p.gear.teeth}/{p.pair.mate.teeth}, b={p.face_width:g} mm, n={p.speed_rpm:g} rpm", shown)
+    shown.update({f"harmonics.{k}": h for k, h in enumerate(result["harmonics"], 1)})
+    print_table(
+        f"gear pump z={p.gear.teeth}/{p.pair.mate.teeth}, b={p.face_width:g} mm, n={p.speed_rpm:g} rpm; "
+        f"harmonics.k at k x {p.pump_frequency:g} Hz, over the mean flow",
+        shown,
+    )
     print_defaults(result["defaults"])
 
 
