@@ -192,6 +192,25 @@ def housing_check(model: GasDeflection, lines, shafts: bool, clearance: float) -
     return out
 
 
+def design_deflection(design: Path, settings: dict[str, Any], rotors) -> dict[str, Any] | None:
+    """Return ``deflect --json``'s keys for a design at its ``[operating]`` pressures (None without them).
+
+    For ``report``: the same sweep, worst angle, flute load (``rotorcad``) and housing check as
+    ``deflect`` with no options; a design ``deflect`` refuses is refused alike (:class:`InputError`).
+    """
+    if not {"suction_pressure_bar", "discharge_pressure_bar"} <= set(settings["operating"]):
+        return None
+    given = _gather(design, settings, None, None, None)
+    _check_indicator_covers(rotors.pair, given)
+    model = _model(rotors, given, LoadModel.CHAMBER)
+    sweep_angles = np.linspace(0.0, 2 * np.pi / rotors.pair.male_teeth, SWEEP_ANGLES, endpoint=False)
+    solved = _solve(model, sweep_angles, given, True)
+    result = _result(model, solved, given, rotors.pair.male_teeth, sweep_angles)
+    result.update(housing_check(model, solved.lines, given.shafts, settings["housing"].get("radial_clearance", 0.0)))
+    result["defaults"] = _defaults(given.op, given.de, model, given.exponent, given.terms_label, given.terms)
+    return result
+
+
 @dataclass(frozen=True)
 class _Given:
     """The inputs of ``deflect`` after every check: the design's tables and what they set.
