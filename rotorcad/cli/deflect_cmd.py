@@ -253,7 +253,18 @@ def _gather(design: Path, settings: dict[str, Any], angle: float | None, terms: 
 
     Every refusal is one sentence naming the option or ``[table] key`` (:class:`InputError`).
     """
-    op, de = settings["operating"], settings["deflection"]
+    op, de = dict(settings["operating"]), settings["deflection"]
+    if indicator is not None:  # the option wins over the design's way of setting the discharge, as every option does
+        overridden = [k for k in ("volume_ratio", "discharge_edge_deg", "indicator") if op.pop(k, None) is not None]
+        if overridden:
+            import warnings
+
+            from rotorcad.errors import InputNote
+
+            said = ", ".join(f"[operating] {k}" for k in overridden)
+            warnings.warn(
+                f"--indicator replaced the design's {said} (each sets where the discharge opens)", InputNote, stacklevel=2
+            )
     for key in ("suction_pressure_bar", "discharge_pressure_bar"):
         if key not in op:
             raise InputError(f"[operating] {key} is needed for the gas load (an absolute pressure in bar).")
