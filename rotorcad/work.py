@@ -10,8 +10,9 @@ has ``2 x points x layers`` side triangles, with ``layers`` growing like the wra
 
 Issue 24: anything that would take over a minute says so before it starts, with the option that
 makes it faster (:func:`long_run_note`). Measured on the project's 2-core machine, the other
-commands stay under a minute at their bounds, so only ``sweep`` and ``clearance`` (2.6 million
-points: 67 s) need the note: ``export`` at
+commands stay under a minute at their bounds, so only ``sweep``, ``clearance`` (2.6 million
+points: 67 s) and the exact STEP of ``export`` (a gear of 1000 teeth: 7002 faces, some 4 minutes
+under load, :func:`step_seconds`) need the note: ``export``'s meshes at
 :data:`MAX_TRIANGLES` (about 2.2 us a triangle: 8.8 s), ``cut`` at its union budget
 (:data:`hob.cutting.MAX_UNION_VERTICES`, some 3 s a pass, at most 8 passes; the issue's 45-s cases
 now 6.6 s), ``deflect --terms 400`` (15 s), ``interfere --steps 100000`` (3.3 s on the
