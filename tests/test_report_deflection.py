@@ -43,3 +43,15 @@ def test_a_design_without_pressures_has_no_deflection_section(tmp_path):
     page = tmp_path / "ri.html"
     _json(["report", str(ROOT / "samples" / "lysholm_4_6.toml"), "--out", str(page), "--json", "--quiet"])
     assert "Deflection under gas load" not in page.read_text(encoding="utf-8")
+
+
+def test_a_design_deflect_refuses_keeps_its_report(tmp_path):
+    # the report's other sections do not depend on deflect: its refusal is said in the section
+    design = tmp_path / "p.toml"
+    text = (ROOT / "samples" / "lysholm_4_6.toml").read_text()
+    extra = "suction_pressure_bar = 1.0\ndischarge_pressure_bar = 8.0\npolytropic_exponent = 3.0\n"
+    design.write_text(text.replace("[operating]\n", "[operating]\n" + extra))
+    page = tmp_path / "p.html"
+    _json(["report", str(design), "--out", str(page), "--json", "--quiet"])
+    html = page.read_text(encoding="utf-8")
+    assert "rotorcad deflect refuses this design: [operating] polytropic_exponent must be a number from 1 to 2" in html
