@@ -1,31 +1,33 @@
 """Say the plausibility warnings of the core (:mod:`rotorcad.design.plausibility`) on stderr.
 
-A warning is not a refusal: the value is legal and the command runs; the line is said before the
-work starts (a long run shows at once why its figures may be off), on stderr only (``--json`` stays
-one object on stdout), as ``rotorcad: warning: SENTENCE.`` (CONTRACT.md, "Plausibility").
+A warning is not a refusal: the value is legal and the command runs. Each sentence is raised as a
+:class:`rotorcad.design.plausibility.UnitWarning`, which the command line prints after a successful
+run as ``rotorcad: warning: SENTENCE.`` on stderr (``--json`` stays one object on stdout), and not at
+all when the run ends in a refusal, which stays one sentence (CONTRACT.md, "Plausibility").
 """
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterable
 
-import click
-
 SAID: list[str] = []
-"""Every warning said in this process, in order (for the tests)."""
+"""Every warning raised in this process, in order (for the tests)."""
 
 
 def say_warnings(sentences: Iterable[str]) -> None:
-    """Write each sentence (without its final stop) once as ``rotorcad: warning: ...`` on stderr.
+    """Raise each sentence (without its final stop) once as a :class:`~rotorcad.design.plausibility.UnitWarning`.
 
     Parameters
     ----------
     sentences : iterable of str
         From :func:`rotorcad.design.plausibility.module_warnings` and the like.
     """
+    from rotorcad.design.plausibility import UnitWarning
+
     for sentence in dict.fromkeys(sentences):
         SAID.append(sentence)
-        click.echo(f"rotorcad: warning: {sentence}.", err=True)
+        warnings.warn(sentence, UnitWarning, stacklevel=2)
 
 
 __all__ = ["SAID", "say_warnings"]

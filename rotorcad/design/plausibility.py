@@ -2,7 +2,8 @@
 
 A new user's design typed in inches (a 5/6 screw pair at a = 3.228 "mm", a gear of module 0.157 mm
 for 4 mm) was accepted without a word and computed as a 3-mm compressor. These checks do not refuse:
-each returns sentences the command line says on stderr as warnings (CONTRACT.md, "Plausibility"),
+each returns sentences the command line says on stderr as warnings after a successful run
+(:class:`UnitWarning`; CONTRACT.md, "Plausibility"),
 naming the option or design key and what the value would be in mm if it was typed in inches.
 
 The ranges are the standards' and the trade's, not rotorcad's limits (those refuse, elsewhere):
@@ -15,6 +16,19 @@ The ranges are the standards' and the trade's, not rotorcad's limits (those refu
 from __future__ import annotations
 
 import numpy as np
+
+from rotorcad.errors import InputNote
+
+
+class UnitWarning(InputNote):
+    """A legal value that looks like another unit: said as ``rotorcad: warning: ...`` after a successful run.
+
+    An :class:`~rotorcad.errors.InputNote` (so that a refusal stays one sentence: a run that ends in
+    a refusal says no warning), whose ``label`` the command line prints instead of "note".
+    """
+
+    label = "warning"
+
 
 INCH = 25.4
 """mm per inch."""
@@ -107,4 +121,4 @@ def screw_pair_warnings(center_distance: float, label: str) -> list[str]:
     return []
 
 
-__all__ = ["INCH", "SCREW_CENTER_DISTANCE", "STANDARD_MODULES", "module_warnings", "screw_pair_warnings"]
+__all__ = ["INCH", "SCREW_CENTER_DISTANCE", "STANDARD_MODULES", "UnitWarning", "module_warnings", "screw_pair_warnings"]
