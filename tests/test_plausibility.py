@@ -76,13 +76,19 @@ def test_a_gear_step_of_a_thousand_teeth_says_it_takes_minutes(capsys):
 
     bar = progress.Steps("test", 1, quiet=True)
     noted = len(progress.NOTED)
-    _say_long_files([{"format": "stl"}, {"format": "step", "faces": 7 * 100 + 2}], False, bar)
+    _say_long_files([{"format": "stl", "body": "gear"}, {"format": "step", "body": "gear", "faces": 7 * 100 + 2}], False, bar)
     assert len(progress.NOTED) == noted  # z = 100: some 5 s
     _say_long_files([{"format": "stl"}, {"format": "step", "faces": 7 * 1000 + 2}, {"format": "dxf"}], False, bar)
     note = progress.NOTED[-1]
     assert note.startswith("this will take about 4 min")  # the user's 263 s wall (STEP after 20 s, 4 min more)
     assert "--format dxf,stl would make it about" in note
     assert "rotorcad: note: this will take about 4 min" in capsys.readouterr().err
+    noted = len(progress.NOTED)
+    half = [{"format": "step", "body": "gear", "faces": 7 * 600 + 2}]  # a herringbone gear's plan: one half's faces
+    _say_long_files(half, False, bar)
+    assert len(progress.NOTED) == noted  # 4202 faces: some 58 s
+    _say_long_files(half, False, bar, frozenset({"gear"}))
+    assert len(progress.NOTED) == noted + 1  # both halves, 8404 faces
 
 
 def test_the_step_faces_planned_are_seven_a_tooth(tmp_path):

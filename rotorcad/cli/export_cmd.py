@@ -162,7 +162,7 @@ def export(
         for path, row, writer in plan_files(fmts, bodies, tol, folder, design.stem):
             outputs.add(path, writer, "--out")
             rows.append(row)
-        _say_long_files(rows, quiet, progress)
+        _say_long_files(rows, quiet, progress, _herringbones(bodies))
         if is_gear_design(data):  # a gear design's rack ([rack]), in its own frame
             from rotorcad.cli.gear_export import design_rack_files
 
@@ -179,7 +179,12 @@ def export(
         _print_files(rows, design.stem, folder)
 
 
-def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps) -> None:
+def _herringbones(bodies: list[PlacedBody]) -> frozenset[str]:
+    """Return the names of the bodies that are herringbone gears (their STEP has both halves' faces)."""
+    return frozenset(b.name for b in bodies if b.features is not None and b.features.herringbone)
+
+
+def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps, doubled: frozenset[str] = frozenset()) -> None:
     """Say before writing when the exact STEP files will take over a minute (CONTRACT.md, long runs).
 
     The STEP's faces are known once planned (a gear of 1000 teeth: 7002 faces, some 48 s of CPU
@@ -190,7 +195,9 @@ def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps) ->
     from rotorcad.cli.progress import say_long_run
     from rotorcad.work import long_run_note, step_seconds
 
-    seconds = sum(step_seconds(row.get("faces", 0)) for row in rows if row["format"] == "step")
+    seconds = sum(
+        step_seconds(row.get("faces", 0) * (2 if row.get("body") in doubled else 1)) for row in rows if row["format"] == "step"
+    )  # the planned faces are one half's for a herringbone gear
     others = sorted({row["format"] for row in rows if row["format"] != "step"}) or ["stl"]
     note = long_run_note(seconds, ("--format", ",".join(others), 5.0))
     if note is not None:
