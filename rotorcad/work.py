@@ -107,6 +107,16 @@ b = 20 mm, beta = 20 deg; 7 faces a tooth: z = 100, 300, 600, 1000) on the proje
 machine, less the 1.5 s the command takes to start; the CPU times were 1.25, 5.6, 17.5 and 57 s, and
 the largest took 761 MB (the gear's limit, :data:`rotorcad.gears.involute_gear.MAX_TEETH`, bounds it)."""
 
+STEP_MEGABYTES = {False: (290.0, 0.067), True: (327.0, 0.14)}
+"""Peak memory of writing an exact STEP of F faces, MB: ``a + b F``, for a plain solid (False) and a
+herringbone gear (True, F counting both halves' faces). Measured (max RSS of ``rotorcad export
+--format step``, m = 1 mm, b = 20 mm, beta = 20 deg): helical z = 100 / 300 / 600 / 1000 (702 / 2102 /
+4202 / 7002 faces) 340 / 439 / 571 / 761 MB; herringbone z = 300 / 500 (4202 / 7002 faces) 915 /
+1306 MB (and 51 / 236 s wall, as :data:`STEP_FACE_SECONDS` gives for those faces)."""
+
+MAX_STEP_MEGABYTES = 2000.0
+"""Most memory an exact STEP may need (CONTRACT.md: a request over about 2 GB is refused)."""
+
 CLUSTER_START_SECONDS = 5.0
 """CPU-seconds to start a local Dask cluster (:data:`rotorcad.sweep.run.IN_PROCESS_BELOW`)."""
 
@@ -171,6 +181,30 @@ def step_seconds(faces: float) -> float:
     return float(np.exp(np.interp(edge, f, t) + slope * (x - edge)))
 
 
+def step_megabytes(faces: float, herringbone: bool = False) -> float:
+    """Estimated peak memory of writing an exact STEP of ``faces`` faces, MB (:data:`STEP_MEGABYTES`).
+
+    Parameters
+    ----------
+    faces : float
+        Faces of the solid (both halves' for a herringbone gear).
+    herringbone : bool
+        A herringbone gear (its two halves sewn: more memory a face).
+
+    Returns
+    -------
+    float
+    """
+    a, b = STEP_MEGABYTES[bool(herringbone)]
+    return a + b * faces
+
+
+def step_faces_within(megabytes: float, herringbone: bool = False) -> float:
+    """Return the most faces whose STEP stays within ``megabytes`` (the inverse of :func:`step_megabytes`)."""
+    a, b = STEP_MEGABYTES[bool(herringbone)]
+    return max(0.0, (megabytes - a) / b)
+
+
 def _duration(seconds: float) -> str:
     """``about N min`` (or ``N h``) for a duration above a minute, ``N s`` below."""
     if seconds < 90:
@@ -207,12 +241,15 @@ def long_run_note(seconds: float, faster: tuple[str, object, float] | None) -> s
 __all__ = [
     "LONG_RUN_SECONDS",
     "MAX_SECTION_POINTS",
+    "MAX_STEP_MEGABYTES",
     "MAX_TRIANGLES",
     "SWEEP_SECONDS",
     "clearance_seconds",
     "long_run_note",
     "points_at",
     "solid_triangles",
+    "step_faces_within",
+    "step_megabytes",
     "step_seconds",
     "sweep_seconds",
 ]

@@ -99,3 +99,23 @@ def test_the_step_faces_planned_are_seven_a_tooth(tmp_path):
     path.write_text("[gear]\nteeth = 40\nmodule = 1.0\nface_width = 20.0\nhelix_angle_deg = 20.0\n")
     rows = [row for _, row, _ in plan_files([table()["step"]], design_gear_bodies(path, 0.005), 0.005, tmp_path, "g")]
     assert rows[0]["faces"] == 7 * 40 + 2  # per tooth: root arc, 2 fillets, 2 flanks, tip; and the two end faces
+
+
+def test_a_step_over_the_memory_bound_is_refused_naming_what_would_do():
+    # Measured peaks (rotorcad.work.STEP_MEGABYTES): helical z 1000 (7002 faces) 761 MB; herringbone
+    # z 300 / 500 (4202 / 7002 faces) 915 / 1306 MB, so z 1000 (14002 faces) some 2.3 GB, over the 2 GB bound
+    from rotorcad.cli import progress
+    from rotorcad.cli.common import InputError
+    from rotorcad.cli.export_cmd import _say_long_files
+    from rotorcad.work import step_megabytes
+
+    assert step_megabytes(7002) == pytest.approx(761, rel=0.05)
+    assert step_megabytes(7002, True) == pytest.approx(1306, rel=0.05)
+    bar = progress.Steps("test", 1, quiet=True)
+    rows = [{"format": "stl", "body": "gear"}, {"format": "step", "body": "gear", "faces": 7 * 1000 + 2}]
+    with pytest.raises(InputError) as refused:
+        _say_long_files(rows, True, bar, frozenset({"gear"}))
+    text = refused.value.format_message()
+    assert "--format step cannot be written for the gear: its exact STEP of 14004 faces (a herringbone gear)" in text
+    assert "about 2.3 GB, more than the 2 GB allowed; --format stl would do" in text
+    _say_long_files(rows, True, bar)  # the helical gear of 1000 teeth: 761 MB, written (with its note)
