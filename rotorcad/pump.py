@@ -91,6 +91,16 @@ class GearPump:
         """Total contact ratio eps_gamma = eps_alpha + eps_beta."""
         return self.contact_ratio + self.overlap_ratio
 
+    def line_of_action(self) -> tuple[float, float, float, float]:
+        """Return the line of action's figures, rolls in mm from T1 (the gear's base tangency point).
+
+        Returns
+        -------
+        tuple of float
+            (start of the governing contact, T1T2 length, the pitch point C, speed ratio z1/z2).
+        """
+        return self._line()
+
     def _line(self) -> tuple[float, float, float, float]:
         """Return (start of the governing contact, T1T2 length, C, speed ratio z1/z2), rolls in mm from T1."""
         pair = self.pair

@@ -53,7 +53,7 @@ def test_the_outlines_space_changes_as_the_flow_kinematics_say(name):
 def test_smallest_where_the_contacts_lie_symmetric_about_the_pitch_point():
     p = PUMPS["z11 x0.3 equal"]()
     g = p.gear
-    start, _, c, _ = p._line()
+    start, _, c, _ = p.line_of_action()
     at = (c - g.base_pitch / 2 - start) / g.base_radius  # rad: u_new = C - p_b / 2
     phi = np.linspace(at - 0.01, at + 0.01, 21)
     area = trapped_areas(p, phi)
@@ -66,7 +66,7 @@ def _hole_area(p: GearPump, turn: float, dilation: float) -> float:
     gear, mate = pair.gear, pair.mate
     aw, a = pair.working_pressure_angle, pair.working_center_distance
     t1 = gear.base_radius * np.array([np.cos(aw), -np.sin(aw)])
-    new = t1 + (p._line()[0] + gear.base_radius * turn) * np.array([np.sin(aw), np.cos(aw)])
+    new = t1 + (p.line_of_action()[0] + gear.base_radius * turn) * np.array([np.sin(aw), np.cos(aw)])
     c1 = np.arctan2(new[1], new[0]) - gear.half_angle(float(np.hypot(*new)))
     rel = new - np.array([a, 0.0])
     c2 = np.arctan2(rel[1], rel[0]) - mate.half_angle(float(np.hypot(*rel)))
