@@ -91,6 +91,16 @@ class GearPump:
         """Total contact ratio eps_gamma = eps_alpha + eps_beta."""
         return self.contact_ratio + self.overlap_ratio
 
+    def line_of_action(self) -> tuple[float, float, float, float]:
+        """Return the line of action's figures, rolls in mm from T1 (the gear's base tangency point).
+
+        Returns
+        -------
+        tuple of float
+            (start of the governing contact, T1T2 length, the pitch point C, speed ratio z1/z2).
+        """
+        return self._line()
+
     def _line(self) -> tuple[float, float, float, float]:
         """Return (start of the governing contact, T1T2 length, C, speed ratio z1/z2), rolls in mm from T1."""
         pair = self.pair
@@ -267,6 +277,46 @@ class GearPump:
         rate = self.face_width * (self.transverse_delivery(roll1) - self.transverse_delivery(roll2)) / self.omega
         vol = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(phi))])
         return phi, vol
+
+    def trapped_area(self, samples: int = 64, tolerance: float = 2e-4) -> tuple[np.ndarray, np.ndarray]:
+        """Return the trapped transverse area over the double contact, from the gears' outlines (shapely).
+
+        :func:`rotorcad.pump_trapped.trapped_areas`: the loop between the two contacts along both
+        outlines, per unit face width; :meth:`trapped_volume` is its change by the flow kinematics.
+
+        Parameters
+        ----------
+        samples : int
+            Phases over the double contact, both ends in.
+        tolerance : float, mm
+            Chord tolerance of the outlines.
+
+        Returns
+        -------
+        phi : (samples,) float array, rad
+            Rotation of the gear from the moment the second contact begins; empty when eps <= 1.
+        area : (samples,) float array, mm²
+            The trapped area of the transverse section.
+        """
+        from rotorcad.pump_trapped import trapped_areas
+
+        phi, _ = self.trapped_volume(samples)
+        return phi, (trapped_areas(self, phi, tolerance) if len(phi) else np.zeros(0))
+
+    def trapped_flow_max(self, samples: int = 1025) -> float:
+        """Return the largest rate at which the trapped space shrinks or grows, |dV/dt| = b |q'(u_new) - q'(u_old)|, mm³/s.
+
+        The flow a relief groove must pass (Kollek & Osinski sec. 3.1); from the flow kinematics of
+        :meth:`trapped_volume`, at its largest at the ends of the double contact. 0 when eps <= 1.
+        """
+        phi, _ = self.trapped_volume(samples)
+        if not len(phi):
+            return 0.0
+        g = self.gear
+        roll = self._line()[0] + g.base_radius * phi
+        return float(
+            self.face_width * np.abs(self.transverse_delivery(roll) - self.transverse_delivery(roll + g.base_pitch)).max()
+        )
 
 
 def kollek_coefficients(eps: float, count: int) -> np.ndarray:

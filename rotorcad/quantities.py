@@ -153,6 +153,13 @@ _declare(
         ("harmonics[]", "1", "harmonic amplitude (share of the mean flow)"),
         *((f"kollek_series.{k}[]", "1", f"Kollek coefficient, {k.replace('_', ' ')}") for k in ("numerical", "eqs_4_6")),
         ("total_contact_ratio", "1", "total contact ratio"),
+        ("trapped_double_contact_deg", "deg", "rotation over which the space is trapped"),
+        ("trapped_area_max", "mm²", "largest trapped area"),
+        ("trapped_area_min", "mm²", "smallest trapped area"),
+        ("trapped_volume_max", "mm³", "largest trapped volume"),
+        ("trapped_volume_min", "mm³", "smallest trapped volume"),
+        ("trapped_volume_change", "mm³", "trapped volume squeezed out each pitch"),
+        ("trapped_flow_max", "L/min", "largest flow out of or into the trapped space"),
     ],
 )
 
@@ -369,6 +376,13 @@ _declare(
                 ("suction_bearing_load_max_n", "N", "largest suction bearing load"),
             ]
         ),
+        *_rotors(
+            [
+                ("body_deflection", "mm", "largest deflection of the rotor body in its bore"),
+                ("deflection_to_housing_clearance", "1", "body deflection to radial housing clearance"),
+            ]
+        ),
+        ("housing_radial_clearance", "mm", "radial clearance of the housing"),
         ("angle_eq10_deg", "deg", "worst male angle by eq. (10)"),
         ("suction_closing_deg", "deg", "suction closes"),
         ("discharge_opening_deg", "deg", "discharge opens"),

@@ -10,8 +10,9 @@ has ``2 x points x layers`` side triangles, with ``layers`` growing like the wra
 
 Issue 24: anything that would take over a minute says so before it starts, with the option that
 makes it faster (:func:`long_run_note`). Measured on the project's 2-core machine, the other
-commands stay under a minute at their bounds, so only ``sweep`` and ``clearance`` (2.6 million
-points: 67 s) need the note: ``export`` at
+commands stay under a minute at their bounds, so only ``sweep``, ``clearance`` (2.6 million
+points: 67 s) and the exact STEP of ``export`` (a gear of 1000 teeth: 7002 faces, some 4 minutes
+under load, :func:`step_seconds`) need the note: ``export``'s meshes at
 :data:`MAX_TRIANGLES` (about 2.2 us a triangle: 8.8 s), ``cut`` at its union budget
 (:data:`hob.cutting.MAX_UNION_VERTICES`, some 3 s a pass, at most 8 passes; the issue's 45-s cases
 now 6.6 s), ``deflect --terms 400`` (15 s), ``interfere --steps 100000`` (3.3 s on the
@@ -99,6 +100,23 @@ as wall time of ``rotorcad clearance --json`` on the symmetric sample's outlines
 --male-csv``) made 100 and 1000 times denser by linear interpolation: 262 800 points 8.2 s,
 2 628 000 points 67 s on the loaded 2-core machine (the line through the two)."""
 
+STEP_FACE_SECONDS = ((702, 5.2), (2102, 17.1), (4202, 58.0), (7002, 213.0))
+"""Wall seconds of writing an exact STEP file of F faces (sewing and checking the faces grows faster
+than their number). Measured with ``rotorcad export --format step`` of helical gears (m = 1 mm,
+b = 20 mm, beta = 20 deg; 7 faces a tooth: z = 100, 300, 600, 1000) on the project's loaded 2-core
+machine, less the 1.5 s the command takes to start; the CPU times were 1.25, 5.6, 17.5 and 57 s, and
+the largest took 761 MB (the gear's limit, :data:`rotorcad.gears.involute_gear.MAX_TEETH`, bounds it)."""
+
+STEP_MEGABYTES = {False: (290.0, 0.067), True: (327.0, 0.14)}
+"""Peak memory of writing an exact STEP of F faces, MB: ``a + b F``, for a plain solid (False) and a
+herringbone gear (True, F counting both halves' faces). Measured (max RSS of ``rotorcad export
+--format step``, m = 1 mm, b = 20 mm, beta = 20 deg): helical z = 100 / 300 / 600 / 1000 (702 / 2102 /
+4202 / 7002 faces) 340 / 439 / 571 / 761 MB; herringbone z = 300 / 500 (4202 / 7002 faces) 915 /
+1306 MB (and 51 / 236 s wall, as :data:`STEP_FACE_SECONDS` gives for those faces)."""
+
+MAX_STEP_MEGABYTES = 2000.0
+"""Most memory an exact STEP may need (CONTRACT.md: a request over about 2 GB is refused)."""
+
 CLUSTER_START_SECONDS = 5.0
 """CPU-seconds to start a local Dask cluster (:data:`rotorcad.sweep.run.IN_PROCESS_BELOW`)."""
 
@@ -140,6 +158,53 @@ def clearance_seconds(points: int) -> float:
     return CLEARANCE_SECONDS[0] + CLEARANCE_SECONDS[1] * points
 
 
+def step_seconds(faces: float) -> float:
+    """Estimated wall time of writing an exact STEP of ``faces`` faces, s (:data:`STEP_FACE_SECONDS`).
+
+    Interpolated in the measured table on log-log axes, extrapolated along its last slope.
+
+    Parameters
+    ----------
+    faces : float
+        Faces of the file's solid (one per section segment, and the end faces).
+
+    Returns
+    -------
+    float
+    """
+    if not faces > 0:
+        return 0.0
+    f, t = np.log(np.array(STEP_FACE_SECONDS, dtype=float)).T
+    x = np.log(faces)
+    slope = (t[-1] - t[-2]) / (f[-1] - f[-2]) if x > f[-1] else (t[1] - t[0]) / (f[1] - f[0]) if x < f[0] else 0.0
+    edge = f[-1] if x > f[-1] else f[0] if x < f[0] else x
+    return float(np.exp(np.interp(edge, f, t) + slope * (x - edge)))
+
+
+def step_megabytes(faces: float, herringbone: bool = False) -> float:
+    """Estimated peak memory of writing an exact STEP of ``faces`` faces, MB (:data:`STEP_MEGABYTES`).
+
+    Parameters
+    ----------
+    faces : float
+        Faces of the solid (both halves' for a herringbone gear).
+    herringbone : bool
+        A herringbone gear (its two halves sewn: more memory a face).
+
+    Returns
+    -------
+    float
+    """
+    a, b = STEP_MEGABYTES[bool(herringbone)]
+    return a + b * faces
+
+
+def step_faces_within(megabytes: float, herringbone: bool = False) -> float:
+    """Return the most faces whose STEP stays within ``megabytes`` (the inverse of :func:`step_megabytes`)."""
+    a, b = STEP_MEGABYTES[bool(herringbone)]
+    return max(0.0, (megabytes - a) / b)
+
+
 def _duration(seconds: float) -> str:
     """``about N min`` (or ``N h``) for a duration above a minute, ``N s`` below."""
     if seconds < 90:
@@ -176,11 +241,15 @@ def long_run_note(seconds: float, faster: tuple[str, object, float] | None) -> s
 __all__ = [
     "LONG_RUN_SECONDS",
     "MAX_SECTION_POINTS",
+    "MAX_STEP_MEGABYTES",
     "MAX_TRIANGLES",
     "SWEEP_SECONDS",
     "clearance_seconds",
     "long_run_note",
     "points_at",
     "solid_triangles",
+    "step_faces_within",
+    "step_megabytes",
+    "step_seconds",
     "sweep_seconds",
 ]

@@ -268,6 +268,10 @@ def _check_inputs(opts: dict[str, Any]) -> None:
                 else f"an integer of {int(v.bit_length() * 0.30103) + 1} digits"
             )
             raise InputError(f"{flag} must be {allowed} (got {shown}).")
+    from rotorcad.cli.plausible import say_warnings
+    from rotorcad.design.plausibility import module_warnings
+
+    say_warnings(module_warnings(opts["module"], "--module"))  # an inch-typed coupling: 8 s to end in no_solution
     if opts["barrel_radius"] is None and opts["misalignment_deg"] < MIN_DERIVED_MISALIGNMENT:
         raise InputError(
             f"--misalignment-deg must be at least {MIN_DERIVED_MISALIGNMENT} when --barrel-radius is not given "
@@ -358,6 +362,12 @@ def _print_table(title: str, rows: dict[str, Any]) -> None:
     Console(file=sys.stdout, highlight=False, width=110).print(table)
 
 
+PLOT_NODES = 101
+"""Grid nodes of each film solution of the --plot's h_min-over-z panel (the result's own film: 201).
+Measured on the README coupling (z 40, m 4, 8000 rpm, 4 MW): the 36 solutions 20.4 s -> 4.2 s of CPU,
+h_min within 0.5 % of the 201-node solutions (3.979 vs 3.990 µm), a trend the picture shows alike."""
+
+
 @styled
 def _plot(r: CouplingResult) -> Figure:
     """Fig. 2 (speeds over one revolution), Fig. 3 (film pressure and shape), Fig. 4 (h_min over z) of the paper."""
@@ -395,11 +405,16 @@ def _plot(r: CouplingResult) -> Figure:
         ax2.set_axis_off()
     ax2.set_title("pressure and film shape in the contact (Fig. 3)")
     teeth = np.unique(np.round(np.linspace(max(6, c.teeth // 2), 2 * c.teeth, 12)).astype(int))
-    ax4.plot(teeth, sweep_teeth(c, teeth) * 1e3, "o-", color=ps.BLUE, label=f"module {c.module:g} mm and power kept")
+    nodes = PLOT_NODES  # 36 film solutions: the trend at half the grid (--plot cost 5x the command without it)
+    ax4.plot(teeth, sweep_teeth(c, teeth, nodes=nodes) * 1e3, "o-", color=ps.BLUE, label=f"module {c.module:g} mm and power kept")
     ax4.plot(
-        teeth, sweep_teeth(c, teeth, hold=Hold.DIAMETER) * 1e3, "s--", color=ps.ORANGE, label="pitch diameter and power kept"
+        teeth,
+        sweep_teeth(c, teeth, nodes=nodes, hold=Hold.DIAMETER) * 1e3,
+        "s--",
+        color=ps.ORANGE,
+        label="pitch diameter and power kept",
     )
-    shown = sweep_teeth(c, teeth, hold=Hold.TOOTH_LOAD) * 1e3
+    shown = sweep_teeth(c, teeth, nodes=nodes, hold=Hold.TOOTH_LOAD) * 1e3
     ax4.plot(teeth, shown, "^-", color=ps.GREEN, label="module and tooth load kept (the paper's trend)")
     # Belkov et al. give Fig. 4's trend in words only ("h_min falls slightly as z grows"): drawn as that
     # trend through this coupling's h_min, the curve's values are not in the text

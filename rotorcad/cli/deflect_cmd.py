@@ -126,6 +126,7 @@ def deflect(
     sweep_angles = np.linspace(0.0, 2 * np.pi / rotors.pair.male_teeth, SWEEP_ANGLES, endpoint=False)
     solved = _solve(model, sweep_angles, given, quiet)
     result = _result(model, solved, given, rotors.pair.male_teeth, sweep_angles)
+    result.update(housing_check(model, solved.lines, given.shafts, settings["housing"].get("radial_clearance", 0.0)))
     result["defaults"] = _defaults(given.op, given.de, model, given.exponent, given.terms_label, given.terms)
     result["files"] = [str(x) for x in out.write()]
     if as_json:
@@ -137,6 +138,77 @@ def deflect(
             result,
         )
         print_defaults(result["defaults"])
+
+
+def body_deflection(model: GasDeflection, lines, rotor: str, shafts: bool) -> float:
+    """Return the largest deflection of a rotor's body (its helical part) as it is supported, mm.
+
+    With shaft ends, the line of the whole shaft on its bearings between the body's end faces (the
+    journals do not face the bore); without, the helical part simply supported at its end faces.
+    Either is the body's displacement from the bearings' axis, which is the housing bore's.
+    """
+    shaft_z = getattr(lines, f"{rotor}_shaft_z")
+    if shafts and len(shaft_z):
+        start = model.journal_length(rotor)
+        inside = (shaft_z >= start - 1e-9) & (shaft_z <= start + model.pair.length + 1e-9)
+        w = getattr(lines, f"{rotor}_shaft")[inside]
+    else:
+        w = getattr(lines, rotor)
+    return float(np.hypot(w[:, 0], w[:, 1]).max())
+
+
+def housing_check(model: GasDeflection, lines, shafts: bool, clearance: float) -> dict[str, float]:
+    """Compare each rotor body's deflection with the design's radial housing clearance (``[housing] radial_clearance``).
+
+    Rinder & Deix (sec. 1) compute the deflection because it can take the rotors "bis zum
+    Anlaufen an die Gehäusewand": a body deflected by more than the radial clearance touches its
+    bore. No clearance in the design (0): no keys. A ratio of 1 or more is also said as a note on
+    stderr after the result.
+
+    Returns
+    -------
+    dict
+        ``housing_radial_clearance`` (mm), ``{rotor}_body_deflection`` (mm, :func:`body_deflection`)
+        and ``{rotor}_deflection_to_housing_clearance`` (1) for male and female.
+    """
+    if not clearance > 0.0:
+        return {}
+    import warnings
+
+    from rotorcad.errors import InputNote
+
+    out: dict[str, float] = {"housing_radial_clearance": float(clearance)}
+    for rotor in ("male", "female"):
+        w = body_deflection(model, lines, rotor, shafts)
+        out[f"{rotor}_body_deflection"] = w
+        out[f"{rotor}_deflection_to_housing_clearance"] = w / clearance
+        if w >= clearance:
+            warnings.warn(
+                f"the {rotor}'s deflection {w * 1e3:.1f} µm reaches the housing's radial clearance {clearance * 1e3:.1f} µm "
+                "([housing] radial_clearance): its tips touch the bore under this gas load",
+                InputNote,
+                stacklevel=2,
+            )
+    return out
+
+
+def design_deflection(design: Path, settings: dict[str, Any], rotors) -> dict[str, Any] | None:
+    """Return ``deflect --json``'s keys for a design at its ``[operating]`` pressures (None without them).
+
+    For ``report``: the same sweep, worst angle, flute load (``rotorcad``) and housing check as
+    ``deflect`` with no options; a design ``deflect`` refuses is refused alike (:class:`InputError`).
+    """
+    if not {"suction_pressure_bar", "discharge_pressure_bar"} <= set(settings["operating"]):
+        return None
+    given = _gather(design, settings, None, None, None)
+    _check_indicator_covers(rotors.pair, given)
+    model = _model(rotors, given, LoadModel.CHAMBER)
+    sweep_angles = np.linspace(0.0, 2 * np.pi / rotors.pair.male_teeth, SWEEP_ANGLES, endpoint=False)
+    solved = _solve(model, sweep_angles, given, True)
+    result = _result(model, solved, given, rotors.pair.male_teeth, sweep_angles)
+    result.update(housing_check(model, solved.lines, given.shafts, settings["housing"].get("radial_clearance", 0.0)))
+    result["defaults"] = _defaults(given.op, given.de, model, given.exponent, given.terms_label, given.terms)
+    return result
 
 
 @dataclass(frozen=True)
@@ -181,7 +253,18 @@ def _gather(design: Path, settings: dict[str, Any], angle: float | None, terms: 
 
     Every refusal is one sentence naming the option or ``[table] key`` (:class:`InputError`).
     """
-    op, de = settings["operating"], settings["deflection"]
+    op, de = dict(settings["operating"]), settings["deflection"]
+    if indicator is not None:  # the option wins over the design's way of setting the discharge, as every option does
+        overridden = [k for k in ("volume_ratio", "discharge_edge_deg", "indicator") if op.pop(k, None) is not None]
+        if overridden:
+            import warnings
+
+            from rotorcad.errors import InputNote
+
+            said = ", ".join(f"[operating] {k}" for k in overridden)
+            warnings.warn(
+                f"--indicator replaced the design's {said} (each sets where the discharge opens)", InputNote, stacklevel=2
+            )
     for key in ("suction_pressure_bar", "discharge_pressure_bar"):
         if key not in op:
             raise InputError(f"[operating] {key} is needed for the gas load (an absolute pressure in bar).")

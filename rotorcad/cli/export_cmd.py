@@ -162,6 +162,7 @@ def export(
         for path, row, writer in plan_files(fmts, bodies, tol, folder, design.stem):
             outputs.add(path, writer, "--out")
             rows.append(row)
+        _say_long_files(rows, quiet, progress, _herringbones(bodies))
         if is_gear_design(data):  # a gear design's rack ([rack]), in its own frame
             from rotorcad.cli.gear_export import design_rack_files
 
@@ -176,6 +177,49 @@ def export(
         emit_json(result)
     else:
         _print_files(rows, design.stem, folder)
+
+
+def _herringbones(bodies: list[PlacedBody]) -> frozenset[str]:
+    """Return the names of the bodies that are herringbone gears (their STEP has both halves' faces)."""
+    return frozenset(b.name for b in bodies if b.features is not None and b.features.herringbone)
+
+
+def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps, doubled: frozenset[str] = frozenset()) -> None:
+    """Refuse an exact STEP that would not fit in memory; say before writing when the STEP files take over a minute.
+
+    The STEP's faces are known once planned (a gear of 1000 teeth: 7002 faces, some 48 s of CPU
+    and 4 minutes of wall time on a loaded 2-core machine, which a new user waited through without
+    a word; a herringbone gear's plan counts one half's faces, ``doubled`` names those bodies); the
+    meshes, drawings and points take seconds (:mod:`rotorcad.work`; that gear's STL and DXF: 3.2 s
+    wall, 1 s of CPU, so "about 5 s" is named for ``--format`` without ``step``).
+
+    Raises
+    ------
+    InputError
+        A STEP estimated over :data:`rotorcad.work.MAX_STEP_MEGABYTES` (a herringbone gear of some
+        850 teeth and more), naming ``--format`` and the most faces that would do.
+    """
+    from rotorcad.cli.progress import say_long_run
+    from rotorcad.work import MAX_STEP_MEGABYTES, long_run_note, step_faces_within, step_megabytes, step_seconds
+
+    steps = [(row, row.get("faces", 0) * (2 if row.get("body") in doubled else 1), row.get("body") in doubled) for row in rows]
+    steps = [(row, faces, both) for row, faces, both in steps if row["format"] == "step"]
+    others = sorted({row["format"] for row in rows if row["format"] != "step"}) or ["stl"]
+    for row, faces, both in steps:
+        need = step_megabytes(faces, both)
+        if need > MAX_STEP_MEGABYTES:
+            what = "herringbone gear" if both else "solid"
+            raise InputError(
+                f"--format step cannot be written for the {row.get('body')}: its exact STEP of {faces:.0f} faces (a {what}) "
+                f"would need about {need / 1000:.1f} GB, more than the {MAX_STEP_MEGABYTES / 1000:g} GB allowed; "
+                f"--format {','.join(others)} would do, or one of at most about "
+                f"{step_faces_within(MAX_STEP_MEGABYTES, both):.0f} faces (fewer teeth)."
+            )
+    note = long_run_note(sum(step_seconds(faces) for _, faces, _ in steps), ("--format", ",".join(others), 5.0))
+    if note is not None:
+        progress.stop()  # the note on a line of its own, not through the bar
+        say_long_run(note, quiet)
+        progress.start()
 
 
 def _asked_formats(asked: str | None, default: list[Any], kind: BodyKind) -> list[ExportFormat]:

@@ -319,7 +319,7 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
         what = "[shaper]" if "cutter_teeth" in spec.from_design else "--internal"
         raise InputError(f"{what} must not be given here: an internal gear is made by rotorcad gear, cut, export and report.")
     try:
-        return core_build_gear(spec, tolerance)
+        built = core_build_gear(spec, tolerance)
     except MissingValueError as exc:
         if exc.param != "mate.teeth":
             raise
@@ -330,6 +330,11 @@ def build_gear(p: dict[str, Any], tolerance: float) -> tuple[InvoluteGear, GearP
         else:
             label = gear_name(exc.param, spec.from_design)
         raise InputError(exc.sentence(label)) from None
+    from rotorcad.cli.plausible import say_warnings
+    from rotorcad.design.plausibility import module_warnings
+
+    say_warnings(module_warnings(spec.module, gear_name("module", spec.from_design)))  # an inch design, a module in µm
+    return built
 
 
 def shop_gears(

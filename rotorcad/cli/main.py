@@ -131,8 +131,9 @@ def main(argv: list[str] | None = None) -> int:
         if not issubclass(w.category, InputNote):
             warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     if status in (0, 1):  # a refusal stays one sentence; after a result, what was done to the input
-        for note in dict.fromkeys(str(w.message) for w in caught if issubclass(w.category, InputNote)):
-            click.echo(f"rotorcad: note: {note}.", err=True)
+        said = ((getattr(w.category, "label", "note"), str(w.message)) for w in caught if issubclass(w.category, InputNote))
+        for label, note in dict.fromkeys(said):  # "warning" for a value that looks like another unit
+            click.echo(f"rotorcad: {label}: {note}.", err=True)
     common = sys.modules.get("rotorcad.cli.common")  # imported by any command that makes a folder
     if common is not None:
         if status not in (0, 1):

@@ -40,7 +40,14 @@ PUMP_OPTION = {
 @gear_options
 @click.option("--face-width", type=float, help="Face width b [mm].")
 @click.option("--speed", type=float, help="Speed n [rpm].")
-@click.option("--harmonics", "count", type=int, default=8, show_default=True, help="Number of harmonics listed.")
+@click.option(
+    "--harmonics",
+    "count",
+    type=int,
+    default=8,
+    show_default=True,
+    help="Number of harmonics listed (table rows at k x the pump frequency, JSON 'harmonics', the --plot's bars).",
+)
 @click.option(
     "--method",
     type=click.Choice(["paper", "swept-volume"]),
@@ -104,7 +111,7 @@ def pump(design: Path | None, **opts: Any) -> None:
         "pressure_angle": "ISO 53 basic rack",
         "helix_angle": "spur gears",
         "shift": "no profile shift",
-        "addendum": "ISO 53 basic rack; it sets the tip radius, hence the flow",
+        "addendum": "ISO 53 basic rack; it sets the tip radius r + m (h_a* + x), hence the flow, with no tip shortening",
     }
     result = {
         "mean_flow": paper if opts["method"] == "paper" else swept,
@@ -125,8 +132,9 @@ def pump(design: Path | None, **opts: Any) -> None:
             "eqs_4_6": kollek_coefficients(eps, opts["count"]).tolist(),
         },
     }
+    result.update(_trapped(p))
     out = Outputs()
-    out.add_figure(opts["plot"], lambda: _plot(p), "--plot")
+    out.add_figure(opts["plot"], lambda: _plot(p, opts["count"]), "--plot")
     out.add_figure(opts["nomogram"], lambda: plot_nomogram(g.teeth, g.pressure_angle), "--nomogram")
     result["defaults"] = {f"--{k.replace('_', '-')}": taken(f"{DEFAULTS[k]:g}{unit[k]}", how[k]) for k in defaulted}
     if mate is None:
@@ -135,8 +143,42 @@ def pump(design: Path | None, **opts: Any) -> None:
     if opts["as_json"]:
         emit_json(result)
     else:
-        print_table(f"gear pump z={g.teeth}/{p.pair.mate.teeth}, b={opts['face_width']:g} mm, n={opts['speed']:g} rpm", result)
-        print_defaults(result["defaults"])
+        _print(result, p)
+
+
+def _print(result: dict[str, Any], p: GearPump) -> None:
+    """Print the table, the harmonics as rows ``harmonics.k`` (at k x the pump frequency, over the mean flow), the defaults."""
+    shown = dict(result)
+    shown.update({f"harmonics.{k}": h for k, h in enumerate(result["harmonics"], 1)})
+    print_table(
+        f"gear pump z={p.gear.teeth}/{p.pair.mate.teeth}, b={p.face_width:g} mm, n={p.speed_rpm:g} rpm; "
+        f"harmonics.k at k x {p.pump_frequency:g} Hz, over the mean flow",
+        shown,
+    )
+    print_defaults(result["defaults"])
+
+
+def _trapped(p: GearPump) -> dict[str, float]:
+    """Return the trapped-space keys of a spur pump (CONTRACT.md); none for a helical one or eps <= 1.
+
+    The area from the gears' outlines (:meth:`rotorcad.pump.GearPump.trapped_area`, shapely), the
+    volume that area times the face width, the change max - min squeezed out and refilled each pitch,
+    and the largest flow of the squeeze (:meth:`rotorcad.pump.GearPump.trapped_flow_max`). In a helical
+    pump the transverse sections' spaces join along the face: no closed space to report.
+    """
+    if p.overlap_ratio or p.contact_ratio <= 1.0:
+        return {}
+    _, area = p.trapped_area()
+    b = p.face_width
+    return {
+        "trapped_double_contact_deg": float(np.degrees((p.contact_ratio - 1.0) * 2.0 * np.pi / p.gear.teeth)),
+        "trapped_area_max": float(area.max()),
+        "trapped_area_min": float(area.min()),
+        "trapped_volume_max": float(area.max() * b),
+        "trapped_volume_min": float(area.min() * b),
+        "trapped_volume_change": float((area.max() - area.min()) * b),
+        "trapped_flow_max": p.trapped_flow_max() * MM3_PER_S_TO_L_PER_MIN,
+    }
 
 
 def _check_in_mesh(p: GearPump, names: str) -> None:
@@ -163,7 +205,7 @@ def _check_in_mesh(p: GearPump, names: str) -> None:
 
 
 @styled
-def _plot(p: GearPump) -> Figure:
+def _plot(p: GearPump, count: int = 12) -> Figure:
     """Delivery over one tooth pitch with its mean, and the harmonics of the delivery."""
     g = p.gear
     fig = ps.new_figure(10.0, 7.0)
@@ -176,7 +218,7 @@ def _plot(p: GearPump) -> Figure:
     ax1.set_ylabel(ps.label("delivery Q", "L/min"))
     ax1.set_title(f"delivery (Kollek & Osiński eqs. 2-3): irregularity δ_Q = {p.irregularity:.3f}")
     ps.legend_outside(ax1)
-    h = p.harmonics(12)
+    h = p.harmonics(count)  # as many as --harmonics lists
     ax2.bar(
         np.arange(1, len(h) + 1) * p.pump_frequency, h, width=0.6 * p.pump_frequency, color=ps.ORANGE, label="harmonic amplitude"
     )

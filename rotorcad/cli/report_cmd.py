@@ -236,7 +236,14 @@ def _rotor_content(design: Path, data: dict[str, Any]) -> dict[str, Any]:
     case = f"{rotors.family} {pair.male_teeth}/{pair.female_teeth}"
     figures = _rotor_figures(rotors, analysis, clearance, racks, verdicts, deviation, case)
     files = _rotor_files(rotors, analysis, clearance, racks)
+    from rotorcad.cli.deflect_cmd import design_deflection  # with [operating] pressures: deflect's numbers too
+
+    try:  # a design deflect refuses keeps its report: the section says why instead
+        deflection = design_deflection(design, settings, rotors)
+    except InputError as exc:
+        deflection = {"refused": exc.format_message()}
     return {
+        "deflection": deflection,
         "kind": "rotor",
         "case": f"screw-rotor pair {case}",
         "family": rotors.family,
@@ -422,6 +429,16 @@ def _page(design: Path, data: dict[str, Any], content: dict[str, Any], planned: 
     ]
     if content["kind"] == "rotor":
         sections.append(_defects_section(result))
+    if content.get("deflection") is not None:  # a rotor design with [operating] pressures
+        shown = {k: v for k, v in content["deflection"].items() if k not in ("chambers", "defaults", "files", "refused")}
+        body = (
+            f"<p>rotorcad deflect refuses this design: {hr.esc(content['deflection']['refused'])}</p>"
+            if "refused" in content["deflection"]
+            else f"<p>Every number of <code>rotorcad deflect {hr.esc(design)} --json</code> (Rinder &amp; Deix), computed "
+            "by the same code; the defaults it took are those of <code>deflect</code>.</p>"
+            + hr.quantity_table(hr.flatten(shown), report_unit)
+        )
+        sections.append(hr.Section("deflection", "Deflection under gas load (rotorcad deflect --json)", body))
     sections.append(
         hr.Section(
             "hob",

@@ -379,6 +379,10 @@ def _build(
         raise InputError(exc.sentence(names(exc.param))) from None
     except TypeError as exc:
         raise InputError(f"the pair is not described completely: {exc}.") from None
+    from rotorcad.cli.plausible import say_warnings
+    from rotorcad.design.plausibility import screw_pair_warnings
+
+    say_warnings(screw_pair_warnings(spec.pair.center_distance, names("center_distance") or "[pair] center_distance"))
     family = spec.family
     if face is not EndFace.SUCTION and family not in ("male-points", "female-points"):
         rack = "--seen-from applies to a rotor's points, not to a rack."

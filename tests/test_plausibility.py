@@ -1,0 +1,121 @@
+"""Values that look like another unit are warned about; a long export says so first (newuser5 F13).
+
+References: the new user's inch-typed designs (the Rinder & Deix sample with every length / 25.4:
+a = 3.228 mm; a module of 4 mm typed as 0.157 in), the standards' module series (DIN 780, ISO 54:
+0.05 to 50 mm; 4/25.4 = 0.15748 is none of them), and the user's measured export of a 1000-tooth
+helical gear (7 faces a tooth; STEP, STL and DXF: 263 s wall on the loaded 2-core machine, 4 minutes
+without a word).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import re
+from pathlib import Path
+
+import pytest
+
+from rotorcad.cli.main import main
+from rotorcad.design.plausibility import STANDARD_MODULES, module_warnings, screw_pair_warnings
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _run(args: list[str]) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        status = main(args)
+    return status, out.getvalue(), err.getvalue()
+
+
+@pytest.mark.parametrize("module", STANDARD_MODULES)
+def test_no_standard_module_is_warned_about(module):
+    assert module_warnings(module, "--module") == []
+
+
+@pytest.mark.parametrize("mm", [1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0, 20.0, 25.0])
+def test_a_standard_module_typed_in_inches_is_warned_about(mm):
+    for typed in (mm / 25.4, float(f"{mm / 25.4:.3g}")):  # as computed, and as a user rounds it (3 digits)
+        said = module_warnings(typed, "[gear] module")
+        assert len(said) == 1 and f"near the standard {mm:g} mm" in said[0] and "[gear] module" in said[0]
+
+
+def test_modules_outside_the_series_are_warned_about():
+    assert "above the largest standard module, 50 mm" in module_warnings(60.0, "--module")[0]
+    assert "below the smallest standard module, 0.05 mm" in module_warnings(0.02, "--module")[0]
+
+
+def test_an_inch_typed_screw_pair_is_warned_about_and_still_computed(tmp_path):
+    design = (ROOT / "samples" / "rinder_deix_5_6.toml").read_text()
+    for key in ("center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius"):
+        design = re.sub(rf"(?m)^({key}) = ([0-9.]+)", lambda m: f"{m.group(1)} = {float(m.group(2)) / 25.4}", design)
+    path = tmp_path / "inch.toml"
+    path.write_text(re.sub(r"(?m)^(lead|length) = ([0-9.]+)", lambda m: f"{m.group(1)} = {float(m.group(2)) / 25.4}", design))
+    status, out, err = _run(["rotor", str(path), "--json", "--quiet"])
+    assert status == 0 and out.startswith("{")  # a warning, not a refusal; stdout stays one JSON object
+    assert "rotorcad: warning: [pair] center_distance 3.22835 mm is smaller than any screw compressor built" in err
+    assert "in inches it would be 82 mm" in err
+    assert screw_pair_warnings(82.0, "[pair] center_distance") == []
+
+
+def test_an_inch_typed_gear_module_is_warned_about_by_gear_and_pump():
+    status, _, err = _run(["gear", "--teeth", "20", "--module", "0.157", "--json"])
+    assert status == 0 and "--module 0.157 mm is no standard module, but in inches it is 3.988 mm" in err
+    status, _, err = _run(
+        ["pump", "--teeth", "11", "--module", "0.15748", "--shift", "0.3", "--face-width", "0.79", "--speed", "1500"]
+    )
+    assert status == 0 and "near the standard 4 mm" in err
+    status, _, err = _run(["gear", "--teeth", "20", "--module", "4", "--json"])
+    assert status == 0 and "warning" not in err
+
+
+def test_a_gear_step_of_a_thousand_teeth_says_it_takes_minutes(capsys):
+    from rotorcad.cli import progress
+    from rotorcad.cli.export_cmd import _say_long_files
+
+    bar = progress.Steps("test", 1, quiet=True)
+    noted = len(progress.NOTED)
+    _say_long_files([{"format": "stl", "body": "gear"}, {"format": "step", "body": "gear", "faces": 7 * 100 + 2}], False, bar)
+    assert len(progress.NOTED) == noted  # z = 100: some 5 s
+    _say_long_files([{"format": "stl"}, {"format": "step", "faces": 7 * 1000 + 2}, {"format": "dxf"}], False, bar)
+    note = progress.NOTED[-1]
+    assert note.startswith("this will take about 4 min")  # the user's 263 s wall (STEP after 20 s, 4 min more)
+    assert "--format dxf,stl would make it about" in note
+    assert "rotorcad: note: this will take about 4 min" in capsys.readouterr().err
+    noted = len(progress.NOTED)
+    half = [{"format": "step", "body": "gear", "faces": 7 * 600 + 2}]  # a herringbone gear's plan: one half's faces
+    _say_long_files(half, False, bar)
+    assert len(progress.NOTED) == noted  # 4202 faces: some 58 s
+    _say_long_files(half, False, bar, frozenset({"gear"}))
+    assert len(progress.NOTED) == noted + 1  # both halves, 8404 faces
+
+
+def test_the_step_faces_planned_are_seven_a_tooth(tmp_path):
+    from exports.formats import plan_files, table
+    from rotorcad.cli.gear_export import design_gear_bodies
+
+    path = tmp_path / "g.toml"
+    path.write_text("[gear]\nteeth = 40\nmodule = 1.0\nface_width = 20.0\nhelix_angle_deg = 20.0\n")
+    rows = [row for _, row, _ in plan_files([table()["step"]], design_gear_bodies(path, 0.005), 0.005, tmp_path, "g")]
+    assert rows[0]["faces"] == 7 * 40 + 2  # per tooth: root arc, 2 fillets, 2 flanks, tip; and the two end faces
+
+
+def test_a_step_over_the_memory_bound_is_refused_naming_what_would_do():
+    # Measured peaks (rotorcad.work.STEP_MEGABYTES): helical z 1000 (7002 faces) 761 MB; herringbone
+    # z 300 / 500 (4202 / 7002 faces) 915 / 1306 MB, so z 1000 (14002 faces) some 2.3 GB, over the 2 GB bound
+    from rotorcad.cli import progress
+    from rotorcad.cli.common import InputError
+    from rotorcad.cli.export_cmd import _say_long_files
+    from rotorcad.work import step_megabytes
+
+    assert step_megabytes(7002) == pytest.approx(761, rel=0.05)
+    assert step_megabytes(7002, True) == pytest.approx(1306, rel=0.05)
+    bar = progress.Steps("test", 1, quiet=True)
+    rows = [{"format": "stl", "body": "gear"}, {"format": "step", "body": "gear", "faces": 7 * 1000 + 2}]
+    with pytest.raises(InputError) as refused:
+        _say_long_files(rows, True, bar, frozenset({"gear"}))
+    text = refused.value.format_message()
+    assert "--format step cannot be written for the gear: its exact STEP of 14004 faces (a herringbone gear)" in text
+    assert "about 2.3 GB, more than the 2 GB allowed; --format stl would do" in text
+    _say_long_files(rows, True, bar)  # the helical gear of 1000 teeth: 761 MB, written (with its note)
