@@ -6,8 +6,9 @@ tightness and blow-hole (sec. 2.2.2), flute areas and displacement, sliding velo
 
 The package, one job a module (every name importable from ``rotorcad.meshing`` as before):
 :mod:`~rotorcad.meshing.meshline` (the meshline's pieces, their sampling, tangents, turns and
-corners), :mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's
-accuracy), :mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per
+corners), :mod:`~rotorcad.meshing.defect_record` (a defect and the resolution it is judged to),
+:mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's accuracy),
+:mod:`~rotorcad.meshing.slipping` (the slipping rule between the meshline's pieces), :mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per
 flank), :mod:`~rotorcad.meshing.angles` (the one angle convention), :mod:`~rotorcad.meshing.apex` (the
 blow-hole's apex of a given profile from the closed-form meshline of a fitted arc),
 :mod:`~rotorcad.meshing.slip` (slip and the points of infinite slip, eq. 4) and
