@@ -31,26 +31,47 @@ def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accura
     # away from C: a point's place on O1O2 is known to far better than the resolution along the meshline
     # (the rack-involute's female tip on the male root lies 1 mm from C, the resolution at 2 µm is 1.3 mm)
     away = max(1e-6 * scale, min(near, 1e-3 * scale + 20.0 * accuracy) if given else 0.0)
-    # a piece's side of O1O2 where it lies beyond the meshline's scatter: a given profile's meshline lies MESHLINE_GAIN
-    # times its accuracy off the design's at the median and up to 3 times that (the rack-involute female as 300 exact
-    # points a lobe began its driving flank 2 um on the sealing side, and lost the female tip's slipping on the male
-    # root; the N rack's female with 1 um ends its sealing flank 27 um on the driving side)
-    off = 3.0 * MESHLINE_GAIN * accuracy if given else 1e-9 * scale
-    ends = []  # per piece: sign of y leaving its start, reaching its end, its end point, its angle
-    for piece in pieces:
-        y = piece.points[:, 1]
-        side = np.nonzero(np.abs(y) > off)[0]
-        if len(side) == 0:
-            continue
-        ends.append((np.sign(y[side[0]]), np.sign(y[side[-1]]), piece.points[-1], float(piece.t[-1])))
+    # a piece's side of O1O2 where it lies beyond the meshline's scatter there: MESHLINE_GAIN times the profile's
+    # accuracy (a given profile's meshline lies that far off the design's at the median; the rack-involute female
+    # as 300 exact points a lobe began its driving flank 2 um on the sealing side), and three times as far from
+    # O1O2 as the piece's end misses it where it hands over (its scatter measured in place: the N rack's female
+    # with 1 um ends its sealing flank 27 um on the driving side). The pieces after it that keep within that
+    # distance of O1O2 (lands) hand over. Three times MESHLINE_GAIN everywhere (0.5-0.6 mm at 80 points a lobe)
+    # lost the female tip's slipping on the male root of the N rack, Rinder-Deix and rack-involute females from
+    # 80 points a lobe: their meshline leaves O1O2 by 0.39-0.48 mm there (the design's and the points' alike)
+    floor = MESHLINE_GAIN * accuracy if given else 1e-9 * scale
+    ys = [piece.points[:, 1] for piece in pieces]
     found = []
-    for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
-        if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > away:  # not at C
+    for i, (piece, y_out) in enumerate(zip(pieces, ys, strict=True)):
+        p, t = piece.points[-1], float(piece.t[-1])
+        if abs(p[1]) > near or abs(p[0] - c_x) <= away or not np.any(np.abs(y_out) > floor):
+            continue  # off O1O2, at C, or a land
+        off = max(floor, 3.0 * abs(p[1])) if given else floor
+        y_in = _next_beyond(pieces, ys, i, off, near)
+        if y_in is None:
+            continue
+        out, into = y_out[np.abs(y_out) > off], y_in[np.abs(y_in) > off]
+        if len(out) and out[-1] * into[0] < 0:
             role = Flank.TIP if p[0] > c_x else Flank.ROOT
             found.append(
                 Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), slipping_name(p[0], c_x), role=role)
             )
     return found
+
+
+def _next_beyond(pieces: list[MeshlinePiece], ys: list[np.ndarray], i: int, off: float, land: float) -> np.ndarray | None:
+    """Return the y (mm) of the first piece after the ``i``-th that leaves O1O2 by more than ``off`` (mm), or None.
+
+    The pieces between that keep within ``off`` of O1O2 and are shorter than ``land`` (mm of meshline: a land's
+    touch, the resolution) hand over; a longer one that keeps within ``off`` ends the search (no side beyond it).
+    """
+    for k in range(1, len(pieces)):
+        j = (i + k) % len(pieces)
+        if np.any(np.abs(ys[j]) > off):
+            return ys[j]
+        if float(np.sum(pieces[j].steps)) >= land:
+            return None
+    return None
 
 
 def slipping_name(x: float, pitch_x: float) -> str:
