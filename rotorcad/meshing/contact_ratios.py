@@ -97,10 +97,10 @@ class FlankReport:
         shorter than :attr:`working_length`: curve contact within the meshline's accuracy of a tip corner
         or of O1O2, or a run whose contacts all stay within the resolution of one tip corner, may be that
         corner's path rounded by the fit (:func:`resolved_steps`, the steps the transverse ratio counts).
-        A flank with a working part but none decided,
-        no defect inside it and a total contact ratio of at least 1 is undecided at this accuracy: it runs
-        if that contact works, and does not if it is a corner's path (Krigar's male as 150 exact points a
-        lobe, 7.0 mm of such contact on its driving flank, where the design has none).
+        A flank with a working part but none decided, no defect inside it and a total contact ratio of at
+        least 1 is undecided at this accuracy: it runs if that contact works, and does not if it is a
+        corner's path (Krigar's male as 150 exact points a lobe: 7.0 mm of such contact on its driving
+        flank, transverse ratio 0 +- 0.12, where the design has no working part).
         """
         return not (self._decided == 0.0 < self.working_length and not self.defects and self._total_if_working >= 1.0 - 1e-9)
 
