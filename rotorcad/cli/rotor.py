@@ -235,6 +235,7 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
         )
     for flank, report in result["flanks"].items():
         verdict = "runs" if report["runs_without_timing_gears"] else "does not run"
+        verdict = verdict if report.get("running_decided", True) else "undecided at this accuracy (not shown to run)"
         click.echo(
             f"  {flank} flank: {verdict}; geometric contact on {100 * report['geometric_share']:.0f} % of "
             f"{report['meshline_length']:.2f} mm of meshline, "

@@ -6,9 +6,11 @@ tightness and blow-hole (sec. 2.2.2), flute areas and displacement, sliding velo
 
 The package, one job a module (every name importable from ``rotorcad.meshing`` as before):
 :mod:`~rotorcad.meshing.meshline` (the meshline's pieces, their sampling, tangents, turns and
-corners), :mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's
-accuracy), :mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per
-flank), :mod:`~rotorcad.meshing.angles` (the one angle convention), :mod:`~rotorcad.meshing.apex` (the
+corners), :mod:`~rotorcad.meshing.defect_record` (a defect and the resolution it is judged to),
+:mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's accuracy),
+:mod:`~rotorcad.meshing.slipping` (the slipping rule between the meshline's pieces),
+:mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per flank),
+:mod:`~rotorcad.meshing.angles` (the one angle convention), :mod:`~rotorcad.meshing.apex` (the
 blow-hole's apex of a given profile from the closed-form meshline of a fitted arc),
 :mod:`~rotorcad.meshing.slip` (slip and the points of infinite slip, eq. 4) and
 :mod:`~rotorcad.meshing.analysis` (:class:`MeshingAnalysis`: the verdict and the summary).
@@ -82,6 +84,9 @@ miss counts only beyond its band and when it persists over the resolution sqrt(8
 part shorter than the resolution is none, and so is a curve contact between the male tip corner's
 path and the female's shorter than the meshline's resolution sqrt(8 a G e) (G = :data:`MESHLINE_GAIN`):
 the fit's rounding of a corner-to-corner hand-over (:func:`~rotorcad.meshing.contact_ratios.is_corner_handover`).
+A flank whose working part holds no step the input resolves as working (every contact within the meshline's
+accuracy of a tip corner, or within the resolution of one all along) is *undecided at this accuracy*: not
+shown to run, and ``running_decided`` is false (:attr:`~rotorcad.meshing.contact_ratios.FlankReport.running_decided`).
 A point of infinite slip (a rotor's v_t = 0, where the meshline crosses the circle on that rotor's
 centre and C as diameter) on a tip corner's path that runs on its pitch circle within the meshline's
 accuracy is C's rolling, and one at a corner of the meshline that the fit rounds is judged at the

@@ -73,6 +73,9 @@ class FlankReport:
         How far the transverse ratio may lie from the one of the exact profile the input stands for
         (:func:`ratio_uncertainty`): the rotation over which the input's accuracy does not tell working
         contact from a tip corner's path, per angular pitch.
+    decided_working_length : float or None, mm
+        Of a given profile, the part of ``working_length`` that the input's accuracy decides is working
+        (:func:`resolved_steps`: the steps the transverse ratio counts); None: all of it (a design).
     """
 
     flank: Flank
@@ -84,6 +87,30 @@ class FlankReport:
     overlap_contact_ratio: float = 0.0
     tip_corners: tuple[str, ...] = ()
     transverse_contact_ratio_accuracy: float = 0.0
+    decided_working_length: float | None = None
+
+    @property
+    def running_decided(self) -> bool:
+        """False where the flank would run on contact the input's accuracy does not decide (else True).
+
+        Of a given profile, the working part the input decides (:attr:`decided_working_length`) may be
+        shorter than :attr:`working_length`: curve contact within the meshline's accuracy of a tip corner
+        or of O1O2, or a run whose contacts all stay within the resolution of one tip corner, may be that
+        corner's path rounded by the fit (:func:`resolved_steps`, the steps the transverse ratio counts).
+        A flank with a working part but none decided, no defect inside it and a total contact ratio of at
+        least 1 is undecided at this accuracy: it runs if that contact works, and does not if it is a
+        corner's path (Krigar's male as 150 exact points a lobe: 7.0 mm of such contact on its driving
+        flank, transverse ratio 0 +- 0.12, where the design has no working part).
+        """
+        return not (self._decided == 0.0 < self.working_length and not self.defects and self._total_if_working >= 1.0 - 1e-9)
+
+    @property
+    def _decided(self) -> float:
+        return self.working_length if self.decided_working_length is None else self.decided_working_length
+
+    @property
+    def _total_if_working(self) -> float:
+        return self.transverse_contact_ratio + self.overlap_contact_ratio
 
     @property
     def total_contact_ratio(self) -> float:
@@ -94,11 +121,13 @@ class FlankReport:
     def runs_without_timing_gears(self) -> bool:
         """True when the flank carries the drive by itself (Rinder sec. 1.2, 2.2.1).
 
-        It has a working part (geometric contact with a common tangent), no cusp or jamming inside
-        it, and a total contact ratio of at least 1: a small transverse contact ratio is made up by
-        the helix (Lysholm's driving flank). Slipping is allowed: the helix carries the drive past it.
+        It has a working part (geometric contact with a common tangent) that the input decides, no
+        cusp or jamming inside it, and a total contact ratio of at least 1: a small transverse contact
+        ratio is made up by the helix (Lysholm's driving flank). Slipping is allowed: the helix carries
+        the drive past it. A flank whose working part the input does not decide is not shown to run
+        (False), and :attr:`running_decided` says so.
         """
-        return self.working_length > 0 and not self.defects and self.total_contact_ratio >= 1.0 - 1e-9
+        return self._decided > 0 and not self.defects and self.total_contact_ratio >= 1.0 - 1e-9
 
     def as_dict(self) -> dict[str, object]:
         """Return the report as plain values (an entry of ``flanks`` in :meth:`MeshingAnalysis.summary`).
@@ -109,7 +138,8 @@ class FlankReport:
             ``meshline_length`` and ``working_length`` (mm), ``geometric_contact`` (bool),
             ``geometric_share`` (0 to 1), ``defects`` (list of str), ``tip_corners`` (list of str),
             ``runs_without_timing_gears`` (bool), ``transverse_contact_ratio``,
-            ``overlap_contact_ratio``, ``total_contact_ratio``, ``transverse_contact_ratio_accuracy``.
+            ``overlap_contact_ratio``, ``total_contact_ratio``, ``transverse_contact_ratio_accuracy``,
+            ``running_decided`` (bool, :attr:`running_decided`).
         """
         return {
             "meshline_length": self.meshline_length,
@@ -123,6 +153,7 @@ class FlankReport:
             "overlap_contact_ratio": self.overlap_contact_ratio,
             "total_contact_ratio": self.total_contact_ratio,
             "transverse_contact_ratio_accuracy": self.transverse_contact_ratio_accuracy,
+            "running_decided": self.running_decided,
         }
 
 
@@ -437,7 +468,7 @@ def flank_reports(
     paths = _corner_path_points(pieces) if handover > 0 else {}
     held = generated if generated is not None else [None] * len(pieces)
     for flank in (Flank.DRIVING, Flank.SEALING):
-        total = geometric = working = 0.0
+        total = geometric = working = decided = 0.0
         spans: list[np.ndarray] = []  # (m, 2): the male rotation between consecutive working contacts
         undecided: list[np.ndarray] = []  # (m, 2): curve contact taken for none that may work
         ends = 0.0  # rad: how far the ends of the decided working stretches may be off, summed
@@ -474,6 +505,7 @@ def flank_reports(
                 at_ends, whole = end_spans(piece, work, pair, shortest)
                 ends += at_ends
                 undecided.append(whole)
+                decided += float(seg[work & ~on_tip].sum())  # working as the input decides it
         mine = [d for d in defects if d.role is flank and d.kind != "slipping"]
         # a corner's path across O1O2 (its lobe part the tip or the root) is the corner of both flanks
         across = [d for d in defects if d.role in (Flank.TIP, Flank.ROOT) and d.kind == "cusp"]
@@ -494,6 +526,7 @@ def flank_reports(
             overlap if working > 0 else 0.0,
             corners,
             accuracy,
+            decided if band > 0 else None,
         )
     return out
 
@@ -512,7 +545,12 @@ def running_reasons(flanks: dict[Flank, FlankReport], defects: list[Defect], pai
             out.append(f"the {flank} flank has no contact inside the bores.")
             continue
         parts = []
-        if report.working_length == 0:
+        if not report.running_decided:
+            parts.append(
+                f"its {report.working_length:.2f} mm of working part is contact the input's accuracy does not tell from "
+                "a tip corner's path (a corner the fit rounded): undecided at this accuracy, not shown to run"
+            )
+        elif report.working_length == 0:
             parts.append(
                 "no geometric contact anywhere (a tip corner against the mate's flank, no common tangent): no working "
                 "part for the helix to carry"

@@ -12,82 +12,16 @@ The criteria are stated in :mod:`rotorcad.meshing`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from rotorcad.geometry import shifted
+from rotorcad.meshing.defect_record import MESHLINE_GAIN, Defect, resolution
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_tangents, reversals
+from rotorcad.meshing.slipping import slipping_between_pieces, slipping_name
 from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
-
-
-@dataclass(frozen=True)
-class Defect:
-    """A point (or stretch) of the meshline that breaks one of Rinder's rules (sec. 2.2.1).
-
-    Parameters
-    ----------
-    kind : {"cusp", "jamming", "slipping"}
-        Cusp: the meshline normal passes through O1 (male) or O2 (female); jamming: through the pitch
-        point C; slipping: the meshline crosses O1O2 away from C.
-    rotor : {"male", "female"}
-        The rotor the rule names.
-    x, y : float, mm
-        Where it occurs, fixed frame.
-    angle_deg : float, deg
-        Male rotation angle at that contact.
-    flank : str
-        Name of the meshline piece (or, for slipping between pieces, which tip touches which root).
-    point_generated : bool
-        True when the whole piece has its normal through the centre (a point-generated flank).
-    extent : float, mm
-        Meshline length over which it holds (0: a single point).
-    role : Flank, optional
-        The lobe part where it occurs.
-    """
-
-    kind: str  # cusp, jamming, slipping
-    rotor: Side  # male, female (text reads as the rotor)
-    x: float
-    y: float
-    angle_deg: float
-    flank: str
-    point_generated: bool = False
-    extent: float = 0.0  # meshline length over which it holds (0: a single point)
-    role: Flank | None = None  # the lobe part where it occurs
-
-    def __post_init__(self) -> None:
-        """Read the rotor given as text ("male", "female") as a :class:`Side`."""
-        object.__setattr__(self, "rotor", Side(self.rotor))
-
-    def as_dict(self) -> dict[str, object]:
-        """Return the defect as plain values (an entry of ``defects`` in :meth:`MeshingAnalysis.summary`).
-
-        Returns
-        -------
-        dict
-            The fields by name, ``role`` as ``flank_role`` (its text, or None).
-        """
-        return {
-            "kind": self.kind,
-            "rotor": str(self.rotor),
-            "x": self.x,
-            "y": self.y,
-            "angle_deg": self.angle_deg,
-            "flank": self.flank,
-            "point_generated": self.point_generated,
-            "extent": self.extent,
-            "flank_role": None if self.role is None else str(self.role),
-        }
-
-
-MESHLINE_GAIN = 10.0
-"""How many times less accurate the meshline generated from a given profile is than the profile:
-the meshline's points lie where the profile's normal passes through C, and the normal's error moves
-them along the meshline (1 µm of scatter on the samples' males: accuracy 2 µm, meshline 10-40 µm off
-the design's at the median, its tangent 3-6 mrad off). The normals through O1, O2 and C of a given
-profile's meshline are judged to this multiple of its accuracy (:func:`meshline_defects`)."""
 
 _PATHS = (PieceRole.MALE_CORNER_PATH, PieceRole.FEMALE_CORNER_PATH)
 """The corner paths, in the order of the centres O1, O2 of the cusp tests."""
@@ -108,29 +42,6 @@ def _tip_path(piece: MeshlinePiece, pair: RotorPair, near: float) -> int:
     centre = (0.0, 0.0) if k == 0 else (pair.center_distance, 0.0)
     tip = pair.male_tip_radius if k == 0 else pair.female_tip_radius
     return k if abs(_median(np.hypot(*(piece.points - centre).T)) - tip) <= near else -1
-
-
-def resolution(accuracy: float, scale: float) -> float:
-    """Return the shortest meshline stretch (mm) that the defect tests resolve.
-
-    A profile known to an accuracy e has its tangent direction resolved over a chord no shorter than
-    the one along which a circle of the pair's size (the centre distance a) leaves its tangent by e,
-    sqrt(8 a e), nor than 0.5 % of a. A stretch along which the normal passes through a centre within
-    the accuracy is an arc about that centre only when it is longer than this; sign changes nearer
-    each other than this cancel; defects of one kind nearer each other than this are one.
-
-    Parameters
-    ----------
-    accuracy : float, mm
-        Accuracy of the profile (:attr:`MeshingAnalysis.judged_accuracy`).
-    scale : float, mm
-        The centre distance.
-
-    Returns
-    -------
-    float, mm
-    """
-    return max(5e-3 * scale, float(np.sqrt(8.0 * scale * accuracy)))
 
 
 VERDICT_SHARE = 0.25
@@ -742,53 +653,3 @@ def meshline_defects(
                 found.append(Defect("slipping", "male", *at, slipping_name(p[0], c[0]), role=role))
     found.extend(slipping_between_pieces(pieces, pair, accuracy, given))
     return _merged(_joined_across_o1o2(found, spans, times, longest, pair, reach), longest, spans)
-
-
-def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accuracy: float, given: bool) -> list[Defect]:
-    """Apply Rinder's slipping rule where the meshline crosses O1O2 between two pieces.
-
-    That is where a tip touches the mate's root on O1O2 (a tip corner's path or a flank handing over
-    to the next one), e.g. the female tip on the male root. The pieces are the meshline in order, and
-    the next lobe's first piece follows the last; pieces lying on O1O2 (tip lands) hand over. A
-    piece of a profile given by points or a drawing (not the design's exact curves) may end short
-    of O1O2 by up to the resolution (:func:`resolution`). Arguments as for :func:`meshline_defects`.
-    """
-    scale = pair.center_distance
-    c_x = pair.male_pitch_radius
-    near = max(1e-6 * scale, resolution(accuracy, scale) if given else 0.0)
-    # away from C: a point's place on O1O2 is known to far better than the resolution along the meshline
-    # (the rack-involute's female tip on the male root lies 1 mm from C, the resolution at 2 µm is 1.3 mm)
-    away = max(1e-6 * scale, min(near, 1e-3 * scale + 20.0 * accuracy) if given else 0.0)
-    # a piece's side of O1O2 where it lies beyond the meshline's scatter: a given profile's meshline lies MESHLINE_GAIN
-    # times its accuracy off the design's at the median and up to 3 times that (the rack-involute female as 300 exact
-    # points a lobe began its driving flank 2 um on the sealing side, and lost the female tip's slipping on the male
-    # root; the N rack's female with 1 um ends its sealing flank 27 um on the driving side)
-    off = 3.0 * MESHLINE_GAIN * accuracy if given else 1e-9 * scale
-    ends = []  # per piece: sign of y leaving its start, reaching its end, its end point, its angle
-    for piece in pieces:
-        y = piece.points[:, 1]
-        side = np.nonzero(np.abs(y) > off)[0]
-        if len(side) == 0:
-            continue
-        ends.append((np.sign(y[side[0]]), np.sign(y[side[-1]]), piece.points[-1], float(piece.t[-1])))
-    found = []
-    for (_, out_sign, p, t), (in_sign, _, _, _) in zip(ends, ends[1:] + ends[:1], strict=True):
-        if abs(p[1]) <= near and out_sign * in_sign < 0 and abs(p[0] - c_x) > away:  # not at C
-            role = Flank.TIP if p[0] > c_x else Flank.ROOT
-            found.append(
-                Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), slipping_name(p[0], c_x), role=role)
-            )
-    return found
-
-
-def slipping_name(x: float, pitch_x: float) -> str:
-    """Name a slipping point by where it lies on O1O2: which rotor's tip meets which root.
-
-    Rinder sec. 2.2.1: the meshline crosses O1O2 away from the pitch point C where a tip touches the
-    mate's root; beyond C (x > ``pitch_x``, mm, the male pitch radius) the male tip on the female root,
-    before it the female tip on the male root. The name depends on the place alone, not on the piece of
-    the meshline the crossing falls in: from points, the design's "male tip on the female root" of the
-    narrow-tip pair fell inside a piece or between two, and read 'driving flank', 'tip land' or
-    'sealing flank' by run.
-    """
-    return "male tip on the female root" if x > pitch_x else "female tip on the male root"
