@@ -27,8 +27,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from hob.cut_depth import cut_depth
+from hob.cut_depth import cut_depths
 from hob.rack import DerivedRack
+from hob.turn_back import CROSSING_ANGLE, crossing_angle, turn_back
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
 
@@ -97,6 +98,7 @@ def judge(
     accuracy: float = 0.0,
     measured: bool | None = None,
     undercut_accuracy: float | None = None,
+    tangent_accuracy: float = 0.0,
 ) -> Verdict:
     """Judge a derived rack in its normal section (module docstring).
 
@@ -120,6 +122,10 @@ def judge(
         Of a rotor generated from points (``accuracy > 0``, not ``measured``): how deep the rack must
         cut into its generated points for an undercut (:func:`undercut_reasons`); default
         :data:`FOLD_TOLERANCE`, and never below it (:func:`undercut_tolerance` gives it for a pair).
+    tangent_accuracy : float, rad
+        Of points with scatter, how well their tangents are known
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy`); 0 for exact points, whose mate's
+        turn-back is judged by its crossing angle too (:func:`undercut_reasons`).
 
     Returns
     -------
@@ -236,7 +242,9 @@ def judge(
     fitted = accuracy > 0 if measured is None else measured
     depth_tolerance = max(FOLD_TOLERANCE, undercut_accuracy or 0.0) if accuracy > 0 and not fitted else None
     notes: list[str] = []
-    undercut = undercut_reasons(rack, measured=fitted, tolerance=depth_tolerance, notes=notes)
+    undercut = undercut_reasons(
+        rack, measured=fitted, tolerance=depth_tolerance, notes=notes, accuracy=accuracy, scattered=tangent_accuracy > 0
+    )
     reasons += undercut
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
@@ -267,7 +275,12 @@ def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: fl
 
 
 def undercut_reasons(
-    rack: DerivedRack, measured: bool = False, tolerance: float | None = None, notes: list[str] | None = None
+    rack: DerivedRack,
+    measured: bool = False,
+    tolerance: float | None = None,
+    notes: list[str] | None = None,
+    accuracy: float = 0.0,
+    scattered: bool = False,
 ) -> list[str]:
     """Return the undercut of a rotor by its rack, one sentence per stretch (none for a gear's rack).
 
@@ -296,12 +309,26 @@ def undercut_reasons(
         where = f"r = {r.min():.2f}-{r.max():.2f} mm"
         deep = ""
         if back and tolerance is not None:
-            depth = cut_depth(rack, a, b)
+            lo, depths = cut_depths(rack, a, b)
+            depth = float(depths.max(initial=0.0))
             if depth <= tolerance:
                 if notes is not None:
                     notes.append(
                         f"the {rack.side.value}'s envelope turns back at {where}, but the rack cuts only {1000 * depth:.2f} um "
                         f"into it there, within the {1000 * tolerance:.2f} um the points are known to: not judged an undercut."
+                    )
+                continue
+            onset = turn_back(rack, a, b, accuracy)
+            angle = 0.0 if scattered else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
+            if not onset.crossing and angle <= CROSSING_ANGLE:
+                if notes is not None:
+                    seen = "" if scattered else f", and its two sides meet at {np.degrees(angle):.2f} deg"
+                    notes.append(
+                        f"the {rack.side.value}'s envelope turns back at {where} (the rack cuts {1000 * depth:.1f} um into "
+                        f"the generated points, along the curve), but it only touches, as at a slip singularity, where the "
+                        f"generation factor touches 0: its trend beyond the turn-back starts at {onset.onset:+.3f}, not below "
+                        f"-{onset.accuracy:.3f}, which the points' accuracy allows{seen}; an undercut's starts below 0 and "
+                        "crosses it: not judged an undercut."
                     )
                 continue
             deep = f" (the rack cuts {1000 * depth:.1f} um into it, more than the points' {1000 * tolerance:.2f} um)"

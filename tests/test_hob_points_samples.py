@@ -92,7 +92,13 @@ def from_points(name: str, rotor: str, form: str):
     racks = {side: rotor_rack(rotors, side, **MEASURED) for side in ("male", "female")}
     tolerance = undercut_tolerance(rotors)  # as `rotorcad hob` judges the mate's undercut
     verdicts = {
-        side: judge(rack, accuracy=rotors.accuracy, measured=side == rotor, undercut_accuracy=tolerance)
+        side: judge(
+            rack,
+            accuracy=rotors.accuracy,
+            measured=side == rotor,
+            undercut_accuracy=tolerance,
+            tangent_accuracy=rotors.tangent_accuracy,
+        )
         for side, rack in racks.items()
     }
     return rotors, racks, verdicts

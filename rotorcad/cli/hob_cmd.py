@@ -95,6 +95,7 @@ def hob(design: Path | None, **opts: Any) -> None:
         _fitted_sides(body),
         undercut_tolerance(body),
         body if rotors is None else None,
+        tangent_accuracy=getattr(body, "tangent_accuracy", 0.0) or 0.0,
     )
     result["smallest_flank_angle_accuracy_deg"] = _angle_accuracy(body, racks, result["normal_pressure_angle_min_deg"])
     result["notes"] = (notes if rotors is None else []) + result["notes"]
@@ -148,6 +149,7 @@ def judge_racks(
     measured: dict[str, bool] | None = None,
     undercut_accuracy: float = 0.0,
     gear: InvoluteGear | None = None,
+    tangent_accuracy: float = 0.0,
 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
 
@@ -174,6 +176,9 @@ def judge_racks(
     gear : InvoluteGear, optional
         The gear of the rack ``gear``: its undercut (:func:`hob.undercut.gear_undercut`), which a hob
         makes, is stated in ``notes`` and the keys below, not in ``reasons``.
+    tangent_accuracy : float, rad
+        Of points with scatter, how well their tangents are known (0 for exact points and designs):
+        :func:`hob.verdict.judge` tells a touch from a crossing by the generation factor alone then.
 
     Returns
     -------
@@ -187,7 +192,14 @@ def judge_racks(
         and per rack its figures (radii and tip thickness in mm, angles in deg).
     """
     verdicts = {
-        name: judge(rack, limits, accuracy, None if measured is None else measured.get(name, False), undercut_accuracy)
+        name: judge(
+            rack,
+            limits,
+            accuracy,
+            None if measured is None else measured.get(name, False),
+            undercut_accuracy,
+            tangent_accuracy=tangent_accuracy,
+        )
         for name, rack in racks.items()
     }
     result: dict[str, Any] = {
