@@ -77,7 +77,8 @@ class Verdict:
         Width of the hob tooth at 5 % of the rack depth above its tip.
     notes : tuple of str
         What was judged within the profile's accuracy and so is no reason (an envelope that turns back
-        by less than the points can show).    undercut : bool
+        by less than the points can show, or along itself at a slip singularity).
+    undercut : bool
         Whether a rotor is undercut by its rack (:func:`undercut_reasons` found a stretch); a gear's
         undercut is :func:`hob.undercut.gear_undercut`'s (a hob makes it: no reason).
     """
@@ -291,14 +292,17 @@ def undercut_reasons(
 
     With ``tolerance`` (a rotor generated from another rotor's points), an envelope that turns back
     is an undercut only where the rack cuts deeper than ``tolerance`` into the rotor's points there
-    (:func:`hob.cut_depth.cut_depth`): where the design's generation factor touches 0 (a slip
-    singularity, the rack-involute female at r = 56.87 mm) the fit's curvature errors swing it below
-    0, and the envelope turns back by a hair. Measured (rack-involute female from the male's points):
-    0.000 um deep from a new user's exact points at 300 a lobe (turned by any datum angle), 0.00-0.82 um from
-    exact points at 300 a lobe started elsewhere, 0.02 um at 2000, 0.6-2.3 um at 1-2 um of scatter (one seed of
-    1 um: 19.5 um; :func:`undercut_tolerance`); the 5/6 arc-flank male, undercut by its
-    rack (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
-    from exact points (80-2000 a lobe) and 1 um of scatter. Such a stretch goes to ``notes`` instead.
+    (:func:`hob.cut_depth.cut_depth`) and the turn-back is a crossing, not a touch
+    (:mod:`hob.turn_back`): where the design's generation factor touches 0 (a slip singularity, the
+    rack-involute female at r = 56.87 mm, the N rack's at 43.5-44.6 mm) the fit's curvature errors swing
+    it below 0 and the envelope turns back along itself, the rack cutting 0.8-314 um "deep" into the
+    generated points while removing none of the rotor's material beyond the points' accuracy (brute
+    force, tests/test_hob_datum.py); the 5/6 arc-flank male, undercut by its rack
+    (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
+    from exact points (80-2000 a lobe) and 1 um of scatter, a crossing (the generation factor's trend
+    starts at -0.06 to -0.14, or of exact points its two sides meet at 3.5-4.7 deg). A shallow stretch or
+    a touch goes to ``notes`` instead (``accuracy``, mm, the profile's: the touch's bound; ``scattered``:
+    points with scatter, whose crossing angle is not known).
     """
     if rack.side is None or rack.profile is None:
         return []
@@ -353,7 +357,8 @@ def undercut_tolerance(rotors: object) -> float:
     undercut 5/6 arc-flank male from its female's points (2000 a lobe, 1 um, accuracy 4.2 um): 13.9 um.
     Of exact points :data:`FOLD_TOLERANCE`: their accuracy is the interpolation's bound between the
     points (17.7 um at 80 a lobe), a smooth error that does not make two nearby generated parts cross;
-    the 5/6 male from its female's 80 exact points a lobe is cut 5.2 um deep.
+    the 5/6 male from its female's 80 exact points a lobe is cut 5.2 um deep. Deeper turn-backs that only
+    touch (a slip singularity) are told apart by :mod:`hob.turn_back`, whatever their depth.
 
     Parameters
     ----------

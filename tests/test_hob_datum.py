@@ -459,3 +459,30 @@ def test_the_smallest_angle_is_within_its_stated_accuracy_at_any_scan(rotor, per
     stated = smallest_angle_accuracy(rotors, racks, rotor, smallest)
     assert abs(smallest - closed_form_angle(SAMPLE)) <= stated, (smallest, stated)
     assert stated < 1.0
+
+
+def test_hob_names_a_design_outline_that_loops_as_export_does(tmp_path, capsys):
+    # newuser5 F7: the rack-involute family at its default roundings on the 116 mm pair loops near the tips
+    # (`rotor` and `export` name it), `hob` did not. Reference: the meshing analysis's cusps on the same rotors
+    # (Rinder's rule, another method, as tests/test_exports.py checks `export`), and `export`'s own sentence:
+    # the same words in `hob`'s notes; none for roundings the rotors can follow.
+    from rotorcad.families import build_family
+    from rotorcad.meshing import MeshingAnalysis
+    from rotorcad.rotor_pair import RotorPair
+
+    pair = RotorPair(5, 6, 116.0, 63.0, 45.0, 71.0, 53.0, lead=300.0, length=10.0)
+    keys = ("male_teeth", "female_teeth", "center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius")
+    table = "\n".join(f"{k} = {getattr(pair, k)}" for k in (*keys, "female_root_radius", "lead", "length"))
+    named, said = {}, {}
+    for name, extra in (("loops", ""), ("clean", "tip_rounding = 0.0\nroot_rounding = 0.6\n")):
+        design_file = tmp_path / f"{name}.toml"
+        design_file.write_text(f'[pair]\n{table}\n\n[profile]\nfamily = "rack-involute"\n{extra}')
+        assert main(["hob", str(design_file), "--json", "--quiet"]) == 0
+        notes = json.loads(capsys.readouterr().out)["notes"]
+        named[name] = {side for side in ("male", "female") if any(f"the {side} outline crosses itself" in n for n in notes)}
+        said[name] = [n.split(": its generated flank")[0] for n in notes if "outline crosses itself" in n]
+    cusps = {d.rotor for d in MeshingAnalysis(build_family(pair, "rack-involute", {})).defects if d.kind == "cusp"}
+    assert named == {"loops": cusps, "clean": set()} and cusps == {"male", "female"}
+    rc = main(["export", str(tmp_path / "loops.toml"), "--format", "step", "--out", str(tmp_path / "s"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and said["loops"] and said["loops"][0] in err
