@@ -20,19 +20,19 @@ sec. 6.3 and 10.4) falls below 0. Two things do that, and only one is an undercu
   undercut (5-14 um).
 
 So the turn-back is told by what it is, not by its depth. First by the generation factor's trend beyond
-the step: f is
-fitted by a straight line over :data:`TREND_LENGTH` of rack beyond :data:`TRANSITION` from the step
-(where the fit's rounding of the step has died out), and that line's value at the step, f0, is the
-onset of the turn-back. A rack within the points' accuracy e of the true one over the trend's length
-L has its curvature known to 8 e / L^2 (the sagitta of a curvature error over L), so f0 is known to
-C 8 e / L^2: a crossing when f0 is below minus that, a touch otherwise. Second, of exact points (no
-scatter, whose fit errs smoothly), by the angle at which the two generated parts the rack leaves meet
-(:func:`crossing_angle`): a touch leaves the same curve on both sides of what it removes (0.11-0.70 deg
-measured, newuser6's N-rack scans and the rack-involute's), a crossing two parts at a finite angle
-(the 5/6 male from its female's exact points, 80-2000 a lobe or the brute-force cut outline itself,
-3.5-4.7 deg; the latter's fit reads f0 = +0.03 at the step, so its trend alone would call it a touch).
-Of scattered points that angle is not known: at a slow generation the mate's tangent swings with the
-fit (3.1-4.2 deg read at touches from 300 points a lobe with 2 um of scatter), and the trend decides.
+the step: f is fitted by a straight line over :data:`TREND_LENGTH` of rack beyond :data:`TRANSITION`
+from the step (where the fit's rounding of the step has died out; past the last point where it rings
+back above :data:`FAST`), and that line's value at the step, f0, is the onset of the turn-back. A rack
+within the points' accuracy e of the true one over the trend's length L has its curvature known to
+8 e / L^2 (the sagitta of a curvature error over L), so f0 is known to C 8 e / L^2: a crossing when f0
+is below minus that, a touch otherwise. Second, of exact points (no scatter, whose fit errs smoothly),
+by the angle at which the two generated parts the rack leaves meet (:func:`crossing_angle`): a touch
+leaves the same curve on both sides of what it removes (0.11-0.70 deg measured, newuser6's N-rack scans
+and the rack-involute's), a crossing two parts at a finite angle (the 5/6 male from its female's exact
+points, 80-2000 a lobe or the brute-force cut outline itself, 3.5-4.7 deg; the latter's fit reads
+f0 = +0.03 at the step, so its trend alone would call it a touch). Of scattered points that angle is
+not known: at a slow generation the mate's tangent swings with the fit (3.1-4.2 deg read at touches
+from 300 points a lobe with 2 um of scatter), and the trend decides.
 """
 
 from __future__ import annotations
@@ -54,6 +54,10 @@ TREND_LENGTH = 2.0
 CROSSING_ANGLE = np.radians(2.0)
 """rad: of exact points, the angle between the two generated parts a turn-back leaves above which it is a
 crossing (module docstring: touches 0.11-0.70 deg, crossings 3.5-4.7 deg measured)."""
+FAST = 1.0
+"""Generation factor above which a rack point is in the rack's fast part (the flank before the step generates at
+1.6-2.3): where the fit rings back above it beyond the step, the transition reaches past the last such point
+(the N rack from its male's points, 500 a lobe with 1 um of scatter or 2000 with 2 um: up to 1.5 mm)."""
 FAST_SIDE = 5
 """Rack points either side of a turn-back whose largest generation factor tells the step's side."""
 
@@ -108,7 +112,10 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float) -> Turn
     else:  # walk back from its last point
         idx = (stop - 1 - np.arange(n)) % n
         dist = np.concatenate([[0.0], np.cumsum(ds[(idx[1:]) % n])])
-    sel = (dist >= TRANSITION) & (dist <= TRANSITION + TREND_LENGTH)
+    # the fit rounds the step and may ring back into the fast part beyond it: the trend starts after that
+    ringing = (dist <= TRANSITION + TREND_LENGTH) & (f[idx] > FAST)
+    start = TRANSITION + (float(dist[ringing].max()) if ringing.any() else 0.0)
+    sel = (dist >= start) & (dist <= start + TREND_LENGTH)
     k = idx[sel]
     ok = np.isfinite(f[k]) & ~rack.corner_path[k]
     k, d = k[ok], dist[sel][ok]
@@ -160,4 +167,4 @@ def crossing_angle(rack: DerivedRack, first: int, depth: np.ndarray, cut: float)
     return float(max(angles, default=0.0))  # of the tangent's line: a turn by pi is none
 
 
-__all__ = ["CROSSING_ANGLE", "TRANSITION", "TREND_LENGTH", "TurnBack", "crossing_angle", "turn_back"]
+__all__ = ["CROSSING_ANGLE", "FAST", "TRANSITION", "TREND_LENGTH", "TurnBack", "crossing_angle", "turn_back"]
