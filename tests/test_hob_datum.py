@@ -85,11 +85,16 @@ def csv_outline(name: str, rotor: str) -> np.ndarray:
 
 
 @functools.cache
-def user_scan_hob(name: str, datum_deg: float):
-    """The new user's input: 300 points a lobe evenly along that file from its first point, turned by ``datum_deg``
-    and written to 1e-6 mm; both verdicts as ``rotorcad hob --male-points`` gives them, and the pair."""
+def user_scan_hob(name: str, datum_deg: float, per_lobe: int = 300, sigma: float = 0.0, seed: int = 0):
+    """The new user's input: ``per_lobe`` points a lobe evenly along that file from its first point (with
+    Gaussian scatter ``sigma``, mm, along the normals), turned by ``datum_deg`` and written to 1e-6 mm; both
+    verdicts as ``rotorcad hob --male-points`` gives them, and the pair."""
     spec, _ = design(name)
-    q = scan(csv_outline(name, "male"), 300 * spec.pair.male_teeth, 0.0)
+    q = scan(csv_outline(name, "male"), per_lobe * spec.pair.male_teeth, 0.0)
+    if sigma:
+        d = np.roll(q, -1, axis=0) - np.roll(q, 1, axis=0)
+        normal = np.column_stack([d[:, 1], -d[:, 0]]) / np.hypot(*d.T)[:, None]
+        q = q + np.random.default_rng(seed).normal(0.0, sigma, len(q))[:, None] * normal
     c, s = np.cos(np.radians(datum_deg)), np.sin(np.radians(datum_deg))
     q = np.round(q @ np.array([[c, s], [-s, c]]), 6)
     rotors = with_exact_cusp_paths(pair_from_rotor_points(spec.pair, q, "male"))
@@ -331,6 +336,8 @@ def singular_cases():
     return {
         "n_rack male 300 2um": lambda: ("n_rack_5_6", from_points("n_rack_5_6", "male", "scatter")[0]),
         "n_rack male 300 exact (newuser6)": lambda: ("n_rack_5_6", user_scan_hob("n_rack_5_6", 0.0)[1]),
+        # the fit rings back into the rack's fast part beyond the step (hob.turn_back.FAST): 646 um "deep"
+        "n_rack male 500 1um (newuser6)": lambda: ("n_rack_5_6", user_scan_hob("n_rack_5_6", 0.0, 500, 1e-3, 3)[1]),
         "rack-involute male 300 exact, started at 0.75": lambda: (SAMPLE, hob_of(SAMPLE, "male", 300, phase=0.75)[1]),
         "rack-involute male 300 2um": lambda: (SAMPLE, from_points(SAMPLE, "male", "scatter")[0]),
     }
@@ -340,10 +347,10 @@ def singular_cases():
 def test_a_turn_back_at_a_slip_singularity_removes_no_material(case):
     # Issue 22 item 3, newuser6: the female generated from the male's points turns back where the design's
     # generation factor touches 0 (the N rack at r = 43.5-44.6 mm, f = 0.033; the rack-involute at 56.87 mm,
-    # f = 0 by construction), and the rack "cuts" 0.8-314 um into the generated points there, deeper than
+    # f = 0 by construction), and the rack "cuts" 0.8-646 um into the generated points there, deeper than
     # the points' accuracy: read "female undercut" before. Reference, brute force: the design's female there,
-    # rolled past the rack from the points at 3000 positions (shapely), is cut no deeper than the points'
-    # accuracy (0.1-5.4 um for 0.38-7.8 um, 2000 positions): the hob removes no material of the rotor beyond what the points
+    # rolled past the rack from the points at 2000 positions (shapely), is cut no deeper than the points'
+    # accuracy (0.1-5.4 um for 0.38-7.8 um): the hob removes no material of the rotor beyond what the points
     # tell. Now a touch (hob.turn_back), named in the notes, not an undercut.
     name, rotors = singular_cases()[case]()
     rack = rotor_rack(rotors, "female", **MEASURED)
