@@ -27,8 +27,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from hob.cut_depth import cut_depth
+from hob.cut_depth import cut_depths
 from hob.rack import DerivedRack
+from hob.turn_back import CROSSING_ANGLE, crossing_angle, turn_back
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
 
@@ -76,7 +77,8 @@ class Verdict:
         Width of the hob tooth at 5 % of the rack depth above its tip.
     notes : tuple of str
         What was judged within the profile's accuracy and so is no reason (an envelope that turns back
-        by less than the points can show).    undercut : bool
+        by less than the points can show, or along itself at a slip singularity).
+    undercut : bool
         Whether a rotor is undercut by its rack (:func:`undercut_reasons` found a stretch); a gear's
         undercut is :func:`hob.undercut.gear_undercut`'s (a hob makes it: no reason).
     """
@@ -97,6 +99,7 @@ def judge(
     accuracy: float = 0.0,
     measured: bool | None = None,
     undercut_accuracy: float | None = None,
+    tangent_accuracy: float = 0.0,
 ) -> Verdict:
     """Judge a derived rack in its normal section (module docstring).
 
@@ -120,6 +123,10 @@ def judge(
         Of a rotor generated from points (``accuracy > 0``, not ``measured``): how deep the rack must
         cut into its generated points for an undercut (:func:`undercut_reasons`); default
         :data:`FOLD_TOLERANCE`, and never below it (:func:`undercut_tolerance` gives it for a pair).
+    tangent_accuracy : float, rad
+        Of points with scatter, how well their tangents are known
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy`); 0 for exact points, whose mate's
+        turn-back is judged by its crossing angle too (:func:`undercut_reasons`).
 
     Returns
     -------
@@ -236,7 +243,9 @@ def judge(
     fitted = accuracy > 0 if measured is None else measured
     depth_tolerance = max(FOLD_TOLERANCE, undercut_accuracy or 0.0) if accuracy > 0 and not fitted else None
     notes: list[str] = []
-    undercut = undercut_reasons(rack, measured=fitted, tolerance=depth_tolerance, notes=notes)
+    undercut = undercut_reasons(
+        rack, measured=fitted, tolerance=depth_tolerance, notes=notes, accuracy=accuracy, scattered=tangent_accuracy > 0
+    )
     reasons += undercut
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
     if thickness < lim.min_tip_thickness:
@@ -267,7 +276,12 @@ def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: fl
 
 
 def undercut_reasons(
-    rack: DerivedRack, measured: bool = False, tolerance: float | None = None, notes: list[str] | None = None
+    rack: DerivedRack,
+    measured: bool = False,
+    tolerance: float | None = None,
+    notes: list[str] | None = None,
+    accuracy: float = 0.0,
+    scattered: bool = False,
 ) -> list[str]:
     """Return the undercut of a rotor by its rack, one sentence per stretch (none for a gear's rack).
 
@@ -278,14 +292,17 @@ def undercut_reasons(
 
     With ``tolerance`` (a rotor generated from another rotor's points), an envelope that turns back
     is an undercut only where the rack cuts deeper than ``tolerance`` into the rotor's points there
-    (:func:`hob.cut_depth.cut_depth`): where the design's generation factor touches 0 (a slip
-    singularity, the rack-involute female at r = 56.87 mm) the fit's curvature errors swing it below
-    0, and the envelope turns back by a hair. Measured (rack-involute female from the male's points):
-    0.000 um deep from a new user's exact points at 300 a lobe (turned by any datum angle), 0.00-0.82 um from
-    exact points at 300 a lobe started elsewhere, 0.02 um at 2000, 0.6-2.3 um at 1-2 um of scatter (one seed of
-    1 um: 19.5 um; :func:`undercut_tolerance`); the 5/6 arc-flank male, undercut by its
-    rack (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
-    from exact points (80-2000 a lobe) and 1 um of scatter. Such a stretch goes to ``notes`` instead.
+    (:func:`hob.cut_depth.cut_depth`) and the turn-back is a crossing, not a touch
+    (:mod:`hob.turn_back`): where the design's generation factor touches 0 (a slip singularity, the
+    rack-involute female at r = 56.87 mm, the N rack's at 43.5-44.6 mm) the fit's curvature errors swing
+    it below 0 and the envelope turns back along itself, the rack cutting 0.8-314 um "deep" into the
+    generated points while removing none of the rotor's material beyond the points' accuracy (brute
+    force, tests/test_hob_datum.py); the 5/6 arc-flank male, undercut by its rack
+    (tests/independent_pairs.py, brute-force cut), generated from its female's points: 5.0-13.9 um deep
+    from exact points (80-2000 a lobe) and 1 um of scatter, a crossing (the generation factor's trend
+    starts at -0.06 to -0.14, or of exact points its two sides meet at 3.5-4.7 deg). A shallow stretch or
+    a touch goes to ``notes`` instead (``accuracy``, mm, the profile's: the touch's bound; ``scattered``:
+    points with scatter, whose crossing angle is not known).
     """
     if rack.side is None or rack.profile is None:
         return []
@@ -296,12 +313,26 @@ def undercut_reasons(
         where = f"r = {r.min():.2f}-{r.max():.2f} mm"
         deep = ""
         if back and tolerance is not None:
-            depth = cut_depth(rack, a, b)
+            lo, depths = cut_depths(rack, a, b)
+            depth = float(depths.max(initial=0.0))
             if depth <= tolerance:
                 if notes is not None:
                     notes.append(
                         f"the {rack.side.value}'s envelope turns back at {where}, but the rack cuts only {1000 * depth:.2f} um "
                         f"into it there, within the {1000 * tolerance:.2f} um the points are known to: not judged an undercut."
+                    )
+                continue
+            onset = turn_back(rack, a, b, accuracy)
+            angle = 0.0 if scattered else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
+            if not onset.crossing and angle <= CROSSING_ANGLE:
+                if notes is not None:
+                    seen = "" if scattered else f", and its two sides meet at {np.degrees(angle):.2f} deg"
+                    notes.append(
+                        f"the {rack.side.value}'s envelope turns back at {where} (the rack cuts {1000 * depth:.1f} um into "
+                        f"the generated points, along the curve), but it only touches, as at a slip singularity, where the "
+                        f"generation factor touches 0: its trend beyond the turn-back starts at {onset.onset:+.3f}, not below "
+                        f"-{onset.accuracy:.3f}, which the points' accuracy allows{seen}; an undercut's starts below 0 and "
+                        "crosses it: not judged an undercut."
                     )
                 continue
             deep = f" (the rack cuts {1000 * depth:.1f} um into it, more than the points' {1000 * tolerance:.2f} um)"
@@ -326,7 +357,8 @@ def undercut_tolerance(rotors: object) -> float:
     undercut 5/6 arc-flank male from its female's points (2000 a lobe, 1 um, accuracy 4.2 um): 13.9 um.
     Of exact points :data:`FOLD_TOLERANCE`: their accuracy is the interpolation's bound between the
     points (17.7 um at 80 a lobe), a smooth error that does not make two nearby generated parts cross;
-    the 5/6 male from its female's 80 exact points a lobe is cut 5.2 um deep.
+    the 5/6 male from its female's 80 exact points a lobe is cut 5.2 um deep. Deeper turn-backs that only
+    touch (a slip singularity) are told apart by :mod:`hob.turn_back`, whatever their depth.
 
     Parameters
     ----------

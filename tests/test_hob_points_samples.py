@@ -95,7 +95,13 @@ def from_points(name: str, rotor: str, form: str, seed: int = SEED):
     racks = {side: rotor_rack(rotors, side, **MEASURED) for side in ("male", "female")}
     tolerance = undercut_tolerance(rotors)  # as `rotorcad hob` judges the mate's undercut
     verdicts = {
-        side: judge(rack, accuracy=rotors.accuracy, measured=side == rotor, undercut_accuracy=tolerance)
+        side: judge(
+            rack,
+            accuracy=rotors.accuracy,
+            measured=side == rotor,
+            undercut_accuracy=tolerance,
+            tangent_accuracy=rotors.tangent_accuracy,
+        )
         for side, rack in racks.items()
     }
     return rotors, racks, verdicts
@@ -175,17 +181,21 @@ def rack_off_design(name: str, rotor: str, form: str) -> float:
 
 # Measured departures, 300 points a lobe with 2 um of scatter (seed 11), strict: each must still fail,
 # and the day it passes its entry goes.
-ENVELOPE_TURNS_BACK = (
-    "the mate generated from the scattered rotor turns back where the design's generation is slow (its rack's "
-    "curvature from a smoothing fit swings the generation factor below 0), and the rack cuts far deeper into it "
-    "than the points' accuracy (4.05-4.16 um): 'female undercut'"
+SLIP_TOUCH = (
+    "the verdict is the design's now: the female generated from the scattered male turns back at its slip "
+    "singularity{}, a touch (hob.turn_back: the generation factor's trend beyond it {}, not below -{}), no longer "
+    "'female undercut'; the smallest angle is not the design's: {}"
 )
 KNOWN_VERDICTS = {
-    ("n_rack_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.6 mm, 314 um deep (design 0.033 there), "
-    "5.37 deg for 5.73",
-    ("rinder_deix_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 43.5-44.6 mm, 314 um deep (design 0.033 there), "
-    "5.37 deg for 5.73",
-    ("rack_involute_5_6", "male", "scatter"): ENVELOPE_TURNS_BACK + " at r = 56.8-57.8 mm, 119 um deep, 16.80 deg for 18.13",
+    ("n_rack_5_6", "male", "scatter"): SLIP_TOUCH.format(
+        " (r = 43.5-44.6 mm, 314 um deep)", "+0.033", "0.80", "5.37 deg for 5.73"
+    ),
+    ("rinder_deix_5_6", "male", "scatter"): SLIP_TOUCH.format(
+        " (r = 43.5-44.6 mm, 314 um deep)", "+0.033", "0.80", "5.37 deg for 5.73"
+    ),
+    ("rack_involute_5_6", "male", "scatter"): SLIP_TOUCH.format(
+        " (r = 56.8-57.8 mm, 120 um deep)", "+0.131", "0.33", "16.80 deg for 18.13"
+    ),
     ("rack_involute_5_6", "female", "scatter"): "17.98 deg for 18.13 (hobbable): the smallest of the rack's scattered "
     "angles along its straight flank (the same 18.13 deg over hundreds of points) reads low by the most negative "
     "error, as on every seed (test_the_smallest_angle_accuracy_covers_the_low_minimum_over_seeds); stated 1.06 deg",

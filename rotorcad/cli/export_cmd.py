@@ -20,7 +20,6 @@ from rotorcad.cli.rotor import PAIR_OPTIONS
 from rotorcad.cli.rotor import _build as build_rotors
 from rotorcad.design.files import is_gear_design
 from rotorcad.errors import DesignError
-from rotorcad.roles import Side
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -289,17 +288,12 @@ def _check_outlines(rotors: ScrewRotors, chord: float, fmts: list[ExportFormat])
     import warnings
 
     from rotorcad.errors import InputNote
-    from rotorcad.families.checks import beyond_tip, outline_loops
+    from rotorcad.families.checks import OUTLINE_FAULT_WHY, outline_faults
 
-    faults = {side: [] for side in Side}
-    for side, x, y, area in outline_loops(rotors, chord):
-        faults[side].append(f"crosses itself at ({x:.3f}, {y:.3f}) mm, r = {np.hypot(x, y):.3f} mm (a loop of {area:.3g} mm²)")
-    for side, reach in beyond_tip(rotors, chord):
-        faults[side].append(f"reaches {reach:.4g} mm beyond its tip circle")
-    said = "; ".join(f"the {side.value} outline {' and '.join(f)}" for side, f in faults.items() if f)
+    said = outline_faults(rotors, chord)  # the words `hob` names them in too
     if not said:
         return
-    why = "its generated flank reverses or runs out past the tip (the rack undercuts the rotor)"
+    why = OUTLINE_FAULT_WHY
     curves = [f.name for f in fmts if f.name in CURVE_FORMATS]
     if curves:
         raise InputError(

@@ -95,9 +95,10 @@ def hob(design: Path | None, **opts: Any) -> None:
         _fitted_sides(body),
         undercut_tolerance(body),
         body if rotors is None else None,
+        tangent_accuracy=getattr(body, "tangent_accuracy", 0.0) or 0.0,
     )
     result["smallest_flank_angle_accuracy_deg"] = _angle_accuracy(body, racks, result["normal_pressure_angle_min_deg"])
-    result["notes"] = (notes if rotors is None else []) + result["notes"]
+    result["notes"] = (notes if rotors is None else _outline_notes(rotors)) + result["notes"]
     if opts.get("male_points") or opts.get("female_points"):  # the end face the section was read as seen from
         result["seen_from"] = str(end_face(opts.get("seen_from")))
     worms = worms_of(racks, body_hands(body), opts, rack_datum(body))
@@ -148,6 +149,7 @@ def judge_racks(
     measured: dict[str, bool] | None = None,
     undercut_accuracy: float = 0.0,
     gear: InvoluteGear | None = None,
+    tangent_accuracy: float = 0.0,
 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
 
@@ -174,6 +176,9 @@ def judge_racks(
     gear : InvoluteGear, optional
         The gear of the rack ``gear``: its undercut (:func:`hob.undercut.gear_undercut`), which a hob
         makes, is stated in ``notes`` and the keys below, not in ``reasons``.
+    tangent_accuracy : float, rad
+        Of points with scatter, how well their tangents are known (0 for exact points and designs):
+        :func:`hob.verdict.judge` tells a touch from a crossing by the generation factor alone then.
 
     Returns
     -------
@@ -186,9 +191,9 @@ def judge_racks(
         rack, or the gear's undercut), for a gear ``undercut_radius`` (mm) and ``undercut_limit_shift``,
         and per rack its figures (radii and tip thickness in mm, angles in deg).
     """
+    fitted = {name: None if measured is None else measured.get(name, False) for name in racks}
     verdicts = {
-        name: judge(rack, limits, accuracy, None if measured is None else measured.get(name, False), undercut_accuracy)
-        for name, rack in racks.items()
+        name: judge(rack, limits, accuracy, fitted[name], undercut_accuracy, tangent_accuracy) for name, rack in racks.items()
     }
     result: dict[str, Any] = {
         "hobbable": all(v.hobbable for v in verdicts.values()),
@@ -199,20 +204,7 @@ def judge_racks(
         "undercut_accuracy": float(max(undercut_accuracy, FOLD_TOLERANCE)) if accuracy > 0 else 0.0,
         "smallest_flank_angle_accuracy_deg": 0.0,  # of a design; `hob` states it for points (_angle_accuracy)
         "notes": [f"{name}: {n}" if len(verdicts) > 1 else n for name, v in verdicts.items() for n in v.notes],
-        "racks": {
-            name: {
-                "hobbable": v.hobbable,
-                "normal_pressure_angle_min_deg": v.normal_pressure_angle_min_deg,
-                "hob_tip_radius": v.min_tip_radius,
-                "hob_root_radius": v.min_root_radius,
-                "hob_tip_radius_infinite": bool(np.isinf(v.min_tip_radius)),  # straight: JSON null and this flag
-                "hob_root_radius_infinite": bool(np.isinf(v.min_root_radius)),
-                "hob_tip_thickness": v.tip_thickness,
-                "helix_angle_deg": float(np.degrees(racks[name].helix_angle)),
-                "no_rack_share": racks[name].lost_fraction,
-            }
-            for name, v in verdicts.items()
-        },
+        "racks": {name: _rack_figures(v, racks[name]) for name, v in verdicts.items()},
     }
     result["undercut"] = any(v.undercut for v in verdicts.values())
     if gear is not None:  # a hob makes a gear's undercut: a note and its figures, not a reason
@@ -220,6 +212,38 @@ def judge_racks(
         result.update(undercut=cut.undercut, undercut_radius=cut.radius, undercut_limit_shift=cut.limit_shift)
         result["notes"] += [cut.note] if cut.note else []
     return verdicts, result
+
+
+def _rack_figures(v: Any, rack: DerivedRack) -> dict[str, Any]:
+    """Return one rack's figures of ``hob --json`` (radii and tip thickness in mm, angles in deg)."""
+    return {
+        "hobbable": v.hobbable,
+        "normal_pressure_angle_min_deg": v.normal_pressure_angle_min_deg,
+        "hob_tip_radius": v.min_tip_radius,
+        "hob_root_radius": v.min_root_radius,
+        "hob_tip_radius_infinite": bool(np.isinf(v.min_tip_radius)),  # straight: JSON null and this flag
+        "hob_root_radius_infinite": bool(np.isinf(v.min_root_radius)),
+        "hob_tip_thickness": v.tip_thickness,
+        "helix_angle_deg": float(np.degrees(rack.helix_angle)),
+        "no_rack_share": rack.lost_fraction,
+    }
+
+
+def _outline_notes(rotors: Any) -> list[str]:
+    """Name a design's generated outline that crosses itself or runs past its tip, in ``export``'s words.
+
+    A new user's finding (the rack-involute family at its default roundings): ``rotor`` and ``export``
+    named the male's loop at r = 70.9 mm, ``hob`` did not. The hob cuts the outer envelope (the loop and
+    the overshoot cut away), so it is a note, not a reason. Of a pair from points (whose mate's turn-backs
+    :func:`hob.verdict.undercut_reasons` judges within the points' accuracy) none. The outlines are checked
+    at 0.1 um chords, as ``export`` checks them.
+    """
+    if str(getattr(rotors, "family", "")) in ("male-points", "female-points", "rack-points"):
+        return []
+    from rotorcad.families.checks import OUTLINE_FAULT_WHY, outline_faults
+
+    said = outline_faults(rotors, 1e-4)
+    return [f"{said}: {OUTLINE_FAULT_WHY}; a hob cuts the rotor without the loop (as `rotorcad export` says)."] if said else []
 
 
 def _angle_accuracy(body: Any, racks: dict[str, DerivedRack], smallest: float) -> float:

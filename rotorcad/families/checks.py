@@ -142,5 +142,35 @@ def beyond_tip(rotors: ScrewRotors, tolerance: float | None = None) -> list[tupl
 
 
 TIP_REACH = 1e-5  # mm: an outline this far beyond its tip circle is within the exact STEP's 0.5 µm of it
+OUTLINE_FAULT_WHY = "its generated flank reverses or runs out past the tip (the rack undercuts the rotor)"
+"""Why a rotor's generated outline loops or leaves its tip circle, as ``export`` and ``hob`` say it."""
 
-__all__ = ["TIP_REACH", "beyond_tip", "check_tips", "outline_loops"]
+
+def outline_faults(rotors: ScrewRotors, tolerance: float | None = None) -> str:
+    """Say where each rotor's generated outline crosses itself or leaves its tip circle, in one clause.
+
+    The words of ``export`` (refusing the exact formats) and ``hob`` (a note): "the male outline
+    crosses itself at (x, y) mm, r = ... mm (a loop of ... mm²) and reaches ... mm beyond its tip
+    circle" (:func:`outline_loops`, :func:`beyond_tip`).
+
+    Parameters
+    ----------
+    rotors : ScrewRotors
+        The pair.
+    tolerance : float, mm, optional
+        Chord tolerance of the outlines checked (default the pair's).
+
+    Returns
+    -------
+    str
+        Empty when both outlines are simple and inside their tip circles.
+    """
+    faults: dict[Side, list[str]] = {side: [] for side in Side}
+    for side, x, y, area in outline_loops(rotors, tolerance):
+        faults[side].append(f"crosses itself at ({x:.3f}, {y:.3f}) mm, r = {np.hypot(x, y):.3f} mm (a loop of {area:.3g} mm²)")
+    for side, reach in beyond_tip(rotors, tolerance):
+        faults[side].append(f"reaches {reach:.4g} mm beyond its tip circle")
+    return "; ".join(f"the {side.value} outline {' and '.join(f)}" for side, f in faults.items() if f)
+
+
+__all__ = ["OUTLINE_FAULT_WHY", "TIP_REACH", "beyond_tip", "check_tips", "outline_faults", "outline_loops"]
