@@ -1,0 +1,63 @@
+"""Measure the rack from a scattered rotor against the design's over seeds (issue 22 item 3; not a test).
+
+For each case, 300 points a lobe with 2 um of scatter along the normals (``test_hob_points_samples.outline``,
+seed by seed): the largest distance of the rotor's rack (as ``rotorcad hob --<rotor>-points`` derives it) from
+the design's closed-form rack on the contact zone, the largest distance of the fitted rotor from the design's
+outline at those rack points' contact points, the stated accuracy, and the radius on the rotor where the rack
+is farthest off. Run from the repository: ``python tests/measure_rack_fit.py 11 20`` (seeds 11 to 20; about 1 s
+of CPU a seed and case).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import test_hob_points_samples as samples
+from independent_pairs import distance_to_line
+
+from hob.rack import rotor_rack
+from rotorcad.measured.cusp_paths import with_exact_cusp_paths
+from rotorcad.measured.pairs import pair_from_rotor_points
+
+CASES = [("rack_involute_5_6", "female"), ("n_rack_5_6", "female"), ("rinder_deix_5_6", "female"), ("rack_involute_5_6", "male")]
+
+
+def measure(name: str, rotor: str, seed: int) -> tuple[float, float, float, float]:
+    """Return the rack's and the fit's largest error on the contact zone, the stated accuracy (um) and the radius (mm)."""
+    spec, design = samples.design(name)
+    points = samples.outline(name, rotor, "scatter", seed)
+    rotors = with_exact_cusp_paths(pair_from_rotor_points(spec.pair, points, rotor))
+    rack = rotor_rack(rotors, rotor, **samples.MEASURED).in_contract_frame()
+    period = design.pair.rack_period
+    tiled = np.vstack([samples.closed_form(name)["points"] + [k * period, 0.0] for k in (-1, 0, 1)])
+    free = ~rack.corner_path
+    keep = np.tile(samples.on_zone(name, rotor), 3)[cKDTree(tiled).query(rack.points[free])[1]]
+    rack_error = distance_to_line(rack.points[free][keep], shapely.LineString(tiled))
+    lobe = design.male_outline(1e-4) if rotor == "male" else design.female_outline(1e-4)
+    outline = shapely.LineString(np.vstack([seg.points for seg in lobe.segments]))
+    contact = rack.profile[free][keep]
+    fit_error = distance_to_line(contact, outline)
+    worst = int(np.argmax(rack_error))
+    return 1e3 * rack_error.max(), 1e3 * fit_error.max(), 1e3 * rotors.accuracy, float(np.hypot(*contact[worst]))
+
+
+def main(first: int, last: int) -> None:
+    for name, rotor in CASES:
+        print(f"{name} {rotor}")
+        for seed in range(first, last + 1):
+            rack, fit, stated, radius = measure(name, rotor, seed)
+            over = "  over" if rack > max(2.0, stated) else ""
+            print(
+                f"  seed {seed}: rack {rack:6.2f} um, fit {fit:6.2f} um, stated {stated:5.2f} um, at r = {radius:6.2f} mm{over}"
+            )
+
+
+if __name__ == "__main__":
+    main(*(int(a) for a in sys.argv[1:3])) if len(sys.argv) > 2 else main(11, 20)
