@@ -53,8 +53,8 @@ def evaluate(pair: RotorPair, male: np.ndarray, female: np.ndarray) -> MeshingCl
     quality = pair_quality(male, female, (pair.male_teeth, pair.female_teeth))
     return MeshingClearance(
         pair,
-        lobe_pieces(pair, male, "male", close_smoothing, roundings=True, penalized=True),  # as rotorcad clearance fits them
-        lobe_pieces(pair, female, "female", close_smoothing, roundings=True, penalized=True),
+        lobe_pieces(pair, male, "male", close_smoothing, roundings=True),  # as rotorcad clearance fits them
+        lobe_pieces(pair, female, "female", close_smoothing, roundings=True),
         **quality,
     )
 
@@ -108,8 +108,8 @@ def n_rack_rows(seeds: range, densities: list[int]) -> None:
                     )
                     mc = MeshingClearance(
                         pair,
-                        lobe_pieces(pair, m, "male", close_smoothing, roundings=True, penalized=True),
-                        lobe_pieces(pair, f, "female", close_smoothing, roundings=True, penalized=True),
+                        lobe_pieces(pair, m, "male", close_smoothing, roundings=True),
+                        lobe_pieces(pair, f, "female", close_smoothing, roundings=True),
                         contact="as-given",
                         **pair_quality(m, f, (5, 6)),
                     )

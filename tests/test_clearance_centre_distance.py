@@ -42,8 +42,8 @@ def apart():
     pair = RotorPair(5, 6, p.center_distance + APART, rm.max(), rm.min(), rf.max(), rf.min(), p.lead, p.length, strict=False)
     mc = MeshingClearance(
         pair,
-        lobe_pieces(pair, male, "male", close_smoothing, roundings=True, penalized=True),
-        lobe_pieces(pair, female, "female", close_smoothing, roundings=True, penalized=True),
+        lobe_pieces(pair, male, "male", close_smoothing, roundings=True),
+        lobe_pieces(pair, female, "female", close_smoothing, roundings=True),
         contact="as-given",
         **pair_quality(male, female, (5, 6)),
     )

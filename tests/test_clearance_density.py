@@ -53,8 +53,8 @@ def summary(name: str, points: int, noise: float) -> dict:
     pair = RotorPair(z1, z2, 100.0, **rack_pair.radii(), lead=1e5, length=1e5, strict=False)
     mc = MeshingClearance(
         pair,
-        lobe_pieces(pair, male, "male", close_smoothing, roundings=True, penalized=True),
-        lobe_pieces(pair, female, "female", close_smoothing, roundings=True, penalized=True),
+        lobe_pieces(pair, male, "male", close_smoothing, roundings=True),
+        lobe_pieces(pair, female, "female", close_smoothing, roundings=True),
         contact="as-given",
         **pair_quality(male, female, (z1, z2)),
     )

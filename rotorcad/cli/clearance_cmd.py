@@ -58,8 +58,7 @@ DEFAULT_LEAD, DEFAULT_LENGTH = 300.0, 190.0  # mm: taken when --lead / --length 
 @click.option(
     "--smoothing",
     type=float,
-    help="Spline smoothing of the points [mm^2], 0 interpolates. Default: scattered points a spline whose change "
-    "of curvature is penalised, its weight by cross-validation.",
+    help="Spline smoothing of the points [mm^2], 0 interpolates. Default: n sigma^2 from the points' estimated scatter.",
 )
 @click.option("--layer", help="Layer of the profile in DXF points files (default: their only layer).")
 @click.option("--male-layer", help="Layer of the male in its DXF file, e.g. MALE_SPLINE as export writes it (default: --layer).")
@@ -231,13 +230,12 @@ def _evaluate(opts: dict[str, Any]) -> MeshingClearance:
         female = as_given(female, pair.female_teeth, drawn_as_points=False)
         thermal = _thermal(opts)
         smoothing = close_smoothing if opts["smoothing"] is None else opts["smoothing"]  # the closer fit (fit.py)
-        penalized = opts["smoothing"] is None  # scattered points: the penalised spline (fit.lobe_pieces)
         if thermal is not None:
             pair, male, female = thermal.apply(pair, male, female)
         mc = MeshingClearance(
             pair,
-            lobe_pieces(pair, male, "male", smoothing, label="--male-points", roundings=True, penalized=penalized),
-            lobe_pieces(pair, female, "female", smoothing, label="--female-points", roundings=True, penalized=penalized),
+            lobe_pieces(pair, male, "male", smoothing, label="--male-points", roundings=True),
+            lobe_pieces(pair, female, "female", smoothing, label="--female-points", roundings=True),
             contact=opts["contact"],
             **pair_quality(male, female, (pair.male_teeth, pair.female_teeth)),
         )

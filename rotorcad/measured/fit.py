@@ -16,7 +16,6 @@ from rotorcad.errors import DesignError
 from rotorcad.geometry import distance_to_polylines, rotate, wrap_angle
 from rotorcad.measured.corner_fits import Smoothing, _refined_corners, _smoothing
 from rotorcad.measured.outline import UNEVEN_SPACING, Outline, corners, lands, raw_scatter, read_outline, scatter, whole_outline
-from rotorcad.measured.penalized_spline import penalized_spline
 from rotorcad.measured.rack_pieces import step_splines
 from rotorcad.measured.stepped_spline import stepped_ring_fit
 from rotorcad.roles import Side
@@ -349,7 +348,6 @@ def lobe_pieces(
     label: str | None = None,
     drawn_as_points: bool = False,
     roundings: bool = False,
-    penalized: bool = False,
 ) -> list[tuple[str, Curve]]:
     """Fit one lobe of the male or the female as pieces between the sharp corners of its points.
 
@@ -389,13 +387,6 @@ def lobe_pieces(
         on a rounded tip; a ring's curvature steps between sparse points get knots, :func:`stepped_ring_fit`). False
         keeps it a corner, whose fan of normals gives the rack of a small rounding closer (the 4/6 independent
         female's 1.5 mm root roundings from scattered points: its rack 1.2 um off the generating one as corners).
-    penalized : bool
-        Fit scattered points between corners and lands with the spline that pays for changes of curvature,
-        its penalty released at the steps of curvature it finds, lambda by generalised cross-validation
-        (:func:`rotorcad.measured.penalized_spline.penalized_spline`) instead of scipy's smoothing spline
-        of ``smoothing``: the clearance's reading without ``--smoothing``. scipy's spline of (n - sqrt(2 n))
-        sigma^2 smooths over a root fillet meeting an involute (the 4/6 independent male at r = 35.2 mm,
-        300 points a lobe with 2 um scatter): 1.4-2.6 um of bias there over 30 seeds, 0.3-0.8 um this way.
 
     Returns
     -------
@@ -440,7 +431,7 @@ def lobe_pieces(
             ring = whole
         runs = [np.vstack([ring, ring[:1]])]
     knots = fine_knot_spacing(whole) if sigma <= 0 and smoothing is None else None
-    fitted = [piece for run in runs for piece in _fit_run(run, sigma, smoothing, knots, penalized)]
+    fitted = [piece for run in runs for piece in _fit_run(run, sigma, smoothing, knots)]
     return _cut_lobe(fitted, whole, teeth, rotor, label)
 
 
@@ -545,14 +536,13 @@ def _constant_radius(points: np.ndarray, sigma: float) -> bool:
 
 
 def _fit_run(
-    run: np.ndarray, sigma: float, smoothing: Smoothing, knot_spacing: float | None = None, penalized: bool = False
+    run: np.ndarray, sigma: float, smoothing: Smoothing, knot_spacing: float | None = None
 ) -> list[tuple[Curve, np.ndarray, np.ndarray]]:
     """Fit a run of outline points between corners as curves.
 
     Every land (an arc about the rotor's centre within the scatter,
     :func:`rotorcad.measured.outline.lands`) becomes that exact arc, whose normals are radial, so that
-    its rack image is the exact flat at the tip or root line; the rest cubic splines (scattered points
-    with ``penalized``: :func:`rotorcad.measured.penalized_spline.penalized_spline`). Each curve comes
+    its rack image is the exact flat at the tip or root line; the rest cubic splines. Each curve comes
     with sample points and their parameters (for locating polar crossings).
     """
     out: list[tuple[Curve, np.ndarray, np.ndarray]] = []
@@ -572,10 +562,6 @@ def _fit_run(
         if knot_spacing is not None and len(part) > 8:  # dense points taken as exact (fine_knot_spacing)
             curve = _least_squares_spline(part, u, knot_spacing).trimmed(u[i0 - j0], u[i1 - j0])
             out.append((curve, run[i0 : i1 + 1], u[i0 - j0 : i1 - j0 + 1]))
-            return
-        fitted = penalized_spline(part) if penalized and sigma > 0 else None  # None: too few points
-        if fitted is not None:
-            out.append((fitted.trimmed(u[i0 - j0], min(u[i1 - j0], fitted.s1)), run[i0 : i1 + 1], u[i0 - j0 : i1 - j0 + 1]))
             return
         steps = step_splines(part, i0 - j0, i1 - j0, s) if sigma <= 0 else None  # split where the curvature steps
         for curve, a, b in steps or ():
