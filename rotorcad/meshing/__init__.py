@@ -86,7 +86,7 @@ A point of infinite slip (a rotor's v_t = 0, where the meshline crosses the circ
 centre and C as diameter) on a tip corner's path that runs on its pitch circle within the meshline's
 accuracy is C's rolling, and one at a corner of the meshline that the fit rounds is judged at the
 corner (:func:`~rotorcad.meshing.slip.slip_singularities`). The blow-hole carries the
-uncertainty the input leaves it, and where that exceeds the area (or 0.1 % of the female flute's,
+uncertainty the input leaves it, and where that exceeds half the area (and 0.1 % of the female flute's,
 :data:`~rotorcad.meshing.blow_hole_accuracy.BLOW_HOLE_RESOLUTION`) the input does not resolve it
 (:attr:`MeshingAnalysis.blow_hole_resolved`). A cusp of the design survives: a given profile's corner
 path on a rotor's tip circle is that tip corner's point-generated flank by construction (found from

@@ -295,12 +295,23 @@ class MeshingAnalysis:
             # approach that the female tip corner's path beside it took for a hand-over (the symmetric SRM's male
             # CSV with 1 um of scatter read -10.6 and -12.0 % at seeds 0-1 so; within 1 % from the arc), while an
             # arc fitted at the asymmetric SRM male's tip hand-over put the apex 0.5 mm inside (+72 %)
-            on_male_tip = on_tip is not None and abs(float(np.hypot(*on_tip)) - pair.male_tip_radius) < 1e-6
+            # on the male tip circle to the profile's accuracy: a scattered tip corner lies off it by its scatter (the
+            # asymmetric SRM male, 80 a lobe with 2 um: 1.3 um out, and a male arc's apex 1.4 mm inside read +197 %)
+            on_male_tip = on_tip is not None and abs(float(np.hypot(*on_tip)) - pair.male_tip_radius) <= self.judged_accuracy
             if on_tip is not None and on_male_tip:
                 return on_tip, None
             on_arc = self._arc_apex(best, best_t, tips)
             if on_arc is not None:
-                self.__dict__["_tip_candidates"] = []  # the arc's own bound holds (blow_hole_uncertainty)
+                # the other places stay candidates: an arc fitted where the fit rounds a tip corner put the apex inside
+                # the tip circle (the asymmetric SRM's female at 150 a lobe with 1 um: +77..+101 %, the sampled end and
+                # the hand-over on the male tip circle within a few per cent); their spread counts in the uncertainty
+                found = [best] + ([on_tip] if on_tip is not None else [])
+                # within the profile's resolution of the male tip circle the points do not tell the arc's apex from a
+                # hand-over on that circle (the narrow-tip female, 150 a lobe with 2 um: the arc's 0.61 mm inside, +98 %)
+                r = float(np.hypot(*on_arc[0]))
+                if 0.0 < pair.male_tip_radius - r <= resolution(self.judged_accuracy, pair.center_distance):
+                    found.append(on_arc[0] * pair.male_tip_radius / r)
+                self.__dict__["_tip_candidates"] = found
                 return on_arc
             if on_tip is not None:
                 return on_tip, None
@@ -342,8 +353,13 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         acc = self.judged_accuracy
         lobe = np.vstack([seg.resampled(DEFAULT_TOLERANCE).points for seg in self.rotors.male_lobe().segments])
-        point = rotate(end, -t)  # the male point touching at ``end`` (fixed = R(t) male)
-        if shapely.distance(shapely.Point(point), shapely.LineString(lobe)) > MESHLINE_GAIN * acc:
+        # the male point touching at ``end`` (fixed = R(t) male), turned by whole lobe pitches onto the lobe: which lobe
+        # touches there depends on the datum angle of the given points, the arc's meshline does not
+        line = shapely.LineString(lobe)
+        pitch = 2.0 * np.pi / pair.male_teeth
+        turns = [rotate(end, -t - k * pitch) for k in range(pair.male_teeth)]
+        point = min(turns, key=lambda p: shapely.distance(shapely.Point(p), line))
+        if shapely.distance(shapely.Point(point), line) > MESHLINE_GAIN * acc:
             return None  # the contact is not on this lobe (a corner path's point off the fitted profile)
         arc = arc_at(lobe, point, acc, 4.0 * resolution(acc, pair.center_distance))
         if arc is None:
