@@ -302,16 +302,7 @@ class MeshingAnalysis:
                 return on_tip, None
             on_arc = self._arc_apex(best, best_t, tips)
             if on_arc is not None:
-                # the other places stay candidates: an arc fitted where the fit rounds a tip corner put the apex inside
-                # the tip circle (the asymmetric SRM's female at 150 a lobe with 1 um: +77..+101 %, the sampled end and
-                # the hand-over on the male tip circle within a few per cent); their spread counts in the uncertainty
-                found = [best] + ([on_tip] if on_tip is not None else [])
-                # within the profile's resolution of the male tip circle the points do not tell the arc's apex from a
-                # hand-over on that circle (the narrow-tip female, 150 a lobe with 2 um: the arc's 0.61 mm inside, +98 %)
-                r = float(np.hypot(*on_arc[0]))
-                if 0.0 < pair.male_tip_radius - r <= resolution(self.judged_accuracy, pair.center_distance):
-                    found.append(on_arc[0] * pair.male_tip_radius / r)
-                self.__dict__["_tip_candidates"] = found
+                self.__dict__["_tip_candidates"] = []  # the arc's own bound holds (blow_hole_uncertainty)
                 return on_arc
             if on_tip is not None:
                 return on_tip, None

@@ -152,8 +152,7 @@ def candidates_spread(analysis: MeshingAnalysis) -> float:
 
     The apex of a tip corner's hand-over is placed from several parts of the fit
     (:attr:`MeshingAnalysis.apex_candidates`: the joint of the corner's path and the flank, the flank's
-    meshline extrapolated by a quadratic and by a cubic, the turn of both branches; beside a male arc's
-    apex, the sampled meshline's end and the hand-over); where they part by
+    meshline extrapolated by a quadratic and by a cubic, the turn of both branches); where they part by
     more than the tangent's bound the points do not place the apex that well: the narrow-tip male at 80
     points a lobe with 1 um of scatter read +16..+22 % extrapolated over a window of 0.33 of its flank's
     meshline, stating +-0.32..0.43 mm²; its joint read 2.56-2.81 mm² (design 2.778).
