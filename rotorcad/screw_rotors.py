@@ -140,6 +140,10 @@ class ScrewRotors:
         residual): the meshing analysis judges the defects to it, since a defect is a local feature
         of the meshline. ``accuracy`` is the bound on the largest error over a whole lobe (95 %
         confidence), which the racks, the hob and the clearance state. None: ``accuracy``.
+    point_spacing : float or None, mm
+        The median spacing of the given points: a corner, a rounding or a curvature step between two
+        of them is placed no better than that along the profile (the blow-hole's uncertainty,
+        :func:`rotorcad.meshing.blow_hole_accuracy.spacing_uncertainty`). None for a design or a drawing.
     """
 
     pair: RotorPair
@@ -152,6 +156,7 @@ class ScrewRotors:
     tip_corner_tangent_accuracy: float | None = None  # rad: of a given male's tangent at its tip corners
     point_accuracy: float | None = None  # mm: of one point of the given profile (None: ``accuracy``)
     tangent_spread: tuple[np.ndarray, np.ndarray] | None = None  # exact points: (radii mm, turns rad) per point
+    point_spacing: float | None = None  # mm: median spacing of the given points (None: a design or a drawing)
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:

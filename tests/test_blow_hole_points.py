@@ -11,6 +11,10 @@ tests/independent_pairs.py ``scan``), exact or with 1 or 2 um of normal scatter 
 0-2). Whenever ``blow_hole_resolved`` is true the error lies within ``blow_hole_uncertainty``; over the seeds
 the mean error lies within the mean uncertainty over sqrt(n) (no bias beyond what the uncertainty allows).
 
+``blow_hole_resolved`` is tested over every sample with a profile of its own, both rotors, 80-300 points a lobe,
+exact and with 1-2 um, each at another sampling phase and datum angle (the points turned rigidly): whenever it is
+true the design's blow-hole lies within ``blow_hole_uncertainty``.
+
 Before (a new user's findings, newuser3 #5 and N3): the rack-involute male at 80 a lobe read -19 % exact
 and -40 % with 1 um (5-6 times the stated uncertainty, resolved), the narrow-tip female with 1 um +34..+44 %
 in every seed (300 a lobe, resolved), the asymmetric SRM's female +62..+84 %, the symmetric SRM's male at 80
@@ -31,7 +35,7 @@ from independent_pairs import patterned, scan
 from exports.dxf_profile import read_profile
 from rotorcad.cli.main import main
 from rotorcad.design import rotor_design
-from rotorcad.errors import InputNote
+from rotorcad.errors import DesignError, InputNote
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
@@ -59,14 +63,22 @@ def _design(name: str) -> dict:
 
 
 @functools.cache
-def _read(name: str, side: str, per: int, scatter_um: float, seed: int) -> tuple[float, float, bool]:
-    """The blow-hole (mm²), its stated uncertainty (mm²) and ``blow_hole_resolved`` of the rotor's points."""
+def _read(
+    name: str, side: str, per: int, scatter_um: float, seed: int, phase: float = PHASE, turn_deg: float = 0.0
+) -> tuple[float, float, bool]:
+    """The blow-hole (mm²), its stated uncertainty (mm²) and ``blow_hole_resolved`` of the rotor's points.
+
+    The points start ``phase`` of a spacing past the lobe's start and are turned rigidly by ``turn_deg`` about the
+    rotor's centre after the scatter (the datum angle of a measurement: which lobe faces the mate)."""
     design = _design(name)
     spec = design["spec"]
     teeth = spec.pair.male_teeth if side == "male" else spec.pair.female_teeth
-    pts = scan(patterned(design[side], teeth), per * teeth, PHASE)
+    pts = scan(patterned(design[side], teeth), per * teeth, phase)
     if scatter_um:
         pts = pts + np.random.default_rng(seed).normal(0.0, scatter_um * 1e-3, pts.shape)
+    if turn_deg:
+        c, s = np.cos(np.radians(turn_deg)), np.sin(np.radians(turn_deg))
+        pts = pts @ np.array([[c, s], [-s, c]])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", InputNote)
         given = build_pair(PairSpec(spec.pair, f"{side}-points", {}, pts, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
@@ -116,13 +128,16 @@ def test_blow_hole_from_points_within_its_uncertainty_and_unbiased(name, side, p
 )
 def test_findings_resolved_within_a_few_percent(name, side, per, was):
     # the findings' cases with 1 um of scatter (seeds 0-2), each resolved before with the error ``was``: now
-    # resolved and within 12 % of the reference, the design's blow-hole (a few per cent each: the apex of a tip
-    # corner's hand-over from the flank's meshline, the joint of the corner's path, or the turn, where local)
+    # within 12 % of the reference, the design's blow-hole (a few per cent each: the apex of a tip corner's
+    # hand-over from the flank's meshline, the joint of the corner's path, or the turn, where local), and within
+    # the stated uncertainty. Resolved where that is at most half the area (RESOLVED_SHARE): the males'; the
+    # narrow-tip and asymmetric SRM females state +-1.9 mm² on 2.5-3.3 (the hand-over's tangent), no figure
     reference = _design(name)["area"]
     for seed in (0, 1, 2):
-        area, _, resolved = _read(name, side, per, 1.0, seed)
-        assert resolved
+        area, stated, resolved = _read(name, side, per, 1.0, seed)
+        assert resolved == (side == "male")
         assert area == pytest.approx(reference, rel=0.12), (seed, area, was)
+        assert abs(area - reference) <= stated
 
 
 def test_sparse_exact_land_corner_within_one_percent():
@@ -160,3 +175,74 @@ def test_spline_drawing_states_an_uncertainty_that_covers_its_error(exported, si
     assert 0.0 < stated < area  # non-zero, and still says something
     assert abs(area - design["area"]) <= stated
     assert area == pytest.approx(design["area"], rel=0.01)
+
+
+SWEEP_NAMES = (
+    "krigar_4_6",
+    "lysholm_4_6",
+    "n_rack_5_6",
+    "narrow_tip_5_6",
+    "rack_involute_5_6",
+    "srm_asymmetric_5_6",
+    "srm_b_5_6",
+    "srm_symmetric_4_6",
+)
+"""Every sample with a profile of its own (rinder_deix_5_6 is the N rack's profile under other parameters' names)."""
+SWEEP_FORMS = (
+    (80, 0.0, 0, 0.0, 37.0),
+    (80, 1.0, 5, 0.25, 24.0),
+    (80, 2.0, 2, 0.71, 15.0),
+    (150, 0.0, 0, 0.71, 15.0),
+    (150, 1.0, 1, 0.37, 0.0),
+    (300, 1.0, 1, 0.0, 37.0),
+    (300, 2.0, 2, 0.37, 0.0),
+)
+"""(points a lobe, scatter um, seed, phase in spacings, datum turn in deg): sparse to moderate densities, each with
+another sampling phase and datum angle (a new user's findings: the N rack's and SRM-B's males at 80 a lobe exact read
+-38 % and +142..+296 % by where the points fell, the asymmetric SRM's male with 2 um +150..+206 % turned by 15-60 deg,
+each said resolved and 1.4-4.7 times its uncertainty off)."""
+
+
+def _sweep_read(name: str, side: str, form: tuple) -> tuple[float, float, bool] | None:
+    """:func:`_read` of one form, None where the points are refused (one clear sentence: no verdict to check)."""
+    try:
+        return _read(name, side, *form)
+    except DesignError:
+        return None  # the N rack's female at 80 a lobe: 3-7 % of the lobe has no rack point
+
+
+@pytest.mark.parametrize("side", ["male", "female"])
+@pytest.mark.parametrize("name", SWEEP_NAMES)
+def test_a_resolved_blow_hole_lies_within_its_uncertainty_at_any_phase_and_datum_angle(name, side):
+    # reference: the design's blow-hole from its exact curves (_design). blow_hole_resolved says the area is a figure:
+    # then the design's lies within blow_hole_uncertainty, whatever the density, scatter, sampling phase and datum angle
+    reference = _design(name)["area"]
+    for form in SWEEP_FORMS:
+        read = _sweep_read(name, side, form)
+        if read is None:
+            continue
+        area, stated, resolved = read
+        assert stated > 0.0  # points always carry an accuracy
+        if resolved:
+            assert abs(area - reference) <= stated, (form, area, stated, reference)
+
+
+def test_the_sweep_resolves_blow_holes_at_every_density():
+    # the rule is not empty: at each density some of the sweep's blow-holes are resolved (the bound above is no
+    # statement on an input that resolves nothing). Counted over test_a_resolved_blow_hole_lies_within_...'s reads
+    for per in sorted({form[0] for form in SWEEP_FORMS}):
+        reads = [_sweep_read(n, s, f) for n in SWEEP_NAMES for s in ("male", "female") for f in SWEEP_FORMS if f[0] == per]
+        resolved = [r for r in reads if r is not None and r[2]]
+        assert len(resolved) >= 0.25 * len(reads), (per, len(resolved), len(reads))
+
+
+def test_the_datum_angle_does_not_move_the_blow_hole():
+    # newuser6: the asymmetric SRM male at 80 points a lobe with 2 um of scatter, turned rigidly by 0-10, 15-27 and
+    # 36-60 deg, read 2.96, 7.87 and 9.61 mm² (design 3.14), all resolved. A rigid turn of the same points (the same
+    # lobe faces the mate up to half a pitch, 36 deg) changes nothing of the profile (reference: the unturned read);
+    # and the design's blow-hole lies within the stated uncertainty
+    reference = _design("srm_asymmetric_5_6")["area"]
+    reads = [_read("srm_asymmetric_5_6", "male", 80, 2.0, 31, PHASE, turn) for turn in (0.0, 15.0, 36.0)]
+    for area, stated, _ in reads:
+        assert area == pytest.approx(reads[0][0], rel=1e-6)
+        assert abs(area - reference) <= stated

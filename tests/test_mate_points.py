@@ -300,7 +300,22 @@ _N_RACK_SPREAD = (
     "test_verdict_invariance's UNRESOLVED_BLOW_HOLE)"
 )
 KNOWN_FEMALE: dict[tuple[str, str, str], str] = {}
-UNRESOLVED_FEMALE: dict[tuple[str, str], str] = {(name, "exact"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")}
+_SPACING = (
+    "the female's point that hands over at the apex (where its flank meets the part the male tip corner generates, "
+    "a curvature step) lies between two of its points 0.3 mm apart, and the apex moved to the contacts of the points "
+    "up to one spacing from it changes the area by more than half of it (rotorcad.meshing.blow_hole_accuracy."
+    "spacing_uncertainty: +-1.6-2.6 mm² on the narrow-tip, SRM and N-rack pairs' 1.7-3.3, +-20-42 on the "
+    "rack-involute's 22.7); exact points still read the design's within 1 %"
+)
+UNRESOLVED_FEMALE: dict[tuple[str, str], str] = {
+    **{(name, "exact"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")},
+    **{(name, "scatter-1um"): _SPACING for name in ("n_rack_5_6", "rinder_deix_5_6")},
+    **{
+        (name, form): _SPACING
+        for name in ("narrow_tip_5_6", "rack_involute_5_6", "srm_asymmetric_5_6", "srm_b_5_6")
+        for form in ("exact", "scatter-1um")
+    },
+}
 """The blow-holes the female's points do not resolve, and say so (``blow_hole_resolved`` false): the area is no
 verdict there, and the design's lies within the stated uncertainty (as the male's evenly spaced points in
 test_verdict_invariance's UNRESOLVED_BLOW_HOLE)."""
@@ -337,6 +352,8 @@ def test_female_points_give_the_design_blow_hole(female_verdicts, name, form):
     assert given["blow_hole_resolved"] == ((name, form) not in UNRESOLVED_FEMALE)  # says where it does not resolve
     if (name, form) in UNRESOLVED_FEMALE:  # no verdict: the design's area within the stated uncertainty
         assert abs(area - design["blow_hole_area"]) <= stated, (area, stated, design["blow_hole_area"])
+        if form == "exact" and UNRESOLVED_FEMALE[(name, form)] is _SPACING:  # the figure itself still the design's
+            assert area == pytest.approx(design["blow_hole_area"], rel=BLOW_HOLE, abs=1e-3)
         return
     if form == "exact":
         assert area == pytest.approx(design["blow_hole_area"], rel=BLOW_HOLE, abs=1e-3)

@@ -29,8 +29,8 @@ PAIR_OPTIONS = PAIR_FIELDS
 """The pair's dimensions, each an option of the same name (``--male-teeth``)."""
 
 _UNRESOLVED = (
-    "; not resolved: the points do not resolve the male's profile where it touches at the apex "
-    "(r = {:.2f} mm), give them closer together there"
+    "; not resolved: read it as the range area ± uncertainty, not a figure; the points do not place the "
+    "profile where it touches at the apex (r = {:.2f} mm), give them closer together there"
 )
 """What the text output adds to the blow-hole when the input does not resolve it (``blow_hole_resolved``)."""
 
@@ -213,7 +213,7 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
     if result.get("blow_hole_uncertainty", 0.0) > 0:  # scattered points: their tangents move the apex
         click.echo(
             f"  blow-hole {result['blow_hole_area']:.3f} ± {result['blow_hole_uncertainty']:.3f} mm² "
-            "(the uncertainty of its apex from the accuracy of the profile's tangents)"
+            "(the uncertainty of its apex from the profile's accuracy, its tangents' and its points' spacing)"
             + (
                 ""
                 if result.get("blow_hole_resolved", True)

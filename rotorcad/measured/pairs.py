@@ -632,6 +632,7 @@ def pair_from_rotor_points(
         tip_corner_tangent_accuracy=min(corner_turn, turn) if corner_turn > 0.0 else None,
         point_accuracy=point_acc,
         tangent_spread=spread,
+        point_spacing=spacing if spacing > 0 else None,
     )
 
 

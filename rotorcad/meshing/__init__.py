@@ -91,8 +91,8 @@ A point of infinite slip (a rotor's v_t = 0, where the meshline crosses the circ
 centre and C as diameter) on a tip corner's path that runs on its pitch circle within the meshline's
 accuracy is C's rolling, and one at a corner of the meshline that the fit rounds is judged at the
 corner (:func:`~rotorcad.meshing.slip.slip_singularities`). The blow-hole carries the
-uncertainty the input leaves it, and where that exceeds the area (or 0.1 % of the female flute's,
-:data:`~rotorcad.meshing.analysis.BLOW_HOLE_RESOLUTION`) the input does not resolve it
+uncertainty the input leaves it, and where that exceeds half the area (and 0.1 % of the female flute's,
+:data:`~rotorcad.meshing.blow_hole_accuracy.BLOW_HOLE_RESOLUTION`) the input does not resolve it
 (:attr:`MeshingAnalysis.blow_hole_resolved`). A cusp of the design survives: a given profile's corner
 path on a rotor's tip circle is that tip corner's point-generated flank by construction (found from
 positions in :mod:`rotorcad.measured.pairs`, not from the noisy tangent). Points whose scatter would
@@ -115,9 +115,10 @@ to E. It is zero when the meshline runs into the cusp. The spatial (curvilinear)
 :class:`rotorcad.blow_hole.SpatialBlowHole` (:attr:`MeshingAnalysis.spatial_blow_hole`).
 """
 
-from rotorcad.meshing.analysis import BLOW_HOLE_RESOLUTION, MeshingAnalysis
+from rotorcad.meshing.analysis import MeshingAnalysis
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
 from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex, fit_circle
+from rotorcad.meshing.blow_hole_accuracy import BLOW_HOLE_RESOLUTION
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, is_corner_handover, running_reasons
 from rotorcad.meshing.defects import (
     MESHLINE_GAIN,

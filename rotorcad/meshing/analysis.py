@@ -9,7 +9,6 @@ prints. The criteria are stated in :mod:`rotorcad.meshing`.
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -20,7 +19,8 @@ from rotorcad.blow_hole import SpatialBlowHole, apex_height
 from rotorcad.envelope import Generated
 from rotorcad.geometry import cross, dots, nearest_hypot, rotate, row_norms, shifted, wrap_angle
 from rotorcad.meshing.angles import ANGLE_CONVENTION, tip_on_centre_line
-from rotorcad.meshing.apex import arc_at, circle_bounds, circle_meshline_apex
+from rotorcad.meshing.apex import arc_at, circle_meshline_apex
+from rotorcad.meshing.blow_hole_accuracy import BLOW_HOLE_RESOLUTION, blow_hole_resolved, blow_hole_uncertainty
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
@@ -29,18 +29,6 @@ from rotorcad.meshing.tip_apex import tip_apex
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
-
-APEX_POINTS = 4
-"""How many of exact points, nearest the blow-hole apex's radius about their rotor's centre, set its
-tangent's accuracy (:attr:`MeshingAnalysis.blow_hole_uncertainty`): near a tip the radius changes
-slowly, and these are the two points either side of the apex's radius on each flank."""
-
-
-BLOW_HOLE_RESOLUTION = 1e-3
-"""Share of the female flute's area below which a blow-hole's uncertainty resolves it whatever its area
-(:attr:`MeshingAnalysis.blow_hole_resolved`): Rinder ranks the blow-holes of his families, closed
-(Krigar, Lysholm's sealing flank) below the smallest open ones (the samples' N rack, 0.29 % of its
-female flute; narrow-tip 0.48 %), so an uncertainty of 0.1 % tells a closed meshline from them."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -307,7 +295,9 @@ class MeshingAnalysis:
             # approach that the female tip corner's path beside it took for a hand-over (the symmetric SRM's male
             # CSV with 1 um of scatter read -10.6 and -12.0 % at seeds 0-1 so; within 1 % from the arc), while an
             # arc fitted at the asymmetric SRM male's tip hand-over put the apex 0.5 mm inside (+72 %)
-            on_male_tip = on_tip is not None and abs(float(np.hypot(*on_tip)) - pair.male_tip_radius) < 1e-6
+            # on the male tip circle to the profile's accuracy: a scattered tip corner lies off it by its scatter (the
+            # asymmetric SRM male, 80 a lobe with 2 um: 1.3 um out, and a male arc's apex 1.4 mm inside read +197 %)
+            on_male_tip = on_tip is not None and abs(float(np.hypot(*on_tip)) - pair.male_tip_radius) <= self.judged_accuracy
             if on_tip is not None and on_male_tip:
                 return on_tip, None
             on_arc = self._arc_apex(best, best_t, tips)
@@ -322,7 +312,7 @@ class MeshingAnalysis:
         """Return a given profile's apex where the meshline turns or a tip corner's path hands over, or None.
 
         :func:`rotorcad.meshing.tip_apex.tip_apex`; the places of it that hold are kept for
-        :attr:`blow_hole_uncertainty` (``_tip_candidates``, :attr:`_candidates_spread`).
+        :attr:`blow_hole_uncertainty` (``_tip_candidates``, :attr:`apex_candidates`).
         """
         rotors = self.rotors
         own = PieceRole.FEMALE_CORNER_PATH if rotors.family.startswith("female") else PieceRole.MALE_CORNER_PATH
@@ -354,8 +344,13 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         acc = self.judged_accuracy
         lobe = np.vstack([seg.resampled(DEFAULT_TOLERANCE).points for seg in self.rotors.male_lobe().segments])
-        point = rotate(end, -t)  # the male point touching at ``end`` (fixed = R(t) male)
-        if shapely.distance(shapely.Point(point), shapely.LineString(lobe)) > MESHLINE_GAIN * acc:
+        # the male point touching at ``end`` (fixed = R(t) male), turned by whole lobe pitches onto the lobe: which lobe
+        # touches there depends on the datum angle of the given points, the arc's meshline does not
+        line = shapely.LineString(lobe)
+        pitch = 2.0 * np.pi / pair.male_teeth
+        turns = [rotate(end, -t - k * pitch) for k in range(pair.male_teeth)]
+        point = min(turns, key=lambda p: shapely.distance(shapely.Point(p), line))
+        if shapely.distance(shapely.Point(point), line) > MESHLINE_GAIN * acc:
             return None  # the contact is not on this lobe (a corner path's point off the fitted profile)
         arc = arc_at(lobe, point, acc, 4.0 * resolution(acc, pair.center_distance))
         if arc is None:
@@ -388,9 +383,9 @@ class MeshingAnalysis:
     @cached_property
     def blow_hole(self) -> shapely.Geometry:
         """Projected blow-hole polygon (see the module docstring)."""
-        return self._blow_hole_at(self.meshline_end)
+        return self.blow_hole_at(self.meshline_end)
 
-    def _blow_hole_at(self, e: np.ndarray) -> shapely.Geometry:
+    def blow_hole_at(self, e: np.ndarray) -> shapely.Geometry:
         """Return the projected blow-hole polygon with its apex at ``e`` ((2,) float, mm, fixed frame)."""
         pair = self.rotors.pair
         k = self.cusp
@@ -420,145 +415,32 @@ class MeshingAnalysis:
     def blow_hole_uncertainty(self) -> float:
         """How far the blow-hole area may lie from the true profile's, from the input's accuracy (mm²).
 
-        The apex E (:attr:`meshline_end`) is where the normal of a male point at radius r = |E| passes
-        through the pitch point C (Rinder sec. 2.1, the law of gearing). With the male turned by phi
-        the point is X = r (cos phi, sin phi) and its normal, fixed in the rotor, turns with it: the
-        contact holds where beta(phi) - phi = psi, beta the direction of C - X. A normal turned by
-        delta moves the contact along that circle by ds = r delta / |beta' - 1|, with
-        beta' = ((C - X) x (-X')) / |C - X|², X' = dX/dphi. The profile's tangents are known to
-        :attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy` (its accuracy over one point
-        spacing; at a given male's tip corner, when the apex lies on the male tip circle,
-        :attr:`rotorcad.screw_rotors.ScrewRotors.tip_corner_tangent_accuracy` from the fitted spline);
-        of exact points, the largest turn of their fit's tangent
-        (:attr:`rotorcad.screw_rotors.ScrewRotors.tangent_spread`) at the :data:`APEX_POINTS` points
-        nearest the apex's radius and above it, up to the tip, whose fit sets where the flank hands over
-        (the N rack male's tip rounding with 2-3 of 300 points a lobe on it: the apex 78 µm off in
-        radius). The uncertainty is the larger change of the blow-hole area (:meth:`_blow_hole_at`)
-        with the apex moved by ds either way. 0 for a design.
-
-        Where the apex comes from a male arc's closed-form meshline (:meth:`_arc_apex`) no tangent
-        enters: the arc's centre and radius move by at most :func:`rotorcad.meshing.apex.circle_bounds`
-        when its samples may each be :attr:`judged_accuracy` off, and the uncertainty is the largest
-        change of the area over the eight corners of that box.
-
-        Returns
-        -------
-        float, mm²
+        :func:`rotorcad.meshing.blow_hole_accuracy.blow_hole_uncertainty`; 0 for a design.
         """
-        delta = float(getattr(self.rotors, "tangent_accuracy", 0.0))
-        spread = getattr(self.rotors, "tangent_spread", None)
-        if delta <= 0.0 and spread is None:  # a design (0), or a drawing's exact curves
-            return max(self._drawing_uncertainty, self._candidates_spread) if self.is_given else 0.0
-        arc = self._apex[1]
-        arc_bound = np.inf
-        if arc is not None and delta > 0.0:
-            centre, radius, window, near, reach, bores = arc
-            bound = circle_bounds(window, centre, radius, self.judged_accuracy)
-            c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
-            moved = []
-            for sign in itertools.product((-1.0, 1.0), repeat=3):
-                step = np.asarray(sign) * bound
-                apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, self.cusp, near, reach, bores, window)
-                moved.append(np.inf if apex is None else self._blow_hole_at(apex).area)
-            arc_bound = float(max(abs(m - self.blow_hole_area) for m in moved))
-        bound = min(arc_bound, self._tangent_uncertainty(delta, spread))
-        return max(bound, self._candidates_spread)
-
-    @property
-    def _drawing_uncertainty(self) -> float:
-        """The blow-hole's uncertainty (mm²) of a profile drawn as exact curves (no points, no tangent bound).
-
-        A drawing within e (:attr:`judged_accuracy`, its curves' deviation) of the outline places a point of
-        the meshline no better than the resolution sqrt(8 a e) (:func:`rotorcad.meshing.defects.resolution`):
-        where a flank meets a corner's point-generated part with a common tangent (a curvature step alone)
-        the drawing cannot tell where within that length the hand-over lies. The apex moved by it either way
-        along its circle about O1. The rack-involute female's export splines (0.85 um) read the blow-hole
-        +0.28 % (22.800 mm² for 22.737) and stated +-0.000 before.
-        """
-        e = self.meshline_end
-        r = float(np.hypot(*e))
-        if r < 1e-9:
-            return 0.0
-        turn = resolution(self.judged_accuracy, self.rotors.pair.center_distance) / r
-        phi, area = float(np.arctan2(e[1], e[0])), self.blow_hole_area
-        moved = [self._blow_hole_at(r * np.array([np.cos(phi + t), np.sin(phi + t)])).area for t in (turn, -turn)]
-        return float(max(abs(m - area) for m in moved))
-
-    @property
-    def _candidates_spread(self) -> float:
-        """The largest change of the blow-hole area (mm²) between the apex and its other places (:meth:`_tip_apex`).
-
-        The apex of a tip corner's hand-over is placed from several parts of the fit (the joint of the
-        corner's path and the flank, the flank's meshline extrapolated by a quadratic and by a cubic, the
-        turn of both branches); where they part by more than the tangent's bound the points do not place
-        the apex that well: the narrow-tip male at 80 points a lobe with 1 um of scatter read +16..+22 %
-        extrapolated over a window of 0.33 of its flank's meshline, stating +-0.32..0.43 mm²; its joint
-        read 2.56-2.81 mm² (design 2.778).
-        """
-        self._apex  # noqa: B018 (sets _tip_candidates)
-        found = self.__dict__.get("_tip_candidates", [])
-        area = self.blow_hole_area
-        return float(max((abs(self._blow_hole_at(c).area - area) for c in found), default=0.0))
-
-    def _tangent_uncertainty(self, delta: float, spread: tuple | None) -> float:
-        """Return the blow-hole's uncertainty (mm²) from the tangent's accuracy ``delta`` (rad) (:attr:`blow_hole_uncertainty`).
-
-        Both it and the arc's bound hold (each from the input's accuracy), so the smaller is stated: an arc
-        of 38 mm radius fitted to a male generated from a female's points (narrow-tip, 1 um of scatter) is
-        poorly fixed, and its corners' apexes fell 58 mm away (+-1920 mm² on 4.1). The apex moves at most
-        by the meshline's resolution (:func:`rotorcad.meshing.defects.resolution` at
-        :data:`rotorcad.meshing.defects.MESHLINE_GAIN` times the accuracy) along the tip circle: at
-        beta' = 1 the linear step r delta / |beta' - 1| has no bound (+-677 mm² on 4.8, the asymmetric SRM
-        from a female's points). It moves at least by the meshline's accuracy (:data:`MESHLINE_GAIN` times
-        the profile's), to which the meshline places the apex whatever the tangent: exact points 1000 and
-        10 000 a lobe (the rack-involute and the narrow-tip males) stated +-0.0012 and +-0.0006 mm² for
-        errors of 0.0059 and 0.0011 mm² (0.03 % and 0.04 %).
-        """
-        e = self.meshline_end
-        r = float(np.hypot(*e))
-        if spread is not None and len(spread[0]) >= APEX_POINTS:  # exact points: their fit's tangent at the apex's radius
-            female = self.rotors.family.startswith("female")
-            r_own = float(np.hypot(*(e - np.array([self.rotors.pair.center_distance if female else 0.0, 0.0]))))
-            nearest = np.argpartition(np.abs(spread[0] - r_own), APEX_POINTS - 1)[:APEX_POINTS]
-            beyond = spread[1][spread[0] >= r_own]  # up to the tip, whose fit hands the flank over at the apex
-            delta = max(delta, float(spread[1][nearest].max()), float(beyond.max(initial=0.0)))
-        if delta <= 0.0 or r < 1e-9:
-            return 0.0
-        corner = getattr(self.rotors, "tip_corner_tangent_accuracy", None)
-        if corner is not None and r >= self.rotors.pair.male_tip_radius - 1e-3 * self.rotors.pair.center_distance:
-            delta = float(corner)  # the apex on the male tip circle: where the tip corner's path hands over
-        c = np.array([self.rotors.pair.male_pitch_radius, 0.0])
-        v = c - e
-        if np.hypot(*v) < 1e-6:
-            return 0.0
-        phi = float(np.arctan2(e[1], e[0]))
-        dx = r * np.array([-np.sin(phi), np.cos(phi)])
-        rate = float((v[0] * -dx[1] - v[1] * -dx[0]) / (v @ v))  # beta'
-        reach = resolution(MESHLINE_GAIN * self.judged_accuracy, self.rotors.pair.center_distance)
-        turn = min(delta / max(abs(rate - 1.0), 1e-9), reach / r)  # dphi, rad, at most the meshline's resolution
-        # at least the meshline's accuracy along the tip circle: the apex is a meshline point, placed no better
-        turn = max(turn, MESHLINE_GAIN * self.judged_accuracy / r)
-        area = self.blow_hole_area
-        moved = [self._blow_hole_at(r * np.array([np.cos(phi + t), np.sin(phi + t)])).area for t in (turn, -turn)]
-        return float(max(abs(m - area) for m in moved))
+        return blow_hole_uncertainty(self)
 
     @property
     def blow_hole_resolved(self) -> bool:
         """Tell whether the input resolves the blow-hole (always for a design).
 
-        It does when :attr:`blow_hole_uncertainty` is below the area or below
-        :data:`BLOW_HOLE_RESOLUTION` of the female flute's area.
-
-        Where it is not, the area is no verdict: 300 exact points a lobe of the N rack male put 2-3 points on
-        its 0.67 mm tip rounding, whose end is the apex, and read 1.98 and 0.44 mm² (design 1.74) by
-        where the points fell, stating ±31 and ±25 mm² (:attr:`blow_hole_uncertainty`). The rounding meets
-        the sealing flank with a common tangent, only the curvature steps there, and that point, the
-        apex's male point, moves the apex 46 times as far along the meshline (30.8 mm of meshline for
-        0.67 mm of rounding): points that do not resolve the curvature step do not place it. Points
-        closer together there do (the dense forms, within 1 %).
+        :func:`rotorcad.meshing.blow_hole_accuracy.blow_hole_resolved`.
         """
-        area, spread = self.blow_hole_area, self.blow_hole_uncertainty
-        return spread <= max(area, BLOW_HOLE_RESOLUTION * self.female_flute_area)
+        return blow_hole_resolved(self)
+
+    @property
+    def apex_arc(self) -> tuple | None:
+        """Where the apex comes from a male arc's closed-form meshline, the arguments of its search, else None.
+
+        (centre, radius, window, near, reach, bores) of :func:`rotorcad.meshing.apex.circle_meshline_apex`
+        (:meth:`_arc_apex`).
+        """
+        return self._apex[1]
+
+    @property
+    def apex_candidates(self) -> list[np.ndarray]:
+        """The other places of a tip corner's hand-over apex that hold (:meth:`_tip_apex`), each (2,) float, mm."""
+        self._apex  # noqa: B018 (sets _tip_candidates)
+        return self.__dict__.get("_tip_candidates", [])
 
     @cached_property
     def spatial_blow_hole(self) -> SpatialBlowHole:
