@@ -221,7 +221,10 @@ def line_apex(
     (:func:`body_frames`) and fitted by a line over windows from that end (or past the first of :data:`LEAD_INS`
     that lets one hold) growing by :data:`GROWTH`, from :data:`SHORTEST` resolutions, for as long as every contact
     lies within ``accuracy`` of the line of some frame; of the longest such window, the frame whose line fits
-    best. Its meshline is cut with the corner path's tip circle (:func:`line_meshline_cut`).
+    best. Its meshline is cut with the corner path's tip circle and with the other rotor's
+    (:func:`line_meshline_cut`), and the cut nearer ``point`` is the apex: sparse points may leave the mate's
+    corner path beside the flank's end, not the corner's own (a new user's SRM-B female at 80 exact points a lobe,
+    four of seven phases: the female tip circle's cut 13 mm from the design's apex on the male's, 60.4 mm² for 3.14).
 
     Parameters
     ----------
@@ -261,8 +264,12 @@ def line_apex(
         return None
     (_, name, centroid, normal, centre), length = best
     distance = None if centre is None else abs(float(centroid @ normal))
-    apex = line_meshline_cut(distance, normal, centre, c, tips[circle], points[0])
-    if apex is None or np.hypot(*(apex - point)) > shortest:
+    cuts = [line_meshline_cut(distance, normal, centre, c, tip, points[0]) for tip in (tips[circle], tips[1 - circle])]
+    cuts = [cut for cut in cuts if cut is not None]
+    if not cuts:
+        return None
+    apex = min(cuts, key=lambda cut: float(np.hypot(*(cut - point))))  # the corner's circle, or the other if nearer
+    if np.hypot(*(apex - point)) > shortest:
         return None
     return apex, name, length
 
