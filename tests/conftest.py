@@ -93,6 +93,31 @@ def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
     return cpus if cpus > 1 else 0
 
 
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
+    """pytest-xdist's ``worksteal``, its first halves cut where one test module ends (else None: xdist's own).
+
+    The first share of each worker ends at the module boundary nearest to an even split, so that no
+    module is cut there and its module fixtures and cached cases (tests/test_hob_points_samples.py's
+    pairs from points, 9-10 s of CPU on each worker when it was the module cut) are made by one worker;
+    the tests taken from the other's end at the close are xdist's own steals.
+    """
+    if config.getvalue("dist") != "worksteal":
+        return None
+    from xdist.scheduler import WorkStealingScheduling
+
+    class ModuleWholeWorkStealing(WorkStealingScheduling):
+        def _send_tests(self, node: Any, num: int) -> None:
+            if 0 < num < len(self.pending) and self.collection is not None:
+                files = [self.collection[i].split("::", 1)[0] for i in self.pending]
+                ends = [i for i in range(1, len(files)) if files[i] != files[i - 1]]
+                if ends:
+                    num = min(ends, key=lambda i: abs(i - num))
+            super()._send_tests(node, num)
+
+    return ModuleWholeWorkStealing(config, log)
+
+
 def _built_once(root: Path, name: str, build: Callable[[], Any]) -> Any:
     """``build()``, made by the first worker that asks and read from ``root`` by the others."""
     path = root / f"{name}.pickle"
