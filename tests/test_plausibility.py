@@ -18,6 +18,7 @@ import pytest
 
 from rotorcad.cli.main import main
 from rotorcad.design.plausibility import STANDARD_MODULES, module_warnings, screw_pair_warnings
+from rotorcad.work import load_factor
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -70,7 +71,15 @@ def test_an_inch_typed_gear_module_is_warned_about_by_gear_and_pump():
     assert status == 0 and "warning" not in err
 
 
-def test_a_gear_step_of_a_thousand_teeth_says_it_takes_minutes(capsys):
+@pytest.fixture
+def idle(monkeypatch):
+    """The machine's load left out of the STEP estimate (rotorcad.work.load_factor 1: an idle machine)."""
+    from rotorcad import work
+
+    monkeypatch.setattr(work, "load_factor", lambda *a: 1.0)
+
+
+def test_a_gear_step_of_a_thousand_teeth_says_it_takes_minutes(capsys, idle):
     from rotorcad.cli import progress
     from rotorcad.cli.export_cmd import _say_long_files
 
@@ -84,11 +93,11 @@ def test_a_gear_step_of_a_thousand_teeth_says_it_takes_minutes(capsys):
     assert "--format dxf,stl would make it about" in note
     assert "rotorcad: note: this will take about 4 min" in capsys.readouterr().err
     noted = len(progress.NOTED)
-    half = [{"format": "step", "body": "gear", "faces": 7 * 600 + 2}]  # a herringbone gear's plan: one half's faces
+    half = [{"format": "step", "body": "gear", "faces": 7 * 300 + 2}]  # a herringbone gear's plan: one half's faces
     _say_long_files(half, False, bar)
-    assert len(progress.NOTED) == noted  # 4202 faces: some 58 s
+    assert len(progress.NOTED) == noted  # 2102 faces: some 17 s
     _say_long_files(half, False, bar, frozenset({"gear"}))
-    assert len(progress.NOTED) == noted + 1  # both halves, 8404 faces
+    assert len(progress.NOTED) == noted + 1  # both halves, 4204 faces: some 58 s
 
 
 def test_the_step_faces_planned_are_seven_a_tooth(tmp_path):
@@ -101,7 +110,7 @@ def test_the_step_faces_planned_are_seven_a_tooth(tmp_path):
     assert rows[0]["faces"] == 7 * 40 + 2  # per tooth: root arc, 2 fillets, 2 flanks, tip; and the two end faces
 
 
-def test_a_step_over_the_memory_bound_is_refused_naming_what_would_do():
+def test_a_step_over_the_memory_bound_is_refused_naming_what_would_do(idle):
     # Measured peaks (rotorcad.work.STEP_MEGABYTES): helical z 1000 (7002 faces) 761 MB; herringbone
     # z 300 / 500 (4202 / 7002 faces) 915 / 1306 MB, so z 1000 (14002 faces) some 2.3 GB, over the 2 GB bound
     from rotorcad.cli import progress
@@ -119,3 +128,53 @@ def test_a_step_over_the_memory_bound_is_refused_naming_what_would_do():
     assert "--format step cannot be written for the gear: its exact STEP of 14004 faces (a herringbone gear)" in text
     assert "about 2.3 GB, more than the 2 GB allowed; --format stl would do" in text
     _say_long_files(rows, True, bar)  # the helical gear of 1000 teeth: 761 MB, written (with its note)
+
+
+def test_a_600_tooth_step_says_so_below_the_minute_and_scales_with_the_load(capsys, idle):
+    # newuser7 F3: a helical gear of 600 teeth (4202 faces; the table's 58 s, under the 60-s
+    # LONG_RUN_SECONDS) took 305 s of wall time on a loaded machine without a word. The crossing is
+    # computed from the table (rotorcad.work.STEP_FACE_SECONDS), not timed.
+    from rotorcad import work
+    from rotorcad.cli import progress
+    from rotorcad.cli.export_cmd import GEAR_STEP_FACES, _say_long_files
+
+    bar = progress.Steps("test", 1, quiet=True)
+    z600, z300 = GEAR_STEP_FACES * 600 + 2, GEAR_STEP_FACES * 300 + 2
+    assert work.step_seconds(z300) < work.STEP_NOTE_SECONDS < work.step_seconds(z600) < work.LONG_RUN_SECONDS
+    noted = len(progress.NOTED)
+    _say_long_files([{"format": "step", "body": "gear", "faces": z600}], False, bar)
+    assert progress.NOTED[noted:] == [
+        "this will take about 58 s (an estimate from measured runs); --format stl would make it about 5 s"
+    ]
+    _say_long_files([{"format": "step", "body": "gear", "faces": z300}], False, bar)
+    assert len(progress.NOTED) == noted + 1  # 17 s on an idle machine: no note
+    # on a machine loaded 3 times over its 2 cores (load average 6): the 300-tooth gear's 17 s become 51 s
+    factor = load_factor(6.0, 2)  # the function itself, not the fixture's
+    assert factor == 3.0 and load_factor(0.5, 2) == 1.0
+    progress.NOTED.clear()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(work, "load_factor", lambda *a: factor)
+        _say_long_files([{"format": "step", "body": "gear", "faces": z300}], False, bar)
+    assert progress.NOTED == [
+        f"this will take about {3 * work.step_seconds(z300):.0f} s (an estimate from measured runs, times 3.0 for "
+        "this machine's load now); --format stl would make it about 5 s"
+    ]
+
+
+def test_a_herringbone_gear_too_big_for_a_step_is_refused_before_it_is_built(tmp_path, monkeypatch, capsys):
+    # newuser7 F4: the herringbone gear of 1000 teeth (toml/g1000hb.toml) was refused after 105 s of
+    # building all bodies. Reference: the refusal the built gear's plan gives (14004 faces, 2.3 GB), and the
+    # gear builder is never called.
+    from rotorcad.cli import gear_export
+
+    def never(*args, **kwargs):
+        raise AssertionError("the gear was built before the refusal")
+
+    monkeypatch.setattr(gear_export, "design_gear_bodies", never)
+    design = tmp_path / "g1000hb.toml"
+    design.write_text("[gear]\nteeth = 1000\nmodule = 2.0\nhelix_angle_deg = 15.0\nface_width = 30.0\nherringbone = true\n")
+    out = tmp_path / "exp"
+    status, stdout, err = _run(["export", str(design), "--format", "step", "--out", str(out)])
+    assert status == 2 and stdout == "" and not out.exists()
+    assert err.count("\n") == 1 and err.startswith("rotorcad: error: --format step cannot be written for the gear: ")
+    assert "its exact STEP of 14004 faces (a herringbone gear) would need about 2.3 GB" in err
