@@ -178,3 +178,81 @@ def test_a_herringbone_gear_too_big_for_a_step_is_refused_before_it_is_built(tmp
     assert status == 2 and stdout == "" and not out.exists()
     assert err.count("\n") == 1 and err.startswith("rotorcad: error: --format step cannot be written for the gear: ")
     assert "its exact STEP of 14004 faces (a herringbone gear) would need about 2.3 GB" in err
+
+
+def _inch_n_rack(tmp_path: Path, rounded: bool) -> Path:
+    """The n-rack sample (Wu & Chi's N4 pair, a = 82.0 mm, Table 1) typed in inches to 4 decimals.
+
+    ``rounded``: every radius typed as its own rounded number, as newuser7 did (toml/nrack_inch.toml
+    before the user linked the female radii): the female root radius 24.01 / 25.4 = 0.94528 -> 0.9453.
+    """
+    design = (ROOT / "samples" / "n_rack_5_6.toml").read_text()
+    keys = ("center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius")
+    pattern = r"(?m)^(" + "|".join((*keys, "lead", "length")) + r") = ([0-9.]+)"
+    design = re.sub(pattern, lambda m: f"{m.group(1)} = {float(m.group(2)) / 25.4:.4f}", design)
+    if not rounded:
+        design = re.sub(r"(?m)^female_tip_radius = .*$", 'female_tip_radius = "a - male_root_radius"', design)
+        design = re.sub(r"(?m)^female_root_radius = .*$", 'female_root_radius = "a - male_tip_radius"', design)
+    path = tmp_path / ("nrack_inch_rounded.toml" if rounded else "nrack_inch.toml")
+    path.write_text(design)
+    return path
+
+
+def test_a_rounded_inch_design_is_refused_naming_inches_in_the_one_sentence(tmp_path):
+    # newuser7 F5: the refusal "[pair] female_root_radius must be at most 0.9452 mm ... (got 0.9453)" said
+    # nothing of inches. Reference: a = 82.0 mm (Wu & Chi, Table 1) / 25.4 = 3.2283.
+    path = _inch_n_rack(tmp_path, rounded=True)
+    assert "center_distance = 3.2283" in path.read_text() and "female_root_radius = 0.9453" in path.read_text()
+    for command in ("rotor", "hob"):
+        status, out, err = _run([command, str(path), "--json", "--quiet"])
+        assert status == 2 and out == "" and err.count("\n") == 1, err
+        assert err.startswith("rotorcad: error: [pair] female_root_radius must be at most 0.9452 mm")
+        assert err.endswith(
+            "(got 0.9453); [pair] center_distance 3.2283 mm looks like a design typed in inches (82 mm): "
+            "rotorcad takes every length in mm.\n"
+        )
+    status, out, err = _run(["rotor", str(_inch_n_rack(tmp_path, rounded=False)), "--json", "--quiet"])
+    assert status == 0 and "[pair] center_distance 3.2283 mm is smaller than any screw compressor" in err  # linked: runs
+
+
+def test_the_inch_hint_is_added_only_to_refusals_about_lengths_of_an_inch_sized_pair():
+    from rotorcad.design.plausibility import with_inch_hint
+
+    said = "[pair] male_root_radius must be equal to the male pitch radius 2.07586 mm (got 2.0758)."
+    assert with_inch_hint(said, 4.5669, "[pair] center_distance").endswith("inches (116 mm): rotorcad takes every length in mm.")
+    assert with_inch_hint(said, 116.0, "[pair] center_distance") == said  # Rinder's narrow-tip pair in mm
+    assert with_inch_hint(said, 25.0, "[pair] center_distance") == said  # the 25-mm micro-compressor
+    other = "[pair] male_teeth must be a whole number from 2 to 12 (got 1)."
+    assert with_inch_hint(other, 3.2283, "[pair] center_distance") == other  # not about lengths
+
+
+@pytest.mark.parametrize("mm", [315.0, 400.0, 510.0, 630.0, 700.0, 250.0, 160.0])
+def test_a_large_machine_typed_in_inches_is_warned_about(mm):
+    # newuser7 F5: 315/400/510-mm machines typed in inches (12.4/15.7/20.1) got no warning (the bound was
+    # 10 mm). Reference: the value typed is mm / 25.4 to 4 decimals (and to 3), and the warning names mm.
+    for digits in (4, 3):
+        typed = round(mm / 25.4, digits)
+        said = screw_pair_warnings(typed, "[pair] center_distance")
+        assert len(said) == 1 and f"{mm:.4g} mm" in said[0] and "rotorcad takes every length in mm" in said[0], typed
+
+
+def test_no_inch_warning_for_the_samples_or_a_micro_compressor(tmp_path):
+    # The samples' centre distances (Rinder's 116 mm and the like; the N4 pair's 82 mm) and the 25-mm
+    # micro-compressor of newuser7 (its design typed to 0.1 mm), and round small machines of 20-28 mm.
+    import tomllib
+
+    for sample in sorted((ROOT / "samples").glob("*.toml")):
+        a = tomllib.loads(sample.read_text()).get("pair", {}).get("center_distance")
+        if isinstance(a, (int, float)):
+            assert screw_pair_warnings(float(a), "[pair] center_distance") == [], sample.name
+    for a in (20.0, 21.5, 22.5, 25.0, 26.3, 27.5, 28.0, 30.0, 45.0):
+        assert screw_pair_warnings(a, "[pair] center_distance") == [], a
+    design = (ROOT / "samples" / "n_rack_5_6.toml").read_text()
+    scale = 25.0 / 82.0
+    for key in ("center_distance", "male_tip_radius", "male_root_radius", "female_tip_radius", "female_root_radius"):
+        design = re.sub(rf"(?m)^({key}) = ([0-9.]+)", lambda m: f"{m.group(1)} = {float(m.group(2)) * scale:.4f}", design)
+    design = re.sub(r"(?m)^(lead|length) = ([0-9.]+)", lambda m: f"{m.group(1)} = {float(m.group(2)) * scale:.4f}", design)
+    path = tmp_path / "micro25.toml"
+    path.write_text(design)
+    status, _, err = _run(["rotor", str(path), "--json", "--quiet"])
+    assert status == 0 and "warning" not in err, err
