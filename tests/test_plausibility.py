@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import json
 import re
 from pathlib import Path
 
@@ -256,3 +257,22 @@ def test_no_inch_warning_for_the_samples_or_a_micro_compressor(tmp_path):
     path.write_text(design)
     status, _, err = _run(["rotor", str(path), "--json", "--quiet"])
     assert status == 0 and "warning" not in err, err
+
+
+def test_a_gear_step_note_is_said_once_before_the_gear_is_built(tmp_path, monkeypatch, idle):
+    # newuser7 F3/F4: the note came after all bodies were built. With the note's threshold at 0 s, a gear
+    # of 20 teeth (142 faces, GEAR_STEP_FACES a tooth) says it before design_gear_bodies is called, once.
+    from rotorcad import work
+    from rotorcad.cli import gear_export, progress
+
+    monkeypatch.setattr(work, "STEP_NOTE_SECONDS", 0.0)
+    built = gear_export.design_gear_bodies
+    at_build = []
+    monkeypatch.setattr(gear_export, "design_gear_bodies", lambda *a: at_build.append(len(progress.NOTED)) or built(*a))
+    design = tmp_path / "g20.toml"
+    design.write_text("[gear]\nteeth = 20\nmodule = 2.0\nhelix_angle_deg = 15.0\nface_width = 30.0\n")
+    noted = len(progress.NOTED)
+    status, out, err = _run(["export", str(design), "--format", "step", "--out", str(tmp_path / "o"), "--json"])
+    assert status == 0 and at_build == [noted + 1] and len(progress.NOTED) == noted + 1
+    assert err.count("rotorcad: note: this will take about") == 1
+    assert [f["faces"] for f in json.loads(out)["files"]] == [7 * 20 + 2]  # the estimate's faces, measured on the solid
