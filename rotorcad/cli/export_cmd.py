@@ -131,6 +131,7 @@ def export(
         fmts = _asked_formats(formats, ["stl", "step", "dxf"], BodyKind.GEAR)
         tol = _surface_tolerance(0.005 if tolerance is None else tolerance)
         result: dict[str, Any] = {"tolerance": tol}
+        noted = _say_gear_files(data, fmts, quiet)  # refused or noted from the teeth, before any gear is built
 
         def make_bodies() -> list[PlacedBody]:
             return design_gear_bodies(design, tol, data)
@@ -141,7 +142,7 @@ def export(
         tol = _surface_tolerance(tolerance if tolerance is not None else float(settings["export"].get("tolerance", 0.005)))
         if not np.isfinite(angle):
             raise InputError(f"--angle must be a number of degrees (got {angle}).")
-        result = {"tolerance": tol}
+        result, noted = {"tolerance": tol}, False
         label = "--tolerance" if tolerance is not None else "[export] tolerance"
 
         def make_bodies() -> list[PlacedBody]:
@@ -161,7 +162,7 @@ def export(
         for path, row, writer in plan_files(fmts, bodies, tol, folder, design.stem):
             outputs.add(path, writer, "--out")
             rows.append(row)
-        _say_long_files(rows, quiet, progress, _herringbones(bodies))
+        _say_long_files(rows, quiet, progress, _herringbones(bodies), note=not noted)
         if is_gear_design(data):  # a gear design's rack ([rack]), in its own frame
             from rotorcad.cli.gear_export import design_rack_files
 
@@ -183,14 +184,21 @@ def _herringbones(bodies: list[PlacedBody]) -> frozenset[str]:
     return frozenset(b.name for b in bodies if b.features is not None and b.features.herringbone)
 
 
-def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps, doubled: frozenset[str] = frozenset()) -> None:
-    """Refuse an exact STEP that would not fit in memory; say before writing when the STEP files take over a minute.
+def _say_long_files(
+    rows: list[dict[str, Any]], quiet: bool, progress: Steps | None, doubled: frozenset[str] = frozenset(), note: bool = True
+) -> bool:
+    """Refuse an exact STEP that would not fit in memory; say before writing when the STEP files take long.
 
     The STEP's faces are known once planned (a gear of 1000 teeth: 7002 faces, some 48 s of CPU
     and 4 minutes of wall time on a loaded 2-core machine, which a new user waited through without
     a word; a herringbone gear's plan counts one half's faces, ``doubled`` names those bodies); the
     meshes, drawings and points take seconds (:mod:`rotorcad.work`; that gear's STL and DXF: 3.2 s
-    wall, 1 s of CPU, so "about 5 s" is named for ``--format`` without ``step``).
+    wall, 1 s of CPU, so "about 5 s" is named for ``--format`` without ``step``). A gear design's
+    rows are first estimated from its teeth, before any gear is built (:func:`_say_gear_files`);
+    ``note`` False then leaves the note, said already, unsaid. Returns whether a note was said.
+
+    The note is said above :data:`rotorcad.work.STEP_NOTE_SECONDS` of the table's estimate times
+    :func:`rotorcad.work.load_factor` (the machine's load now).
 
     Raises
     ------
@@ -199,7 +207,15 @@ def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps, do
         850 teeth and more), naming ``--format`` and the most faces that would do.
     """
     from rotorcad.cli.progress import say_long_run
-    from rotorcad.work import MAX_STEP_MEGABYTES, long_run_note, step_faces_within, step_megabytes, step_seconds
+    from rotorcad.work import (
+        MAX_STEP_MEGABYTES,
+        STEP_NOTE_SECONDS,
+        load_factor,
+        long_run_note,
+        step_faces_within,
+        step_megabytes,
+        step_seconds,
+    )
 
     steps = [(row, row.get("faces", 0) * (2 if row.get("body") in doubled else 1), row.get("body") in doubled) for row in rows]
     steps = [(row, faces, both) for row, faces, both in steps if row["format"] == "step"]
@@ -214,11 +230,44 @@ def _say_long_files(rows: list[dict[str, Any]], quiet: bool, progress: Steps, do
                 f"--format {','.join(others)} would do, or one of at most about "
                 f"{step_faces_within(MAX_STEP_MEGABYTES, both):.0f} faces (fewer teeth)."
             )
-    note = long_run_note(sum(step_seconds(faces) for _, faces, _ in steps), ("--format", ",".join(others), 5.0))
-    if note is not None:
-        progress.stop()  # the note on a line of its own, not through the bar
-        say_long_run(note, quiet)
-        progress.start()
+    load = load_factor()
+    caveat = " (an estimate from measured runs" + (f", times {load:.1f} for this machine's load now" if load > 1 else "")
+    seconds = load * sum(step_seconds(faces) for _, faces, _ in steps)
+    said = long_run_note(seconds, ("--format", ",".join(others), 5.0), STEP_NOTE_SECONDS, caveat + ")")
+    if said is not None and note:
+        if progress is not None:
+            progress.stop()  # the note on a line of its own, not through the bar
+        say_long_run(said, quiet)
+        if progress is not None:
+            progress.start()
+    return said is not None and note
+
+
+GEAR_STEP_FACES = 7
+"""Faces a tooth of an involute gear's exact STEP (two flanks, two fillets, tip, root and a joint), and 2 end faces.
+
+Measured on the planned rows of ``export --format step``: z = 17, 20 give 121, 142 faces; a new
+user's z = 1000: 7002."""
+
+
+def _say_gear_files(data: dict[str, Any], fmts: list[ExportFormat], quiet: bool) -> bool:
+    """Refuse or note a gear design's exact STEP from its teeth, before the gears are built; tell if a note was said.
+
+    A herringbone gear of 1000 teeth was refused only after 105 s of building (newuser7 F4). The
+    teeth and ``herringbone`` are read from the design (``[gear]``, ``[mate] teeth``) and the faces
+    estimated as :data:`GEAR_STEP_FACES` a tooth; a value that is not a whole number is left to the
+    design's own check.
+    """
+    if "step" not in {f.name for f in fmts} or "shaper" in data:  # an internal gear's ring: left to its plan
+        return False
+    gear, mate = data.get("gear", {}), data.get("mate", {})
+    herringbone = gear.get("herringbone") is True
+    rows = []
+    for body, teeth in (("gear", gear.get("teeth")), ("mate", mate.get("teeth") if isinstance(mate, dict) else None)):
+        if isinstance(teeth, int) and not isinstance(teeth, bool) and 0 < teeth <= 100_000:
+            rows.append({"format": "step", "body": body, "faces": GEAR_STEP_FACES * teeth + 2})
+    rows += [{"format": f.name, "body": "gear"} for f in fmts if f.name != "step"]
+    return _say_long_files(rows, quiet, None, frozenset(("gear", "mate")) if herringbone else frozenset())
 
 
 def _asked_formats(asked: str | None, default: list[Any], kind: BodyKind) -> list[ExportFormat]:

@@ -336,6 +336,21 @@ _SEEN_FROM_ALONE = (
 )
 
 
+def _refusal(sentence: str, center_distance: Any, names: PairNames) -> InputError:
+    """Return a refusal of the pair, with the inch hint when it is about lengths and a looks typed in inches.
+
+    ``center_distance`` is a's value (mm), or the design's ``[pair]`` mapping (its ``center_distance``
+    key, if any). A rounded inch design is refused by the pair's own checks before the warning of
+    a successful run could say it (newuser7 F5; :func:`rotorcad.design.plausibility.with_inch_hint`).
+    """
+    from rotorcad.design.plausibility import with_inch_hint
+
+    a = center_distance.get("center_distance") if isinstance(center_distance, dict) else center_distance
+    if isinstance(a, (int, float)) and not isinstance(a, bool):
+        sentence = with_inch_hint(sentence, float(a), names("center_distance") or "[pair] center_distance")
+    return InputError(sentence)
+
+
 def _build(
     design: Path | None, opts: dict[str, Any], settings: dict[str, Any] | None = None, section: dict[str, Any] | None = None
 ) -> tuple[ScrewRotors, float, float]:
@@ -377,7 +392,7 @@ def _build(
         raise InputError(required(PAIR_LABELS[exc.param])) from None
     except DesignError as exc:
         exc = exc.named_by(names.options) if isinstance(exc, ConflictError) else exc
-        raise InputError(exc.sentence(names(exc.param))) from None
+        raise _refusal(exc.sentence(names(exc.param)), given.get("center_distance") or (d or {}).get("pair", {}), names) from None
     except TypeError as exc:
         raise InputError(f"the pair is not described completely: {exc}.") from None
     from rotorcad.cli.plausible import say_warnings
@@ -396,7 +411,7 @@ def _build(
             spec = replace(spec, points=seen_from_suction(read_profile(path, f"--{family}", opts.get("layer")), face))
         rotors = build_pair(spec, label=f"--{family}")
     except DesignError as exc:
-        raise InputError(exc.sentence(names(exc.param, family))) from None
+        raise _refusal(exc.sentence(names(exc.param, family)), spec.pair.center_distance, names) from None
     found: dict[str, Any] = {"seen_from": str(face)}
     if d is not None and source in ("male-points", "female-points") and not str(d["family"]).endswith("-points"):
         found.update(_against_design(spec, rotors.accuracy, d, given, Side(source.removesuffix("-points")), face))

@@ -10,7 +10,8 @@ The ranges are the standards' and the trade's, not rotorcad's limits (those refu
 
 - modules: DIN 780 / ISO 54 series I and II, 0.05 to 50 mm (:data:`STANDARD_MODULES`);
 - screw compressors: centre distances of the built machines from some 20 mm (small refrigeration
-  and automotive superchargers) to some 1000 mm (:data:`SCREW_CENTER_DISTANCE`).
+  and automotive superchargers) to some 1000 mm (:data:`SCREW_CENTER_DISTANCE`); from 20 to 28 mm
+  (711 mm in inches) only a value whose mm in inches is a whole mm (:func:`inch_center_distance`).
 """
 
 from __future__ import annotations
@@ -45,9 +46,81 @@ STANDARD_MODULES = (
 INCH_MATCH = 0.005
 """Relative distance within which a value times 25.4 "is" a standard module (0.157 in -> 3.988 mm)."""
 
-SCREW_CENTER_DISTANCE = (10.0, 1500.0)
+SCREW_CENTER_DISTANCE = (20.0, 1500.0)
 """Centre distances of screw-rotor pairs below or above which a warning is said, mm (built
-machines: some 20 mm to some 1000 mm; a 5/6 pair of a = 82 mm typed in inches is 3.23)."""
+machines: some 20 mm to some 1000 mm; a 5/6 pair of a = 82 mm typed in inches is 3.23). Below
+20 mm a machine typed in inches is one of up to 508 mm (it was 10 mm, 254 mm: a new user's 315-510 mm
+machines typed in inches, 12.4-20.1, were not warned about)."""
+
+INCH_SIZED = 28.0
+"""From the lower bound of :data:`SCREW_CENTER_DISTANCE` to this, mm, a centre distance is taken as
+typed in inches only when its value in inches is a whole number of mm (:data:`WHOLE_MM`) and it is not
+itself a round 0.1 mm: 28 in is 711 mm, about the largest machines (the trade's oil-flooded and
+process compressors reach centre distances of some 500-700 mm); a micro-compressor of a = 25 mm
+stays a 25-mm machine."""
+
+WHOLE_MM = 0.02
+"""mm: a value in inches whose mm value lies this near a whole mm was converted from a whole mm (a
+value typed to 3 decimals in inches is off by at most 0.0127 mm; a random value lands this near by a
+chance of 4 %)."""
+
+
+def inch_center_distance(center_distance: float) -> float | None:
+    """Return the centre distance in mm if ``center_distance`` looks typed in inches, else None.
+
+    Parameters
+    ----------
+    center_distance : float, mm
+        The pair's centre distance a as given.
+
+    Returns
+    -------
+    float or None
+        ``a x 25.4`` when a is below :data:`SCREW_CENTER_DISTANCE`'s lower bound (no machine that
+        small is built), or below :data:`INCH_SIZED` with ``a x 25.4`` a whole mm (:data:`WHOLE_MM`)
+        and a not a round 0.1 mm; None otherwise.
+    """
+    a = float(center_distance)
+    if not (np.isfinite(a) and a > 0):
+        return None
+    in_mm = a * INCH
+    if a < SCREW_CENTER_DISTANCE[0]:
+        return in_mm
+    round_itself = abs(a * 10 - round(a * 10)) < 1e-9
+    if a < INCH_SIZED and abs(in_mm - round(in_mm)) <= WHOLE_MM and not round_itself:
+        return in_mm
+    return None
+
+
+def with_inch_hint(sentence: str, center_distance: float, label: str) -> str:
+    """Return a refusal about lengths with the inch hint added, still one sentence (newuser7 F5).
+
+    A design typed in inches is usually rounded, and then refused by the pair's own checks (``[pair]
+    female_root_radius must be at most 0.9452 mm ...``) before the warning of a successful run.
+
+    Parameters
+    ----------
+    sentence : str
+        The refusal, ending with its stop.
+    center_distance : float, mm
+        The pair's centre distance as given.
+    label : str
+        The option or design key that gave it.
+
+    Returns
+    -------
+    str
+        ``sentence`` unchanged unless it names a length in mm and :func:`inch_center_distance`
+        takes a as inches; then ``...; LABEL A mm looks like inches (N mm): rotorcad takes every
+        length in mm.``
+    """
+    in_mm = inch_center_distance(center_distance) if isinstance(center_distance, (int, float)) else None
+    if in_mm is None or " mm" not in sentence:
+        return sentence
+    hint = (
+        f"{label} {center_distance:g} mm looks like a design typed in inches ({in_mm:.4g} mm): rotorcad takes every length in mm"
+    )
+    return f"{sentence.rstrip('.')}; {hint}."
 
 
 def _nearest_standard(value: float) -> tuple[float, float]:
@@ -103,15 +176,22 @@ def screw_pair_warnings(center_distance: float, label: str) -> list[str]:
     Returns
     -------
     list of str
-        One sentence without the final stop when a is outside :data:`SCREW_CENTER_DISTANCE`.
+        One sentence without the final stop when a is outside :data:`SCREW_CENTER_DISTANCE` or
+        looks typed in inches (:func:`inch_center_distance`).
     """
     lo, hi = SCREW_CENTER_DISTANCE
     if not np.isfinite(center_distance):
         return []
-    if center_distance < lo:
+    in_mm = inch_center_distance(center_distance)
+    if in_mm is not None and center_distance < lo:
         return [
             f"{label} {center_distance:g} mm is smaller than any screw compressor built (some 20 mm and up); "
-            f"in inches it would be {center_distance * INCH:.4g} mm: rotorcad takes every length in mm"
+            f"in inches it would be {in_mm:.4g} mm: rotorcad takes every length in mm"
+        ]
+    if in_mm is not None:
+        return [
+            f"{label} {center_distance:g} mm in inches would be {in_mm:.4g} mm, a whole number of mm as a design "
+            "typed in inches gives: rotorcad takes every length in mm"
         ]
     if center_distance > hi:
         return [
@@ -121,4 +201,13 @@ def screw_pair_warnings(center_distance: float, label: str) -> list[str]:
     return []
 
 
-__all__ = ["INCH", "SCREW_CENTER_DISTANCE", "STANDARD_MODULES", "UnitWarning", "module_warnings", "screw_pair_warnings"]
+__all__ = [
+    "INCH",
+    "SCREW_CENTER_DISTANCE",
+    "STANDARD_MODULES",
+    "UnitWarning",
+    "inch_center_distance",
+    "module_warnings",
+    "screw_pair_warnings",
+    "with_inch_hint",
+]
