@@ -106,6 +106,9 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
         return None
     from xdist.scheduler import WorkStealingScheduling
 
+    if not callable(getattr(WorkStealingScheduling, "_send_tests", None)):  # a private method: xdist's own if it goes
+        return None
+
     class ModuleWholeWorkStealing(WorkStealingScheduling):
         def _send_tests(self, node: Any, num: int) -> None:
             if 0 < num < len(self.pending) and self.collection is not None:
