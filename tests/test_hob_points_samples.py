@@ -205,7 +205,7 @@ FIT_BIAS = (
     "smoothing spline by n sigma^2 (Dierckx sec. 5.2) bends off a tip rounding of 10-14 points where its curvature "
     "steps, by up to 4 sigma, its least-squares variance there 0.5 sigma, so k_N sigma (scatter_bound) does not bound it"
 )
-# Seeds 11-20 (tests/measure_rack_fit.py): rack-involute female 4.39-9.07 um (over its stated 7.38-8.08 on seed 11),
+# Seeds 11-20 (benchmarks/bench_rack_fit.py): rack-involute female 4.39-9.07 um (over its stated 7.38-8.08 on seed 11),
 # N rack and Rinder-Deix female 4.24-11.96 (over 7.16-8.01 on seeds 11, 12, 16, 18; on 12 and 18 the rack 11.96 / 8.06
 # with the fit 5.61 / 5.18: where the female's generation stalls the rack follows the fit's curvature, not its
 # position), rack-involute male 4.71-7.84 (covered). Fits tried for the scattered rotor (fit-steps), rack error by

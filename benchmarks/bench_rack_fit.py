@@ -4,7 +4,7 @@ For each case, 300 points a lobe with 2 um of scatter along the normals (``test_
 seed by seed): the largest distance of the rotor's rack (as ``rotorcad hob --<rotor>-points`` derives it) from
 the design's closed-form rack on the contact zone, the largest distance of the fitted rotor from the design's
 outline at those rack points' contact points, the stated accuracy, and the radius on the rotor where the rack
-is farthest off. Run from the repository: ``python tests/measure_rack_fit.py 11 20`` (seeds 11 to 20; about 1 s
+is farthest off. Run from the repository: ``python benchmarks/bench_rack_fit.py 11 20`` (seeds 11 to 20; about 1 s
 of CPU a seed and case).
 """
 
@@ -17,7 +17,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 import test_hob_points_samples as samples
 from independent_pairs import distance_to_line
