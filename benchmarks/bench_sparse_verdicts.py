@@ -5,7 +5,9 @@ evenly spaced at 80, 150 and 300 a lobe, phase 0.37 of a spacing; exact, and wit
 normals at seeds 1 and 2), read back as ``--male-points`` / ``--female-points``. Printed per input that differs from
 the design: the defects it has more and fewer (kind, rotor, lobe part, tip corner) and the flanks whose running
 verdict differs or is undecided at the input's accuracy (``running_decided`` false); then per density the counts,
-and the differences by kind.
+and the differences by kind. Each difference is then judged by :func:`rotorcad.meshing.undecided.compare_defects`:
+explained by an undecided tip corner (a corner or a rounding shorter than two point spacings, the design's too), or
+differing; "decided equal" counts the inputs whose defects are the design's key for key.
 
 Run by hand: ``python benchmarks/bench_sparse_verdicts.py [80,150,300]`` (about 2 minutes of CPU for the three).
 """
@@ -21,6 +23,7 @@ from bench_moderate_densities import NAMES, SAMPLES, _pattern, _scan
 
 from rotorcad.design import rotor_design
 from rotorcad.errors import DesignError
+from rotorcad.meshing.undecided import compare_defects
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 
 FLANKS = ("driving", "sealing")
@@ -38,7 +41,7 @@ def main(densities: str = "80,150,300") -> None:
     for name in NAMES:
         spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
         rotors = build_pair(spec)
-        design = analyse_pair(rotors, spec.speed_rpm)[1]
+        analysis, design = analyse_pair(rotors, spec.speed_rpm)
         for side, lobe, teeth in (
             ("male", rotors.male_lobe(), spec.pair.male_teeth),
             ("female", rotors.female_lobe(), spec.pair.female_teeth),
@@ -62,6 +65,7 @@ def main(densities: str = "80,150,300") -> None:
                     got = analyse_pair(given, spec.speed_rpm)[1]
                     counts[per]["inputs"] += 1
                     extra, lost = _keys(got) - _keys(design), _keys(design) - _keys(got)
+                    differing, explained = compare_defects(analysis, got)
                     undecided = [f for f in FLANKS if not got["flanks"][f]["running_decided"]]
                     flips = [
                         f
@@ -70,12 +74,16 @@ def main(densities: str = "80,150,300") -> None:
                         and got["flanks"][f]["runs_without_timing_gears"] != design["flanks"][f]["runs_without_timing_gears"]
                     ]
                     counts[per]["defects differ"] += bool(extra or lost)
+                    counts[per]["decided equal"] += not (extra or lost)
+                    counts[per]["undecided, explained"] += bool(explained and not differing)
+                    counts[per]["differing"] += bool(differing)
                     counts[per]["running differs (decided)"] += bool(flips)
                     counts[per]["running undecided"] += bool(undecided)
                     kinds[per].update({("more", *k): n for k, n in extra.items()})
                     kinds[per].update({("fewer", *k): n for k, n in lost.items()})
                     if extra or lost or flips or undecided:
                         line = f"more {sorted(extra)} fewer {sorted(lost)} runs differ {flips} undecided {undecided}"
+                        line += f" | not explained {differing} explained {explained}"
                         print(f"{case}: {line}", flush=True)
     for per in pers:
         print(f"{per} a lobe: " + ", ".join(f"{k} {v}" for k, v in counts[per].items()))

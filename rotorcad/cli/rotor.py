@@ -197,6 +197,9 @@ def _add_plots(out: Outputs, opts: dict[str, Any], analysis, clearance: float) -
             )
 
 
+_UNDECIDED_CORNER = " (undecided: a corner or a rounding shorter than two point spacings, 2 x {:.3g} mm, read alike)"
+
+
 def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
     """Print the table of Rinder's figures, then the defects, the spatial blow-hole, the flanks and the files."""
     print_table(
@@ -226,6 +229,13 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
             f"flank '{d['flank']}'"
             + (" (point-generated)" if d["point_generated"] else "")
             + (": the tip corner itself, not a defect of the flank" if d.get("tip_corner") else "")
+            + ("" if d.get("decided", True) else _UNDECIDED_CORNER.format(d["margin_accuracy"]))
+        )
+    for d in result.get("undecided_defects", []):
+        click.echo(
+            f"  possible {d['rotor']} tip corner's path at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['flank_role']} side: "
+            f"its contacts within one point spacing ({d['margin_accuracy']:.3g} mm) over {d['extent']:.3g} mm of "
+            "meshline, undecided"
         )
     spatial = result["blow_hole_spatial"]
     if spatial["area"] > 0:

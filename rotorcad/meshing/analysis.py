@@ -26,8 +26,9 @@ from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshl
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
 from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.meshing.tip_apex import tip_apex
+from rotorcad.meshing.undecided import corner_margin, corner_on_rotor, undecided_corners
 from rotorcad.profile import DEFAULT_TOLERANCE
-from rotorcad.roles import Flank, PieceRole
+from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.screw_rotors import ScrewRotors
 
 
@@ -610,11 +611,64 @@ class MeshingAnalysis:
         """
         out = []
         pair = self.rotors.pair
+        spacing = self._corner_spacing
         for d in self.defects:
             row = d.as_dict()
             row["angle_deg"] = self.lobe_angle(np.radians(d.angle_deg))
             row["tip_corner"] = is_tip_corner(d, pair, self.tip_corner_tolerance)
+            row["decided"], row["margin"], row["margin_accuracy"] = True, None, None
+            if spacing and row["tip_corner"] and d.point_generated:  # a corner or a rounding below 2 spacings
+                corner = corner_on_rotor(pair, d.rotor, d.x, d.y, np.radians(d.angle_deg))
+                row["decided"], row["corner"], row["margin_accuracy"] = False, [float(v) for v in corner], spacing
+                margin = corner_margin(self.pieces, pair, d.rotor, corner, d.extent)
+                row["margin"] = margin if np.isfinite(margin) else None
             out.append(row)
+        return out
+
+    @property
+    def _corner_spacing(self) -> float:
+        """The given points' spacing (mm) within which a tip corner is undecided (:mod:`rotorcad.meshing.undecided`), else 0."""
+        return float(getattr(self.rotors, "point_spacing", None) or 0.0) if self.is_given else 0.0
+
+    def undecided_defect_dicts(self) -> list[dict[str, object]]:
+        """Return the tip corners the given points can neither show nor rule out (``undecided_defects`` of the summary).
+
+        :func:`rotorcad.meshing.undecided.undecided_corners` of each rotor where no tip-corner cusp was
+        found, as :meth:`defect_dicts` rows with ``decided`` false. Empty for a design or a drawing.
+
+        Returns
+        -------
+        list of dict
+        """
+        spacing = self._corner_spacing
+        if not spacing:
+            return []
+        pair = self.rotors.pair
+        reach = resolution(MESHLINE_GAIN * self.judged_accuracy, pair.center_distance)
+        near = max(self.tip_corner_tolerance, spacing)
+        rows = self.defect_dicts()
+        out = []
+        for rotor in (Side.MALE, Side.FEMALE):
+            found = [np.asarray(r["corner"]) for r in rows if r.get("corner") is not None and r["rotor"] == str(rotor)]
+            for u in undecided_corners(self.pieces, pair, rotor, spacing, near, reach, found):
+                corner = u["corner"]
+                margin = corner_margin(self.pieces, pair, rotor, corner, u["extent"])
+                out.append(
+                    {
+                        "kind": "cusp",
+                        "rotor": str(rotor),
+                        "x": u["x"],
+                        "y": u["y"],
+                        "flank_role": None if u["role"] is None else str(u["role"]),
+                        "point_generated": True,
+                        "extent": u["extent"],
+                        "tip_corner": True,
+                        "decided": False,
+                        "corner": [float(v) for v in corner],
+                        "margin": margin if np.isfinite(margin) else None,
+                        "margin_accuracy": spacing,
+                    }
+                )
         return out
 
     def summary(self) -> dict[str, object]:
@@ -656,6 +710,7 @@ class MeshingAnalysis:
             "speed_rpm": self.speed_rpm,
             "angle_convention": ANGLE_CONVENTION,
             "defects": self.defect_dicts(),
+            "undecided_defects": self.undecided_defect_dicts(),
             "defect_accuracy": self.judged_accuracy,
             # the meshline stretch the normals' tests resolve (rotorcad.meshing.defects.meshline_defects): not seen within it
             "defect_resolution": resolution((MESHLINE_GAIN if self.is_given else 1) * self.judged_accuracy, pair.center_distance),
