@@ -23,7 +23,8 @@ from bench_moderate_densities import NAMES, SAMPLES, _pattern, _scan
 
 from rotorcad.design import rotor_design
 from rotorcad.errors import DesignError
-from rotorcad.meshing.undecided import compare_defects
+from rotorcad.meshing.undecided import compare_defects, corner_margin
+from rotorcad.roles import Side
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 
 FLANKS = ("driving", "sealing")
@@ -66,6 +67,16 @@ def main(densities: str = "80,150,300") -> None:
                     counts[per]["inputs"] += 1
                     extra, lost = _keys(got) - _keys(design), _keys(design) - _keys(got)
                     differing, explained = compare_defects(analysis, got)
+                    loose = [d for d in got["defects"] if not d["decided"]] + got["undecided_defects"]
+                    pair = analysis.rotors.pair
+                    beyond = [  # undecided where the design's own margin is beyond the points' spacing
+                        (d["rotor"], d["flank_role"], round(m, 3), round(d["margin_accuracy"], 3))
+                        for d in loose
+                        if (m := corner_margin(analysis.pieces, pair, Side(d["rotor"]), np.asarray(d["corner"]), d["extent"]))
+                        > d["margin_accuracy"]
+                    ]
+                    counts[per]["undecided marks"] += len(loose)
+                    counts[per]["undecided marks the design resolves"] += len(beyond)
                     undecided = [f for f in FLANKS if not got["flanks"][f]["running_decided"]]
                     flips = [
                         f
@@ -81,6 +92,8 @@ def main(densities: str = "80,150,300") -> None:
                     counts[per]["running undecided"] += bool(undecided)
                     kinds[per].update({("more", *k): n for k, n in extra.items()})
                     kinds[per].update({("fewer", *k): n for k, n in lost.items()})
+                    if beyond:
+                        print(f"{case}: undecided where the design's margin is beyond the spacing {beyond}")
                     if extra or lost or flips or undecided:
                         line = f"more {sorted(extra)} fewer {sorted(lost)} runs differ {flips} undecided {undecided}"
                         line += f" | not explained {differing} explained {explained}"

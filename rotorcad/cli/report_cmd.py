@@ -519,6 +519,8 @@ def _defects_section(result: dict[str, Any]) -> hr.Section:
                 ("point_generated", "point-generated"),
                 ("tip_corner", "tip corner (not a defect of the flank)"),
                 ("extent", "extent along the meshline [mm]"),
+                ("decided", "decided (false: a corner or a rounding shorter than 2 point spacings)"),
+                ("margin_accuracy", "point spacing [mm]"),
             ],
             "No defect: no cusp, jamming or slipping on the meshline.",
         )
