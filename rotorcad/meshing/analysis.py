@@ -113,9 +113,7 @@ class MeshingAnalysis:
     def _defects(self) -> tuple[list[Defect], list[np.ndarray]]:
         """:attr:`defects` and, per piece of :attr:`pieces`, which samples lie in a point-generated stretch."""
         generated: list[np.ndarray] = []
-        scattered = float(getattr(self.rotors, "tangent_accuracy", 0.0)) > 0.0
-        pair, acc = self.rotors.pair, self.judged_accuracy
-        found = meshline_defects(self.pieces, pair, acc, self.tolerance, self.is_given, generated, scattered)
+        found = meshline_defects(self.pieces, self.rotors.pair, self.judged_accuracy, self.tolerance, self.is_given, generated)
         return found, generated
 
     @property

@@ -176,7 +176,6 @@ def robust_zeros(
     whole: bool = False,
     reversals: np.ndarray | None = None,
     arcs: list[tuple[int, int]] | None = None,
-    flips: np.ndarray | None = None,
 ) -> tuple[list[tuple[float, int, int]], list[tuple[int, int]]]:
     """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
 
@@ -205,12 +204,6 @@ def robust_zeros(
         First and last sample of stretches known from the positions alone to be arcs about the
         centre (:func:`arcs_about`): sign changes inside them or within ``longest`` of them are the
         wobble of a fitted tangent along the arc, not a normal through the centre.
-    flips : (k,) float array, mm, optional
-        Arc lengths where the meshline's chords point back (the tangent's half turn itself). When
-        given, two sign changes within ``longest`` of each other between which |f| goes beyond
-        :data:`DEEP_EXCURSION` bands are a real swing of the normal through the centre and back (a
-        dent's: its meshline swings, its sharp turns are no corner), and both count unless a flip is
-        within ``longest`` of them.
 
     Returns
     -------
@@ -239,8 +232,7 @@ def robust_zeros(
             k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
             i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
             crossings.append((float(i + f[i] / (f[i] - f[i + 1])), int(a) - 1, int(b) + 1))
-    deep = None if flips is None else np.abs(f) / np.maximum(band, 1e-300)
-    return _persistent(sorted(crossings), stretches + list(arcs or ()), arclen, longest, reversals, deep, flips), stretches
+    return _persistent(sorted(crossings), stretches + list(arcs or ()), arclen, longest, reversals), stretches
 
 
 def arcs_about(distance: np.ndarray, arclen: np.ndarray, span: float, spread: float) -> list[tuple[int, int]]:
@@ -310,17 +302,12 @@ def _persistent(
     arclen: np.ndarray,
     longest: float,
     turns: np.ndarray | None = None,
-    deep: np.ndarray | None = None,
-    flips: np.ndarray | None = None,
 ) -> list[tuple[float, int, int]]:
     """Keep the sign changes whose new sign persists over ``longest`` (mm of meshline).
 
     Two sign changes nearer each other than that are an excursion and cancel; a sign change nearer
     than that to a stretch is where the stretch ends; one nearer than that to a reversal of the
-    meshline (``turns``, arc lengths) is the reversal. With ``deep`` (|f| over its band at each
-    sample) and ``flips`` (the arc lengths where the meshline's chords point back), a pair whose
-    excursion goes beyond :data:`DEEP_EXCURSION` bands, no flip within ``longest``, is kept and not
-    taken for a turn (:func:`robust_zeros`).
+    meshline (``turns``, arc lengths) is the reversal.
     """
     if not crossings:
         return []  # nothing to keep (the usual case: no test of the stretches and turns needed)
@@ -328,38 +315,15 @@ def _persistent(
     near_stretch = np.zeros(len(at), dtype=bool)
     for r in turns if turns is not None else ():
         near_stretch |= np.abs(at - r) < longest
-    near_stretch_only = np.zeros(len(at), dtype=bool)
     for a, b in stretches:
-        near_stretch_only |= (at > arclen[a] - longest) & (at < arclen[b] + longest)
-    near_flip = np.zeros(len(at), dtype=bool)
-    for r in flips if flips is not None else ():
-        near_flip |= np.abs(at - r) < longest
-    swing = np.zeros(len(at), dtype=bool)  # one of a deep pair: a real swing of the normal
+        near_stretch |= (at > arclen[a] - longest) & (at < arclen[b] + longest)
     kept: list[tuple[int, float]] = []
     for k, s in enumerate(at):
         if kept and s - kept[-1][1] < longest:
-            j = kept[-1][0]
-            if deep is not None and not (near_flip[j] or near_flip[k]) and _deep_between(deep, crossings[j], crossings[k]):
-                swing[j] = swing[k] = True
-                kept.append((k, s))
-                continue
             kept.pop()  # f went back to its sign within the resolution: no crossing
         else:
             kept.append((k, s))
-    return [crossings[k] for k, _ in kept if not near_stretch_only[k] and (swing[k] or not near_stretch[k])]
-
-
-DEEP_EXCURSION = 10.0
-"""Bands beyond which a miss's excursion between two sign changes is a real swing of the normal,
-not the wobble of a fitted tangent (which stays within about one band): the rack-involute male's
-sealing flank dented by 20 µm over 2 mm swings the O2 miss out to 100-460 bands between sign changes
-1.75-1.9 mm apart (300 exact points a lobe; the resolution 1.94 mm)."""
-
-
-def _deep_between(deep: np.ndarray, a: tuple[float, int, int], b: tuple[float, int, int]) -> bool:
-    """Tell whether |f| over its band goes beyond :data:`DEEP_EXCURSION` between two sign changes (fractional indices)."""
-    i, j = int(np.ceil(a[0])), int(np.floor(b[0])) + 1
-    return j > i and float(deep[i:j].max()) > DEEP_EXCURSION
+    return [crossings[k] for k, _ in kept if not near_stretch[k]]
 
 
 def _ramps(g: np.ndarray, arclen: np.ndarray) -> bool:
@@ -523,7 +487,6 @@ def meshline_defects(
     tolerance: float,
     given: bool,
     generated: list[np.ndarray] | None = None,
-    scattered: bool = False,
 ) -> list[Defect]:
     """Return the cusps, jamming and slipping points on the meshline (Rinder sec. 2.2.1), a list of :class:`Defect`.
 
@@ -566,12 +529,6 @@ def meshline_defects(
     generated : list, optional
         Receives per piece an (n,) bool array: the samples inside a point-generated stretch of a cusp
         (the corner's path a flank part does not drive along, :func:`rotorcad.meshing.contact_ratios.flank_reports`).
-    scattered : bool
-        The given points scatter (their tangents are known to a scatter). Of a given profile that does
-        not, a normal that swings through a centre and back beyond :data:`DEEP_EXCURSION` bands within
-        the resolution is two sign changes (:func:`robust_zeros`'s ``flips``): a dented flank's; the
-        scatter of 1 µm at 2000 points a lobe swings a fitted normal that far too (the rack-involute male's
-        sealing flank near its tip corner), so not of scattered points.
 
     Returns
     -------
@@ -604,7 +561,6 @@ def meshline_defects(
         # through O1, O2 and C at once), and C itself lies on every meshline
         judged = None  # (n,) bool, made where a crossing needs it
         turns = reversals(pts, arclen, reach if given else 0.0)
-        flips = reversals(pts, arclen, 0.0)  # where the chords point back: the tangent's half turn
         tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
         path_of = _tip_path(piece, pair, max(20.0 * acc, 0.1 * longest)) if given else -1
         # q - pts of the three centres at once, (3, n) by coordinate: the numbers of one centre at a time
@@ -627,8 +583,7 @@ def meshline_defects(
                 near = max(TIP_CIRCLE_NEAR * scale, mesh_acc)
                 runs = tip_circle_runs(pts, piece.t, arclen, pair, Side.MALE if m == 0 else Side.FEMALE, near, reach)
                 arcs = runs
-            swings = flips if given and not scattered else None  # a swing through q and back counts (exact points)
-            crossings, stretches = robust_zeros(f, band, arclen, reach, whole, turns, arcs, swings)
+            crossings, stretches = robust_zeros(f, band, arclen, reach, whole, turns, arcs)
             on_tip.append(runs)
             misses.append((f, band, whole, crossings, _with_runs(stretches, runs) if runs else stretches))
         at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
