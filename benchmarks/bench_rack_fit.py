@@ -6,6 +6,13 @@ the design's closed-form rack on the contact zone, the largest distance of the f
 outline at those rack points' contact points, the stated accuracy, and the radius on the rotor where the rack
 is farthest off. Run from the repository: ``python benchmarks/bench_rack_fit.py 11 30`` (seeds 11 to 30; about 1 s
 of CPU a seed and case).
+
+Measured, seeds 11-30 (load 10-14 on 2 cores), error / ``accuracy`` / ``rack_accuracy`` (um), covered by rack_accuracy,
+its ratio to the error (median): rack-involute female 4.2-9.1 / 7.4-8.3 / 10.6-29.5, 20/20, 2.06; male 4.6-9.2 /
+7.3-8.4 / 10.6-21.9, 20/20, 1.93; N rack (and Rinder-Deix, the same outlines) female 4.2-28.5 / 7.2-8.0 / 9.5-38.7,
+20/20, 1.88; male 4.2-93.4 / 7.2-8.4 / 13.1-106.1, 20/20, 2.10; narrow-tip female 2.7-8.1 / 7.1-8.4 / 8.0-9.3,
+20/20, 1.83; male 1.5-12.9 / 7.3-8.3 / 12.6-15.3, 20/20, 3.66 (its 45 deg root corner shows on 8 of the 20 seeds).
+``accuracy`` alone was exceeded on 53 of the 160.
 """
 
 from __future__ import annotations

@@ -229,6 +229,22 @@ def corner_error(sigma: float, turns: np.ndarray) -> float:
     return max_factor(2 * len(turns)) * sigma / float(np.sin(0.5 * np.min(turns)))
 
 
+def scatter_of(rotors: ScrewRotors, rack: DerivedRack, spacing: float) -> float:
+    """Return the points' scatter sigma (mm) that the profile's accuracies were stated from.
+
+    ``point_accuracy`` is one point's (the larger of 2 sigma, the chords' sagitta and the fit's residual)
+    and ``accuracy`` the larger of that and k_N sigma over a lobe's N points
+    (:func:`rotorcad.measured.pairs.scatter_bound`), N the lobe's length (its rack's profile points, one
+    period) over the point spacing: sigma is at most the smaller of point_accuracy / 2 and accuracy / k_N,
+    and equals the latter where the scatter sets the accuracy (300 points a lobe with 2 um: 1.99 um); of
+    sparse points, whose accuracy the chords' sagitta sets, it is an upper bound.
+    """
+    profile = rack.profile[~rack.corner_path] if rack.profile is not None else np.zeros((0, 2))
+    length = float(np.hypot(*np.diff(profile, axis=0).T).sum()) if len(profile) > 1 else 0.0
+    count = max(length / spacing, 1.0)
+    return min(0.5 * float(rotors.point_accuracy or rotors.accuracy), float(rotors.accuracy) / max_factor(count))
+
+
 def rack_accuracy(rotors: ScrewRotors, rack: DerivedRack) -> float:
     """Return how far the rack from a rotor's points may lie from the rotor's true rack (mm, 95 %).
 
@@ -251,8 +267,8 @@ def rack_accuracy(rotors: ScrewRotors, rack: DerivedRack) -> float:
     accuracy = float(rotors.accuracy)
     if not (rotors.tangent_accuracy or 0.0) > 0.0 or not rotors.point_spacing:
         return accuracy
-    sigma = 0.5 * float(rotors.point_accuracy or accuracy)
     spacing = float(rotors.point_spacing)
+    sigma = scatter_of(rotors, rack, spacing)
     bias = rounding_bias(sigma, spacing, largest_curvature(rotors, spacing))
     corner = corner_error(sigma, concave_corners(rotors))
     return max(accuracy, bias, corner) + widest_fold(rack)
@@ -291,5 +307,6 @@ __all__ = [
     "largest_curvature",
     "rack_accuracy",
     "rounding_bias",
+    "scatter_of",
     "widest_fold",
 ]
