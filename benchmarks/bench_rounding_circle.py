@@ -14,10 +14,16 @@ Measured, seeds 11-20, the worst rounding of each (largest spline error over its
 radius found / the design's): rack-involute female (9-10 points, R 2.40-2.46 mm / 2.44) 3.96-8.16 -> 1.25-3.95 um;
 N-rack female (19 points, R 2.07 / 2.07) 2.06-7.69 -> 0.71-2.71 um; rack-involute male (7-9 points, R 2.54-2.61)
 2.69-5.41 -> 0.45-3.00 um; narrow-tip female: no rounding (its tips are sharp corners). Not yet in the fit: these
-roundings meet the tip land directly (the fitted run's lead-in points are the land's), so the circle has to be
-fitted tangent to the tip circle (2 parameters) and the land arc moved to the tangent point; a first try (the
-circle between two clamped splines, ``rotorcad.measured.rack_pieces.clamped_spline``) took the land's points into
-the window or left a kink of ~3 deg (a corner for the rack) where a chord bridged to the land, and was not kept.
+roundings meet the tip land directly (the fitted run's lead-in points are the land's). Tried in the fit and not
+kept: the circle tangent to the tip land (2 parameters, the land ending at the tangent point), smoothing splines
+leaning on 3 points of the circle either side (as on a land's): the rotor's fit at the rack-involute female's
+tip rounding 4.95-5.17 -> 0.97-1.17 um (seed 13), its rack over seeds 11-16 9.07/5.41/5.19/5.98/5.36/5.10 ->
+5.83/5.88/8.20/8.66/4.20/5.15 um (the spline beside the circle is still 4.6 um off where the circle ends before the
+rounding does), but the N-rack female's rack 7.76 -> 112.6 um on seed 11 (99-100 um on 13-15): its sealing tip
+circle ends at r = 43.5 mm, where the female's generation stalls (slip singularity), and the curvature step
+the circle leaves there sends the rack 100 um off (the rack follows the fit's curvature where generation
+stalls); the rack-involute male 6.28 -> 6.27, 3.5-6.7 um on seeds 12-16. A circle in the fit needs its
+curvature blended into the flank's where the generation stalls.
 """
 
 from __future__ import annotations
