@@ -5,7 +5,7 @@ evaluation*, sec. 2, eq. 4). A wrong normal moves the contact to another roll, b
 velocity relative to the rack is normal to its line to the pitch point, which is that normal: the rack
 point slides along the rack, and to first order the rack is off by what the fitted rotor is off at the
 contact point (measured within 0.1 um on the samples' racks from 300 points a lobe with 2 um of scatter).
-Two things make the rack's largest error exceed the profile's ``accuracy`` (k_N sigma, the largest of a
+Three things make the rack's largest error exceed the profile's ``accuracy`` (k_N sigma, the largest of a
 lobe's N point errors with 95 % confidence, :func:`rotorcad.measured.pairs.scatter_bound`), which bounds
 the fit's variance but not its bias:
 
@@ -25,7 +25,6 @@ the fit's variance but not its bias:
   fold, its points running against its exact tangent) and its middle leg lies off the legs beside it
   (N-rack female seeds 12 / 18: folds 12.5 / 9.5 um wide, the rack 12.0 / 8.1 um off for a fit 5.6 / 5.2
   off). The widest such fold off the rotor's corner paths is added.
-
 * **A sharp corner.** Where the points turn by a corner (a root corner of the narrow-tip male, 45 deg),
   the fit puts it where the fits beside it cross, extrapolated over the points next to it; two lines
   each within e of their true ones and turning by theta cross within e / sin(theta / 2) of the true
@@ -58,8 +57,8 @@ the join gap :data:`rotorcad.inverse_rack.MEASURED_JOIN_GAP` at most)."""
 ROUNDING_BIAS = 3.0
 """The largest error of a smoothing fit (n sigma^2) near a rounding, in units of sigma (kappa h^2 /
 sigma)^(1/5): ``benchmarks/bench_rounding_bias.py`` (32 seeds on each of 39 synthetic roundings) reads a
-median of 1.6, a 95 % quantile of 2.5 and a 98.75 % one (the largest of a lobe's four roundings with
-95 % confidence) of 2.8; 3.0 rounds it up."""
+median of 1.47, a 95 % quantile of 2.26 and a 98.75 % one (the largest of a lobe's four roundings with
+95 % confidence) of 2.65; 3.0 leaves a margin for roundings that are not circles."""
 
 
 def _splines(curve: Curve) -> list[Spline]:
