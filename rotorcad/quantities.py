@@ -244,6 +244,7 @@ _declare(
         ("normal_pressure_angle_min_deg", "deg", "smallest normal pressure angle"),
         ("smallest_flank_angle_accuracy_deg", "deg", "accuracy of the smallest flank angle read from points"),
         ("undercut_accuracy", "mm", "depth below which a mate's turned-back envelope is no undercut"),
+        ("rack_accuracy", "mm", "how far the rack from a rotor's points may lie from its true rack"),
         ("undercut_limit_shift", "1", "profile shift from which the gear is not undercut"),
         ("hob_tip_radius", "mm", "hob tip radius"),
         ("hob_root_radius", "mm", "hob root radius"),

@@ -35,6 +35,7 @@ from scipy.spatial import cKDTree
 
 from hob.angle_accuracy import smallest_angle_accuracy
 from hob.rack import rack_deviation, rotor_rack
+from hob.rack_accuracy import rack_accuracy
 from hob.verdict import judge, undercut_tolerance
 from rotorcad.design import rotor_design
 from rotorcad.envelope import rack_frame
@@ -163,7 +164,7 @@ def on_zone(name: str, rotor: str) -> np.ndarray:
     return inside & (rack["roles"] != PieceRole.corner_path_of(Side(rotor)))
 
 
-def rack_off_design(name: str, rotor: str, form: str) -> float:
+def rack_off_design(name: str, rotor: str, form: str, seed: int = SEED) -> float:
     """Largest distance (mm) of the given rotor's rack (the one its hob is judged on) from the design's
     closed-form rack, over the contact zone."""
     _, rotors = design(name)
@@ -171,7 +172,7 @@ def rack_off_design(name: str, rotor: str, form: str) -> float:
     reference = closed_form(name)["points"]
     zone = on_zone(name, rotor)
     tiled = np.vstack([reference + [k * period, 0.0] for k in (-1, 0, 1)])
-    rack = from_points(name, rotor, form)[1][rotor].in_contract_frame()
+    rack = from_points(name, rotor, form, seed)[1][rotor].in_contract_frame()
     pts = rack.points[~rack.corner_path]
     near = cKDTree(tiled).query(pts)[1]
     keep = np.tile(zone, 3)[near]
@@ -200,35 +201,15 @@ KNOWN_VERDICTS = {
     "angles along its straight flank (the same 18.13 deg over hundreds of points) reads low by the most negative "
     "error, as on every seed (test_the_smallest_angle_accuracy_covers_the_low_minimum_over_seeds); stated 1.06 deg",
 }
-FIT_BIAS = (
-    "where the fitted female is as far off its design (test_the_rack_bears_the_rotor_fits_error_not_more): the "
-    "smoothing spline by n sigma^2 (Dierckx sec. 5.2) bends off a tip rounding of 10-14 points where its curvature "
-    "steps, by up to 4 sigma, its least-squares variance there 0.5 sigma, so k_N sigma (scatter_bound) does not bound it"
-)
-# Seeds 11-20 (benchmarks/bench_rack_fit.py): rack-involute female 4.39-9.07 um (over its stated 7.38-8.08 on seed 11),
-# N rack and Rinder-Deix female 4.24-11.96 (over 7.16-8.01 on seeds 11, 12, 16, 18; on 12 and 18 the rack 11.96 / 8.06
-# with the fit 5.61 / 5.18: where the female's generation stalls the rack follows the fit's curvature, not its
-# position), rack-involute male 4.71-7.84 (covered). Fits tried for the scattered rotor (fit-steps), rack error by
-# case over those seeds: (n - sqrt(2n)) sigma^2 3.91-8.88 / 3.23-11.17 / 4.28-7.78 (over 1 / 3 / 1), (n - 2 sqrt(2n))
-# sigma^2 3.16-13.07 / 3.90-9.66 / 3.34-33.05; the penalised spline of the rack path (measured.penalized_spline) fit
-# 2.5-5.9 / 3.5-6.3 um but rack 2.5-14.1 / 3.6-24.1 (9 s of CPU a case); a least-squares cubic with a knot every 2-4
-# points where the smoothing moves its own refit by over sigma: fit 3.3-6.6 um, rack up to 12.5-133 where the
-# generation stalls; the points there weighted 3 (FITPACK's knots follow): rack 4.32-6.71 / 3.28-15.57 / 4.23-6.52
-# (all three xfails above pass at seed 11), but 13 other cases fail (5 of this file: Krigar, N-rack, Rinder-Deix male
-# racks, two rack deviations; 4 of test_racks_from_points.py, 1 of test_hob_datum.py, 3 1-um blow-holes of
-# test_verdict_invariance.py). The residuals do not show the bias (sums of
-# 2-9 consecutive ones within 2.7 standard deviations at the rounding), and the smoothing's refit of its own fit moves
-# it by 1.8-2.3 sigma on a scattered arc without any step (it does not single out a step). The clearance's stepped spline
-# (measured.stepped_spline) interpolates and finds no step in these points (its noise floor 5 x 2 sqrt(6) sigma / h^2,
-# 0.64-1.08 /mm, above the steps; with sigma taken as 0 it finds 4-10 steps in the scatter, the female 7.4 um off).
-KNOWN_RACKS = {
-    ("n_rack_5_6", "female", "scatter"): "7.76 um off for the stated 7.49 (at its sealing tip circle's end, r = 43.66 "
-    "mm), 7.73 um " + FIT_BIAS,
-    ("rinder_deix_5_6", "female", "scatter"): "7.76 um off for the stated 7.49 (at its sealing tip circle's end, r = "
-    "43.66 mm), 7.73 um " + FIT_BIAS,
-    ("rack_involute_5_6", "female", "scatter"): "9.07 um off for the stated 7.81 (at its sealing tip rounding, r = 63.2 "
-    "mm), 9.01 um " + FIT_BIAS,
-}
+# The rack from 2 um of scatter is off by up to 4.5 sigma where the fitted rotor is (a smoothing spline by n sigma^2
+# cuts a tip rounding of 10-20 points: rack-involute female seed 11 9.07 um for the profile's accuracy 7.81, N rack and
+# Rinder-Deix female 7.76 for 7.49), and more where the generation stalls (the rack folds along the fit's curvature:
+# N-rack female seeds 12/18 12.0/8.1 um for a fit 5.6/5.2 off). The test reads it against the rack's own accuracy
+# (hob.rack_accuracy, the key `rack_accuracy` of `rotorcad hob`), which counts both; the three strict xfails that read
+# it against the profile's `accuracy` are gone. Fits tried to lower the error itself (fit-steps, seeds 11-20):
+# (n - sqrt(2n)) sigma^2, the penalised spline of the rack path, extra knots, weights at the rounding, the stepped
+# spline: see benchmarks/bench_rack_fit.py and the session notes; none lowers it on every case.
+KNOWN_RACKS: dict[tuple[str, str, str], str] = {}
 
 
 KNOWN_DEVIATIONS: dict[tuple[str, str, str], str] = {}  # all within the stated accuracy now
@@ -278,10 +259,41 @@ def test_the_rack_from_points_on_the_contact_zone_is_the_design_rack(name, rotor
     # design's generating rack (closed form) from exact points; from 2 um of scatter within the bound
     # the profile states (the largest of a lobe's errors with 95 % confidence). Exact points: 0.00-1.91 um.
     # The males of Krigar, Lysholm, narrow-tip, SRM-A, SRM-B and the symmetric SRM with 2 um scatter: 7.9-19.9 um
-    # before their female tip corner's cycloid was taken exactly (stated 7.4-7.8), now within it.
-    rotors = from_points(name, rotor, form)[0]
-    bound = 2e-3 if form == "exact" else max(2e-3, rotors.accuracy)
-    assert rack_off_design(name, rotor, form) <= bound, rotors.accuracy
+    # before their female tip corner's cycloid was taken exactly (stated 7.4-7.8), now within it. The bound of
+    # scattered points is the rack's own (hob.rack_accuracy: the profile's accuracy, or the fit's bias at its
+    # tightest rounding, or its sharp corners' error, plus the rack's folds where the generation stalls): the
+    # rack-involute female 9.07 um (stated 7.81 by the profile's accuracy, 11.06 by the rack's), N rack and
+    # Rinder-Deix female 7.76 (7.49, 9.80); all 18 cases at seed 11 0.12-9.07 um, stated 7.6-15.6.
+    rotors, racks, _ = from_points(name, rotor, form)
+    error = rack_off_design(name, rotor, form)
+    if form == "exact":
+        assert error <= 2e-3
+        return
+    stated = rack_accuracy(rotors, racks[rotor])
+    assert rotors.accuracy <= stated
+    assert error <= max(2e-3, stated), (error, stated)
+    # a statement, not a shrug: at most 3 times the error, or twice the profile's accuracy (k_N sigma) where the
+    # error is small (Krigar male 0.12 um); measured 1.0-2.05 times the accuracy, 1.2-4.6 times the error
+    assert stated <= max(3.0 * error, 2.0 * rotors.accuracy), (error, stated, rotors.accuracy)
+
+
+@pytest.mark.parametrize(
+    "name,rotor,seed",
+    [("n_rack_5_6", "female", 12), ("n_rack_5_6", "male", 12), ("narrow_tip_5_6", "male", 17), ("rack_involute_5_6", "male", 28)],
+)
+def test_the_rack_accuracy_covers_a_stall_and_a_corner(name, rotor, seed):
+    # The seeds (of 11-30, benchmarks/bench_rack_fit.py) where the rack is off by more than the fitted rotor, or the
+    # fit by more than the profile's accuracy (300 points a lobe, 2 um): where the generation stalls the rack folds
+    # along the fit's curvature (N-rack female seed 12: 11.96 um for a fit 5.61 off; the N-rack male's 0.67 mm tip
+    # circle, seed 12: 34.4 um for 8.2; rack-involute male seed 28: 9.23 for 5.63), and beside the narrow-tip male's
+    # 45 deg root corner the fit is as far off as the corner it found (seed 17: 12.85 um for an accuracy of 7.67).
+    # Reference: the design's closed-form rack on the contact zone. The rack's own accuracy (hob.rack_accuracy)
+    # covers each (stated 22.2, 47.3, 21.9, 13.9 um), the profile's does not. Over seeds 11-30 of the rack-involute,
+    # N-rack, Rinder-Deix and narrow-tip samples, both rotors: 160 of 160 covered, stated / error median 1.9-3.7.
+    rotors, racks, _ = from_points(name, rotor, "scatter", seed)
+    error = rack_off_design(name, rotor, "scatter", seed)
+    assert error > rotors.accuracy
+    assert error <= rack_accuracy(rotors, racks[rotor]) <= 3.0 * error, (error, rack_accuracy(rotors, racks[rotor]))
 
 
 def fit_off_design(name: str, rotor: str, form: str) -> float:
@@ -397,7 +409,10 @@ def test_dense_points_to_six_decimals_give_the_design_verdict():
         "the narrow-tip male as 2000 exact points a lobe written to 6 decimals: the female tip corner's path (y = 0-3.3 "
         "mm of rack) is not found on the rack (the female's generated point wanders beyond the exact points' bound), "
         "so the male's rack reaches the cusp 0.149 deg off the perpendicular (unrounded points: 0.73 deg); the female's "
-        "rack reads 0.76 deg for the design's 6.20"
+        "rack reads 0.76 deg for the design's 6.20. Not the decimals (rack-accuracy, measured): the same points unrounded "
+        "read 0.68 / 1.29 deg, and 1000 a lobe 0.0 / 3.50; from the design's outline at a 1 nm chord (not 10 nm) 2000 "
+        "a lobe read 0.0 / 5.96 with the path found: likely the interpolating cubics following the 10 nm chords "
+        "(raw_scatter reads 0.04 nm unrounded, 0.5 nm rounded; fine_knot_spacing keeps them interpolating either way)"
     ),
 )
 def test_dense_points_to_six_decimals_give_the_design_hob():

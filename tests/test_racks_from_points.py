@@ -275,6 +275,8 @@ def test_cli_hob_from_female_points_gives_the_rack_and_a_hobbable_verdict(tmp_pa
     beta = np.arctan(2 * np.pi * rp.male_pitch_radius / LEAD)
     assert data["rack_deviation"] < 2e-3
     assert 0 < data["accuracy"] < 1e-3  # exact points: the chords' sagitta, stated with the verdict
+    # of exact points the rack's accuracy is the profile's: an interpolating fit has no smoothing bias (hob.rack_accuracy)
+    assert data["rack_accuracy"] == data["accuracy"]
     assert data["hobbable"] and data["reasons"] == []
     assert data["normal_pressure_angle_min_deg"] == pytest.approx(
         np.degrees(np.arctan(np.tan(np.radians(30)) * np.cos(beta))), abs=0.02

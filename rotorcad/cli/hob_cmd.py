@@ -98,6 +98,7 @@ def hob(design: Path | None, **opts: Any) -> None:
         tangent_accuracy=getattr(body, "tangent_accuracy", 0.0) or 0.0,
     )
     result["smallest_flank_angle_accuracy_deg"] = _angle_accuracy(body, racks, result["normal_pressure_angle_min_deg"])
+    result["rack_accuracy"] = _rack_accuracy(body, racks)
     result["notes"] = (notes if rotors is None else _outline_notes(rotors)) + result["notes"]
     if opts.get("male_points") or opts.get("female_points"):  # the end face the section was read as seen from
         result["seen_from"] = str(end_face(opts.get("seen_from")))
@@ -252,6 +253,13 @@ def _angle_accuracy(body: Any, racks: dict[str, DerivedRack], smallest: float) -
 
     given = [side for side, fitted in _fitted_sides(body).items() if fitted]
     return smallest_angle_accuracy(body, racks, given[0], smallest) if given and "male" in racks else 0.0
+
+
+def _rack_accuracy(body: Any, racks: dict[str, DerivedRack]) -> float:
+    """Return how far the given rotor's rack may lie from its true one (mm, hob.rack_accuracy); ``accuracy`` otherwise."""
+    from hob.rack_accuracy import hob_rack_accuracy
+
+    return hob_rack_accuracy(body, racks)
 
 
 def _fitted_sides(body: Any) -> dict[str, bool]:
