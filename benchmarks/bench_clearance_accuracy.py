@@ -16,11 +16,12 @@ how many seeds raise the interference flag (truth: never, the contact zone is no
 and the largest share of the contact line left out of the contact zone as unresolved (the flank
 beside the 5/6 male's undercut corner that sparse points round over, ``ClearanceZone.UNRESOLVED``).
 
-Run by hand: ``python benchmarks/bench_clearance_accuracy.py [seeds] [densities] [pair]`` (about 10 minutes
+Run by hand: ``python benchmarks/bench_clearance_accuracy.py [seeds] [densities] [pair] [scatters]`` (about 10 minutes
 for 5 seeds on an idle machine; densities a comma-separated list of points a lobe, default 2000,300,80;
 pair ``4/6``, ``5/6``, ``N`` (the N-rack sample thinned by 30 µm, :func:`n_rack_rows`) or ``N-exact``
 (the N-rack sample's own conjugate outlines, truth 0, seed by seed: :func:`n_rack_exact_rows`), default
-the first two). CPU: process time of the fits and the clearance of one case (``time.process_time``).
+the first two; scatters a comma-separated list in µm, default 0,1,2). CPU: process time of the fits
+and the clearance of one case (``time.process_time``).
 """
 
 from __future__ import annotations
@@ -174,10 +175,11 @@ def n_rack_exact_rows(seeds: range, densities: list[int], noises: tuple[float, .
 def main() -> None:
     seeds = range(1, 1 + (int(sys.argv[1]) if len(sys.argv) > 1 else 5))
     densities = [int(v) for v in sys.argv[2].split(",")] if len(sys.argv) > 2 else [2000, 300, 80]
+    scatters = [float(v) * 1e-3 for v in sys.argv[4].split(",")] if len(sys.argv) > 4 else [0.0, 1e-3, 2e-3]
     if len(sys.argv) > 3 and sys.argv[3].lower() == "n-exact":
         print("| outlines | points a lobe | scatter | seed | largest error, contact zone | stated accuracy | unresolved | CPU |")
         print("|---|---|---|---|---|---|---|---|")
-        n_rack_exact_rows(seeds, densities)
+        n_rack_exact_rows(seeds, densities, tuple(scatters) if len(sys.argv) > 4 else (0.0, 2e-3))
         return
     head = "| pair | points a lobe | scatter | error on the contact zone | error / accuracy | stated accuracy | alignment |"
     print(head + " interference | unresolved | CPU a case |")
@@ -191,7 +193,7 @@ def main() -> None:
         z1, z2 = rack_pair.male_teeth, rack_pair.female_teeth
         pair = RotorPair(z1, z2, 100.0, **rack_pair.radii(), lead=1e5, length=1e5, strict=False)
         for points in densities:
-            for noise in (0.0, 1e-3, 2e-3):
+            for noise in scatters:
                 worst, ratio, shifts, accuracy, flags, unresolved, cpu = [], [], [], [], 0, [], []
                 for seed in seeds if noise else [0]:
                     m = resample(male, per_lobe(male, z1, points), noise, seed=seed)
