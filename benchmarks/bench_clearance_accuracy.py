@@ -21,7 +21,7 @@ for 5 seeds on an idle machine; densities a comma-separated list of points a lob
 pair ``4/6``, ``5/6``, ``N`` (the N-rack sample thinned by 30 µm, :func:`n_rack_rows`) or ``N-exact``
 (the N-rack sample's own conjugate outlines, truth 0, seed by seed: :func:`n_rack_exact_rows`), default
 the first two; scatters a comma-separated list in µm, default 0,1,2). CPU: process time of the fits
-and the clearance of one case (``time.process_time``).
+and the clearance of one case (``time.process_time``). ``CLEARANCE_REACH=a,b``: :func:`trial_reaches`.
 """
 
 from __future__ import annotations
@@ -172,7 +172,19 @@ def n_rack_exact_rows(seeds: range, densities: list[int], noises: tuple[float, .
                 )
 
 
+def trial_reaches() -> None:
+    """With ``CLEARANCE_REACH=a,b`` in the environment, measure the unresolved zone's reaches as a trial:
+    a point spacings (and 0.02 mm) beside a male stall below its tip (main: 4), b beside a sharp corner
+    (main: 2); README's "halving both reaches" is ``CLEARANCE_REACH=2,1``."""
+    if not os.environ.get("CLEARANCE_REACH"):
+        return
+    stall, corner = (float(v) for v in os.environ["CLEARANCE_REACH"].split(","))
+    MeshingClearance.unresolved_reach = property(lambda self: 0.02 + stall * self.spacing)
+    MeshingClearance.corner_reach = property(lambda self: 0.02 + corner * self.spacing)
+
+
 def main() -> None:
+    trial_reaches()
     seeds = range(1, 1 + (int(sys.argv[1]) if len(sys.argv) > 1 else 5))
     densities = [int(v) for v in sys.argv[2].split(",")] if len(sys.argv) > 2 else [2000, 300, 80]
     scatters = [float(v) * 1e-3 for v in sys.argv[4].split(",")] if len(sys.argv) > 4 else [0.0, 1e-3, 2e-3]
