@@ -16,10 +16,12 @@ how many seeds raise the interference flag (truth: never, the contact zone is no
 and the largest share of the contact line left out of the contact zone as unresolved (the flank
 beside the 5/6 male's undercut corner that sparse points round over, ``ClearanceZone.UNRESOLVED``).
 
-Run by hand: ``python benchmarks/bench_clearance_accuracy.py [seeds] [densities] [pair]`` (about 10 minutes
+Run by hand: ``python benchmarks/bench_clearance_accuracy.py [seeds] [densities] [pair] [scatters]`` (about 10 minutes
 for 5 seeds on an idle machine; densities a comma-separated list of points a lobe, default 2000,300,80;
-pair ``4/6``, ``5/6`` or ``N`` (the N-rack sample thinned by 30 µm, :func:`n_rack_rows`), default
-the first two).
+pair ``4/6``, ``5/6``, ``N`` (the N-rack sample thinned by 30 µm, :func:`n_rack_rows`) or ``N-exact``
+(the N-rack sample's own conjugate outlines, truth 0, seed by seed: :func:`n_rack_exact_rows`), default
+the first two; scatters a comma-separated list in µm, default 0,1,2). CPU: process time of the fits
+and the clearance of one case (``time.process_time``). ``CLEARANCE_REACH=a,b``: :func:`trial_reaches`.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -49,12 +52,13 @@ def per_lobe(ring: np.ndarray, teeth: int, points: int) -> float:
     return float(np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T).sum()) / teeth / points
 
 
-def evaluate(pair: RotorPair, male: np.ndarray, female: np.ndarray) -> MeshingClearance:
+def evaluate(pair: RotorPair, male: np.ndarray, female: np.ndarray, **kw) -> MeshingClearance:
     quality = pair_quality(male, female, (pair.male_teeth, pair.female_teeth))
     return MeshingClearance(
         pair,
         lobe_pieces(pair, male, "male", close_smoothing, roundings=True),  # as rotorcad clearance fits them
         lobe_pieces(pair, female, "female", close_smoothing, roundings=True),
+        **kw,
         **quality,
     )
 
@@ -106,13 +110,7 @@ def n_rack_rows(seeds: range, densities: list[int]) -> None:
                     pair = RotorPair(
                         5, 6, p.center_distance, rm.max(), rm.min(), rf.max(), rf.min(), p.lead, p.length, strict=False
                     )
-                    mc = MeshingClearance(
-                        pair,
-                        lobe_pieces(pair, m, "male", close_smoothing, roundings=True),
-                        lobe_pieces(pair, f, "female", close_smoothing, roundings=True),
-                        contact="as-given",
-                        **pair_quality(m, f, (5, 6)),
-                    )
+                    mc = evaluate(pair, m, f, contact="as-given")
                     s, dist = mc.summary(), mc.distribution()
                     on = np.flatnonzero(mc.contact_zone)
                     c = mc.clearance[on]
@@ -135,12 +133,69 @@ def n_rack_rows(seeds: range, densities: list[int]) -> None:
                 )
 
 
+def n_rack_exact_rows(seeds: range, densities: list[int], noises: tuple[float, ...] = (0.0, 2e-3)) -> None:
+    """The N-rack sample's own exact conjugate outlines (``rotor samples/n_rack_5_6.toml --male-csv
+    --female-csv``: the written 1 um chords), resampled at ``points`` a lobe evenly along each outline
+    (:func:`independent_pairs.resample`) with Gaussian scatter along the normals, read as the
+    ``clearance`` command reads them (default contact alignment, the sample's lead and length). Truth:
+    0 on the contact zone (both outlines conjugate, within the chords' 1 um). Printed per seed: the
+    largest |clearance| on the contact zone, the stated accuracy, the unresolved share, CPU of the fits
+    and the clearance."""
+    import tomllib
+
+    from rotorcad.cli.rotor import _exterior
+    from rotorcad.design import rotor_design
+    from rotorcad.roles import Side
+    from rotorcad.rotor_build import build_pair, pair_spec
+
+    samples = Path(__file__).resolve().parents[1] / "samples"
+    rotors = build_pair(pair_spec(rotor_design(tomllib.loads((samples / "n_rack_5_6.toml").read_text()), samples)))
+    p = rotors.pair
+    male = _exterior(rotors.section(Side.MALE, 1e-3, exact_tip=True))
+    female = _exterior(rotors.section(Side.FEMALE, 1e-3, exact_tip=True))
+    for points in densities:
+        for noise in noises:
+            for seed in seeds if noise else [0]:
+                m = resample(male, per_lobe(male, 5, points), noise, seed=seed)
+                f = resample(female, per_lobe(female, 6, points), noise, seed=seed + 100)
+                rm, rf = np.hypot(*m.T), np.hypot(*f.T)
+                pair = RotorPair(5, 6, p.center_distance, rm.max(), rm.min(), rf.max(), rf.min(), p.lead, p.length, strict=False)
+                t0 = time.process_time()
+                mc = evaluate(pair, m, f)
+                s = mc.summary()
+                cpu = time.process_time() - t0
+                e = float(np.abs(mc.clearance[mc.contact_zone]).max())
+                print(
+                    f"| N-rack 5/6 exact outlines | {points} | {noise * 1e3:.0f} µm | {seed} | {e * 1e3:.1f} µm "
+                    f"| {s['accuracy'] * 1e3:.1f} µm | {100 * s['unresolved_share']:.1f} % | {cpu:.1f} s |",
+                    flush=True,
+                )
+
+
+def trial_reaches() -> None:
+    """With ``CLEARANCE_REACH=a,b`` in the environment, measure the unresolved zone's reaches as a trial:
+    a point spacings (and 0.02 mm) beside a male stall below its tip (main: 4), b beside a sharp corner
+    (main: 2); README's "halving both reaches" is ``CLEARANCE_REACH=2,1``."""
+    if not os.environ.get("CLEARANCE_REACH"):
+        return
+    stall, corner = (float(v) for v in os.environ["CLEARANCE_REACH"].split(","))
+    MeshingClearance.unresolved_reach = property(lambda self: 0.02 + stall * self.spacing)
+    MeshingClearance.corner_reach = property(lambda self: 0.02 + corner * self.spacing)
+
+
 def main() -> None:
+    trial_reaches()
     seeds = range(1, 1 + (int(sys.argv[1]) if len(sys.argv) > 1 else 5))
     densities = [int(v) for v in sys.argv[2].split(",")] if len(sys.argv) > 2 else [2000, 300, 80]
+    scatters = [float(v) * 1e-3 for v in sys.argv[4].split(",")] if len(sys.argv) > 4 else [0.0, 1e-3, 2e-3]
+    if len(sys.argv) > 3 and sys.argv[3].lower() == "n-exact":
+        print("| outlines | points a lobe | scatter | seed | largest error, contact zone | stated accuracy | unresolved | CPU |")
+        print("|---|---|---|---|---|---|---|---|")
+        n_rack_exact_rows(seeds, densities, tuple(scatters) if len(sys.argv) > 4 else (0.0, 2e-3))
+        return
     head = "| pair | points a lobe | scatter | error on the contact zone | error / accuracy | stated accuracy | alignment |"
-    print(head + " interference | unresolved |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print(head + " interference | unresolved | CPU a case |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     pairs = (("4/6 trapezoid", trapezoid_4_6()), ("5/6 arc flank", arc_flank_5_6()))
     if len(sys.argv) > 3 and sys.argv[3].lower().startswith("n"):
         n_rack_rows(seeds, densities)
@@ -150,13 +205,15 @@ def main() -> None:
         z1, z2 = rack_pair.male_teeth, rack_pair.female_teeth
         pair = RotorPair(z1, z2, 100.0, **rack_pair.radii(), lead=1e5, length=1e5, strict=False)
         for points in densities:
-            for noise in (0.0, 1e-3, 2e-3):
-                worst, ratio, shifts, accuracy, flags, unresolved = [], [], [], [], 0, []
+            for noise in scatters:
+                worst, ratio, shifts, accuracy, flags, unresolved, cpu = [], [], [], [], 0, [], []
                 for seed in seeds if noise else [0]:
                     m = resample(male, per_lobe(male, z1, points), noise, seed=seed)
                     f = resample(female, per_lobe(female, z2, points), noise, seed=seed + 100)
+                    t0 = time.process_time()
                     mc = evaluate(pair, m, f)
                     s = mc.summary()
+                    cpu.append(time.process_time() - t0)
                     e = errors(rack_pair, male, female, mc)
                     worst.append(float(e.max()))
                     ratio.append(float(e.max()) / s["accuracy"])
@@ -168,7 +225,7 @@ def main() -> None:
                 print(
                     f"| {label} | {points} | {noise * 1e3:.0f} µm | {max(worst) * 1e3:.1f} µm | {max(ratio):.2f} "
                     f"| {min(accuracy) * 1e3:.1f}-{max(accuracy) * 1e3:.1f} µm | {max(shifts) * 1e3:.1f} µm | {flags}/{n} "
-                    f"| {100 * max(unresolved):.1f} % |",
+                    f"| {100 * max(unresolved):.1f} % | {max(cpu):.1f} s |",
                     flush=True,
                 )
 

@@ -30,6 +30,7 @@ USERS = (  # the files that use stored brute-force results
     "test_contact_ratio_invariance.py",
     "test_clearance_lands.py",
     "test_clearance_sparse.py",
+    "test_clearance_conjugate.py",
 )
 
 
