@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from independent_pairs import patterned, scan
 
 from rotorcad.design import rotor_design
 from rotorcad.meshing.apex import fit_circle
@@ -151,3 +152,18 @@ def test_blow_hole_from_scattered_csv_within_one_percent(n_rack, seed):
     # holds the design's area too, and is below RESOLVED_SHARE of it (0.076-0.086 mm² at seeds 0-4 for errors
     # up to 0.012): what blow_hole_uncertainty could state for this apex in place of the tangent's and spacing's
     assert gap <= analysis.apex_rounding_uncertainty < RESOLVED_SHARE * n_rack["area"]
+
+
+def test_evenly_scanned_points_with_scatter_cross_where_the_pieces_touch_at_once(n_rack):
+    # a CMM's even scan, 300 points a lobe with 1 um of scatter (seed 0; 2-3 points a lobe on the rounding): the two
+    # circles' meshlines also cross at instants 0.06-0.18 rad apart, and the nearest of those to the fitted
+    # profile's meshline end read -69 % (before the rounding's circles: -74 %); where the two pieces touch at
+    # once the apex is the design's (reference: its exact curves) within 1 %
+    spec = n_rack["spec"]
+    lobe = np.vstack([n_rack["male"][name] for name in n_rack["male"]])
+    points = scan(patterned(lobe, spec.pair.male_teeth), 300 * spec.pair.male_teeth, 0.37)
+    noisy = points + np.random.default_rng(0).normal(0.0, SCATTER, points.shape)
+    rotors = build_pair(PairSpec(spec.pair, "male-points", {}, noisy, None, spec.speed_rpm, 0.0), label="--male-points")
+    analysis, summary = analyse_pair(rotors, spec.speed_rpm)
+    assert analysis.apex_rounding is not None
+    assert summary["blow_hole_area"] == pytest.approx(n_rack["area"], rel=0.01)
