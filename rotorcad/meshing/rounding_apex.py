@@ -5,9 +5,11 @@ contact line's end next to the housing cusp. Where a male's tip is rounded by a 
 the sealing flank with a common tangent (a curvature step alone; Stosic's N rack, the samples' N rack
 and Rinder & Deix's pair: a 0.67 mm rounding of radius 1.036 mm), the meshline turns where the
 rounding's contacts hand over to the flank's, and that hand-over is the apex. A smoothing spline
-through scattered points rounds the curvature step (largest curvature above r 57 mm 0.26 /mm for the
-design's 0.97), its meshline turns 0.17-0.32 mm inside the design's, and the blow-hole read
-+37..+66 % (1 um of scatter, 284 points a lobe, seeds 0-7).
+through scattered points flattens the rounding (the largest curvature of the pair's male above r 57 mm,
+by circles through points 0.02 mm apart, 0.26 /mm at seeds 0-2 for the design's 0.58), its meshline
+turns 0.17-0.32 mm inside the design's, and the blow-hole read +37..+66 % (the male's own CSV, 284
+points a lobe, 17 of them on the rounding, with 1 um of scatter, seeds 0-7); evenly spaced exact points,
+2-3 a lobe on it, +13.7 % at 300 a lobe and -59.5 % at 500.
 
 Both pieces are circles of one of the three bodies of the mesh: the rounding a circle of the male, the
 flank the envelope of a circle of the female (the N rack's sealing flank, of the female's tip
@@ -22,7 +24,8 @@ turned onto one), not to the smoothing spline: 17 points a lobe on the rounding 
 fix its centre's distance from O1 and its radius to about 14 um each (one lobe; 6 um over five), and
 that meshline depends on those two numbers alone (a turn of the centre about O1 is a shift of t).
 Which piece is which circle is decided from the points: a piece is a body's circle over the stretch
-along which its points' residuals stay within their scatter (:func:`holds`).
+along which its points' residuals stay within their scatter (:func:`holds`; of exact points, half their
+accuracy). Seeds 0-7 of that CSV: -0.70..+0.43 %; the even scans above +0.9 % and 0.0 %.
 """
 
 from __future__ import annotations
@@ -59,6 +62,10 @@ SAME_INSTANT = 5e-3
 (:func:`crossing`). Where the rounding meets the flank one male point touches both at one instant: fitted to the N
 rack male's points with 1 um of scatter, 3e-5 rad apart; their meshlines cross elsewhere too, at instants 0.06-0.18
 rad apart, and the nearest of those to the fitted profile's meshline end read -69 % (300 points a lobe)."""
+
+LOCATE_STEP = 2e-3
+"""mm: spacing of the lobe's samples by which given points and contacts are placed along it (the nearest sample's
+arc length; a window's ends are placed to this)."""
 
 NEAREST_SLACK = 1e-6
 """mm by which a meshline stretch may come nearer the cusp than the crossing and leave it the apex (:func:`rounding_apex`)."""
@@ -273,28 +280,35 @@ class _Lobe:
     """The given male points and the meshline's contacts, turned onto the lobe of the apex's male point, by arc length."""
 
     def __init__(self, given, lobe, point, meshline, angles, pair):
+        from scipy.spatial import cKDTree
+
         pitch = 2 * np.pi / pair.male_teeth
         angle = float(np.arctan2(point[1], point[0]))
-        line = shapely.LineString(lobe)
+        arclen = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(lobe, axis=0).T))])
+        self.even = np.arange(0.0, arclen[-1], LOCATE_STEP)  # the lobe by arc length, for a nearest-sample search
+        dense = np.column_stack([np.interp(self.even, arclen, lobe[:, 0]), np.interp(self.even, arclen, lobe[:, 1])])
+        self.tree, self.angle, self.pitch = cKDTree(dense), angle, pitch
         self.raw = _folded(given, angle, pitch)[0]
-        self.s = shapely.line_locate_point(line, shapely.points(self.raw))
+        self.s = self._locate(self.raw)[0]
         male, turns = _folded(rotate(meshline, -angles), angle, pitch)
-        near = shapely.distance(shapely.points(male), line) <= 0.05
-        self.x, self.t = meshline[near], (angles + turns)[near]  # fixed frame and the folded male point's rotation
-        self.cs = shapely.line_locate_point(line, shapely.points(male[near]))
-        s_lobe = shapely.line_locate_point(line, shapely.points(lobe))
-        self.s0 = float(shapely.line_locate_point(line, shapely.Point(point)))
-        around = np.abs(s_lobe - self.s0) <= 3.0
-        self.s_tip = float(s_lobe[around][np.argmax(np.hypot(*lobe[around].T))]) if around.any() else self.s0
+        cs, off = self._locate(male)
+        near = off <= 0.05
+        self.x, self.t, self.cs = meshline[near], (angles + turns)[near], cs[near]  # fixed frame, folded rotation
+        self.s0 = float(self._locate(np.reshape(point, (1, 2)))[0][0])
+        around = np.abs(self.even - self.s0) <= 3.0
+        self.s_tip = float(self.even[around][np.argmax(np.hypot(*dense[around].T))]) if around.any() else self.s0
         self.way = 1.0 if self.s0 >= self.s_tip else -1.0
         self.u = (self.s - self.s_tip) * self.way  # along the profile from the tip towards the flank, mm
         self.cu = (self.cs - self.s_tip) * self.way
-        self.line, self.angle, self.pitch = line, angle, pitch
+
+    def _locate(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Return the arc length (mm) of the lobe's sample nearest each point (n, 2), and its distance (mm)."""
+        off, i = self.tree.query(points)
+        return self.even[i], off
 
     def along(self, male: np.ndarray) -> np.ndarray:
         """Return where male points (n, 2) lie along the profile from the tip (mm, as :attr:`u`), turned onto the lobe."""
-        s = shapely.line_locate_point(self.line, shapely.points(_folded(male, self.angle, self.pitch)[0]))
-        return (s - self.s_tip) * self.way
+        return (self._locate(_folded(male, self.angle, self.pitch)[0])[0] - self.s_tip) * self.way
 
     def rotations(self, u: np.ndarray) -> np.ndarray:
         """Return the contact rotation of the fitted profile's point at ``u`` (interpolated; rad)."""
@@ -340,13 +354,16 @@ def flank_circle(lobe: _Lobe, sigma: float, pair: RotorPair) -> tuple[str, np.nd
         if found is None:
             continue
         centre, radius, lo, hi = found
-        order = np.sort(lobe.u[(lobe.u < lo) & (lobe.u > 0.0)])[::-1]
-        for k in range(0, len(order), 2):  # towards the tip, two points at a time
+        order, start = np.sort(lobe.u[(lobe.u < lo) & (lobe.u > 0.0)])[::-1], lo
+        for k in range(0, len(order), 2):  # towards the tip, two points at a time, on the longest window's circle
             keep = (lobe.u >= order[k]) & (lobe.u <= hi)
-            c, r, g, _ = fit_envelope(lobe.raw[keep], lobe.rotations(lobe.u[keep]), body, centre, radius, pair)
+            g, _ = envelope_gaps(lobe.raw[keep], lobe.rotations(lobe.u[keep]), body, centre, radius, pair)
             if not holds(g, lobe.u[keep] <= np.sort(lobe.u[keep])[END_POINTS - 1], sigma):
                 break
-            centre, radius, lo = c, r, float(order[k])
+            lo = float(order[k])
+        if lo < start:  # the circle refitted over the whole stretch
+            keep = (lobe.u >= lo) & (lobe.u <= hi)
+            centre, radius, _, _ = fit_envelope(lobe.raw[keep], lobe.rotations(lobe.u[keep]), body, centre, radius, pair)
         if best is None or hi - lo > best[4] - best[3]:
             best = (body, centre, radius, lo, hi)
     return best
@@ -468,32 +485,44 @@ def rounding_apex(
     rounding = rounding_circle(folded, junction, sigma)
     if rounding is None:
         return None
+    # the rotation at which the lobe of ``point`` (whose frame the circles are fitted in) touches at ``near``
+    pitch = 2.0 * np.pi / pair.male_teeth
+    turn = float(np.arctan2(near[1], near[0]) - np.arctan2(point[1], point[0])) - t
+    t = t + pitch * round(float(np.arctan2(np.sin(turn), np.cos(turn))) / pitch)
     cut = crossing((Body.MALE, rounding[0], rounding[1]), (body, centre, radius), t, near, reach, pair)
     if cut is None:
         return None
     apex, t1, t2 = cut
-    # the crossing is the apex only where it is the nearest point to the cusp of both meshlines' stretches that the
-    # rounding's and the flank's points generate: the symmetric SRM's lobe arc (radius 14 mm, 39 mm of it) meets
-    # its flank, a rack circle's envelope, too, but its meshline passes the cusp at a smooth nearest approach
-    # before that (1 um of scatter, seed 3: the crossing read -9.3 %)
-    gap = float(np.hypot(*(apex - cusp))) - NEAREST_SLACK
-    tt = np.linspace(-0.6, 0.6, 12001)
-    u1, u2 = folded.along(np.vstack([rotate(apex, -t1), rotate(apex, -t2)]))  # the two male points at the crossing
-    for (kind, c, r), at, lo, hi in (
-        ((Body.MALE, rounding[0], rounding[1]), t1, rounding[2], u1),  # the rounding's side of the crossing
-        ((body, centre, radius), t2, u2, far),  # the flank's
-    ):
-        for sign in (-1.0, 1.0):
-            x = circle_contacts(kind, c, r, at + tt, pair, sign)
-            if np.hypot(*(x[len(tt) // 2] - apex)) > 1e-6:
-                continue  # the other sign's meshline
-            u = folded.along(rotate(x, -(at + tt)))
-            on = (u >= lo) & (u <= hi) & np.isfinite(x).all(axis=1)
-            if on.any() and float(np.hypot(*(x[on] - cusp).T).min()) < gap:
-                return None
     rounding_points = folded.raw[(folded.u >= rounding[2]) & (folded.u < junction)]
     on_flank = (folded.u >= junction) & (folded.u <= far)
     _, feet = envelope_gaps(folded.raw[on_flank], folded.rotations(folded.u[on_flank]), body, centre, radius, pair)
+    # the crossing is the apex only where it is the nearest point to the cusp of both meshlines' stretches that the
+    # rounding's and the flank's points generate: the symmetric SRM's lobe arc (radius 14 mm, 39 mm of it) meets
+    # its flank, a rack circle's envelope, too, but its meshline passes the cusp at a smooth nearest approach
+    # before that (1 um of scatter, seed 3: the crossing read -9.3 %). The rounding's stretch: the instants whose
+    # touching point lies on the circle between the crossing's and the rounding's far end (angles about its
+    # centre); the flank's: between the crossing's instant and the far end's foot rotation
+    tt = np.linspace(-0.6, 0.6, 12001)
+    tip_end = rounding_points[np.argmin(folded.u[(folded.u >= rounding[2]) & (folded.u < junction)])]
+    far_t = float(feet[np.argmax(folded.u[on_flank])])
+    gap = float(np.hypot(*(apex - cusp))) - NEAREST_SLACK
+    for sign in (-1.0, 1.0):
+        x = circle_contacts(Body.MALE, rounding[0], rounding[1], t1 + tt, pair, sign)
+        if np.hypot(*(x[len(tt) // 2] - apex)) <= 1e-6:
+            m = rotate(x, -(t1 + tt)) - rounding[0]
+            phi = np.arctan2(m[:, 1], m[:, 0])
+            ref = float(phi[len(tt) // 2])
+            rel = np.arctan2(np.sin(phi - ref), np.cos(phi - ref))
+            end = float(np.arctan2(*(tip_end - rounding[0])[::-1]) - ref)
+            end = float(np.arctan2(np.sin(end), np.cos(end)))
+            on = (rel * np.sign(end) >= 0.0) & (np.abs(rel) <= abs(end)) & np.isfinite(x).all(axis=1)
+            if on.any() and float(np.hypot(*(x[on] - cusp).T).min()) < gap:
+                return None
+        x = circle_contacts(body, centre, radius, t2 + tt, pair, sign)
+        if np.hypot(*(x[len(tt) // 2] - apex)) <= 1e-6:
+            on = ((t2 + tt - t2) * (far_t - t2) >= 0.0) & (np.abs(tt) <= abs(far_t - t2)) & np.isfinite(x).all(axis=1)
+            if on.any() and float(np.hypot(*(x[on] - cusp).T).min()) < gap:
+                return None
     model = RoundingModel(
         rounding[0], rounding[1], body, centre, radius, rounding_points, folded.raw[on_flank], feet, t, near, reach
     )
