@@ -25,7 +25,7 @@ fix its centre's distance from O1 and its radius to about 14 um each (one lobe; 
 that meshline depends on those two numbers alone (a turn of the centre about O1 is a shift of t).
 Which piece is which circle is decided from the points: a piece is a body's circle over the stretch
 along which its points' residuals stay within their scatter (:func:`holds`; of exact points, half their
-accuracy). Seeds 0-7 of that CSV: -0.70..+0.43 %; the even scans above +0.9 % and 0.0 %.
+accuracy). Seeds 0-7 of that CSV: -0.65..+0.37 %; the even scans above +0.9 % and 0.0 %.
 """
 
 from __future__ import annotations
