@@ -144,6 +144,11 @@ class ScrewRotors:
         The median spacing of the given points: a corner, a rounding or a curvature step between two
         of them is placed no better than that along the profile (the blow-hole's uncertainty,
         :func:`rotorcad.meshing.blow_hole_accuracy.spacing_uncertainty`). None for a design or a drawing.
+    given_points : (n, 2) float array or None, mm
+        The given rotor's points (every lobe, its own frame) and ``point_scatter`` (mm) their estimated
+        scatter sigma: a model fitted to the points themselves, not to the smoothing spline, places the
+        blow-hole's apex at a male tip rounding (:mod:`rotorcad.meshing.rounding_apex`). None for a design
+        or a drawing.
     """
 
     pair: RotorPair
@@ -157,6 +162,8 @@ class ScrewRotors:
     point_accuracy: float | None = None  # mm: of one point of the given profile (None: ``accuracy``)
     tangent_spread: tuple[np.ndarray, np.ndarray] | None = None  # exact points: (radii mm, turns rad) per point
     point_spacing: float | None = None  # mm: median spacing of the given points (None: a design or a drawing)
+    given_points: np.ndarray | None = None  # mm: the given rotor's points, its own frame (None: a design or a drawing)
+    point_scatter: float = 0.0  # mm: their estimated scatter sigma (0: exact points)
 
     @cached_property
     def male_pieces(self) -> list[tuple[str, Curve, RackPiece]]:

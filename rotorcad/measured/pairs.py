@@ -633,6 +633,8 @@ def pair_from_rotor_points(
         point_accuracy=point_acc,
         tangent_spread=spread,
         point_spacing=spacing if spacing > 0 else None,
+        given_points=outline.whole,
+        point_scatter=float(outline.sigma),
     )
 
 
