@@ -204,6 +204,7 @@ def judge_racks(
         "accuracy": float(accuracy),
         "undercut_accuracy": float(max(undercut_accuracy, FOLD_TOLERANCE)) if accuracy > 0 else 0.0,
         "smallest_flank_angle_accuracy_deg": 0.0,  # of a design; `hob` states it for points (_angle_accuracy)
+        "rack_accuracy": float(accuracy),  # of a design; `hob` states it for points (_rack_accuracy)
         "notes": [f"{name}: {n}" if len(verdicts) > 1 else n for name, v in verdicts.items() for n in v.notes],
         "racks": {name: _rack_figures(v, racks[name]) for name, v in verdicts.items()},
     }

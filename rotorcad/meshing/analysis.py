@@ -27,9 +27,9 @@ from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
 from rotorcad.meshing.rounding_apex import moved_apexes, pseudo_inverses, rounding_apex
 from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.meshing.tip_apex import tip_apex
-from rotorcad.meshing.undecided import corner_margin, corner_on_rotor, undecided_corners
+from rotorcad.meshing.undecided import mark_decided, undecided_rows
 from rotorcad.profile import DEFAULT_TOLERANCE
-from rotorcad.roles import Flank, PieceRole, Side
+from rotorcad.roles import Flank, PieceRole
 from rotorcad.screw_rotors import ScrewRotors
 
 EXACT_POINTS_AT_MOST = 20000
@@ -696,13 +696,7 @@ class MeshingAnalysis:
             row = d.as_dict()
             row["angle_deg"] = self.lobe_angle(np.radians(d.angle_deg))
             row["tip_corner"] = is_tip_corner(d, pair, self.tip_corner_tolerance)
-            row["decided"], row["margin"], row["margin_accuracy"] = True, None, None
-            if spacing and row["tip_corner"] and d.point_generated:  # a corner or a rounding below 2 spacings
-                corner = corner_on_rotor(pair, d.rotor, d.x, d.y, np.radians(d.angle_deg))
-                row["decided"], row["corner"], row["margin_accuracy"] = False, [float(v) for v in corner], spacing
-                margin = corner_margin(self.pieces, pair, d.rotor, corner, d.extent)
-                row["margin"] = margin if np.isfinite(margin) else None
-            out.append(row)
+            out.append(mark_decided(row, d, self.pieces, pair, spacing))
         return out
 
     @property
@@ -726,30 +720,7 @@ class MeshingAnalysis:
         pair = self.rotors.pair
         reach = resolution(MESHLINE_GAIN * self.judged_accuracy, pair.center_distance)
         near = max(self.tip_corner_tolerance, spacing)
-        rows = self.defect_dicts()
-        out = []
-        for rotor in (Side.MALE, Side.FEMALE):
-            found = [np.asarray(r["corner"]) for r in rows if r.get("corner") is not None and r["rotor"] == str(rotor)]
-            for u in undecided_corners(self.pieces, pair, rotor, spacing, near, reach, found):
-                corner = u["corner"]
-                margin = corner_margin(self.pieces, pair, rotor, corner, u["extent"])
-                out.append(
-                    {
-                        "kind": "cusp",
-                        "rotor": str(rotor),
-                        "x": u["x"],
-                        "y": u["y"],
-                        "flank_role": None if u["role"] is None else str(u["role"]),
-                        "point_generated": True,
-                        "extent": u["extent"],
-                        "tip_corner": True,
-                        "decided": False,
-                        "corner": [float(v) for v in corner],
-                        "margin": margin if np.isfinite(margin) else None,
-                        "margin_accuracy": spacing,
-                    }
-                )
-        return out
+        return undecided_rows(self.pieces, pair, spacing, near, reach, self.defect_dicts())
 
     def summary(self) -> dict[str, object]:
         """Return the analysis as plain values (the figures of ``rotorcad rotor --json``).

@@ -235,3 +235,85 @@ def compare_defects(design: object, given: dict) -> tuple[list[tuple], list[tupl
         else:
             differing.append((k, diff, [round(m, 3) for m in margins]))
     return differing, explained
+
+
+def mark_decided(row: dict, defect, pieces: list[MeshlinePiece], pair: RotorPair, spacing: float) -> dict:
+    """Add ``decided``, ``margin``, ``margin_accuracy`` (and ``corner``) to a defect's row.
+
+    A point-generated tip corner's path found from points ``spacing`` (mm) apart is undecided: the
+    points cannot tell the corner from a rounding shorter than two spacings.
+
+    Parameters
+    ----------
+    row : dict
+        The defect's row (``tip_corner`` already set); changed in place.
+    defect : rotorcad.meshing.defect_record.Defect
+        The defect.
+    pieces : list of MeshlinePiece
+        The meshline's pieces.
+    pair : RotorPair
+        The pair.
+    spacing : float
+        The given points' spacing, mm; 0 for a design or a drawing (every defect decided).
+
+    Returns
+    -------
+    dict
+        ``row``.
+    """
+    row["decided"], row["margin"], row["margin_accuracy"] = True, None, None
+    if spacing and row["tip_corner"] and defect.point_generated:  # a corner or a rounding below 2 spacings
+        corner = corner_on_rotor(pair, defect.rotor, defect.x, defect.y, np.radians(defect.angle_deg))
+        row["decided"], row["corner"], row["margin_accuracy"] = False, [float(v) for v in corner], spacing
+        margin = corner_margin(pieces, pair, defect.rotor, corner, defect.extent)
+        row["margin"] = margin if np.isfinite(margin) else None
+    return row
+
+
+def undecided_rows(
+    pieces: list[MeshlinePiece], pair: RotorPair, spacing: float, near: float, reach: float, rows: list[dict]
+) -> list[dict[str, object]]:
+    """Return the tip corners given points can neither show nor rule out, as defect rows with ``decided`` false.
+
+    Parameters
+    ----------
+    pieces : list of MeshlinePiece
+        The meshline's pieces.
+    pair : RotorPair
+        The pair.
+    spacing : float
+        The given points' spacing, mm (> 0).
+    near : float
+        How near (mm) the contacts must stay to a point to be a corner's path.
+    reach : float
+        The meshline stretch (mm) they must stay there over (the defects' resolution).
+    rows : list of dict
+        The defects found (:func:`mark_decided` rows): a rotor with a tip-corner cusp found is skipped there.
+
+    Returns
+    -------
+    list of dict
+    """
+    out = []
+    for rotor in (Side.MALE, Side.FEMALE):
+        found = [np.asarray(r["corner"]) for r in rows if r.get("corner") is not None and r["rotor"] == str(rotor)]
+        for u in undecided_corners(pieces, pair, rotor, spacing, near, reach, found):
+            corner = u["corner"]
+            margin = corner_margin(pieces, pair, rotor, corner, u["extent"])
+            out.append(
+                {
+                    "kind": "cusp",
+                    "rotor": str(rotor),
+                    "x": u["x"],
+                    "y": u["y"],
+                    "flank_role": None if u["role"] is None else str(u["role"]),
+                    "point_generated": True,
+                    "extent": u["extent"],
+                    "tip_corner": True,
+                    "decided": False,
+                    "corner": [float(v) for v in corner],
+                    "margin": margin if np.isfinite(margin) else None,
+                    "margin_accuracy": spacing,
+                }
+            )
+    return out
