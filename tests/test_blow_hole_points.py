@@ -132,7 +132,7 @@ def test_findings_resolved_within_a_few_percent(name, side, per, was):
     # hand-over from the flank's meshline, the joint of the corner's path, or the turn, where local), and within
     # the stated uncertainty. Resolved where that is at most half the area (RESOLVED_SHARE): the narrow-tip and
     # asymmetric SRM females stated +-1.9-2.7 mm² on 2.5-3.3 (the hand-over's tangent, the other estimates' spread),
-    # no figure, until their straight flank's line, which places the apex, stated its own bound (+-0.06-0.09)
+    # no figure, until their straight flank's line, which places the apex, stated its own bound (+-0.11-0.18)
     reference = _design(name)["area"]
     for seed in (0, 1, 2):
         area, stated, resolved = _read(name, side, per, 1.0, seed)
