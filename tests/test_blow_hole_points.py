@@ -130,12 +130,13 @@ def test_findings_resolved_within_a_few_percent(name, side, per, was):
     # the findings' cases with 1 um of scatter (seeds 0-2), each resolved before with the error ``was``: now
     # within 12 % of the reference, the design's blow-hole (a few per cent each: the apex of a tip corner's
     # hand-over from the flank's meshline, the joint of the corner's path, or the turn, where local), and within
-    # the stated uncertainty. Resolved where that is at most half the area (RESOLVED_SHARE): the males'; the
-    # narrow-tip and asymmetric SRM females state +-1.9 mm² on 2.5-3.3 (the hand-over's tangent), no figure
+    # the stated uncertainty. Resolved where that is at most half the area (RESOLVED_SHARE): the narrow-tip and
+    # asymmetric SRM females stated +-1.9-2.7 mm² on 2.5-3.3 (the hand-over's tangent, the other estimates' spread),
+    # no figure, until their straight flank's line, which places the apex, stated its own bound (+-0.11-0.18)
     reference = _design(name)["area"]
     for seed in (0, 1, 2):
         area, stated, resolved = _read(name, side, per, 1.0, seed)
-        assert resolved == (side == "male")
+        assert resolved
         assert area == pytest.approx(reference, rel=0.12), (seed, area, was)
         assert abs(area - reference) <= stated
 
@@ -246,3 +247,19 @@ def test_the_datum_angle_does_not_move_the_blow_hole():
     for area, stated, _ in reads:
         assert area == pytest.approx(reads[0][0], rel=1e-6)
         assert abs(area - reference) <= stated
+
+
+def test_a_generating_lines_uncertainty_shrinks_with_the_density():
+    # newuser7: where the straight line that generates the flank places the apex (rotorcad.meshing.generating_line),
+    # the narrow-tip male with 1 um stated +-0.50 / 0.84 / 1.59 mm² at 80 / 150 / 300 points a lobe for errors within
+    # 0.02 mm²: the tangent's bound and the other estimates' spread, growing with the density. The line's own bound
+    # (its direction and offset to sigma sqrt(12 / n) / L and sigma / sqrt(n) over the n points under it) shrinks as
+    # the points come closer, and still covers the error. Reference: the design's blow-hole from its exact curves
+    reference = _design("narrow_tip_5_6")["area"]
+    reads = [_read("narrow_tip_5_6", "male", per, 1.0, 0) for per in (80, 150, 300)]
+    stated = [u for _, u, _ in reads]
+    assert stated[0] > stated[1] > stated[2], stated
+    assert stated[1] < 0.84 / 4 and stated[2] < 1.59 / 10, stated
+    for area, u, resolved in reads:
+        assert resolved
+        assert abs(area - reference) <= u, (area, u, reference)

@@ -310,12 +310,10 @@ _SPACING = (
 UNRESOLVED_FEMALE: dict[tuple[str, str], str] = {
     **{(name, "exact"): _N_RACK_SPREAD for name in ("n_rack_5_6", "rinder_deix_5_6")},
     **{(name, "scatter-1um"): _SPACING for name in ("n_rack_5_6", "rinder_deix_5_6")},
-    **{
-        (name, form): _SPACING
-        for name in ("narrow_tip_5_6", "rack_involute_5_6", "srm_asymmetric_5_6", "srm_b_5_6")
-        for form in ("exact", "scatter-1um")
-    },
 }
+# the narrow-tip, rack-involute, asymmetric SRM and SRM-B females (exact and 1 um) were here (_SPACING) until the
+# straight line that generates the flank beside the tip corner, which places their apex, stated its own bound
+# (rotorcad.meshing.blow_hole_accuracy.line_uncertainty): now resolved, and checked as the others below
 """The blow-holes the female's points do not resolve, and say so (``blow_hole_resolved`` false): the area is no
 verdict there, and the design's lies within the stated uncertainty (as the male's evenly spaced points in
 test_verdict_invariance's UNRESOLVED_BLOW_HOLE)."""

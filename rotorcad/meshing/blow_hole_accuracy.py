@@ -17,6 +17,7 @@ import numpy as np
 from rotorcad.geometry import rotate
 from rotorcad.meshing.apex import circle_bounds, circle_meshline_apex
 from rotorcad.meshing.defects import MESHLINE_GAIN, resolution
+from rotorcad.meshing.generating_line import GeneratingLine, line_apex, line_meshline_cut
 from rotorcad.roles import PieceRole
 
 if TYPE_CHECKING:
@@ -49,7 +50,11 @@ def blow_hole_uncertainty(analysis: MeshingAnalysis) -> float:
     The largest of what places the apex E (:attr:`MeshingAnalysis.meshline_end`) and what the input leaves
     open there, each the change of the area (:meth:`MeshingAnalysis.blow_hole_at`) with the apex moved:
 
-    * the estimator's own bound: where the apex comes from a male arc's closed-form meshline
+    * where a straight line of the male, the female or the rack generates the flank beside the apex and its
+      closed-form meshline places it (:func:`placing_line`), that line's own bound alone
+      (:func:`line_uncertainty`): the apex then depends on the line, not on the flank's end tangent, the
+      other estimates of it or where the hand-over falls between two points;
+    * else the estimator's own bound: where the apex comes from a male arc's closed-form meshline
       (:attr:`MeshingAnalysis.apex_arc`), the arc's (:func:`arc_uncertainty`); else the tangent's
       (:func:`tangent_uncertainty`): E is where the normal of a male point passes through the pitch point
       C (Rinder sec. 2.1, the law of gearing), and a normal turned by the tangent's accuracy moves it;
@@ -74,6 +79,9 @@ def blow_hole_uncertainty(analysis: MeshingAnalysis) -> float:
     spread = getattr(rotors, "tangent_spread", None)
     if delta <= 0.0 and spread is None:  # a design (0), or a drawing's exact curves
         return max(drawing_uncertainty(analysis), candidates_spread(analysis)) if analysis.is_given else 0.0
+    line = line_uncertainty(analysis)
+    if np.isfinite(line):
+        return line
     arc_bound = arc_uncertainty(analysis) if delta > 0.0 else np.inf
     # the arc's bound where the arc placed the apex: the tangent's bound is of the hand-over's own estimate, and
     # stated for an arc's apex it missed the error (the asymmetric SRM's female at 150 a lobe with 1 um: +77 %,
@@ -111,6 +119,113 @@ def arc_uncertainty(analysis: MeshingAnalysis) -> float:
         apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, analysis.cusp, near, reach, bores, window)
         moved.append(np.inf if apex is None else analysis.blow_hole_at(apex).area)
     return float(max(abs(m - analysis.blow_hole_area) for m in moved))
+
+
+LINE_COVERAGE = 3.0
+"""Standard errors of the fitted line by which :func:`line_uncertainty` moves it (three: 99.7 % of a normal
+error). Measured over the samples whose flank beside a tip corner is a line's envelope (narrow-tip, asymmetric
+SRM, SRM-B, rack-involute; both rotors, 80/150/300 points a lobe, exact and with 1-2 um, seeds 0-3, 216 reads,
+``python benchmarks/bench_line_apex.py``): 202 resolved (65 before, with the tangent's bound and the other
+estimates' spread), none outside its uncertainty, the largest error 0.61 of it; the errors themselves unchanged."""
+
+
+def placing_line(analysis: MeshingAnalysis) -> GeneratingLine | None:
+    """Return the generating line whose closed-form meshline placed the blow-hole's apex, else None.
+
+    :func:`rotorcad.meshing.generating_line.line_apex` at the meshline's sample nearest the housing cusp,
+    as :meth:`MeshingAnalysis._tip_apex` calls it, where its apex is :attr:`MeshingAnalysis.meshline_end`
+    (a male arc's apex may come first there). None for a design or a drawing's exact curves.
+
+    Parameters
+    ----------
+    analysis : MeshingAnalysis
+        The pair's meshing analysis.
+
+    Returns
+    -------
+    GeneratingLine or None
+    """
+    cached = analysis.__dict__.get("_placing_line", False)
+    if cached is not False:
+        return cached
+    line = None
+    rotors = analysis.rotors
+    if analysis.is_given and getattr(rotors, "point_spacing", None) and analysis.apex_arc is None:
+        pair = rotors.pair
+        tips = ((np.zeros(2), pair.male_tip_radius), (np.array([pair.center_distance, 0.0]), pair.female_tip_radius))
+        pts = analysis.meshline
+        k = int(np.argmin(np.hypot(*(pts - analysis.cusp).T)))
+        found = line_apex(analysis.pieces, pts[k], tips, analysis.judged_accuracy, pair)
+        if found is not None and np.hypot(*(found.apex - analysis.meshline_end)) <= 1e-9:
+            line = found
+    analysis.__dict__["_placing_line"] = line
+    return line
+
+
+def line_uncertainty(analysis: MeshingAnalysis) -> float:
+    """Return the blow-hole's uncertainty (mm²) where a generating line places the apex, else inf.
+
+    A line fitted to n points spread evenly over a length L with normal errors sigma is off in direction by
+    sigma / L sqrt(12 / n) and, at a distance x from the points' centroid along it, in offset by
+    sigma sqrt(1 / n + 12 x² / (n L²)) (least squares: the slope's variance sigma² / S_xx, S_xx = n L² / 12).
+    The meshline of a turning body's line depends on its distance d from the body's centre alone, the rack
+    line's on its direction alone (:func:`rotorcad.meshing.generating_line.line_meshline_cut`): d, at the foot
+    of the perpendicular from the centre, or the direction is moved by :data:`LINE_COVERAGE` of its standard
+    error, and the tip circle's radius by the profile's accuracy (the given corner lies on its tip circle no
+    better); the uncertainty is the largest change of the area over those four cuts. n is the number of given
+    points over the window (the contacts' path on the given rotor over its point spacing), sigma the accuracy
+    of one point (:attr:`rotorcad.screw_rotors.ScrewRotors.point_accuracy`, twice its scatter: the fitted
+    outline's error is smooth, no independent scatter a point) or the contacts' rms distance from the line if
+    larger, L how far the contacts travel along the line in its body. It
+    shrinks as the points come closer (n grows): the narrow-tip male with 1 um of scatter at 80 / 150 / 300
+    points a lobe stated 0.50 / 0.84 / 1.59 mm² from the tangent and the other estimates' spread, for errors
+    within 0.02 mm² (``python benchmarks/bench_line_apex.py``).
+
+    Parameters
+    ----------
+    analysis : MeshingAnalysis
+        The pair's meshing analysis.
+
+    Returns
+    -------
+    float, mm² (inf: no line placed the apex)
+    """
+    line = placing_line(analysis)
+    if line is None:
+        return np.inf
+    rotors = analysis.rotors
+    pair = rotors.pair
+    if rotors.family.startswith("female"):
+        given = rotate(line.contacts - np.array([pair.center_distance, 0.0]), line.t * pair.male_teeth / pair.female_teeth)
+    else:
+        given = rotate(line.contacts, -line.t)
+    count = max(float(np.hypot(*np.diff(given, axis=0).T).sum()) / float(rotors.point_spacing), 2.0)
+    point = getattr(rotors, "point_accuracy", None)
+    # one point's accuracy (2 sigma), not its scatter: the fitted outline's error is smooth along it and no independent
+    # sigma a point (half of it left the SRM-B female's own straight flank at 150 a lobe with 2 um and at 300 with
+    # 1 um 1.15 and 1.22 times its bound off, -8.7 and -6.4 %; the samples' other lines up to 0.67 of it)
+    sigma = max(float(rotors.accuracy if point is None else point), line.rms)
+    sxx = count * line.span**2 / 12.0
+    c = np.array([pair.male_pitch_radius, 0.0])
+    (o, r), accuracy = line.circle, analysis.judged_accuracy
+    area, moved = analysis.blow_hole_area, []
+    for side, grow in itertools.product((-1.0, 1.0), repeat=2):
+        circle = (o, r + grow * accuracy)
+        if line.centre is None:  # the rack's line: its direction
+            turn = side * LINE_COVERAGE * sigma / np.sqrt(sxx)
+            normal = _turned(line.normal, turn)
+            apex = line_meshline_cut(None, normal, None, c, circle, line.near)
+        else:  # a turning body's line: its distance from the centre, at the foot of the perpendicular
+            step = side * LINE_COVERAGE * sigma * np.sqrt(1.0 / count + line.along**2 / sxx)
+            apex = line_meshline_cut(line.distance + step, line.normal, line.centre, c, circle, line.near)
+        moved.append(np.inf if apex is None else abs(analysis.blow_hole_at(apex).area - area))
+    return float(max(moved))
+
+
+def _turned(vector: np.ndarray, angle: float) -> np.ndarray:
+    """Return a (2,) vector turned counter-clockwise by ``angle`` (rad)."""
+    ca, sa = np.cos(angle), np.sin(angle)
+    return np.array([ca * vector[0] - sa * vector[1], sa * vector[0] + ca * vector[1]])
 
 
 def _turned_apex_change(analysis: MeshingAnalysis, turn: float) -> float:
