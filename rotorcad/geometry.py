@@ -408,8 +408,8 @@ def distance_to_polyline(points: Array, polyline: Array, max_distance: float | N
     return _nearest_segment_distance(pts, np.stack([line[:-1], line[1:]], axis=1), max_distance)
 
 
-def polyline_distance(polyline: Array) -> Callable[[Array], Array]:
-    """Return ``f(points)``: :func:`distance_to_polyline` of ``points`` to ``polyline``, its R-tree built once.
+def polyline_distance(polyline: Array) -> Callable[..., Array]:
+    """Return ``f(points, max_distance=None)``: :func:`distance_to_polyline` to ``polyline``, its R-tree built once.
 
     The same numbers, for a caller that measures many sets of points against one polyline (a search
     over the turns of a rotor's points, :mod:`rotorcad.measured.end_face`): building the R-tree of a
@@ -423,16 +423,17 @@ def polyline_distance(polyline: Array) -> Callable[[Array], Array]:
     Returns
     -------
     callable
-        Points (n, 2) mm -> their unsigned distances (n,) mm to the polyline.
+        Points (n, 2) mm and an optional ``max_distance`` (mm, as :func:`distance_to_polyline`'s) -> their
+        unsigned distances (n,) mm to the polyline.
     """
     line = as_points(polyline)
     line = line[np.concatenate([[True], np.hypot(*np.diff(line, axis=0).T) > 1e-12])]
     if len(line) < 2:
-        return lambda points: np.hypot(*(as_points(points) - line[0]).T)
+        return lambda points, max_distance=None: np.hypot(*(as_points(points) - line[0]).T)
     import shapely
 
     tree = shapely.STRtree(shapely.linestrings(np.stack([line[:-1], line[1:]], axis=1)))
-    return lambda points: _nearest_in_tree(tree, as_points(points), None)
+    return lambda points, max_distance=None: _nearest_in_tree(tree, as_points(points), max_distance)
 
 
 def distance_to_polylines(points: Array, polylines: list[Array], near: float = 0.01) -> Array:
