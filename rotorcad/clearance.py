@@ -43,7 +43,7 @@ from rotorcad.clearance_thermal import ThermalState
 from rotorcad.clearance_zones import CORNER_CORE, SHARP_FAN, ClearanceZone, holes_as_gaps
 from rotorcad.curves import Curve, sample_curve
 from rotorcad.errors import DesignError
-from rotorcad.geometry import Array, distance_to_polyline, rotate
+from rotorcad.geometry import Array, distance_to_polyline, polyline_distance, rotate
 from rotorcad.inverse_rack import (
     MEASURED_JOIN_GAP,
     MEASURED_MIN_TURN,
@@ -470,16 +470,16 @@ class MeshingClearance:
         17 about the best, then the parabola through the best three (the transverse section, as two
         rotors' outlines are compared by the brute force of the tests).
         """
-        male = self._male_outline
+        male = polyline_distance(self._male_outline)  # distance_to_polyline's numbers, the R-tree built once
         centre, width = np.asarray(angle, dtype=float), window
         # every grid holds its centre (odd counts), whose distance bounds the smallest: positions
         # farther than the largest such bound are not searched (they return inf)
-        bound = distance_to_polyline(self._female_in_male_frame(female, centre), male)
+        bound = male(self._female_in_male_frame(female, centre))
         reach = float(np.max(bound)) * (1 + 1e-9) + 1e-9 if len(bound) else None
         for n in (65, 17, 17):
             grid = centre[:, None] + np.linspace(-width, width, n)[None, :]
             pts = self._female_in_male_frame(np.repeat(female[:, None, :], n, axis=1), grid)
-            d = distance_to_polyline(pts.reshape(-1, 2), male, reach).reshape(len(female), n)
+            d = male(pts.reshape(-1, 2), reach).reshape(len(female), n)
             j = np.clip(np.argmin(d, axis=1), 1, n - 2)
             centre = grid[np.arange(len(female)), j]
             width = 2 * width / (n - 1)

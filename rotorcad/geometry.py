@@ -6,6 +6,7 @@ positive. Nothing here loops over points.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -405,6 +406,34 @@ def distance_to_polyline(points: Array, polyline: Array, max_distance: float | N
     if len(line) < 2:
         return np.hypot(*(pts - line[0]).T)
     return _nearest_segment_distance(pts, np.stack([line[:-1], line[1:]], axis=1), max_distance)
+
+
+def polyline_distance(polyline: Array) -> Callable[..., Array]:
+    """Return ``f(points, max_distance=None)``: :func:`distance_to_polyline` to ``polyline``, its R-tree built once.
+
+    The same numbers, for a caller that measures many sets of points against one polyline (a search
+    over the turns of a rotor's points, :mod:`rotorcad.measured.end_face`): building the R-tree of a
+    whole outline's segments took as long as a search of it for 160 points.
+
+    Parameters
+    ----------
+    polyline : (m, 2) float array, mm
+        Vertices of the open polyline, in order.
+
+    Returns
+    -------
+    callable
+        Points (n, 2) mm and an optional ``max_distance`` (mm, as :func:`distance_to_polyline`'s) -> their
+        unsigned distances (n,) mm to the polyline.
+    """
+    line = as_points(polyline)
+    line = line[np.concatenate([[True], np.hypot(*np.diff(line, axis=0).T) > 1e-12])]
+    if len(line) < 2:
+        return lambda points, max_distance=None: np.hypot(*(as_points(points) - line[0]).T)
+    import shapely
+
+    tree = shapely.STRtree(shapely.linestrings(np.stack([line[:-1], line[1:]], axis=1)))
+    return lambda points, max_distance=None: _nearest_in_tree(tree, as_points(points), max_distance)
 
 
 def distance_to_polylines(points: Array, polylines: list[Array], near: float = 0.01) -> Array:

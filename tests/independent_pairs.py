@@ -553,14 +553,20 @@ def closest_approach(
     return out
 
 
-def distance_to_line(points: np.ndarray, line: shapely.LineString | shapely.LinearRing) -> np.ndarray:
+def segment_tree(line: shapely.LineString | shapely.LinearRing) -> shapely.STRtree:
+    """The STRtree of a line's segments that :func:`distance_to_line` searches, to be kept by a caller that
+    measures against the same line many times (180 000 segments: 0.3 s to build)."""
+    coords = np.asarray(line.coords)
+    return shapely.STRtree(shapely.linestrings(np.stack([coords[:-1], coords[1:]], axis=1)))
+
+
+def distance_to_line(points: np.ndarray, line: shapely.LineString | shapely.LinearRing | shapely.STRtree) -> np.ndarray:
     """``shapely.distance(shapely.points(points), line)`` (the exact distance of each point (n, 2)
     to the line's segments, mm), found per point through an STRtree of the segments: the same
     numbers as shapely's, without its scan of every segment for every point (10 s for 50000 points
-    against a 20000-vertex ring, 0.2 s this way)."""
-    coords = np.asarray(line.coords)
-    segments = shapely.linestrings(np.stack([coords[:-1], coords[1:]], axis=1))
-    (which, _), dist = shapely.STRtree(segments).query_nearest(shapely.points(points), return_distance=True, all_matches=False)
+    against a 20000-vertex ring, 0.2 s this way). ``line`` may be its :func:`segment_tree`."""
+    tree = line if isinstance(line, shapely.STRtree) else segment_tree(line)
+    (which, _), dist = tree.query_nearest(shapely.points(points), return_distance=True, all_matches=False)
     out = np.full(len(points), np.inf)
     np.minimum.at(out, which, dist)
     return out

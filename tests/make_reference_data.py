@@ -2,7 +2,7 @@
 
 Runs the test files that use them with ROTORCAD_WRITE_REFERENCES=1, so that every result they
 compute and do not find stored is written: the brute-force cuts (``cut_rotor``,
-``female_cut_by_male``, the N-rack cuts) and the brute-force closest approaches
+``female_cut_by_male``, the N-rack cuts, the male a female's positions cut) and the brute-force closest approaches
 (``closest_approach``, ``true_gap``, keyed by their points and their code, so that a change of the
 clearance code under test that moves the points it reads, or an edit of the brute force, needs this
 run again: the suite then warns "tests/reference_data has no ..." and computes them). With
@@ -30,7 +30,11 @@ USERS = (  # the files that use stored brute-force results
     "test_contact_ratio_invariance.py",
     "test_clearance_lands.py",
     "test_clearance_sparse.py",
+<<<<<<< HEAD
     "test_clearance_conjugate.py",
+=======
+    "test_mate_points.py",
+>>>>>>> suite-speed
 )
 
 

@@ -24,6 +24,7 @@ were read as 0.18 µm of scatter by third differences and smoothed; now -0.25 %
 
 from __future__ import annotations
 
+import functools
 import io
 import json
 import sys
@@ -116,8 +117,9 @@ def _build(name: str, folder: Path) -> dict:
 
 @pytest.fixture(scope="module")
 def read_back(built_once, tmp_path_factory):
-    """``read_back(name)``: the design's summary and those of its four drawings read back (built once per sample)."""
-    return lambda name: built_once(f"test_dxf_exact.{name}", lambda: _build(name, tmp_path_factory.mktemp(name)))
+    """``read_back(name)``: the design's summary and those of its four drawings read back (built once per sample:
+    kept here after the first ask, which built_once answers from the run's other worker or, with no workers, builds)."""
+    return functools.cache(lambda name: built_once(f"test_dxf_exact.{name}", lambda: _build(name, tmp_path_factory.mktemp(name))))
 
 
 def _case(name: str, side: str, form: str, known: dict):

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from independent_pairs import distance_to_line, scan
+from independent_pairs import distance_to_line, scan, segment_tree
 from scipy.spatial import cKDTree
 
 from hob.angle_accuracy import smallest_angle_accuracy
@@ -167,17 +167,24 @@ def on_zone(name: str, rotor: str) -> np.ndarray:
 def rack_off_design(name: str, rotor: str, form: str, seed: int = SEED) -> float:
     """Largest distance (mm) of the given rotor's rack (the one its hob is judged on) from the design's
     closed-form rack, over the contact zone."""
-    _, rotors = design(name)
-    period = rotors.pair.rack_period
-    reference = closed_form(name)["points"]
     zone = on_zone(name, rotor)
-    tiled = np.vstack([reference + [k * period, 0.0] for k in (-1, 0, 1)])
+    tree, segments = tiled_reference(name)
     rack = from_points(name, rotor, form, seed)[1][rotor].in_contract_frame()
     pts = rack.points[~rack.corner_path]
-    near = cKDTree(tiled).query(pts)[1]
+    near = tree.query(pts)[1]
     keep = np.tile(zone, 3)[near]
     assert keep.sum() > 50
-    return float(distance_to_line(pts[keep], shapely.LineString(tiled)).max())
+    return float(distance_to_line(pts[keep], segments).max())
+
+
+@functools.cache
+def tiled_reference(name: str) -> tuple[cKDTree, shapely.STRtree]:
+    """The design's closed-form rack over three periods: a k-d tree of its points and the STRtree of its
+    segments (built once a sample)."""
+    _, rotors = design(name)
+    period = rotors.pair.rack_period
+    tiled = np.vstack([closed_form(name)["points"] + [k * period, 0.0] for k in (-1, 0, 1)])
+    return cKDTree(tiled), segment_tree(shapely.LineString(tiled))
 
 
 # Measured departures, 300 points a lobe with 2 um of scatter (seed 11), strict: each must still fail,
@@ -300,11 +307,9 @@ def fit_off_design(name: str, rotor: str, form: str) -> float:
     """Largest distance (mm) of the fitted rotor from the design's outline (0.1 um chords) at the profile points
     whose rack points lie on the contact zone (those of rack_off_design)."""
     _, rotors = design(name)
-    period = rotors.pair.rack_period
-    tiled = np.vstack([closed_form(name)["points"] + [k * period, 0.0] for k in (-1, 0, 1)])
     rack = from_points(name, rotor, form)[1][rotor].in_contract_frame()
     free = ~rack.corner_path
-    keep = np.tile(on_zone(name, rotor), 3)[cKDTree(tiled).query(rack.points[free])[1]]
+    keep = np.tile(on_zone(name, rotor), 3)[tiled_reference(name)[0].query(rack.points[free])[1]]
     lobe = rotors.male_outline(1e-4) if rotor == "male" else rotors.female_outline(1e-4)
     ring = np.vstack([seg.points for seg in lobe.segments])
     return float(distance_to_line(rack.profile[free][keep], shapely.LineString(ring)).max())

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from independent_pairs import scan
+from independent_pairs import scan, stored_by_inputs
 
 from exports.csv_points import read_points, write_points
 from rotorcad.cli.main import main
@@ -59,6 +59,17 @@ def brute_force_male(pair, female: np.ndarray) -> shapely.Geometry:
         f = female @ np.array([[np.cos(th2), np.sin(th2)], [-np.sin(th2), np.cos(th2)]]) + [a, 0.0]
         polys.append(shapely.Polygon(f @ np.array([[np.cos(phi), -np.sin(phi)], [np.sin(phi), np.cos(phi)]])))
     return shapely.Point(0.0, 0.0).buffer(pair.male_tip_radius, quad_segs=2048).difference(shapely.union_all(polys))
+
+
+@stored_by_inputs("brute_force_male_cut", brute_force_male)
+def brute_force_male_cut(pair, female: np.ndarray) -> np.ndarray:
+    """The boundary of :func:`brute_force_male` (the cut the male is measured against) as its WKB bytes (uint8):
+    the form tests/reference_data stores it in (tests/make_reference_data.py), the coordinates bit for bit."""
+    reference = brute_force_male(pair, female)
+    cut = (
+        reference.boundary if isinstance(reference, shapely.Polygon) else shapely.union_all([g.boundary for g in reference.geoms])
+    )
+    return np.frombuffer(shapely.to_wkb(cut), dtype=np.uint8)
 
 
 def _facing(outline: np.ndarray, pair) -> np.ndarray:
@@ -119,11 +130,8 @@ def test_male_from_female_points_is_the_envelope_of_the_female(from_female):
     # finding 1: 17-21 mm off with thin fins before; the male the female's own positions cut (brute force)
     spec, design, _, given, _, _ = from_female
     # the female whose points were given, to a 0.01 um chord (300 points a lobe blunt its sharp tips by 37 um)
-    reference = brute_force_male(spec.pair, _exterior(design.section("female", tolerance=1e-5)))
+    cut = shapely.from_wkb(brute_force_male_cut(spec.pair, _exterior(design.section("female", tolerance=1e-5))).tobytes())
     male = _exterior(given.section("male"))
-    cut = (
-        reference.boundary if isinstance(reference, shapely.Polygon) else shapely.union_all([g.boundary for g in reference.geoms])
-    )
     away = shapely.distance(shapely.points(_facing(male, spec.pair)), cut)
     back = shapely.distance(
         shapely.points(_facing(np.asarray(shapely.get_coordinates(cut)), spec.pair)), given.section("male").boundary

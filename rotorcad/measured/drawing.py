@@ -16,6 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from rotorcad.curve_points import curve_points
 from rotorcad.curves import Arc, Curve, Line, Mapped, Spline, sample_curve
 from rotorcad.roles import Side
 
@@ -123,7 +124,7 @@ def profile_points(profile: np.ndarray | list[Curve], tolerance: float = 1e-4) -
     (n, 2) float array, mm
     """
     if isinstance(profile, list | tuple):
-        return np.vstack([sample_curve(c, tolerance)[1] for c in profile])
+        return curve_points(profile, tolerance)  # sample_curve's points of each curve, a polyline's lines at once
     return np.asarray(profile, dtype=float)
 
 
@@ -161,7 +162,7 @@ def as_given(
     drawn = drawing_points(curves, corner_angle_deg) if drawn_as_points or _polygonal(curves, corner_angle_deg) else None
     if drawn is not None:
         return drawn
-    pts = np.vstack([sample_curve(c, 1e-4)[1] for c in curves])
+    pts = curve_points(curves, 1e-4)
     ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
     if abs(ang[-1] - ang[0]) < 0.98 * 2 * np.pi / teeth:  # one groove or tooth: patterned as points
         return pts

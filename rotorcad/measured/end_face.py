@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorcad.curves import Arc, Curve, Line, Mapped, Spline
-from rotorcad.geometry import distance_to_polyline, rotate
+from rotorcad.geometry import polyline_distance, rotate
 from rotorcad.roles import EndFace, Side
 
 MIRROR_FIT = 0.01
@@ -139,8 +139,10 @@ def _rms_after_best_turn(points: np.ndarray, closed: np.ndarray, teeth: int) -> 
     """
     from scipy.optimize import minimize_scalar
 
+    distance = polyline_distance(closed)  # distance_to_polyline's numbers, the outline's R-tree built once
+
     def rms(angle: float, pts: np.ndarray = points) -> float:
-        return float(np.sqrt(np.mean(distance_to_polyline(rotate(pts, angle), closed) ** 2)))
+        return float(np.sqrt(np.mean(distance(rotate(pts, angle)) ** 2)))
 
     grid = np.arange(0.0, 2.0 * np.pi / teeth, _STEP)
     coarse = points[::4]

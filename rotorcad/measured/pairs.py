@@ -48,9 +48,10 @@ def max_factor(count: float, confidence: float = CONFIDENCE) -> float:
     -------
     float
     """
-    from scipy.stats import norm
+    # Phi^-1 as scipy.stats.norm computes it (isf(q) = -ndtri(q)), without importing scipy.stats (0.3 s)
+    from scipy import special
 
-    return float(norm.isf((1.0 - confidence) / (2.0 * max(count, 1.0))))
+    return float(-special.ndtri((1.0 - confidence) / (2.0 * max(count, 1.0))))
 
 
 def scatter_bound(sigma: float, count: float) -> float:

@@ -75,7 +75,11 @@ def _local_cubic(
     u = d[..., 0] * t[:, None, 0] + d[..., 1] * t[:, None, 1]
     v = d[..., 1] * t[:, None, 0] - d[..., 0] * t[:, None, 1]
     u = u / np.maximum(np.abs(u).max(axis=1, keepdims=True), 1e-300)
-    basis = np.stack([u**j for j in range(4)], axis=2)  # (n, w, 4)
+    basis = np.empty((*u.shape, 4))  # (n, w, 4): 1, u, u^2, u^3 (products: a power of an array is libm's pow)
+    basis[..., 0] = 1.0
+    basis[..., 1] = u
+    np.multiply(u, u, out=basis[..., 2])
+    np.multiply(basis[..., 2], u, out=basis[..., 3])
     gram = np.einsum("nwi,nwj->nij", basis, basis) + 1e-12 * np.eye(4)
     coef = np.linalg.solve(gram, np.einsum("nwi,nw->ni", basis, v)[..., None])[..., 0]
     centre = basis[:, half, :]

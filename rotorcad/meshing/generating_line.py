@@ -123,7 +123,7 @@ def fit_line(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         Signed distances of the points from the line.
     """
     centroid = points.mean(axis=0)
-    normal = np.linalg.svd(points - centroid)[2][1]
+    normal = np.linalg.svd(points - centroid, full_matrices=False)[2][1]  # V only: no (n, n) U (the same V, bit for bit)
     return centroid, normal, (points - centroid) @ normal
 
 

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcad.meshing.meshline import MeshlinePiece, turn_corner, with_neighbours
+from rotorcad.meshing.meshline import SHARP_TURN, MeshlinePiece, turn_corner, with_neighbours
 from rotorcad.roles import PieceRole
 from rotorcad.rotor_pair import RotorPair
 
@@ -154,6 +154,37 @@ def _corner_zero(
     return None
 
 
+def _may_turn_sharply(run: tuple[np.ndarray, np.ndarray, int], samples: np.ndarray, reach: float) -> np.ndarray:
+    """Return False at the samples of a piece where :func:`turn_corner` surely finds no corner, (k,) bool.
+
+    :func:`turn_corner`'s first tests, for all the samples at once: it finds none where the chords from
+    ``reach`` (mm) behind to the sample and from it to ``reach`` ahead turn by no more than
+    :data:`SHARP_TURN` or one of them has no length, or where fewer than six samples lie from 2 to 8
+    ``reach`` before or after the sample. The angle is taken here as ``atan2(cross, dot)`` of the chords,
+    a few units of the last place from :func:`turn_corner`'s own, so a sample within a millionth of the
+    limit is kept and judged there; the counts are those of its masks (the arc length rises), and with a
+    nan among the arc lengths every sample is kept. A measured profile's meshline has some thousand
+    local least |v_t|, of which few lie at a corner.
+    """
+    points, arclen, first = run
+    if not np.isfinite(arclen).all():
+        return np.ones(len(samples), dtype=bool)
+    at = first + samples
+    s0 = arclen[at]
+    back = points[np.searchsorted(arclen, s0 - reach)]
+    ahead = points[np.minimum(np.searchsorted(arclen, s0 + reach), len(points) - 1)]
+    behind, onward = points[at] - back, ahead - points[at]
+    short = np.minimum(np.hypot(behind[:, 0], behind[:, 1]), np.hypot(onward[:, 0], onward[:, 1])) <= 0
+    turn = np.abs(
+        np.arctan2(
+            behind[:, 0] * onward[:, 1] - behind[:, 1] * onward[:, 0], behind[:, 0] * onward[:, 0] + behind[:, 1] * onward[:, 1]
+        )
+    )
+    before = np.searchsorted(arclen, s0 - 2 * reach, side="right") - np.searchsorted(arclen, s0 - 8 * reach, side="left")
+    after = np.searchsorted(arclen, s0 + 8 * reach, side="right") - np.searchsorted(arclen, s0 + 2 * reach, side="left")
+    return ~(short | (turn <= SHARP_TURN * (1.0 - 1e-6)) | (before < 6) | (after < 6))
+
+
 def slip_singularities(
     pieces: list[MeshlinePiece],
     tangential: dict[str, np.ndarray],
@@ -263,8 +294,11 @@ def slip_singularities(
                 continue
             lever, gain = tangential_lever(piece.points, centres[rotor], c)
             least = np.flatnonzero((mag[1:-1] <= mag[:-2]) & (mag[1:-1] <= mag[2:])) + 1
-            for i in least[np.abs(lever[least]) <= gain[least] * reach]:
-                run = joined(j) if run is None else run
+            least = least[np.abs(lever[least]) <= gain[least] * reach]
+            if len(least) == 0:
+                continue
+            run = joined(j) if run is None else run
+            for i in least[_may_turn_sharply(run, least, reach)]:
                 zero = _corner_zero(run, int(i), centres[rotor], c, reach, circles, accuracy)
                 if zero is not None:
                     add(rotor, zero[0], piece.t[i], piece.roles[i])
