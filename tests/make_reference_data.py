@@ -30,11 +30,8 @@ USERS = (  # the files that use stored brute-force results
     "test_contact_ratio_invariance.py",
     "test_clearance_lands.py",
     "test_clearance_sparse.py",
-<<<<<<< HEAD
     "test_clearance_conjugate.py",
-=======
     "test_mate_points.py",
->>>>>>> suite-speed
 )
 
 
