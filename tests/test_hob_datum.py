@@ -555,9 +555,9 @@ def scaled_pair(pair, k: float):
 KNOWN_SCALE = {
     (0.25, "n_rack female from 300/2um"): "at a quarter size the N-rack female's generation factor beyond the turn-back "
     "scatters ten times more about its trend (standard error of f0 0.15 for 0.015 at full size, 0.000 at 4 times): f0 "
-    "-1.69 for -0.001 (+0.033 at 4 times), below the bound -1.22, read a crossing (307 um deep). The rack's and the fit's "
-    "sampling are not scaled with the pair (absolute chord tolerances upstream of hob.turn_back), so its trend window "
-    "of 0.41 mm holds the rounding's curvature noise",
+    "-1.69 for -0.001 (+0.033 at 4 times), below the bound -1.22, read a crossing (307 um deep). Cause not located: f is "
+    "dimensionless and the trend's lengths scale (0.41 mm here); an absolute length upstream (the fit's or the rack's "
+    "sampling) is suspected",
 }
 
 
