@@ -29,7 +29,7 @@ import shapely
 
 from hob.cut_depth import cut_depths
 from hob.rack import DerivedRack
-from hob.turn_back import CROSSING_ANGLE, crossing_angle, turn_back
+from hob.turn_back import CROSSING_ANGLE, FAST, crossing_angle, turn_back
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
 
@@ -332,7 +332,10 @@ def undercut_reasons(
     point's scatter and the points' spacing, mm). A turn-back cut deeper than that but within ``tolerance``
     that reads a crossing (the 5/6 male from its female's points, 2 um of scatter: 2.4-7.5 um deep under
     a gate of 15.6-17 um, a real undercut by brute force) is then neither an undercut nor a touch but
-    undecided at this accuracy: named in ``notes`` and added to ``undecided``, not a reason.
+    undecided at this accuracy: named in ``notes`` and added to ``undecided``, not a reason. So is a deeper
+    turn-back of scattered points whose trend stays in the rack's fast part (f0 above
+    :data:`hob.turn_back.FAST`: the fit rang past the trend's window, which then measured neither a touch,
+    f0 near 0, nor a crossing).
     """
     if rack.side is None or rack.profile is None:
         return []
@@ -365,6 +368,21 @@ def undercut_reasons(
                         f"the {rack.side.value}'s envelope turns back at {where}, but the rack cuts only {1000 * depth:.2f} um "
                         f"into it there, within the {1000 * tolerance:.2f} um the points are known to: not judged an undercut."
                     )
+                continue
+            if scattered and onset.onset > FAST:
+                # the trend beyond the turn-back is the rack's fast part (its fit rings there past the window):
+                # it measured neither a touch (f0 near 0) nor a crossing (the 5/6 male, 2000 a lobe with 2 um of
+                # scatter: f0 +5.38 where the rack cuts 33.9 um deep, a real undercut by brute force)
+                sentence = (
+                    f"the {rack.side.value}'s envelope turns back at {where} and the rack cuts {1000 * depth:.1f} um into "
+                    f"the generated points, but the generation factor beyond the turn-back stays in the rack's fast part "
+                    f"(its trend {onset.onset:+.3f} at the step, above {FAST:g}) in the points' scatter: neither a touch nor "
+                    "a crossing is seen, undecided at this accuracy (denser points or less scatter tell it)."
+                )
+                if notes is not None:
+                    notes.append(sentence)
+                if undecided is not None:
+                    undecided.append(sentence)
                 continue
             angle = 0.0 if scattered else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
             if not onset.crossing and angle <= CROSSING_ANGLE:
