@@ -77,24 +77,6 @@ def view(pair: RotorPair, points: np.ndarray, rotor: str, mate: str):
     return rotors, rack, tol, verdict
 
 
-def aligned(truth: np.ndarray, profile: np.ndarray, teeth: int) -> np.ndarray:
-    """``truth`` turned about the centre onto the generated ``profile`` (a scan's datum angle turns the mate too)."""
-    from scipy.spatial import cKDTree
-
-    few = truth[:: max(1, len(truth) // 400)]
-    whole = np.vstack([_rot(few, np.full(len(few), 2 * np.pi * j / teeth)) for j in range(teeth)])
-    tree = cKDTree(profile)
-
-    def miss(t: float) -> float:
-        return float(np.median(tree.query(_rot(whole, np.full(len(whole), t)))[0]))
-
-    grid = np.linspace(-np.pi / teeth, np.pi / teeth, 361)
-    best = grid[int(np.argmin([miss(t) for t in grid]))]
-    fine = best + np.linspace(-grid[1] + grid[0], grid[1] - grid[0], 201)
-    best = fine[int(np.argmin([miss(t) for t in fine]))]
-    return _rot(truth, np.full(len(truth), best))
-
-
 def measure(label: str, pair, points, rotor, mate, truth_outline, truth_undercut: bool, datum: float = 0.0) -> None:
     rotors, rack, tol, verdict = view(pair, points, rotor, mate)
     runs = [(a, b) for a, b, back in stalls(rack, False, sharp_span=SHARP_SPAN) if back]
@@ -106,9 +88,8 @@ def measure(label: str, pair, points, rotor, mate, truth_outline, truth_undercut
     onset = turn_back(rack, a, b, rotors.accuracy, rotors.tangent_accuracy > 0)
     floor = depth_accuracy(rack, lo, depths, *local_scatter(rotors))
     teeth = pair.male_teeth if mate == "male" else pair.female_teeth
-    turned = aligned(truth_outline, rack.profile, teeth) if datum else truth_outline
-    near = hd.near_turn_back(rack, turned, teeth)
-    bf = float(hd.rack_penetration(rotors, mate, near).max())
+    # the brute force at datum 0 only: the truth is in the unturned frame (a turned scan's is judged, not checked)
+    bf = float(hd.rack_penetration(rotors, mate, hd.near_turn_back(rack, truth_outline, teeth)).max()) if not datum else np.nan
     ok = "undecided" if verdict.undercut_undecided and not verdict.undercut else "ok"
     ok = "WRONG" if verdict.undercut != truth_undercut and ok == "ok" else ok
     print(
