@@ -20,11 +20,13 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from hob.turn_back import scaled
 from rotorcad.geometry import distance_to_polyline
 from rotorcad.inverse_rack import DerivedRack
 
 MARGIN = 2.0
-"""mm of rack either side of a stall whose points are measured with it (:func:`cut_depth`)."""
+"""mm of rack either side of a stall whose points are measured with it (:func:`cut_depth`), set at the rack period
+:data:`hob.turn_back.REFERENCE_PERIOD` and not scaled (:func:`hob.turn_back.scaled`; default ``margin``)."""
 STEPS = 721
 """Positions of the rack per point, over three rack periods of roll centred on the point's contact."""
 
@@ -78,7 +80,7 @@ def _contact(profile: np.ndarray, rack_points: np.ndarray, tangents: np.ndarray,
     return best, offset, float(np.max(np.abs(shift - offset)))
 
 
-def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) -> tuple[int, np.ndarray]:
+def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float | None = None) -> tuple[int, np.ndarray]:
     """Return how far (mm) the rack reaches past each rotor point around ``rack.points[first:stop]``.
 
     Each point's relative path (module docstring) over three rack periods of roll around its
@@ -91,8 +93,9 @@ def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN)
         A rotor's rack in its own frame (``contract_frame`` False) with its ``profile`` points.
     first, stop : int
         The run of rack points (a stall of the generation, :func:`rotorcad.inverse_rack.stalls`).
-    margin : float, mm
-        The points generated within this rack length either side of the run are measured too.
+    margin : float, mm, optional
+        The points generated within this rack length either side of the run are measured too; default
+        :data:`MARGIN` (:func:`hob.turn_back.scaled`).
 
     Returns
     -------
@@ -103,6 +106,8 @@ def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN)
     """
     if rack.profile is None or stop <= first:
         return first, np.zeros(0)
+    if margin is None:
+        margin = scaled(MARGIN, rack.period)
     pts = rack.points
     radius = rack.pitch_radius
     # the frame's hand along the pitch line: the one in which the run's points reach their own rack points
@@ -138,7 +143,7 @@ def cut_depths(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN)
     return lo, depth.reshape(len(profile), STEPS).max(axis=1)
 
 
-def cut_depth(rack: DerivedRack, first: int, stop: int, margin: float = MARGIN) -> float:
+def cut_depth(rack: DerivedRack, first: int, stop: int, margin: float | None = None) -> float:
     """Return the largest of :func:`cut_depths` (mm): how deep the rack cuts into the run's rotor points."""
     return float(cut_depths(rack, first, stop, margin)[1].max(initial=0.0))
 

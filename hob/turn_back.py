@@ -44,13 +44,23 @@ import numpy as np
 from rotorcad.inverse_rack import DerivedRack, generation_factor
 from rotorcad.roles import Side
 
+REFERENCE_PERIOD = 57.12
+"""mm: the rack period of the pair the lengths below were set on (the 5/6 arc-flank pair of the tests' independent
+pairs, centre distance 100 mm; the N-rack sample's is 46.84, the rack-involute's 66.26). Scaling them with a
+pair's rack period p (times p / REFERENCE_PERIOD: a fit of a given number of points a lobe rounds a step over a
+length that grows with the lobe) was measured and is not done (:func:`scaled` returns them in mm): no reference
+is right for every case (benchmarks/bench_hob_turn_back.py, brute force): at this one the N-rack female from its
+male's 300 points a lobe with 2 um of scatter (seed 12, scan phase 0.37) reads f0 -4.10, a false crossing (0.41 /
+1.64 mm there; at 0.5 / 2 mm +1.77, undecided), while at the N rack's the 5/6 male from its female's 2000 points
+a lobe with 2 um reads +0.85, a false touch (+5.38 here: undecided). Unscaled, the 5/6 male from 300 exact points
+at a quarter size is not read undercut (tests/test_hob_datum.py KNOWN_SCALE)."""
 TRANSITION = 0.5
-"""mm of rack from the step (where the rack's fast part, f about 2, meets the turn-back) within which
-a rack derived from points rounds the step: its generation factor rings there. Measured: the N rack
+"""mm of rack (at :data:`REFERENCE_PERIOD`) from the step (where the rack's fast part, f about 2, meets the
+turn-back) within which a rack derived from points rounds the step: its generation factor rings there. Measured: the N rack
 from its male's points, 300 a lobe with 1 um of scatter, 0.45 mm; the rack-involute 0.1-0.3 mm."""
 TREND_LENGTH = 2.0
-"""mm of rack beyond :data:`TRANSITION` over which the generation factor's straight-line trend is fitted
-(the 5/6 arc-flank male's f rises from -0.23 to +0.4 over 2 mm, linearly to 0.01)."""
+"""mm of rack (at :data:`REFERENCE_PERIOD`) beyond :data:`TRANSITION` over which the generation factor's
+straight-line trend is fitted (the 5/6 arc-flank male's f rises from -0.23 to +0.4 over 2 mm, linearly to 0.01)."""
 CROSSING_ANGLE = np.radians(2.0)
 """rad: of exact points, the angle between the two generated parts a turn-back leaves above which it is a
 crossing (module docstring: touches 0.11-0.70 deg, crossings 3.5-4.7 deg measured)."""
@@ -60,6 +70,11 @@ FAST = 1.0
 (the N rack from its male's points, 500 a lobe with 1 um of scatter or 2000 with 2 um: up to 1.5 mm)."""
 FAST_SIDE = 5
 """Rack points either side of a turn-back whose largest generation factor tells the step's side."""
+
+
+def scaled(length: float, period: float) -> float:
+    """Return ``length`` (mm) for a rack of period ``period`` (mm): unscaled, as :data:`REFERENCE_PERIOD` says why."""
+    return length  # unscaled (measured below): times period / REFERENCE_PERIOD read a false crossing on the N rack
 
 
 @dataclass(frozen=True)
@@ -74,14 +89,19 @@ class TurnBack:
         How well the points know f0: C 8 e / L^2, dimensionless (0 for a design).
     crossing : bool
         Whether f0 is below minus ``accuracy``: an undercut, not a touch.
+    spread : float
+        Of scattered points (``scattered``), f0's standard error from the generation factor's scatter about
+        its trend (the straight-line fit's intercept, dimensionless); 0 for exact points. Stated, not used:
+        at 2000 points a lobe with 1 um of scatter the real 5/6 undercut's f0 lies within 2 of it of the bound.
     """
 
     onset: float
     accuracy: float
     crossing: bool
+    spread: float = 0.0
 
 
-def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float) -> TurnBack:
+def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scattered: bool = False) -> TurnBack:
     """Tell a crossing from a touch for the turn-back along ``rack.points[first:stop]`` (module docstring).
 
     Parameters
@@ -93,6 +113,9 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float) -> Turn
         (:func:`rotorcad.inverse_rack.stalls`).
     accuracy : float, mm
         How far the profile the rack was derived from may lie from the true one (0 for a design).
+    scattered : bool
+        Points with scatter: the generation factor scatters about its trend (the fit's curvature noise,
+        multiplied by C), and f0's standard error is stated (:attr:`TurnBack.spread`).
 
     Returns
     -------
@@ -113,21 +136,27 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float) -> Turn
         idx = (stop - 1 - np.arange(n)) % n
         dist = np.concatenate([[0.0], np.cumsum(ds[(idx[1:]) % n])])
     # the fit rounds the step and may ring back into the fast part beyond it: the trend starts after that
-    ringing = (dist <= TRANSITION + TREND_LENGTH) & (f[idx] > FAST)
-    start = TRANSITION + (float(dist[ringing].max()) if ringing.any() else 0.0)
-    sel = (dist >= start) & (dist <= start + TREND_LENGTH)
+    transition, length = scaled(TRANSITION, rack.period), scaled(TREND_LENGTH, rack.period)
+    ringing = (dist <= transition + length) & (f[idx] > FAST)
+    start = transition + (float(dist[ringing].max()) if ringing.any() else 0.0)
+    sel = (dist >= start) & (dist <= start + length)
     k = idx[sel]
     ok = np.isfinite(f[k]) & ~rack.corner_path[k]
     k, d = k[ok], dist[sel][ok]
     if len(k) < 3:
         return TurnBack(float(np.nanmin(f[first:stop])), 0.0, True)
-    _, onset = np.polyfit(d, f[k], 1)
+    if scattered and len(k) > 3:
+        (_, onset), cov = np.polyfit(d, f[k], 1, cov=True)
+        spread = float(np.sqrt(max(cov[1, 1], 0.0)))
+    else:
+        _, onset = np.polyfit(d, f[k], 1)
+        spread = 0.0
     y, tx = pts[k, 1], rack.tangents[k, 0]
     if rack.contract_frame and rack.side is Side.FEMALE:
         y = -y
     gain = float(np.median(y**2 / (rack.pitch_radius * np.abs(tx) ** 3)))  # df / dkappa
-    known = gain * 8.0 * accuracy / TREND_LENGTH**2
-    return TurnBack(float(onset), known, bool(onset < -known))
+    known = gain * 8.0 * accuracy / length**2
+    return TurnBack(float(onset), known, bool(onset < -known), spread)
 
 
 def crossing_angle(rack: DerivedRack, first: int, depth: np.ndarray, cut: float) -> float:
@@ -167,4 +196,14 @@ def crossing_angle(rack: DerivedRack, first: int, depth: np.ndarray, cut: float)
     return float(max(angles, default=0.0))  # of the tangent's line: a turn by pi is none
 
 
-__all__ = ["CROSSING_ANGLE", "FAST", "TRANSITION", "TREND_LENGTH", "TurnBack", "crossing_angle", "turn_back"]
+__all__ = [
+    "CROSSING_ANGLE",
+    "FAST",
+    "REFERENCE_PERIOD",
+    "TRANSITION",
+    "TREND_LENGTH",
+    "TurnBack",
+    "crossing_angle",
+    "scaled",
+    "turn_back",
+]

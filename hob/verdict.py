@@ -29,7 +29,7 @@ import shapely
 
 from hob.cut_depth import cut_depths
 from hob.rack import DerivedRack
-from hob.turn_back import CROSSING_ANGLE, crossing_angle, turn_back
+from hob.turn_back import CROSSING_ANGLE, FAST, crossing_angle, turn_back
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
 
@@ -81,6 +81,10 @@ class Verdict:
     undercut : bool
         Whether a rotor is undercut by its rack (:func:`undercut_reasons` found a stretch); a gear's
         undercut is :func:`hob.undercut.gear_undercut`'s (a hob makes it: no reason).
+    undercut_undecided : bool
+        Of a mate generated from scattered points: a turn-back that reads a crossing whose depth lies
+        between what the fit's local error can make and the gate ``undercut_accuracy``: it may be an
+        undercut the points cannot confirm (:func:`undercut_reasons`); not a reason, named in ``notes``.
     """
 
     hobbable: bool
@@ -91,6 +95,7 @@ class Verdict:
     tip_thickness: float
     notes: tuple[str, ...] = ()
     undercut: bool = False
+    undercut_undecided: bool = False
 
 
 def judge(
@@ -100,6 +105,8 @@ def judge(
     measured: bool | None = None,
     undercut_accuracy: float | None = None,
     tangent_accuracy: float = 0.0,
+    point_scatter: float = 0.0,
+    point_spacing: float = 0.0,
 ) -> Verdict:
     """Judge a derived rack in its normal section (module docstring).
 
@@ -127,6 +134,11 @@ def judge(
         Of points with scatter, how well their tangents are known
         (:attr:`rotorcad.screw_rotors.ScrewRotors.tangent_accuracy`); 0 for exact points, whose mate's
         turn-back is judged by its crossing angle too (:func:`undercut_reasons`).
+    point_scatter, point_spacing : float, mm
+        Of points with scatter, one point's standard deviation and the points' median spacing
+        (:attr:`rotorcad.screw_rotors.ScrewRotors.point_accuracy` / 2 and ``point_spacing``): the
+        depth of a mate's turn-back is known to the fit's error averaged over the stretch it removes
+        (:func:`depth_accuracy`); 0 where not known (no undecided state).
 
     Returns
     -------
@@ -243,8 +255,16 @@ def judge(
     fitted = accuracy > 0 if measured is None else measured
     depth_tolerance = max(FOLD_TOLERANCE, undercut_accuracy or 0.0) if accuracy > 0 and not fitted else None
     notes: list[str] = []
+    undecided: list[str] = []
     undercut = undercut_reasons(
-        rack, measured=fitted, tolerance=depth_tolerance, notes=notes, accuracy=accuracy, scattered=tangent_accuracy > 0
+        rack,
+        measured=fitted,
+        tolerance=depth_tolerance,
+        notes=notes,
+        accuracy=accuracy,
+        scattered=tangent_accuracy > 0,
+        local=(point_scatter, point_spacing),
+        undecided=undecided,
     )
     reasons += undercut
     thickness = _tip_thickness(pts[cutting], rack.normal_period, fold)
@@ -253,7 +273,7 @@ def judge(
             f"the hob tooth is {thickness:.3f} mm thick near its tip (5 % of the depth above it), below the minimum "
             f"{lim.min_tip_thickness:g} mm."
         )
-    return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness, tuple(notes), bool(undercut))
+    return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness, tuple(notes), bool(undercut), bool(undecided))
 
 
 def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: float, kink: float) -> float:
@@ -282,6 +302,8 @@ def undercut_reasons(
     notes: list[str] | None = None,
     accuracy: float = 0.0,
     scattered: bool = False,
+    local: tuple[float, float] = (0.0, 0.0),
+    undecided: list[str] | None = None,
 ) -> list[str]:
     """Return the undercut of a rotor by its rack, one sentence per stretch (none for a gear's rack).
 
@@ -303,6 +325,17 @@ def undercut_reasons(
     starts at -0.06 to -0.14, or of exact points its two sides meet at 3.5-4.7 deg). A shallow stretch or
     a touch goes to ``notes`` instead (``accuracy``, mm, the profile's: the touch's bound; ``scattered``:
     points with scatter, whose crossing angle is not known).
+
+    Of scattered points the gate ``tolerance`` (twice the profile's accuracy, a bound on the largest error
+    of one point over the lobe) is far above how well the depth itself is known: the envelope averages
+    the fit over the stretch it removes, whose error there is :func:`depth_accuracy` (``local``: one
+    point's scatter and the points' spacing, mm). A turn-back cut deeper than that but within ``tolerance``
+    that reads a crossing (the 5/6 male from its female's points, 2 um of scatter: 2.4-7.5 um deep under
+    a gate of 15.6-17 um, a real undercut by brute force) is then neither an undercut nor a touch but
+    undecided at this accuracy: named in ``notes`` and added to ``undecided``, not a reason. So is a deeper
+    turn-back of scattered points whose trend stays in the rack's fast part (f0 above
+    :data:`hob.turn_back.FAST`: the fit rang past the trend's window, which then measured neither a touch,
+    f0 near 0, nor a crossing).
     """
     if rack.side is None or rack.profile is None:
         return []
@@ -315,14 +348,42 @@ def undercut_reasons(
         if back and tolerance is not None:
             lo, depths = cut_depths(rack, a, b)
             depth = float(depths.max(initial=0.0))
+            onset = turn_back(rack, a, b, accuracy)
             if depth <= tolerance:
+                floor = depth_accuracy(rack, lo, depths, *local) if scattered else np.inf
+                if depth > floor and onset.crossing:
+                    sentence = (
+                        f"the {rack.side.value}'s envelope turns back at {where} and the rack cuts {1000 * depth:.2f} um "
+                        f"into it there, more than the {1000 * floor:.2f} um the fit's error over that stretch can make "
+                        f"and as a crossing (an undercut's), but within the {1000 * tolerance:.2f} um one point is known "
+                        "to: undecided at this accuracy (denser points or less scatter tell it)."
+                    )
+                    if notes is not None:
+                        notes.append(sentence)
+                    if undecided is not None:
+                        undecided.append(sentence)
+                    continue
                 if notes is not None:
                     notes.append(
                         f"the {rack.side.value}'s envelope turns back at {where}, but the rack cuts only {1000 * depth:.2f} um "
                         f"into it there, within the {1000 * tolerance:.2f} um the points are known to: not judged an undercut."
                     )
                 continue
-            onset = turn_back(rack, a, b, accuracy)
+            if scattered and onset.onset > FAST:
+                # the trend beyond the turn-back is the rack's fast part (its fit rings there past the window):
+                # it measured neither a touch (f0 near 0) nor a crossing (the 5/6 male, 2000 a lobe with 2 um of
+                # scatter: f0 +5.38 where the rack cuts 33.9 um deep, a real undercut by brute force)
+                sentence = (
+                    f"the {rack.side.value}'s envelope turns back at {where} and the rack cuts {1000 * depth:.1f} um into "
+                    f"the generated points, but the generation factor beyond the turn-back stays in the rack's fast part "
+                    f"(its trend {onset.onset:+.3f} at the step, above {FAST:g}) in the points' scatter: neither a touch nor "
+                    "a crossing is seen, undecided at this accuracy (denser points or less scatter tell it)."
+                )
+                if notes is not None:
+                    notes.append(sentence)
+                if undecided is not None:
+                    undecided.append(sentence)
+                continue
             angle = 0.0 if scattered else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
             if not onset.crossing and angle <= CROSSING_ANGLE:
                 if notes is not None:
@@ -343,6 +404,46 @@ def undercut_reasons(
             "so two generated parts of its flank cross and a hob makes only their outer envelope."
         )
     return out
+
+
+def depth_accuracy(rack: DerivedRack, first: int, depths: np.ndarray, scatter: float, spacing: float) -> float:
+    """Return how deep (mm) the fit's error alone may make a mate's turn-back, 95 %: 2 sigma sqrt(2 / m).
+
+    The depth is the rack's reach past the generated points over the stretch it removes (``depths`` > 0,
+    :func:`hob.cut_depth.cut_depths`), both from the same fit of the given points: its error is the fit's
+    error averaged over that stretch, of m = its length / ``spacing`` points (a least-squares mean of m
+    points of scatter ``scatter`` errs by sigma / sqrt(m); two such, the rack and the generated point:
+    sqrt(2)). Of the rack's points along the stretch the length is taken; inf where not known.
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        The mate's rack.
+    first : int
+        The rack point of ``depths[0]``.
+    depths : (m,) float array, mm
+    scatter, spacing : float, mm
+        One given point's standard deviation and the given points' median spacing.
+    """
+    if scatter <= 0 or spacing <= 0 or not np.any(depths > 0):
+        return np.inf
+    k = first + np.flatnonzero(depths > 0)
+    pts = rack.points[np.arange(k.min(), k.max() + 1)]
+    length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
+    m = max(length / spacing, 1.0)
+    return max(FOLD_TOLERANCE, 2.0 * scatter * np.sqrt(2.0 / m))
+
+
+def local_scatter(rotors: object) -> tuple[float, float]:
+    """Return one given point's scatter sigma and the points' median spacing (mm) of a pair from scattered points.
+
+    (``point_accuracy`` / 2, ``point_spacing``) of :class:`rotorcad.screw_rotors.ScrewRotors` (one point's accuracy
+    is 2 sigma), for :func:`judge`'s ``point_scatter`` and ``point_spacing``; (0, 0) for exact points or a design.
+    """
+    if not getattr(rotors, "tangent_accuracy", 0.0):
+        return 0.0, 0.0
+    point = getattr(rotors, "point_accuracy", None) or 0.0
+    return 0.5 * float(point), float(getattr(rotors, "point_spacing", None) or 0.0)
 
 
 def undercut_tolerance(rotors: object) -> float:

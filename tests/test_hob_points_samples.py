@@ -36,7 +36,7 @@ from scipy.spatial import cKDTree
 from hob.angle_accuracy import smallest_angle_accuracy
 from hob.rack import rack_deviation, rotor_rack
 from hob.rack_accuracy import rack_accuracy
-from hob.verdict import judge, undercut_tolerance
+from hob.verdict import judge, local_scatter, undercut_tolerance
 from rotorcad.design import rotor_design
 from rotorcad.envelope import rack_frame
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, contact_of_rack_points
@@ -102,6 +102,8 @@ def from_points(name: str, rotor: str, form: str, seed: int = SEED):
             measured=side == rotor,
             undercut_accuracy=tolerance,
             tangent_accuracy=rotors.tangent_accuracy,
+            point_scatter=local_scatter(rotors)[0],  # as `rotorcad hob`
+            point_spacing=local_scatter(rotors)[1],
         )
         for side, rack in racks.items()
     }

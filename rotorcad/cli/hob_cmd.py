@@ -13,7 +13,7 @@ from exports.csv_points import write_points
 from exports.dxf import Drawing, write_dxf
 from hob.rack import DerivedRack, gear_rack, hob_tooth, rack_deviation, rotor_rack
 from hob.undercut import gear_undercut
-from hob.verdict import FOLD_TOLERANCE, HobLimits, judge, undercut_tolerance
+from hob.verdict import FOLD_TOLERANCE, HobLimits, judge, local_scatter, undercut_tolerance
 from rotorcad.cli.common import InputError, Outputs, emit_json, end_face, load_toml, print_table
 from rotorcad.cli.gear import build_gear, gear_options, merge_gear_params
 from rotorcad.cli.hob_worm import add_worm_steps, body_hands, rack_datum, worm_options, worm_summaries, worms_of
@@ -96,6 +96,7 @@ def hob(design: Path | None, **opts: Any) -> None:
         undercut_tolerance(body),
         body if rotors is None else None,
         tangent_accuracy=getattr(body, "tangent_accuracy", 0.0) or 0.0,
+        local=local_scatter(body),
     )
     result["smallest_flank_angle_accuracy_deg"] = _angle_accuracy(body, racks, result["normal_pressure_angle_min_deg"])
     result["rack_accuracy"] = _rack_accuracy(body, racks)
@@ -151,6 +152,7 @@ def judge_racks(
     undercut_accuracy: float = 0.0,
     gear: InvoluteGear | None = None,
     tangent_accuracy: float = 0.0,
+    local: tuple[float, float] = (0.0, 0.0),
 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """Judge each rack and collect the keys of ``rotorcad hob --json`` (``files`` aside).
 
@@ -180,6 +182,9 @@ def judge_racks(
     tangent_accuracy : float, rad
         Of points with scatter, how well their tangents are known (0 for exact points and designs):
         :func:`hob.verdict.judge` tells a touch from a crossing by the generation factor alone then.
+    local : (float, float), mm
+        Of points with scatter, one point's scatter and the points' spacing (:func:`hob.verdict.local_scatter`):
+        how well a mate's undercut depth is known, below which a crossing is undecided.
 
     Returns
     -------
@@ -189,12 +194,14 @@ def judge_racks(
         ``hobbable``, ``reasons``, ``rack_deviation`` (mm), ``normal_pressure_angle_min_deg``,
         ``accuracy`` (mm), ``undercut_accuracy`` (mm), ``smallest_flank_angle_accuracy_deg`` (0 here),
         ``notes`` (what was judged within the accuracy), ``undercut`` (bool: a rotor undercut by its
-        rack, or the gear's undercut), for a gear ``undercut_radius`` (mm) and ``undercut_limit_shift``,
+        rack, or the gear's undercut), ``undercut_undecided`` (bool: a mate's turn-back the points
+        cannot decide, :func:`hob.verdict.undercut_reasons`), for a gear ``undercut_radius`` (mm) and ``undercut_limit_shift``,
         and per rack its figures (radii and tip thickness in mm, angles in deg).
     """
     fitted = {name: None if measured is None else measured.get(name, False) for name in racks}
     verdicts = {
-        name: judge(rack, limits, accuracy, fitted[name], undercut_accuracy, tangent_accuracy) for name, rack in racks.items()
+        name: judge(rack, limits, accuracy, fitted[name], undercut_accuracy, tangent_accuracy, *local)
+        for name, rack in racks.items()
     }
     result: dict[str, Any] = {
         "hobbable": all(v.hobbable for v in verdicts.values()),
@@ -209,6 +216,7 @@ def judge_racks(
         "racks": {name: _rack_figures(v, racks[name]) for name, v in verdicts.items()},
     }
     result["undercut"] = any(v.undercut for v in verdicts.values())
+    result["undercut_undecided"] = any(v.undercut_undecided for v in verdicts.values())
     if gear is not None:  # a hob makes a gear's undercut: a note and its figures, not a reason
         cut = gear_undercut(gear)
         result.update(undercut=cut.undercut, undercut_radius=cut.radius, undercut_limit_shift=cut.limit_shift)
