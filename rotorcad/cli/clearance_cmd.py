@@ -146,8 +146,8 @@ def clearance(**opts: Any) -> None:
             "male angle [deg, rotation to go until the nearest male tip's middle reaches O1O2, within +-180/z1] and z [mm] of",
             "the contact (0: first inside both bores), contact point (fixed frame), female and male profile points there [mm,",
             "own frames], in_contact 1 in both bores and length; zone 1 contact, 2 never touches (root below a sharp tip),",
-            "3 a sharp female corner's path, 4 not resolved, 0 outside; gap [mm] of 2, 3; flank 1 driving, 2 sealing, 3/4 lands;",
-            "accuracy [mm]: the row's stated accuracy (the scatter bound, a fit's bias at a rounding or a rack's fold it reads)",
+            "3 a sharp female corner's path, 4 not resolved, 0 outside; gap [mm] of 2, 3; flank 1 driving, 2 sealing, 3/4 lands;"
+            " accuracy [mm]: the row's stated accuracy",
         ]
         out.add(opts["csv_path"], lambda p: write_points(p, rows[ok], notes, header=",".join(dist)), "--csv")
     result["files"] = [str(p) for p in out.write()]

@@ -58,7 +58,10 @@ def rack_folds(points: np.ndarray, tangents: np.ndarray, skip: np.ndarray, piece
     turned back; two pieces' ends overlapping at a join are no fold, nor points flagged ``skip``, a corner's
     path). Its width is the largest distance of its points (from the cusp where it starts to the one where
     it ends) from the legs before and after it, each three times as long as the fold (shapely's
-    point-to-polyline distance); it reaches over those legs.
+    point-to-polyline distance). It reaches over itself and as many points again on either side (the
+    legs that overlap it: a swallowtail's three legs span the same stretch of rack); the N-rack sample's
+    rows off by a fold of the male rack read it there, and the 5/6 independent pair's rows beside its
+    male's undercut fold, which are not off, lie beyond (``benchmarks/bench_clearance_accuracy.py``).
 
     Parameters
     ----------
@@ -72,7 +75,7 @@ def rack_folds(points: np.ndarray, tangents: np.ndarray, skip: np.ndarray, piece
     Returns
     -------
     list of (int, int, float)
-        Each fold's first and past-the-last point index of its reach (its legs included) and its width (mm).
+        Each fold's first and past-the-last point index of its reach and its width (mm).
     """
     pts = np.asarray(points, dtype=float)
     if len(pts) < 4:
@@ -83,12 +86,11 @@ def rack_folds(points: np.ndarray, tangents: np.ndarray, skip: np.ndarray, piece
     out = []
     for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True):
         n = b - a
-        lo, hi = max(a - 3 * n - 5, 0), min(b + 3 * n + 6, len(pts))
         middle, width = shapely.points(pts[a : b + 1]), 0.0
-        for leg in (pts[lo : a + 1], pts[b:hi]):
+        for leg in (pts[max(a - 3 * n - 5, 0) : a + 1], pts[b : b + 3 * n + 6]):
             if len(leg) > 1:
                 width = max(width, float(shapely.distance(middle, shapely.LineString(leg)).max()))
-        out.append((int(lo), int(hi), width))
+        out.append((int(max(a - n - 1, 0)), int(min(b + n + 2, len(pts))), width))
     return out
 
 
