@@ -142,7 +142,8 @@ def row_accuracy(mc: MeshingClearance, accuracy: float) -> Array:
     The larger of the scatter bound ``accuracy`` and the rounding bias of either fitted rotor near the
     row (at the female's point that generates it and at the male's point its normal meets), plus the
     widest fold of either rack it reads (:func:`fold_widths`). ``accuracy`` where the fits have no bias:
-    of points without scatter (a drawing, exact curves: interpolating fits) no rounding term.
+    of points without scatter (interpolating fits) no rounding term; of exact curves (no points, spacing
+    0) neither term.
 
     Parameters
     ----------
@@ -166,6 +167,8 @@ def row_accuracy(mc: MeshingClearance, accuracy: float) -> Array:
             male = np.where((segment >= 0)[:, None], profile[np.maximum(segment, 0)], np.nan)
             kappa = np.maximum(kappa, largest_curvature_near(male, mc.male_pieces, mc.pair.male_teeth, mc.spacing))
         bias = rounding_bias(mc.scatter, mc.spacing, kappa)
+    if mc.spacing <= 0:  # exact curves: no fit, and a fold of their racks is the geometry's own
+        return np.full(n, accuracy)
     return np.maximum(accuracy, bias) + fold_widths(mc)
 
 
