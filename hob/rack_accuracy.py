@@ -39,11 +39,11 @@ fold. Of exact points (no scatter) it is ``accuracy``: an interpolating fit has 
 from __future__ import annotations
 
 import numpy as np
+import shapely
 
 from rotorcad.curves import Curve, Spline
 from rotorcad.envelope import Generated
 from rotorcad.inverse_rack import DerivedRack
-from rotorcad.measured.fit_bias import ROUNDING_BIAS, rack_folds, rounding_bias
 from rotorcad.measured.pairs import max_factor
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -53,6 +53,12 @@ CORNER_DEG = 30.0
 JOIN = 0.05
 """mm: two fitted pieces whose ends lie within this meet (the fits of scattered points leave ends apart by
 the join gap :data:`rotorcad.inverse_rack.MEASURED_JOIN_GAP` at most)."""
+
+ROUNDING_BIAS = 3.0
+"""The largest error of a smoothing fit (n sigma^2) near a rounding, in units of sigma (kappa h^2 /
+sigma)^(1/5): ``benchmarks/bench_rounding_bias.py`` (32 seeds on each of 39 synthetic roundings) reads a
+median of 1.47, a 95 % quantile of 2.26 and a 98.75 % one (the largest of a lobe's four roundings with
+95 % confidence) of 2.65; 3.0 leaves a margin for roundings that are not circles."""
 
 
 def _splines(curve: Curve) -> list[Spline]:
@@ -107,6 +113,27 @@ def largest_curvature(rotors: ScrewRotors, spacing: float) -> float:
     return largest
 
 
+def rounding_bias(sigma: float, spacing: float, curvature: float) -> float:
+    """Return the bound (mm) on a smoothing fit's error at a rounding: ROUNDING_BIAS sigma (kappa h^2 / sigma)^(1/5).
+
+    Parameters
+    ----------
+    sigma : float, mm
+        The points' scatter (0: exact points, no bias).
+    spacing : float, mm
+        The points' spacing h.
+    curvature : float, 1/mm
+        The rounding's curvature step kappa.
+
+    Returns
+    -------
+    float, mm
+    """
+    if sigma <= 0 or spacing <= 0 or curvature <= 0:
+        return 0.0
+    return ROUNDING_BIAS * sigma * (curvature * spacing**2 / sigma) ** 0.2
+
+
 def widest_fold(rack: DerivedRack) -> float:
     """Return the widest fold of a rack off its corner paths (mm): how far a leg run backwards lies off its neighbours.
 
@@ -124,8 +151,20 @@ def widest_fold(rack: DerivedRack) -> float:
     -------
     float, mm
     """
-    folds = rack_folds(rack.points, rack.tangents, rack.corner_path, rack.piece_index)
-    return max((width for _, _, width in folds), default=0.0)
+    pts, tan = rack.points, rack.tangents
+    if len(pts) < 4:
+        return 0.0
+    back = np.einsum("ij,ij->i", np.diff(pts, axis=0), tan[:-1]) < 0.0
+    back &= ~rack.corner_path[:-1] & ~rack.corner_path[1:] & (np.diff(rack.piece_index) == 0)  # not across a join
+    edges = np.diff(np.concatenate([[0], back.astype(int), [0]]))
+    widest = 0.0
+    for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True):
+        n = b - a
+        middle = pts[a : b + 1]
+        for leg in (pts[max(a - 3 * n - 5, 0) : a + 1], pts[b : b + 3 * n + 6]):
+            if len(leg) > 1:
+                widest = max(widest, float(shapely.distance(shapely.points(middle), shapely.LineString(leg)).max()))
+    return widest
 
 
 def _sources(rotors: ScrewRotors) -> list[Curve]:

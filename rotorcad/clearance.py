@@ -36,7 +36,6 @@ from functools import cached_property
 import numpy as np
 
 from rotorcad.clearance_accuracy import ACCURACY_FLOOR, estimated_accuracy, pair_quality, points_quality, trends
-from rotorcad.clearance_bias import row_accuracy
 from rotorcad.clearance_flanks import flank_codes, flank_figures, point_weights
 from rotorcad.clearance_normals import normal_clearance, normal_crossing
 from rotorcad.clearance_phase import alignment_curve, complementary_shift, search_steps
@@ -519,18 +518,7 @@ class MeshingClearance:
 
     @property
     def accuracy(self) -> float:
-        """The stated accuracy of the contact-zone clearance, mm: the largest :attr:`row_accuracy` on it."""
-        on = self.contact_zone
-        return float(self.row_accuracy[on].max()) if on.any() else self.scatter_accuracy
-
-    @cached_property
-    def row_accuracy(self) -> Array:
-        """The stated accuracy of each datum point's clearance, (n,) float, mm (:func:`rotorcad.clearance_bias.row_accuracy`)."""
-        return row_accuracy(self, self.scatter_accuracy)
-
-    @property
-    def scatter_accuracy(self) -> float:
-        """The scatter bound of the contact-zone clearance, mm (:func:`estimated_accuracy`), the fits' bias left out.
+        """The stated accuracy of the contact-zone clearance, mm (:func:`estimated_accuracy`).
 
         A bound on the largest error over the contact zone with 95 % confidence, for as many
         independent points as the contact zone's length on the female rack over the point spacing.
@@ -553,7 +541,7 @@ class MeshingClearance:
         its edge and its fits' crossing, and its path, and the mate's closest approach to it, move by
         as much (:func:`rotorcad.measured.fit.corner_uncertainty`).
         """
-        return float(self.scatter_accuracy + self.corner_error)
+        return float(self.accuracy + self.corner_error)
 
     def _refuse_a_lead_past_the_contact_zone(self) -> None:
         """Refuse a lead so long that the contact zone of the bores falls outside the rotor length.
@@ -678,7 +666,7 @@ class MeshingClearance:
         from rotorcad.meshing import tip_on_centre_line  # meshing imports the engine, not this module
 
         ring, pair = self._male_outline, self.pair
-        tol = max(1e-4 * pair.male_addendum, self.scatter_accuracy)
+        tol = max(1e-4 * pair.male_addendum, self.accuracy)
         zero = tip_on_centre_line(ring, pair.male_teeth, float(np.hypot(*ring.T).max()), tol, angle[self._use])
         half = 180.0 / pair.male_teeth
         return (np.degrees(zero - angle) + half) % (2 * half) - half
@@ -734,7 +722,6 @@ class MeshingClearance:
             "zone": self.zones.astype(float),
             "gap": self.gap,
             "flank": self.flanks.astype(float),
-            "accuracy": self.row_accuracy,
         }
 
     def summary(self) -> dict[str, float]:

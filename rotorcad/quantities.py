@@ -349,7 +349,6 @@ CLEARANCE_CSV_COLUMNS: dict[str, str] = {
     "zone": "1",
     "gap": "mm",
     "flank": "1",
-    "accuracy": "mm",
 }
 """Units of the columns of ``rotorcad clearance --csv`` (rotorcad.clearance.MeshingClearance.distribution)."""
 

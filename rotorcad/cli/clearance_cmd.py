@@ -91,8 +91,7 @@ DEFAULT_LEAD, DEFAULT_LENGTH = 300.0, 190.0  # mm: taken when --lead / --length 
     "csv_path",
     type=click.Path(path_type=Path, dir_okay=False),
     help="Write the clearance distribution: datum (female) normal rack x, y, clearance [mm], male angle [deg], z, "
-    "contact point, female and male profile points [mm], in_contact, zone, gap [mm], flank (1 driving, 2 sealing, 3/4 lands), "
-    "accuracy [mm, the row's stated accuracy].",
+    "contact point, female and male profile points [mm], in_contact, zone, gap [mm], flank (1 driving, 2 sealing, 3/4 lands).",
 )
 @click.option("--quiet", is_flag=True, help="No progress output.")
 def clearance(**opts: Any) -> None:
@@ -146,8 +145,7 @@ def clearance(**opts: Any) -> None:
             "male angle [deg, rotation to go until the nearest male tip's middle reaches O1O2, within +-180/z1] and z [mm] of",
             "the contact (0: first inside both bores), contact point (fixed frame), female and male profile points there [mm,",
             "own frames], in_contact 1 in both bores and length; zone 1 contact, 2 never touches (root below a sharp tip),",
-            "3 a sharp female corner's path, 4 not resolved, 0 outside; gap [mm] of 2, 3; flank 1 driving, 2 sealing, 3/4 lands;"
-            " accuracy [mm]: the row's stated accuracy",
+            "3 a sharp female corner's path, 4 not resolved, 0 outside; gap [mm] of 2, 3; flank 1 driving, 2 sealing, 3/4 lands",
         ]
         out.add(opts["csv_path"], lambda p: write_points(p, rows[ok], notes, header=",".join(dist)), "--csv")
     result["files"] = [str(p) for p in out.write()]
