@@ -295,6 +295,13 @@ def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: fl
     return turn if abs(turn) > kink else 0.0
 
 
+def _say(sentence: str, *lists: list[str] | None) -> None:
+    """Append ``sentence`` to each of ``lists`` that is given (the notes, the undecided places)."""
+    for out in lists:
+        if out is not None:
+            out.append(sentence)
+
+
 def undercut_reasons(
     rack: DerivedRack,
     measured: bool = False,
@@ -358,10 +365,7 @@ def undercut_reasons(
                         f"and as a crossing (an undercut's), but within the {1000 * tolerance:.2f} um one point is known "
                         "to: undecided at this accuracy (denser points or less scatter tell it)."
                     )
-                    if notes is not None:
-                        notes.append(sentence)
-                    if undecided is not None:
-                        undecided.append(sentence)
+                    _say(sentence, notes, undecided)
                     continue
                 if notes is not None:
                     notes.append(
@@ -379,10 +383,7 @@ def undercut_reasons(
                     f"(its trend {onset.onset:+.3f} at the step, above {FAST:g}) in the points' scatter: neither a touch nor "
                     "a crossing is seen, undecided at this accuracy (denser points or less scatter tell it)."
                 )
-                if notes is not None:
-                    notes.append(sentence)
-                if undecided is not None:
-                    undecided.append(sentence)
+                _say(sentence, notes, undecided)
                 continue
             angle = 0.0 if scattered else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
             if not onset.crossing and angle <= CROSSING_ANGLE:

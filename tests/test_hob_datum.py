@@ -48,6 +48,21 @@ DATUM_ANGLES = [0.0, 7.0, 17.3, -17.3, 31.0, 66.0]  # deg; +-17.3 read "female u
 
 
 @functools.cache
+def judged(rotors, side: str, measured: bool):
+    """`rotorcad hob`'s verdict on the rack of ``side`` of a pair from points, judged with the arguments
+    `rotorcad.cli.hob_cmd.hob` gives (``measured``: the rack is of the rotor whose points were given)."""
+    scatter, spacing = local_scatter(rotors)
+    return judge(
+        rotor_rack(rotors, side, **MEASURED),
+        accuracy=rotors.accuracy,
+        measured=measured,
+        undercut_accuracy=undercut_tolerance(rotors),
+        tangent_accuracy=rotors.tangent_accuracy,
+        point_scatter=scatter,
+        point_spacing=spacing,
+    )
+
+
 def fine_outline(name: str, rotor: str) -> np.ndarray:
     """The design's whole outline of ``rotor`` at 0.1 um chords (own frame, counter-clockwise)."""
     _, rotors = design(name)
@@ -98,19 +113,7 @@ def user_scan_hob(name: str, datum_deg: float, per_lobe: int = 300, sigma: float
     c, s = np.cos(np.radians(datum_deg)), np.sin(np.radians(datum_deg))
     q = np.round(q @ np.array([[c, s], [-s, c]]), 6)
     rotors = with_exact_cusp_paths(pair_from_rotor_points(spec.pair, q, "male"))
-    tolerance = undercut_tolerance(rotors)
-    verdicts = {
-        side: judge(
-            rotor_rack(rotors, side, **MEASURED),
-            accuracy=rotors.accuracy,
-            measured=side == "male",
-            undercut_accuracy=tolerance,
-            tangent_accuracy=rotors.tangent_accuracy,
-            point_scatter=local_scatter(rotors)[0],
-            point_spacing=local_scatter(rotors)[1],
-        )
-        for side in ("male", "female")
-    }
+    verdicts = {side: judged(rotors, side, side == "male") for side in ("male", "female")}
     return verdicts, rotors, q
 
 
@@ -120,19 +123,7 @@ def hob_of(name: str, rotor: str, per_lobe: int, sigma: float = 0.0, seed: int =
     spec, _ = design(name)
     points = cmm_points(name, rotor, per_lobe, sigma, seed, datum_deg, phase)
     rotors = with_exact_cusp_paths(pair_from_rotor_points(spec.pair, points, rotor))
-    tolerance = undercut_tolerance(rotors)
-    verdicts = {
-        side: judge(
-            rotor_rack(rotors, side, **MEASURED),
-            accuracy=rotors.accuracy,
-            measured=side == rotor,
-            undercut_accuracy=tolerance,
-            tangent_accuracy=rotors.tangent_accuracy,
-            point_scatter=local_scatter(rotors)[0],
-            point_spacing=local_scatter(rotors)[1],
-        )
-        for side in ("male", "female")
-    }
+    verdicts = {side: judged(rotors, side, side == rotor) for side in ("male", "female")}
     return verdicts, rotors
 
 
@@ -254,19 +245,7 @@ def undercut_56_pair(form: str, datum_deg: float = 0.0):
 def undercut_56_view(form: str, datum_deg: float = 0.0):
     """The 5/6 arc-flank pair from its female's points, judged as `rotorcad hob` does."""
     rotors = undercut_56_pair(form, datum_deg)
-    tolerance = undercut_tolerance(rotors)
-    return {
-        side: judge(
-            rotor_rack(rotors, side, **MEASURED),
-            accuracy=rotors.accuracy,
-            measured=side == "female",
-            undercut_accuracy=tolerance,
-            tangent_accuracy=rotors.tangent_accuracy,
-            point_scatter=local_scatter(rotors)[0],
-            point_spacing=local_scatter(rotors)[1],
-        )
-        for side in ("male", "female")
-    }
+    return {side: judged(rotors, side, side == "female") for side in ("male", "female")}
 
 
 @pytest.mark.parametrize("datum", [0.0, 17.3, -17.3, 66.0])
@@ -360,15 +339,7 @@ def test_a_turn_back_at_a_slip_singularity_removes_no_material(case):
     # tell. Now a touch (hob.turn_back), named in the notes, not an undercut.
     name, rotors = singular_cases()[case]()
     rack = rotor_rack(rotors, "female", **MEASURED)
-    verdict = judge(
-        rack,
-        accuracy=rotors.accuracy,
-        measured=False,  # the mate, generated from the male's points, as `rotorcad hob --male-points` judges it
-        undercut_accuracy=undercut_tolerance(rotors),
-        tangent_accuracy=rotors.tangent_accuracy,
-        point_scatter=local_scatter(rotors)[0],
-        point_spacing=local_scatter(rotors)[1],
-    )
+    verdict = judged(rotors, "female", False)  # the mate, generated from the male's points, as `rotorcad hob --male-points`
     assert not verdict.undercut, verdict.reasons
     assert any("only touches" in n for n in verdict.notes), verdict.notes
     # the depth rule's misreading: deeper than the tolerance it judged by
@@ -529,15 +500,7 @@ def undercut_56_scattered(per_lobe: int):
     length = float(np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T).sum())
     q = np.round(resample(ring, length / rp.female_teeth / per_lobe, noise=2e-3, seed=11), 6)
     rotors = with_exact_cusp_paths(pair_from_rotor_points(rotor_pair("5/6"), q, "female"))
-    male = judge(
-        rotor_rack(rotors, "male", **MEASURED),
-        accuracy=rotors.accuracy,
-        measured=False,
-        undercut_accuracy=undercut_tolerance(rotors),
-        tangent_accuracy=rotors.tangent_accuracy,
-        point_scatter=local_scatter(rotors)[0],
-        point_spacing=local_scatter(rotors)[1],
-    )
+    male = judged(rotors, "male", False)
     return rotors, male
 
 
@@ -595,15 +558,7 @@ def scaled_case(k: float, case: str):
     else:
         pair, q, rotor, mate = design("n_rack_5_6")[0].pair, outline("n_rack_5_6", "male", "scatter"), "male", "female"
     rotors = with_exact_cusp_paths(pair_from_rotor_points(scaled_pair(pair, k), k * q, rotor))
-    return judge(
-        rotor_rack(rotors, mate, **MEASURED),
-        accuracy=rotors.accuracy,
-        measured=False,
-        undercut_accuracy=undercut_tolerance(rotors),
-        tangent_accuracy=rotors.tangent_accuracy,
-        point_scatter=local_scatter(rotors)[0],
-        point_spacing=local_scatter(rotors)[1],
-    )
+    return judged(rotors, mate, False)
 
 
 @pytest.mark.parametrize(
