@@ -288,16 +288,25 @@ def _longest_line(
 
 
 def _flank_at_corner(pieces: list[MeshlinePiece], point: np.ndarray, limit: float) -> tuple[MeshlinePiece, bool, int] | None:
-    """Return the flank's piece that ends at a corner's path near ``point``, whether it starts there, and the path's circle."""
+    """Return the flank's piece that ends at a corner's path near ``point``, whether it starts there, and the path's circle.
+
+    Of the flank ends within ``limit`` of ``point`` that a corner path's end lies within ``limit`` of, the one whose
+    hand-over lies nearest ``point``: the least sum of the end's distance from ``point`` and its gap to the path. A
+    flank whose both ends lie within reach hands over at the end by the cusp, not at the one whose path it joins
+    more closely: the narrow-tip female at 80 exact points a lobe left 0.85 mm between the male tip corner's path and
+    the sealing flank's end by the cusp, none at the female tip corner's end 11.5 mm from it, and the line cut from
+    there read 47.7 mm² for the design's 2.778 (+1618 %), resolved.
+    """
     best = None
     for flank in (p for p in pieces if p.kind is PieceRole.CURVE and len(p.points) >= 2):
         for start, end in ((True, flank.points[0]), (False, flank.points[-1])):
-            if np.hypot(*(end - point)) > limit:
+            away = float(np.hypot(*(end - point)))
+            if away > limit:
                 continue
             for path in (p for p in pieces if p.kind in CORNER_PATHS and len(p.points)):
                 gap = float(np.min(np.hypot(*(path.points[[0, -1]] - end).T)))
-                if gap <= limit and (best is None or gap < best[0]):
-                    best = (gap, flank, start, 0 if path.kind is PieceRole.MALE_CORNER_PATH else 1)
+                if gap <= limit and (best is None or away + gap < best[0]):
+                    best = (away + gap, flank, start, 0 if path.kind is PieceRole.MALE_CORNER_PATH else 1)
     return None if best is None else best[1:]
 
 
