@@ -50,8 +50,11 @@ def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accura
         j = _next_beyond(pieces, ys, i, off, near)
         if j is None:
             continue
-        out = _side(y_out[::-1], np.concatenate([[0.0], np.cumsum(piece.steps[::-1])]), off, near)
-        into = _side(ys[j], np.concatenate([[0.0], np.cumsum(pieces[j].steps)]), off, near)
+        # within the resolution of the end, and within half its distance from C (a root's loop turns back to C)
+        reach_out = min(near, 0.5 * abs(p[0] - c_x))
+        reach_in = min(near, 0.5 * abs(pieces[j].points[0, 0] - c_x))
+        out = _side(y_out[::-1], np.concatenate([[0.0], np.cumsum(piece.steps[::-1])]), off, reach_out)
+        into = _side(ys[j], np.concatenate([[0.0], np.cumsum(pieces[j].steps)]), off, reach_in)
         if out * into < 0:
             role = Flank.TIP if p[0] > c_x else Flank.ROOT
             found.append(
@@ -64,11 +67,13 @@ def _side(y: np.ndarray, arclen: np.ndarray, off: float, near: float) -> float:
     """Return the side of O1O2 (+1, -1; 0 for none) on which a piece lies next to one of its ends.
 
     ``y`` (mm) and ``arclen`` (mm of meshline) run from that end. The side is that of the sample farthest from
-    O1O2 within ``near`` (mm, the resolution) of the end among those beyond ``off`` (mm), else that of the first
+    O1O2 within ``near`` (mm of meshline) of the end among those beyond ``off`` (mm), else that of the first
     beyond ``off``: a given profile's meshline may wobble across O1O2 by its scatter just beside a root, where it
     leaves O1O2 tangentially (the rack-involute male as 600 exact points a lobe began its driving flank 1.2 and
     2.4 µm on the sealing side over 0.02 mm of meshline before its loop 0.39 mm on the driving side below C), and
     its first sample beyond ``off`` then named the wrong side and lost the female tip's slipping on the male root.
+    ``near`` is the resolution, at most half the end's distance from C: the loop beside a root turns back across
+    O1O2 at C (1 mm from the rack-involute's male root), beyond which the flank lies on the other side.
     """
     beyond = np.abs(y) > off
     if not beyond.any():
