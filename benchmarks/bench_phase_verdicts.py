@@ -7,8 +7,15 @@ curves): the defects by (kind, rotor, flank role) and each flank's "runs without
 where they differ, then the counts per sample, side and density.
 
 Run by hand: ``python benchmarks/bench_phase_verdicts.py [--per 500,600,700] [--side male,female]
-[--names rack_involute_5_6,...] [--phases 8]`` (rack-involute male at 500/600/700: 24 inputs, about a minute of CPU;
-every rotor sample's male and female at 600 a lobe, 8 phases: about 4 minutes).
+[--names rack_involute_5_6,...] [--phases 8]`` (rack-involute male at 500/600/700: 24 inputs, under a minute of CPU;
+every rotor sample's male and female at 600 a lobe, 8 phases, 144 inputs: a few minutes).
+
+Measured (issue 21 F2, 2026-11-28). Rack-involute male, 500/600/700 a lobe: defects differ 0/2/0 of 8 phases and
+running 0/1/0 before (600: a female sealing cusp and "does not run" at phase 0.5, the root slipping lost at 0.5 and
+0.625), 0/0/0 after. Every sample at 600 a lobe (9 samples x male, female x 8 phases): defects differ 15, running 4
+before; 12 and 2 after (females all the design's; the rest: Krigar's male 7 and Lysholm's 3, a female tip corner's
+path read as two undecided cusps; the asymmetric SRM's male 1 and the symmetric SRM's 1, a female cusp; the symmetric
+SRM's male at phases 0.25 and 0.875 "no geometric contact": the whole meshline one female corner path, its lobe arc in it).
 """
 
 from __future__ import annotations
