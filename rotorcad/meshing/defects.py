@@ -44,6 +44,11 @@ def _tip_path(piece: MeshlinePiece, pair: RotorPair, near: float) -> int:
     return k if abs(_median(np.hypot(*(piece.points - centre).T)) - tip) <= near else -1
 
 
+SPAN = 1.0
+"""Length (in resolutions of the meshline, :func:`resolution`) of the chord over which a given profile's meshline tangent
+is resolved for the normal tests (:func:`rotorcad.meshing.meshline.resolved_tangents`)."""
+
+
 VERDICT_SHARE = 0.25
 """Longest resolution (:func:`resolution`) at which a lobe is judged, as a share of its depth (tip
 minus root radius): a defect is placed on a flank part only when the tests resolve a quarter of the
@@ -556,7 +561,7 @@ def meshline_defects(
         length = float(arclen[-1])
         if len(pts) < 4 or length < 1e-6 * scale:
             continue  # the piece touches at a single point (a tip or root land): no meshline
-        tau = meshline_tangents(piece, arclen, mesh_acc if given else 0.0)
+        tau = meshline_tangents(piece, arclen, mesh_acc if given else 0.0, SPAN * reach if given else 0.0)
         # points on O1O2 are judged by the slipping rule alone (their normal along O1O2 passes
         # through O1, O2 and C at once), and C itself lies on every meshline
         judged = None  # (n,) bool, made where a crossing needs it

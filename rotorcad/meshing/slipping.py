@@ -47,11 +47,15 @@ def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accura
         if abs(p[1]) > near or abs(p[0] - c_x) <= away or not np.any(np.abs(y_out) > floor):
             continue  # off O1O2, at C, or a land
         off = max(floor, 3.0 * abs(p[1])) if given else floor
-        y_in = _next_beyond(pieces, ys, i, off, near)
-        if y_in is None:
+        j = _next_beyond(pieces, ys, i, off, near)
+        if j is None:
             continue
-        out, into = y_out[np.abs(y_out) > off], y_in[np.abs(y_in) > off]
-        if len(out) and out[-1] * into[0] < 0:
+        # within the resolution of the end, and within half its distance from C (a root's loop turns back to C)
+        reach_out = min(near, 0.5 * abs(p[0] - c_x))
+        reach_in = min(near, 0.5 * abs(pieces[j].points[0, 0] - c_x))
+        out = _side(y_out[::-1], np.concatenate([[0.0], np.cumsum(piece.steps[::-1])]), off, reach_out)
+        into = _side(ys[j], np.concatenate([[0.0], np.cumsum(pieces[j].steps)]), off, reach_in)
+        if out * into < 0:
             role = Flank.TIP if p[0] > c_x else Flank.ROOT
             found.append(
                 Defect("slipping", "male", float(p[0]), float(p[1]), float(np.degrees(t)), slipping_name(p[0], c_x), role=role)
@@ -59,8 +63,28 @@ def slipping_between_pieces(pieces: list[MeshlinePiece], pair: RotorPair, accura
     return found
 
 
-def _next_beyond(pieces: list[MeshlinePiece], ys: list[np.ndarray], i: int, off: float, land: float) -> np.ndarray | None:
-    """Return the y (mm) of the first piece after the ``i``-th that leaves O1O2 by more than ``off`` (mm), or None.
+def _side(y: np.ndarray, arclen: np.ndarray, off: float, near: float) -> float:
+    """Return the side of O1O2 (+1, -1; 0 for none) on which a piece lies next to one of its ends.
+
+    ``y`` (mm) and ``arclen`` (mm of meshline) run from that end. The side is that of the sample farthest from
+    O1O2 within ``near`` (mm of meshline) of the end among those beyond ``off`` (mm), else that of the first
+    beyond ``off``: a given profile's meshline may wobble across O1O2 by its scatter just beside a root, where it
+    leaves O1O2 tangentially (the rack-involute male as 600 exact points a lobe began its driving flank 1.2 and
+    2.4 µm on the sealing side over 0.02 mm of meshline before its loop 0.39 mm on the driving side below C), and
+    its first sample beyond ``off`` then named the wrong side and lost the female tip's slipping on the male root.
+    ``near`` is the resolution, at most half the end's distance from C: the loop beside a root turns back across
+    O1O2 at C (1 mm from the rack-involute's male root), beyond which the flank lies on the other side.
+    """
+    beyond = np.abs(y) > off
+    if not beyond.any():
+        return 0.0
+    window = beyond & (arclen <= near)
+    k = int(np.argmax(np.where(window, np.abs(y), -1.0))) if window.any() else int(np.argmax(beyond))
+    return float(np.sign(y[k]))
+
+
+def _next_beyond(pieces: list[MeshlinePiece], ys: list[np.ndarray], i: int, off: float, land: float) -> int | None:
+    """Return the index of the first piece after the ``i``-th that leaves O1O2 by more than ``off`` (mm), or None.
 
     The pieces between that keep within ``off`` of O1O2 and are shorter than ``land`` (mm of meshline: a land's
     touch, the resolution) hand over; a longer one that keeps within ``off`` ends the search (no side beyond it).
@@ -68,7 +92,7 @@ def _next_beyond(pieces: list[MeshlinePiece], ys: list[np.ndarray], i: int, off:
     for k in range(1, len(pieces)):
         j = (i + k) % len(pieces)
         if np.any(np.abs(ys[j]) > off):
-            return ys[j]
+            return j
         if float(np.sum(pieces[j].steps)) >= land:
             return None
     return None

@@ -1,0 +1,126 @@
+"""Defects and running verdicts from exact points over start phases (issue 21, F2: "verdicts whatever the form").
+
+A CMM scan puts its first point anywhere along the outline: the same exact outline (0.01 um chord) as points
+evenly spaced at ``per`` a lobe, the first ``phase`` of a spacing past the lobe's start (phases 0, 1/8 .. 7/8),
+read back as ``--male-points`` / ``--female-points``. Each is compared with the design's own analysis (its exact
+curves): the defects by (kind, rotor, flank role) and each flank's "runs without timing gears". Printed per case
+where they differ, then the counts per sample, side and density.
+
+Run by hand: ``python benchmarks/bench_phase_verdicts.py [--per 500,600,700] [--side male,female]
+[--names rack_involute_5_6,...] [--phases 8]`` (rack-involute male at 500/600/700: 24 inputs, under a minute of CPU;
+every rotor sample's male and female at 600 a lobe, 8 phases, 144 inputs: a few minutes).
+
+Measured (issue 21 F2, 2026-11-28). Rack-involute male, 500/600/700 a lobe: defects differ 0/2/0 of 8 phases and
+running 0/1/0 before (600: a female sealing cusp and "does not run" at phase 0.5, the root slipping lost at 0.5 and
+0.625), 0/0/0 after. Every sample at 600 a lobe (9 samples x male, female x 8 phases): defects differ 15, running 4
+before; 12 and 2 after (females all the design's; the rest: Krigar's male 7 and Lysholm's 3, a female tip corner's
+path read as two undecided cusps; the asymmetric SRM's male 1 and the symmetric SRM's 1, a female cusp; the symmetric
+SRM's male at phases 0.25 and 0.875 "no geometric contact": the whole meshline one female corner path, its lobe arc in it).
+"""
+
+from __future__ import annotations
+
+import argparse
+import tomllib
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+from rotorcad.design import rotor_design
+from rotorcad.errors import DesignError
+from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
+
+SAMPLES = Path(__file__).resolve().parents[1] / "samples"
+NAMES = [p.stem for p in sorted(SAMPLES.glob("*.toml")) if "profile" in tomllib.loads(p.read_text())]
+FLANKS = ("driving", "sealing")
+
+
+def _scan(ring: np.ndarray, count: int, phase: float) -> np.ndarray:
+    """``count`` points evenly spaced along the closed ring, the first ``phase`` of a spacing past its first point."""
+    closed = np.vstack([ring, ring[:1]])
+    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
+    v = (np.arange(count) + phase) * u[-1] / count
+    return np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
+
+
+def _pattern(lobe: np.ndarray, teeth: int) -> np.ndarray:
+    """One lobe (root to root) turned round the rotor ``teeth`` times."""
+    turns = 2 * np.pi * np.arange(teeth) / teeth
+    c, s = np.cos(turns), np.sin(turns)
+    x, y = lobe[:-1, 0], lobe[:-1, 1]
+    return np.column_stack([(np.outer(c, x) - np.outer(s, y)).ravel(), (np.outer(s, x) + np.outer(c, y)).ravel()])
+
+
+def _defects(summary: dict) -> Counter:
+    return Counter((d["kind"], d["rotor"], d["flank_role"]) for d in summary["defects"])
+
+
+def _running(summary: dict) -> dict:
+    return {f: summary["flanks"][f]["runs_without_timing_gears"] for f in FLANKS}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--per", default="500,600,700")
+    parser.add_argument("--side", default="male,female")
+    parser.add_argument("--names", default=",".join(NAMES))
+    parser.add_argument("--phases", type=int, default=8)
+    args = parser.parse_args()
+    pers = [int(p) for p in args.per.split(",")]
+    phases = np.arange(args.phases) / args.phases
+    totals: Counter = Counter()
+    for name in args.names.split(","):
+        spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))
+        rotors = build_pair(spec)
+        design = analyse_pair(rotors, spec.speed_rpm)[1]
+        for side in args.side.split(","):
+            lobe, teeth = (
+                (rotors.male_lobe(), spec.pair.male_teeth) if side == "male" else (rotors.female_lobe(), spec.pair.female_teeth)
+            )
+            ring = _pattern(np.vstack([s.resampled(1e-5).points for s in lobe.segments]), teeth)
+            for per in pers:
+                bad_defects = bad_running = refused = 0
+                for phase in phases:
+                    case = f"{name} {side} {per} a lobe phase {phase:.3f}"
+                    pts = _scan(ring, per * teeth, phase)
+                    try:
+                        given = build_pair(
+                            PairSpec(spec.pair, f"{side}-points", {}, pts, None, spec.speed_rpm, 0.0), label=f"--{side}-points"
+                        )
+                        got = analyse_pair(given, spec.speed_rpm)[1]
+                    except DesignError as err:
+                        print(f"{case}: refused ({err.sentence()[:80]})", flush=True)
+                        refused += 1
+                        continue
+                    notes = []
+                    if _defects(got) != _defects(design):
+                        extra = _defects(got) - _defects(design)
+                        missing = _defects(design) - _defects(got)
+                        notes.append(f"defects differ (+{sorted(extra.elements())} -{sorted(missing.elements())})")
+                        bad_defects += 1
+                    if _running(got) != _running(design):
+                        notes.append(f"running {_running(got)} for {_running(design)}")
+                        bad_running += 1
+                    if notes:
+                        print(f"{case}: " + "; ".join(notes), flush=True)
+                line = (name, side, per)
+                totals[line + ("inputs",)] = len(phases)
+                totals[line + ("defects",)] = bad_defects
+                totals[line + ("running",)] = bad_running
+                totals[line + ("refused",)] = refused
+                print(
+                    f"== {name} {side} {per} a lobe: {len(phases)} phases, defects differ {bad_defects}, "
+                    f"running differs {bad_running}, refused {refused}",
+                    flush=True,
+                )
+    print(
+        f"all: {sum(v for k, v in totals.items() if k[-1] == 'inputs')} inputs, defects differ "
+        f"{sum(v for k, v in totals.items() if k[-1] == 'defects')}, running differs "
+        f"{sum(v for k, v in totals.items() if k[-1] == 'running')}, refused "
+        f"{sum(v for k, v in totals.items() if k[-1] == 'refused')}"
+    )
+
+
+if __name__ == "__main__":
+    main()
