@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import shapely
 from independent_pairs import patterned, scan
 
 from rotorcad.design import rotor_design
@@ -319,6 +320,33 @@ def test_a_rounding_reads_as_a_corner_only_below_two_spacings(name, side, per_lo
     else:
         assert extra and all(k[1] == rounding[0] and k[3] for k in extra), extra  # a tip corner the design has not
         assert corner and all(not d["decided"] and d["margin_accuracy"] == pytest.approx(spacing, rel=1e-6) for d in corner)
+
+
+@pytest.mark.parametrize("sides", [4, 6, 8])
+def test_a_rounding_longer_than_two_spacings_is_no_corner_of_the_fit(sides):
+    # reference: closed form, made without rotorcad: a regular polygon (circumradius 20 mm, turning 2 pi / sides at
+    # each corner) whose corners shapely's opening rounds with radius rho (each rounding rho 2 pi / sides long),
+    # scanned at 1 mm at ten phases of the spacing. A rounding 2.5-4 spacings long holds three points or more: no corner
+    # of the fit (rotorcad.measured.fit._long_roundings); a sharp corner and roundings up to 1.9 spacings hold two at
+    # most and stay the corners outline.corners finds (a corner between two points and such a rounding are one input)
+    from rotorcad.measured.fit import _long_roundings
+    from rotorcad.measured.outline import corners
+
+    turn = 2.0 * np.pi / sides
+    polygon = shapely.Polygon(20.0 * np.column_stack([np.cos(np.arange(sides) * turn), np.sin(np.arange(sides) * turn)]))
+    for length in (0.0, 1.0, 1.5, 1.9, 2.5, 3.0, 4.0):  # the rounding's length in spacings
+        rho = length / turn
+        shape = polygon.buffer(-rho, quad_segs=256).buffer(rho, quad_segs=256) if rho else polygon
+        ring = np.asarray(shape.exterior.coords)[:-1]
+        ring = ring if shapely.LinearRing(ring).is_ccw else ring[::-1]
+        for phase in np.linspace(0.0, 1.0, 10, endpoint=False):
+            points = scan(ring, round(shape.exterior.length), phase)
+            edges, at = corners(points, 0.0, 30.0)
+            kept, _ = _long_roundings(points, edges, at, 0.0)
+            if length <= 1.9:
+                assert len(edges) == sides and len(kept) == sides, (length, phase, len(edges), len(kept))
+            else:
+                assert len(kept) == 0, (length, phase, len(edges), len(kept))
 
 
 # (sample, rotor given, points a lobe, scatter mm, seed): inputs that lose a tip corner's path of the design (the mate's
