@@ -245,6 +245,66 @@ def _resolved_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray, 
     return i[~rounding], np.asarray(points)[~rounding]
 
 
+LONG_ROUNDING = 2.25
+"""A convex turn across one edge of sparse points is a rounding the points resolve, not a sharp corner,
+when the four vertices about the edge turn by more than this many times the larger of the edge's two
+(:func:`_long_roundings`). That ratio measures the rounding's length in spacings: a circle between two
+lines at 40-90 deg, its points at 20 phases of the spacing, gave 1.14-2.00 up to one spacing long,
+1.90-2.24 at 1.9, 2.10-2.34 at 2.1, 2.47-2.58 at 2.5 and 2.88-3.00 at 3; a sharp corner between two
+points 2.0 at most, plus the flanks' turn at the vertices beside it (under 5 % of the corner each on
+the samples, :func:`_resolved_corners`)."""
+
+
+def _long_roundings(whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float) -> tuple[np.ndarray, np.ndarray]:
+    """Drop the corners of sparse points that are roundings longer than two point spacings.
+
+    Points h apart on a rounding of radius rho turn by h / rho at each vertex on it, and the turns of
+    the vertices about the rounding add up to its whole turn: their sum over the largest one is about
+    the rounding's length in spacings (:data:`LONG_ROUNDING`). A rounding more than two spacings long has
+    three points on it, the fewest that fix a circle (:mod:`rotorcad.meshing.undecided`), and the spline
+    through them follows it. Read as a corner (two of its vertices turn by more than the corner angle
+    together) its fan of normals made a tip-corner cusp the design does not have: the rack-involute
+    female's driving tip rounding (2.5 mm radius, 2.64 mm long) at 80 points a lobe, 1.06 mm apart, 17-25
+    deg at three vertices, and the N-rack female's sealing tip circle (4.04 mm long) 0.8 mm apart, 22 deg
+    at four or five (as 80 exact points a lobe it was refused: 5 % of its lobe without a rack point).
+    A turn held by two points (a sharp corner between them, or a rounding shorter than 2h: the same
+    input) stays a corner, as :func:`lobe_pieces` reads it for the racks; so does one whose vertices
+    beside it turn within the scatter's three standard deviations (sqrt(6) sigma / h).
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    edges : (m,) int array
+        Each corner's edge (:func:`rotorcad.measured.outline.corners`).
+    points : (m, 2) float array, mm
+        Each corner's point.
+    sigma : float, mm
+        The points' scatter.
+
+    Returns
+    -------
+    edges, points
+        The corners kept.
+    """
+    if not len(edges):
+        return edges, points
+    n = len(whole)
+    d = np.roll(whole, -1, axis=0) - whole
+    step = np.hypot(*d.T)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    vertex_turn = wrap_angle(heading - np.roll(heading, 1))  # signed, at each point (counter-clockwise: convex > 0)
+    i = np.asarray(edges)
+    four = np.stack([vertex_turn[(i + k) % n] for k in (-1, 0, 1, 2)])  # (4, m): the edge's two and one each side
+    top = np.maximum(four[1], four[2])
+    reach = min(40.0 * sigma, 0.1) if sigma > 0 else 0.0
+    single = (step[(i - 1) % n] >= reach) & (step[(i + 1) % n] >= reach)
+    noise = 3.0 * np.sqrt(6.0) * sigma / np.maximum(np.minimum(step[(i - 1) % n], step[(i + 1) % n]), 1e-12)
+    spread = np.maximum(four[0], four[3]) > noise
+    rounding = single & (top > 0) & spread & (four.sum(axis=0) > LONG_ROUNDING * top)
+    return i[~rounding], np.asarray(points)[~rounding]
+
+
 def corner_uncertainty(whole: np.ndarray, sigma: float, corner_angle_deg: float = 30.0) -> float:
     """Return how far a sharp corner of the points may lie from where it is found, mm.
 
@@ -386,7 +446,8 @@ def lobe_pieces(
         step over (:func:`_resolved_corners`): the clearance's reading (its zones: no corner paths
         on a rounded tip; a ring's curvature steps between sparse points get knots, :func:`stepped_ring_fit`). False
         keeps it a corner, whose fan of normals gives the rack of a small rounding closer (the 4/6 independent
-        female's 1.5 mm root roundings from scattered points: its rack 1.2 um off the generating one as corners).
+        female's 1.5 mm root roundings from scattered points: its rack 1.2 um off the generating one as corners),
+        unless it is a rounding more than two spacings long, which the points resolve (:func:`_long_roundings`).
 
     Returns
     -------
@@ -412,6 +473,8 @@ def lobe_pieces(
     edges, corner_points = corners(whole, sigma, corner_angle_deg)
     if roundings:
         edges, corner_points = _resolved_corners(whole, edges, corner_points, sigma)
+    else:  # the roundings the points resolve are roundings whatever the reading
+        edges, corner_points = _long_roundings(whole, edges, corner_points, sigma)
     if len(edges):
         corner_points = _refined_corners(whole, edges, corner_points, sigma, smoothing, outline.accuracy)
         runs = _runs_between_corners(whole, edges, corner_points, sigma)
@@ -622,7 +685,7 @@ def tangent_spread(
     whole = outline.whole
     if whole is None:
         return np.zeros(0), np.zeros(0)
-    edges, corner_points = corners(whole, 0.0, corner_angle_deg)
+    edges, corner_points = _long_roundings(whole, *corners(whole, 0.0, corner_angle_deg), 0.0)  # as lobe_pieces cuts it
     if len(edges):
         corner_points = _refined_corners(whole, edges, corner_points, 0.0, None, outline.accuracy)
         runs = _runs_between_corners(whole, edges, corner_points, 0.0)
