@@ -29,7 +29,17 @@ import shapely
 
 from hob.cut_depth import cut_depths
 from hob.rack import DerivedRack
-from hob.turn_back import CROSSING_ANGLE, FAST, crossing_angle, turn_back
+from hob.turn_back import (
+    CROSSING_ANGLE,
+    FAST,
+    FOLD_LENGTH,
+    TRANSITION,
+    TREND_LENGTH,
+    crossing_angle,
+    fold_length,
+    scaled,
+    turn_back,
+)
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
 
@@ -348,7 +358,8 @@ def undercut_reasons(
         return []
     radius = np.hypot(*rack.profile.T)
     out = []
-    for a, b, back in stalls(rack, measured, sharp_span=SHARP_SPAN):
+    runs = stalls(rack, measured, sharp_span=SHARP_SPAN)
+    for a, b, back in one_place(rack, runs) if tolerance is not None else runs:
         r = radius[a:b]
         where = f"r = {r.min():.2f}-{r.max():.2f} mm"
         deep = ""
@@ -385,10 +396,17 @@ def undercut_reasons(
                 )
                 _say(sentence, notes, undecided)
                 continue
-            angle = 0.0 if scattered else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
+            # where the rack from the points folds back along itself, the parts the run leaves are the fold's (the
+            # N-rack female from its male's exact points, scan phase 0: the removed run reached 0.4 mm into the slow
+            # generation, whose points the rack touches 1-3.6 um deep, and its ends met at 2.13 deg): the trend past
+            # the fold decides (hob.turn_back)
+            folded = max(onset.fold, fold_length(rack, a, b))
+            angle = 0.0 if scattered or folded > FOLD_LENGTH else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
             if not onset.crossing and angle <= CROSSING_ANGLE:
                 if notes is not None:
                     seen = "" if scattered else f", and its two sides meet at {np.degrees(angle):.2f} deg"
+                    if folded > FOLD_LENGTH:
+                        seen = f", past the rack from the points folding back along itself over {folded:.2f} mm"
                     notes.append(
                         f"the {rack.side.value}'s envelope turns back at {where} (the rack cuts {1000 * depth:.1f} um into "
                         f"the generated points, along the curve), but it only touches, as at a slip singularity, where the "
@@ -404,6 +422,42 @@ def undercut_reasons(
             f"its tip: {how}{deep} while the rack runs from x = {rack.points[a, 0]:.3f} to {rack.points[b - 1, 0]:.3f} mm, "
             "so two generated parts of its flank cross and a hob makes only their outer envelope."
         )
+    return out
+
+
+def one_place(rack: DerivedRack, runs: list[tuple[int, int, bool]]) -> list[tuple[int, int, bool]]:
+    """Join the turn-backs of a mate generated from points that are one place: one judgement each.
+
+    Where the fit of the points rounds the step into a slow generation (the N-rack female from its male's 300
+    points a lobe, exact or with 2 um of scatter), the generation factor swings to about -4 over the rack's fold
+    (:func:`hob.turn_back.turn_back`), comes back above 0 for a few points and falls to the slow part's 0 again:
+    :func:`rotorcad.inverse_rack.stalls` finds two or three turn-backs 0.3-0.5 mm of rack apart, whose cut depths
+    are the same points', and each was judged alone: an undercut at r = 43.33-44.99 mm and "only touches" at
+    r = 43.57-44.22 mm in one answer (newuser issue 22, F3). Turn-backs less than a trend's reach apart
+    (:data:`hob.turn_back.TRANSITION` + :data:`hob.turn_back.TREND_LENGTH` of rack between them) are one run:
+    the later one lies within the span that judges the earlier, so it cannot be told apart from it.
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        The mate's rack.
+    runs : list of (int, int, bool)
+        :func:`rotorcad.inverse_rack.stalls`' runs, in order along the rack.
+
+    Returns
+    -------
+    list of (int, int, bool)
+        The runs with each such group of turn-backs joined into one (first of the first, stop of the last).
+    """
+    reach = scaled(TRANSITION + TREND_LENGTH, rack.period)
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(rack.points, axis=0).T))])
+    out: list[tuple[int, int, bool]] = []
+    for a, b, back in runs:
+        last = out[-1] if out else None
+        if back and last is not None and last[2] and arc[a] - arc[last[1] - 1] < reach:
+            out[-1] = (last[0], b, True)
+        else:
+            out.append((a, b, back))
     return out
 
 
