@@ -33,6 +33,14 @@ points, 80-2000 a lobe or the brute-force cut outline itself, 3.5-4.7 deg; the l
 f0 = +0.03 at the step, so its trend alone would call it a touch). Of scattered points that angle is
 not known: at a slow generation the mate's tangent swings with the fit (3.1-4.2 deg read at touches
 from 300 points a lobe with 2 um of scatter), and the trend decides.
+
+Where the fit rounds the step into a slow generation, the rack from the points can fold back along itself
+(a swallowtail: its points run against its exact tangents, 0.8-1.5 mm of rack on the N rack from its male's 300
+points a lobe scanned along the 1 um-chord outline ``rotorcad rotor --male-csv`` writes; issue 22, F3). The
+mate turns back with the fold (f about -4) and the fit rings on past it: the trend starts past twice the fold
+and is a Theil-Sen line (:func:`_fold_end`, :func:`_theil_sen_onset`), and the crossing angle, whose ends are
+then the fold's, is not read (:func:`fold_length`). Before, the trend fitted inside the fold read f0 -2.0 there,
+a false crossing ("the female is undercut at r = 43.33-44.99 mm").
 """
 
 from __future__ import annotations
@@ -145,8 +153,9 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scatter
     # the fit rounds the step and may ring back into the fast part beyond it: the trend starts after that
     transition, length = scaled(TRANSITION, rack.period), scaled(TREND_LENGTH, rack.period)
     fold = _fold_end(rack, idx, dist, transition)
-    ringing = (dist <= fold + transition + length) & (f[idx] > FAST)
-    start = transition + max(fold, float(dist[ringing].max()) if ringing.any() else 0.0)
+    ringing = (dist <= 2.0 * fold + transition + length) & (f[idx] > FAST)
+    # past a fold of the rack the fit rings on for about the fold's length again (_theil_sen_onset)
+    start = max(transition + (float(dist[ringing].max()) if ringing.any() else 0.0), 2.0 * fold)
     sel = (dist >= start) & (dist <= start + length)
     k = idx[sel]
     ok = np.isfinite(f[k]) & ~rack.corner_path[k]
@@ -174,9 +183,9 @@ def _theil_sen_onset(d: np.ndarray, f: np.ndarray) -> float:
 
     Past a fold of the rack the fit rings on, decaying, over about the fold's length (the N-rack female from its
     male's 300 exact points a lobe, scan phase 0.9: f -4 over the 1.1 mm fold, then +1.05, -0.34, +0.08 over the next
-    0.8 mm, 12 of the trend's 52 points still swinging); a least-squares line through them extrapolated 2 mm back to
-    the step read -0.31, a false crossing; the median of the slopes (robust to 29 % of the points) reads the slow
-    part's trend. Of a straight trend the least-squares line.
+    0.8 mm: with the trend started at the fold's end plus 0.5 mm, 12 of its 52 points still swinging, a least-squares
+    line extrapolated back to the step read -0.31, a false crossing; the median of the slopes, robust to 29 % of the
+    points, read +0.14). The trend now starts past twice the fold; on a straight trend both lines are the same.
 
     Parameters
     ----------
@@ -197,6 +206,13 @@ def fold_length(rack: DerivedRack, first: int, stop: int) -> float:
     Its points go back while its exact tangents do not turn: a swallowtail of a rack fitted to points
     (:func:`_fold_end`), 0.76-1.5 mm long where the N-rack female from its male's 300 exact points a lobe turns back,
     against single samples' zigzags of 1-35 um on the 5/6 racks from points (none where the male turns back).
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        A rotor's rack.
+    first, stop : int
+        The run of rack points (a turn-back, :func:`hob.verdict.one_place`).
     """
     if stop - first < 2:
         return 0.0

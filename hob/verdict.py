@@ -353,6 +353,9 @@ def undercut_reasons(
     turn-back of scattered points whose trend stays in the rack's fast part (f0 above
     :data:`hob.turn_back.FAST`: the fit rang past the trend's window, which then measured neither a touch,
     f0 near 0, nor a crossing).
+
+    Turn-backs of a mate generated from points that lie less than a trend's reach apart are one place, judged once
+    (:func:`one_place`): one sentence, never an undercut and a touch for overlapping radii.
     """
     if rack.side is None or rack.profile is None:
         return []
