@@ -235,19 +235,23 @@ def _fold_end(rack: DerivedRack, idx: np.ndarray, dist: np.ndarray, transition: 
     the fitted rack: its points go back while its exact tangents do not turn), which the rack of a rotor pair, a
     regular curve, does not: the rotor generated along that fold turns back with it (f about -4 for 0.8-1.3 mm, the
     N-rack female from its male's 300 exact points a lobe) and its trend is the fold's, not the flank's. The folds
-    that begin within ``transition`` (mm) of the step or of the previous fold's end are taken, walking ``idx`` (the
-    rack points from the step, ``dist`` along them); the real undercut of the 5/6 male from its female's points has
-    none there (80-2000 a lobe, exact or with 2 um of scatter).
+    longer than :data:`FOLD_LENGTH` that begin within ``transition`` (mm) of the step or of the previous fold's end
+    are taken, walking ``idx`` (the rack points from the step, ``dist`` along them); the real undercut of the 5/6
+    male from its female's points has none there (80-2000 a lobe, exact or with 2 um of scatter; its brute-force cut
+    outline itself zigzags back by single chords of 1-18 um, 0.8 mm of them chained).
     """
     pts, tan = rack.points[idx], rack.tangents[idx]
     chord = np.diff(pts, axis=0)
     back = np.einsum("ij,ij->i", chord, 0.5 * (tan[:-1] + tan[1:]))
     # the walk's own direction along the rack: against it when walking back from the run's last point
     sense = np.sign(np.einsum("ij,ij->i", chord, tan[:-1]).sum()) or 1.0
-    folded = np.flatnonzero(sense * back < 0)
-    ends = np.maximum.accumulate(dist[folded + 1]) if len(folded) else np.zeros(0)
-    reached = dist[folded] <= np.concatenate([[0.0], ends[:-1]]) + transition
-    taken = int(np.argmin(reached)) if not reached.all() else len(folded)  # the chain from the step up to its first gap
+    edges = np.diff(np.concatenate([[0], (sense * back < 0).astype(int), [0]]))
+    begin, end = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # runs of backward chords
+    long = dist[end] - dist[begin] > FOLD_LENGTH  # not a sample's zigzag (the 5/6 cut outline's, 1-18 um each)
+    begin, end = begin[long], end[long]
+    ends = np.maximum.accumulate(dist[end]) if len(end) else np.zeros(0)
+    reached = dist[begin] <= np.concatenate([[0.0], ends[:-1]]) + transition
+    taken = int(np.argmin(reached)) if not reached.all() else len(begin)  # the chain from the step up to its first gap
     return float(ends[taken - 1]) if taken else 0.0
 
 
