@@ -409,7 +409,7 @@ def undercut_reasons(
                 if notes is not None:
                     seen = "" if scattered else f", and its two sides meet at {np.degrees(angle):.2f} deg"
                     if folded > FOLD_LENGTH:
-                        seen = f", past the rack from the points folding back along itself over {folded:.2f} mm"
+                        seen = f" (read past the {folded:.2f} mm over which the rack from the points folds back along itself)"
                     notes.append(
                         f"the {rack.side.value}'s envelope turns back at {where} (the rack cuts {1000 * depth:.1f} um into "
                         f"the generated points, along the curve), but it only touches, as at a slip singularity, where the "
