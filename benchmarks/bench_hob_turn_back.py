@@ -27,7 +27,7 @@ from test_racks_from_points import rotor_pair
 from hob.cut_depth import cut_depths
 from hob.rack import rotor_rack
 from hob.turn_back import turn_back
-from hob.verdict import depth_accuracy, judge, local_scatter, undercut_tolerance
+from hob.verdict import depth_accuracy, judge, local_scatter, one_place, undercut_tolerance
 from rotorcad.inverse_rack import SHARP_SPAN, stalls
 from rotorcad.measured.cusp_paths import with_exact_cusp_paths
 from rotorcad.measured.pairs import pair_from_rotor_points
@@ -79,7 +79,7 @@ def view(pair: RotorPair, points: np.ndarray, rotor: str, mate: str):
 
 def measure(label: str, pair, points, rotor, mate, truth_outline, truth_undercut: bool, datum: float = 0.0) -> None:
     rotors, rack, tol, verdict = view(pair, points, rotor, mate)
-    runs = [(a, b) for a, b, back in stalls(rack, False, sharp_span=SHARP_SPAN) if back]
+    runs = [(a, b) for a, b, back in one_place(rack, stalls(rack, False, sharp_span=SHARP_SPAN)) if back]  # as judged
     if not runs:
         print(f"{label:38s} no turn-back; undercut={verdict.undercut} truth={truth_undercut}")
         return

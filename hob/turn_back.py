@@ -33,6 +33,14 @@ points, 80-2000 a lobe or the brute-force cut outline itself, 3.5-4.7 deg; the l
 f0 = +0.03 at the step, so its trend alone would call it a touch). Of scattered points that angle is
 not known: at a slow generation the mate's tangent swings with the fit (3.1-4.2 deg read at touches
 from 300 points a lobe with 2 um of scatter), and the trend decides.
+
+Where the fit rounds the step into a slow generation, the rack from the points can fold back along itself
+(a swallowtail: its points run against its exact tangents, 0.8-1.5 mm of rack on the N rack from its male's 300
+points a lobe scanned along the 1 um-chord outline ``rotorcad rotor --male-csv`` writes; issue 22, F3). The
+mate turns back with the fold (f about -4) and the fit rings on past it: the trend starts past twice the fold
+and is a Theil-Sen line (:func:`_fold_end`, :func:`_theil_sen_onset`), and the crossing angle, whose ends are
+then the fold's, is not read (:func:`fold_length`). Before, the trend fitted inside the fold read f0 -2.0 there,
+a false crossing ("the female is undercut at r = 43.33-44.99 mm").
 """
 
 from __future__ import annotations
@@ -61,6 +69,9 @@ from its male's points, 300 a lobe with 1 um of scatter, 0.45 mm; the rack-invol
 TREND_LENGTH = 2.0
 """mm of rack (at :data:`REFERENCE_PERIOD`) beyond :data:`TRANSITION` over which the generation factor's
 straight-line trend is fitted (the 5/6 arc-flank male's f rises from -0.23 to +0.4 over 2 mm, linearly to 0.01)."""
+FOLD_LENGTH = 0.1
+"""mm of rack: a fold of a rack from points (:func:`fold_length`) longer than this is the fit's swallowtail at a step
+(0.76-1.5 mm measured), a shorter one a sample's zigzag (1-35 um)."""
 CROSSING_ANGLE = np.radians(2.0)
 """rad: of exact points, the angle between the two generated parts a turn-back leaves above which it is a
 crossing (module docstring: touches 0.11-0.70 deg, crossings 3.5-4.7 deg measured)."""
@@ -93,12 +104,16 @@ class TurnBack:
         Of scattered points (``scattered``), f0's standard error from the generation factor's scatter about
         its trend (the straight-line fit's intercept, dimensionless); 0 for exact points. Stated, not used:
         at 2000 points a lobe with 1 um of scatter the real 5/6 undercut's f0 lies within 2 of it of the bound.
+    fold : float
+        mm of rack from the step over which the rack from points folds back along itself (:func:`_fold_end`), past
+        which the trend is taken; 0 where it does not (a design's rack, the 5/6 male's real undercut).
     """
 
     onset: float
     accuracy: float
     crossing: bool
     spread: float = 0.0
+    fold: float = 0.0
 
 
 def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scattered: bool = False) -> TurnBack:
@@ -137,8 +152,10 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scatter
         dist = np.concatenate([[0.0], np.cumsum(ds[(idx[1:]) % n])])
     # the fit rounds the step and may ring back into the fast part beyond it: the trend starts after that
     transition, length = scaled(TRANSITION, rack.period), scaled(TREND_LENGTH, rack.period)
-    ringing = (dist <= transition + length) & (f[idx] > FAST)
-    start = transition + (float(dist[ringing].max()) if ringing.any() else 0.0)
+    fold = _fold_end(rack, idx, dist, transition)
+    ringing = (dist <= 2.0 * fold + transition + length) & (f[idx] > FAST)
+    # past a fold of the rack the fit rings on for about the fold's length again (_theil_sen_onset)
+    start = max(transition + (float(dist[ringing].max()) if ringing.any() else 0.0), 2.0 * fold)
     sel = (dist >= start) & (dist <= start + length)
     k = idx[sel]
     ok = np.isfinite(f[k]) & ~rack.corner_path[k]
@@ -151,12 +168,91 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scatter
     else:
         _, onset = np.polyfit(d, f[k], 1)
         spread = 0.0
+    if fold > 0:  # past a fold the fit rings on: its last swings at the window's start must not tilt the line
+        onset = _theil_sen_onset(d, f[k])
     y, tx = pts[k, 1], rack.tangents[k, 0]
     if rack.contract_frame and rack.side is Side.FEMALE:
         y = -y
     gain = float(np.median(y**2 / (rack.pitch_radius * np.abs(tx) ** 3)))  # df / dkappa
     known = gain * 8.0 * accuracy / length**2
-    return TurnBack(float(onset), known, bool(onset < -known), spread)
+    return TurnBack(float(onset), known, bool(onset < -known), spread, fold)
+
+
+def _theil_sen_onset(d: np.ndarray, f: np.ndarray) -> float:
+    """Return the value at ``d`` = 0 of the Theil-Sen line through (``d``, ``f``): the median of the pairwise slopes.
+
+    Past a fold of the rack the fit rings on, decaying, over about the fold's length (the N-rack female from its
+    male's 300 exact points a lobe, scan phase 0.9: f -4 over the 1.1 mm fold, then +1.05, -0.34, +0.08 over the next
+    0.8 mm: with the trend started at the fold's end plus 0.5 mm, 12 of its 52 points still swinging, a least-squares
+    line extrapolated back to the step read -0.31, a false crossing; the median of the slopes, robust to 29 % of the
+    points, read +0.14). The trend now starts past twice the fold; on a straight trend both lines are the same.
+
+    Parameters
+    ----------
+    d : (m,) float array, mm
+        Distance of each trend point from the step.
+    f : (m,) float array
+        The generation factor there.
+    """
+    i, j = np.triu_indices(len(d), 1)
+    apart = d[j] != d[i]
+    slope = float(np.median((f[j] - f[i])[apart] / (d[j] - d[i])[apart])) if apart.any() else 0.0
+    return float(np.median(f - slope * d))
+
+
+def fold_length(rack: DerivedRack, first: int, stop: int) -> float:
+    """Return the longest stretch (mm) of ``rack.points[first:stop]`` over which the rack runs back against its tangent.
+
+    Its points go back while its exact tangents do not turn: a swallowtail of a rack fitted to points
+    (:func:`_fold_end`), 0.76-1.5 mm long where the N-rack female from its male's 300 exact points a lobe turns back,
+    against single samples' zigzags of 1-35 um on the 5/6 racks from points (none where the male turns back).
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        A rotor's rack.
+    first, stop : int
+        The run of rack points (a turn-back, :func:`hob.verdict.one_place`).
+    """
+    if stop - first < 2:
+        return 0.0
+    pts, tan = rack.points[first:stop], rack.tangents[first:stop]
+    chord = np.diff(pts, axis=0)
+    along = np.einsum("ij,ij->i", chord, 0.5 * (tan[:-1] + tan[1:]))
+    sense = np.sign(along.sum()) or 1.0
+    back = sense * along < 0
+    if not back.any():
+        return 0.0
+    length = np.where(back, np.hypot(*chord.T), 0.0)
+    starts = np.flatnonzero(np.diff(np.concatenate([[0], back.astype(int)])) == 1)  # each run of backward chords
+    return float(np.add.reduceat(length, starts).max())  # the chords between runs are 0 long here
+
+
+def _fold_end(rack: DerivedRack, idx: np.ndarray, dist: np.ndarray, transition: float) -> float:
+    """Return how far (mm of rack from the step) the rack from points folds back along itself at the step; 0 for none.
+
+    Where the fit rounds the step, the rack derived from it can run back against its own tangent (a swallowtail of
+    the fitted rack: its points go back while its exact tangents do not turn), which the rack of a rotor pair, a
+    regular curve, does not: the rotor generated along that fold turns back with it (f about -4 for 0.8-1.3 mm, the
+    N-rack female from its male's 300 exact points a lobe) and its trend is the fold's, not the flank's. The folds
+    longer than :data:`FOLD_LENGTH` that begin within ``transition`` (mm) of the step or of the previous fold's end
+    are taken, walking ``idx`` (the rack points from the step, ``dist`` along them); the real undercut of the 5/6
+    male from its female's points has none there (80-2000 a lobe, exact or with 2 um of scatter; its brute-force cut
+    outline itself zigzags back by single chords of 1-18 um, 0.8 mm of them chained).
+    """
+    pts, tan = rack.points[idx], rack.tangents[idx]
+    chord = np.diff(pts, axis=0)
+    back = np.einsum("ij,ij->i", chord, 0.5 * (tan[:-1] + tan[1:]))
+    # the walk's own direction along the rack: against it when walking back from the run's last point
+    sense = np.sign(np.einsum("ij,ij->i", chord, tan[:-1]).sum()) or 1.0
+    edges = np.diff(np.concatenate([[0], (sense * back < 0).astype(int), [0]]))
+    begin, end = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # runs of backward chords
+    long = dist[end] - dist[begin] > FOLD_LENGTH  # not a sample's zigzag (the 5/6 cut outline's, 1-18 um each)
+    begin, end = begin[long], end[long]
+    ends = np.maximum.accumulate(dist[end]) if len(end) else np.zeros(0)
+    reached = dist[begin] <= np.concatenate([[0.0], ends[:-1]]) + transition
+    taken = int(np.argmin(reached)) if not reached.all() else len(begin)  # the chain from the step up to its first gap
+    return float(ends[taken - 1]) if taken else 0.0
 
 
 def crossing_angle(rack: DerivedRack, first: int, depth: np.ndarray, cut: float) -> float:
@@ -199,11 +295,13 @@ def crossing_angle(rack: DerivedRack, first: int, depth: np.ndarray, cut: float)
 __all__ = [
     "CROSSING_ANGLE",
     "FAST",
+    "FOLD_LENGTH",
     "REFERENCE_PERIOD",
     "TRANSITION",
     "TREND_LENGTH",
     "TurnBack",
     "crossing_angle",
+    "fold_length",
     "scaled",
     "turn_back",
 ]

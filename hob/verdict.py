@@ -29,7 +29,17 @@ import shapely
 
 from hob.cut_depth import cut_depths
 from hob.rack import DerivedRack
-from hob.turn_back import CROSSING_ANGLE, FAST, crossing_angle, turn_back
+from hob.turn_back import (
+    CROSSING_ANGLE,
+    FAST,
+    FOLD_LENGTH,
+    TRANSITION,
+    TREND_LENGTH,
+    crossing_angle,
+    fold_length,
+    scaled,
+    turn_back,
+)
 from rotorcad.inverse_rack import MEASURED_MIN_TURN, SHARP_SPAN, stalls
 from rotorcad.roles import PieceRole
 
@@ -336,19 +346,26 @@ def undercut_reasons(
     Of scattered points the gate ``tolerance`` (twice the profile's accuracy, a bound on the largest error
     of one point over the lobe) is far above how well the depth itself is known: the envelope averages
     the fit over the stretch it removes, whose error there is :func:`depth_accuracy` (``local``: one
-    point's scatter and the points' spacing, mm). A turn-back cut deeper than that but within ``tolerance``
-    that reads a crossing (the 5/6 male from its female's points, 2 um of scatter: 2.4-7.5 um deep under
-    a gate of 15.6-17 um, a real undercut by brute force) is then neither an undercut nor a touch but
-    undecided at this accuracy: named in ``notes`` and added to ``undecided``, not a reason. So is a deeper
+    point's scatter and the points' spacing, mm). A turn-back within ``tolerance`` that reads a crossing (the 5/6
+    male from its female's points, 2 um of scatter: 2.4-7.5 um deep under a gate of 15.6-17 um, a real undercut by
+    brute force) is then neither an undercut nor a touch but undecided at this accuracy: named in ``notes`` and
+    added to ``undecided``, not a reason; so however shallow (the sentence says whether deeper than that error):
+    the generated points may hide a real undercut entirely (that male from 300 points a lobe with 2 um turned by
+    17.3 deg: 1.21 um deep for 1.67 um; from 2000 with 1 um, seed 12: 0.15 um; brute force 39-48 um), which
+    read "not judged an undercut" before. So is a deeper
     turn-back of scattered points whose trend stays in the rack's fast part (f0 above
     :data:`hob.turn_back.FAST`: the fit rang past the trend's window, which then measured neither a touch,
     f0 near 0, nor a crossing).
+
+    Turn-backs of a mate generated from points that lie less than a trend's reach apart are one place, judged once
+    (:func:`one_place`): one sentence, never an undercut and a touch for overlapping radii.
     """
     if rack.side is None or rack.profile is None:
         return []
     radius = np.hypot(*rack.profile.T)
     out = []
-    for a, b, back in stalls(rack, measured, sharp_span=SHARP_SPAN):
+    runs = stalls(rack, measured, sharp_span=SHARP_SPAN)
+    for a, b, back in one_place(rack, runs) if tolerance is not None else runs:
         r = radius[a:b]
         where = f"r = {r.min():.2f}-{r.max():.2f} mm"
         deep = ""
@@ -358,10 +375,14 @@ def undercut_reasons(
             onset = turn_back(rack, a, b, accuracy)
             if depth <= tolerance:
                 floor = depth_accuracy(rack, lo, depths, *local) if scattered else np.inf
-                if depth > floor and onset.crossing:
+                if scattered and onset.crossing:
+                    # a crossing's trend from scattered points, however shallow the generated points show it: the 5/6
+                    # male's real undercut from its female's 300 points a lobe with 2 um turned by 17.3 deg (1.21 um
+                    # under a floor of 1.67 um) or 2000 with 1 um, seed 12 (0.15 um): brute force 39-48 um
+                    than = "more than" if depth > floor else "within"
                     sentence = (
                         f"the {rack.side.value}'s envelope turns back at {where} and the rack cuts {1000 * depth:.2f} um "
-                        f"into it there, more than the {1000 * floor:.2f} um the fit's error over that stretch can make "
+                        f"into it there, {than} the {1000 * floor:.2f} um the fit's error over that stretch can make, "
                         f"and as a crossing (an undercut's), but within the {1000 * tolerance:.2f} um one point is known "
                         "to: undecided at this accuracy (denser points or less scatter tell it)."
                     )
@@ -385,10 +406,17 @@ def undercut_reasons(
                 )
                 _say(sentence, notes, undecided)
                 continue
-            angle = 0.0 if scattered else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
+            # where the rack from the points folds back along itself, the parts the run leaves are the fold's (the
+            # N-rack female from its male's exact points, scan phase 0: the removed run reached 0.4 mm into the slow
+            # generation, whose points the rack touches 1-3.6 um deep, and its ends met at 2.13 deg): the trend past
+            # the fold decides (hob.turn_back)
+            folded = max(onset.fold, fold_length(rack, a, b))
+            angle = 0.0 if scattered or folded > FOLD_LENGTH else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
             if not onset.crossing and angle <= CROSSING_ANGLE:
                 if notes is not None:
                     seen = "" if scattered else f", and its two sides meet at {np.degrees(angle):.2f} deg"
+                    if folded > FOLD_LENGTH:
+                        seen = f" (read past the {folded:.2f} mm over which the rack from the points folds back along itself)"
                     notes.append(
                         f"the {rack.side.value}'s envelope turns back at {where} (the rack cuts {1000 * depth:.1f} um into "
                         f"the generated points, along the curve), but it only touches, as at a slip singularity, where the "
@@ -404,6 +432,42 @@ def undercut_reasons(
             f"its tip: {how}{deep} while the rack runs from x = {rack.points[a, 0]:.3f} to {rack.points[b - 1, 0]:.3f} mm, "
             "so two generated parts of its flank cross and a hob makes only their outer envelope."
         )
+    return out
+
+
+def one_place(rack: DerivedRack, runs: list[tuple[int, int, bool]]) -> list[tuple[int, int, bool]]:
+    """Join the turn-backs of a mate generated from points that are one place: one judgement each.
+
+    Where the fit of the points rounds the step into a slow generation (the N-rack female from its male's 300
+    points a lobe, exact or with 2 um of scatter), the generation factor swings to about -4 over the rack's fold
+    (:func:`hob.turn_back.turn_back`), comes back above 0 for a few points and falls to the slow part's 0 again:
+    :func:`rotorcad.inverse_rack.stalls` finds two or three turn-backs 0.3-0.5 mm of rack apart, whose cut depths
+    are the same points', and each was judged alone: an undercut at r = 43.33-44.99 mm and "only touches" at
+    r = 43.57-44.22 mm in one answer (newuser issue 22, F3). Turn-backs less than a trend's reach apart
+    (:data:`hob.turn_back.TRANSITION` + :data:`hob.turn_back.TREND_LENGTH` of rack between them) are one run:
+    the later one lies within the span that judges the earlier, so it cannot be told apart from it.
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        The mate's rack.
+    runs : list of (int, int, bool)
+        :func:`rotorcad.inverse_rack.stalls`' runs, in order along the rack.
+
+    Returns
+    -------
+    list of (int, int, bool)
+        The runs with each such group of turn-backs joined into one (first of the first, stop of the last).
+    """
+    reach = scaled(TRANSITION + TREND_LENGTH, rack.period)
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(rack.points, axis=0).T))])
+    out: list[tuple[int, int, bool]] = []
+    for a, b, back in runs:
+        last = out[-1] if out else None
+        if back and last is not None and last[2] and arc[a] - arc[last[1] - 1] < reach:
+            out[-1] = (last[0], b, True)
+        else:
+            out.append((a, b, back))
     return out
 
 
