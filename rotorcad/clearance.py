@@ -37,7 +37,7 @@ import numpy as np
 
 from rotorcad.clearance_accuracy import ACCURACY_FLOOR, estimated_accuracy, pair_quality, points_quality, trends
 from rotorcad.clearance_flanks import flank_codes, flank_figures, point_weights
-from rotorcad.clearance_normals import normal_clearance, normal_crossing
+from rotorcad.clearance_normals import normal_clearance, normal_crossing, trim_folds
 from rotorcad.clearance_phase import alignment_curve, complementary_shift, search_steps
 from rotorcad.clearance_thermal import ThermalState
 from rotorcad.clearance_zones import CORNER_CORE, SHARP_FAN, ClearanceZone, holes_as_gaps
@@ -164,15 +164,20 @@ class MeshingClearance:
     def _compared(self) -> tuple[Array, Array]:
         """The male normal rack over three periods (the racks need not start at the same phase).
 
-        Points (3m, 2), mm, and unit tangents (3m, 2).
+        Points (k, 2), mm, and unit tangents (k, 2), each fold cut back to its envelope
+        (:func:`rotorcad.clearance_normals.trim_folds`: a swallowtail where the fit's curvature folds the
+        rack at a stalled generation, whose tail a normal met inside the male).
         """
         pts, tan = self.male_rack.normal_section(self.helix_angle)
         shift = np.array([self.pair.rack_period * np.cos(self.helix_angle), 0.0])
-        return np.vstack([pts - shift, pts, pts + shift]), np.vstack([tan, tan, tan])
+        pts, tan, _ = trim_folds(np.vstack([pts - shift, pts, pts + shift]), np.vstack([tan, tan, tan]))
+        return pts, tan
 
     @cached_property
     def _transverse_compared(self) -> tuple[Array, Array, Array, Array]:
-        """The male transverse rack over three periods: points (3m, 2), mm, unit tangents, corner and unresolved flags (3m,).
+        """The male transverse rack over three periods: points (k, 2), mm, unit tangents, corner and unresolved flags (k,).
+
+        Each fold cut back to its envelope as in :attr:`_compared`.
 
         A corner flag marks a sharp male corner's path (:meth:`_near_corner`) and a stall of the male's
         generation below its tip (:func:`rotorcad.inverse_rack.stalls`); an unresolved flag the rest of
@@ -200,7 +205,10 @@ class MeshingClearance:
             corner |= core
             unresolved |= (near <= self.unresolved_reach) & ~core  # the flank beside it, as far as the fit rounds it
         unresolved &= ~corner
-        return pts, np.vstack([rack.tangents] * 3), np.tile(corner, 3), np.tile(unresolved, 3)
+        pts, tan, (corner, unresolved) = trim_folds(
+            pts, np.vstack([rack.tangents] * 3), (np.tile(corner, 3), np.tile(unresolved, 3))
+        )
+        return pts, tan, corner, unresolved
 
     @property
     def corner_reach(self) -> float:

@@ -106,4 +106,84 @@ def normal_crossing(
     return np.where(found, np.einsum("ij,ij->i", p - datum, normals), np.nan), np.where(found, s, -1)
 
 
-__all__ = ["normal_clearance", "normal_crossing"]
+def trim_folds(
+    points: Array, tangents: Array, flags: tuple[Array, ...] = (), span: int | None = None
+) -> tuple[Array, Array, tuple[Array, ...]]:
+    """Return a generated rack with each fold cut back to its envelope (the swallowtail's loop removed).
+
+    Where a rotor's generation nearly stalls (its point still while its rack point runs), the rack follows
+    the fit's curvature, not its position: a curvature error turns it back along itself, a swallowtail of
+    three legs whose first and last cross (the N-rack sample's male rack facing the female's point r =
+    43.5 mm from 300 exact points a lobe: 21 um wide, 60 um from 2 um of scatter). The rotor's material
+    covers the loop (the envelope of its positions is the first leg up to the crossing, then the last):
+    a normal that met the first leg's tail beyond the crossing read 6.7-12.4 um of clearance for a truth
+    of 0 there. Each crossing of two non-adjacent segments i < j whose loop holds a segment running against
+    the rack's exact tangents (a fold, not a rack that merely winds) and spans at most ``span`` points is
+    cut: the points i + 1 .. j are replaced by the crossing twice, with the first leg's and the last leg's
+    tangent there (a zero-length segment between, which no normal cuts). Nested loops: the outer one.
+
+    Parameters
+    ----------
+    points : (m, 2) float array, mm
+        The rack as a polyline, in order along it.
+    tangents : (m, 2) float array
+        Its exact unit tangents at the points.
+    flags : tuple of (m,) arrays
+        Per-point values carried along (the crossing's copies take those of points i + 1 and j).
+    span : int, optional
+        The most points a loop may span (default a third of ``m``).
+
+    Returns
+    -------
+    points : (k, 2) float array, mm
+    tangents : (k, 2) float array
+    flags : tuple of (k,) arrays
+    """
+    import shapely  # only where the racks are compared
+
+    pts = np.asarray(points, dtype=float)
+    m = len(pts)
+    span = m // 3 if span is None else span
+    if m < 4:
+        return pts, tangents, flags
+    a, b = pts[:-1], pts[1:]
+    back = np.einsum("ij,ij->i", b - a, tangents[:-1] + tangents[1:]) < 0
+    if not back.any():
+        return pts, tangents, flags
+    lines = shapely.linestrings(np.stack([a, b], axis=1))
+    i, j = shapely.STRtree(lines).query(lines, predicate="intersects")
+    keep = (j - i >= 2) & (j - i <= span)
+    i, j = i[keep], j[keep]
+    n_back = np.concatenate([[0], np.cumsum(back)])
+    keep = n_back[j] - n_back[i + 1] > 0  # a segment between them runs back: a fold
+    i, j = i[keep], j[keep]
+    if not len(i):
+        return pts, tangents, flags
+    order = np.lexsort((-j, i))
+    out_p, out_t, out_f, start, end = [], [], [[] for _ in flags], 0, -1
+    for s, e in zip(i[order], j[order], strict=True):  # one pass over the folds (a few), outermost first
+        if s < end:  # nested in (or overlapping) a loop already cut
+            continue
+        d1, d2 = b[s] - a[s], b[e] - a[e]
+        den = d1[0] * d2[1] - d1[1] * d2[0]
+        if abs(den) < 1e-300:
+            continue
+        r = a[e] - a[s]
+        u = (r[0] * d2[1] - r[1] * d2[0]) / den
+        w = (r[0] * d1[1] - r[1] * d1[0]) / den
+        x = a[s] + u * d1
+        t1 = (1 - u) * tangents[s] + u * tangents[s + 1]
+        t2 = (1 - w) * tangents[e] + w * tangents[e + 1]
+        out_p += [pts[start : s + 1], x[None, :], x[None, :]]
+        out_t += [tangents[start : s + 1], (t1 / np.hypot(*t1))[None, :], (t2 / np.hypot(*t2))[None, :]]
+        for k, f in enumerate(flags):
+            out_f[k].append(np.concatenate([f[start : s + 1], f[[s + 1, e]]]))
+        start, end = e + 1, e + 1
+    out_p.append(pts[start:])
+    out_t.append(tangents[start:])
+    for k, f in enumerate(flags):
+        out_f[k].append(f[start:])
+    return np.vstack(out_p), np.vstack(out_t), tuple(np.concatenate(f) for f in out_f)
+
+
+__all__ = ["normal_clearance", "normal_crossing", "trim_folds"]

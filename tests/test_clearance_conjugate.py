@@ -77,14 +77,12 @@ def test_conjugate_outlines_at_600_points_a_lobe_are_within_the_stated_accuracy(
     assert np.abs(c - truth).max() <= mc.accuracy  # measured 2.2 um, stated 3.1
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known departure: 300 exact points a lobe read 0.3 um of scatter and the closer smoothing spline "
-    "smooths over the female's sealing tip circle's end (r 43.5 mm, a curvature step), where its generation "
-    "stalls: one row 12.4 um off for 4.2 um stated (benchmarks/bench_clearance_accuracy.py N-exact)",
-)
 def test_conjugate_outlines_at_300_points_a_lobe_are_within_the_stated_accuracy(outlines):
+    # 300 exact points a lobe read 0.3 um of scatter; the smoothing spline's curvature error at the
+    # female's sealing tip circle's end (r 43.5 mm), where its generation stalls, folds the male's rack
+    # facing it (a swallowtail 21 um wide): its first leg's tail, inside the male, read 12.4 um for 4.2 um
+    # stated before the rack was cut back to its envelope (clearance_normals.trim_folds)
     mc = read(outlines, 300)
     c, truth = worst_rows(outlines, mc)
-    assert np.all(truth < 1.5e-3)
-    assert np.abs(c - truth).max() <= mc.accuracy
+    assert np.all(truth < 1.5e-3)  # the brute force: conjugate within the chords' 1 um
+    assert np.abs(c - truth).max() <= mc.accuracy  # measured 2.4 um, stated 4.2
