@@ -21,7 +21,7 @@ from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.measured.tangent import tip_tangent_accuracy
-from rotorcad.roles import Flank, PieceRole, Side
+from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
 from rotorcad.roots import bisect_levels
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
@@ -511,10 +511,10 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
     The part is read off the rack as :func:`rotorcad.meshing.meshline.flank_roles` reads it per point
     (Rinder sec. 1.2): rising towards the male tip along the travel, the driving flank; falling, the
     sealing flank; flat (to 1 % of its chord: fitted points leave a land micrometres off flat), the
-    tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner ("sealing male
-    tip corner"), a fan's path by the rotor whose corner it is; a corner path across O1O2 (its ends a
-    quarter of its chord or more either side) by where it crosses: above the pitch point C the tip
-    ("tip male tip corner"), below it the root.
+    tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner
+    (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the rotor whose corner it
+    is; a corner path across O1O2 (its ends a quarter of its chord or more either side) takes the role of where
+    it crosses, above the pitch point C the tip, below it the root, and is named "male tip corner (both flanks)".
     """
     out = []
     for piece in rack:
@@ -536,8 +536,7 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
         if piece.kind is PieceRole.CURVE:
             name = f"{role} flank" if role in (Flank.DRIVING, Flank.SEALING) else f"{role} land"
         else:
-            corner = Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE
-            name = f"{role} {corner} tip corner"
+            name = tip_corner_name(role, Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE)
         out.append(RackPiece(piece.curve, name, name, piece.kind))
     return out
 
