@@ -106,6 +106,35 @@ class Flank(StrEnum):
     ROOT = "root"
 
 
+def tip_corner_name(role: Flank | str | None, corner: Side | str) -> str:
+    """Return the one name of a rotor's tip corner (its path, a cusp there) on a lobe part, whatever the input.
+
+    A design's families name the pieces of a corner's path as they draw them ("sealing tip corner",
+    "sealing root (female tip path)", "trailing root (female tip path)"), points by lobe part; a defect
+    at the corner reads this name from either (CONTRACT.md, ``defects``): ``"sealing male tip corner"``,
+    ``"driving female tip corner"``, and for a corner's path across O1O2 (role tip or root: the corner of
+    both flanks) ``"male tip corner (both flanks)"``.
+
+    Parameters
+    ----------
+    role : Flank, str or None
+        The lobe part (:class:`Flank`); None names the corner alone.
+    corner : Side or str
+        The rotor whose tip corner it is.
+
+    Returns
+    -------
+    str
+    """
+    corner = Side(corner)
+    if role is None:
+        return f"{corner} tip corner"
+    role = Flank(role)
+    if role in (Flank.TIP, Flank.ROOT):
+        return f"{corner} tip corner (both flanks)"
+    return f"{role} {corner} tip corner"
+
+
 class ToothFlank(StrEnum):
     """The left or the right flank of a tooth (ISO 1328-1:2013, 3.1.4), as an inspection reports it.
 
@@ -123,4 +152,4 @@ class ToothFlank(StrEnum):
         return 1 if self is ToothFlank.LEFT else -1
 
 
-__all__ = ["Body", "EndFace", "Flank", "PieceRole", "Side", "ToothFlank"]
+__all__ = ["Body", "EndFace", "Flank", "PieceRole", "Side", "ToothFlank", "tip_corner_name"]

@@ -373,8 +373,27 @@ def test_a_lost_tip_corner_is_reported_undecided(name, side, per_lobe, sigma, se
     assert set(lost) <= set(_keys(given["undecided_defects"]))
     for d in given["undecided_defects"]:
         assert not d["decided"] and d["margin"] <= d["margin_accuracy"], d
+    assert max(_keys(given["undecided_defects"]).values(), default=0) == 1, given["undecided_defects"]  # each once
     differing, explained = compare_defects(analysis, given)
     assert differing == [] and {k for k, *_ in explained} >= set(lost), (differing, explained)
+
+
+@pytest.mark.parametrize("per_lobe", [300, 600])
+def test_a_rounding_the_points_resolve_is_no_undecided_corner(per_lobe):
+    # issue 21 (a new user's session): the N-rack female from 300 and 600 points a lobe with 2 um listed the male's
+    # sealing tip rounding twice in undecided_defects, once on the rounding and once at the tip's middle (a slip
+    # singularity: the male's contact stands still as the meshline crosses O1O2). Reference: the design's own rounding,
+    # its "sealing tip circle" segment (0.67 mm of profile, from its exact curve), is longer than two of the points'
+    # spacings (0.21 and 0.11 mm): three points or more fix its circle (rotorcad.meshing.undecided), so the points
+    # decide it, and the design has no tip-corner cusp there
+    spec, _, design, _ = _design_pair("n_rack_5_6")
+    points = _points("n_rack_5_6", "female", per_lobe, 2e-3, 1)
+    rotors = build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points")
+    given = analyse_pair(rotors, spec.speed_rpm)[1]
+    assert _segment_length("n_rack_5_6", "male", "sealing tip circle") >= 2.0 * rotors.point_spacing
+    assert not any(d["tip_corner"] for d in design["defects"])
+    assert given["undecided_defects"] == [], given["undecided_defects"]
+    assert not any(d["tip_corner"] for d in given["defects"]), given["defects"]
 
 
 def _dented(name: str, per_lobe: int, sigma: float, depth: float = 20e-3, width: float = 2.0) -> dict:

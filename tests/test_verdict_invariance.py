@@ -47,6 +47,7 @@ from exports.dxf_profile import read_profile
 from rotorcad.cli.main import main
 from rotorcad.design import rotor_design
 from rotorcad.meshing import MESHLINE_GAIN, resolution
+from rotorcad.roles import tip_corner_name
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 from rotorcad.rotor_points import pair_from_rotor_points
 
@@ -213,6 +214,26 @@ def test_same_blow_hole(verdicts, name, form):
         acc = verdicts[(name, form)]["defect_accuracy"]
         floor = max(floor, MESHLINE_GAIN * acc * resolution(acc, verdicts[(name, form)]["center_distance"]))
     assert given == pytest.approx(design, rel=0.01, abs=floor)  # 1 %
+
+
+@pytest.mark.parametrize(("name", "form"), [(n, f) for n in ROTOR_SAMPLES for f in FORMS])
+def test_same_words_for_the_same_defects(verdicts, name, form):
+    # issue 21 (a new user's session): the same defect read "sealing tip corner" from the design and "sealing male
+    # tip corner" from its own CSV (the narrow-tip's female tip corner "sealing root (female tip path)" and "sealing
+    # female tip corner", the symmetric SRM's "trailing root (female tip path)", Krigar's "tip corner" and "tip male
+    # tip corner"): one thing, one wording, whatever the form. Reference: the design's own defects; each one's `flank`
+    # text is the one of the given form's defect of the same key (test_same_defects_and_running: kind, rotor, flank
+    # part, point-generated) nearest to it, and every tip corner is named by its rotor and lobe part alone
+    design, given = verdicts[(name, "design")], verdicts[(name, form)]
+    for d in design["defects"]:
+        same = [g for g in given["defects"] if _key(g) == _key(d)]
+        if not same:
+            continue  # a different verdict: test_same_defects_and_running's
+        near = min(same, key=lambda g: np.hypot(g["x"] - d["x"], g["y"] - d["y"]))
+        assert near["flank"] == d["flank"], (d, near)
+    for d in design["defects"] + given["defects"]:
+        if d["tip_corner"]:
+            assert d["flank"] == tip_corner_name(d["flank_role"], d["rotor"]), d
 
 
 def _slip_key(d: dict) -> tuple:

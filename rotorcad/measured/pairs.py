@@ -21,7 +21,7 @@ from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.measured.tangent import tip_tangent_accuracy
-from rotorcad.roles import Flank, PieceRole, Side
+from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
 from rotorcad.roots import bisect_levels
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
@@ -83,6 +83,66 @@ apart (Krigar, Lysholm males, 300 points a lobe evenly spaced) lets it leave the
 flanks' geometric contact ran without timing gears where the design does not. The parts' corners lie
 0.1-3.3 µm apart at an accuracy of 0.66 µm; ten times the accuracy is the meshline's own
 (:data:`rotorcad.meshing.MESHLINE_GAIN`)."""
+
+
+SPARSE_TURN = np.radians(12.0)
+"""Largest turn (rad) of the points' outline from one point to the next at which the lobe's roundings are
+followed: where the points turn more near the rack points the lobe loses, the refusal says they are too sparse
+(:func:`_lost_rack_refusal`). The N-rack female (tip rounding 2.07 mm) from points evenly spaced along its
+exact outline, 8 start phases each, exact and 2 um: 16-29 deg a spacing (60-110 points a lobe) lost 2.4-7.2 %
+of the lobe on some phases, 14.7 deg (120) and less none; 12 deg leaves a margin."""
+
+
+def _lost_rack_refusal(label: str, whole: np.ndarray | None, teeth: int, lost_at: np.ndarray, share: float) -> DesignError:
+    """Return the refusal of a lobe whose share ``share`` (per cent) of normals misses the pitch circle.
+
+    Where the given points near the lost rack points turn by more than :data:`SPARSE_TURN` from one
+    point to the next, they step over a rounding (the fit reads a sharp corner whose fan of normals misses
+    the pitch circle) and the sentence says they are too sparse, with the points a lobe that would follow
+    it (the turn a spacing scaled to :data:`SPARSE_TURN`, rounded up to 10); otherwise that the profile
+    has no rack there (a drawing in metres, no rotor).
+
+    Parameters
+    ----------
+    label : str
+        How the points are named (``"female points"``).
+    whole : (n, 2) float array, mm, or None
+        The whole outline's points in the rotor's own frame (None for a drawing's curves).
+    teeth : int
+        The rotor's lobes.
+    lost_at : (m, 2) float array, mm
+        Profile points, own frame, whose normals gave no rack point.
+    share : float, per cent
+        Share of the lobe's samples without a rack point.
+
+    Returns
+    -------
+    DesignError
+    """
+    lost = f"{share:.1f} % of the lobe has no rack point"
+    if whole is not None and len(lost_at) and len(whole) > 4:
+        step = np.roll(whole, -1, axis=0) - whole
+        heading = np.arctan2(step[:, 1], step[:, 0])
+        vertex_turn = np.abs((heading - np.roll(heading, 1) + np.pi) % (2 * np.pi) - np.pi)  # at each point
+        from scipy.spatial import cKDTree
+
+        near = cKDTree(whole).query(lost_at)[1]  # the given point nearest to each lost one
+        around = (near[:, None] + np.arange(-2, 3)[None, :]) % len(whole)
+        k = around.ravel()[np.argmax(vertex_turn[around.ravel()])]
+        turn = float(vertex_turn[k])
+        if turn > SPARSE_TURN:
+            per_lobe = len(whole) / teeth
+            enough = int(np.ceil(per_lobe * turn / SPARSE_TURN / 10.0) * 10)
+            spacing = float(np.hypot(*step[k]))
+            return DesignError(
+                label,
+                f"dense enough to follow the lobe's roundings, about {enough} points a lobe or more here",
+                f"{per_lobe:.0f} points a lobe",
+                f"at r = {np.hypot(*whole[k]):.2f} mm they turn by {np.degrees(turn):.0f} deg from one point to the "
+                f"next ({spacing:.2g} mm apart; {np.degrees(SPARSE_TURN):.0f} deg or less follows a rounding), too "
+                f"coarse to tell the rounding there from a sharp corner whose normals miss the pitch circle; {lost}",
+            )
+    return DesignError(label, "a profile whose every normal meets its pitch circle (it has a rack)", None, lost)
 
 
 def mate_wander(
@@ -451,10 +511,10 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
     The part is read off the rack as :func:`rotorcad.meshing.meshline.flank_roles` reads it per point
     (Rinder sec. 1.2): rising towards the male tip along the travel, the driving flank; falling, the
     sealing flank; flat (to 1 % of its chord: fitted points leave a land micrometres off flat), the
-    tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner ("sealing male
-    tip corner"), a fan's path by the rotor whose corner it is; a corner path across O1O2 (its ends a
-    quarter of its chord or more either side) by where it crosses: above the pitch point C the tip
-    ("tip male tip corner"), below it the root.
+    tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner
+    (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the rotor whose corner it
+    is; a corner path across O1O2 (its ends a quarter of its chord or more either side) takes the role of where
+    it crosses, above the pitch point C the tip, below it the root, and is named "male tip corner (both flanks)".
     """
     out = []
     for piece in rack:
@@ -476,8 +536,7 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
         if piece.kind is PieceRole.CURVE:
             name = f"{role} flank" if role in (Flank.DRIVING, Flank.SEALING) else f"{role} land"
         else:
-            corner = Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE
-            name = f"{role} {corner} tip corner"
+            name = tip_corner_name(role, Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE)
         out.append(RackPiece(piece.curve, name, name, piece.kind))
     return out
 
@@ -554,14 +613,18 @@ def pair_from_rotor_points(
     )
     parts: list[list[RackPiece]] = []
     lost, total = 0, 0
+    lost_at: list[np.ndarray] = []
     gap = MEASURED_JOIN_GAP if outline.sigma > 0 else 2e-3  # scattered points' fits leave a corner's ends apart
     fans = with_corner_fans(pieces, centre, 2 * np.pi / teeth, MEASURED_MIN_TURN, gap)
     racks = []
     for _name, curve in fans:
         gen = Generated(curve, body, mesh.rack, limits=depth)
         rack_curve = gen.reversed() if side is Side.MALE else gen  # travelled in +y (the rack's +x)
-        ok = np.isfinite(rack_curve.evaluate(np.linspace(rack_curve.s0, rack_curve.s1, 400))[0]).all(axis=1)
+        s = np.linspace(rack_curve.s0, rack_curve.s1, 400)
+        ok = np.isfinite(rack_curve.evaluate(s)[0]).all(axis=1)
         lost, total = lost + int((~ok).sum()), total + len(ok)
+        if not ok.all():  # where, in the rotor's own frame (the parent's parameter is the rack's)
+            lost_at.append(curve.evaluate(s[~ok])[0] - centre)
         racks.append(rack_curve)
     for k, (_name, curve) in enumerate(fans):
         rack_curve = racks[k]
@@ -613,11 +676,12 @@ def pair_from_rotor_points(
     rack = _role_names(joined, pair, side)
     lost_share = 100.0 * lost / max(total, 1)
     if lost_share > 2.0:  # a few points at sharp corners may miss their pitch circle; more is not a rotor
-        raise DesignError(
-            f"{rotor} points",
-            "a profile whose every normal meets its pitch circle (it has a rack)",
-            None,
-            f"{lost_share:.1f} % of the lobe has no rack point",
+        raise _lost_rack_refusal(
+            label or f"{rotor} points",
+            outline.whole,
+            teeth,
+            np.vstack(lost_at) if lost_at else np.zeros((0, 2)),
+            lost_share,
         )
     # scattered points' tangents to point_turn; at a male tip corner, from a parametric bootstrap of its
     # fitted spline (measured.tangent)

@@ -29,7 +29,7 @@ from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.meshing.tip_apex import tip_apex
 from rotorcad.meshing.undecided import mark_decided, undecided_rows
 from rotorcad.profile import DEFAULT_TOLERANCE
-from rotorcad.roles import Flank, PieceRole
+from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
 from rotorcad.screw_rotors import ScrewRotors
 
 EXACT_POINTS_AT_MOST = 20000
@@ -696,8 +696,22 @@ class MeshingAnalysis:
             row = d.as_dict()
             row["angle_deg"] = self.lobe_angle(np.radians(d.angle_deg))
             row["tip_corner"] = is_tip_corner(d, pair, self.tip_corner_tolerance)
+            if row["tip_corner"]:  # one name of the corner whatever the input (a design's piece, a fit's)
+                row["flank"] = tip_corner_name(d.role, self._corner_of(d))
             out.append(mark_decided(row, d, self.pieces, pair, spacing))
         return out
+
+    def _corner_of(self, defect: Defect) -> Side:
+        """Return the rotor whose tip corner a tip-corner cusp is.
+
+        Its own for a corner's path (its normal through its centre all along), else the rotor on whose tip
+        circle it lies (a hand-over to a mate's corner path), as the pictures label it.
+        """
+        if defect.point_generated:
+            return Side(defect.rotor)
+        pair = self.rotors.pair
+        on_male_tip = abs(np.hypot(defect.x, defect.y) - pair.male_tip_radius) <= self.tip_corner_tolerance
+        return Side.MALE if on_male_tip else Side.FEMALE
 
     @property
     def _corner_spacing(self) -> float:
