@@ -85,12 +85,13 @@ flanks' geometric contact ran without timing gears where the design does not. Th
 (:data:`rotorcad.meshing.MESHLINE_GAIN`)."""
 
 
-SPARSE_TURN = np.radians(12.0)
+SPARSE_TURN = np.radians(40.0)
 """Largest turn (rad) of the points' outline from one point to the next at which the lobe's roundings are
 followed: where the points turn more near the rack points the lobe loses, the refusal says they are too sparse
 (:func:`_lost_rack_refusal`). The N-rack female (tip rounding 2.07 mm) from points evenly spaced along its
-exact outline, 8 start phases each, exact and 2 um: 16-29 deg a spacing (60-110 points a lobe) lost 2.4-7.2 %
-of the lobe on some phases, 14.7 deg (120) and less none; 12 deg leaves a margin."""
+exact outline, 8 start phases each: 50-62 deg a spacing (30-36 points a lobe) refused on most phases, 45 deg
+(40 a lobe) and less on none, exact or with 2 um (a rounding spread over more than two spacings is read as a
+rounding, :data:`rotorcad.measured.fit.LONG_ROUNDING`); 40 deg leaves a margin."""
 
 
 def _lost_rack_refusal(label: str, whole: np.ndarray | None, teeth: int, lost_at: np.ndarray, share: float) -> DesignError:
