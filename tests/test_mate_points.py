@@ -304,8 +304,8 @@ _N_RACK_SPREAD = (
     "resolve with 2-3 points: 1.787 mm² for the design's 1.738 (+2.8 %) with the male generated within 0.65 um "
     "of the design's everywhere (its apex 0.05 mm off: the blow-hole is that ill-conditioned in the fitted "
     "tangent; 600 points a lobe: +0.31 %, the male within 0.29 um), and the fit's tangent spread there "
-    "(28-29 mrad) states +-4.4 mm², above the area itself (the same from the male's even-300 points, "
-    "test_verdict_invariance's UNRESOLVED_BLOW_HOLE)"
+    "(28-29 mrad) states +-4.4 mm², above the area itself (so did the male's even-300 points until the male tip "
+    "rounding's circles stated their own bound, rotorcad.meshing.rounding_apex.model_check)"
 )
 KNOWN_FEMALE: dict[tuple[str, str, str], str] = {}
 _SPACING = (

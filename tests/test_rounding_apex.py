@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from independent_pairs import patterned, scan
+from independent_pairs import arc_flank_5_6, cut_rotor, patterned, scan
 
 from rotorcad.design import rotor_design
 from rotorcad.meshing.apex import fit_circle
@@ -50,6 +50,7 @@ def _build() -> dict:
         "male": male,
         "female": female,
         "csv": _exterior(analysis.sections[0]),  # what `rotor --male-csv` writes
+        "dense": np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments]),  # 0.01 um chord
     }
 
 
@@ -152,6 +153,10 @@ def test_blow_hole_from_scattered_csv_within_one_percent(n_rack, seed):
     # holds the design's area too, and is below RESOLVED_SHARE of it (0.072-0.090 mm² at seeds 0-7 for errors
     # up to 0.011): what blow_hole_uncertainty could state for this apex in place of the tangent's and spacing's
     assert gap <= analysis.apex_rounding_uncertainty < RESOLVED_SHARE * n_rack["area"]
+    # and the model holds (rotorcad.meshing.rounding_apex.model_check), so that bound is the one stated: resolved
+    assert analysis.apex_rounding_check is None
+    assert summary["blow_hole_uncertainty"] == pytest.approx(analysis.apex_rounding_uncertainty, rel=1e-9)
+    assert summary["blow_hole_resolved"]
 
 
 def test_evenly_scanned_points_with_scatter_cross_where_the_pieces_touch_at_once(n_rack):
@@ -167,3 +172,74 @@ def test_evenly_scanned_points_with_scatter_cross_where_the_pieces_touch_at_once
     analysis, summary = analyse_pair(rotors, spec.speed_rpm)
     assert analysis.apex_rounding is not None
     assert summary["blow_hole_area"] == pytest.approx(n_rack["area"], rel=0.01)
+
+
+def _given(spec, points: np.ndarray):
+    rotors = build_pair(PairSpec(spec.pair, "male-points", {}, points, None, spec.speed_rpm, 0.0), label="--male-points")
+    return analyse_pair(rotors, spec.speed_rpm)
+
+
+@pytest.mark.parametrize(("phase", "holds"), [(0.37, True), (0.8, True), (0.0, False)])
+def test_exact_scan_states_the_models_bound_only_where_the_model_holds(n_rack, phase, holds):
+    # 300 exact points a lobe, evenly along the outline (a CMM's scan), put 3 points on the 0.67 mm rounding, the same
+    # on every lobe: the circle through them has no residual to judge it by. At phases 0.37 and 0.8 it is the design's
+    # (+0.93 %, -0.00 %; its bound 0.05 and 0.04 mm²); at phase 0 one of the three lies past the rounding (radius 1.27
+    # for 1.036), +7.8 %, 1.85 times that bound off. There the two circles touch at their meshlines' crossing 0.57 mrad
+    # apart, for 0.42 that the points' accuracy allows (at 0.37 and 0.8: 0.04 and 0.0002 for 0.23 and 0.13), and the
+    # crossing's male point lies 0.41 mm from the rounding's points, beyond the 0.26 mm gap to the flank's: the check
+    # fails and the spacing's bound stands (73 mm², not resolved). Before, every phase stated 26-88 mm² from the
+    # spacing. Reference: the design's blow-hole from its exact curves
+    spec = n_rack["spec"]
+    points = scan(patterned(n_rack["dense"], spec.pair.male_teeth), 300 * spec.pair.male_teeth, phase)
+    analysis, summary = _given(spec, points)
+    gap = abs(summary["blow_hole_area"] - n_rack["area"])
+    assert analysis.apex_rounding is not None
+    assert gap <= summary["blow_hole_uncertainty"]
+    if holds:
+        assert analysis.apex_rounding_check is None
+        assert summary["blow_hole_resolved"] and gap <= 0.01 * n_rack["area"]
+        assert summary["blow_hole_uncertainty"] == pytest.approx(analysis.apex_rounding_uncertainty, rel=1e-9)
+    else:
+        assert "instants" in analysis.apex_rounding_check
+        assert analysis.apex_rounding_uncertainty < gap  # the model's bound alone would have been wrong
+        assert not summary["blow_hole_resolved"]
+
+
+def test_lysholm_male_flank_of_a_female_corner_keeps_the_other_estimates():
+    # reference: the Lysholm design's meshline closes (blow-hole 0; the female tip corner generates the male's sealing
+    # flank, and its path, the female tip circle, runs into the housing cusp). 150 points a lobe with 1 um of scatter
+    # on each coordinate (seed 1): a male circle (2.0 mm) and a female "circle" of 0.8 um (the corner) cross 0.035 mm²
+    # from the cusp, with a bound of 0.0215 mm²: stated, it resolved a closed meshline as open. The generating circle
+    # is a point to the points' accuracy: the check fails and the other estimates stand (0.51 mm², not resolved)
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "lysholm_4_6.toml").read_text()), SAMPLES))
+    lobe = np.vstack([seg.resampled(1e-5).points for seg in build_pair(spec).male_lobe().segments])
+    points = scan(patterned(lobe, spec.pair.male_teeth), 150 * spec.pair.male_teeth, 0.37)
+    analysis, summary = _given(spec, points + np.random.default_rng(1).normal(0.0, SCATTER, points.shape))
+    assert analysis.apex_rounding is not None and analysis.apex_rounding.flank_radius < 0.01
+    assert "point" in analysis.apex_rounding_check
+    assert summary["blow_hole_area"] > analysis.apex_rounding_uncertainty  # its bound would not hold 0
+    assert summary["blow_hole_area"] <= summary["blow_hole_uncertainty"]  # the stated one does
+    assert not summary["blow_hole_resolved"]
+
+
+def test_arc_flank_male_tip_rounding_of_a_rack_circle_is_no_male_circle():
+    # reference: the independent generator's rack (tests/independent_pairs.py arc_flank_5_6): its 1.2 mm corner
+    # rounding between the top flat and the arc flank cuts the male's tip, whose rounding is that rack circle's
+    # envelope, not a male circle. At 600 exact points a lobe a male circle (5.2 mm) fitted there and the rack circle
+    # (1.2 mm) fitted to the flank beside it crossed 1.6 mrad apart, for 0.22 that the accuracy allows, and read
+    # 53.95 mm² for 62.06 (1500 points a lobe), 5.2 times the model's bound (1.57 mm²) off: the check fails
+    from independent_pairs import resample
+
+    from rotorcad.rotor_pair import RotorPair
+
+    rack = arc_flank_5_6()
+    male = cut_rotor(rack, "male")
+    pair = RotorPair(rack.male_teeth, rack.female_teeth, rack.center_distance, **rack.radii(), lead=300.0, length=150.0)
+    spacing = float(np.hypot(*np.diff(np.vstack([male, male[:1]]), axis=0).T).sum()) / rack.male_teeth / 600
+    rotors = build_pair(PairSpec(pair, "male-points", {}, resample(male, spacing), None, 3000.0, 0.0), label="--male-points")
+    analysis, summary = analyse_pair(rotors, 3000.0)
+    assert analysis.apex_rounding is not None and analysis.apex_rounding.body is Body.RACK
+    assert analysis.apex_rounding.flank_radius == pytest.approx(1.2, abs=0.01)  # the rack's corner_radius
+    assert "instants" in analysis.apex_rounding_check
+    assert summary["blow_hole_uncertainty"] > analysis.apex_rounding_uncertainty
+    assert not summary["blow_hole_resolved"]

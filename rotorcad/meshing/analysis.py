@@ -24,7 +24,7 @@ from rotorcad.meshing.blow_hole_accuracy import BLOW_HOLE_RESOLUTION, blow_hole_
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
-from rotorcad.meshing.rounding_apex import moved_apexes, pseudo_inverses, rounding_apex
+from rotorcad.meshing.rounding_apex import model_check, moved_crossings, pseudo_inverses, rounding_apex
 from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.meshing.tip_apex import tip_apex
 from rotorcad.meshing.undecided import mark_decided, undecided_rows
@@ -36,6 +36,9 @@ EXACT_POINTS_AT_MOST = 20000
 """Most exact points (every lobe) :meth:`MeshingAnalysis._rounding_apex` fits a tip rounding's circles to: the N rack
 male's outline at a 0.01 um chord (its spline within 1 % of the design's blow-hole) holds far more; 300 and 500 points
 a lobe evenly spaced read +13.7 % and -59.5 % before, +0.9 % and 0.0 % with the circles."""
+
+ROUNDING_STEP = 1e-4
+"""mm: the step by which :attr:`MeshingAnalysis.apex_rounding_uncertainty` moves each of the rounding's circles' parameters."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -494,28 +497,40 @@ class MeshingAnalysis:
         return self.__dict__.get("_rounding_model")
 
     @cached_property
+    def _rounding_moves(self) -> list:
+        """:func:`rotorcad.meshing.rounding_apex.moved_crossings` of :attr:`apex_rounding` by :data:`ROUNDING_STEP`."""
+        return moved_crossings(self.apex_rounding, ROUNDING_STEP, self.rotors.pair)
+
+    @cached_property
     def apex_rounding_uncertainty(self) -> float:
         """Return how far the blow-hole area may be off where a male tip rounding's circles placed the apex (mm²), else inf.
 
-        The area's gradient g by the two circles' six parameters (:func:`rotorcad.meshing.rounding_apex.moved_apexes`,
+        The area's gradient g by the two circles' six parameters (:func:`rotorcad.meshing.rounding_apex.moved_crossings`,
         steps of 0.1 um) through each fit's first-order response J^+ to its points' errors
         (:func:`rotorcad.meshing.rounding_apex.pseudo_inverses`): with every point within :attr:`judged_accuracy` e,
         the area moves by at most e sum_i |(g J^+)_i| over each fit's points (the worst case of the linearised fits,
         their parameters' correlation kept), summed over the two fits. inf where a step loses the crossing or no
-        rounding placed the apex.
+        rounding placed the apex. It holds where the model does (:attr:`apex_rounding_check`).
         """
         model = self.apex_rounding
-        if model is None:
-            return float("inf")
-        step = 1e-4
-        moved = moved_apexes(model, step, self.rotors.pair)
-        if any(m is None for m in moved):
+        if model is None or any(m is None for m in self._rounding_moves):
             return float("inf")
         area = self.blow_hole_area
-        grad = np.array([(self.blow_hole_at(m).area - area) / step for m in moved])
+        grad = np.array([(self.blow_hole_at(m[0]).area - area) / ROUNDING_STEP for m in self._rounding_moves])
         first, second = pseudo_inverses(model, self.rotors.pair)
         worst = np.abs(grad[:3] @ first).sum() + np.abs(grad[3:] @ second).sum()
         return float(self.judged_accuracy * worst)
+
+    @cached_property
+    def apex_rounding_check(self) -> str | None:
+        """Why the tip rounding's two circles do not hold as the points' model (one sentence), None where they do.
+
+        :func:`rotorcad.meshing.rounding_apex.model_check`; "no rounding placed the apex" where none did.
+        """
+        if self.apex_rounding is None:
+            return "no rounding placed the apex"
+        pair, acc = self.rotors.pair, self.judged_accuracy
+        return model_check(self.apex_rounding, self.meshline_end, self._rounding_moves, ROUNDING_STEP, acc, pair)
 
     @property
     def apex_candidates(self) -> list[np.ndarray]:

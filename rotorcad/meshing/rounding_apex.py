@@ -96,6 +96,10 @@ class RoundingModel(NamedTuple):
     """(2,) float array, mm: that end."""
     reach: float
     """mm: how far from it the apex may lie."""
+    sigma: float = 0.0
+    """mm: the points' scatter the two fits were held to (:func:`holds`)."""
+    rotations: tuple[float, float] = (0.0, 0.0)
+    """rad: the male rotations at which the rounding's and the flank's circle touch at the apex (:func:`crossing`)."""
 
 
 def body_centre(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) -> np.ndarray:
@@ -524,7 +528,19 @@ def rounding_apex(
             if on.any() and float(np.hypot(*(x[on] - cusp).T).min()) < gap:
                 return None
     model = RoundingModel(
-        rounding[0], rounding[1], body, centre, radius, rounding_points, folded.raw[on_flank], feet, t, near, reach
+        rounding[0],
+        rounding[1],
+        body,
+        centre,
+        radius,
+        rounding_points,
+        folded.raw[on_flank],
+        feet,
+        t,
+        near,
+        reach,
+        sigma,
+        (t1, t2),
     )
     return apex, model
 
@@ -552,19 +568,116 @@ def pseudo_inverses(model: RoundingModel, pair: RotorPair) -> tuple[np.ndarray, 
     return first, np.linalg.pinv(jac)
 
 
-def moved_apexes(model: RoundingModel, step: float, pair: RotorPair) -> list[np.ndarray | None]:
-    """Return the apex with each of the circles' six parameters moved by ``step`` (mm) in turn (:func:`crossing`).
+def moved_crossings(model: RoundingModel, step: float, pair: RotorPair) -> list[tuple[np.ndarray, float, float] | None]:
+    """Return the crossing with each of the circles' six parameters moved by ``step`` (mm) in turn (:func:`crossing`).
 
-    In the order rounding centre x, y, radius, flank circle centre x, y, radius; None where a move loses the crossing.
+    In the order rounding centre x, y, radius, flank circle centre x, y, radius: the apex (mm) and the two circles'
+    touching rotations (rad), None where a move loses the crossing.
     """
     base = np.r_[model.centre, model.radius, model.flank_centre, model.flank_radius]
     out = []
     for j in range(6):
         x = base.copy()
         x[j] += step
-        cut = crossing((Body.MALE, x[:2], x[2]), (model.body, x[3:5], x[5]), model.t, model.near, model.reach, pair)
-        out.append(None if cut is None else cut[0])
+        out.append(crossing((Body.MALE, x[:2], x[2]), (model.body, x[3:5], x[5]), model.t, model.near, model.reach, pair))
     return out
+
+
+def moved_apexes(model: RoundingModel, step: float, pair: RotorPair) -> list[np.ndarray | None]:
+    """Return the apex with each of the circles' six parameters moved by ``step`` (mm) in turn (:func:`moved_crossings`).
+
+    In the order rounding centre x, y, radius, flank circle centre x, y, radius; None where a move loses the crossing.
+    """
+    return [None if cut is None else cut[0] for cut in moved_crossings(model, step, pair)]
+
+
+def _turn_from(points: np.ndarray, centre: np.ndarray, point: np.ndarray) -> np.ndarray:
+    """Return the angles (rad, (n,)) of points about ``centre`` from that of ``point``, in (-pi, pi]."""
+    turn = np.arctan2(points[:, 1] - centre[1], points[:, 0] - centre[0]) - np.arctan2(*(point - centre)[::-1])
+    return np.arctan2(np.sin(turn), np.cos(turn))
+
+
+def _on_fit(gaps: np.ndarray, sigma: float) -> bool:
+    """Tell whether points' gaps (mm) from a curve fitted to other points lie within their scatter (as :func:`holds`)."""
+    if len(gaps) == 0:
+        return True
+    rms = float(np.sqrt(np.mean(gaps**2)))
+    return rms <= sigma * (1.0 + RMS_SPREAD / np.sqrt(2.0 * len(gaps))) and float(np.abs(gaps).max()) <= 4.5 * sigma
+
+
+def model_check(
+    model: RoundingModel,
+    apex: np.ndarray,
+    moves: list[tuple[np.ndarray, float, float] | None],
+    step: float,
+    accuracy: float,
+    pair: RotorPair,
+) -> str | None:
+    """Return why the two circles do not hold as the points' tip rounding and flank, or None where they hold.
+
+    Their bound (:attr:`rotorcad.meshing.MeshingAnalysis.apex_rounding_uncertainty`) is of the two fits' errors
+    alone, so it holds only where the model itself does: each fit's residuals within the points' scatter over
+    the stretch it was fitted to (:func:`holds`, no growing end); the flank's generating circle a circle, its
+    radius beyond the points' accuracy and beyond how far that accuracy moves it (the Lysholm male's flank is
+    the female tip corner's envelope: a circle of 0.8 um fitted there, whose meshline, the corner's path, runs
+    into the cusp); the crossing where one male point touches both circles at one instant, as it does where
+    the rounding meets the flank with a common tangent, to within how far the points' accuracy moves the two
+    rotations apart (the arc-flank male's tip rounding is a rack circle's envelope: a male circle fitted there
+    crossed 1.6-2.7 mrad apart, for 0.2-0.8 mrad the accuracy allows, and read -13 % at 600 points a lobe); and
+    no fit extrapolated to the crossing: the given points between its male point and each fit's own (on the
+    rounding's circle, angles about its centre) lie on that fit to their scatter (the flank's fit, grown towards
+    the tip while it holds, takes the points just past the junction too: the N rack male's CSV with 1 um puts
+    the crossing 0.05-0.08 mm past the rounding's last point, among the flank's).
+
+    Parameters
+    ----------
+    model : RoundingModel
+    apex : (2,) float array, mm
+        The circles' crossing (fixed frame).
+    moves : list of 6 ((2,) float array, float, float) or None
+        :func:`moved_crossings` of ``model`` by ``step``.
+    step : float, mm
+    accuracy : float, mm
+        How far each given point may lie from the true profile (as the bound's).
+    pair : RotorPair
+
+    Returns
+    -------
+    str or None
+        The condition that fails, one sentence; None where all hold.
+    """
+    gaps = np.hypot(*(model.rounding_points - model.centre).T) - model.radius
+    if not holds(gaps, np.zeros(len(gaps), dtype=bool), model.sigma):
+        return "the rounding's points do not lie on its circle to their scatter"
+    flank, _ = envelope_gaps(model.flank_points, model.flank_rotations, model.body, model.flank_centre, model.flank_radius, pair)
+    if not holds(flank, np.zeros(len(flank), dtype=bool), model.sigma):
+        return "the flank's points do not lie on its circle's envelope to their scatter"
+    first, second = pseudo_inverses(model, pair)
+    if model.flank_radius <= max(accuracy, accuracy * float(np.abs(second[2]).sum())):
+        return "the flank's generating circle is a point to the points' accuracy"
+    if any(cut is None for cut in moves):
+        return "a move of the circles within the points' accuracy loses their crossing"
+    t1, t2 = model.rotations
+    grad = np.array([((cut[1] - cut[2]) - (t1 - t2)) / step for cut in moves])
+    apart = accuracy * (float(np.abs(grad[:3] @ first).sum()) + float(np.abs(grad[3:] @ second).sum()))
+    if abs(t1 - t2) > apart:
+        return "the two circles touch at their meshlines' crossing at instants farther apart than the accuracy allows"
+    # the male point at the crossing (on the rounding's circle at t1, in the frame the points were folded into); the
+    # points between it and either fit's own lie on that fit too (the crossing is no extrapolation of it)
+    on_rounding = rotate(np.reshape(apex, (1, 2)), -np.array([t1]))[0]
+    rel_r, rel_f = (_turn_from(points, model.centre, on_rounding) for points in (model.rounding_points, model.flank_points))
+    way = 1.0 if np.median(rel_r) >= 0.0 else -1.0  # from the crossing towards the tip
+    between = (way * rel_f > 0.0) & (way * rel_f < float(np.min(way * rel_r)))
+    gaps = np.hypot(*(model.flank_points[between] - model.centre).T) - model.radius
+    if not _on_fit(gaps, model.sigma):
+        return "the flank's points between the rounding's and the crossing do not lie on the rounding's circle"
+    beyond = way * rel_r < 0.0
+    gaps, _ = envelope_gaps(
+        model.rounding_points[beyond], np.full(int(beyond.sum()), t2), model.body, model.flank_centre, model.flank_radius, pair
+    )
+    if not _on_fit(gaps, model.sigma):
+        return "the rounding's points past the crossing do not lie on the flank's circle's envelope"
+    return None
 
 
 __all__ = [
@@ -576,7 +689,9 @@ __all__ = [
     "envelope_gaps",
     "fit_envelope",
     "holds",
+    "model_check",
     "moved_apexes",
+    "moved_crossings",
     "pseudo_inverses",
     "rounding_apex",
 ]
