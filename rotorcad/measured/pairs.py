@@ -276,7 +276,8 @@ def _mate_corner_runs(
 
     out, last = [], rack_curve.s0
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
-    previous = (np.full(2, np.nan), np.full(2, np.nan))  # the last corner path's corner and rack point
+    # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
+    previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
     for i, j in runs:
         # the corner is where most of the run's mate points lie; the path extends exactly as far as the
         # mate's point stays within its wander of it (a slowly moving flank next to it may pass the
@@ -300,12 +301,17 @@ def _mate_corner_runs(
             b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
         middle = pr[(i + j) // 2]
         same = SCATTERED_STALL * np.hypot(*(middle - previous[1])) if scattered else same_corner
-        if out and out[-1][2] and np.hypot(*(corner - previous[0])) <= same:
-            a = last  # the same corner again, stalled since the path's first run: what lies between is its path too
+        again = bool(np.hypot(*(corner - previous[0])) <= same)
+        if again:  # the same corner again, stalled since the path was last seen: what lies between is its path too
+            a = previous[2] if (previous[2] - last) * span >= 0 else last
         else:
-            previous = (corner, middle)
+            previous = (corner, middle, a)
         if (b - a) * span <= 0:
+            # no path (the mate's point within its wander at one sample only): the corner is still seen there, so
+            # that a run of it further on takes its path from here, and the last path is not run on to it (the
+            # symmetric SRM male's whole lobe arc, 600 points a lobe, read as the near female tip's path)
             continue
+        previous = (previous[0], previous[1], b)
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
             out.append((last, a, False))
         out.append((a, b, True))
