@@ -16,6 +16,9 @@ running 0/1/0 before (600: a female sealing cusp and "does not run" at phase 0.5
 before; 12 and 2 after (females all the design's; the rest: Krigar's male 7 and Lysholm's 3, a female tip corner's
 path read as two undecided cusps; the asymmetric SRM's male 1 and the symmetric SRM's 1, a female cusp; the symmetric
 SRM's male at phases 0.25 and 0.875 "no geometric contact": the whole meshline one female corner path, its lobe arc in it).
+Issue 21 (srm-600, a run of no path no longer joins the far tip's path to the near one's; a female tip path runs on
+over the fit's end to the piece's end): 10 and 0 (Krigar's male 7, Lysholm's 2, the asymmetric SRM's 1, each an
+extra female cusp). The symmetric SRM male at 500/600/700 a lobe: defects differ 0/1/0 and running 1/2/0 before, 0/0/0 after.
 """
 
 from __future__ import annotations

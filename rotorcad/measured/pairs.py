@@ -238,6 +238,28 @@ def departure(mate: Generated, corner: np.ndarray, edge: float, inside: float, s
     return float(np.clip(edge - direction * back, min(edge, inside), max(edge, inside)))
 
 
+def _to_piece_ends(pr: np.ndarray, dist: np.ndarray, lo: int, hi: int, same: float, shortest: float) -> tuple[int, int]:
+    """Return a mate tip corner's path of exact points ``lo..hi`` (sample indices) run on to the rack piece's ends.
+
+    The piece ends where the rotor given has a corner, and the fit's end leaves the mate's point off its corner
+    there (the symmetric SRM male's root corners, 600 exact points a lobe: 5-94 um over the last 10 of 801 samples,
+    the female tip's path reaching the pitch line, where the rack's normal runs along it): its last stretch read
+    as a flank of a few tenths of a millimetre, whose mate was a female cusp, and the flank "did not run" at two of
+    8 start phases. Towards each end the path runs on as far as the mate's point stays within ``same`` (mm, the
+    wander of one corner's path, :data:`EXACT_CORNER_WANDER`) of its corner, and on to the end where the rest
+    of the rack (``pr``, (n, 2) mm, the samples) to it is shorter than ``shortest`` (mm, the resolution of
+    the defect tests: no verdict is read off it). ``dist`` (n,) are the mate's points' distances (mm) from the corner.
+    """
+    loose = np.flatnonzero(dist > same)
+    start = int(loose[loose < lo].max(initial=-1)) + 1  # as far as the mate's point stays within one corner's wander
+    stop = int(loose[loose > hi].min(initial=len(dist))) - 1
+    if 0 < lo and np.hypot(*(pr[start] - pr[0])) < shortest:
+        lo = 0
+    if hi < len(dist) - 1 and np.hypot(*(pr[-1] - pr[stop])) < shortest:
+        hi = len(dist) - 1
+    return lo, hi
+
+
 def _mate_corner_runs(
     rack_curve: Curve,
     mate: Generated,
@@ -337,7 +359,8 @@ def _mate_corner_runs(
 
     out, last = [], rack_curve.s0
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
-    previous = (np.full(2, np.nan), np.full(2, np.nan))  # the last corner path's corner and rack point
+    # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
+    previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
     for i, j in runs:
         # the corner is where most of the run's mate points lie; the path extends exactly as far as the
         # mate's point stays within its wander of it (a slowly moving flank next to it may pass the
@@ -357,16 +380,23 @@ def _mate_corner_runs(
             noise = max(noise, spread)
             a, b = max(s[lo], last) if span > 0 else min(s[lo], last), s[hi]
         else:
+            if not off_tip and shortest > 0:
+                lo, hi = _to_piece_ends(pr, dist, lo, hi, same_corner, shortest)
             a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
             b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
         middle = pr[(i + j) // 2]
         same = SCATTERED_STALL * np.hypot(*(middle - previous[1])) if scattered else same_corner
-        if out and out[-1][2] and np.hypot(*(corner - previous[0])) <= same:
-            a = last  # the same corner again, stalled since the path's first run: what lies between is its path too
+        again = bool(np.hypot(*(corner - previous[0])) <= same)
+        if again:  # the same corner again, stalled since the path was last seen: what lies between is its path too
+            a = previous[2] if (previous[2] - last) * span >= 0 else last
         else:
-            previous = (corner, middle)
+            previous = (corner, middle, a)
         if (b - a) * span <= 0:
+            # no path (the mate's point within its wander at one sample only): the corner is still seen there, so
+            # that a run of it further on takes its path from here, and the last path is not run on to it (the
+            # symmetric SRM male's whole lobe arc, 600 points a lobe, read as the near female tip's path)
             continue
+        previous = (previous[0], previous[1], b)
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
             out.append((last, a, False))
         out.append((a, b, True))
