@@ -116,12 +116,19 @@ def body_centre(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) 
     (n, 2) float array, mm
     """
     t = np.asarray(t, dtype=float)
-    q = np.broadcast_to(np.asarray(centre, dtype=float), (len(t), 2))
+    q = np.asarray(centre, dtype=float)
     if body is Body.MALE:
-        return rotate(q, t)
+        return np.stack(_turned_point(q, t), axis=-1)
     if body is Body.FEMALE:
-        return np.array([pair.center_distance, 0.0]) + rotate(q, -t * pair.male_teeth / pair.female_teeth)
-    return q + np.column_stack([np.zeros_like(t), pair.male_pitch_radius * t])
+        x, y = _turned_point(q, -t * pair.male_teeth / pair.female_teeth)
+        return np.stack([pair.center_distance + x, 0.0 + y], axis=-1)  # O2 + the turned point
+    return np.stack([q[0] + np.zeros_like(t), q[1] + pair.male_pitch_radius * t], axis=-1)
+
+
+def _turned_point(q: np.ndarray, angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return x and y (n,) of a point q (2,) turned about the origin by each angle (n,), as rotorcad.geometry.rotate does."""
+    c, s = np.cos(angle), np.sin(angle)
+    return c * q[0] - s * q[1], s * q[0] + c * q[1]
 
 
 def circle_contacts(body: Body, centre: np.ndarray, radius: float, t: np.ndarray, pair: RotorPair, sign: float) -> np.ndarray:
@@ -148,9 +155,9 @@ def _path(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) -> tup
     fx, fy = f[:, 0], f[:, 1]
     if body is Body.FEMALE:
         k = pair.male_teeth / pair.female_teeth
-        turned = rotate(np.broadcast_to(np.asarray(centre, dtype=float), (len(t), 2)), -k * t)
-        d1x, d1y = -k * turned[:, 1] * -1.0, -k * turned[:, 0]  # -k J turned, turned (x, y) -> (-y, x)
-        d2x, d2y = -(k**2) * turned[:, 0], -(k**2) * turned[:, 1]
+        tx, ty = _turned_point(np.asarray(centre, dtype=float), -k * t)
+        d1x, d1y = -k * ty * -1.0, -k * tx  # -k J turned, J (x, y) = (-y, x)
+        d2x, d2y = -(k**2) * tx, -(k**2) * ty
         # F' - J F and F'' - 2 J F' - F, J (x, y) = (-y, x), column by column
         a = np.stack([d1x + fy, d1y - fx], axis=-1)
         b = np.stack([d2x + 2.0 * d1y - fx, d2y - 2.0 * d1x - fy], axis=-1)
