@@ -120,12 +120,19 @@ def body_centre(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) 
     (n, 2) float array, mm
     """
     t = np.asarray(t, dtype=float)
-    q = np.broadcast_to(np.asarray(centre, dtype=float), (len(t), 2))
+    q = np.asarray(centre, dtype=float)
     if body is Body.MALE:
-        return rotate(q, t)
+        return np.stack(_turned_point(q, t), axis=-1)
     if body is Body.FEMALE:
-        return np.array([pair.center_distance, 0.0]) + rotate(q, -t * pair.male_teeth / pair.female_teeth)
-    return q + np.column_stack([np.zeros_like(t), pair.male_pitch_radius * t])
+        x, y = _turned_point(q, -t * pair.male_teeth / pair.female_teeth)
+        return np.stack([pair.center_distance + x, 0.0 + y], axis=-1)  # O2 + the turned point
+    return np.stack([q[0] + np.zeros_like(t), q[1] + pair.male_pitch_radius * t], axis=-1)
+
+
+def _turned_point(q: np.ndarray, angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return x and y (n,) of a point q (2,) turned about the origin by each angle (n,), as rotorcad.geometry.rotate does."""
+    c, s = np.cos(angle), np.sin(angle)
+    return c * q[0] - s * q[1], s * q[0] + c * q[1]
 
 
 def circle_contacts(body: Body, centre: np.ndarray, radius: float, t: np.ndarray, pair: RotorPair, sign: float) -> np.ndarray:
@@ -149,18 +156,36 @@ def _path(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) -> tup
     """
     t = np.asarray(t, dtype=float)
     f = body_centre(body, centre, t, pair)
+    fx, fy = f[:, 0], f[:, 1]
     if body is Body.FEMALE:
         k = pair.male_teeth / pair.female_teeth
-        turned = rotate(np.broadcast_to(np.asarray(centre, dtype=float), (len(t), 2)), -k * t)
-        d1, d2 = -k * turned[:, ::-1] * np.array([-1.0, 1.0]), -(k**2) * turned
+        tx, ty = _turned_point(np.asarray(centre, dtype=float), -k * t)
+        d1x, d1y = -k * ty * -1.0, -k * tx  # -k J turned, J (x, y) = (-y, x)
+        d2x, d2y = -(k**2) * tx, -(k**2) * ty
+        # F' - J F and F'' - 2 J F' - F, J (x, y) = (-y, x), column by column
+        a = np.stack([d1x + fy, d1y - fx], axis=-1)
+        b = np.stack([d2x + 2.0 * d1y - fx, d2y - 2.0 * d1x - fy], axis=-1)
     else:  # the rack (a male point's path is the point itself: M' = M'' = 0 follows from F' = J F)
-        d1 = np.column_stack([np.zeros_like(t), np.full_like(t, pair.male_pitch_radius)])
-        d2 = np.zeros_like(d1)
+        v = pair.male_pitch_radius  # F' = (0, v), F'' = 0
+        a = np.stack([0.0 + fy, v - fx], axis=-1)
+        b = np.stack([0.0 + 2.0 * v - fx, 0.0 - fy], axis=-1)
+    c, s = np.cos(-t), np.sin(-t)  # R(-t), once for the three
+    return _turned(f, c, s), _turned(a, c, s), _turned(b, c, s)
 
-    def turn90(v: np.ndarray) -> np.ndarray:
-        return np.column_stack([-v[:, 1], v[:, 0]])
 
-    return rotate(f, -t), rotate(d1 - turn90(f), -t), rotate(d2 - 2.0 * turn90(d1) - f, -t)
+def _path_point(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) -> np.ndarray:
+    """Return M(t) alone, the first of :func:`_path`'s (the same numbers), (n, 2) mm."""
+    t = np.asarray(t, dtype=float)
+    return _turned(body_centre(body, centre, t, pair), np.cos(-t), np.sin(-t))
+
+
+def _turned(v: np.ndarray, c: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Return vectors (n, 2) turned by the angles of cosines ``c``, sines ``s`` (n,), as rotorcad.geometry.rotate turns them."""
+    x, y = v[:, 0], v[:, 1]
+    out = np.empty_like(v)
+    np.subtract(c * x, s * y, out=out[:, 0])
+    np.add(s * x, c * y, out=out[:, 1])
+    return out
 
 
 def envelope_gaps(
@@ -193,7 +218,7 @@ def envelope_gaps(
         r = points - m0
         grad, hess = -(r * d1).sum(axis=1), (d1 * d1).sum(axis=1) - (r * d2).sum(axis=1)
         t = t - np.where(np.abs(hess) > 1e-12, grad / np.where(hess == 0, 1.0, hess), 0.0)
-    return np.hypot(*(points - _path(body, centre, t, pair)[0]).T) - radius, t
+    return np.hypot(*(points - _path_point(body, centre, t, pair)).T) - radius, t
 
 
 def fit_envelope(
@@ -219,7 +244,7 @@ def fit_envelope(
         return g
 
     def jacobian(x: np.ndarray) -> np.ndarray:
-        n = points - _path(body, x[:2], feet[0], pair)[0]
+        n = points - _path_point(body, x[:2], feet[0], pair)
         n /= np.maximum(np.hypot(*n.T), 1e-15)[:, None]
         c, s = np.cos(turn * feet[0]), np.sin(turn * feet[0])  # R(-turn t) = [[c, s], [-s, c]]
         dx = -(n[:, 0] * c - n[:, 1] * s)  # -n . R(-turn t) e_x
@@ -561,7 +586,7 @@ def pseudo_inverses(model: RoundingModel, pair: RotorPair) -> tuple[np.ndarray, 
     if model.body is Body.MALE:
         return first, np.linalg.pinv(circle(model.flank_points, model.flank_centre))
     turn = (1.0 + pair.male_teeth / pair.female_teeth) if model.body is Body.FEMALE else 1.0
-    n = model.flank_points - _path(model.body, model.flank_centre, model.flank_rotations, pair)[0]
+    n = model.flank_points - _path_point(model.body, model.flank_centre, model.flank_rotations, pair)
     n /= np.maximum(np.hypot(*n.T), 1e-15)[:, None]
     c, s = np.cos(turn * model.flank_rotations), np.sin(turn * model.flank_rotations)
     jac = np.column_stack([-(n[:, 0] * c - n[:, 1] * s), -(n[:, 0] * s + n[:, 1] * c), -np.ones(len(n))])

@@ -132,6 +132,7 @@ def _corner_zero(
     reach: float,
     circles: tuple,
     accuracy: float,
+    turns: dict | None = None,
 ) -> tuple[np.ndarray, float] | None:
     """Return the corner of a meshline turn at sample ``i`` of a piece where the rotor's v_t vanishes, and its lever.
 
@@ -142,10 +143,17 @@ def _corner_zero(
     (:func:`turn_corner`, from the branches either side) has ``l_c``. v_t vanishes at the corner
     where the two have opposite signs (the rounding cut across the zero) or ``l_c`` lies within what
     the corner's placing moves it (``reach`` / 10, how near the extended branches must pass each other).
+    ``turns``, if given, keeps :func:`turn_corner`'s answers for this run by the sample's arc length and point
+    (all it reads of the sample), for the other rotor's judgement and for samples that repeat a point.
     """
     points, arclen, first = run
     at = first + i
-    corner = turn_corner(points, arclen, at, reach, circles, accuracy)
+    key = (float(arclen[at]), points[at].tobytes())  # what turn_corner reads of the sample (the run's arc length, the point)
+    corner = turns.get(key, False) if turns is not None else False
+    if corner is False:
+        corner = turn_corner(points, arclen, at, reach, circles, accuracy)
+        if turns is not None:
+            turns[key] = corner
     if corner is None or np.hypot(*(corner - c)) <= 0:
         return None
     (lever, gain), (mine, _) = tangential_lever(corner[None], centre, c), tangential_lever(points[at][None], centre, c)
@@ -268,6 +276,7 @@ def slip_singularities(
         return run, np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(run, axis=0).T))]), first
 
     start = 0
+    turns: dict[int, dict] = {}  # per piece, its turns' corners by sample (_corner_zero): both rotors judge the same samples
     for j, piece in enumerate(pieces):
         n = len(piece.t)
         run = None  # piece j with its neighbours, joined once for all its samples
@@ -299,7 +308,7 @@ def slip_singularities(
                 continue
             run = joined(j) if run is None else run
             for i in least[_may_turn_sharply(run, least, reach)]:
-                zero = _corner_zero(run, int(i), centres[rotor], c, reach, circles, accuracy)
+                zero = _corner_zero(run, int(i), centres[rotor], c, reach, circles, accuracy, turns.setdefault(j, {}))
                 if zero is not None:
                     add(rotor, zero[0], piece.t[i], piece.roles[i])
     return found

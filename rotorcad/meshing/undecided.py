@@ -88,6 +88,26 @@ def _distances(own: np.ndarray, corner: np.ndarray, pair: RotorPair, rotor: Side
     return np.hypot(own[:, None, 0] - copies[None, :, 0], own[:, None, 1] - copies[None, :, 1]).min(axis=1)
 
 
+def _masses(own: np.ndarray, weight: np.ndarray, corners: np.ndarray, pair: RotorPair, rotor: Side, spacing: float) -> np.ndarray:
+    """Meshline length (mm) of the contacts (n, 2) within ``spacing`` of each corner (m, 2) or its lobe copies, (m,).
+
+    Row i is ``weight[_distances(own, corners[i], pair, rotor) <= spacing].sum()``, the same numbers (each
+    corner's copies turned as :func:`_lobe_copies` turns them, the same sum per row), the distances of a
+    block of corners at once.
+    """
+    male = rotor is Side.MALE
+    z = pair.male_teeth if male else pair.female_teeth
+    centre = (0.0, 0.0) if male else (pair.center_distance, 0.0)
+    copies = np.stack([rotate(corners, 2.0 * np.pi * k / z, centre) for k in range(z)], axis=1)  # (m, z, 2)
+    out = np.empty(len(corners))
+    block = max(1, 1_000_000 // max(1, len(own) * z))
+    for a in range(0, len(corners), block):
+        c = copies[a : a + block]
+        d = np.hypot(own[None, :, None, 0] - c[:, None, :, 0], own[None, :, None, 1] - c[:, None, :, 1]).min(axis=2)
+        out[a : a + block] = [weight[row <= spacing].sum() for row in d]
+    return out
+
+
 def corner_margin(pieces: list[MeshlinePiece], pair: RotorPair, rotor: Side, corner: np.ndarray, length: float) -> float:
     """Return the radius of rotor profile about a corner within which its contacts generate ``length`` of meshline.
 
@@ -174,7 +194,7 @@ def undecided_corners(
         return []
     own, weight, points, roles = c.own[on], c.weight[on], c.points[on], c.roles[on]
     cand = np.arange(len(own))[:: max(1, len(own) // 300)]
-    mass = np.array([weight[_distances(own, own[i], pair, rotor) <= spacing].sum() for i in cand])
+    mass = _masses(own, weight, own[cand], pair, rotor, spacing)
     left = np.ones(len(cand), dtype=bool)
     out: list[dict[str, object]] = []
     for _ in range(4):  # a rotor has two tip corners a lobe; a few more places at most
