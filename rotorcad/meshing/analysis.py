@@ -24,7 +24,7 @@ from rotorcad.meshing.blow_hole_accuracy import BLOW_HOLE_RESOLUTION, blow_hole_
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
-from rotorcad.meshing.rounding_apex import model_check, moved_crossings, pseudo_inverses, rounding_apex
+from rotorcad.meshing.rounding_apex import area_bound, model_check, moved_crossings, rounding_apex
 from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.meshing.tip_apex import tip_apex
 from rotorcad.meshing.undecided import mark_decided, undecided_rows
@@ -505,21 +505,15 @@ class MeshingAnalysis:
     def apex_rounding_uncertainty(self) -> float:
         """Return how far the blow-hole area may be off where a male tip rounding's circles placed the apex (mm²), else inf.
 
-        The area's gradient g by the two circles' six parameters (:func:`rotorcad.meshing.rounding_apex.moved_crossings`,
-        steps of 0.1 um) through each fit's first-order response J^+ to its points' errors
-        (:func:`rotorcad.meshing.rounding_apex.pseudo_inverses`): with every point within :attr:`judged_accuracy` e,
-        the area moves by at most e sum_i |(g J^+)_i| over each fit's points (the worst case of the linearised fits,
-        their parameters' correlation kept), summed over the two fits. inf where a step loses the crossing or no
-        rounding placed the apex. It holds where the model does (:attr:`apex_rounding_check`).
+        :func:`rotorcad.meshing.rounding_apex.area_bound` with every point within :attr:`judged_accuracy`, the
+        circles' parameters moved by :data:`ROUNDING_STEP`; inf where a step loses the crossing or no rounding placed
+        the apex. It holds where the model does (:attr:`apex_rounding_check`).
         """
         model = self.apex_rounding
         if model is None or any(m is None for m in self._rounding_moves):
             return float("inf")
-        area = self.blow_hole_area
-        grad = np.array([(self.blow_hole_at(m[0]).area - area) / ROUNDING_STEP for m in self._rounding_moves])
-        first, second = pseudo_inverses(model, self.rotors.pair)
-        worst = np.abs(grad[:3] @ first).sum() + np.abs(grad[3:] @ second).sum()
-        return float(self.judged_accuracy * worst)
+        areas = [self.blow_hole_at(m[0]).area for m in self._rounding_moves]
+        return area_bound(model, areas, self.blow_hole_area, ROUNDING_STEP, self.judged_accuracy, self.rotors.pair)
 
     @cached_property
     def apex_rounding_check(self) -> str | None:

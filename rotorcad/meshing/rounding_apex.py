@@ -593,6 +593,19 @@ def pseudo_inverses(model: RoundingModel, pair: RotorPair) -> tuple[np.ndarray, 
     return first, np.linalg.pinv(jac)
 
 
+def area_bound(model: RoundingModel, areas: np.ndarray, area: float, step: float, accuracy: float, pair: RotorPair) -> float:
+    """Return the worst-case move of the blow-hole area (mm²) for fit points each within ``accuracy`` (mm).
+
+    ``areas`` (6,) are the areas (mm²) with each of the circles' six parameters moved by ``step`` (mm) in turn
+    (:func:`moved_crossings`), ``area`` the model's: the gradient g through each fit's first-order response J^+
+    (:func:`pseudo_inverses`) gives ``accuracy`` sum_i |(g J^+)_i| over each fit's points, summed over the two fits
+    (the linearised fits' worst case, their parameters' correlation kept).
+    """
+    grad = (np.asarray(areas, dtype=float) - area) / step
+    first, second = pseudo_inverses(model, pair)
+    return float(accuracy * (np.abs(grad[:3] @ first).sum() + np.abs(grad[3:] @ second).sum()))
+
+
 def moved_crossings(model: RoundingModel, step: float, pair: RotorPair) -> list[tuple[np.ndarray, float, float] | None]:
     """Return the crossing with each of the circles' six parameters moved by ``step`` (mm) in turn (:func:`crossing`).
 
