@@ -410,19 +410,10 @@ def test_dense_points_to_six_decimals_give_the_design_verdict():
     assert any(r.startswith("the flank angle falls to") for r in verdicts["male"].reasons), verdicts["male"].reasons
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "the narrow-tip male as 2000 exact points a lobe written to 6 decimals: the female tip corner's path (y = 0-3.3 "
-        "mm of rack) is not found on the rack (the female's generated point wanders beyond the exact points' bound), "
-        "so the male's rack reaches the cusp 0.149 deg off the perpendicular (unrounded points: 0.73 deg); the female's "
-        "rack reads 0.76 deg for the design's 6.20. Not the decimals (rack-accuracy, measured): the same points unrounded "
-        "read 0.68 / 1.29 deg, and 1000 a lobe 0.0 / 3.50; from the design's outline at a 1 nm chord (not 10 nm) 2000 "
-        "a lobe read 0.0 / 5.96 with the path found: likely the interpolating cubics following the 10 nm chords "
-        "(raw_scatter reads 0.04 nm unrounded, 0.5 nm rounded; fine_knot_spacing keeps them interpolating either way)"
-    ),
-)
 def test_dense_points_to_six_decimals_give_the_design_hob():
-    # Reference: the design's closed-form smallest angle (0: the cusp on the pitch line), within 0.1 deg.
+    # Reference: the design's closed-form smallest angle (0: the cusp on the pitch line), within 0.1 deg. Was a strict
+    # xfail (the male's rack 0.149 deg off the perpendicular): the female tip corner's path (y = 0-3.3 mm of rack)
+    # was not found; since exact points' corner paths run on to their piece's ends (rotorcad.measured.pairs) the
+    # male's rack reads 0.0. Left: the female's rack reads 2.49 deg for the design's 6.25 (its own minimum).
     smallest = min(v.normal_pressure_angle_min_deg for v in dense_six_decimals().values())
     assert smallest == pytest.approx(closed_form_angle("narrow_tip_5_6"), abs=0.1)
