@@ -26,33 +26,13 @@ from __future__ import annotations
 import argparse
 import tomllib
 from collections import Counter
-from pathlib import Path
 
 import numpy as np
+from bench_moderate_densities import FLANKS, NAMES, SAMPLES, _pattern, _scan  # the same scans (run from benchmarks/)
 
 from rotorcad.design import rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
-
-SAMPLES = Path(__file__).resolve().parents[1] / "samples"
-NAMES = [p.stem for p in sorted(SAMPLES.glob("*.toml")) if "profile" in tomllib.loads(p.read_text())]
-FLANKS = ("driving", "sealing")
-
-
-def _scan(ring: np.ndarray, count: int, phase: float) -> np.ndarray:
-    """``count`` points evenly spaced along the closed ring, the first ``phase`` of a spacing past its first point."""
-    closed = np.vstack([ring, ring[:1]])
-    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
-    v = (np.arange(count) + phase) * u[-1] / count
-    return np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
-
-
-def _pattern(lobe: np.ndarray, teeth: int) -> np.ndarray:
-    """One lobe (root to root) turned round the rotor ``teeth`` times."""
-    turns = 2 * np.pi * np.arange(teeth) / teeth
-    c, s = np.cos(turns), np.sin(turns)
-    x, y = lobe[:-1, 0], lobe[:-1, 1]
-    return np.column_stack([(np.outer(c, x) - np.outer(s, y)).ravel(), (np.outer(s, x) + np.outer(c, y)).ravel()])
 
 
 def _defects(summary: dict) -> Counter:

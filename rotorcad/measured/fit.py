@@ -196,6 +196,40 @@ ROUNDING_SHARE = 0.1
 beside the edge's two turns by more than this share of it (:func:`_resolved_corners`)."""
 
 
+def _corner_turns(whole: np.ndarray, i: np.ndarray, sigma: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return the turns about each corner's edge and what the scatter allows there.
+
+    Parameters
+    ----------
+    whole : (n, 2) float array, mm
+        The closed outline.
+    i : (m,) int array
+        Each corner's edge (:func:`rotorcad.measured.outline.corners`).
+    sigma : float, mm
+        The points' scatter.
+
+    Returns
+    -------
+    four : (4, m) float array, rad
+        The signed turns (counter-clockwise: convex > 0) at the vertex before the edge, the edge's two and the
+        vertex after it.
+    single : (m,) bool array
+        Whether each chord beside the edge spans one edge (the points sparser than the chords' reach).
+    noise : (m,) float array, rad
+        Three standard deviations of a vertex's turn from the scatter, sqrt(6) sigma / h.
+    """
+    n = len(whole)
+    d = np.roll(whole, -1, axis=0) - whole
+    step = np.hypot(*d.T)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    vertex_turn = wrap_angle(heading - np.roll(heading, 1))
+    four = np.stack([vertex_turn[(i + k) % n] for k in (-1, 0, 1, 2)])
+    reach = min(40.0 * sigma, 0.1) if sigma > 0 else 0.0
+    single = (step[(i - 1) % n] >= reach) & (step[(i + 1) % n] >= reach)
+    noise = 3.0 * np.sqrt(6.0) * sigma / np.maximum(np.minimum(step[(i - 1) % n], step[(i + 1) % n]), 1e-12)
+    return four, single, noise
+
+
 def _resolved_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray, sigma: float) -> tuple[np.ndarray, np.ndarray]:
     """Drop the corners of sparse points that are tip roundings the points step over.
 
@@ -230,17 +264,10 @@ def _resolved_corners(whole: np.ndarray, edges: np.ndarray, points: np.ndarray, 
     """
     if not len(edges):
         return edges, points
-    n = len(whole)
-    d = np.roll(whole, -1, axis=0) - whole
-    step = np.hypot(*d.T)
-    heading = np.arctan2(d[:, 1], d[:, 0])
-    vertex_turn = wrap_angle(heading - np.roll(heading, 1))  # signed, at each point (counter-clockwise: convex > 0)
     i = np.asarray(edges)
-    turn = vertex_turn[i] + vertex_turn[(i + 1) % n]  # the edge's turn between its one-edge chords
-    beside = np.maximum(np.abs(vertex_turn[(i - 1) % n]), np.abs(vertex_turn[(i + 2) % n]))
-    reach = min(40.0 * sigma, 0.1) if sigma > 0 else 0.0
-    single = (step[(i - 1) % n] >= reach) & (step[(i + 1) % n] >= reach)
-    noise = 3.0 * np.sqrt(6.0) * sigma / np.maximum(np.minimum(step[(i - 1) % n], step[(i + 1) % n]), 1e-12)
+    four, single, noise = _corner_turns(whole, i, sigma)
+    turn = four[1] + four[2]  # the edge's turn between its one-edge chords
+    beside = np.maximum(np.abs(four[0]), np.abs(four[3]))
     rounding = single & (turn > 0) & (beside > np.maximum(ROUNDING_SHARE * np.abs(turn), noise))
     return i[~rounding], np.asarray(points)[~rounding]
 
@@ -289,17 +316,9 @@ def _long_roundings(whole: np.ndarray, edges: np.ndarray, points: np.ndarray, si
     """
     if not len(edges):
         return edges, points
-    n = len(whole)
-    d = np.roll(whole, -1, axis=0) - whole
-    step = np.hypot(*d.T)
-    heading = np.arctan2(d[:, 1], d[:, 0])
-    vertex_turn = wrap_angle(heading - np.roll(heading, 1))  # signed, at each point (counter-clockwise: convex > 0)
     i = np.asarray(edges)
-    four = np.stack([vertex_turn[(i + k) % n] for k in (-1, 0, 1, 2)])  # (4, m): the edge's two and one each side
+    four, single, noise = _corner_turns(whole, i, sigma)
     top = np.maximum(four[1], four[2])
-    reach = min(40.0 * sigma, 0.1) if sigma > 0 else 0.0
-    single = (step[(i - 1) % n] >= reach) & (step[(i + 1) % n] >= reach)
-    noise = 3.0 * np.sqrt(6.0) * sigma / np.maximum(np.minimum(step[(i - 1) % n], step[(i + 1) % n]), 1e-12)
     spread = np.maximum(four[0], four[3]) > noise
     rounding = single & (top > 0) & spread & (four.sum(axis=0) > LONG_ROUNDING * top)
     return i[~rounding], np.asarray(points)[~rounding]
