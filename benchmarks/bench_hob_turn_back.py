@@ -21,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 import test_hob_datum as hd
 import test_hob_points_samples as samples
-from independent_pairs import _rot, arc_flank_5_6, cut_rotor, resample
+from independent_pairs import arc_flank_5_6, arc_flank_male_envelope, cut_rotor, resample
 from test_racks_from_points import rotor_pair
 
 from hob.cut_depth import cut_depths
@@ -47,18 +47,6 @@ def scaled_pair(pair: RotorPair, k: float) -> RotorPair:
         length=pair.length * k,
         strict=False,
     )
-
-
-def envelope_56(k: float = 1.0) -> np.ndarray:
-    """The 5/6 male's true conjugate of the arc flank (closed form, Wu & Chi eq. 4), scaled by ``k``."""
-    rp = arc_flank_5_6()
-    pts, nrm = rp.rack.sample(0.002)
-    r1 = rp.male_pitch_radius
-    steep = np.abs(nrm[:, 1]) > 1e-6
-    pts, nrm = pts[steep], nrm[steep]
-    off = pts[:, 1] * nrm[:, 0] / nrm[:, 1]
-    phi = (off - pts[:, 0]) / r1
-    return k * _rot(np.column_stack([r1 + pts[:, 1], off]), -phi)
 
 
 def view(pair: RotorPair, points: np.ndarray, rotor: str, mate: str):
@@ -105,7 +93,7 @@ def cases_56(k: float, forms, seeds, datums) -> None:
     pair = scaled_pair(rotor_pair("5/6"), k)
     ring = cut_rotor(rp, "female")
     length = float(np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T).sum())
-    truth = envelope_56(k)
+    truth = arc_flank_male_envelope(k)
     for per_lobe, noise in forms:
         for seed in seeds if noise else seeds[:1]:
             q = resample(ring, length / rp.female_teeth / per_lobe, noise=noise, seed=seed)

@@ -278,6 +278,22 @@ def _rot(p: np.ndarray, angle: np.ndarray) -> np.ndarray:
     return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]])
 
 
+def arc_flank_male_envelope(k: float = 1.0) -> np.ndarray:
+    """The 5/6 male's true conjugate of :func:`arc_flank_5_6`'s rack, one lobe in the male's own frame, mm.
+
+    Closed form (Wu & Chi eq. 4): each rack point is cut where its normal passes through the pitch point, at the
+    rack shift ``off`` and male turn (off - x) / r1; the rack sampled at 2 um chords, its flats (no such normal)
+    left out; every length scaled by ``k``.
+    """
+    rp = arc_flank_5_6()
+    pts, nrm = rp.rack.sample(0.002)
+    r1 = rp.male_pitch_radius
+    steep = np.abs(nrm[:, 1]) > 1e-6
+    pts, nrm = pts[steep], nrm[steep]
+    off = pts[:, 1] * nrm[:, 0] / nrm[:, 1]
+    return k * _rot(np.column_stack([r1 + pts[:, 1], off]), -(off - pts[:, 0]) / r1)
+
+
 REFERENCE_DATA = Path(__file__).resolve().parent / "reference_data"
 
 

@@ -27,7 +27,7 @@ import json
 import numpy as np
 import pytest
 import shapely
-from independent_pairs import _rot, arc_flank_5_6, cut_rotor, distance_to_line, scan
+from independent_pairs import _rot, arc_flank_5_6, arc_flank_male_envelope, cut_rotor, distance_to_line, scan
 from test_hob_points_samples import MEASURED, design, design_verdicts
 
 from exports.csv_points import write_points
@@ -363,15 +363,7 @@ def test_a_real_undercut_removes_material_beyond_the_accuracy(form):
     rack = rotor_rack(rotors, "male", **MEASURED)
     a, b = next((a, b) for a, b, back in stalls(rack, False, sharp_span=SHARP_SPAN) if back)
     assert turn_back(rack, a, b, rotors.accuracy).crossing
-    rp = arc_flank_5_6()
-    pts, nrm = rp.rack.sample(0.002)
-    r1 = rp.male_pitch_radius
-    steep = np.abs(nrm[:, 1]) > 1e-6
-    pts, nrm = pts[steep], nrm[steep]
-    off = pts[:, 1] * nrm[:, 0] / nrm[:, 1]
-    phi = (off - pts[:, 0]) / r1
-    envelope = _rot(np.column_stack([r1 + pts[:, 1], off]), -phi)
-    truth = near_turn_back(rack, envelope, rotors.pair.male_teeth)
+    truth = near_turn_back(rack, arc_flank_male_envelope(), rotors.pair.male_teeth)
     assert len(truth) > 50
     assert rack_penetration(rotors, "male", truth).max() > 2 * rotors.accuracy
 
@@ -477,15 +469,8 @@ def test_hob_names_a_design_outline_that_loops_as_export_does(tmp_path, capsys):
 
 
 def true_envelope_56() -> np.ndarray:
-    """The 5/6 male's true conjugate of its rack's arc flank (closed form: the normal through the pitch point,
-    Wu & Chi eq. 4), one lobe in the male's own frame, mm."""
-    rp = arc_flank_5_6()
-    pts, nrm = rp.rack.sample(0.002)
-    r1 = rp.male_pitch_radius
-    steep = np.abs(nrm[:, 1]) > 1e-6
-    pts, nrm = pts[steep], nrm[steep]
-    off = pts[:, 1] * nrm[:, 0] / nrm[:, 1]
-    return _rot(np.column_stack([r1 + pts[:, 1], off]), -(off - pts[:, 0]) / r1)
+    """The 5/6 male's true conjugate of its rack's arc flank (:func:`independent_pairs.arc_flank_male_envelope`)."""
+    return arc_flank_male_envelope()
 
 
 @functools.cache
