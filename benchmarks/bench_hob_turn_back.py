@@ -5,8 +5,9 @@ Cases: the 5/6 arc-flank pair (tests/independent_pairs.py) from its female's poi
 its rack at a slip singularity. For each: the mate's turn-back (hob.turn_back), the rack's cut depth into the
 generated points, the gate it is compared with, the verdict, and the brute force: how deep the rack from the
 points cuts the TRUE mate near the turn-back (tests/test_hob_datum.py::rack_penetration, shapely, 2000 positions).
-Run from the repository: ``python benchmarks/bench_hob_turn_back.py [scale ...]`` (default 1; 0.25 and 4 scale the
-pair: points, centre distance, radii and lead).
+Run from the repository: ``python benchmarks/bench_hob_turn_back.py [scale ...]`` (default 1; 0.25 and 2 scale the
+pair: points, their scatter, centre distance, radii and lead); the last line counts the rows (a row is the verdict on the
+judged place; "no turn-back" rows count too).
 """
 
 from __future__ import annotations
@@ -27,11 +28,12 @@ from test_racks_from_points import rotor_pair
 from hob.cut_depth import cut_depths
 from hob.rack import rotor_rack
 from hob.turn_back import turn_back
-from hob.verdict import depth_accuracy, judge, local_scatter, one_place, undercut_tolerance
-from rotorcad.inverse_rack import SHARP_SPAN, stalls
+from hob.verdict import depth_accuracy, hob_stalls, judge, local_scatter, one_place, undercut_tolerance
 from rotorcad.measured.cusp_paths import with_exact_cusp_paths
 from rotorcad.measured.pairs import pair_from_rotor_points
 from rotorcad.rotor_pair import RotorPair
+
+TALLY: dict[str, int] = {}  # rows by label: ok, undecided, WRONG
 
 
 def scaled_pair(pair: RotorPair, k: float) -> RotorPair:
@@ -67,9 +69,12 @@ def view(pair: RotorPair, points: np.ndarray, rotor: str, mate: str):
 
 def measure(label: str, pair, points, rotor, mate, truth_outline, truth_undercut: bool, datum: float = 0.0) -> None:
     rotors, rack, tol, verdict = view(pair, points, rotor, mate)
-    runs = [(a, b) for a, b, back in one_place(rack, stalls(rack, False, sharp_span=SHARP_SPAN)) if back]  # as judged
+    runs = [(a, b) for a, b, back in one_place(rack, hob_stalls(rack)) if back]  # as judged
     if not runs:
-        print(f"{label:38s} no turn-back; undercut={verdict.undercut} truth={truth_undercut}")
+        ok = "undecided" if verdict.undercut_undecided and not verdict.undercut else "ok"
+        ok = "WRONG" if verdict.undercut != truth_undercut and ok == "ok" else ok
+        print(f"{label:38s} no turn-back; undercut={verdict.undercut} truth={truth_undercut} {ok}")
+        TALLY[ok] = TALLY.get(ok, 0) + 1
         return
     a, b = runs[0]
     lo, depths = cut_depths(rack, a, b)
@@ -86,6 +91,7 @@ def measure(label: str, pair, points, rotor, mate, truth_outline, truth_undercut
         f"undercut={verdict.undercut!s:5} undecided={verdict.undercut_undecided!s:5} truth={truth_undercut!s:5} "
         f"bf {1e3 * bf:6.2f} um {ok}"
     )
+    TALLY[ok] = TALLY.get(ok, 0) + 1
 
 
 def cases_56(k: float, forms, seeds, datums) -> None:
@@ -125,3 +131,4 @@ if __name__ == "__main__":
         cases_56(k, [(300, 0.0), (300, 2e-3), (2000, 1e-3), (2000, 2e-3)], seeds, datums)
         cases_samples(k, "n_rack_5_6", [(300, 2e-3), (2000, 2e-3)], seeds[:2])
         cases_samples(k, "rack_involute_5_6", [(300, 2e-3)], seeds[:2])
+    print(" ".join(f"{key} {n}" for key, n in sorted(TALLY.items())))

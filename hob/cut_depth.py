@@ -26,7 +26,7 @@ from rotorcad.inverse_rack import DerivedRack
 
 MARGIN = 2.0
 """mm of rack either side of a stall whose points are measured with it (:func:`cut_depth`), set at the rack period
-:data:`hob.turn_back.REFERENCE_PERIOD` and not scaled (:func:`hob.turn_back.scaled`; default ``margin``)."""
+:data:`hob.turn_back.REFERENCE_PERIOD` and scaled with the pair (:func:`hob.turn_back.scaled`; default ``margin``)."""
 STEPS = 721
 """Positions of the rack per point, over three rack periods of roll centred on the point's contact."""
 

@@ -49,19 +49,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorcad.inverse_rack import DerivedRack, generation_factor
+from rotorcad.inverse_rack import GENERATION_BASE, DerivedRack, generation_factor
 from rotorcad.roles import Side
 
 REFERENCE_PERIOD = 57.12
-"""mm: the rack period of the pair the lengths below were set on (the 5/6 arc-flank pair of the tests' independent
-pairs, centre distance 100 mm; the N-rack sample's is 46.84, the rack-involute's 66.26). Scaling them with a
-pair's rack period p (times p / REFERENCE_PERIOD: a fit of a given number of points a lobe rounds a step over a
-length that grows with the lobe) was measured and is not done (:func:`scaled` returns them in mm): no reference
-is right for every case (benchmarks/bench_hob_turn_back.py, brute force): at this one the N-rack female from its
-male's 300 points a lobe with 2 um of scatter (seed 12, scan phase 0.37) reads f0 -4.10, a false crossing (0.41 /
-1.64 mm there; at 0.5 / 2 mm +1.77, undecided), while at the N rack's the 5/6 male from its female's 2000 points
-a lobe with 2 um reads +0.85, a false touch (+5.38 here: undecided). Unscaled, the 5/6 male from 300 exact points
-at a quarter size is not read undercut (tests/test_hob_datum.py KNOWN_SCALE)."""
+"""mm: the rack period (2 pi r_w / z) of the pair the lengths below were set on (the 5/6 arc-flank pair of the tests'
+independent pairs, centre distance 100 mm). They are lengths along the rack of a pair of that size, and scale with
+the pair (:func:`scaled`: times p / REFERENCE_PERIOD, p the pair's rack period; :func:`length_scale`): a
+geometrically similar pair, points, scatter and all, k times the size, turns back over k times the rack, its fit
+rounds the step over k times the length, and the accuracy of the trend's onset, C 8 e / L^2, is the same only with
+L scaled (C and e grow with k). So are the generation factor's curvature base, the stall's shortest run and the
+sharp span of :mod:`rotorcad.inverse_rack` and :data:`hob.cut_depth.MARGIN` as the hob uses them. Unscaled (fixed
+in mm) a quarter-size copy of the 5/6 pair read its real undercut as a touch or found no turn-back at all, a
+double-size copy 18 of 26 rows wrong (benchmarks/bench_hob_turn_back.py 1 0.25 2, brute force: wrong 35 of 78 ->
+6 scaled); at full size the N-rack (p 46.84 mm) and rack-involute (66.26 mm) samples' scans read the same
+verdicts either way (and the N rack's false crossing once measured at p / REFERENCE_PERIOD, f0 -4.10 at 300 points
+a lobe with 2 um, seed 12, is gone since the fold is read, :func:`_fold_end`: +0.021)."""
 TRANSITION = 0.5
 """mm of rack (at :data:`REFERENCE_PERIOD`) from the step (where the rack's fast part, f about 2, meets the
 turn-back) within which a rack derived from points rounds the step: its generation factor rings there. Measured: the N rack
@@ -70,8 +73,8 @@ TREND_LENGTH = 2.0
 """mm of rack (at :data:`REFERENCE_PERIOD`) beyond :data:`TRANSITION` over which the generation factor's
 straight-line trend is fitted (the 5/6 arc-flank male's f rises from -0.23 to +0.4 over 2 mm, linearly to 0.01)."""
 FOLD_LENGTH = 0.1
-"""mm of rack: a fold of a rack from points (:func:`fold_length`) longer than this is the fit's swallowtail at a step
-(0.76-1.5 mm measured), a shorter one a sample's zigzag (1-35 um)."""
+"""mm of rack (at :data:`REFERENCE_PERIOD`): a fold of a rack from points (:func:`fold_length`) longer than this is
+the fit's swallowtail at a step (0.76-1.5 mm measured), a shorter one a sample's zigzag (1-35 um)."""
 CROSSING_ANGLE = np.radians(2.0)
 """rad: of exact points, the angle between the two generated parts a turn-back leaves above which it is a
 crossing (module docstring: touches 0.11-0.70 deg, crossings 3.5-4.7 deg measured)."""
@@ -84,8 +87,13 @@ FAST_SIDE = 5
 
 
 def scaled(length: float, period: float) -> float:
-    """Return ``length`` (mm) for a rack of period ``period`` (mm): unscaled, as :data:`REFERENCE_PERIOD` says why."""
-    return length  # unscaled (measured below): times period / REFERENCE_PERIOD read a false crossing on the N rack
+    """Return ``length`` (mm at :data:`REFERENCE_PERIOD`) for a rack of period ``period`` (mm): times their ratio."""
+    return length * period / REFERENCE_PERIOD
+
+
+def length_scale(rack: DerivedRack) -> float:
+    """Return the size of ``rack``'s pair against the reference pair's (:data:`REFERENCE_PERIOD`), dimensionless."""
+    return rack.period / REFERENCE_PERIOD
 
 
 @dataclass(frozen=True)
@@ -137,7 +145,7 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scatter
     TurnBack
         A crossing too where the trend cannot be fitted (fewer than 3 points beyond the step).
     """
-    f = generation_factor(rack)
+    f = generation_factor(rack, scaled(GENERATION_BASE, rack.period))
     n = len(f)
     pts = rack.points
     # one period: the run may start at the rack's first point, its step at the last ones
@@ -247,7 +255,8 @@ def _fold_end(rack: DerivedRack, idx: np.ndarray, dist: np.ndarray, transition: 
     sense = np.sign(np.einsum("ij,ij->i", chord, tan[:-1]).sum()) or 1.0
     edges = np.diff(np.concatenate([[0], (sense * back < 0).astype(int), [0]]))
     begin, end = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # runs of backward chords
-    long = dist[end] - dist[begin] > FOLD_LENGTH  # not a sample's zigzag (the 5/6 cut outline's, 1-18 um each)
+    # not a sample's zigzag (the 5/6 cut outline's, 1-18 um each)
+    long = dist[end] - dist[begin] > scaled(FOLD_LENGTH, rack.period)
     begin, end = begin[long], end[long]
     ends = np.maximum.accumulate(dist[end]) if len(end) else np.zeros(0)
     reached = dist[begin] <= np.concatenate([[0.0], ends[:-1]]) + transition
@@ -302,6 +311,7 @@ __all__ = [
     "TurnBack",
     "crossing_angle",
     "fold_length",
+    "length_scale",
     "scaled",
     "turn_back",
 ]

@@ -35,8 +35,10 @@ from hob.turn_back import (
     FOLD_LENGTH,
     TRANSITION,
     TREND_LENGTH,
+    TurnBack,
     crossing_angle,
     fold_length,
+    length_scale,
     scaled,
     turn_back,
 )
@@ -193,7 +195,7 @@ def judge(
             f"the rack flank overhangs (re-entrant, running back along the pitch line) {at(i)}: a hob would have to "
             "cut under its own tooth, so this part comes out undercut."
         )
-    flank = cutting & (np.abs(tan[:, 1]) > 1e-9)
+    flank = cutting & ~_corner_slivers(rack)[idx] & (np.abs(tan[:, 1]) > 1e-9)
     angles = np.degrees(np.arctan2(np.abs(tan[:, 0]), np.abs(tan[:, 1])))
     alpha_min = float(angles[flank].min()) if flank.any() else 90.0
     if alpha_min < lim.min_flank_angle_deg:
@@ -286,6 +288,29 @@ def judge(
     return Verdict(not reasons, reasons, alpha_min, tip_r, root_r, thickness, tuple(notes), bool(undercut), bool(undecided))
 
 
+def _corner_slivers(rack: DerivedRack) -> np.ndarray:
+    """Return which of ``rack``'s pieces are a sliver between two corners, (pieces,) bool: no flank of the rack.
+
+    A cutting piece between two corner fans (:attr:`rotorcad.roles.PieceRole.CORNER_FAN` before and after it) whose
+    profile is shorter than :data:`CURVATURE_BASE` at the reference pair's size (scaled with the pair,
+    :func:`hob.turn_back.length_scale`) is the fit's junction of the two corners, which a design has as one corner:
+    its direction is not measured by any point. The narrow-tip female from its male's 2000 points a lobe, written to
+    6 decimals: a piece of 1.6 um of profile (6.5 um of rack) between its tip corner's two fans stood 2.49 deg from
+    the perpendicular to the pitch line, read as the rack's smallest flank angle for the design's 6.25 (its own
+    flank's minimum, 6.26 deg from the points: tests/test_hob_points_samples.py).
+    """
+    n = len(rack.roles)
+    fan = np.array([role is PieceRole.CORNER_FAN for role in rack.roles])
+    if n < 3 or not fan.any():
+        return np.zeros(n, dtype=bool)
+    along = rack.profile if rack.profile is not None else rack.points
+    step = np.hypot(*np.diff(along, axis=0).T)
+    same = rack.piece_index[:-1] == rack.piece_index[1:]
+    length = np.bincount(rack.piece_index[:-1][same], weights=step[same], minlength=n)[:n]
+    between = np.roll(fan, 1) & np.roll(fan, -1) & ~fan
+    return between & (length < CURVATURE_BASE * length_scale(rack))
+
+
 def _seam_turn(pts: np.ndarray, tan: np.ndarray, cutting: np.ndarray, period: float, kink: float) -> float:
     """Return the turn (rad) of the rack where its last point meets its first one period on, 0 for none.
 
@@ -346,16 +371,18 @@ def undercut_reasons(
     Of scattered points the gate ``tolerance`` (twice the profile's accuracy, a bound on the largest error
     of one point over the lobe) is far above how well the depth itself is known: the envelope averages
     the fit over the stretch it removes, whose error there is :func:`depth_accuracy` (``local``: one
-    point's scatter and the points' spacing, mm). A turn-back within ``tolerance`` that reads a crossing (the 5/6
-    male from its female's points, 2 um of scatter: 2.4-7.5 um deep under a gate of 15.6-17 um, a real undercut by
-    brute force) is then neither an undercut nor a touch but undecided at this accuracy: named in ``notes`` and
-    added to ``undecided``, not a reason; so however shallow (the sentence says whether deeper than that error):
-    the generated points may hide a real undercut entirely (that male from 300 points a lobe with 2 um turned by
-    17.3 deg: 1.21 um deep for 1.67 um; from 2000 with 1 um, seed 12: 0.15 um; brute force 39-48 um), which
-    read "not judged an undercut" before. So is a deeper
-    turn-back of scattered points whose trend stays in the rack's fast part (f0 above
-    :data:`hob.turn_back.FAST`: the fit rang past the trend's window, which then measured neither a touch,
-    f0 near 0, nor a crossing).
+    point's scatter and the points' spacing, mm). Of scattered points only a trend that reads a touch (f0 from 0 up to
+    :data:`hob.turn_back.FAST`: a slow generation's, the N rack's +0.006 to +0.90) lets a turn-back within
+    ``tolerance`` be "not judged an undercut"; any other (a crossing's, or below 0 within its bound
+    :attr:`hob.turn_back.TurnBack.accuracy`, or in the rack's fast part) leaves it undecided at this accuracy: named in
+    ``notes`` and added to ``undecided``, not a reason, however shallow (the sentence says whether deeper than that
+    error): the generated points may hide a real undercut entirely (the 5/6 male from its female's 300 points a lobe
+    with 2 um turned by 17.3 deg: 1.21 um deep for 1.67 um; from 2000 with 1 um, seed 12: 0.15 um; with 2 um, seed
+    12: 0.54 um and f0 -0.065 within its bound 0.080; brute force 39-48 um). A deeper turn-back of scattered points
+    is undecided too where its trend stays in the rack's fast part (f0 above :data:`hob.turn_back.FAST`: the fit rang
+    past the trend's window, which then measured neither a touch, f0 near 0, nor a crossing) or reads a crossing
+    whose standard error (:attr:`hob.turn_back.TurnBack.spread`) exceeds the bound (the generation factor scatters
+    more than an accurate rack's would).
 
     Turn-backs of a mate generated from points that lie less than a trend's reach apart are one place, judged once
     (:func:`one_place`): one sentence, never an undercut and a touch for overlapping radii.
@@ -364,7 +391,8 @@ def undercut_reasons(
         return []
     radius = np.hypot(*rack.profile.T)
     out = []
-    runs = stalls(rack, measured, sharp_span=SHARP_SPAN)
+    size = length_scale(rack)  # lengths along the rack scale with the pair (hob.turn_back.REFERENCE_PERIOD)
+    runs = hob_stalls(rack, measured)
     for a, b, back in one_place(rack, runs) if tolerance is not None else runs:
         r = radius[a:b]
         where = f"r = {r.min():.2f}-{r.max():.2f} mm"
@@ -372,18 +400,20 @@ def undercut_reasons(
         if back and tolerance is not None:
             lo, depths = cut_depths(rack, a, b)
             depth = float(depths.max(initial=0.0))
-            onset = turn_back(rack, a, b, accuracy)
+            onset = turn_back(rack, a, b, accuracy, scattered)
             if depth <= tolerance:
                 floor = depth_accuracy(rack, lo, depths, *local) if scattered else np.inf
-                if scattered and onset.crossing:
-                    # a crossing's trend from scattered points, however shallow the generated points show it: the 5/6
-                    # male's real undercut from its female's 300 points a lobe with 2 um turned by 17.3 deg (1.21 um
-                    # under a floor of 1.67 um) or 2000 with 1 um, seed 12 (0.15 um): brute force 39-48 um
+                if scattered and not 0.0 <= onset.onset <= FAST:
+                    # a trend from scattered points that does not read a touch (f0 within [0, FAST]), however
+                    # shallow the generated points show the turn-back: the 5/6 male's real undercut from its female's
+                    # 300 points a lobe with 2 um turned by 17.3 deg (1.21 um under a floor of 1.67 um, f0 below the
+                    # bound) or 2000 with 2 um, seed 12 (0.54 um, f0 -0.065 within the bound 0.080; a quarter-size
+                    # copy +5.28, the fast part): brute force 39-48 um
                     than = "more than" if depth > floor else "within"
                     sentence = (
                         f"the {rack.side.value}'s envelope turns back at {where} and the rack cuts {1000 * depth:.2f} um "
                         f"into it there, {than} the {1000 * floor:.2f} um the fit's error over that stretch can make, "
-                        f"and as a crossing (an undercut's), but within the {1000 * tolerance:.2f} um one point is known "
+                        f"{_trend_words(onset)}, but within the {1000 * tolerance:.2f} um one point is known "
                         "to: undecided at this accuracy (denser points or less scatter tell it)."
                     )
                     _say(sentence, notes, undecided)
@@ -406,16 +436,29 @@ def undercut_reasons(
                 )
                 _say(sentence, notes, undecided)
                 continue
+            if scattered and onset.crossing and onset.spread > onset.accuracy:
+                # the generation factor scatters about its trend more than an accurate rack's would: its onset is not
+                # known to the bound (the N-rack female from its male's 2000 points a lobe with 2 um at a quarter
+                # size, seed 12: f0 -3.81 for a bound of 0.71, its standard error 2.66, along a slow generation that
+                # only touches 0; brute force 0.3 um)
+                sentence = (
+                    f"the {rack.side.value}'s envelope turns back at {where} and the rack cuts {1000 * depth:.1f} um into "
+                    f"the generated points, {_trend_words(onset)}, but the generation factor scatters about that trend so "
+                    f"that its start is known to {onset.spread:.3f} only, more than that bound: undecided at this "
+                    "accuracy (denser points or less scatter tell it)."
+                )
+                _say(sentence, notes, undecided)
+                continue
             # where the rack from the points folds back along itself, the parts the run leaves are the fold's (the
             # N-rack female from its male's exact points, scan phase 0: the removed run reached 0.4 mm into the slow
             # generation, whose points the rack touches 1-3.6 um deep, and its ends met at 2.13 deg): the trend past
             # the fold decides (hob.turn_back)
             folded = max(onset.fold, fold_length(rack, a, b))
-            angle = 0.0 if scattered or folded > FOLD_LENGTH else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
+            angle = 0.0 if scattered or folded > FOLD_LENGTH * size else crossing_angle(rack, lo, depths, FOLD_TOLERANCE)
             if not onset.crossing and angle <= CROSSING_ANGLE:
                 if notes is not None:
                     seen = "" if scattered else f", and its two sides meet at {np.degrees(angle):.2f} deg"
-                    if folded > FOLD_LENGTH:
+                    if folded > FOLD_LENGTH * size:
                         seen = f" (read past the {folded:.2f} mm over which the rack from the points folds back along itself)"
                     notes.append(
                         f"the {rack.side.value}'s envelope turns back at {where} (the rack cuts {1000 * depth:.1f} um into "
@@ -433,6 +476,40 @@ def undercut_reasons(
             "so two generated parts of its flank cross and a hob makes only their outer envelope."
         )
     return out
+
+
+def hob_stalls(rack: DerivedRack, measured: bool = False) -> list[tuple[int, int, bool]]:
+    """Return :func:`rotorcad.inverse_rack.stalls` of ``rack`` as the hob judges them: its lengths scaled with the pair.
+
+    The stall's shortest run, the generation factor's curvature base and the sharp span
+    (:data:`rotorcad.inverse_rack.SHARP_SPAN`) times :func:`hob.turn_back.length_scale` (a quarter-size copy of the
+    5/6 arc-flank pair from 2000 points a lobe stalled over 0.1-0.2 mm of rack, under the unscaled 0.25 mm: no
+    turn-back found where the full-size pair's is an undercut).
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        A rotor's rack with its ``profile``.
+    measured : bool
+        Whether the rotor's profile was fitted to its own points (:func:`rotorcad.inverse_rack.stalls`).
+
+    Returns
+    -------
+    list of (int, int, bool)
+        Each run's first and one-past-last point index, and whether the envelope turns back there.
+    """
+    size = length_scale(rack)
+    return stalls(rack, measured, sharp_span=SHARP_SPAN * size, scale=size)
+
+
+def _trend_words(onset: TurnBack) -> str:
+    """Return how the generation factor's trend beyond a turn-back reads, for an undecided sentence."""
+    f0, bound = f"{onset.onset:+.3f}", f"{onset.accuracy:.3f}"
+    if onset.crossing:
+        return f"and as a crossing (an undercut's: its trend beyond the turn-back starts at {f0}, below -{bound})"
+    if onset.onset < 0:
+        return f"and its trend beyond the turn-back starts at {f0}, below 0 as a crossing's but within the -{bound} allowed"
+    return f"and its trend beyond the turn-back starts at {f0}, in the rack's fast part (above {FAST:g}): no touch's"
 
 
 def one_place(rack: DerivedRack, runs: list[tuple[int, int, bool]]) -> list[tuple[int, int, bool]]:

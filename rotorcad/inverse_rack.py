@@ -166,7 +166,7 @@ class DerivedRack:
         return self.period * np.cos(self.helix_angle)
 
 
-def generation_factor(rack: DerivedRack) -> np.ndarray:
+def generation_factor(rack: DerivedRack, base: float = GENERATION_BASE) -> np.ndarray:
     """Return the generation factor f = ds_rotor / ds_rack of every rack point, (n,) float.
 
     In the rotor's transverse rack frame (y > 0 away from its centre, x along the pitch line), a rack
@@ -182,7 +182,8 @@ def generation_factor(rack: DerivedRack) -> np.ndarray:
     the classical undercut limit). f < 0: the envelope turns back (undercut: the rotor keeps only the
     outer branch); f near 0 over a stretch of the rack: the rotor's point stands still there, a sharp
     corner. f is independent of the direction of travel. The curvature is the tangent's turn over
-    :data:`GENERATION_BASE` either side (exact tangents, not differences of points). NaN where the
+    ``base`` (mm, default :data:`GENERATION_BASE`; the hob scales it with the pair's size,
+    :func:`hob.turn_back.scaled`) either side (exact tangents, not differences of points). NaN where the
     rack runs within 3 deg of perpendicular to the pitch line (|t_x| < 0.05).
     """
     pts, tan = rack.points.copy(), rack.tangents.copy()
@@ -195,8 +196,8 @@ def generation_factor(rack: DerivedRack) -> np.ndarray:
     idx = rack.piece_index
     first = np.searchsorted(idx, idx, side="left") if np.all(np.diff(idx) >= 0) else np.zeros(len(idx), dtype=int)
     last = np.searchsorted(idx, idx, side="right") - 1 if np.all(np.diff(idx) >= 0) else np.full(len(idx), len(idx) - 1)
-    hi = np.minimum(np.searchsorted(arc, arc + GENERATION_BASE), last)
-    lo = np.maximum(np.searchsorted(arc, arc - GENERATION_BASE, side="right") - 1, first)
+    hi = np.minimum(np.searchsorted(arc, arc + base), last)
+    lo = np.maximum(np.searchsorted(arc, arc - base, side="right") - 1, first)
     kappa = (psi[hi] - psi[lo]) / np.maximum(arc[hi] - arc[lo], 1e-12)
     tx, y, rw = tan[:, 0], pts[:, 1], rack.pitch_radius
     steep = np.abs(tx) < 0.05
@@ -230,6 +231,7 @@ def stalls(
     factor: float = STALL_FACTOR,
     max_turn: float = np.pi,
     sharp_span: float = np.inf,
+    scale: float = 1.0,
 ) -> list[tuple[int, int, bool]]:
     """Find where a rotor's generation stalls or turns back: its undercut, or a sharp corner below its tip.
 
@@ -259,6 +261,10 @@ def stalls(
         Of a measured profile, the longest stretch of it across which a stall is a sharp corner (its
         fit's rounding) at all, turning back or not (:data:`SHARP_SPAN`); a longer one is a rounding
         that the points resolve, generated slowly; default no limit.
+    scale : float
+        The pair's size against the one :data:`STALL_LENGTH` and :data:`GENERATION_BASE` were set on (the hob's
+        :func:`hob.turn_back.length_scale`: a geometrically similar pair, k times the size, stalls over k times the
+        rack); both lengths are multiplied by it. Default 1 (the clearance's use, unscaled).
 
     Returns
     -------
@@ -267,7 +273,7 @@ def stalls(
     """
     if rack.profile is None or len(rack.points) < 3:
         return []
-    f = generation_factor(rack)
+    f = generation_factor(rack, GENERATION_BASE * scale)
     radius = np.hypot(*rack.profile.T)
     depth = float(np.ptp(rack.points[:, 1]))
     between = (radius < radius.max() - TIP_MARGIN * depth) & (radius > radius.min() + TIP_MARGIN * depth)
@@ -276,7 +282,7 @@ def stalls(
     edges = np.diff(np.concatenate([[0], low.astype(int), [0]]))
     out = []
     for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True):
-        if arc[b - 1] - arc[a] < STALL_LENGTH:
+        if arc[b - 1] - arc[a] < STALL_LENGTH * scale:
             continue
         if measured and np.hypot(*np.diff(rack.profile[a:b], axis=0).T).sum() > sharp_span:
             continue

@@ -29,7 +29,7 @@ from test_hob_datum import judged, near_turn_back, rack_penetration
 from test_hob_points_samples import MEASURED, design, design_verdicts
 
 from hob.rack import rotor_rack
-from rotorcad.inverse_rack import SHARP_SPAN, stalls
+from hob.verdict import hob_stalls
 from rotorcad.measured.cusp_paths import with_exact_cusp_paths
 from rotorcad.measured.pairs import pair_from_rotor_points
 from rotorcad.roles import Side
@@ -100,7 +100,7 @@ def test_the_users_scan_removes_no_material_beyond_the_accuracy():
     # hundreds of micrometres into the female generated from the points there: a touch, as now read.
     verdict, rotors = female_from_male_scan(0.73, 0.0, 0)
     rack = rotor_rack(rotors, "female", **MEASURED)
-    assert [back for *_, back in stalls(rack, False, sharp_span=SHARP_SPAN)].count(True) >= 1
+    assert [back for *_, back in hob_stalls(rack)].count(True) >= 1
     _, design_pair = design(SAMPLE)
     lobe = design_pair.female_outline(1e-4)
     truth = near_turn_back(rack, np.vstack([seg.points for seg in lobe.segments]), rotors.pair.female_teeth)

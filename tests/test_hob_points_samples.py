@@ -414,6 +414,15 @@ def test_dense_points_to_six_decimals_give_the_design_hob():
     # Reference: the design's closed-form smallest angle (0: the cusp on the pitch line), within 0.1 deg. Was a strict
     # xfail (the male's rack 0.149 deg off the perpendicular): the female tip corner's path (y = 0-3.3 mm of rack)
     # was not found; since exact points' corner paths run on to their piece's ends (rotorcad.measured.pairs) the
-    # male's rack reads 0.0. Left: the female's rack reads 2.49 deg for the design's 6.25 (its own minimum).
+    # male's rack reads 0.0.
     smallest = min(v.normal_pressure_angle_min_deg for v in dense_six_decimals().values())
     assert smallest == pytest.approx(closed_form_angle("narrow_tip_5_6"), abs=0.1)
+
+
+def test_dense_points_to_six_decimals_give_the_design_female_rack_angle():
+    # Reference: the design's female rack from its exact curves, whose smallest flank angle is 6.25 deg (its driving
+    # flank's end). The female generated from the male's points read 2.49 deg: a 1.6 um piece of its profile (6.5 um of
+    # rack) between its tip corner's two fans, the fit's junction of what the design has as one corner, stood nearly
+    # perpendicular to the pitch line (hob.verdict._corner_slivers leaves such a sliver out of the flank).
+    female = dense_six_decimals()["female"].normal_pressure_angle_min_deg
+    assert female == pytest.approx(design_verdicts("narrow_tip_5_6")["female"].normal_pressure_angle_min_deg, abs=0.1)
