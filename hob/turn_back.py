@@ -61,10 +61,11 @@ rounds the step over k times the length, and the accuracy of the trend's onset, 
 L scaled (C and e grow with k). So are the generation factor's curvature base, the stall's shortest run and the
 sharp span of :mod:`rotorcad.inverse_rack` and :data:`hob.cut_depth.MARGIN` as the hob uses them. Unscaled (fixed
 in mm) a quarter-size copy of the 5/6 pair read its real undercut as a touch or found no turn-back at all, a
-double-size copy 18 of 26 rows wrong (benchmarks/bench_hob_turn_back.py 1 0.25 2, brute force: wrong 35 of 78 ->
-6 scaled); at full size the N-rack (p 46.84 mm) and rack-involute (66.26 mm) samples' scans read the same
-verdicts either way (and the N rack's false crossing once measured at p / REFERENCE_PERIOD, f0 -4.10 at 300 points
-a lobe with 2 um, seed 12, is gone since the fold is read, :func:`_fold_end`: +0.021)."""
+double-size copy 18 of 26 rows wrong (benchmarks/bench_hob_turn_back.py 1 0.25 2, brute force: wrong 35 of 78 -> 6
+scaled, 2 with :func:`hob.verdict.undercut_reasons`' undecided rules); at full size the N-rack (p 46.84 mm) and
+rack-involute (66.26 mm) samples' scans read the same verdicts either way (and the N rack's false crossing once
+measured at p / REFERENCE_PERIOD, f0 -4.10 at 300 points a lobe with 2 um, seed 12, is gone since the fold is read,
+:func:`_fold_end`: -0.034 for a bound of 0.448)."""
 TRANSITION = 0.5
 """mm of rack (at :data:`REFERENCE_PERIOD`) from the step (where the rack's fast part, f about 2, meets the
 turn-back) within which a rack derived from points rounds the step: its generation factor rings there. Measured: the N rack
