@@ -1,0 +1,115 @@
+"""Jamming read from the male rotation along a given profile's meshline, where the normal's tangent cannot resolve it.
+
+Rinder's jamming rule (sec. 2.2.1): the meshline normal passes through the pitch point C. At a contact P
+the common normal passes through C, and the male contact point turns with the male about O1, so along the
+meshline the distance from C changes with the male rotation t as
+
+    d|P - C| / dt = c P_y / |P - C|        (c = |O1 C|, the male pitch radius; O1 at the origin, C on the x axis)
+
+whatever the profile: the term of the contact's motion along the flank is normal to P - C. Away from O1O2
+(P_y not 0) the distance from C is therefore stationary along the meshline, the normal through C, exactly
+where the male rotation turns back along it. That is a test of the rotation at each sample, neither of the
+meshline's tangent (which a given profile resolves only over the resolution sqrt(8 a e),
+:func:`rotorcad.meshing.defect_record.resolution`) nor of its positions (placed to ten times the
+profile's accuracy, :data:`rotorcad.meshing.defect_record.MESHLINE_GAIN`).
+
+The rotation of a contact is set by the direction of the profile's normal alone (a point moved along its
+own normal keeps its normal line, and so its instant): the normal at P makes the angle psi with P - C, and
+d psi / dt = -c (P_x - c) / |P - C|^2 at a fixed profile point, so a normal known to delta phi (rad) puts the
+rotation within
+
+    delta t = delta phi |P - C|^2 / (c |P_x - c|)
+
+(:func:`rotation_accuracy`; unbounded where P lies on the normal to O1O2 through C). A turn back of the
+rotation by more than the two ends' delta t together is no error of the profile: a jamming point at each
+end (:func:`rotation_turns`). A 20 µm dent over 2 mm on the rack-involute male's sealing flank, as 2000
+points a lobe with 1 µm of scatter: the rotation turns back by 16.9 mrad between two contacts 1.6 mm apart
+on the meshline, where the profile's accuracy allows 1.9; the normal's tangent, resolved over 4.3 mm,
+never swings through C there. The undented flank's rotation at 2 µm turns back by 2.3 mrad at most, where
+4.0 are allowed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def rotation_accuracy(points: np.ndarray, pitch_x: float, normal_accuracy: float) -> np.ndarray:
+    """Return how far the male rotation at each meshline sample may be off, (n,) float, rad.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        The meshline samples, fixed frame (O1 at the origin, O2 on the positive x axis).
+    pitch_x : float, mm
+        The pitch point C's x (the male pitch radius c).
+    normal_accuracy : float, rad
+        How far the profile's normal direction may be off (delta phi).
+
+    Returns
+    -------
+    (n,) float array, rad
+        delta phi |P - C|^2 / (c |P_x - c|); infinite where P_x = c.
+    """
+    dx = points[:, 0] - pitch_x
+    square = dx * dx + points[:, 1] * points[:, 1]
+    with np.errstate(divide="ignore"):
+        return normal_accuracy * square / (pitch_x * np.abs(dx))
+
+
+def _extremes(v: np.ndarray, err: np.ndarray) -> list[int]:
+    """Return the samples where ``v`` (its overall trend rising) turns back and forth beyond ``err``.
+
+    A drop below the running maximum by more than the errors of both samples is a turn back: its
+    maximum and the deepest sample of the drop are extremes; the deepest one only when ``v`` rises
+    from it again by more than the errors (else the piece ends falling: no second turn there).
+    """
+    n = len(v)
+    index = np.arange(n)
+    top = np.maximum.accumulate(v)
+    peak = np.maximum.accumulate(np.where(v >= top, index, 0))  # the sample of the running maximum
+    drop = top - v
+    deep = drop > err[peak] + err
+    if not deep.any():
+        return []
+    rows = index[deep]
+    peaks, first = np.unique(peak[rows], return_index=True)  # a drop's samples share its maximum, in one run
+    out: list[int] = []
+    for p, a, b in zip(peaks, first, np.append(first[1:], len(rows)), strict=True):  # one pass a turn back
+        low = int(rows[a + int(np.argmax(drop[rows[a:b]]))])
+        out.append(int(p))
+        later = v[low:] - v[low]
+        if (later > err[low] + err[low:]).any():
+            out.append(low)
+    return out
+
+
+def rotation_turns(t: np.ndarray, points: np.ndarray, pitch_x: float, normal_accuracy: float) -> np.ndarray:
+    """Return the samples of a meshline piece where the male rotation turns back beyond its accuracy.
+
+    Each is an extreme of the rotation along the piece (its samples in order) that differs from the
+    rotation at the extreme before or after it by more than both their :func:`rotation_accuracy`: there
+    the distance from C is stationary along the meshline, its normal through C (jamming, the module's
+    note), unless the sample lies on O1O2, where that distance is stationary in the rotation itself.
+
+    Parameters
+    ----------
+    t : (n,) float array, rad
+        The male rotation at each sample.
+    points : (n, 2) float array, mm
+        The samples, fixed frame.
+    pitch_x : float, mm
+        The pitch point C's x.
+    normal_accuracy : float, rad
+        How far the profile's normal direction may be off.
+
+    Returns
+    -------
+    (m,) int array
+        Sample indices, in order.
+    """
+    if len(t) < 3:
+        return np.zeros(0, dtype=int)
+    err = rotation_accuracy(points, pitch_x, normal_accuracy)
+    v = t if t[-1] >= t[0] else -t
+    return np.unique(np.array(_extremes(v, err), dtype=int))
