@@ -336,7 +336,7 @@ def _turn_jamming(
     piece: MeshlinePiece,
     arclen: np.ndarray,
     pitch_x: float,
-    normal_accuracy: float,
+    judged: tuple[float, float, float],
     lengths: tuple[float, float],
     miss: tuple | None,
     kept: np.ndarray,
@@ -344,20 +344,21 @@ def _turn_jamming(
     """Return the jamming points of a given profile's piece where its male rotation turns back beyond its accuracy.
 
     :func:`rotorcad.meshing.rotation_turns.rotation_turns` (the normal through C, read from the rotation at
-    each sample, not from the meshline's tangent; C at x = ``pitch_x`` mm, the profile's normal known to
-    ``normal_accuracy`` rad), less those the normal's test judges (``miss``: its entry for C in
-    :func:`meshline_defects`, f, band, whole, crossings, stretches, arcs; None for a design, judged by the
-    tangent alone): the whole piece within the band, or within ``reach`` (mm, the meshline's resolution;
-    ``lengths`` is (reach, on_line)) of the piece's ends, of a stretch along which the miss stays in its band
-    or of an arc about C (Rinder's exception), or of a sign change of the miss that test kept (``kept``, arc
-    lengths mm); and within ``on_line`` (mm) of O1O2 or of C (the slipping rule's).
+    each sample, not from the meshline's tangent; C at x = ``pitch_x`` mm; ``judged``: the profile's accuracy
+    and resolution, mm, and the least uncertainty of a normal's direction, rad), less those the normal's test
+    judges. ``miss`` is that test's entry for C in :func:`meshline_defects` (f, band, whole, crossings,
+    stretches, arcs; None for a design, judged by the tangent alone): none where the whole piece keeps the
+    miss within its band; none within ``reach`` (mm, the meshline's resolution; ``lengths`` is (reach,
+    on_line)) of the piece's ends, of a stretch along which the miss stays in its band or of an arc about C
+    (Rinder's exception), or of a sign change of the miss that test kept (``kept``, arc lengths mm); and none
+    within ``on_line`` (mm) of O1O2 or of C (the slipping rule's).
     """
     if miss is None or miss[2]:
         return []
     reach, on_line = lengths
     near_c = list(miss[4]) + list(miss[5] or ())
     pts, length, out = piece.points, float(arclen[-1]), []
-    for i in rotation_turns(piece.t, pts, pitch_x, normal_accuracy):
+    for i in rotation_turns(piece.t, pts, pitch_x, *judged):
         s = arclen[i]
         if min(s, length - s) < reach or np.any(np.abs(kept - s) < reach):
             continue
@@ -687,7 +688,7 @@ def meshline_defects(
                 found.append(Defect(kind, rotor, float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name, role=role))
         # jamming where the male rotation turns back (rotation_turns), of a given profile
         found.extend(
-            _turn_jamming(piece, arclen, c[0], max(tol, acc / longest), (reach, on_line), misses[2] if given else None, at[2])
+            _turn_jamming(piece, arclen, c[0], (acc, longest, tol), (reach, on_line), misses[2] if given else None, at[2])
         )
         # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
         # with its neighbour (slipping_between_pieces)

@@ -57,19 +57,41 @@ def rotation_accuracy(points: np.ndarray, pitch_x: float, normal_accuracy: float
         return normal_accuracy * square / (pitch_x * np.abs(dx))
 
 
-def _extremes(v: np.ndarray, err: np.ndarray) -> list[int]:
-    """Return the samples where ``v`` (its overall trend rising) turns back and forth beyond ``err``.
+def rack_points(points: np.ndarray, t: np.ndarray, pitch_x: float) -> np.ndarray:
+    """Return the generating rack's point touching at each meshline sample, (n, 2) mm, in the rack's frame at t = 0.
 
-    A drop below the running maximum by more than the errors of both samples is a turn back: its
-    maximum and the deepest sample of the drop are extremes; the deepest one only when ``v`` rises
-    from it again by more than the errors (else the piece ends falling: no second turn there).
+    The rack rolls on the male pitch circle: it moves by c t along y (c = ``pitch_x``, the male pitch radius) while
+    the male turns by t, so its point at a contact P is P - (0, c t).
+    """
+    return points - np.column_stack([np.zeros(len(t)), pitch_x * t])
+
+
+def normal_accuracy(length: np.ndarray, accuracy: float, longest: float, tolerance: float) -> np.ndarray:
+    """Return how far the directions of two normals of a profile known to ``accuracy`` (mm) may be off, each, (m,) rad.
+
+    The two touch ``length`` (mm, (m,)) apart along the rack, which carries the profile's normals (a point moved
+    along its own normal keeps its normal line) and its accuracy. Each direction is resolved over no more than the
+    resolution ``longest`` (mm, :func:`rotorcad.meshing.defect_record.resolution`) and, between two normals nearer
+    each other than that, only over their distance: accuracy / min(length, longest), at least ``tolerance`` (rad).
+    """
+    with np.errstate(divide="ignore"):
+        return np.maximum(tolerance, accuracy / np.minimum(length, longest))
+
+
+def _extremes(v: np.ndarray, allowed) -> list[int]:
+    """Return the samples where ``v`` (its overall trend rising) turns back and forth beyond what is ``allowed``.
+
+    ``allowed(i, j)`` is how far ``v`` may be off between samples ``i`` and ``j`` (index arrays). A drop below the
+    running maximum by more than that is a turn back: its maximum and the deepest sample of the drop are extremes;
+    the deepest one only when ``v`` rises from it again by more than allowed (else the piece ends falling: no second
+    turn there).
     """
     n = len(v)
     index = np.arange(n)
     top = np.maximum.accumulate(v)
     peak = np.maximum.accumulate(np.where(v >= top, index, 0))  # the sample of the running maximum
     drop = top - v
-    deep = drop > err[peak] + err
+    deep = drop > allowed(peak, index)
     if not deep.any():
         return []
     rows = index[deep]
@@ -78,19 +100,22 @@ def _extremes(v: np.ndarray, err: np.ndarray) -> list[int]:
     for p, a, b in zip(peaks, first, np.append(first[1:], len(rows)), strict=True):  # one pass a turn back
         low = int(rows[a + int(np.argmax(drop[rows[a:b]]))])
         out.append(int(p))
-        later = v[low:] - v[low]
-        if (later > err[low] + err[low:]).any():
+        later = index[low:]
+        if (v[later] - v[low] > allowed(np.full(len(later), low), later)).any():
             out.append(low)
     return out
 
 
-def rotation_turns(t: np.ndarray, points: np.ndarray, pitch_x: float, normal_accuracy: float) -> np.ndarray:
+def rotation_turns(
+    t: np.ndarray, points: np.ndarray, pitch_x: float, accuracy: float, longest: float, tolerance: float
+) -> np.ndarray:
     """Return the samples of a meshline piece where the male rotation turns back beyond its accuracy.
 
-    Each is an extreme of the rotation along the piece (its samples in order) that differs from the
-    rotation at the extreme before or after it by more than both their :func:`rotation_accuracy`: there
-    the distance from C is stationary along the meshline, its normal through C (jamming, the module's
-    note), unless the sample lies on O1O2, where that distance is stationary in the rotation itself.
+    Each is an extreme of the rotation along the piece (its samples in order) that differs from the rotation at
+    the extreme before or after it by more than both their :func:`rotation_accuracy`, with the normals' accuracy
+    of their distance along the rack (:func:`normal_accuracy`, :func:`rack_points`): there the distance from C is
+    stationary along the meshline, its normal through C (jamming, the module's note), unless the sample lies on
+    O1O2, where that distance is stationary in the rotation itself.
 
     Parameters
     ----------
@@ -100,8 +125,12 @@ def rotation_turns(t: np.ndarray, points: np.ndarray, pitch_x: float, normal_acc
         The samples, fixed frame.
     pitch_x : float, mm
         The pitch point C's x.
-    normal_accuracy : float, rad
-        How far the profile's normal direction may be off.
+    accuracy : float, mm
+        The profile's accuracy.
+    longest : float, mm
+        Its resolution (:func:`rotorcad.meshing.defect_record.resolution`).
+    tolerance : float, rad
+        The least uncertainty of a normal's direction.
 
     Returns
     -------
@@ -110,6 +139,12 @@ def rotation_turns(t: np.ndarray, points: np.ndarray, pitch_x: float, normal_acc
     """
     if len(t) < 3:
         return np.zeros(0, dtype=int)
-    err = rotation_accuracy(points, pitch_x, normal_accuracy)
+    gain = rotation_accuracy(points, pitch_x, 1.0)
+    rack = rack_points(points, t, pitch_x)
+
+    def allowed(i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        apart = np.hypot(rack[i, 0] - rack[j, 0], rack[i, 1] - rack[j, 1])
+        return (gain[i] + gain[j]) * normal_accuracy(apart, accuracy, longest, tolerance)
+
     v = t if t[-1] >= t[0] else -t
-    return np.unique(np.array(_extremes(v, err), dtype=int))
+    return np.unique(np.array(_extremes(v, allowed), dtype=int))
