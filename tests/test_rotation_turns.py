@@ -43,7 +43,8 @@ def test_rotation_accuracy_is_the_contact_instant_of_a_turned_normal(where):
 def test_rotation_turns_are_the_analytic_extremes_beyond_the_accuracy(amplitude):
     # t(s) = s + A sin(s) over 0..4 pi: monotone for A = 0.5; for A = 2 it turns back between its maxima at 2 pi / 3 +
     # 2 pi n and its minima at 4 pi / 3 + 2 pi n (where 1 + 2 cos(s) = 0), by 2 sqrt(3) - 2 pi / 3 each time. With the
-    # accuracy e the same at every sample, a turn back by more than 2 e is reported at both its ends, one by less is none
+    # accuracy e the same at every sample, a turn back by more than 2 e, and on again, is reported as the pair of its
+    # ends, one by less is none
     s = np.linspace(0.0, 4.0 * np.pi, 4001)
     p = np.array([PITCH_X + 3.0, 4.0])  # |P - C|^2 = 25, c |P_x - c| = 3 c: e = d_phi 25 / (3 c)
     points = np.tile(p, (len(s), 1))
@@ -58,8 +59,17 @@ def test_rotation_turns_are_the_analytic_extremes_beyond_the_accuracy(amplitude)
         if not found:
             assert len(got) == 0, s[got]
             continue
-        want = np.sort(np.concatenate([top + 2 * np.pi * np.arange(2), low + 2 * np.pi * np.arange(2)]))
-        assert np.allclose(s[got], want, atol=s[1] - s[0]), (s[got], want)
+        want = np.column_stack([top + 2 * np.pi * np.arange(2), low + 2 * np.pi * np.arange(2)])  # (maximum, minimum)
+        assert got.shape == want.shape and np.allclose(s[got], want, atol=s[1] - s[0]), (s[got], want)
+
+
+def test_a_single_turn_back_is_no_excursion():
+    # t(s) = sin(s) over 0..pi: one maximum at pi / 2 and no rise after it; the meshline turns back on itself there
+    # (the normal's test judges a reversal), so no excursion whatever the accuracy
+    s = np.linspace(0.0, np.pi, 2001)
+    points = np.tile([PITCH_X + 3.0, 4.0], (len(s), 1))
+    assert len(rotation_turns(np.sin(s), points, PITCH_X, 1e-9, 1.0, 0.0)) == 0
+    assert len(rotation_turns(np.sin(s) + np.where(s > 2.5, 4.0 * (s - 2.5), 0.0), points, PITCH_X, 1e-9, 1.0, 0.0)) == 1
 
 
 def test_distance_from_c_changes_with_the_rotation_as_stated():

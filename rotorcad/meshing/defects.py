@@ -343,33 +343,38 @@ def _turn_jamming(
 ) -> list[Defect]:
     """Return the jamming points of a given profile's piece where its male rotation turns back beyond its accuracy.
 
-    :func:`rotorcad.meshing.rotation_turns.rotation_turns` (the normal through C, read from the rotation at
-    each sample, not from the meshline's tangent; C at x = ``pitch_x`` mm; ``judged``: the profile's accuracy
-    and resolution, mm, and the least uncertainty of a normal's direction, rad), less those the normal's test
-    judges. ``miss`` is that test's entry for C in :func:`meshline_defects` (f, band, whole, crossings,
-    stretches, arcs; None for a design, judged by the tangent alone): none where the whole piece keeps the
-    miss within its band; none within ``reach`` (mm, the meshline's resolution; ``lengths`` is (reach,
-    on_line)) of the piece's ends, of a stretch along which the miss stays in its band or of an arc about C
-    (Rinder's exception), or of a sign change of the miss that test kept (``kept``, arc lengths mm); and none
-    within ``on_line`` (mm) of O1O2 or of C (the slipping rule's).
+    :func:`rotorcad.meshing.rotation_turns.rotation_turns` (the normal through C at both ends of an excursion
+    of the rotation, read from the rotation at each sample, not from the meshline's tangent; C at x =
+    ``pitch_x`` mm; ``judged``: the profile's accuracy and resolution, mm, and the least uncertainty of a
+    normal's direction, rad), less those the normal's test judges. ``miss`` is that test's entry for C in
+    :func:`meshline_defects` (f, band, whole, crossings, stretches, arcs; None for a design, judged by the
+    tangent alone): none where the whole piece keeps the miss within its band; none within ``reach`` (mm,
+    the meshline's resolution; ``lengths`` is (reach, on_line)) of the piece's ends, of a stretch along which
+    the miss stays in its band or of an arc about C (Rinder's exception), or of a sign change of the miss
+    that test kept (``kept``, arc lengths mm); and none within ``on_line`` (mm) of O1O2 or of C (the
+    slipping rule's). An excursion counts when both its ends do.
     """
     if miss is None or miss[2]:
         return []
     reach, on_line = lengths
     near_c = list(miss[4]) + list(miss[5] or ())
     pts, length, out = piece.points, float(arclen[-1]), []
-    for i in rotation_turns(piece.t, pts, pitch_x, *judged):
+
+    def judged_here(i: int) -> bool:
         s = arclen[i]
         if min(s, length - s) < reach or np.any(np.abs(kept - s) < reach):
-            continue
+            return False
         if any(arclen[a] - reach < s < arclen[b] + reach for a, b in near_c):
-            continue
-        if abs(pts[i, 1]) < on_line or np.hypot(pts[i, 0] - pitch_x, pts[i, 1]) < on_line:
-            continue
-        role = piece.roles[i] if len(piece.roles) == len(pts) else None
-        out.append(
-            Defect("jamming", "male", float(pts[i, 0]), float(pts[i, 1]), float(np.degrees(piece.t[i])), piece.name, role=role)
-        )
+            return False
+        return abs(pts[i, 1]) >= on_line and np.hypot(pts[i, 0] - pitch_x, pts[i, 1]) >= on_line
+
+    for pair in rotation_turns(piece.t, pts, pitch_x, *judged):
+        if not all(judged_here(int(i)) for i in pair):
+            continue  # both ends of the excursion inside what this test judges, or neither counts
+        for i in pair:
+            role = piece.roles[i] if len(piece.roles) == len(pts) else None
+            point = (float(pts[i, 0]), float(pts[i, 1]), float(np.degrees(piece.t[i])))
+            out.append(Defect("jamming", "male", *point, piece.name, role=role))
     return out
 
 

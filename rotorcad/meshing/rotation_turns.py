@@ -20,13 +20,19 @@ rotation within
 
     delta t = delta phi |P - C|^2 / (c |P_x - c|)
 
-(:func:`rotation_accuracy`; unbounded where P lies on the normal to O1O2 through C). A turn back of the
-rotation by more than the two ends' delta t together is no error of the profile: a jamming point at each
-end (:func:`rotation_turns`). A 20 µm dent over 2 mm on the rack-involute male's sealing flank, as 2000
-points a lobe with 1 µm of scatter: the rotation turns back by 16.9 mrad between two contacts 1.6 mm apart
-on the meshline, where the profile's accuracy allows 1.9; the normal's tangent, resolved over 4.3 mm,
-never swings through C there. The undented flank's rotation at 2 µm turns back by 2.3 mrad at most, where
-4.0 are allowed.
+(:func:`rotation_accuracy`; unbounded where P lies on the normal to O1O2 through C). The normals of the
+rack (:func:`rack_points`), which carries the profile's and its accuracy e, are each resolved over no more
+than the resolution L and, two of them nearer each other than that along the rack, only over their distance
+d: delta phi = e / min(d, L), at least the analysis' tangent tolerance (:func:`normal_accuracy`). A turn back
+of the rotation by more than the two ends' delta t together, and on again, is no error of the profile: a
+jamming point at each end (:func:`rotation_turns`).
+
+Measured (issue 21 item 3). A 20 µm dent over 2 mm on the rack-involute male's sealing flank, as 2000 points
+a lobe with 1 µm of scatter: the rotation turns back by 16.9 mrad between contacts 0.97 mm apart on the rack,
+where the accuracy (2.0 µm) allows 2.7; the normal's tangent, resolved over 4.3 mm of meshline, never swings
+through C there, and the sign changes of its misses cancel within the resolution. The shapely-cut arc-flank
+male as 600 exact points a lobe (tests/independent_pairs.py, phase 0.25): a turn back by 1.5 mrad between
+contacts 0.04 mm apart on the rack, where 8.5 are allowed (the cut's facets, no jamming).
 """
 
 from __future__ import annotations
@@ -78,13 +84,13 @@ def normal_accuracy(length: np.ndarray, accuracy: float, longest: float, toleran
         return np.maximum(tolerance, accuracy / np.minimum(length, longest))
 
 
-def _extremes(v: np.ndarray, allowed) -> list[int]:
-    """Return the samples where ``v`` (its overall trend rising) turns back and forth beyond what is ``allowed``.
+def _excursions(v: np.ndarray, allowed) -> list[tuple[int, int]]:
+    """Return the pairs of samples between which ``v`` (its overall trend rising) turns back and forth beyond ``allowed``.
 
     ``allowed(i, j)`` is how far ``v`` may be off between samples ``i`` and ``j`` (index arrays). A drop below the
-    running maximum by more than that is a turn back: its maximum and the deepest sample of the drop are extremes;
-    the deepest one only when ``v`` rises from it again by more than allowed (else the piece ends falling: no second
-    turn there).
+    running maximum by more than that is a turn back; it is an excursion when ``v`` rises again from the drop's
+    deepest sample by more than allowed: the maximum and that deepest sample. A drop that ends the piece is one
+    turn, not an excursion.
     """
     n = len(v)
     index = np.arange(n)
@@ -96,26 +102,28 @@ def _extremes(v: np.ndarray, allowed) -> list[int]:
         return []
     rows = index[deep]
     peaks, first = np.unique(peak[rows], return_index=True)  # a drop's samples share its maximum, in one run
-    out: list[int] = []
+    out: list[tuple[int, int]] = []
     for p, a, b in zip(peaks, first, np.append(first[1:], len(rows)), strict=True):  # one pass a turn back
         low = int(rows[a + int(np.argmax(drop[rows[a:b]]))])
-        out.append(int(p))
         later = index[low:]
         if (v[later] - v[low] > allowed(np.full(len(later), low), later)).any():
-            out.append(low)
+            out.append((int(p), low))
     return out
 
 
 def rotation_turns(
     t: np.ndarray, points: np.ndarray, pitch_x: float, accuracy: float, longest: float, tolerance: float
 ) -> np.ndarray:
-    """Return the samples of a meshline piece where the male rotation turns back beyond its accuracy.
+    """Return the pairs of samples of a meshline piece between which the male rotation turns back and forth.
 
-    Each is an extreme of the rotation along the piece (its samples in order) that differs from the rotation at
-    the extreme before or after it by more than both their :func:`rotation_accuracy`, with the normals' accuracy
-    of their distance along the rack (:func:`normal_accuracy`, :func:`rack_points`): there the distance from C is
-    stationary along the meshline, its normal through C (jamming, the module's note), unless the sample lies on
-    O1O2, where that distance is stationary in the rotation itself.
+    Each pair are two extremes of the rotation along the piece (its samples in order), a maximum and the minimum
+    after it or the reverse, whose rotations differ by more than both their :func:`rotation_accuracy`, with the
+    normals' accuracy of their distance along the rack (:func:`normal_accuracy`, :func:`rack_points`), and after
+    which the rotation runs on by more than that again: at each, the distance from C is stationary along the
+    meshline, its normal through C (jamming, the module's note), unless it lies on O1O2, where that distance is
+    stationary in the rotation itself. A single turn back (the N-rack male's meshline, given by its dense CSV
+    with 1 um of scatter, runs back on itself where the design's tip-rounding piece hands over to its envelope
+    piece: the rotation turns there once, by 0.51 rad) is the meshline's reversal, which the normal's test judges.
 
     Parameters
     ----------
@@ -134,11 +142,11 @@ def rotation_turns(
 
     Returns
     -------
-    (m,) int array
-        Sample indices, in order.
+    (m, 2) int array
+        Sample indices of each pair, in order.
     """
     if len(t) < 3:
-        return np.zeros(0, dtype=int)
+        return np.zeros((0, 2), dtype=int)
     gain = rotation_accuracy(points, pitch_x, 1.0)
     rack = rack_points(points, t, pitch_x)
 
@@ -147,4 +155,4 @@ def rotation_turns(
         return (gain[i] + gain[j]) * normal_accuracy(apart, accuracy, longest, tolerance)
 
     v = t if t[-1] >= t[0] else -t
-    return np.unique(np.array(_extremes(v, allowed), dtype=int))
+    return np.array(_excursions(v, allowed), dtype=int).reshape(-1, 2)
