@@ -9,6 +9,7 @@ The package, one job a module (every name importable from ``rotorcad.meshing`` a
 corners), :mod:`~rotorcad.meshing.defect_record` (a defect and the resolution it is judged to),
 :mod:`~rotorcad.meshing.defects` (the rules of sec. 2.2.1 judged to the profile's accuracy),
 :mod:`~rotorcad.meshing.slipping` (the slipping rule between the meshline's pieces),
+:mod:`~rotorcad.meshing.rotation_turns` (jamming from the male rotation turning back along a given meshline),
 :mod:`~rotorcad.meshing.contact_ratios` (working part, contact ratios, running per flank),
 :mod:`~rotorcad.meshing.angles` (the one angle convention), :mod:`~rotorcad.meshing.apex` (the
 blow-hole's apex of a given profile from the closed-form meshline of a fitted arc),
@@ -53,7 +54,11 @@ Flankenkrümmungsmittelpunkte mit dem Wälzpunkt zusammenfallen" (Lysholm's circ
 the symmetric SRM flanks, circles about C: their meshline is an arc about C). Such an arc is known
 from its normals or from its positions alone (:func:`~rotorcad.meshing.defects.arcs_about`: every
 stretch of twice the resolution keeps its distance from C within the meshline's accuracy), since a
-tangent fitted through a given profile's meshline wobbles along it.
+tangent fitted through a given profile's meshline wobbles along it. Away from O1O2 the normal passes
+through C exactly where the male rotation turns back along the meshline (d|P - C|/dt = c P_y / |P - C|);
+a given profile's jamming is also read so, where the rotation turns back by more than the accuracy of
+its normal allows (:mod:`~rotorcad.meshing.rotation_turns`: a dent finer than the resolution, whose
+normal's sign changes cancel within it).
 
 *Slipping* (Durchrutschen): the meshline crosses O1O2 away from C; no flank drives the other there,
 but "durch die verschraubten Zähne stellt diese Bedingung aber keine Einschränkung ... dar": it

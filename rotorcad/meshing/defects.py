@@ -19,6 +19,7 @@ import numpy as np
 from rotorcad.geometry import shifted
 from rotorcad.meshing.defect_record import MESHLINE_GAIN, Defect, resolution
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_tangents, reversals
+from rotorcad.meshing.rotation_turns import rotation_turns
 from rotorcad.meshing.slipping import slipping_between_pieces, slipping_name
 from rotorcad.roles import Flank, PieceRole, Side
 from rotorcad.rotor_pair import RotorPair
@@ -331,6 +332,52 @@ def _persistent(
     return [crossings[k] for k, _ in kept if not near_stretch[k]]
 
 
+def _turn_jamming(
+    piece: MeshlinePiece,
+    arclen: np.ndarray,
+    pitch_x: float,
+    judged: tuple[float, float, float],
+    lengths: tuple[float, float],
+    miss: tuple | None,
+    kept: np.ndarray,
+) -> list[Defect]:
+    """Return the jamming points of a given profile's piece where its male rotation turns back beyond its accuracy.
+
+    :func:`rotorcad.meshing.rotation_turns.rotation_turns` (the normal through C at both ends of an excursion
+    of the rotation, read from the rotation at each sample, not from the meshline's tangent; C at x =
+    ``pitch_x`` mm; ``judged``: the profile's accuracy and resolution, mm, and the least uncertainty of a
+    normal's direction, rad), less those the normal's test judges. ``miss`` is that test's entry for C in
+    :func:`meshline_defects` (f, band, whole, crossings, stretches, arcs; None for a design, judged by the
+    tangent alone): none where the whole piece keeps the miss within its band; none within ``reach`` (mm,
+    the meshline's resolution; ``lengths`` is (reach, on_line)) of the piece's ends, of a stretch along which
+    the miss stays in its band or of an arc about C (Rinder's exception), or of a sign change of the miss
+    that test kept (``kept``, arc lengths mm); and none within ``on_line`` (mm) of O1O2 or of C (the
+    slipping rule's). An excursion counts when both its ends do.
+    """
+    if miss is None or miss[2]:
+        return []
+    reach, on_line = lengths
+    near_c = list(miss[4]) + list(miss[5] or ())
+    pts, length, out = piece.points, float(arclen[-1]), []
+
+    def judged_here(i: int) -> bool:
+        s = arclen[i]
+        if min(s, length - s) < reach or np.any(np.abs(kept - s) < reach):
+            return False
+        if any(arclen[a] - reach < s < arclen[b] + reach for a, b in near_c):
+            return False
+        return abs(pts[i, 1]) >= on_line and np.hypot(pts[i, 0] - pitch_x, pts[i, 1]) >= on_line
+
+    for pair in rotation_turns(piece.t, pts, pitch_x, *judged):
+        if not all(judged_here(int(i)) for i in pair):
+            continue  # both ends of the excursion inside what this test judges, or neither counts
+        for i in pair:
+            role = piece.roles[i] if len(piece.roles) == len(pts) else None
+            point = (float(pts[i, 0]), float(pts[i, 1]), float(np.degrees(piece.t[i])))
+            out.append(Defect("jamming", "male", *point, piece.name, role=role))
+    return out
+
+
 def _ramps(g: np.ndarray, arclen: np.ndarray) -> bool:
     """Tell whether a miss within its band over a stretch runs through the band rather than staying at 0.
 
@@ -590,9 +637,9 @@ def meshline_defects(
                 arcs = runs
             crossings, stretches = robust_zeros(f, band, arclen, reach, whole, turns, arcs)
             on_tip.append(runs)
-            misses.append((f, band, whole, crossings, _with_runs(stretches, runs) if runs else stretches))
+            misses.append((f, band, whole, crossings, _with_runs(stretches, runs) if runs else stretches, arcs))
         at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
-        for k, ((q, kind, rotor), (f, band, whole, crossings, stretches)) in enumerate(zip(tests, misses, strict=True)):
+        for k, ((q, kind, rotor), (f, band, whole, crossings, stretches, _)) in enumerate(zip(tests, misses, strict=True)):
             for i, j in stretches:
                 if kind == "jamming":
                     continue  # meshline arc about C: both curvature centres in C (Rinder's exception)
@@ -644,6 +691,10 @@ def meshline_defects(
                 ang = piece.t[i] + w * (piece.t[i + 1] - piece.t[i])
                 role = piece.roles[i if w < 0.5 else i + 1]
                 found.append(Defect(kind, rotor, float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name, role=role))
+        # jamming where the male rotation turns back (rotation_turns), of a given profile
+        found.extend(
+            _turn_jamming(piece, arclen, c[0], (acc, longest, tol), (reach, on_line), misses[2] if given else None, at[2])
+        )
         # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
         # with its neighbour (slipping_between_pieces)
         y = pts[:, 1]
