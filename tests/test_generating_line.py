@@ -346,7 +346,7 @@ def test_line_fitted_to_the_scattered_points_places_the_apex(designs, name, per_
     # not use). The smoothing spline through scattered points bows a flank's contacts off its generating line at the
     # window's ends over a few point spacings, the same way on every read, and past the flank's end the female tip
     # corner's contacts turned back along the line: the line fitted to those contacts read the males' blow-holes
-    # -0.5..-2.9 % (bench_line_apex.py, 80-300 a lobe), said resolved. The line fitted again to the given points
+    # -2.9..+1.2 % (bench_line_apex.py, 80-300 a lobe), said resolved. The line fitted again to the given points
     # themselves (every lobe, their distance from its envelope on the male): within 1 % of the design, the design
     # within the stated uncertainty, resolved
     from rotorcad.meshing.blow_hole_accuracy import placing_line
