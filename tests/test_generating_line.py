@@ -18,6 +18,7 @@ import pytest
 from rotorcad.design import rotor_design
 from rotorcad.meshing import MeshingAnalysis
 from rotorcad.meshing.generating_line import body_frames, fit_line, line_apex, line_meshline_cut
+from rotorcad.meshing.line_points import given_of
 from rotorcad.rotor_build import PairSpec, build_pair, pair_spec
 
 SAMPLES = Path(__file__).resolve().parents[1] / "samples"
@@ -103,9 +104,9 @@ def test_scattered_flank_line_places_the_apex(designs, name):
     given = MeshingAnalysis(build_pair(PairSpec(spec.pair, "male-points", {}, noisy, None, spec.speed_rpm, 0.0)), spec.speed_rpm)
     k = int(np.argmin(np.hypot(*(given.meshline - given.cusp).T)))
     tips = ((np.zeros(2), spec.pair.male_tip_radius), (np.array([spec.pair.center_distance, 0.0]), spec.pair.female_tip_radius))
-    found = line_apex(given.pieces, given.meshline[k], tips, given.judged_accuracy, spec.pair)
+    found = line_apex(given.pieces, given.meshline[k], tips, given.judged_accuracy, spec.pair, given_of(given.rotors))
     assert found is not None and found[1] == LINES[name]
-    assert np.allclose(given.meshline_end, found[0])  # the apex the analysis states
+    assert np.allclose(given.meshline_end, found[0])  # the apex the analysis states (the line fitted to the points)
     assert given.blow_hole_area == pytest.approx(analysis.blow_hole_area, rel=0.01)
 
 
@@ -273,6 +274,27 @@ def test_independent_rack_line_places_the_female_apex(trapezoid_female, per_lobe
     assert given.blow_hole_area == pytest.approx(reference, rel=1e-3)
 
 
+def _scan_read(spec, analysis: MeshingAnalysis, side: str, per_lobe: int, scatter_um: float, seed: int, phase: float):
+    """The analysis of a rotor's lobe (0.01 um chord) scanned evenly round it, with normal scatter along its normals."""
+    import warnings
+
+    from independent_pairs import patterned, scan
+
+    from rotorcad.errors import InputNote
+
+    teeth = spec.pair.male_teeth if side == "male" else spec.pair.female_teeth
+    lobe = analysis.rotors.male_lobe() if side == "male" else analysis.rotors.female_lobe()
+    points = scan(patterned(np.vstack([seg.resampled(1e-5).points for seg in lobe.segments]), teeth), per_lobe * teeth, phase)
+    if scatter_um:
+        step = np.roll(points, -1, axis=0) - np.roll(points, 1, axis=0)
+        normal = np.column_stack([step[:, 1], -step[:, 0]]) / np.hypot(*step.T)[:, None]
+        points = points + normal * np.random.default_rng(seed).normal(0.0, scatter_um * 1e-3, len(points))[:, None]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InputNote)
+        given = build_pair(PairSpec(spec.pair, f"{side}-points", {}, points, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
+    return MeshingAnalysis(given, spec.speed_rpm)
+
+
 SPARSE_FEMALE = [(80, 0.0, phase) for phase in (0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9)] + [
     (90, 0.0, 0.2),
     (90, 0.0, 0.3),
@@ -295,25 +317,10 @@ def test_sparse_female_line_is_cut_at_the_hand_over(designs, per_lobe, scatter_u
     # the design outside the stated uncertainty (80 a lobe exact: phases 0.1, 0.2, 0.6, 0.7, 0.8; 90: 0.2, 0.3). The
     # line's meshline cut at the flank's end by the cusp: the design within the stated uncertainty, and a resolved read
     # (uncertainty at most half the area) within it too (errors now within 5.2 %, 1 % at 100-120 a lobe)
-    import warnings
-
-    from independent_pairs import patterned, scan
-
-    from rotorcad.errors import InputNote
     from rotorcad.meshing.blow_hole_accuracy import RESOLVED_SHARE, placing_line
 
     spec, analysis = designs["narrow_tip_5_6"]
-    teeth = spec.pair.female_teeth
-    lobe = np.vstack([seg.resampled(1e-5).points for seg in analysis.rotors.female_lobe().segments])
-    points = scan(patterned(lobe, teeth), per_lobe * teeth, phase)
-    if scatter_um:
-        step = np.roll(points, -1, axis=0) - np.roll(points, 1, axis=0)
-        normal = np.column_stack([step[:, 1], -step[:, 0]]) / np.hypot(*step.T)[:, None]
-        points = points + normal * np.random.default_rng(0).normal(0.0, scatter_um * 1e-3, len(points))[:, None]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", InputNote)
-        given = build_pair(PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points")
-    read = MeshingAnalysis(given, spec.speed_rpm)
+    read = _scan_read(spec, analysis, "female", per_lobe, scatter_um, 0, phase)
     design = analysis.blow_hole_area
     line = placing_line(read)
     assert line is not None and line.frame == "female"  # the female's straight flank (the sample's construction)
@@ -321,3 +328,34 @@ def test_sparse_female_line_is_cut_at_the_hand_over(designs, per_lobe, scatter_u
     assert abs(read.blow_hole_area - design) <= read.blow_hole_uncertainty
     if read.blow_hole_resolved:
         assert read.blow_hole_uncertainty <= RESOLVED_SHARE * read.blow_hole_area
+
+
+# scans of the samples whose male sealing flank is the envelope of the female's straight flank, 1-2 um of scatter
+# along the normals, phase 0.37: resolved before, and off the design by (the line fitted to the spline's contacts)
+REFIT = [
+    ("srm_asymmetric_5_6", 80, 1.0, 1),  # -1.75 %
+    ("srm_b_5_6", 80, 2.0, 0),  # -2.92 %
+    ("narrow_tip_5_6", 80, 2.0, 1),  # -1.06 %
+    ("narrow_tip_5_6", 150, 2.0, 2),  # +1.17 %
+]
+
+
+@pytest.mark.parametrize(("name", "per_lobe", "scatter_um", "seed"), REFIT)
+def test_line_fitted_to_the_scattered_points_places_the_apex(designs, name, per_lobe, scatter_um, seed):
+    # reference: the design's blow-hole from its exact curves (the family's construction, which the points' fit does
+    # not use). The smoothing spline through scattered points bows a flank's contacts off its generating line at the
+    # window's ends over a few point spacings, the same way on every read, and past the flank's end the female tip
+    # corner's contacts turned back along the line: the line fitted to those contacts read the males' blow-holes
+    # -2.9..+1.2 % (bench_line_apex.py, 80-300 a lobe), said resolved. The line fitted again to the given points
+    # themselves (every lobe, their distance from its envelope on the male): within 1 % of the design, the design
+    # within the stated uncertainty, resolved
+    from rotorcad.meshing.blow_hole_accuracy import placing_line
+
+    spec, analysis = designs[name]
+    read = _scan_read(spec, analysis, "male", per_lobe, scatter_um, seed, 0.37)
+    line = placing_line(read)
+    assert line is not None and line.frame == LINES[name] and line.errors is not None  # fitted to the points
+    design = analysis.blow_hole_area
+    assert read.blow_hole_area == pytest.approx(design, rel=0.01)
+    assert abs(read.blow_hole_area - design) <= read.blow_hole_uncertainty
+    assert read.blow_hole_resolved

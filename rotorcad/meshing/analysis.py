@@ -23,6 +23,7 @@ from rotorcad.meshing.apex import arc_at, circle_meshline_apex
 from rotorcad.meshing.blow_hole_accuracy import BLOW_HOLE_RESOLUTION, blow_hole_resolved, blow_hole_uncertainty
 from rotorcad.meshing.contact_ratios import FlankReport, flank_reports, handover_length, running_reasons
 from rotorcad.meshing.defects import MESHLINE_GAIN, Defect, is_tip_corner, meshline_defects, resolution
+from rotorcad.meshing.line_points import given_of
 from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
 from rotorcad.meshing.rounding_apex import area_bound, model_check, moved_crossings, rounding_apex
 from rotorcad.meshing.slip import slip, slip_singularities
@@ -332,9 +333,8 @@ class MeshingAnalysis:
         own = PieceRole.FEMALE_CORNER_PATH if rotors.family.startswith("female") else PieceRole.MALE_CORNER_PATH
         scattered = float(getattr(rotors, "tangent_accuracy", 0.0)) > 0.0
         smoothed = float(getattr(rotors, "accuracy", 0.0)) > float(getattr(rotors, "point_accuracy", None) or np.inf)
-        apex, found = tip_apex(
-            self.pieces, j, local, tips, self.judged_accuracy, rotors.pair.center_distance, own, scattered, smoothed, rotors.pair
-        )
+        args = (self.judged_accuracy, rotors.pair.center_distance, own, scattered, smoothed, rotors.pair, given_of(rotors))
+        apex, found = tip_apex(self.pieces, j, local, tips, *args)
         self.__dict__["_tip_candidates"] = found  # read by blow_hole_uncertainty (cached, as a cached_property is)
         return apex
 

@@ -18,6 +18,7 @@ from rotorcad.geometry import rotate
 from rotorcad.meshing.apex import circle_bounds, circle_meshline_apex
 from rotorcad.meshing.defects import MESHLINE_GAIN, resolution
 from rotorcad.meshing.generating_line import GeneratingLine, line_apex, line_meshline_cut
+from rotorcad.meshing.line_points import given_of
 from rotorcad.roles import PieceRole
 
 if TYPE_CHECKING:
@@ -186,7 +187,7 @@ def placing_line(analysis: MeshingAnalysis) -> GeneratingLine | None:
         tips = ((np.zeros(2), pair.male_tip_radius), (np.array([pair.center_distance, 0.0]), pair.female_tip_radius))
         pts = analysis.meshline
         k = int(np.argmin(np.hypot(*(pts - analysis.cusp).T)))
-        found = line_apex(analysis.pieces, pts[k], tips, analysis.judged_accuracy, pair)
+        found = line_apex(analysis.pieces, pts[k], tips, analysis.judged_accuracy, pair, given_of(rotors))
         if found is not None and np.hypot(*(found.apex - analysis.meshline_end)) <= 1e-9:
             line = found
     analysis.__dict__["_placing_line"] = line
@@ -210,7 +211,11 @@ def line_uncertainty(analysis: MeshingAnalysis) -> float:
     larger, L how far the contacts travel along the line in its body. It
     shrinks as the points come closer (n grows): the narrow-tip male with 1 um of scatter at 80 / 150 / 300
     points a lobe stated 0.50 / 0.84 / 1.59 mm² from the tangent and the other estimates' spread, for errors
-    within 0.02 mm² (``python benchmarks/bench_line_apex.py``).
+    within 0.02 mm² (``python benchmarks/bench_line_apex.py``). Where the line was fitted again to scattered
+    points themselves (:func:`rotorcad.meshing.line_points.refit_line`), the larger of these standard errors and
+    that fit's own (sigma² (J^T J)^-1): its own alone, over every lobe's points, missed the error of lines whose
+    points' model held at their ends but not between (the SRM-B female at 300 a lobe with 2 um, seed 2: +1.17 %
+    stating 0.5 %).
 
     Parameters
     ----------
@@ -237,17 +242,21 @@ def line_uncertainty(analysis: MeshingAnalysis) -> float:
     # 1 um 1.15 and 1.22 times its bound off, -8.7 and -6.4 %; the samples' other lines up to 0.67 of it)
     sigma = max(float(rotors.accuracy if point is None else point), line.rms)
     sxx = count * line.span**2 / 12.0
+    turn_error = sigma / np.sqrt(sxx)
+    distance_error = sigma * np.sqrt(1.0 / count + line.along**2 / sxx)
+    if line.errors is not None:  # fitted to the scattered points themselves: their fit's own standard errors, if larger
+        turn_error, distance_error = max(turn_error, float(line.errors[0])), max(distance_error, float(line.errors[1]))
     c = np.array([pair.male_pitch_radius, 0.0])
     (o, r), accuracy = line.circle, analysis.judged_accuracy
     area, moved = analysis.blow_hole_area, []
     for side, grow in itertools.product((-1.0, 1.0), repeat=2):
         circle = (o, r + grow * accuracy)
         if line.centre is None:  # the rack's line: its direction
-            turn = side * LINE_COVERAGE * sigma / np.sqrt(sxx)
+            turn = side * LINE_COVERAGE * turn_error
             normal = _turned(line.normal, turn)
             apex = line_meshline_cut(None, normal, None, c, circle, line.near)
         else:  # a turning body's line: its distance from the centre, at the foot of the perpendicular
-            step = side * LINE_COVERAGE * sigma * np.sqrt(1.0 / count + line.along**2 / sxx)
+            step = side * LINE_COVERAGE * distance_error
             apex = line_meshline_cut(line.distance + step, line.normal, line.centre, c, circle, line.near)
         moved.append(np.inf if apex is None else abs(analysis.blow_hole_at(apex).area - area))
     return float(max(moved))

@@ -211,6 +211,7 @@ def tip_apex(
     scattered: bool,
     smoothed: bool,
     pair: RotorPair | None = None,
+    given: tuple[np.ndarray, float, str, float] | None = None,
 ) -> tuple[np.ndarray | None, list[np.ndarray]]:
     """Return a given profile's apex where the meshline turns or a tip corner's path hands over to a flank.
 
@@ -248,6 +249,9 @@ def tip_apex(
         with the tip circle is the apex, before every other place (the narrow-tip, asymmetric SRM, SRM-B and
         rack-involute males with 1 um of scatter, seeds 0-7: -0.6..+0.5 %, where the other places read
         -9.8..+7.7 %; the rack-involute female's DXF polyline -2.3 % -> -0.02 %).
+    given : ((m, 2) float array, float, str, float) or None
+        Scattered given points, their scatter (mm) and rotor, to which that line is fitted again
+        (:func:`rotorcad.meshing.line_points.given_of`).
 
     Returns
     -------
@@ -268,7 +272,7 @@ def tip_apex(
     flank = [None if e is None else e[0] for e in extended]
     joint = None if handover is None else handover[0]
     found = [c for c in (*flank, turn, joint) if c is not None]
-    line = line_apex(pieces, pieces[j].points[local], tips, accuracy, pair) if pair is not None else None
+    line = line_apex(pieces, pieces[j].points[local], tips, accuracy, pair, given) if pair is not None else None
     if line is not None:
         return line[0], [line[0], *found]
     for apex in (flank[0], turn) if scattered else (turn, flank[0]):
