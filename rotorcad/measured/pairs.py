@@ -260,6 +260,33 @@ def _to_piece_ends(pr: np.ndarray, dist: np.ndarray, lo: int, hi: int, same: flo
     return lo, hi
 
 
+def _one_corner(same_corner: float, pm: np.ndarray, runs: list[tuple[int, int]], tip: tuple | None) -> float:
+    """Return how far apart (mm) the corners of two stalled runs of exact points may lie and be one corner's path.
+
+    ``same_corner`` (mm, :data:`EXACT_CORNER_WANDER` times the profile's accuracy; 0: scattered points, returned as
+    it is) plus :data:`EXACT_CORNER_WANDER` times the jitter of the mate's point about its corner along the
+    ``runs`` (sample ranges): the 90th percentile of the distances of the runs' mate points ``pm`` ((n, 2), mm) from
+    their run's corner (the median), over the runs whose corner lies on the mate's tip circle (``tip``: centre,
+    radius, tolerance, mm; every run without it). Exact points carry no position error to speak of, but the cubic
+    through them turns its tangent by tens of microradians between the points (Krigar's male at 600 points a lobe:
+    50-170 urad on the rack against the design's cycloid, the points 0.02 um off it), and the mate's point
+    generated along a tip corner's path follows the normal: it jittered by 1-7 um from sample to sample, where the
+    profile's accuracy (0.16 um) allowed 1.6 um, and one female tip corner's path fell apart into 2-4 parts with
+    flanks between them, each a female cusp.
+    """
+    if same_corner <= 0:
+        return same_corner
+    dists = []
+    for i, j in runs:
+        corner = np.nanmedian(pm[i:j], axis=0)
+        if tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]:
+            continue
+        d = np.hypot(*(pm[i:j] - corner).T)
+        dists.append(d[np.isfinite(d)])
+    pooled = np.concatenate(dists) if dists else np.zeros(0)
+    return same_corner + EXACT_CORNER_WANDER * (float(np.quantile(pooled, 0.9)) if len(pooled) else 0.0)
+
+
 def _mate_corner_runs(
     rack_curve: Curve,
     mate: Generated,
@@ -299,8 +326,9 @@ def _mate_corner_runs(
     flank: the independent 4/6 and 5/6 pairs' females with 2 µm of scatter stall the male's point
     over 0.5-0.8 mm of rack near its tip, which has no corner (their real tip paths: 3-10 mm).
 
-    Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other are
-    one corner's path, with what lies between them (:data:`EXACT_CORNER_WANDER`).
+    Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other, widened by
+    the mate point's jitter along the stalled parts (:func:`_one_corner`), are one corner's path, with what lies
+    between them (:data:`EXACT_CORNER_WANDER`).
 
     Of exact points, a run inside the rack piece (reaching neither of its ends) is a corner path only
     where its corner lies on the mate's tip circle (``tip``): the male's 0.67 mm tip rounding of the N
@@ -358,6 +386,7 @@ def _mate_corner_runs(
         return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
     out, last = [], rack_curve.s0
+    same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
     previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
