@@ -565,13 +565,31 @@ def _at_turns(rack: list[RackPiece], period: float, depth: int = 4) -> list[Rack
     return out
 
 
+def _land_or_arc(x: np.ndarray, ends: np.ndarray, chord: float, role: Flank) -> tuple[str, str]:
+    """Return the male's and the female's names of a flank piece whose ends lie level (:func:`_role_names`).
+
+    A land stays within 1 % of its chord of its ends' height all along (``x``, (n,) mm, the rack points' heights;
+    ``ends``, (2,), their ends'): the ``role``'s land ("tip land", "root land") on both rotors. A piece that bulges
+    further between them runs over a whole lobe part, as the symmetric SRM's rack semicircle does (its ends on the
+    pitch line, 14 mm high in the middle): towards the male's tip, the male's "lobe arc" and the female's "flute
+    arc", as the design names them (:mod:`rotorcad.families.srm_symmetric`); towards its root, the other way round.
+    """
+    bulge = 1e-2 * chord
+    if x.max() > ends.max() + bulge:
+        return "lobe arc", "flute arc"
+    if x.min() < ends.min() - bulge:
+        return "flute arc", "lobe arc"
+    return f"{role} land", f"{role} land"
+
+
 def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[RackPiece]:
     """Return the pieces named by their lobe part (:class:`rotorcad.roles.Flank`), as the design's are.
 
     The part is read off the rack as :func:`rotorcad.meshing.meshline.flank_roles` reads it per point
     (Rinder sec. 1.2): rising towards the male tip along the travel, the driving flank; falling, the
     sealing flank; flat (to 1 % of its chord: fitted points leave a land micrometres off flat), the
-    tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner
+    tip land in the male's addendum's outer half, else the root land, unless it bulges between its ends (the
+    symmetric SRM's "lobe arc", :func:`_land_or_arc`). A corner path is named by its corner
     (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the rotor whose corner it
     is; a corner path across O1O2 (its ends a quarter of its chord or more either side) takes the role of where
     it crosses, above the pitch point C the tip, below it the root, and is named "male tip corner (both flanks)".
@@ -593,11 +611,13 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
             role = Flank.TIP if above else Flank.ROOT
         else:
             role = Flank.DRIVING if rise > 0 else Flank.SEALING
-        if piece.kind is PieceRole.CURVE:
-            name = f"{role} flank" if role in (Flank.DRIVING, Flank.SEALING) else f"{role} land"
-        else:
+        if piece.kind is not PieceRole.CURVE:
             name = tip_corner_name(role, Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE)
-        out.append(RackPiece(piece.curve, name, name, piece.kind))
+            out.append(RackPiece(piece.curve, name, name, piece.kind))
+        elif role in (Flank.DRIVING, Flank.SEALING):
+            out.append(RackPiece(piece.curve, f"{role} flank", f"{role} flank", piece.kind))
+        else:
+            out.append(RackPiece(piece.curve, *_land_or_arc(pts[:, 0], ends[:, 0], chord, role), piece.kind))
     return out
 
 
