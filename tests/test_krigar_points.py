@@ -16,7 +16,9 @@ profile's accuracy (0.16 um) allowed 1.6 um for one corner. The path fell apart 
 between them, each part a female cusp (one path of 35.1 mm of meshline read as two undecided cusps of 6.95 and 27.25
 mm): from the design's outline (0.01 um chord) at 7 of 8 start phases, from the closed form given to 5 decimals (10
 nm, as a CSV holds it) at 2. Now how far one corner's mate point may wander includes the jitter read off the path's
-own stalled runs (rotorcad.measured.pairs._one_corner). Each case below failed before.
+own stalled runs (rotorcad.measured.pairs._one_corner). Each case below failed before. The point-generated flanks
+are checked against Rinder's Fig. 1 (both male flanks traced by the female tip corners, the female's by the male
+tip corner), each once (rotorcad.rack_roles.point_generated_flanks).
 """
 
 from __future__ import annotations
@@ -121,3 +123,8 @@ def test_exact_points_of_krigars_male_give_one_path_per_female_tip_corner(ring, 
     for flank, report in design["flanks"].items():
         assert given["flanks"][flank]["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
     assert _keys(given) == _keys(design), given["defects"]
+    # Rinder Fig. 1: both male flanks are traced by the female tip corners, the female's by the male tip corner (P_H,
+    # across O1O2 above C: the tip), each listed once
+    traced = [(f["rotor"], f["generated_by"], f["flank_role"]) for f in given["point_generated_flanks"]]
+    male_by_female = [("male", "female tip corner", "driving"), ("male", "female tip corner", "sealing")]
+    assert sorted(traced) == sorted([*male_by_female, ("female", "male tip corner", "tip")]), traced

@@ -21,6 +21,7 @@ from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.measured.tangent import tip_tangent_accuracy
+from rotorcad.rack_roles import piece_role
 from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
 from rotorcad.roots import bisect_levels
 from rotorcad.rotor_pair import RotorPair
@@ -585,39 +586,30 @@ def _land_or_arc(x: np.ndarray, ends: np.ndarray, chord: float, role: Flank) -> 
 def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[RackPiece]:
     """Return the pieces named by their lobe part (:class:`rotorcad.roles.Flank`), as the design's are.
 
-    The part is read off the rack as :func:`rotorcad.meshing.meshline.flank_roles` reads it per point
-    (Rinder sec. 1.2): rising towards the male tip along the travel, the driving flank; falling, the
-    sealing flank; flat (to 1 % of its chord: fitted points leave a land micrometres off flat), the
-    tip land in the male's addendum's outer half, else the root land, unless it bulges between its ends (the
-    symmetric SRM's "lobe arc", :func:`_land_or_arc`). A corner path is named by its corner
-    (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the rotor whose corner it
-    is; a corner path across O1O2 (its ends a quarter of its chord or more either side) takes the role of where
-    it crosses, above the pitch point C the tip, below it the root, and is named "male tip corner (both flanks)".
+    The part is read off the rack (:func:`rotorcad.rack_roles.piece_role`) as
+    :func:`rotorcad.meshing.meshline.flank_roles` reads it per point (Rinder sec. 1.2): rising towards the male
+    tip along the travel, the driving flank; falling, the sealing flank; flat (to 1 % of its chord: fitted points
+    leave a land micrometres off flat), the tip land in the male's addendum's outer half, else the root land,
+    unless it bulges between its ends (the symmetric SRM's "lobe arc", :func:`_land_or_arc`). A corner path is
+    named by its corner (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the
+    rotor whose corner it is; a corner path across O1O2 (its ends a quarter of its chord or more either side)
+    takes the role of where it crosses, above the pitch point C the tip, below it the root, and is named "male
+    tip corner (both flanks)".
     """
     out = []
     for piece in rack:
         pts = piece.curve.evaluate(np.linspace(piece.curve.s0, piece.curve.s1, 9))[0]
         pts = pts[np.isfinite(pts).all(axis=1)]  # a piece may hold gaps (no rack point)
-        ends = pts[[0, -1]] if len(pts) else np.zeros((2, 2))
-        rise = float(ends[1, 0] - ends[0, 0])
-        chord = float(np.hypot(*(ends[1] - ends[0])))
-        if piece.kind is not PieceRole.CURVE and ends[0, 1] * ends[1, 1] < 0 and np.abs(ends[:, 1]).min() > 0.25 * chord:
-            # a corner path across O1O2 with a quarter of its chord or more either side (Krigar's male tip
-            # corner): the corner of both flanks, of the lobe part where it crosses (above C: the tip)
-            cross = pts[int(np.flatnonzero(pts[:-1, 1] * pts[1:, 1] <= 0)[0])]
-            role = Flank.TIP if cross[0] > pair.male_pitch_radius else Flank.ROOT
-        elif abs(rise) <= 1e-2 * chord:  # flat to 0.6 deg: a land
-            above = float(ends[:, 0].mean()) - pair.male_pitch_radius > 0.5 * pair.male_addendum
-            role = Flank.TIP if above else Flank.ROOT
-        else:
-            role = Flank.DRIVING if rise > 0 else Flank.SEALING
+        pts = pts if len(pts) else np.zeros((2, 2))
+        role = piece_role(pts, piece.kind is not PieceRole.CURVE, pair.male_pitch_radius, pair.male_addendum)
         if piece.kind is not PieceRole.CURVE:
             name = tip_corner_name(role, Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE)
             out.append(RackPiece(piece.curve, name, name, piece.kind))
         elif role in (Flank.DRIVING, Flank.SEALING):
             out.append(RackPiece(piece.curve, f"{role} flank", f"{role} flank", piece.kind))
         else:
-            out.append(RackPiece(piece.curve, *_land_or_arc(pts[:, 0], ends[:, 0], chord, role), piece.kind))
+            chord = float(np.hypot(*(pts[-1] - pts[0])))
+            out.append(RackPiece(piece.curve, *_land_or_arc(pts[:, 0], pts[[0, -1], 0], chord, role), piece.kind))
     return out
 
 
