@@ -566,21 +566,22 @@ def _at_turns(rack: list[RackPiece], period: float, depth: int = 4) -> list[Rack
     return out
 
 
-def _land_or_arc(x: np.ndarray, ends: np.ndarray, chord: float, role: Flank) -> tuple[str, str]:
-    """Return the male's and the female's names of a flank piece whose ends lie level (:func:`_role_names`).
+def _arc_names(x: np.ndarray, chord: float) -> tuple[str, str] | None:
+    """Return the male's and the female's names of a flank piece that runs over a whole lobe part, else None.
 
-    A land stays within 1 % of its chord of its ends' height all along (``x``, (n,) mm, the rack points' heights;
-    ``ends``, (2,), their ends'): the ``role``'s land ("tip land", "root land") on both rotors. A piece that bulges
-    further between them runs over a whole lobe part, as the symmetric SRM's rack semicircle does (its ends on the
-    pitch line, 14 mm high in the middle): towards the male's tip, the male's "lobe arc" and the female's "flute
-    arc", as the design names them (:mod:`rotorcad.families.srm_symmetric`); towards its root, the other way round.
+    Such a piece bulges between its ends, beyond both by more than 1 % of its ``chord`` (mm; ``x``, (n,) mm, its rack
+    points' heights along the travel), as the symmetric SRM's rack semicircle does (its ends on the female tip paths
+    near the pitch line, 14 mm high in the middle); named by its ends it read "root land" (ends level) or "driving
+    flank" (one tip path read shorter, 600 exact points a lobe). Towards the male's tip it is the male's "lobe arc"
+    and the female's "flute arc", as the design names them (:mod:`rotorcad.families.srm_symmetric`); towards its
+    root, the other way round.
     """
     bulge = 1e-2 * chord
-    if x.max() > ends.max() + bulge:
+    if x.max() > max(x[0], x[-1]) + bulge:
         return "lobe arc", "flute arc"
-    if x.min() < ends.min() - bulge:
+    if x.min() < min(x[0], x[-1]) - bulge:
         return "flute arc", "lobe arc"
-    return f"{role} land", f"{role} land"
+    return None
 
 
 def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[RackPiece]:
@@ -589,8 +590,9 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
     The part is read off the rack (:func:`rotorcad.rack_roles.piece_role`) as
     :func:`rotorcad.meshing.meshline.flank_roles` reads it per point (Rinder sec. 1.2): rising towards the male
     tip along the travel, the driving flank; falling, the sealing flank; flat (to 1 % of its chord: fitted points
-    leave a land micrometres off flat), the tip land in the male's addendum's outer half, else the root land,
-    unless it bulges between its ends (the symmetric SRM's "lobe arc", :func:`_land_or_arc`). A corner path is
+    leave a land micrometres off flat), the tip land in the male's addendum's outer half, else the root land; a
+    flank piece that bulges between its ends runs over a lobe part (the symmetric SRM's "lobe arc",
+    :func:`_arc_names`). A corner path is
     named by its corner (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the
     rotor whose corner it is; a corner path across O1O2 (its ends a quarter of its chord or more either side)
     takes the role of where it crosses, above the pitch point C the tip, below it the root, and is named "male
@@ -602,14 +604,15 @@ def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[Rac
         pts = pts[np.isfinite(pts).all(axis=1)]  # a piece may hold gaps (no rack point)
         pts = pts if len(pts) else np.zeros((2, 2))
         role = piece_role(pts, piece.kind is not PieceRole.CURVE, pair.male_pitch_radius, pair.male_addendum)
+        arc = _arc_names(pts[:, 0], float(np.hypot(*(pts[-1] - pts[0])))) if piece.kind is PieceRole.CURVE else None
         if piece.kind is not PieceRole.CURVE:
             name = tip_corner_name(role, Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE)
             out.append(RackPiece(piece.curve, name, name, piece.kind))
-        elif role in (Flank.DRIVING, Flank.SEALING):
-            out.append(RackPiece(piece.curve, f"{role} flank", f"{role} flank", piece.kind))
+        elif arc is not None:
+            out.append(RackPiece(piece.curve, *arc, piece.kind))
         else:
-            chord = float(np.hypot(*(pts[-1] - pts[0])))
-            out.append(RackPiece(piece.curve, *_land_or_arc(pts[:, 0], pts[[0, -1], 0], chord, role), piece.kind))
+            name = f"{role} flank" if role in (Flank.DRIVING, Flank.SEALING) else f"{role} land"
+            out.append(RackPiece(piece.curve, name, name, piece.kind))
     return out
 
 
