@@ -377,15 +377,11 @@ def _mate_corner_runs(
     if not runs:
         return [(rack_curve.s0, rack_curve.s1, False)]
 
-    same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
-    # how far the mate's point may stray (of exact points, no less than one corner's path's own jitter)
-    wander = np.maximum(tolerance + mate_wander(rack_curve, mate, s, accuracy, turn, (pr, tr, pm)), same_corner)
+    wander = tolerance + mate_wander(rack_curve, mate, s, accuracy, turn, (pr, tr, pm))  # how far the mate's point may stray
 
     def within(corner: np.ndarray, x: np.ndarray) -> np.ndarray:
         q = mate.evaluate(x)[0]
-        bound = np.maximum(
-            tolerance + mate_wander(rack_curve, mate, x, accuracy, turn, (*rack_curve.evaluate(x), q)), same_corner
-        )
+        bound = tolerance + mate_wander(rack_curve, mate, x, accuracy, turn, (*rack_curve.evaluate(x), q))
         with np.errstate(invalid="ignore"):
             return np.isfinite(q).all(axis=1) & (np.hypot(*(q - corner).T) <= bound)
 
@@ -395,6 +391,7 @@ def _mate_corner_runs(
         return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
     out, last = [], rack_curve.s0
+    same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
     previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
