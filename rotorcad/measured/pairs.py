@@ -353,11 +353,7 @@ def _mate_corner_runs(
     after the piece begins, and that part counted as working contact: sealing transverse contact
     ratio 0.343 for the design's 0.175 (SRM-B 0.330 for 0.184, asymmetric SRM 0.231 for 0.184). Of scattered points the wander
     bound (up to 0.15 mm near the N rack's male tip rounding at 1 µm) would take a rounding 0.67 mm
-    long for a corner, so their paths keep the stall test above. Of exact points the bound is no less than
-    the one within which two stalled parts are one corner's (:func:`_one_corner`): the fit's tangent jitter moved
-    the mate's point by 1-7 µm at 0.37 µm allowed, and the narrow-tip female at 700 exact points a lobe ended
-    the male tip's path 3.1 mm of rack early (6.79 mm for the design's 9.93; the sealing flank "did not run");
-    where the path hands over to a flank, :func:`departure` backs its end up to the hand-over (now 9.95 mm).
+    long for a corner, so their paths keep the stall test above.
     """
     span = rack_curve.s1 - rack_curve.s0
     s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
