@@ -50,14 +50,15 @@ def piece_role(points: np.ndarray, corner_path: bool, pitch_radius: float, adden
     return Flank.DRIVING if rise > 0 else Flank.SEALING
 
 
-def point_generated_flanks(rack: Any, pitch_radius: float, addendum: float) -> list[dict[str, str | None]]:
+def point_generated_flanks(rack: Any, pitch_radius: float, addendum: float) -> list[dict[str, str]]:
     """Return the flanks that a single tip corner of the mate traces (punkterzeugt), each once, in one wording.
 
     Each corner path of the rack chain (:class:`rotorcad.screw_rotors.RackPiece`) gives the flank it generates on
     the other rotor: ``rotor``, ``flank`` (the corner's name on its lobe part, :func:`rotorcad.roles.tip_corner_name`:
     "sealing female tip corner", "male tip corner (both flanks)", as a defect there reads), ``flank_role`` (the lobe
     part, :func:`piece_role`) and ``generated_by`` ("male tip corner", "female tip corner"). A corner's path that the
-    chain holds in several pieces (a fit's pieces, a period's ends) is one flank, listed once.
+    chain holds in several pieces (a fit's pieces, a period's ends) is one flank, listed once; a path of no length
+    (a design's corner that meets its flank on the pitch line) traces none.
 
     Parameters
     ----------
@@ -70,18 +71,20 @@ def point_generated_flanks(rack: Any, pitch_radius: float, addendum: float) -> l
     -------
     list of dict
     """
-    out: list[dict[str, str | None]] = []
+    out: list[dict[str, str]] = []
     for piece in rack:
         if piece.kind not in (PieceRole.MALE_CORNER_PATH, PieceRole.FEMALE_CORNER_PATH):
             continue
         pts = piece.curve.evaluate(np.linspace(piece.curve.s0, piece.curve.s1, 9))[0]
         pts = pts[np.isfinite(pts).all(axis=1)]  # a piece may hold gaps (no rack point)
+        if len(pts) < 2 or np.hypot(*np.diff(pts, axis=0).T).sum() <= 1e-9 * pitch_radius:
+            continue  # a path of no length traces no flank (the narrow-tip and SRM-B designs' driving female tip)
         corner = Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE
-        role = piece_role(pts, True, pitch_radius, addendum) if len(pts) >= 2 else None
+        role = piece_role(pts, True, pitch_radius, addendum)
         row = {
             "rotor": str(corner.other),
             "flank": tip_corner_name(role, corner),
-            "flank_role": None if role is None else str(role),
+            "flank_role": str(role),
             "generated_by": f"{corner} tip corner",
         }
         if row not in out:

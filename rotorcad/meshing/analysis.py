@@ -127,7 +127,7 @@ class MeshingAnalysis:
         return found, generated
 
     @property
-    def point_generated_flanks(self) -> list[dict[str, str | None]]:
+    def point_generated_flanks(self) -> list[dict[str, str]]:
         """Flanks traced by a single corner of the mate (punkterzeugt), each once, in one wording whatever the form.
 
         A list of dicts with ``rotor``, ``flank`` (the corner's name on its lobe part, as a defect there reads),
