@@ -19,6 +19,11 @@ SRM's male at phases 0.25 and 0.875 "no geometric contact": the whole meshline o
 Issue 21 (srm-600, a run of no path no longer joins the far tip's path to the near one's; a female tip path runs on
 over the fit's end to the piece's end): 10 and 0 (Krigar's male 7, Lysholm's 2, the asymmetric SRM's 1, each an
 extra female cusp). The symmetric SRM male at 500/600/700 a lobe: defects differ 0/1/0 and running 1/2/0 before, 0/0/0 after.
+Issue 21 (krigar-600: one mate tip corner's path of exact points allows the jitter of the mate's point along its
+stalled runs, rotorcad.measured.pairs._one_corner; the fit's tangent turns 50-170 urad between points and that point
+jittered 1-7 um where 1.6 um was allowed, the path falling apart into cusped parts): all 144 inputs at 500/600/700 a
+lobe, defects differ 2/10/24 -> 0/0/0, running 0/0/1 -> 0/0/1 (left: the narrow-tip female at 700, phase 0.75, its
+male tip corner's path 3.1 mm of rack short, sealing "does not run"; a strict xfail in tests/test_phase_verdicts.py).
 """
 
 from __future__ import annotations

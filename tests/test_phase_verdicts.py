@@ -16,7 +16,9 @@ spacings long, the meshline 3-5 µm off the design's near the sealing flank's st
 O2), and the smoothing cubic's tangent followed the waves (0.1 rad off); the tangent is now the cubic's chord
 over the resolution (rotorcad.meshing.meshline.resolved_tangents). The driving flank's meshline wobbled 2.4 µm
 across O1O2 beside the root before its 0.39 mm loop on the driving side (rotorcad.meshing.slipping._side).
-The phases below are those that failed (benchmarks/bench_phase_verdicts.py runs all eight at 500/600/700).
+The phases below are those that failed (benchmarks/bench_phase_verdicts.py runs all eight at 500/600/700). The
+narrow-tip female at 700 a lobe (the last input of that benchmark whose running differed) is checked the same way
+(a strict xfail: not fixed).
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ import pytest
 from independent_pairs import arc_flank_5_6, cut_rotor, patterned, scan
 
 from rotorcad.design import rotor_design
+from rotorcad.roles import PieceRole
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 from rotorcad.rotor_pair import RotorPair
 
@@ -103,3 +106,48 @@ def test_independent_male_gives_the_same_verdicts_wherever_the_scan_starts(phase
     assert _keys(given) == _keys(start), given["defects"]
     for flank, report in start["flanks"].items():
         assert given["flanks"][flank]["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "the narrow-tip female at 700 exact points a lobe, phase 0.75: the male tip corner's path ends 3.1 mm of rack "
+        "early (6.79 mm for the design's 9.93), the fit's tangent jitter moving the male's point by 1-6 um where the "
+        "path's ends allow 0.37 um, and the sealing flank 'does not run'; widening the ends' bound to the jitter "
+        "(krigar-600) fixed it but moved the males from the narrow-tip and asymmetric SRM females' points 7-8 um off "
+        "their envelopes (test_mate_points), so not fixed"
+    ),
+)
+def test_exact_female_points_keep_the_male_tip_corners_whole_path():
+    # The narrow-tip female from its design's exact outline, 700 points a lobe, the scan 0.75 of a spacing past its
+    # start (benchmarks/bench_phase_verdicts.py: the one input of 144 at 700 a lobe whose running differed): the
+    # fit's tangent jitter moved the male tip's generated point by 1-6 um along its path where 0.37 um was allowed,
+    # the path ended 3.1 mm of rack early (6.79 mm for the design's 9.93) and that rack, read as the sealing flank,
+    # "did not run" (rotorcad.measured.pairs._mate_corner_runs). Reference: the design's own verdicts, and its male
+    # tip corner's path (its exact point path), whose length the points' path keeps to a point spacing.
+    spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "narrow_tip_5_6.toml").read_text()), SAMPLES))
+    rotors = build_pair(spec)
+    design = analyse_pair(rotors, spec.speed_rpm)[1]
+    ring = patterned(np.vstack([s.resampled(1e-5).points for s in rotors.female_lobe().segments]), spec.pair.female_teeth)
+    points = scan(ring, 700 * spec.pair.female_teeth, 0.75)
+    given_rotors = build_pair(
+        PairSpec(spec.pair, "female-points", {}, points, None, spec.speed_rpm, 0.0), label="--female-points"
+    )
+    given = analyse_pair(given_rotors, spec.speed_rpm)[1]
+    for flank, report in design["flanks"].items():
+        assert given["flanks"][flank]["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
+    assert _keys(given) == _keys(design), given["defects"]
+    spacing = float(np.median(np.hypot(*np.diff(points, axis=0).T)))
+    paths = [_path_length(r, PieceRole.MALE_CORNER_PATH) for r in (given_rotors, rotors)]
+    assert abs(paths[0] - paths[1]) < spacing, paths
+
+
+def _path_length(rotors, kind) -> float:
+    """The summed length (mm) of the rack's pieces of ``kind``."""
+    out = 0.0
+    for piece in rotors.rack:
+        if piece.kind is kind:
+            pts = piece.curve.evaluate(np.linspace(piece.curve.s0, piece.curve.s1, 2001))[0]
+            pts = pts[np.isfinite(pts).all(axis=1)]
+            out += float(np.hypot(*np.diff(pts, axis=0).T).sum())
+    return out

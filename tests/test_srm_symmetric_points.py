@@ -18,7 +18,9 @@ point within its wander at one sample) still became the corner that the next run
 run, of the same far corner, took the last path (the near tip's) on to itself: the whole lobe arc's rack one female
 corner path, no working flank left. The closed form at phases 0.375 and 0.625 read one flank "does not run" with
 an extra female cusp: the fit's end at the male's root corner left the female tip's point 5-94 um off its corner
-over the path's last 0.4 mm of rack, read as a flank (rotorcad.measured.pairs._to_piece_ends).
+over the path's last 0.4 mm of rack, read as a flank (rotorcad.measured.pairs._to_piece_ends). And the rack piece over
+the lobe was named "root land" (its ends level) or, at phase 0.875, "driving flank" (one female tip path read 0.45
+mm of the design's 1.64) where the design names it "lobe arc" (rotorcad.measured.pairs._arc_names).
 """
 
 from __future__ import annotations
@@ -97,6 +99,12 @@ def _keys(summary: dict) -> Counter:
     return Counter((d["kind"], d["rotor"], d["flank_role"], d["tip_corner"]) for d in summary["defects"])
 
 
+def _top_name(rotors) -> str:
+    """The male's name of the rack piece that reaches furthest from the pitch line towards the male's tip."""
+    tops = [np.nanmax(p.curve.evaluate(np.linspace(p.curve.s0, p.curve.s1, 201))[0][:, 0]) for p in rotors.rack]
+    return rotors.rack[int(np.argmax(tops))].male_name
+
+
 def test_the_closed_form_male_is_the_designs():
     # the reference outline is the design's male: the design's exact outline (0.01 um chord) lies within half the
     # construction's spacing (2 um) of its points, and 0.1 um more (a check of the construction, not of the code
@@ -109,6 +117,9 @@ def test_exact_points_of_the_symmetric_srm_male_run_as_the_design(ring, phase):
     spec, design, rings, _ = _design()
     points = scan(rings[ring], PER_LOBE * spec.pair.male_teeth, phase)
     rotors = build_pair(PairSpec(spec.pair, "male-points", {}, points, None, spec.speed_rpm, 0.0), label="--male-points")
+    # the piece that holds the rack's top (the semicircle's, r1 + h1 = 54 mm) has the design's name (issue 21: it read
+    # "root land", its ends level on the pitch line)
+    assert _top_name(rotors) == _top_name(build_pair(spec)) == "lobe arc"
     given = analyse_pair(rotors, spec.speed_rpm)[1]
     for flank, report in design["flanks"].items():
         assert given["flanks"][flank]["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank

@@ -21,6 +21,7 @@ from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.measured.tangent import tip_tangent_accuracy
+from rotorcad.rack_roles import piece_role
 from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
 from rotorcad.roots import bisect_levels
 from rotorcad.rotor_pair import RotorPair
@@ -260,6 +261,33 @@ def _to_piece_ends(pr: np.ndarray, dist: np.ndarray, lo: int, hi: int, same: flo
     return lo, hi
 
 
+def _one_corner(same_corner: float, pm: np.ndarray, runs: list[tuple[int, int]], tip: tuple | None) -> float:
+    """Return how far apart (mm) the corners of two stalled runs of exact points may lie and be one corner's path.
+
+    ``same_corner`` (mm, :data:`EXACT_CORNER_WANDER` times the profile's accuracy; 0: scattered points, returned as
+    it is) plus :data:`EXACT_CORNER_WANDER` times the jitter of the mate's point about its corner along the
+    ``runs`` (sample ranges): the 90th percentile of the distances of the runs' mate points ``pm`` ((n, 2), mm) from
+    their run's corner (the median), over the runs whose corner lies on the mate's tip circle (``tip``: centre,
+    radius, tolerance, mm; every run without it). Exact points carry no position error to speak of, but the cubic
+    through them turns its tangent by tens of microradians between the points (Krigar's male at 600 points a lobe:
+    50-170 urad on the rack against the design's cycloid, the points 0.02 um off it), and the mate's point
+    generated along a tip corner's path follows the normal: it jittered by 1-7 um from sample to sample, where the
+    profile's accuracy (0.16 um) allowed 1.6 um, and one female tip corner's path fell apart into 2-4 parts with
+    flanks between them, each a female cusp.
+    """
+    if same_corner <= 0:
+        return same_corner
+    dists = []
+    for i, j in runs:
+        corner = np.nanmedian(pm[i:j], axis=0)
+        if tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]:
+            continue
+        d = np.hypot(*(pm[i:j] - corner).T)
+        dists.append(d[np.isfinite(d)])
+    pooled = np.concatenate(dists) if dists else np.zeros(0)
+    return same_corner + EXACT_CORNER_WANDER * (float(np.quantile(pooled, 0.9)) if len(pooled) else 0.0)
+
+
 def _mate_corner_runs(
     rack_curve: Curve,
     mate: Generated,
@@ -299,8 +327,9 @@ def _mate_corner_runs(
     flank: the independent 4/6 and 5/6 pairs' females with 2 µm of scatter stall the male's point
     over 0.5-0.8 mm of rack near its tip, which has no corner (their real tip paths: 3-10 mm).
 
-    Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other are
-    one corner's path, with what lies between them (:data:`EXACT_CORNER_WANDER`).
+    Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other, widened by
+    the mate point's jitter along the stalled parts (:func:`_one_corner`), are one corner's path, with what lies
+    between them (:data:`EXACT_CORNER_WANDER`).
 
     Of exact points, a run inside the rack piece (reaching neither of its ends) is a corner path only
     where its corner lies on the mate's tip circle (``tip``): the male's 0.67 mm tip rounding of the N
@@ -358,6 +387,7 @@ def _mate_corner_runs(
         return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
     out, last = [], rack_curve.s0
+    same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
     previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
@@ -536,39 +566,53 @@ def _at_turns(rack: list[RackPiece], period: float, depth: int = 4) -> list[Rack
     return out
 
 
+def _arc_names(x: np.ndarray, chord: float) -> tuple[str, str] | None:
+    """Return the male's and the female's names of a flank piece that runs over a whole lobe part, else None.
+
+    Such a piece bulges between its ends, beyond both by more than 1 % of its ``chord`` (mm; ``x``, (n,) mm, its rack
+    points' heights along the travel), as the symmetric SRM's rack semicircle does (its ends on the female tip paths
+    near the pitch line, 14 mm high in the middle); named by its ends it read "root land" (ends level) or "driving
+    flank" (one tip path read shorter, 600 exact points a lobe). Towards the male's tip it is the male's "lobe arc"
+    and the female's "flute arc", as the design names them (:mod:`rotorcad.families.srm_symmetric`); towards its
+    root, the other way round.
+    """
+    bulge = 1e-2 * chord
+    if x.max() > max(x[0], x[-1]) + bulge:
+        return "lobe arc", "flute arc"
+    if x.min() < min(x[0], x[-1]) - bulge:
+        return "flute arc", "lobe arc"
+    return None
+
+
 def _role_names(rack: list[RackPiece], pair: RotorPair, rotor: Side) -> list[RackPiece]:
     """Return the pieces named by their lobe part (:class:`rotorcad.roles.Flank`), as the design's are.
 
-    The part is read off the rack as :func:`rotorcad.meshing.meshline.flank_roles` reads it per point
-    (Rinder sec. 1.2): rising towards the male tip along the travel, the driving flank; falling, the
-    sealing flank; flat (to 1 % of its chord: fitted points leave a land micrometres off flat), the
-    tip land in the male's addendum's outer half, else the root land. A corner path is named by its corner
-    (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the rotor whose corner it
-    is; a corner path across O1O2 (its ends a quarter of its chord or more either side) takes the role of where
-    it crosses, above the pitch point C the tip, below it the root, and is named "male tip corner (both flanks)".
+    The part is read off the rack (:func:`rotorcad.rack_roles.piece_role`) as
+    :func:`rotorcad.meshing.meshline.flank_roles` reads it per point (Rinder sec. 1.2): rising towards the male
+    tip along the travel, the driving flank; falling, the sealing flank; flat (to 1 % of its chord: fitted points
+    leave a land micrometres off flat), the tip land in the male's addendum's outer half, else the root land; a
+    flank piece that bulges between its ends runs over a lobe part (the symmetric SRM's "lobe arc",
+    :func:`_arc_names`). A corner path is
+    named by its corner (:func:`rotorcad.roles.tip_corner_name`: "sealing male tip corner"), a fan's path by the
+    rotor whose corner it is; a corner path across O1O2 (its ends a quarter of its chord or more either side)
+    takes the role of where it crosses, above the pitch point C the tip, below it the root, and is named "male
+    tip corner (both flanks)".
     """
     out = []
     for piece in rack:
         pts = piece.curve.evaluate(np.linspace(piece.curve.s0, piece.curve.s1, 9))[0]
         pts = pts[np.isfinite(pts).all(axis=1)]  # a piece may hold gaps (no rack point)
-        ends = pts[[0, -1]] if len(pts) else np.zeros((2, 2))
-        rise = float(ends[1, 0] - ends[0, 0])
-        chord = float(np.hypot(*(ends[1] - ends[0])))
-        if piece.kind is not PieceRole.CURVE and ends[0, 1] * ends[1, 1] < 0 and np.abs(ends[:, 1]).min() > 0.25 * chord:
-            # a corner path across O1O2 with a quarter of its chord or more either side (Krigar's male tip
-            # corner): the corner of both flanks, of the lobe part where it crosses (above C: the tip)
-            cross = pts[int(np.flatnonzero(pts[:-1, 1] * pts[1:, 1] <= 0)[0])]
-            role = Flank.TIP if cross[0] > pair.male_pitch_radius else Flank.ROOT
-        elif abs(rise) <= 1e-2 * chord:  # flat to 0.6 deg: a land
-            above = float(ends[:, 0].mean()) - pair.male_pitch_radius > 0.5 * pair.male_addendum
-            role = Flank.TIP if above else Flank.ROOT
-        else:
-            role = Flank.DRIVING if rise > 0 else Flank.SEALING
-        if piece.kind is PieceRole.CURVE:
-            name = f"{role} flank" if role in (Flank.DRIVING, Flank.SEALING) else f"{role} land"
-        else:
+        pts = pts if len(pts) else np.zeros((2, 2))
+        role = piece_role(pts, piece.kind is not PieceRole.CURVE, pair.male_pitch_radius, pair.male_addendum)
+        arc = _arc_names(pts[:, 0], float(np.hypot(*(pts[-1] - pts[0])))) if piece.kind is PieceRole.CURVE else None
+        if piece.kind is not PieceRole.CURVE:
             name = tip_corner_name(role, Side.MALE if piece.kind is PieceRole.MALE_CORNER_PATH else Side.FEMALE)
-        out.append(RackPiece(piece.curve, name, name, piece.kind))
+            out.append(RackPiece(piece.curve, name, name, piece.kind))
+        elif arc is not None:
+            out.append(RackPiece(piece.curve, *arc, piece.kind))
+        else:
+            name = f"{role} flank" if role in (Flank.DRIVING, Flank.SEALING) else f"{role} land"
+            out.append(RackPiece(piece.curve, name, name, piece.kind))
     return out
 
 

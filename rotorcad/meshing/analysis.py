@@ -30,6 +30,7 @@ from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.meshing.tip_apex import tip_apex
 from rotorcad.meshing.undecided import mark_decided, undecided_rows
 from rotorcad.profile import DEFAULT_TOLERANCE
+from rotorcad.rack_roles import point_generated_flanks
 from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
 from rotorcad.screw_rotors import ScrewRotors
 
@@ -128,17 +129,13 @@ class MeshingAnalysis:
 
     @property
     def point_generated_flanks(self) -> list[dict[str, str]]:
-        """Flanks traced by a single corner of the mate (punkterzeugt).
+        """Flanks traced by a single corner of the mate (punkterzeugt), each once, in one wording whatever the form.
 
-        A list of dicts with ``rotor``, ``flank`` (segment name) and ``generated_by``.
+        A list of dicts with ``rotor``, ``flank`` (the corner's name on its lobe part, as a defect there reads),
+        ``flank_role`` and ``generated_by`` (:func:`rotorcad.rack_roles.point_generated_flanks`).
         """
-        out = []
-        for piece in self.rotors.rack:
-            if piece.kind is PieceRole.MALE_CORNER_PATH:
-                out.append({"rotor": "female", "flank": piece.female_name, "generated_by": "male tip corner"})
-            elif piece.kind is PieceRole.FEMALE_CORNER_PATH:
-                out.append({"rotor": "male", "flank": piece.male_name, "generated_by": "female tip corner"})
-        return out
+        pair = self.rotors.pair
+        return point_generated_flanks(self.rotors.rack, pair.male_pitch_radius, pair.male_addendum)
 
     # ---- running without timing gears (1.2, 2.2.1) -----------------------------------------
     @property
