@@ -24,8 +24,10 @@ extra female cusp). The symmetric SRM male at 500/600/700 a lobe: defects differ
 from __future__ import annotations
 
 import argparse
+import sys
 import tomllib
 from collections import Counter
+from pathlib import Path
 
 import numpy as np
 from bench_moderate_densities import FLANKS, NAMES, SAMPLES, _pattern, _scan  # the same scans (run from benchmarks/)
@@ -33,6 +35,10 @@ from bench_moderate_densities import FLANKS, NAMES, SAMPLES, _pattern, _scan  # 
 from rotorcad.design import rotor_design
 from rotorcad.errors import DesignError
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
+from rotorcad.rotor_pair import RotorPair
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from independent_pairs import arc_flank_5_6, cut_rotor  # tests/ holds the independent pairs
 
 
 def _defects(summary: dict) -> Counter:
@@ -43,15 +49,76 @@ def _running(summary: dict) -> dict:
     return {f: summary["flanks"][f]["runs_without_timing_gears"] for f in FLANKS}
 
 
+def _keys(summary: dict) -> Counter:
+    return Counter((d["kind"], d["rotor"], d["flank_role"], d["tip_corner"]) for d in summary["defects"])
+
+
+def _scattered(points: np.ndarray, scatter: float, seed: int) -> np.ndarray:
+    """The points moved along their outline's normals (central chords) by Gaussian scatter of ``scatter`` mm."""
+    if scatter <= 0:
+        return points
+    chord = np.roll(points, -1, axis=0) - np.roll(points, 1, axis=0)
+    normal = np.column_stack([chord[:, 1], -chord[:, 0]]) / np.hypot(*chord.T)[:, None]
+    return points + np.random.default_rng(seed).normal(0.0, scatter, len(points))[:, None] * normal
+
+
+def independent(pers: list[int], phases: np.ndarray, scatters: list[float]) -> None:
+    """The shapely-cut 5/6 arc-flank male (tests/independent_pairs.py) at every density, scatter and phase.
+
+    No design: each (density, scatter) is compared with the verdict most of its phases read (defects by kind,
+    rotor, flank role and tip corner; each flank's "runs without timing gears"). Scattered scans take the phase's
+    index as their seed.
+    """
+    cut = arc_flank_5_6()
+    pair = RotorPair(cut.male_teeth, cut.female_teeth, cut.center_distance, lead=300.0, length=190.0, **cut.radii())
+    ring = cut_rotor(cut, "male")
+    differ = 0
+    for per in pers:
+        for scatter in scatters:
+            reads = []
+            for k, phase in enumerate(phases):
+                pts = _scattered(_scan(ring, per * cut.male_teeth, phase), scatter, k)
+                try:
+                    got = analyse_pair(build_pair(PairSpec(pair, "male-points", {}, pts, None, 3000.0, 0.0)), 3000.0)[1]
+                except DesignError as err:
+                    reads.append(("refused", err.sentence()[:60]))
+                    continue
+                running = tuple(sorted((f, r["runs_without_timing_gears"]) for f, r in got["flanks"].items()))
+                reads.append((tuple(sorted(_keys(got).elements())), running))
+            common = Counter(reads).most_common(1)[0][0]
+            odd = [k for k, r in enumerate(reads) if r != common]
+            for k in odd:
+                extra = Counter(reads[k][0]) - Counter(common[0]) if reads[k][0] != "refused" else reads[k]
+                missing = Counter(common[0]) - Counter(reads[k][0]) if reads[k][0] != "refused" else {}
+                print(
+                    f"arc-flank male {per} a lobe, {scatter * 1e3:g} um, phase {phases[k]:.4f}: "
+                    f"+{sorted(extra.elements()) if isinstance(extra, Counter) else extra} "
+                    f"-{sorted(missing.elements()) if isinstance(missing, Counter) else ''} running {reads[k][1]}",
+                    flush=True,
+                )
+            differ += len(odd)
+            print(
+                f"== arc-flank male {per} a lobe, {scatter * 1e3:g} um: {len(phases)} phases, {len(odd)} differ from the "
+                f"majority ({sum(r == common for r in reads)}: {common[1]})",
+                flush=True,
+            )
+    print(f"all: {len(pers) * len(scatters) * len(phases)} inputs, {differ} differ from their majority")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--per", default="500,600,700")
     parser.add_argument("--side", default="male,female")
     parser.add_argument("--names", default=",".join(NAMES))
     parser.add_argument("--phases", type=int, default=8)
+    parser.add_argument("--independent", action="store_true", help="the shapely-cut arc-flank male instead of the samples")
+    parser.add_argument("--scatter", default="0", help="um, comma-separated (with --independent)")
     args = parser.parse_args()
     pers = [int(p) for p in args.per.split(",")]
     phases = np.arange(args.phases) / args.phases
+    if args.independent:
+        independent(pers, phases, [float(x) * 1e-3 for x in args.scatter.split(",")])
+        return
     totals: Counter = Counter()
     for name in args.names.split(","):
         spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / f"{name}.toml").read_text()), SAMPLES))

@@ -260,6 +260,15 @@ def _to_piece_ends(pr: np.ndarray, dist: np.ndarray, lo: int, hi: int, same: flo
     return lo, hi
 
 
+def _instant(pr: np.ndarray, lo: int, hi: int, shortest: float) -> bool:
+    """Tell whether a stalled run of a rack piece's samples lies inside the piece over less than ``shortest`` of rack.
+
+    ``pr`` (n, 2) are the samples (mm), ``lo..hi`` the run's, ``shortest`` (mm) the resolution: such a run is the
+    mate's point standing still for an instant (its cusp), no corner's path.
+    """
+    return bool(0 < lo and hi < len(pr) - 1 and np.hypot(*(pr[hi] - pr[lo])) < shortest)
+
+
 def _mate_corner_runs(
     rack_curve: Curve,
     mate: Generated,
@@ -312,7 +321,14 @@ def _mate_corner_runs(
     lies: there the piece hands over from this rotor's own corner, and the fit's end leaves the
     mate's point still for a moment (one tooth of the rack-involute male, 300 points a lobe: the
     female's point stands within 2.4 µm over 0.12 mm of rack, 7.4 mm inside its tip circle; taken as
-    flank, the female generated there crossed itself and ``hob`` read it undercut).
+    flank, the female generated there crossed itself and ``hob`` read it undercut). A run inside the piece along
+    which the rack runs less than ``shortest`` (the resolution, as of scattered points) is the mate's point standing
+    still for an instant, its cusp, not its tip corner's path: the stall test's stencil is a share of the piece, so
+    that whether a cusp's quadratic stall passes for a run depended on where the fit cut its pieces (the shapely-cut
+    5/6 arc-flank male, 600 exact points a lobe: at one start phase of eight a driving flank piece 1.6 mm of rack
+    long, against 14.6 at the others, stalled the female's cusp 34.7 um inside its tip circle over 11 samples, and
+    0.05 mm of rack read as the female tip corner's path: "driving runs without timing gears" where the others, and
+    the female cusp they read, say not).
 
     Of exact points, how far the mate's point may stray from its corner and still be that corner
     follows the profile's accuracy: ``tolerance`` plus :func:`mate_wander` of the profile's
@@ -391,10 +407,11 @@ def _mate_corner_runs(
             a = previous[2] if (previous[2] - last) * span >= 0 else last
         else:
             previous = (corner, middle, a)
-        if (b - a) * span <= 0:
-            # no path (the mate's point within its wander at one sample only): the corner is still seen there, so
-            # that a run of it further on takes its path from here, and the last path is not run on to it (the
-            # symmetric SRM male's whole lobe arc, 600 points a lobe, read as the near female tip's path)
+        if (b - a) * span <= 0 or (not (scattered or again) and _instant(pr, lo, hi, shortest)):
+            # no path (the mate's point within its wander at one sample only, or for an instant inside the piece:
+            # its cusp): the corner is still seen there, so that a run of it further on takes its path from here,
+            # and the last path is not run on to it (the symmetric SRM male's whole lobe arc, 600 points a lobe,
+            # read as the near female tip's path)
             continue
         previous = (previous[0], previous[1], b)
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
