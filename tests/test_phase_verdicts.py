@@ -102,14 +102,14 @@ def test_no_sign_change_is_placed_in_a_gap_of_the_meshline():
     # Reference: closed form. A straight meshline y = 0 sampled every 0.05 mm at x in [-10, -3] and [3, 10] (the
     # contacts between them outside a bore, left out); the normal at x passes q = (q_x, 0) where x = q_x, the miss
     # (q - p) . tau = q_x - x. With q_x in the gap there is no meshline for the normal to pass q on (the arc-flank
-    # male's sealing flank at phase 0.5 read a decided female cusp and jamming so); within the resolution (1 mm)
-    # of the gap's ends neither, as at a piece's ends; further on the crossing is where it is.
+    # male's sealing flank at phase 0.5 read a decided female cusp and jamming so), nor within the margin (0.5 mm)
+    # of its ends; further on the crossing is where it is.
     x = np.concatenate([np.arange(-200, -59) * 0.05, np.arange(60, 201) * 0.05])
     arclen = x - x[0]
-    gaps = meshline_gaps(np.diff(x), 1.0)
-    assert gaps == [(140, 141)]
+    gaps = meshline_gaps(arclen, 1.0, 0.5)
+    assert np.allclose(gaps, [(arclen[140] - 0.5, arclen[141] + 0.5)])
     band = np.full(len(x), 1e-3)
-    for q_x, expected in ((0.0, []), (-3.5, []), (3.9, []), (6.02, [6.02]), (-8.0, [-8.0])):
+    for q_x, expected in ((0.0, []), (-3.4, []), (3.45, []), (3.7, [3.7]), (6.02, [6.02]), (-8.0, [-8.0])):
         crossings, _ = robust_zeros(q_x - x, band, arclen, 1.0, gaps=gaps)
         assert np.allclose([np.interp(c[0], np.arange(len(x)), x) for c in crossings], expected), q_x
     crossings, _ = robust_zeros(-x, band, arclen, 1.0)  # the gap not told: placed by interpolation across it

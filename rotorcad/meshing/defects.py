@@ -210,9 +210,9 @@ def robust_zeros(
         First and last sample of stretches known from the positions alone to be arcs about the
         centre (:func:`arcs_about`): sign changes inside them or within ``longest`` of them are the
         wobble of a fitted tangent along the arc, not a normal through the centre.
-    gaps : list of (int, int), optional
-        Pairs of consecutive samples between which the meshline is missing (:func:`meshline_gaps`): a sign
-        change across or within ``longest`` of one has no meshline to lie on, and does not count.
+    gaps : list of (float, float), optional
+        Stretches of arc length (mm) where the meshline is not known (:func:`meshline_gaps`): a sign change placed
+        inside one has no meshline to lie on; it is left out before the others are judged.
 
     Returns
     -------
@@ -241,12 +241,14 @@ def robust_zeros(
             k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
             i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
             crossings.append((float(i + f[i] / (f[i] - f[i + 1])), int(a) - 1, int(b) + 1))
-    held = stretches + list(arcs or ()) + list(gaps or ())
-    return _persistent(sorted(crossings), held, arclen, longest, reversals), stretches
+    if gaps and crossings:
+        at = np.interp([c[0] for c in crossings], np.arange(n), arclen)
+        crossings = [c for c, s in zip(crossings, at, strict=True) if not any(a < s < b for a, b in gaps)]
+    return _persistent(sorted(crossings), stretches + list(arcs or ()), arclen, longest, reversals), stretches
 
 
-def meshline_gaps(steps: np.ndarray, longest: float) -> list[tuple[int, int]]:
-    """Return the pairs of consecutive samples of a given profile's meshline piece more than ``longest`` (mm) apart.
+def meshline_gaps(arclen: np.ndarray, longest: float, margin: float) -> list[tuple[float, float]]:
+    """Return where a given profile's meshline piece is missing: steps longer than ``longest``, widened by ``margin``.
 
     A rack piece's contacts outside either bore are no meshline (:func:`rotorcad.meshing.meshline.meshline_pieces`
     leaves them out), and the samples either side of them follow each other in the piece: between them the mate's
@@ -256,22 +258,28 @@ def meshline_gaps(steps: np.ndarray, longest: float) -> list[tuple[int, int]]:
     and where each sign change was put by interpolation across the gap decided whether the two cancelled (1.69-1.72
     mm apart for a resolution of 1.72-1.74 mm): at one start phase of eight they did not, and read a decided female
     cusp and jamming the other phases do not. A step longer than the resolution ``longest`` (the length the tests
-    resolve at the profile's accuracy, :func:`resolution`) is such a gap; evenly spread samples are 1/2000 of the
-    centre distance apart (:func:`rotorcad.meshing.meshline.even_meshline_parameters`).
+    resolve at the profile's accuracy, :func:`resolution`) is such a gap (evenly spread samples are about 1/2000 of
+    the centre distance apart, :func:`rotorcad.meshing.meshline.even_meshline_parameters`); ``margin`` is half the
+    chord over which a tangent is resolved (:func:`rotorcad.meshing.meshline.resolved_tangents`), whose chords
+    reach into the gap there. Not the whole resolution, as at a piece's ends: the same male at 500 points a lobe
+    has the female's driving cusp 2.12 mm before such a gap, at a resolution of 2.15 mm.
 
     Parameters
     ----------
-    steps : (n - 1,) float array, mm
-        Lengths of the steps between the samples.
+    arclen : (n,) float array, mm
+        Arc length of the samples along the meshline.
     longest : float, mm
         The resolution of the tests.
+    margin : float, mm
+        How far beyond each gap's samples the meshline counts as missing.
 
     Returns
     -------
-    list of (int, int)
-        The samples either side of each gap, in order.
+    list of (float, float)
+        Arc-length stretches, mm, in order.
     """
-    return [(int(i), int(i) + 1) for i in np.flatnonzero(steps > longest)]
+    at = np.flatnonzero(np.diff(arclen) > longest)
+    return [(float(arclen[i] - margin), float(arclen[i + 1] + margin)) for i in at]
 
 
 def arcs_about(distance: np.ndarray, arclen: np.ndarray, span: float, spread: float) -> list[tuple[int, int]]:
@@ -601,7 +609,7 @@ def meshline_defects(
         # through O1, O2 and C at once), and C itself lies on every meshline
         judged = None  # (n,) bool, made where a crossing needs it
         turns = reversals(pts, arclen, reach if given else 0.0)
-        gaps = meshline_gaps(steps, reach) if given else None  # contacts outside the bores left out between samples
+        gaps = meshline_gaps(arclen, reach, 0.5 * SPAN * reach) if given else None  # contacts outside a bore left out
         tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
         path_of = _tip_path(piece, pair, max(20.0 * acc, 0.1 * longest)) if given else -1
         # q - pts of the three centres at once, (3, n) by coordinate: the numbers of one centre at a time
