@@ -260,15 +260,6 @@ def _to_piece_ends(pr: np.ndarray, dist: np.ndarray, lo: int, hi: int, same: flo
     return lo, hi
 
 
-def _instant(pr: np.ndarray, lo: int, hi: int, shortest: float) -> bool:
-    """Tell whether a stalled run of a rack piece's samples lies inside the piece over less than ``shortest`` of rack.
-
-    ``pr`` (n, 2) are the samples (mm), ``lo..hi`` the run's, ``shortest`` (mm) the resolution: such a run is the
-    mate's point standing still for an instant (its cusp), no corner's path.
-    """
-    return bool(0 < lo and hi < len(pr) - 1 and np.hypot(*(pr[hi] - pr[lo])) < shortest)
-
-
 def _mate_corner_runs(
     rack_curve: Curve,
     mate: Generated,
@@ -323,7 +314,9 @@ def _mate_corner_runs(
     female's point stands within 2.4 µm over 0.12 mm of rack, 7.4 mm inside its tip circle; taken as
     flank, the female generated there crossed itself and ``hob`` read it undercut). A run inside the piece along
     which the rack runs less than ``shortest`` (the resolution, as of scattered points) is the mate's point standing
-    still for an instant, its cusp, not its tip corner's path: the stall test's stencil is a share of the piece, so
+    still for an instant, its cusp, not its tip corner's path (judged on the parts, after the path is run on over a
+    flank part too short to count: the narrow-tip male's female tip path, 1000 exact points a lobe, is seen within its
+    wander at one sample and reaches the piece's end so): the stall test's stencil is a share of the piece, so
     that whether a cusp's quadratic stall passes for a run depended on where the fit cut its pieces (the shapely-cut
     5/6 arc-flank male, 600 exact points a lobe: at one start phase of eight a driving flank piece 1.6 mm of rack
     long, against 14.6 at the others, stalled the female's cusp 34.7 um inside its tip circle over 11 samples, and
@@ -407,11 +400,10 @@ def _mate_corner_runs(
             a = previous[2] if (previous[2] - last) * span >= 0 else last
         else:
             previous = (corner, middle, a)
-        if (b - a) * span <= 0 or (not (scattered or again) and _instant(pr, lo, hi, shortest)):
-            # no path (the mate's point within its wander at one sample only, or for an instant inside the piece:
-            # its cusp): the corner is still seen there, so that a run of it further on takes its path from here,
-            # and the last path is not run on to it (the symmetric SRM male's whole lobe arc, 600 points a lobe,
-            # read as the near female tip's path)
+        if (b - a) * span <= 0:
+            # no path (the mate's point within its wander at one sample only): the corner is still seen there, so
+            # that a run of it further on takes its path from here, and the last path is not run on to it (the
+            # symmetric SRM male's whole lobe arc, 600 points a lobe, read as the near female tip's path)
             continue
         previous = (previous[0], previous[1], b)
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
@@ -436,10 +428,12 @@ def _mate_corner_runs(
             parts[-1] = [parts[-1][0], b, True, False]
         else:
             parts.append([a, b, c, tiny])
-    if scattered and shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank
+    if shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank (of exact
+        # points, one inside the piece: a path the fit's end leaves, or one run on to an end, stays)
         ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
         for k, part in enumerate(parts):
-            part[2] = part[2] and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) >= shortest)
+            judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1)
+            part[2] = part[2] and not (judged and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) < shortest))
         merged: list[list] = []
         for part in parts:
             if merged and not part[2] and not merged[-1][2]:
