@@ -38,7 +38,7 @@ from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
 from rotorcad.rotor_pair import RotorPair
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from independent_pairs import arc_flank_5_6, cut_rotor  # tests/ holds the independent pairs
+from independent_pairs import arc_flank_5_6, cut_rotor, scan  # tests/ holds the independent pairs
 
 
 def _defects(summary: dict) -> Counter:
@@ -51,15 +51,6 @@ def _running(summary: dict) -> dict:
 
 def _keys(summary: dict) -> Counter:
     return Counter((d["kind"], d["rotor"], d["flank_role"], d["tip_corner"]) for d in summary["defects"])
-
-
-def _scattered(points: np.ndarray, scatter: float, seed: int) -> np.ndarray:
-    """The points moved along their outline's normals (central chords) by Gaussian scatter of ``scatter`` mm."""
-    if scatter <= 0:
-        return points
-    chord = np.roll(points, -1, axis=0) - np.roll(points, 1, axis=0)
-    normal = np.column_stack([chord[:, 1], -chord[:, 0]]) / np.hypot(*chord.T)[:, None]
-    return points + np.random.default_rng(seed).normal(0.0, scatter, len(points))[:, None] * normal
 
 
 def independent(pers: list[int], phases: np.ndarray, scatters: list[float]) -> None:
@@ -77,7 +68,7 @@ def independent(pers: list[int], phases: np.ndarray, scatters: list[float]) -> N
         for scatter in scatters:
             reads = []
             for k, phase in enumerate(phases):
-                pts = _scattered(_scan(ring, per * cut.male_teeth, phase), scatter, k)
+                pts = scan(ring, per * cut.male_teeth, phase, scatter, k)
                 try:
                     got = analyse_pair(build_pair(PairSpec(pair, "male-points", {}, pts, None, 3000.0, 0.0)), 3000.0)[1]
                 except DesignError as err:
