@@ -185,7 +185,7 @@ def robust_zeros(
     whole: bool = False,
     reversals: np.ndarray | None = None,
     arcs: list[tuple[int, int]] | None = None,
-    gaps: list[tuple[int, int]] | None = None,
+    gaps: list[tuple[float, float]] | None = None,
 ) -> tuple[list[tuple[float, int, int]], list[tuple[int, int]]]:
     """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
 
@@ -556,10 +556,10 @@ def meshline_defects(
     tangent). A point-generated stretch across O1O2 is the tip's or the root's (both flanks'). A
     sign change within L (of a given profile; 0.1 % of the centre distance for the design) of a
     centre or of O1O2 is judged by the slipping rule; one
-    within L of another, of such a stretch, of a reversal of the meshline, of a gap in a given profile's piece
-    (:func:`meshline_gaps`) or of a sign change
+    within L of another, of such a stretch, of a reversal of the meshline or of a sign change
     of another centre's miss (both flip when the tangent turns over; the normals through two
-    centres meet only on O1O2) is not robust and counts for nothing. Defects of one kind, rotor
+    centres meet only on O1O2) is not robust and counts for nothing, nor is one in a gap of a given profile's
+    piece (contacts outside a bore left out) or within half of L of it (:func:`meshline_gaps`). Defects of one kind, rotor
     and flank part whose meshline points come nearer each other than L are one defect; a
     profile given by points or a drawing carries its accuracy
     (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), the design is judged to its chord
