@@ -100,9 +100,7 @@ def tip_circle_runs(
     corner) while their fitted tangent turns 0.03 rad either way (its normal passing O2 by up to 2 mm),
     and the path read as three cusps. A tip rounding is no corner: the N rack male's 0.67 mm rounding
     keeps its meshline within 12 µm of the male tip circle over 4.2 mm, but its contacts move 0.06-0.2 mm
-    along it. A stretch runs over no gap of the meshline longer than ``longest`` (:func:`meshline_gaps`): the
-    shapely-cut arc-flank male with 1 µm of scatter (600 points a lobe) read a 7.9 mm female tip corner path out
-    of two samples on the female tip circle either side of a 7.5 mm gap, at half the start phases.
+    along it.
 
     Parameters
     ----------
@@ -128,13 +126,11 @@ def tip_circle_runs(
     centre = np.array([0.0 if male else pair.center_distance, 0.0])
     radius = pair.male_tip_radius if male else pair.female_tip_radius
     distance = np.hypot(points[:, 0] - centre[0], points[:, 1] - centre[1])
-    on = np.abs(distance - radius) <= near
-    # steps between two samples on the circle, no gap (:func:`meshline_gaps`) between them; padded for their runs
-    linked = np.concatenate([[False], on[:-1] & on[1:] & (np.diff(arclen) <= longest), [False]])
-    edges = np.flatnonzero(linked[1:] != linked[:-1])
+    on = np.concatenate([[False], np.abs(distance - radius) <= near, [False]])
+    edges = np.flatnonzero(on[1:] != on[:-1])
     body = pair.mesh.male if male else pair.mesh.female
     out = []
-    for a, b in zip(edges[::2], edges[1::2], strict=True):  # the steps a..b-1 linked: samples a..b
+    for a, b in zip(edges[::2], edges[1::2] - 1, strict=True):
         if arclen[b] - arclen[a] < longest:
             continue
         own = body.to_body(points[a : b + 1], t[a : b + 1])  # the rotor's point touching at each
