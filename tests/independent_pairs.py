@@ -412,14 +412,21 @@ def cut_rotor_brute_force(pair: Pair, rotor: str, positions: int = 3000) -> np.n
     return ring
 
 
-def scan(ring: np.ndarray, count: int, phase: float = 0.0) -> np.ndarray:
+def scan(ring: np.ndarray, count: int, phase: float = 0.0, noise: float = 0.0, seed: int = 0) -> np.ndarray:
     """``count`` points evenly spaced along the closed ring (linear interpolation on it, whose chords
     are fine enough for this), the first ``phase`` of a spacing past the ring's first point: as a
-    CMM scans, so that sharp corners fall between the points unless ``phase`` puts one on them."""
+    CMM scans, so that sharp corners fall between the points unless ``phase`` puts one on them; with
+    Gaussian noise of standard deviation ``noise`` mm along the points' normals (their central chords'),
+    drawn from ``seed`` (a CMM's scatter)."""
     closed = np.vstack([ring, ring[:1]])
     u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
     v = (np.arange(count) + phase) * u[-1] / count
-    return np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
+    pts = np.column_stack([np.interp(v, u, closed[:, 0]), np.interp(v, u, closed[:, 1])])
+    if noise:
+        d = np.roll(pts, -1, axis=0) - np.roll(pts, 1, axis=0)
+        normal = np.column_stack([d[:, 1], -d[:, 0]]) / np.hypot(*d.T)[:, None]
+        pts = pts + np.random.default_rng(seed).normal(0.0, noise, count)[:, None] * normal
+    return pts
 
 
 def patterned(lobe: np.ndarray, teeth: int) -> np.ndarray:
@@ -436,12 +443,7 @@ def resample(ring: np.ndarray, spacing: float, noise: float = 0.0, seed: int = 0
     Gaussian noise of standard deviation ``noise`` mm along the ring's normals (a CMM's scatter)."""
     closed = np.vstack([ring, ring[:1]])
     n = round(float(np.cumsum(np.hypot(*np.diff(closed, axis=0).T))[-1]) / spacing)
-    pts = scan(ring, n)
-    if noise:
-        d = np.roll(pts, -1, axis=0) - np.roll(pts, 1, axis=0)
-        normal = np.column_stack([d[:, 1], -d[:, 0]]) / np.hypot(*d.T)[:, None]
-        pts = pts + np.random.default_rng(seed).normal(0.0, noise, n)[:, None] * normal
-    return pts
+    return scan(ring, n, 0.0, noise, seed)
 
 
 def one_lobe(ring: np.ndarray, teeth: int, start_deg: float = 0.0) -> np.ndarray:

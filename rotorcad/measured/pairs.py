@@ -341,7 +341,16 @@ def _mate_corner_runs(
     lies: there the piece hands over from this rotor's own corner, and the fit's end leaves the
     mate's point still for a moment (one tooth of the rack-involute male, 300 points a lobe: the
     female's point stands within 2.4 µm over 0.12 mm of rack, 7.4 mm inside its tip circle; taken as
-    flank, the female generated there crossed itself and ``hob`` read it undercut).
+    flank, the female generated there crossed itself and ``hob`` read it undercut). A run inside the piece along
+    which the rack runs less than ``shortest`` (the resolution, as of scattered points) is the mate's point standing
+    still for an instant, its cusp, not its tip corner's path (judged on the parts, after the path is run on over a
+    flank part too short to count: the narrow-tip male's female tip path, 1000 exact points a lobe, is seen within its
+    wander at one sample and reaches the piece's end so): the stall test's stencil is a share of the piece, so
+    that whether a cusp's quadratic stall passes for a run depended on where the fit cut its pieces (the shapely-cut
+    5/6 arc-flank male, 600 exact points a lobe: at one start phase of eight a driving flank piece 1.6 mm of rack
+    long, against 14.6 at the others, stalled the female's cusp 34.7 um inside its tip circle over 11 samples, and
+    0.05 mm of rack read as the female tip corner's path: "driving runs without timing gears" where the others, and
+    the female cusp they read, say not).
 
     Of exact points, how far the mate's point may stray from its corner and still be that corner
     follows the profile's accuracy: ``tolerance`` plus :func:`mate_wander` of the profile's
@@ -449,10 +458,12 @@ def _mate_corner_runs(
             parts[-1] = [parts[-1][0], b, True, False]
         else:
             parts.append([a, b, c, tiny])
-    if scattered and shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank
+    if shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank (of exact
+        # points, one inside the piece: a path the fit's end leaves, or one run on to an end, stays)
         ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
         for k, part in enumerate(parts):
-            part[2] = part[2] and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) >= shortest)
+            judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1)
+            part[2] = part[2] and not (judged and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) < shortest))
         merged: list[list] = []
         for part in parts:
             if merged and not part[2] and not merged[-1][2]:

@@ -87,7 +87,9 @@ miss counts only beyond its band and when it persists over the resolution sqrt(8
 (:func:`resolution`); the normals of a meshline generated from scattered points are judged to
 :data:`MESHLINE_GAIN` times e (the normal's error moves the contact along the meshline), their tangent the
 direction of its smoothing cubic's chord over that resolution (:func:`~rotorcad.meshing.meshline.resolved_tangents`:
-the fit between points errs in waves two spacings long, which the meshline magnifies); a working
+the fit between points errs in waves two spacings long, which the meshline magnifies); no sign change is
+placed in a gap of a piece's meshline longer than the resolution (contacts outside a bore, left out) nor where
+the tangent's chord reaches into one (:func:`~rotorcad.meshing.defects.meshline_gaps`); a working
 part shorter than the resolution is none, and so is a curve contact between the male tip corner's
 path and the female's shorter than the meshline's resolution sqrt(8 a G e) (G = :data:`MESHLINE_GAIN`):
 the fit's rounding of a corner-to-corner hand-over (:func:`~rotorcad.meshing.contact_ratios.is_corner_handover`).

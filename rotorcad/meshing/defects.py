@@ -182,6 +182,7 @@ def robust_zeros(
     whole: bool = False,
     reversals: np.ndarray | None = None,
     arcs: list[tuple[int, int]] | None = None,
+    gaps: list[tuple[float, float]] | None = None,
 ) -> tuple[list[tuple[float, int, int]], list[tuple[int, int]]]:
     """Find where a sampled function changes sign beyond its uncertainty, and where it stays within it.
 
@@ -210,6 +211,9 @@ def robust_zeros(
         First and last sample of stretches known from the positions alone to be arcs about the
         centre (:func:`arcs_about`): sign changes inside them or within ``longest`` of them are the
         wobble of a fitted tangent along the arc, not a normal through the centre.
+    gaps : list of (float, float), optional
+        Stretches of arc length (mm) where the meshline is not known (:func:`meshline_gaps`): a sign change placed
+        inside one has no meshline to lie on; it is left out before the others are judged.
 
     Returns
     -------
@@ -238,7 +242,45 @@ def robust_zeros(
             k = np.flatnonzero((f[a - 1 : b + 1] * f[a : b + 2] <= 0) & (f[a - 1 : b + 1] != f[a : b + 2])) + a - 1
             i = int(k[np.argmin(np.abs(k + 0.5 - 0.5 * (a + b)))])
             crossings.append((float(i + f[i] / (f[i] - f[i + 1])), int(a) - 1, int(b) + 1))
+    if gaps and crossings:
+        at = np.interp([c[0] for c in crossings], np.arange(n), arclen)
+        crossings = [c for c, s in zip(crossings, at, strict=True) if not any(a < s < b for a, b in gaps)]
     return _persistent(sorted(crossings), stretches + list(arcs or ()), arclen, longest, reversals), stretches
+
+
+def meshline_gaps(arclen: np.ndarray, longest: float, margin: float) -> list[tuple[float, float]]:
+    """Return where a given profile's meshline piece is missing: steps longer than ``longest``, widened by ``margin``.
+
+    A rack piece's contacts outside either bore are no meshline (:func:`rotorcad.meshing.meshline.meshline_pieces`
+    leaves them out), and the samples either side of them follow each other in the piece: between them the mate's
+    tip corner hands over (the shapely-cut 5/6 arc-flank male as 600 exact points a lobe: 7.5 mm of the sealing
+    flank's meshline along the female tip circle, the rack's bottom rounding touching outside the female's bore).
+    The misses of O2 and C change sign across such a gap (the tangent of the samples either side turns by 150 deg),
+    and where each sign change was put by interpolation across the gap decided whether the two cancelled (1.69-1.72
+    mm apart for a resolution of 1.72-1.74 mm): at one start phase of eight they did not, and read a decided female
+    cusp and jamming the other phases do not. A step longer than the resolution ``longest`` (the length the tests
+    resolve at the profile's accuracy, :func:`resolution`) is such a gap (evenly spread samples are about 1/2000 of
+    the centre distance apart, :func:`rotorcad.meshing.meshline.even_meshline_parameters`); ``margin`` is half the
+    chord over which a tangent is resolved (:func:`rotorcad.meshing.meshline.resolved_tangents`), whose chords
+    reach into the gap there. Not the whole resolution, as at a piece's ends: the same male at 500 points a lobe
+    has the female's driving cusp 2.12 mm before such a gap, at a resolution of 2.15 mm.
+
+    Parameters
+    ----------
+    arclen : (n,) float array, mm
+        Arc length of the samples along the meshline.
+    longest : float, mm
+        The resolution of the tests.
+    margin : float, mm
+        How far beyond each gap's samples the meshline counts as missing.
+
+    Returns
+    -------
+    list of (float, float)
+        Arc-length stretches, mm, in order.
+    """
+    at = np.flatnonzero(np.diff(arclen) > longest)
+    return [(float(arclen[i] - margin), float(arclen[i + 1] + margin)) for i in at]
 
 
 def arcs_about(distance: np.ndarray, arclen: np.ndarray, span: float, spread: float) -> list[tuple[int, int]]:
@@ -559,7 +601,8 @@ def meshline_defects(
     centre or of O1O2 is judged by the slipping rule; one
     within L of another, of such a stretch, of a reversal of the meshline or of a sign change
     of another centre's miss (both flip when the tangent turns over; the normals through two
-    centres meet only on O1O2) is not robust and counts for nothing. Defects of one kind, rotor
+    centres meet only on O1O2) is not robust and counts for nothing, nor is one in a gap of a given profile's
+    piece (contacts outside a bore left out) or within half of L of it (:func:`meshline_gaps`). Defects of one kind, rotor
     and flank part whose meshline points come nearer each other than L are one defect; a
     profile given by points or a drawing carries its accuracy
     (:attr:`rotorcad.screw_rotors.ScrewRotors.accuracy`), the design is judged to its chord
@@ -613,6 +656,7 @@ def meshline_defects(
         # through O1, O2 and C at once), and C itself lies on every meshline
         judged = None  # (n,) bool, made where a crossing needs it
         turns = reversals(pts, arclen, reach if given else 0.0)
+        gaps = meshline_gaps(arclen, reach, 0.5 * SPAN * reach) if given else None  # contacts outside a bore left out
         tests = ((o1, "cusp", "male"), (o2, "cusp", "female"), (c, "jamming", "male"))
         path_of = _tip_path(piece, pair, max(20.0 * acc, 0.1 * longest)) if given else -1
         # q - pts of the three centres at once, (3, n) by coordinate: the numbers of one centre at a time
@@ -635,7 +679,7 @@ def meshline_defects(
                 near = max(TIP_CIRCLE_NEAR * scale, mesh_acc)
                 runs = tip_circle_runs(pts, piece.t, arclen, pair, Side.MALE if m == 0 else Side.FEMALE, near, reach)
                 arcs = runs
-            crossings, stretches = robust_zeros(f, band, arclen, reach, whole, turns, arcs)
+            crossings, stretches = robust_zeros(f, band, arclen, reach, whole, turns, arcs, gaps)
             on_tip.append(runs)
             misses.append((f, band, whole, crossings, _with_runs(stretches, runs) if runs else stretches, arcs))
         at = [np.interp([c[0] for c in m[3]], np.arange(len(arclen)), arclen) if m[3] else np.zeros(0) for m in misses]
