@@ -196,8 +196,10 @@ def circle_meshline_apex(
         u = pitch_point - q_t
         with np.errstate(invalid="ignore", divide="ignore"):  # the centre on C itself: no direction (nan, left out)
             u /= np.hypot(*u.T)[:, None]
+        if not whole:  # no circle about C: its row is nan (never allowed)
+            return np.stack([q_t + radius * u, q_t - radius * u, np.full_like(u, np.nan)])
         about_c = pitch_point + radius * np.column_stack([np.cos(2 * theta), np.sin(2 * theta)])
-        return np.stack([q_t + radius * u, q_t - radius * u, about_c if whole else np.full_like(u, np.nan)])
+        return np.stack([q_t + radius * u, q_t - radius * u, about_c])
 
     span = None
     if window is not None:  # the arc's polar angles about its centre, from its first sample's
@@ -221,8 +223,13 @@ def circle_meshline_apex(
 
     theta = np.linspace(-np.pi / 2, np.pi / 2, 20001)[1:-1]
     cand, cand_t = contacts(theta), turns(theta)
-    with np.errstate(invalid="ignore"):
-        d = np.stack([np.where(allowed(x, t), np.hypot(*(x - cusp).T), np.inf) for x, t in zip(cand, cand_t, strict=True)])
+    with np.errstate(invalid="ignore"):  # the nan row of no circle about C is inf without a test
+        d = np.stack(
+            [
+                np.where(allowed(x, t), np.hypot(*(x - cusp).T), np.inf) if whole or row < 2 else np.full(len(theta), np.inf)
+                for row, (x, t) in enumerate(zip(cand, cand_t, strict=True))
+            ]
+        )
     d = np.where(np.isnan(d), np.inf, d)  # not nan_to_num: it would make the inf of "not allowed" finite
     if not np.isfinite(d).any():
         return None

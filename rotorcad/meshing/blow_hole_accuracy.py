@@ -145,11 +145,15 @@ def arc_uncertainty(analysis: MeshingAnalysis) -> float:
     centre, radius, window, near, reach, bores = arc
     bound = circle_bounds(window, centre, radius, analysis.judged_accuracy)
     c = np.array([analysis.rotors.pair.male_pitch_radius, 0.0])
-    moved = []
+    moved, seen = [], {}
     for sign in itertools.product((-1.0, 1.0), repeat=3):
         step = np.asarray(sign) * bound
-        apex = circle_meshline_apex(centre + step[:2], radius + step[2], c, analysis.cusp, near, reach, bores, window)
-        moved.append(np.inf if apex is None else analysis.blow_hole_at(apex).area)
+        moved_centre, moved_radius = centre + step[:2], radius + step[2]
+        key = (moved_centre.tobytes(), float(moved_radius).hex())  # a zero bound repeats a corner: searched once
+        if key not in seen:
+            apex = circle_meshline_apex(moved_centre, moved_radius, c, analysis.cusp, near, reach, bores, window)
+            seen[key] = np.inf if apex is None else analysis.blow_hole_at(apex).area
+        moved.append(seen[key])
     return float(max(abs(m - analysis.blow_hole_area) for m in moved))
 
 

@@ -213,12 +213,59 @@ def envelope_gaps(
     if body is Body.MALE:
         return np.hypot(*(points - centre).T) - radius, np.asarray(t0, dtype=float)
     t = np.asarray(t0, dtype=float).copy()
+    px, py = points[:, 0], points[:, 1]
     for _ in range(4):
-        m0, d1, d2 = _path(body, centre, t, pair)
-        r = points - m0
-        grad, hess = -(r * d1).sum(axis=1), (d1 * d1).sum(axis=1) - (r * d2).sum(axis=1)
+        mx, my, ax, ay, bx, by = _path_columns(body, centre, t, pair)
+        rx, ry = px - mx, py - my
+        grad, hess = -(rx * ax + ry * ay), (ax * ax + ay * ay) - (rx * bx + ry * by)
         t = t - np.where(np.abs(hess) > 1e-12, grad / np.where(hess == 0, 1.0, hess), 0.0)
-    return np.hypot(*(points - _path_point(body, centre, t, pair)).T) - radius, t
+    mx, my = _point_columns(body, centre, t, pair)
+    return np.hypot(px - mx, py - my) - radius, t
+
+
+def _point_columns(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) -> tuple[np.ndarray, np.ndarray]:
+    """Return :func:`_path_point`'s M(t) as two (n,) columns, x and y: the same operations, no (n, 2) arrays."""
+    q0, q1 = float(centre[0]), float(centre[1])
+    if body is Body.MALE:
+        c, s = np.cos(t), np.sin(t)
+        fx, fy = c * q0 - s * q1, s * q0 + c * q1
+    elif body is Body.FEMALE:
+        angle = -t * pair.male_teeth / pair.female_teeth
+        c, s = np.cos(angle), np.sin(angle)
+        fx, fy = pair.center_distance + (c * q0 - s * q1), 0.0 + (s * q0 + c * q1)
+    else:
+        fx, fy = q0 + np.zeros_like(t), q1 + pair.male_pitch_radius * t
+    c, s = np.cos(-t), np.sin(-t)
+    return c * fx - s * fy, s * fx + c * fy
+
+
+def _path_columns(body: Body, centre: np.ndarray, t: np.ndarray, pair: RotorPair) -> tuple[np.ndarray, ...]:
+    """Return :func:`_path`'s M, M' and M'' as six (n,) columns (x, y of each), the same numbers.
+
+    The same floating-point operations in the same order as :func:`body_centre`, :func:`_path` and
+    :func:`_turned` (a two-term row sum is one addition), without forming the (n, 2) arrays: the Newton
+    steps of :func:`envelope_gaps` are most of a flank fit's time, and numpy's cost there is per call.
+    """
+    q0, q1 = float(centre[0]), float(centre[1])
+    if body is Body.FEMALE:
+        angle = -t * pair.male_teeth / pair.female_teeth
+        c, s = np.cos(angle), np.sin(angle)
+        fx, fy = pair.center_distance + (c * q0 - s * q1), 0.0 + (s * q0 + c * q1)
+        k = pair.male_teeth / pair.female_teeth
+        angle = -k * t
+        c, s = np.cos(angle), np.sin(angle)
+        tx, ty = c * q0 - s * q1, s * q0 + c * q1
+        d1x, d1y = -k * ty * -1.0, -k * tx
+        d2x, d2y = -(k**2) * tx, -(k**2) * ty
+        ax, ay = d1x + fy, d1y - fx
+        bx, by = d2x + 2.0 * d1y - fx, d2y - 2.0 * d1x - fy
+    else:  # the rack
+        v = pair.male_pitch_radius
+        fx, fy = q0 + np.zeros_like(t), q1 + v * t
+        ax, ay = 0.0 + fy, v - fx
+        bx, by = 0.0 + 2.0 * v - fx, 0.0 - fy
+    c, s = np.cos(-t), np.sin(-t)
+    return (c * fx - s * fy, s * fx + c * fy, c * ax - s * ay, s * ax + c * ay, c * bx - s * by, s * bx + c * by)
 
 
 def fit_envelope(
@@ -244,7 +291,8 @@ def fit_envelope(
         return g
 
     def jacobian(x: np.ndarray) -> np.ndarray:
-        n = points - _path_point(body, x[:2], feet[0], pair)
+        mx, my = _point_columns(body, x[:2], feet[0], pair)
+        n = np.column_stack([points[:, 0] - mx, points[:, 1] - my])  # points - _path_point(...), the same numbers
         n /= np.maximum(np.hypot(*n.T), 1e-15)[:, None]
         c, s = np.cos(turn * feet[0]), np.sin(turn * feet[0])  # R(-turn t) = [[c, s], [-s, c]]
         dx = -(n[:, 0] * c - n[:, 1] * s)  # -n . R(-turn t) e_x

@@ -91,20 +91,36 @@ def _distances(own: np.ndarray, corner: np.ndarray, pair: RotorPair, rotor: Side
 def _masses(own: np.ndarray, weight: np.ndarray, corners: np.ndarray, pair: RotorPair, rotor: Side, spacing: float) -> np.ndarray:
     """Meshline length (mm) of the contacts (n, 2) within ``spacing`` of each corner (m, 2) or its lobe copies, (m,).
 
-    Row i is ``weight[_distances(own, corners[i], pair, rotor) <= spacing].sum()``, the same numbers (each
-    corner's copies turned as :func:`_lobe_copies` turns them, the same sum per row), the distances of a
-    block of corners at once.
+    Row i is ``weight[_distances(own, corners[i], pair, rotor) <= spacing].sum()``, the same numbers: each
+    corner's copies turned as :func:`_lobe_copies` turns them, the same contacts counted and the same sum
+    per row over them in their order. A contact is within ``spacing`` of a copy where its squared distance
+    is below spacing^2 (1 - 1e-9) (the square's rounding, a few units of the last place, cannot take the
+    distance past ``spacing``), beyond it above spacing^2 (1 + 1e-9); only between the two is the distance
+    taken as :func:`_distances` takes it. Blocks of corners of at most a million contacts at once.
     """
     male = rotor is Side.MALE
     z = pair.male_teeth if male else pair.female_teeth
     centre = (0.0, 0.0) if male else (pair.center_distance, 0.0)
     copies = np.stack([rotate(corners, 2.0 * np.pi * k / z, centre) for k in range(z)], axis=1)  # (m, z, 2)
     out = np.empty(len(corners))
-    block = max(1, 1_000_000 // max(1, len(own) * z))
+    square = spacing * spacing
+    sure, unsure = (square * (1.0 - 1e-9) if square > 1e-250 else -1.0), square * (1.0 + 1e-9)
+    block = max(1, 1_000_000 // max(1, len(own)))
+    x, y = own[None, :, 0], own[None, :, 1]
     for a in range(0, len(corners), block):
         c = copies[a : a + block]
-        d = np.hypot(own[None, :, None, 0] - c[:, None, :, 0], own[None, :, None, 1] - c[:, None, :, 1]).min(axis=2)
-        out[a : a + block] = [weight[row <= spacing].sum() for row in d]
+        inside = np.zeros((len(c), len(own)), dtype=bool)
+        border = np.zeros_like(inside)
+        for k in range(z):
+            dx, dy = x - c[:, k, 0, None], y - c[:, k, 1, None]
+            d2 = dx * dx + dy * dy
+            inside |= d2 <= sure
+            border |= d2 <= unsure
+        rows, cols = np.nonzero(border & ~inside)
+        if len(rows):  # the distance itself, as _distances takes it
+            d = np.hypot(own[cols, None, 0] - c[rows, :, 0], own[cols, None, 1] - c[rows, :, 1]).min(axis=1)
+            inside[rows, cols] = d <= spacing
+        out[a : a + block] = [weight[row].sum() for row in inside]
     return out
 
 
