@@ -36,7 +36,7 @@ import numpy as np
 import shapely
 
 from rotorcad.geometry import rotate
-from rotorcad.meshing.apex import fit_circle
+from rotorcad.meshing.apex import about_pitch_point, circle_jacobian, fit_circle
 from rotorcad.roles import Body
 from rotorcad.rotor_pair import RotorPair
 
@@ -620,31 +620,6 @@ def rounding_apex(
     return apex, model
 
 
-def _circle_jacobian(points: np.ndarray, centre: np.ndarray) -> np.ndarray:
-    """Return the (m, 3) Jacobian of the points' distances from a circle by its centre (x, y) and radius (mm/mm)."""
-    d = points - centre
-    return np.column_stack([-d / np.hypot(*d.T)[:, None], -np.ones(len(points))])
-
-
-def about_pitch_point(points: np.ndarray, rounding: tuple, sigma: float, pair: RotorPair) -> bool:
-    """Whether a male circle fitted to ``points`` (m, 2; mm) is centred on the male pitch circle to their accuracy.
-
-    Such a circle's normals all pass through its centre, which passes the pitch point C at one instant: there
-    its meshline sweeps the whole arc (Rinder sec. 2: an arc about C, the symmetric SRM's lobe arc), so the
-    crossing of :func:`rounding_apex` sits on a singular instant that a micrometre of the centre moves along
-    the arc. The arc's own closed-form meshline (:func:`rotorcad.meshing.apex.circle_meshline_apex`) places
-    that apex. Measured on the symmetric SRM male, 150 points a lobe with 1-2 um along the normals (seeds
-    1-3): the lobe arc's centre 0.3-0.7 um inside the pitch circle, the crossing -8.7..-8.8 % (twice said
-    resolved, the design outside its bound), the arc model -0.06..+0.14 %. The centre's distance from O1 is
-    known to ``2 sigma`` times the sum of its pseudo-inverse's row (the fit's linearised worst case, as
-    :func:`area_bound`).
-    """
-    centre, radius = np.asarray(rounding[0], dtype=float), float(rounding[1])
-    along = centre / max(float(np.hypot(*centre)), 1e-15)
-    spread = 2.0 * sigma * float(np.abs(along @ np.linalg.pinv(_circle_jacobian(points, centre))[:2]).sum())
-    return bool(radius > spread and abs(float(np.hypot(*centre)) - pair.male_pitch_radius) <= spread)
-
-
 def pseudo_inverses(model: RoundingModel, pair: RotorPair) -> tuple[np.ndarray, np.ndarray]:
     """Return the pseudo-inverses J^+ of the two fits' Jacobians: (3, m) of the rounding's circle, (3, k) of the flank's.
 
@@ -652,9 +627,9 @@ def pseudo_inverses(model: RoundingModel, pair: RotorPair) -> tuple[np.ndarray, 
     the rounding's by :func:`rotorcad.meshing.apex.fit_circle`'s distances, the flank's by :func:`envelope_gaps`
     (J as in :func:`fit_envelope`).
     """
-    first = np.linalg.pinv(_circle_jacobian(model.rounding_points, model.centre))
+    first = np.linalg.pinv(circle_jacobian(model.rounding_points, model.centre))
     if model.body is Body.MALE:
-        return first, np.linalg.pinv(_circle_jacobian(model.flank_points, model.flank_centre))
+        return first, np.linalg.pinv(circle_jacobian(model.flank_points, model.flank_centre))
     turn = (1.0 + pair.male_teeth / pair.female_teeth) if model.body is Body.FEMALE else 1.0
     n = model.flank_points - _path_point(model.body, model.flank_centre, model.flank_rotations, pair)
     n /= np.maximum(np.hypot(*n.T), 1e-15)[:, None]
@@ -791,7 +766,6 @@ def model_check(
 __all__ = [
     "BODIES",
     "RoundingModel",
-    "about_pitch_point",
     "body_centre",
     "circle_contacts",
     "crossing",
