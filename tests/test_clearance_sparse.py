@@ -103,6 +103,40 @@ def test_the_closer_fit_of_300_points_a_lobe_with_2_um_scatter_is_within_5_um():
     assert s["min_normal_clearance"] > -s["accuracy"]  # no interference flag
 
 
+def per_lobe_300(ring: np.ndarray, teeth: int) -> float:
+    """The spacing of 300 points a lobe along the closed ring, mm."""
+    return float(np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T).sum()) / teeth / 300
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known defect (issue 22 item 2, the 4/6 pair's 6.1 um at 300 points a lobe with 2 um): the smoothing "
+    "cubic beside a land rings where the land meets a root rounding, its end 3.4-7.1 um inside the male (a bias, "
+    "-4.5 um over 8 seeds). Clamping it to the land's end (tried on branch clearance-46) fits the outline "
+    "(2.4-3.9 um) but moved the clearance elsewhere: 4/6 seeds 1-5 6.1 -> 6.9 um, 5/6 seed 1 4.3 -> 5.2 um",
+)
+@pytest.mark.parametrize("seed", [1, 2, 4])
+def test_a_scattered_fit_meets_its_root_land_on_the_cut_outline(seed):
+    # the 4/6 male's 1.5 mm root roundings meet its root land (tests/independent_pairs.trapezoid_4_6).
+    # At 300 points a lobe with 2 um scatter the free smoothing cubic rings there: its end beside the land
+    # 6.97 / 5.09 / 7.10 um inside the male (seeds 1, 2, 4), the clearance's worst row at seed 1 (6.1 um:
+    # the male's fit 5.1 um, the female's 1.0, the alignment 0.6). Reference: the brute-force cut outline
+    # (shapely distance of the fitted lobe's samples), below the tip corners' neighbourhood (their own zone)
+    import shapely
+
+    from rotorcad.curves import sample_curve
+
+    rack_pair = trapezoid_4_6()
+    male = cut_rotor(rack_pair, "male")
+    pair = RotorPair(4, 6, 100.0, **rack_pair.radii(), lead=1e5, length=1e5, strict=False)
+    pts = resample(male, per_lobe_300(male, 4), 2e-3, seed=seed)
+    pieces = lobe_pieces(pair, pts, "male", close_smoothing, roundings=True)
+    q = np.vstack([sample_curve(c, 2e-3)[1] for _, c in pieces])
+    q = q[np.hypot(*q.T) < rack_pair.radii()["male_tip_radius"] - 0.5]
+    off = shapely.distance(shapely.points(q), shapely.LinearRing(male))
+    assert off.max() < 4e-3  # 6.97 / 5.09 / 7.10 um measured (2.44 / 3.11 / 3.86 with the clamp tried)
+
+
 @pytest.mark.parametrize("seed", [3, 4, 5])
 def test_dense_scattered_sharp_tips_stay_corners(seed):
     # the 4/6 female's tips are cut back by the rack's flats: two sharp corners a tip, twelve in all
