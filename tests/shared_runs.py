@@ -102,10 +102,15 @@ def _noted(spec: PairSpec, speed_rpm: float, label: str | None) -> tuple[dict, l
     return summary, noted
 
 
+_REGISTRIES: dict[str, dict] = {}
+"""One warnings registry per source file the recorded warnings came from: as the issuing module's own, a warning
+shown once per place ("default") is shown once per test (pytest's filters, set anew for each test, reset them)."""
+
+
 def _issue(noted: list[tuple]) -> None:
     """Issue recorded warnings again, each from where it was first issued (the caller's filters decide)."""
     for message, category, filename, lineno in noted:
-        warnings.warn_explicit(message, category, filename, lineno)
+        warnings.warn_explicit(message, category, filename, lineno, registry=_REGISTRIES.setdefault(filename, {}))
 
 
 def points_summary(spec: PairSpec, label: str | None = None, speed_rpm: float | None = None) -> dict:
