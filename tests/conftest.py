@@ -19,7 +19,9 @@ user set is kept.
 An expensive fixture that a module's tests need on both workers (a module split between them, as
 the last one is when a worker takes the other's last tests) is built once per run through
 ``built_once``: the first worker builds it and leaves it pickled in the run's temporary folder, the
-other waits for it and reads it. Nothing is kept from one run to the next.
+other waits for it and reads it; within a process it is kept for the other modules that ask (in one
+process, ``-n 0``, too). The pairs from points that several modules analyse are shared the same way
+(tests/shared_runs.py). Nothing is kept from one run to the next.
 
 Python's cyclic garbage collector runs a tenth as often in the test processes (a collection of the
 youngest generation after 10000 net allocations of container objects instead of 700), and what the
@@ -42,18 +44,12 @@ from __future__ import annotations
 
 import gc
 import os
-import pickle
 import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import pytest
-
-try:
-    import fcntl
-except ImportError:  # not on POSIX: each worker builds its own
-    fcntl = None
 
 for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
@@ -121,31 +117,25 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
     return ModuleWholeWorkStealing(config, log)
 
 
-def _built_once(root: Path, name: str, build: Callable[[], Any]) -> Any:
-    """``build()``, made by the first worker that asks and read from ``root`` by the others."""
-    path = root / f"{name}.pickle"
-    with open(root / f"{name}.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)  # the other worker waits while this one builds
-        try:
-            if path.exists():
-                return pickle.loads(path.read_bytes())
-            value = build()
-            partial = path.with_suffix(".partial")
-            partial.write_bytes(pickle.dumps(value))
-            partial.replace(path)
-            return value
-        finally:
-            fcntl.flock(lock, fcntl.LOCK_UN)
+@pytest.fixture(scope="session", autouse=True)
+def shared_root(tmp_path_factory: pytest.TempPathFactory) -> Path | None:
+    """The run's folder that the workers share (above each worker's own), for ``built_once`` and
+    tests/shared_runs.py; None without workers or without POSIX file locks (this process only)."""
+    import shared_runs  # here, not above: it imports numpy and rotorcad (the settings above come first)
+
+    if shared_runs.fcntl is None or not os.environ.get("PYTEST_XDIST_WORKER"):
+        return None
+    shared_runs.ROOT = tmp_path_factory.getbasetemp().parent
+    return shared_runs.ROOT
 
 
 @pytest.fixture(scope="session")
-def built_once(tmp_path_factory: pytest.TempPathFactory) -> Callable[[str, Callable[[], Any]], Any]:
-    """``built_once(name, build)``: ``build()`` made once in this run for all the workers (pickled
-    in the run's temporary folder); without workers, or without POSIX file locks, just ``build()``."""
-    if fcntl is None or not os.environ.get("PYTEST_XDIST_WORKER"):
-        return lambda name, build: build()
-    root = tmp_path_factory.getbasetemp().parent  # the run's folder, above each worker's own
-    return lambda name, build: _built_once(root, name, build)
+def built_once(shared_root: Path | None) -> Callable[[str, Callable[[], Any]], Any]:
+    """``built_once(name, build)``: ``build()`` made once in this run for all the test modules and all the
+    workers (pickled in the run's temporary folder, kept in each process; tests/shared_runs.py's ``once``)."""
+    import shared_runs
+
+    return shared_runs.once
 
 
 @pytest.fixture(scope="session")

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from independent_pairs import patterned, scan
+from shared_runs import points_summary
 
 from exports.dxf_profile import read_profile
 from rotorcad.cli.main import main
@@ -81,8 +82,9 @@ def _read(
         pts = pts @ np.array([[c, s], [-s, c]])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", InputNote)
-        given = build_pair(PairSpec(spec.pair, f"{side}-points", {}, pts, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
-    result = analyse_pair(given, spec.speed_rpm)[1]
+        # built and analysed once in the run for these points (tests/test_moderate_densities.py and
+        # tests/test_generating_line.py read some of the same): tests/shared_runs.py
+        result = points_summary(PairSpec(spec.pair, f"{side}-points", {}, pts, None, spec.speed_rpm, 0.0), f"--{side}-points")
     return result["blow_hole_area"], result["blow_hole_uncertainty"], result["blow_hole_resolved"]
 
 
@@ -170,8 +172,8 @@ def test_spline_drawing_states_an_uncertainty_that_covers_its_error(exported, si
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", InputNote)
         data = read_profile(path, f"--{side}-points", f"{side.upper()}_SPLINE")
-        given = build_pair(PairSpec(spec.pair, f"{side}-points", {}, data, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
-    result = analyse_pair(given, spec.speed_rpm)[1]
+        # made once in the run for this drawing (tests/test_dxf_exact.py reads the same): tests/shared_runs.py
+        result = points_summary(PairSpec(spec.pair, f"{side}-points", {}, data, None, spec.speed_rpm, 0.0), f"--{side}-points")
     area, stated = result["blow_hole_area"], result["blow_hole_uncertainty"]
     assert 0.0 < stated < area  # non-zero, and still says something
     assert abs(area - design["area"]) <= stated

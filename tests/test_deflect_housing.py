@@ -20,6 +20,7 @@ import re
 from pathlib import Path
 
 import pytest
+from shared_runs import command_output
 
 from rotorcad.cli.main import main
 
@@ -70,7 +71,10 @@ def test_the_body_is_the_helical_part_not_the_journals(long_run):
 
 
 def test_the_papers_example_stays_inside_its_clearance(tmp_path):
-    result, err = _run(SAMPLE)
+    # run once in the run (tests/test_report_deflection.py runs the same): tests/shared_runs.py
+    code, out, err = command_output("deflect", SAMPLE, "--json", "--quiet")
+    assert code == 0
+    result = json.loads(out)
     assert result["female_deflection_to_housing_clearance"] < 0.2  # 7.5 µm of 50 (Rinder & Deix: 0.0075 mm)
     assert "housing" not in err
 

@@ -37,6 +37,7 @@ import numpy as np
 import pytest
 import shapely
 from independent_pairs import scan
+from shared_runs import points_summary
 from test_verdict_invariance import assert_same_verdicts
 
 from exports.csv_points import read_points, write_points
@@ -77,11 +78,13 @@ KNOWN_RATIOS: dict[tuple[str, str], str] = {}
 """Cases whose splines' contact ratios depart by more than 1 %, with the cause: strict xfails."""
 
 
+SUMMARY_KEYS = ("defects", "flanks", "blow_hole_area", "blow_hole_spatial", "defect_accuracy", "center_distance")
+
+
 def _summary(rotors, speed: float) -> dict:
     """The numbers compared: defects, flanks, blow-hole, apex, accuracy (plain values, picklable)."""
     result = analyse_pair(rotors, speed)[1]
-    keep = ("defects", "flanks", "blow_hole_area", "blow_hole_spatial", "defect_accuracy", "center_distance")
-    return {k: result[k] for k in keep}
+    return {k: result[k] for k in SUMMARY_KEYS}
 
 
 def _export(name: str, folder: Path) -> dict[str, dict]:
@@ -108,8 +111,10 @@ def _build(name: str, folder: Path) -> dict:
                 warnings.simplefilter("ignore", InputNote)
                 try:
                     data = read_profile(Path(rows[side]["path"]), label, layer)
-                    given = build_pair(PairSpec(spec.pair, f"{side}-points", {}, data, None, spec.speed_rpm, 0.0), label=label)
-                    out[(side, form)] = _summary(given, spec.speed_rpm)
+                    # built and analysed once in the run for this drawing (tests/test_blow_hole_points.py reads the
+                    # rack-involute sample's spline layers too): tests/shared_runs.py
+                    result = points_summary(PairSpec(spec.pair, f"{side}-points", {}, data, None, spec.speed_rpm, 0.0), label)
+                    out[(side, form)] = {k: result[k] for k in SUMMARY_KEYS}
                 except DesignError as exc:
                     out[(side, form)] = {"refused": exc.sentence()}
     return out

@@ -30,6 +30,7 @@ import numpy as np
 import pytest
 import shapely
 from independent_pairs import patterned, scan
+from shared_runs import points_summary
 
 from rotorcad.design import rotor_design
 from rotorcad.meshing import resolution
@@ -85,8 +86,10 @@ def _given(name: str, side: str, per_lobe: int, sigma: float, seed: int, phase: 
     """The design's summary and that of one rotor's outline as ``per_lobe`` points a lobe with ``sigma`` mm of scatter."""
     spec, design, _ = _design(name)
     points = _points(name, side, per_lobe, sigma, seed, phase)
-    rotors = build_pair(PairSpec(spec.pair, f"{side}-points", {}, points, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
-    return design, analyse_pair(rotors, spec.speed_rpm)[1]
+    # built and analysed once in the run for these points (this file reads some inputs in several tests, and
+    # tests/test_verdict_invariance.py and tests/test_blow_hole_points.py some of the same): tests/shared_runs.py
+    given = PairSpec(spec.pair, f"{side}-points", {}, points, None, spec.speed_rpm, 0.0)
+    return design, points_summary(given, f"--{side}-points")
 
 
 # (side, points a lobe, scatter mm, seed): every sample's male at the three densities, exact and scattered
@@ -306,8 +309,7 @@ def test_a_rounding_reads_as_a_corner_only_below_two_spacings(name, side, per_lo
     spec, analysis, design, _ = _design_pair(name)
     points = _points(name, side, per_lobe, sigma, seed)
     spacing = float(np.median(np.hypot(*np.diff(points, axis=0).T)))
-    rotors = build_pair(PairSpec(spec.pair, f"{side}-points", {}, points, None, spec.speed_rpm, 0.0), label=f"--{side}-points")
-    given = analyse_pair(rotors, spec.speed_rpm)[1]
+    given = points_summary(PairSpec(spec.pair, f"{side}-points", {}, points, None, spec.speed_rpm, 0.0), f"--{side}-points")
     corner = [d for d in given["defects"] if d["tip_corner"] and d["rotor"] == rounding[0] and d["point_generated"]]
     extra = _keys(given["defects"]) - _keys(design["defects"])
     assert all(d["decided"] for d in design["defects"]) and design["undecided_defects"] == []

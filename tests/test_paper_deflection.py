@@ -9,13 +9,12 @@ ratio.
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 from pathlib import Path
 
 import numpy as np
 import pytest
+from shared_runs import command_output
 from test_deflection import _independent_chamber
 
 from rotorcad.cli.main import main
@@ -55,11 +54,11 @@ def test_chord_table_is_eq_5_over_each_flutes_cycle(independent_chamber):
 
 @pytest.fixture(scope="module")
 def rinder_deix():
-    """The sample of Rinder & Deix's example, --method paper, as JSON."""
-    buf = io.StringIO()
-    with contextlib.redirect_stdout(buf):
-        assert main(["deflect", str(ROOT / "samples" / "rinder_deix_5_6.toml"), "--method", "paper", "--json", "--quiet"]) == 0
-    return json.loads(buf.getvalue())
+    """The sample of Rinder & Deix's example, --method paper, as JSON (run once in the run: tests/test_deflect_scaling.py
+    runs the same, tests/shared_runs.py)."""
+    code, out, _ = command_output("deflect", ROOT / "samples" / "rinder_deix_5_6.toml", "--method", "paper", "--json", "--quiet")
+    assert code == 0
+    return json.loads(out)
 
 
 def test_rinder_deix_example_order_and_size(rinder_deix):

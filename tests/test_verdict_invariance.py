@@ -40,6 +40,7 @@ import pytest
 import shapely
 import shapely.affinity
 from independent_pairs import patterned, scan
+from shared_runs import points_summary
 
 from exports.csv_points import read_points, write_points
 from exports.dxf import Drawing, write_dxf
@@ -100,8 +101,9 @@ def _evenly(lobe: np.ndarray, teeth: int, per_lobe: int, phase: float = 0.37) ->
 
 
 def _given(spec: PairSpec, data, label: str) -> dict:
-    rotors = build_pair(PairSpec(spec.pair, "male-points", {}, data, None, spec.speed_rpm, 0.0), label=label)
-    return analyse_pair(rotors, spec.speed_rpm)[1]
+    # built and analysed once in the run for these points (tests/test_moderate_densities.py reads the even-300
+    # form too): tests/shared_runs.py
+    return points_summary(PairSpec(spec.pair, "male-points", {}, data, None, spec.speed_rpm, 0.0), label)
 
 
 @pytest.fixture(scope="module")
