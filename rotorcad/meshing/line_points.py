@@ -32,6 +32,7 @@ import shapely
 
 from rotorcad.geometry import rotate
 from rotorcad.meshing.rounding_apex import END_POINTS, holds
+from rotorcad.roles import Body
 from rotorcad.rotor_pair import RotorPair
 
 END_SCATTERS = 3.0
@@ -51,6 +52,11 @@ points a lobe with 2 um, seed 3: four places, +6.4 % for an uncertainty of 5.7 %
 FEWEST = 4
 """Fewest given points on which the line is fitted again (two parameters; fewer leave it as the contacts gave it)."""
 
+TRIM_BLOCK = 64
+"""While fewer than twice this many points are kept, a line's ends are trimmed a point at a time; beyond, a
+1/TRIM_BLOCK share at a time (a dense outline's window holds hundreds: the rack-involute male's 1 um-chord CSV
+at 600 a lobe, 665 points, took 12 minutes one at a time; the scans of 80-300 points a lobe trim fewer)."""
+
 
 class PointLine(NamedTuple):
     """The generating line fitted to the given points (:func:`refit_line`)."""
@@ -68,8 +74,8 @@ class PointLine(NamedTuple):
     from the body's centre), sigma² (J^T J)^-1 of the fit with sigma the larger of the estimated scatter and ``rms``."""
 
 
-def given_of(rotors: object) -> tuple[np.ndarray, float, str, float] | None:
-    """Return a given profile's points, their scatter (mm), its rotor (``"male"``, ``"female"``) and spacing (mm), or None.
+def given_of(rotors: object) -> tuple[np.ndarray, float, Body, float] | None:
+    """Return a given profile's points, their scatter (mm), its rotor (:class:`rotorcad.roles.Body`) and spacing (mm), or None.
 
     None for a design, a drawing or exact points (:attr:`rotorcad.screw_rotors.ScrewRotors.given_points`,
     ``point_scatter`` 0): the fitted profile's contacts stand.
@@ -77,26 +83,26 @@ def given_of(rotors: object) -> tuple[np.ndarray, float, str, float] | None:
     points, sigma = getattr(rotors, "given_points", None), float(getattr(rotors, "point_scatter", 0.0) or 0.0)
     if points is None or sigma <= 0.0:
         return None
-    rotor = "female" if str(getattr(rotors, "family", "")).startswith("female") else "male"
+    rotor = Body.FEMALE if str(getattr(rotors, "family", "")).startswith("female") else Body.MALE
     return points, sigma, rotor, float(getattr(rotors, "point_spacing", None) or 0.0)
 
 
-def _on_body(points: np.ndarray, t: np.ndarray, body: str, pair: RotorPair) -> np.ndarray:
+def _on_body(points: np.ndarray, t: np.ndarray, body: Body, pair: RotorPair) -> np.ndarray:
     """Fixed-frame points in a body's frame at male rotation t (as :func:`rotorcad.meshing.generating_line.body_frames`)."""
-    if body == "male":
+    if body is Body.MALE:
         return rotate(points, -t)
-    if body == "female":
+    if body is Body.FEMALE:
         return rotate(points - np.array([pair.center_distance, 0.0]), t * pair.male_teeth / pair.female_teeth)
     return points - np.column_stack([np.zeros_like(t), pair.male_pitch_radius * t])
 
 
-def _envelope(angle: float, distance: float, frame: str, given: str, t: np.ndarray, pair: RotorPair) -> np.ndarray:
+def _envelope(angle: float, distance: float, frame: Body, given: Body, t: np.ndarray, pair: RotorPair) -> np.ndarray:
     """Return the envelope of a line {x . n = d} of body ``frame`` on the given rotor, (m, 2) float, mm, its frame."""
     n = np.array([np.cos(angle), np.sin(angle)])
     c = np.array([pair.male_pitch_radius, 0.0])
-    if frame == "male":
+    if frame is Body.MALE:
         u, p0 = rotate(np.tile(n, (len(t), 1)), t), rotate(np.tile(distance * n, (len(t), 1)), t)
-    elif frame == "female":
+    elif frame is Body.FEMALE:
         turn = -t * pair.male_teeth / pair.female_teeth
         u = rotate(np.tile(n, (len(t), 1)), turn)
         p0 = rotate(np.tile(distance * n, (len(t), 1)), turn) + np.array([pair.center_distance, 0.0])
@@ -108,8 +114,9 @@ def _envelope(angle: float, distance: float, frame: str, given: str, t: np.ndarr
 
 def _signed_gaps(points: np.ndarray, curve: np.ndarray) -> np.ndarray:
     """Return the signed distances (mm) of points from a densely sampled curve (left of its direction positive)."""
-    d2 = ((points[:, None, :] - curve[None, :, :]) ** 2).sum(axis=2)
-    k = np.clip(np.argmin(d2, axis=1), 0, len(curve) - 2)
+    from scipy.spatial import cKDTree
+
+    k = np.clip(cKDTree(curve).query(points)[1], 0, len(curve) - 2)  # the nearest sample (an (n, m) matrix was O(nm))
     a, b = curve[k], curve[k + 1]
     tangent = (b - a) / np.maximum(np.hypot(*(b - a).T), 1e-15)[:, None]
     v = points - a
@@ -117,7 +124,7 @@ def _signed_gaps(points: np.ndarray, curve: np.ndarray) -> np.ndarray:
 
 
 def refit_line(
-    frame: str,
+    frame: str | Body,
     normal: np.ndarray,
     distance: float,
     contacts: np.ndarray,
@@ -130,8 +137,8 @@ def refit_line(
 
     Parameters
     ----------
-    frame : str
-        ``"male"``, ``"female"`` or ``"rack"``: the body whose line it is.
+    frame : str or Body
+        ``"male"``, ``"female"`` or ``"rack"`` (:class:`rotorcad.roles.Body`): the body whose line it is.
     normal : (2,) float array
         The line's unit normal in that body's frame, as the contacts gave it (the start).
     distance : float, mm
@@ -140,9 +147,9 @@ def refit_line(
         The window's contacts (fixed frame), in the meshline's order from the corner.
     t : (n,) float array, rad
         The male's rotation at each.
-    given : ((m, 2) float array, float, str, float)
+    given : ((m, 2) float array, float, Body, float)
         The given rotor's points (every lobe, its own frame, mm), their estimated scatter sigma (mm), which
-        rotor they are (``"male"`` or ``"female"``) and their spacing h (mm).
+        rotor they are (:class:`rotorcad.roles.Body`) and their spacing h (mm).
     reach : float, mm
         How far off the window's part of the fitted profile a given point may lie and still be taken (the
         profile's accuracy).
@@ -157,9 +164,10 @@ def refit_line(
     from scipy.optimize import least_squares
 
     points, sigma, rotor, spacing = given
+    frame = Body(frame)
     if sigma <= 0.0 or points is None or len(contacts) < 2:
         return None
-    teeth = pair.male_teeth if rotor == "male" else pair.female_teeth
+    teeth = pair.male_teeth if rotor is Body.MALE else pair.female_teeth
     pitch = 2.0 * np.pi / teeth
     path = _on_body(contacts, t, rotor, pair)  # the window's part of the given rotor's fitted profile
     middle = np.arctan2(*path[len(path) // 2][::-1])
@@ -208,7 +216,8 @@ def refit_line(
             return PointLine(distance + float(x[1]), n, int(keep.sum()), rms, errors)
         means = [abs(float(g[:m].mean())) if off[0] else -1.0, abs(float(g[-m:].mean())) if off[1] else -1.0]
         inside = np.flatnonzero(keep)
-        keep[inside[0] if means[0] >= means[1] else inside[-1]] = False
+        block = max(1, len(inside) // TRIM_BLOCK)  # a point at a time up to TRIM_BLOCK points, a share beyond
+        keep[inside[:block] if means[0] >= means[1] else inside[-block:]] = False
     return None
 
 
