@@ -379,11 +379,7 @@ def test_cut_depth_is_the_brute_force_cut():
     r1 = rp.male_pitch_radius
     steep = np.abs(nrm[:, 1]) > 1e-6
     pts, nrm = pts[steep], nrm[steep]
-    off = pts[:, 1] * nrm[:, 0] / nrm[:, 1]
-    phi = (off - pts[:, 0]) / r1
-    fixed = np.column_stack([r1 + pts[:, 1], off])
-    c, s = np.cos(-phi), np.sin(-phi)
-    envelope = np.column_stack([c * fixed[:, 0] - s * fixed[:, 1], s * fixed[:, 0] + c * fixed[:, 1]])
+    envelope = arc_flank_male_envelope()  # the same rack points' contacts, in the male's frame
     ring = cut_rotor(rp, "male")
     outside = ~shapely.contains_xy(shapely.Polygon(ring), envelope[:, 0], envelope[:, 1])
     depth_bf = np.where(outside, distance_to_line(envelope, shapely.LinearRing(ring)), 0.0)
