@@ -245,18 +245,24 @@ def test_arc_flank_male_tip_rounding_of_a_rack_circle_is_no_male_circle():
     assert not summary["blow_hole_resolved"]
 
 
-@pytest.mark.parametrize(("scatter", "seed"), [(1e-3, 3), (2e-3, 1)])
-def test_lobe_arc_about_a_pitch_point_is_no_tip_rounding(scatter, seed):
+@pytest.mark.parametrize(("scatter", "seed", "source"), [(1e-3, 3, "design"), (2e-3, 1, "design"), (1e-3, 3, "closed form")])
+def test_lobe_arc_about_a_pitch_point_is_no_tip_rounding(scatter, seed, source):
     # reference: the symmetric SRM design's blow-hole from its exact curves; the lobe arc (radius 14 mm) is centred on
     # the male pitch circle, so its normals pass the pitch point at one instant and its meshline sweeps the arc there
     # (rotorcad.meshing.rounding_apex.about_pitch_point). 150 points a lobe with 1-2 um along the normals: a male
     # circle fitted to the arc (centre 0.4-0.7 um inside the pitch circle) crossed a rack circle's envelope at that
     # singular instant and read -8.8 % and -8.7 %, resolved, the design outside the bounds it stated (4.19 and 1.13
-    # mm²); the arc's own closed-form meshline places the apex within 0.1 % (benchmarks/bench_line_apex.py --normal)
+    # mm²); the arc's own closed-form meshline places the apex within 0.1 % (benchmarks/bench_line_apex.py --normal);
+    # the same from the independent closed-form male of tests/test_srm_symmetric_points.py (the design within 1 um of it)
     spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "srm_symmetric_4_6.toml").read_text()), SAMPLES))
     rotors = build_pair(spec)
     design = analyse_pair(rotors, spec.speed_rpm)[1]["blow_hole_area"]
     lobe = np.vstack([seg.resampled(1e-5).points for seg in rotors.male_lobe().segments])
+    if source == "closed form":  # not rotorcad's: root circle, the r 14 lobe circle, the female tip's epicycloid
+        from test_srm_symmetric_points import _male_lobe
+
+        p = spec.pair
+        lobe = _male_lobe(p.male_pitch_radius, p.female_pitch_radius, p.male_tip_radius - p.male_root_radius, p.male_teeth)
     points = scan(patterned(lobe, spec.pair.male_teeth), 150 * spec.pair.male_teeth, 0.37)
     step = np.roll(points, -1, axis=0) - np.roll(points, 1, axis=0)
     normal = np.column_stack([step[:, 1], -step[:, 0]]) / np.hypot(*step.T)[:, None]
