@@ -45,6 +45,7 @@ import pytest
 from independent_pairs import arc_flank_5_6, cut_rotor, patterned, scan
 
 from rotorcad.design import rotor_design
+from rotorcad.measured.pairs import _to_piece_ends
 from rotorcad.meshing.defects import meshline_gaps, robust_zeros
 from rotorcad.roles import PieceRole
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
@@ -127,6 +128,21 @@ def test_exact_female_points_keep_the_male_tip_corners_whole_path():
     spacing = float(np.median(np.hypot(*np.diff(points, axis=0).T)))
     paths = [_path_length(r, PieceRole.MALE_CORNER_PATH) for r in (given_rotors, rotors)]
     assert abs(paths[0] - paths[1]) < spacing, paths
+
+
+def test_a_corner_path_runs_on_through_its_jitter_but_not_into_the_flank_beside_it():
+    # Reference: closed forms. 801 samples of a straight rack 17.3 mm long; the mate's point 0-5 um from its corner,
+    # |sin| back on it once every 7 samples (the fit's tangent jitter, once a point spacing) up to sample 689, then
+    # leaving at 0.1 mm a sample: with 0.37 um allowed, the path found around its stalled run (455-470) runs on to
+    # sample 686, the last within the bound, not beyond (samples 687-689 off by 2-5 um). A flank leaving the corner
+    # for good (its point 1.45 (k - 489)^2 nm off past sample 489) keeps the end the bound gives (504), where the
+    # wide bound (12 um) would run on to 579, into the flank (krigar-600: its mate 7-8 um off at the corner).
+    k = np.arange(801)
+    pr = np.column_stack([np.zeros(801), np.linspace(0.0, 17.3, 801)])
+    jitter = np.where(k <= 689, 5e-3 * np.abs(np.sin(np.pi * k / 7.0)), 0.1 * (k - 689))
+    assert _to_piece_ends(pr, jitter, jitter <= 0.37e-3, 455, 470, 12e-3, 0.58) == (0, 686)
+    flank = np.where(k <= 489, 0.0, 1.45e-6 * (k - 489.0) ** 2)
+    assert _to_piece_ends(pr, flank, flank <= 0.37e-3, 455, 470, 12e-3, 0.58) == (0, 504)
 
 
 def _path_length(rotors, kind) -> float:
