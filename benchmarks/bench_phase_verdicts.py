@@ -24,6 +24,9 @@ stalled runs, rotorcad.measured.pairs._one_corner; the fit's tangent turns 50-17
 jittered 1-7 um where 1.6 um was allowed, the path falling apart into cusped parts): all 144 inputs at 500/600/700 a
 lobe, defects differ 2/10/24 -> 0/0/0, running 0/0/1 -> 0/0/1 (left: the narrow-tip female at 700, phase 0.75, its
 male tip corner's path 3.1 mm of rack short, sealing "does not run"; a strict xfail in tests/test_phase_verdicts.py).
+Issue 21 (nt700: that path runs on through the fit's tangent jitter to the farthest sample back within the mate
+point's bound, rotorcad.measured.pairs._to_piece_ends), all 432 inputs at 500/600/700: defects differ 0 -> 0, running
+1 -> 0 (Krigar's male 0 of 8 phases at each density, before and after); 176 s of CPU either way.
 
 ``--independent [--scatter 0,1]``: the shapely-cut 5/6 arc-flank male of tests/independent_pairs.py (no design:
 each density and scatter against the verdict most of its phases read; a scattered scan's seed is its phase's
