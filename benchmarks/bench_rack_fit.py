@@ -29,10 +29,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import test_hob_points_samples as samples
 from independent_pairs import distance_to_line
 
-from hob.rack import rotor_rack
+from hob.angle_accuracy import smallest_angle_accuracy
 from hob.rack_accuracy import rack_accuracy
-from rotorcad.measured.cusp_paths import with_exact_cusp_paths
-from rotorcad.measured.pairs import pair_from_rotor_points
 
 CASES = [
     (name, rotor)
@@ -41,13 +39,15 @@ CASES = [
 ]
 
 
-def measure(name: str, rotor: str, seed: int) -> tuple[float, float, float, float, float]:
+def measure(name: str, rotor: str, seed: int) -> tuple[float, float, float, float, float, float, float]:
     """Return the rack's and the fit's largest error on the contact zone, the accuracy and the rack accuracy (um),
-    and the radius (mm)."""
-    spec, design = samples.design(name)
-    points = samples.outline(name, rotor, "scatter", seed)
-    rotors = with_exact_cusp_paths(pair_from_rotor_points(spec.pair, points, rotor))
-    derived = rotor_rack(rotors, rotor, **samples.MEASURED)
+    the radius (mm), and the smallest flank angle's error and stated accuracy (deg)."""
+    _, design = samples.design(name)
+    rotors, racks, verdicts = samples.from_points(name, rotor, "scatter", seed)  # as `rotorcad hob --<rotor>-points`
+    derived = racks[rotor]
+    smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
+    angle_error = smallest - samples.closed_form_angle(name)
+    stated_angle = smallest_angle_accuracy(rotors, racks, rotor, smallest)
     stated_rack = rack_accuracy(rotors, derived)
     rack = derived.in_contract_frame()
     period = design.pair.rack_period
@@ -66,6 +66,8 @@ def measure(name: str, rotor: str, seed: int) -> tuple[float, float, float, floa
         1e3 * rotors.accuracy,
         1e3 * stated_rack,
         float(np.hypot(*contact[worst])),
+        angle_error,
+        stated_angle,
     )
 
 
@@ -73,21 +75,24 @@ def main(first: int, last: int) -> None:
     summary = []
     for name, rotor in CASES:
         print(f"{name} {rotor}")
-        rows = []
+        rows, angles = [], []
         for seed in range(first, last + 1):
-            rack, fit, stated, stated_rack, radius = measure(name, rotor, seed)
+            rack, fit, stated, stated_rack, radius, angle, stated_angle = measure(name, rotor, seed)
             rows.append((rack, stated_rack))
+            angles.append((angle, stated_angle))
             over = "  over" if rack > max(2.0, stated_rack) else ""
             print(
                 f"  seed {seed}: rack {rack:6.2f} um, fit {fit:6.2f} um, accuracy {stated:5.2f} um, rack accuracy "
-                f"{stated_rack:5.2f} um, at r = {radius:6.2f} mm{over}",
+                f"{stated_rack:5.2f} um, at r = {radius:6.2f} mm{over}; smallest angle {angle:+.3f} deg (stated "
+                f"{stated_angle:.2f})",
                 flush=True,
             )
         error, bound = np.array(rows).T
         summary.append(
             f"{name} {rotor}: error {error.min():.2f}-{error.max():.2f} um, rack accuracy {bound.min():.2f}-{bound.max():.2f}, "
             f"covered {(error <= np.maximum(bound, 2.0)).sum()}/{len(error)}, ratio median {np.median(bound / error):.2f} "
-            f"max {(bound / error).max():.2f}"
+            f"max {(bound / error).max():.2f}; smallest angle error {min(a for a, _ in angles):+.3f}.."
+            f"{max(a for a, _ in angles):+.3f} deg, within 0.1 deg {sum(abs(a) <= 0.1 for a, _ in angles)}/{len(angles)}"
         )
     print("\n".join(summary))
 
