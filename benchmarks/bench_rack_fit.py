@@ -13,6 +13,13 @@ its ratio to the error (median): rack-involute female 4.2-9.1 / 7.4-8.3 / 10.6-2
 20/20, 1.88; male 4.2-93.4 / 7.2-8.4 / 13.1-106.1, 20/20, 2.10; narrow-tip female 2.7-8.1 / 7.1-8.4 / 8.0-9.3,
 20/20, 1.83; male 1.5-12.9 / 7.3-8.3 / 12.6-15.3, 20/20, 3.66 (its 45 deg root corner shows on 8 of the 20 seeds).
 ``accuracy`` alone was exceeded on 53 of the 160.
+
+Each row also gives the smallest flank angle as ``rotorcad hob`` reads it (both racks) less the design's closed form,
+and its stated accuracy. Seeds 11-16 (``python benchmarks/bench_rack_fit.py 11 16``), before / after hob.straight_flank
+(a straight rack flank read as its fitted line): rack-involute female -0.387..-0.074 / -0.010..-0.002 deg, male
+-1.333..-0.310 / -0.002..+0.004; unchanged: N rack and Rinder-Deix female -0.096..-0.011, male -0.542..-0.090 (the
+fit's overshoot at the male's quickly changing curvature, not a straight flank), narrow-tip female within 0.005,
+male +2.147 and +1.792 on seeds 12 and 16 (high, for the design's 0 deg: not examined); the rack errors identical.
 """
 
 from __future__ import annotations
