@@ -29,6 +29,7 @@ import shapely
 
 from hob.cut_depth import cut_depths
 from hob.rack import DerivedRack
+from hob.straight_flank import straight_flank_angles
 from hob.turn_back import (
     CROSSING_ANGLE,
     FAST,
@@ -197,6 +198,11 @@ def judge(
         )
     flank = cutting & ~_corner_slivers(rack)[idx] & (np.abs(tan[:, 1]) > 1e-9)
     angles = np.degrees(np.arctan2(np.abs(tan[:, 0]), np.abs(tan[:, 1])))
+    if point_scatter > 0 and point_spacing > 0:  # a straight flank's angle from its line (hob.straight_flank)
+        along = rack.profile if rack.profile is not None else rack.points
+        along = along[::-1] if rack.points[-1, 0] < rack.points[0, 0] else along
+        arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(along, axis=0).T))])
+        angles = straight_flank_angles(pts, tan, angles, flank, arc, point_scatter, point_spacing, MEASURED_MIN_TURN)
     alpha_min = float(angles[flank].min()) if flank.any() else 90.0
     if alpha_min < lim.min_flank_angle_deg:
         i = np.nonzero(flank)[0][np.argmin(angles[flank])]
