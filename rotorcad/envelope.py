@@ -45,7 +45,7 @@ from typing import Literal
 import numpy as np
 
 from rotorcad.curves import Curve, Line
-from rotorcad.geometry import Array, as_points, cross, perp_cw, shifted, wrap_angle
+from rotorcad.geometry import Array, as_points, cross, perp_cw, shifted, turned, wrap_angle
 from rotorcad.kinematics import Body, Rotation, Translation, pitch_point
 
 Branch = Literal["A", "B"]
@@ -351,10 +351,48 @@ class Generated(Curve):
             Unit tangents along increasing ``s``: the generated boundary tangent, -R t_parent_boundary,
             is travelled against the parent's direction.
         """
-        c = self.contact(s)
+        # the numbers of contact(s).points and .tangents (conjugate's steps for these two, each
+        # body's cosine and sine once for its points and vectors; no normals, no sliding)
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        p, t_can = self.parent.frame(s)
+        p, tg = as_points(p), as_points(t_can * self.parent_direction)
+        c = pitch_point(self.generating, self.generated)
+        args = (self.branch, self.parent.arc_center(), self.limits, self.reference, self.parent.is_corner())
+        t = _contact_times(p, perp_cw(tg), self.generating, self.generated, c, *args)
+        x, tx = _carried(self.generating, p, tg, t, inverse=False)
+        points, tangents = _carried(self.generated, x, tx, t, inverse=True)
         # canonical tangent (along increasing s): the generated boundary tangent is
         # -R t_parent_boundary and is travelled against the parent's direction.
-        return c.points, c.tangents * (-self.parent_direction)
+        return points, (-tangents) * (-self.parent_direction)
+
+
+def _carried(body: Body, points: Array, vectors: Array, t: Array, inverse: bool) -> tuple[Array, Array]:
+    """Points and vectors carried by ``body`` at ``t``: to the fixed frame, or with ``inverse`` to the body's.
+
+    The numbers of ``body.to_fixed(points, t)`` and ``body.vectors_to_fixed(vectors, t)`` (or of
+    ``to_body`` and ``vectors_to_body``), a turn's cosine and sine computed once for both.
+
+    Parameters
+    ----------
+    body : Rotation or Translation
+        The moving body.
+    points, vectors : (n, 2) float arrays
+        Points (mm) and vectors in the frame they leave.
+    t : (n,) float array, rad
+        Motion parameter, one per point.
+    inverse : bool
+        From the fixed frame into the body's.
+
+    Returns
+    -------
+    points, vectors : (n, 2) float arrays
+        In the frame they reach.
+    """
+    if isinstance(body, Rotation):
+        angle = -body.angle(t) if inverse else body.angle(t)
+        c, s = np.cos(angle), np.sin(angle)
+        return turned(points, c, s, body.center), turned(vectors, c, s)
+    return (body.to_body(points, t) if inverse else body.to_fixed(points, t)), as_points(vectors)
 
 
 def meshline_contacts(gens: list[Generated], params: list[Array]) -> list[tuple[Array, Array, Array, Array]]:
