@@ -45,7 +45,7 @@ from typing import Literal
 import numpy as np
 
 from rotorcad.curves import Curve, Line
-from rotorcad.geometry import Array, as_points, cross, perp_cw, shifted, wrap_angle
+from rotorcad.geometry import Array, as_points, cross, perp_cw, shifted, turned, wrap_angle
 from rotorcad.kinematics import Body, Rotation, Translation, pitch_point
 
 Branch = Literal["A", "B"]
@@ -206,17 +206,64 @@ def _contact_times(
     corner: bool,
 ) -> Array:
     """Motion parameter at contact of :func:`conjugate` (the root chosen by ``limits``), (n,) float array."""
-    t = contact_parameter(p, n, generating, c, branch, arc_center, reference, corner)
     if limits is not None and isinstance(generating, Rotation):
-        other = contact_parameter(p, n, generating, c, "B" if branch == "A" else "A", None, reference, corner)
+        t, other = _both_branches(p, n, generating, c, branch, arc_center, reference, corner)
         r_a = _generated_extent(p, t, generating, generated, c)
         r_b = _generated_extent(p, other, generating, generated, c)
         lo, hi = limits
         tol = 1e-9 * max(abs(hi), 1.0)
         out_a = ~((r_a >= lo - tol) & (r_a <= hi + tol))
         in_b = (r_b >= lo - tol) & (r_b <= hi + tol)
-        t = np.where(out_a & in_b, other, t)
-    return t
+        return np.where(out_a & in_b, other, t)
+    return contact_parameter(p, n, generating, c, branch, arc_center, reference, corner)
+
+
+def _both_branches(
+    p: Array,
+    n: Array,
+    generating: Rotation,
+    pitch: Array,
+    branch: Branch,
+    arc_center: Array | None,
+    reference: float,
+    corner: bool,
+) -> tuple[Array, Array]:
+    """Return the contact parameters of ``branch`` and of the other branch of a turning generator, (n,) each.
+
+    The numbers of ``contact_parameter(..., branch, arc_center, ...)`` and of
+    ``contact_parameter(..., other branch, None, ...)``, the normal's turn and arcsine computed once
+    for both.
+    """
+    if branch not in ("A", "B"):
+        raise ValueError("branch must be 'A' or 'B'")
+    c = np.asarray(pitch, dtype=float)
+    o = np.asarray(generating.center, dtype=float)
+    w = c - o
+    r_w = float(np.hypot(*w))
+    beta = float(np.arctan2(w[1], w[0]))
+    first = None
+    if arc_center is not None and not corner:
+        k = np.asarray(arc_center, dtype=float) - o
+        if abs(np.hypot(*k) - r_w) <= 1e-9 * r_w:  # contact_parameter's arc centred on the pitch circle
+            first = np.full(len(p), wrap_angle(np.array(beta - np.arctan2(k[1], k[0])), reference) / generating.rate)
+    q = cross(n, shifted(p, o, -1.0)) / r_w
+    psi = np.arctan2(n[:, 1], n[:, 0])
+    with np.errstate(invalid="ignore"):
+        arcsine = np.arcsin(q)
+
+    def turn(side: Branch) -> Array:
+        phi = np.pi - arcsine if side == "B" else arcsine
+        theta = wrap_angle(beta - psi - phi, reference)
+        if corner:  # as contact_parameter: the other root where the trivial one is taken
+            d = shifted(p, o, -1.0)
+            trivial = beta - np.arctan2(d[:, 1], d[:, 0])
+            on_circle = np.abs(np.hypot(*d.T) - r_w) <= 1e-9 * r_w
+            same = np.abs(wrap_angle(theta - trivial)) < 1e-9
+            other = wrap_angle(beta - psi - (np.pi - phi), reference)
+            theta = np.where(on_circle & same, other, theta)
+        return theta / generating.rate
+
+    return (turn(branch) if first is None else first), turn("B" if branch == "A" else "A")
 
 
 def _generated_extent(p: Array, t: Array, generating: Body, generated: Body, pitch: Array) -> Array:
@@ -351,10 +398,48 @@ class Generated(Curve):
             Unit tangents along increasing ``s``: the generated boundary tangent, -R t_parent_boundary,
             is travelled against the parent's direction.
         """
-        c = self.contact(s)
+        # the numbers of contact(s).points and .tangents (conjugate's steps for these two, each
+        # body's cosine and sine once for its points and vectors; no normals, no sliding)
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        p, t_can = self.parent.frame(s)
+        p, tg = as_points(p), as_points(t_can * self.parent_direction)
+        c = pitch_point(self.generating, self.generated)
+        args = (self.branch, self.parent.arc_center(), self.limits, self.reference, self.parent.is_corner())
+        t = _contact_times(p, perp_cw(tg), self.generating, self.generated, c, *args)
+        x, tx = _carried(self.generating, p, tg, t, inverse=False)
+        points, tangents = _carried(self.generated, x, tx, t, inverse=True)
         # canonical tangent (along increasing s): the generated boundary tangent is
         # -R t_parent_boundary and is travelled against the parent's direction.
-        return c.points, c.tangents * (-self.parent_direction)
+        return points, (-tangents) * (-self.parent_direction)
+
+
+def _carried(body: Body, points: Array, vectors: Array, t: Array, inverse: bool) -> tuple[Array, Array]:
+    """Points and vectors carried by ``body`` at ``t``: to the fixed frame, or with ``inverse`` to the body's.
+
+    The numbers of ``body.to_fixed(points, t)`` and ``body.vectors_to_fixed(vectors, t)`` (or of
+    ``to_body`` and ``vectors_to_body``), a turn's cosine and sine computed once for both.
+
+    Parameters
+    ----------
+    body : Rotation or Translation
+        The moving body.
+    points, vectors : (n, 2) float arrays
+        Points (mm) and vectors in the frame they leave.
+    t : (n,) float array, rad
+        Motion parameter, one per point.
+    inverse : bool
+        From the fixed frame into the body's.
+
+    Returns
+    -------
+    points, vectors : (n, 2) float arrays
+        In the frame they reach.
+    """
+    if isinstance(body, Rotation):
+        angle = -body.angle(t) if inverse else body.angle(t)
+        c, s = np.cos(angle), np.sin(angle)
+        return turned(points, c, s, body.center), turned(vectors, c, s)
+    return (body.to_body(points, t) if inverse else body.to_fixed(points, t)), as_points(vectors)
 
 
 def meshline_contacts(gens: list[Generated], params: list[Array]) -> list[tuple[Array, Array, Array, Array]]:

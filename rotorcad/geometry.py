@@ -54,12 +54,34 @@ def rotate(points: Array, angle: float | Array, center: object = ORIGIN) -> Arra
     (..., n, 2) float array, mm
         The turned points: x' = c x - s y, y' = s x + c y about ``center``.
     """
+    return turned(points, np.cos(angle), np.sin(angle), center)
+
+
+def turned(points: Array, c: float | Array, s: float | Array, center: object = ORIGIN) -> Array:
+    """Turn points about ``center`` by the angle whose cosine and sine are given: :func:`rotate`'s numbers.
+
+    For several arrays turned by the same angles (a body's points and vectors), the cosine and
+    sine computed once.
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+        Points (or vectors, with the default ``center``).
+    c, s : float or array
+        Cosine and sine of the counter-clockwise turn, shaped as :func:`rotate`'s ``angle``.
+    center : (2,) float, mm
+        Centre of the turn.
+
+    Returns
+    -------
+    (..., n, 2) float array, mm
+        The turned points: x' = c x - s y, y' = s x + c y about ``center``.
+    """
     p = as_points(points)
     about_origin = center is ORIGIN or (type(center) is tuple and center == ORIGIN)
     if not about_origin:
         ctr = np.asarray(center, dtype=float)
         p = shifted(p, ctr, -1.0)
-    c, s = np.cos(angle), np.sin(angle)
     x, y = p[:, 0], p[:, 1]
     if np.ndim(c) <= 1:
         out = np.empty_like(p)

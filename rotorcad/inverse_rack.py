@@ -328,6 +328,7 @@ def with_corner_fans(
     pitch_angle: float = 0.0,
     min_turn: float = 1e-6,
     join_gap: float = 2e-3,
+    piece_ends: list | None = None,
 ) -> list[tuple[str, Curve]]:
     """Insert zero-radius arcs at the convex corners of a counter-clockwise chain of pieces.
 
@@ -350,6 +351,9 @@ def with_corner_fans(
     join_gap : float, mm
         Largest distance between the ends of two pieces that meet at a corner (2 µm; the fits of
         scattered points leave their ends up to :data:`MEASURED_JOIN_GAP` apart).
+    piece_ends : list, optional
+        Per piece its ends as ``curve.evaluate`` gives them, ((start point, tangent), (end point,
+        tangent)), where the caller has them (None entries are evaluated here).
 
     Returns
     -------
@@ -373,7 +377,8 @@ def with_corner_fans(
 
     out: list[tuple[str, Curve]] = []
     n = len(pieces)
-    piece_ends = [ends(curve) for _, curve in pieces]  # generated curves are costly: evaluate once
+    given = piece_ends if piece_ends is not None else [None] * n
+    piece_ends = [e if e is not None else ends(curve) for (_, curve), e in zip(pieces, given, strict=True)]  # evaluate once
     if centre is not None and pitch_angle and n:
         (_, _), (p_last, t_last) = piece_ends[-1]
         back = (rotate(p_last, -pitch_angle, centre)[0], rotate(t_last, -pitch_angle)[0])
@@ -464,6 +469,7 @@ def derive_rack(
     contact_step: float = 0.0,
     min_turn: float = 1e-6,
     join_gap: float = 2e-3,
+    piece_ends: list | None = None,
 ) -> DerivedRack:
     """Derive the rack of a counter-clockwise chain of profile pieces on a rotating body.
 
@@ -497,7 +503,7 @@ def derive_rack(
         apart: near roundings the contact runs fast along the rack.
     min_turn : float, rad
         Passed to :func:`with_corner_fans`.
-    join_gap : float, mm
+    join_gap, piece_ends
         Passed to :func:`with_corner_fans`.
 
     Returns
@@ -513,8 +519,9 @@ def derive_rack(
     pts, tans, idx, names, roles, parents = [], [], [], [], [], []
     lost, total = 0, 0
     # each generated piece runs against its parent, so the rack chain runs the pieces backwards
-    for k, (name, curve) in enumerate(reversed(with_corner_fans(pieces, centre, pitch_angle, min_turn, join_gap))):
-        gen = Generated(curve, body, rack, limits=depth)
+    for k, (name, curve) in enumerate(reversed(with_corner_fans(pieces, centre, pitch_angle, min_turn, join_gap, piece_ends))):
+        recorded = _Recorded(curve)  # the piece's points, kept from the rack's evaluations (no second one)
+        gen = Generated(recorded, body, rack, limits=depth)
         s, p, t = sample_curve(gen, tolerance, minimum=samples)  # refined where the rack turns fast (corner paths)
         if contact_step > 0:
             s, p, t = _refine_by_contact(gen, s, p, t, contact_step, MESHLINE_PERIODS * period)
@@ -525,7 +532,7 @@ def derive_rack(
             ok &= _on_the_corner_path(gen, s, body, pitch_radius, depth, p)
         pts.append(p[ok])
         tans.append(t[ok])
-        parents.append(curve.evaluate(s[ok])[0] - centre)
+        parents.append(recorded.points_at(s[ok]) - centre)
         idx.append(np.full(int(ok.sum()), k))
         names.append(name)
         roles.append(PieceRole.CORNER_FAN if curve.is_corner() else PieceRole.CURVE)
@@ -545,6 +552,43 @@ def derive_rack(
         tuple(roles),
         profile=np.vstack(parents),
     )
+
+
+class _Recorded(Curve):
+    """A curve that keeps the points of its evaluations.
+
+    :func:`derive_rack` reads the profile points of its rack samples from the evaluations that
+    made them (the same numbers) instead of evaluating the piece again.
+    """
+
+    def __init__(self, curve: Curve) -> None:
+        self.curve, self.s0, self.s1 = curve, curve.s0, curve.s1
+        self.calls: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def frame(self, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``curve.frame(s)``, its parameters and points kept."""
+        p, t = self.curve.frame(s)
+        self.calls.append((np.asarray(s, dtype=float), p))
+        return p, t
+
+    def arc_center(self) -> np.ndarray | None:
+        """``curve.arc_center()``."""
+        return self.curve.arc_center()
+
+    def is_corner(self) -> bool:
+        """``curve.is_corner()``."""
+        return self.curve.is_corner()
+
+    def points_at(self, s: np.ndarray) -> np.ndarray:
+        """Points (n, 2), mm, of ``curve`` at parameters ``s``: those kept, else evaluated."""
+        if not self.calls:
+            return self.curve.evaluate(s)[0]
+        known = np.concatenate([c[0] for c in self.calls])
+        order = np.argsort(known, kind="stable")
+        at = np.minimum(np.searchsorted(known[order], s), len(known) - 1)
+        if not (known[order][at] == s).all():
+            return self.curve.evaluate(s)[0]
+        return np.concatenate([c[1] for c in self.calls])[order[at]]
 
 
 def rotor_rack(
@@ -650,7 +694,7 @@ def _rotor_rack(
         lobe = side.pick(rotors.male_pieces, rotors.female_pieces)
         pieces = [(name, curve) for name, curve, *_ in lobe]
         clip_at_tip = True if clip_at_tip is None else clip_at_tip
-    mesh = pair.mesh
+    mesh, piece_ends = pair.mesh, None
     if side is Side.FEMALE:  # the female's pieces to the fixed frame, its centre at (a, 0)
         shift = (pair.center_distance, 0.0)
         pieces = [(name, Mapped(curve, ((1.0, 0.0), (0.0, 1.0)), shift)) for name, curve in pieces]
@@ -662,7 +706,8 @@ def _rotor_rack(
         if cut_loops:
             pieces = trimmed_lobe(pieces, centre, tip, 2 * np.pi / side.pick(pair.male_teeth, pair.female_teeth))
         else:
-            pieces = [p for p in (_inside_tip(name, curve, centre, tip) for name, curve in pieces) if p is not None]
+            kept = [p for p in (_inside_tip(name, curve, centre, tip) for name, curve in pieces) if p is not None]
+            pieces, piece_ends = [(name, curve) for name, curve, _ in kept], [e for *_, e in kept]
         if not pieces:  # e.g. a mate generated from dense points whose loops beyond the tip cut it whole
             family = str(getattr(rotors, "family", ""))
             raise DesignError(
@@ -686,20 +731,22 @@ def _rotor_rack(
         contact_step=contact_step,
         min_turn=min_turn,
         join_gap=join_gap,
+        piece_ends=piece_ends,
     )
     return replace(rack, side=side)
 
 
-def _inside_tip(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[str, Curve] | None:
+def _inside_tip(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tuple[str, Curve, tuple | None] | None:
     """Return the longest part of a generated piece inside the rotor's tip circle, or None.
 
-    Generated flanks can overshoot the tip circle; the rotor is cut off there.
+    Generated flanks can overshoot the tip circle; the rotor is cut off there. The third item is
+    the piece's ends as :func:`with_corner_fans` takes them where it is kept whole (else None).
     """
     s = np.linspace(curve.s0, curve.s1, 257)  # the ends are refined by root finding below
-    p, _ = curve.evaluate(s)
+    p, t = curve.evaluate(s)
     inside = np.hypot(*(p - centre).T) <= tip + 2e-3  # a measured land may wander by the fit error
     if inside.all():
-        return name, curve
+        return name, curve, ((p[0], t[0]), (p[-1], t[-1]))
     if not inside.any():
         return None
     edges = np.diff(np.concatenate([[0], inside.astype(int), [0]]))
@@ -718,7 +765,7 @@ def _inside_tip(name: str, curve: Curve, centre: np.ndarray, tip: float) -> tupl
     # refine where the piece leaves the tip circle (the map to the rack is steep there)
     a = refine(s[starts[k]], s[starts[k] - 1]) if starts[k] > 0 else s[0]
     b = refine(s[ends[k]], s[ends[k] + 1]) if ends[k] < len(s) - 1 else s[-1]
-    return name, curve.trimmed(a, b)
+    return name, curve.trimmed(a, b), None
 
 
 __all__ = [

@@ -88,3 +88,17 @@ def test_undercut_point_equals_the_brute_force_intersection(grid):
         for p, q in zip(new, ref, strict=True):
             worst = max(worst, float(np.hypot(*(p - q))))
         assert worst <= 1e-9, (g.teeth, g.shift, g.tip_radius_factor, worst)
+
+
+@pytest.mark.parametrize("helix_deg", [0.0, 25.0])
+def test_one_point_of_a_tool_cut_is_the_envelope_engines(helix_deg):
+    # the undercut point's root search evaluates the fillet one point at a time (ToolCut.point);
+    # reference: the envelope engine's generated curves (rotorcad.envelope.conjugate), tip arc
+    # (the fillet, trochoid) and flank (the involute), at the same tool parameters
+    g = InvoluteGear(17, 2.0, 20 * DEG, helix_angle=helix_deg * DEG, tolerance=1e-4)
+    for name, s0, s1 in (("tip arc", g._tool.arc_end, math.pi), ("flank", 0.0, g._cuts["flank"].length)):
+        cut, gen = g._cuts[name], g._generated[name]
+        s = np.linspace(s0, s1, 41)
+        ref = gen.evaluate(s)[0]
+        got = np.array([[cut.point(float(v)).real, cut.point(float(v)).imag] for v in s])
+        assert np.abs(got - ref).max() <= 1e-9, name

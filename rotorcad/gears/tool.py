@@ -133,18 +133,29 @@ class ToolCut:
         return a0, a1
 
     def point(self, s: float) -> complex:
-        """Return a line's cut point at one tool parameter.
+        """Return the cut point at one tool parameter (the steps of :meth:`cut`, for one point, in Python floats).
 
         Parameters
         ----------
         s : float
-            Tool parameter, mm along the unstretched line (a single point).
+            Tool parameter: mm along the unstretched line, or the polar angle about an arc's centre
+            (rad; a single point).
 
         Returns
         -------
         complex
             The cut point in the gear frame as x + i y, mm.
         """
+        if self.kind == "arc":
+            a, b, d = self.arc
+            e = cmath.exp(1j * s)
+            c, sn = e.real, e.imag
+            t = a + b * (sn / c)
+            if d:
+                t += d * sn
+            rho, (kx, ky) = self.radius, self.center
+            z = rho * e + complex(kx, ky) if self.k == 1.0 else complex(kx + rho * c, self.k * (ky + rho * sn))
+            return complex(z.real, z.imag + self.r * t) * cmath.exp(-1j * t)
         (ax, ay), (dx, dy) = self.start, self.direction
         t0, t1 = self.turn
         t = t0 + t1 * s

@@ -25,6 +25,7 @@ from rotorcad.gears.formulas import inv, inv_inverse
 from rotorcad.gears.sampling import CROWDED, FILLET_GRID, chord_counts, span
 from rotorcad.gears.tool import ToolCut
 from rotorcad.geometry import Array, polar_angle, radius
+from rotorcad.roots import bracket_root
 
 if TYPE_CHECKING:
     from rotorcad.gears.involute_gear import InvoluteGear
@@ -175,14 +176,14 @@ def undercut_point(
     """Return the radius and fillet parameter of the undercut point P'.
 
     P' is where the fillet (trochoid) cuts the involute: the outermost sign change of the
-    polar-angle gap between the fillet and the involute at the same radius, bracketed on
-    vectorised grids of 513 parameters (the whole fillet, then twice the bracketing cell) and
-    interpolated linearly. Near the undercut limit P' lies just outside the base circle, in a
-    grid cell with one end inside it, micro-radians from the fillet's start; a second pass,
-    on a first grid crowded towards that start (spacing growing like the square of the
-    distance), takes the involute's polar angle inside the base circle as its start's, so that
-    the gap stays continuous and the cell is bracketed. Where the fillet
-    crosses the involute nowhere, the two are joined at the base circle.
+    polar-angle gap between the fillet and the involute at the same radius, bracketed on a
+    vectorised grid of 513 parameters (the whole fillet) and solved in its cell by Brent's method
+    (:func:`rotorcad.roots.bracket_root`) on the gap of single points (:meth:`ToolCut.point`).
+    Near the undercut limit P' lies just outside the base circle, in a grid cell with one end
+    inside it, micro-radians from the fillet's start; a second pass, on a grid crowded towards that
+    start (spacing growing like the square of the distance), takes the involute's polar angle
+    inside the base circle as its start's, so that the gap stays continuous and the cell is
+    bracketed. Where the fillet crosses the involute nowhere, the two are joined at the base circle.
 
     Parameters
     ----------
@@ -208,28 +209,30 @@ def undercut_point(
         r = radius(p)
         return polar_angle(p) - flank_angle(r), r
 
+    def point_gap(s: float) -> float:
+        p = fillet.point(s)
+        return cmath.phase(p) - float(flank_angle(abs(p)))
+
     for near_base in (False, True):
         lo, hi = s_range
-        for level in range(3):
-            # near the limit P' lies within micro-radians of the fillet's start (the tool's
-            # flank/tip joint cuts next to T1): the second pass's first grid crowds there
-            s = lo + (hi - lo) * CROWDED if near_base and level == 0 else span(lo, hi, 513)
-            g, r = gap(s)
-            # near the undercut limit P' lies so close to the base circle that the grid cell
-            # holding it has an end inside it: there the gap is taken to the involute's start
-            # (flank_angle is constant below r_b), continuous across the base circle
-            ok = np.isfinite(g) & ((r > rb) | near_base)
-            change = np.nonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) != np.sign(g[1:])))[0]
-            if len(change) == 0:
-                break
-            i = change[np.argmax(r[change])]
-            lo, hi = s[i], s[i + 1]
-        else:
-            w = g[i] / (g[i] - g[i + 1])
-            s_star = lo + w * (hi - lo)
-            r_star = float(radius(fillet.cut(np.array([s_star]))[0])[0])
-            if r_star >= rb:  # else the fillet passed below the involute's start: no crossing
-                return r_star, float(s_star)
+        # near the limit P' lies within micro-radians of the fillet's start (the tool's
+        # flank/tip joint cuts next to T1): the second pass's grid crowds there
+        s = lo + (hi - lo) * CROWDED if near_base else span(lo, hi, 513)
+        g, r = gap(s)
+        # near the undercut limit P' lies so close to the base circle that the grid cell
+        # holding it has an end inside it: there the gap is taken to the involute's start
+        # (flank_angle is constant below r_b), continuous across the base circle
+        ok = np.isfinite(g) & ((r > rb) | near_base)
+        change = np.nonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) != np.sign(g[1:])))[0]
+        if len(change) == 0:
+            continue
+        i = change[np.argmax(r[change])]
+        s_star = bracket_root(point_gap, (s[i], s[i + 1]), xtol=0.0, values=(g[i], g[i + 1]))
+        if s_star is None:
+            continue
+        r_star = abs(fillet.point(s_star))
+        if r_star >= rb:  # else the fillet passed below the involute's start: no crossing
+            return r_star, float(s_star)
     return rb, s_range[0]
 
 
