@@ -80,7 +80,7 @@ def normal_accuracy(length: np.ndarray, accuracy: float, longest: float, toleran
     resolution ``longest`` (mm, :func:`rotorcad.meshing.defect_record.resolution`) and, between two normals nearer
     each other than that, only over their distance: accuracy / min(length, longest), at least ``tolerance`` (rad).
     """
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # 0 / 0 of an exact profile's one normal: no bound
         return np.maximum(tolerance, accuracy / np.minimum(length, longest))
 
 
