@@ -110,8 +110,8 @@ def test_independent_male_gives_the_same_verdicts_wherever_the_scan_starts(phase
         "dip as deep (32-36 um, the same |P - O2| extremum) but within the 40 um (20 e) to which a corner is placed, "
         "read as the tip corner's path, and both flanks run, decided. Real tip corners from 1-2 um points dip as much "
         "or more (the Lysholm female's corner path 61 um at 300 a lobe with 1 um, the N-rack and Lysholm 86-90 um with "
-        "2 um, on flanks that run): no measure the points carry tells them apart, and a rule that made this one "
-        "undecided made those undecided too; not fixed"
+        "2 um, on flanks that run): no measure the points carry tells them apart (measured), and a rule making this "
+        "one undecided would make those undecided too; not fixed"
     ),
 )
 def test_exact_and_scattered_points_give_no_opposite_decided_running_verdicts():
