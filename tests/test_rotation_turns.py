@@ -9,6 +9,7 @@ meshline (its samples' distance from C against the integral of the right side ov
 from __future__ import annotations
 
 import tomllib
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -61,6 +62,25 @@ def test_rotation_turns_are_the_analytic_extremes_beyond_the_accuracy(amplitude)
             continue
         want = np.column_stack([top + 2 * np.pi * np.arange(2), low + 2 * np.pi * np.arange(2)])  # (maximum, minimum)
         assert got.shape == want.shape and np.allclose(s[got], want, atol=s[1] - s[0]), (s[got], want)
+
+
+def test_a_turn_back_within_the_accuracy_is_found_by_the_tolerance_alone():
+    # the band of the undecided jamming (rotorcad.meshing.undecided.possible_rows): t(s) = s + 2 sin(s) turns back by
+    # 2 sqrt(3) - 2 pi / 3 (closed form, as above); with the profile's accuracy allowing 1.1 of that there is no
+    # excursion, and with the accuracy 0 (the tangent's tolerance alone, the design's test, allowing 0.9 of it) the
+    # analytic extremes are the excursions, two normals at one sample (distance 0) bounded by the tolerance too
+    s = np.linspace(0.0, 4.0 * np.pi, 4001)
+    points = np.tile([PITCH_X + 3.0, 4.0], (len(s), 1))
+    a = np.arccos(-0.5)
+    drop = (a + 2.0 * np.sin(a)) - (2.0 * np.pi - a + 2.0 * np.sin(2.0 * np.pi - a))
+    t = s + 2.0 * np.sin(s)
+    per_rad = (3.0 * PITCH_X) / 25.0 / 2.0  # d_phi for a turn back of 1 rad between two ends
+    assert len(rotation_turns(t, points, PITCH_X, 1.1 * drop * per_rad, 1.0, 0.0)) == 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # 0 / 0 of one normal's own distance is no bound, and no warning
+        got = rotation_turns(t, points, PITCH_X, 0.0, 1.0, 0.9 * drop * per_rad)
+    want = np.column_stack([a + 2 * np.pi * np.arange(2), 2.0 * np.pi - a + 2 * np.pi * np.arange(2)])
+    assert got.shape == want.shape and np.allclose(s[got], want, atol=s[1] - s[0]), (s[got], want)
 
 
 def test_a_single_turn_back_is_no_excursion():

@@ -232,6 +232,13 @@ def _print_result(rotors: ScrewRotors, result: dict[str, Any]) -> None:
             + ("" if d.get("decided", True) else _UNDECIDED_CORNER.format(d["margin_accuracy"]))
         )
     for d in result.get("undecided_defects", []):
+        if d["corner"] is None:  # a jamming the accuracy can neither show nor rule out (undecided.possible_rows)
+            click.echo(
+                f"  possible {d['kind']} on the {d['rotor']} at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['flank_role']} flank: "
+                f"the male rotation turns back and on again over {d['extent']:.3g} mm of meshline within the accuracy, "
+                "undecided"
+            )
+            continue
         click.echo(
             f"  possible {d['rotor']} tip corner's path at ({d['x']:.3f}, {d['y']:.3f}) mm, {d['flank_role']} side: "
             f"its contacts within one point spacing ({d['margin_accuracy']:.3g} mm) over {d['extent']:.3g} mm of "

@@ -96,6 +96,9 @@ the fit's rounding of a corner-to-corner hand-over (:func:`~rotorcad.meshing.con
 A flank whose working part holds no step the input resolves as working (every contact within the meshline's
 accuracy of a tip corner, or within the resolution of one all along) is *undecided at this accuracy*: not
 shown to run, and ``running_decided`` is false (:attr:`~rotorcad.meshing.contact_ratios.FlankReport.running_decided`).
+So is a flank that would run but where the male rotation turns back and on again by more than the tangent's
+tolerance alone allows (the design's test would read jamming) and by less than the input's accuracy does: a
+jamming it can neither show nor rule out, named in ``undecided_defects`` (:func:`~rotorcad.meshing.undecided.possible_rows`).
 A point of infinite slip (a rotor's v_t = 0, where the meshline crosses the circle on that rotor's
 centre and C as diameter) on a tip corner's path that runs on its pitch circle within the meshline's
 accuracy is C's rolling, and one at a corner of the meshline that the fit rounds is judged at the

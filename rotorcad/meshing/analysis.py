@@ -28,7 +28,7 @@ from rotorcad.meshing.meshline import MeshlinePiece, meshline_pieces
 from rotorcad.meshing.rounding_apex import area_bound, model_check, moved_crossings, rounding_apex
 from rotorcad.meshing.slip import slip, slip_singularities
 from rotorcad.meshing.tip_apex import tip_apex
-from rotorcad.meshing.undecided import mark_decided, undecided_rows
+from rotorcad.meshing.undecided import mark_decided, possible_rows, undecided_rows
 from rotorcad.profile import DEFAULT_TOLERANCE
 from rotorcad.rack_roles import point_generated_flanks
 from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
@@ -121,11 +121,12 @@ class MeshingAnalysis:
         return self._defects[0]
 
     @cached_property
-    def _defects(self) -> tuple[list[Defect], list[np.ndarray]]:
-        """:attr:`defects` and, per piece of :attr:`pieces`, which samples lie in a point-generated stretch."""
+    def _defects(self) -> tuple[list[Defect], list[np.ndarray], list[Defect]]:
+        """:attr:`defects`, point-generated samples per piece, the jamming the input can neither show nor rule out."""
         generated: list[np.ndarray] = []
-        found = meshline_defects(self.pieces, self.rotors.pair, self.judged_accuracy, self.tolerance, self.is_given, generated)
-        return found, generated
+        below: list[Defect] = []  # meshline_defects' ``below``
+        pair, acc = self.rotors.pair, self.judged_accuracy
+        return meshline_defects(self.pieces, pair, acc, self.tolerance, self.is_given, generated, below), generated, below
 
     @property
     def point_generated_flanks(self) -> list[dict[str, str]]:
@@ -177,15 +178,14 @@ class MeshingAnalysis:
         band = MESHLINE_GAIN * self.judged_accuracy if self.is_given else 0.0
         shortest = resolution(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
         handover = handover_length(self.judged_accuracy, self.rotors.pair.center_distance) if self.is_given else 0.0
-        generated = self._defects[1] if self.is_given else None
-        return flank_reports(
-            self.pieces, self.defects, self.rotors.pair, self.tip_corner_tolerance, shortest, band, handover, generated
-        )
+        generated, tol = self._defects[1] if self.is_given else None, self.tip_corner_tolerance
+        pair = self.rotors.pair
+        return flank_reports(self.pieces, self.defects, pair, tol, shortest, band, handover, generated, self._defects[2])
 
     @property
     def running_reasons(self) -> list[str]:
         """Why the pair does not run without timing gears, one sentence per flank (empty: it runs)."""
-        return running_reasons(self.flanks, self.defects, self.rotors.pair, self.tip_corner_tolerance)
+        return running_reasons(self.flanks, self.defects, self.rotors.pair, self.tip_corner_tolerance, self._defects[2])
 
     # ---- one angle convention (Rinder Figs. 10-13) -------------------------------------------
     @cached_property
@@ -728,19 +728,20 @@ class MeshingAnalysis:
         """Return the tip corners the given points can neither show nor rule out (``undecided_defects`` of the summary).
 
         :func:`rotorcad.meshing.undecided.undecided_corners` of each rotor where no tip-corner cusp was
-        found, as :meth:`defect_dicts` rows with ``decided`` false. Empty for a design or a drawing.
+        found, as :meth:`defect_dicts` rows with ``decided`` false (none of a drawing), after the jamming the input
+        can neither show nor rule out (:func:`rotorcad.meshing.undecided.possible_rows`). Empty for a design.
 
         Returns
         -------
         list of dict
         """
-        spacing = self._corner_spacing
+        spacing, rows = self._corner_spacing, possible_rows(self._defects[2])
         if not spacing:
-            return []
+            return rows
         pair = self.rotors.pair
         reach = resolution(MESHLINE_GAIN * self.judged_accuracy, pair.center_distance)
         near = max(self.tip_corner_tolerance, spacing)
-        return undecided_rows(self.pieces, pair, spacing, near, reach, self.defect_dicts())
+        return rows + undecided_rows(self.pieces, pair, spacing, near, reach, self.defect_dicts())
 
     def summary(self) -> dict[str, object]:
         """Return the analysis as plain values (the figures of ``rotorcad rotor --json``).

@@ -76,6 +76,9 @@ class FlankReport:
     decided_working_length : float or None, mm
         Of a given profile, the part of ``working_length`` that the input's accuracy decides is working
         (:func:`resolved_steps`: the steps the transverse ratio counts); None: all of it (a design).
+    undecided : tuple of str
+        Kinds of the defects on the flank the input can neither show nor rule out
+        (:func:`rotorcad.meshing.undecided.possible_rows`).
     """
 
     flank: Flank
@@ -88,6 +91,7 @@ class FlankReport:
     tip_corners: tuple[str, ...] = ()
     transverse_contact_ratio_accuracy: float = 0.0
     decided_working_length: float | None = None
+    undecided: tuple[str, ...] = ()
 
     @property
     def running_decided(self) -> bool:
@@ -100,9 +104,12 @@ class FlankReport:
         A flank with a working part but none decided, no defect inside it and a total contact ratio of at
         least 1 is undecided at this accuracy: it runs if that contact works, and does not if it is a
         corner's path (Krigar's male as 150 exact points a lobe: 7.0 mm of such contact on its driving
-        flank, transverse ratio 0 +- 0.12, where the design has no working part).
+        flank, transverse ratio 0 +- 0.12, where the design has no working part). So is a flank that would run
+        but for a defect the input can neither show nor rule out (:attr:`undecided`).
         """
-        return not (self._decided == 0.0 < self.working_length and not self.defects and self._total_if_working >= 1.0 - 1e-9)
+        if self.defects or self._total_if_working < 1.0 - 1e-9:
+            return True
+        return not (self._decided == 0.0 < self.working_length or (self.undecided and self._decided > 0))
 
     @property
     def _decided(self) -> float:
@@ -127,7 +134,7 @@ class FlankReport:
         the drive past it. A flank whose working part the input does not decide is not shown to run
         (False), and :attr:`running_decided` says so.
         """
-        return self._decided > 0 and not self.defects and self.total_contact_ratio >= 1.0 - 1e-9
+        return self._decided > 0 and not self.defects and not self.undecided and self.total_contact_ratio >= 1.0 - 1e-9
 
     def as_dict(self) -> dict[str, object]:
         """Return the report as plain values (an entry of ``flanks`` in :meth:`MeshingAnalysis.summary`).
@@ -409,6 +416,7 @@ def flank_reports(
     band: float = 0.0,
     handover: float = 0.0,
     generated: list[np.ndarray] | None = None,
+    possible: list[Defect] = (),
 ) -> dict[Flank, FlankReport]:
     """Return per flank (driving, sealing): working part, defects and contact ratios (Rinder sec. 1.2, 2.2.1).
 
@@ -452,6 +460,9 @@ def flank_reports(
         (the Lysholm male as 2000 exact points a lobe: a curve piece along the female tip corner's path,
         35.2 mm read as one point-generated cusp, counted 8.0 mm of sealing working part, and the
         flank ran where the design's has none). None for a design.
+    possible : list of Defect, optional
+        Of a given profile, the defects it can neither show nor rule out (``below`` of
+        :func:`rotorcad.meshing.defects.meshline_defects`): :attr:`FlankReport.undecided`.
 
     Returns
     -------
@@ -527,15 +538,18 @@ def flank_reports(
             corners,
             accuracy,
             decided if band > 0 else None,
+            tuple(sorted({d.kind for d in possible if d.role is flank})),
         )
     return out
 
 
-def running_reasons(flanks: dict[Flank, FlankReport], defects: list[Defect], pair: RotorPair, tip_tolerance: float) -> list[str]:
+def running_reasons(
+    flanks: dict[Flank, FlankReport], defects: list[Defect], pair: RotorPair, tip_tolerance: float, possible: list[Defect] = ()
+) -> list[str]:
     """Return why the pair does not run without timing gears, one sentence per flank (empty: it runs).
 
     Arguments: the flank reports (:func:`flank_reports`), the defects, the pair and the tip-corner
-    tolerance (mm) they were judged with.
+    tolerance (mm) they were judged with, and the defects the input can neither show nor rule out (their places).
     """
     out = []
     for flank, report in flanks.items():
@@ -545,7 +559,10 @@ def running_reasons(flanks: dict[Flank, FlankReport], defects: list[Defect], pai
             out.append(f"the {flank} flank has no contact inside the bores.")
             continue
         parts = []
-        if not report.running_decided:
+        for kind in report.undecided:
+            places = ", ".join(f"({d.x:.2f}, {d.y:.2f}) mm" for d in possible if d.role is flank and d.kind == kind)
+            parts.append(f"{kind} the input's accuracy can neither show nor rule out at {places}: undecided, not shown to run")
+        if not report.running_decided and not report.undecided:
             parts.append(
                 f"its {report.working_length:.2f} mm of working part is contact the input's accuracy does not tell from "
                 "a tip corner's path (a corner the fit rounded): undecided at this accuracy, not shown to run"

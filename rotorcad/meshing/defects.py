@@ -382,6 +382,7 @@ def _turn_jamming(
     lengths: tuple[float, float],
     miss: tuple | None,
     kept: np.ndarray,
+    below: list[Defect] | None = None,
 ) -> list[Defect]:
     """Return the jamming points of a given profile's piece where its male rotation turns back beyond its accuracy.
 
@@ -395,6 +396,11 @@ def _turn_jamming(
     the miss stays in its band or of an arc about C (Rinder's exception), or of a sign change of the miss
     that test kept (``kept``, arc lengths mm); and none within ``on_line`` (mm) of O1O2 or of C (the
     slipping rule's). An excursion counts when both its ends do.
+
+    ``below`` receives the excursions the design's test would call jamming (beyond the tangent's tolerance
+    alone) that lie within the profile's accuracy, where they count as above and no decided one lies: a jamming
+    the input can neither show nor rule out (one defect at the excursion's first end, its ``extent`` the
+    meshline between its ends).
     """
     if miss is None or miss[2]:
         return []
@@ -410,13 +416,21 @@ def _turn_jamming(
             return False
         return abs(pts[i, 1]) >= on_line and np.hypot(pts[i, 0] - pitch_x, pts[i, 1]) >= on_line
 
+    def at(i: int, extent: float = 0.0) -> Defect:
+        role = piece.roles[i] if len(piece.roles) == len(pts) else None
+        point = (float(pts[i, 0]), float(pts[i, 1]), float(np.degrees(piece.t[i])))
+        return Defect("jamming", "male", *point, piece.name, extent=extent, role=role)
+
+    taken = []
     for pair in rotation_turns(piece.t, pts, pitch_x, *judged):
         if not all(judged_here(int(i)) for i in pair):
             continue  # both ends of the excursion inside what this test judges, or neither counts
-        for i in pair:
-            role = piece.roles[i] if len(piece.roles) == len(pts) else None
-            point = (float(pts[i, 0]), float(pts[i, 1]), float(np.degrees(piece.t[i])))
-            out.append(Defect("jamming", "male", *point, piece.name, role=role))
+        out.extend(at(int(i)) for i in pair)
+        taken.append(np.sort(pair))
+    if below is not None:  # beyond the tangent's tolerance alone (a design's test), within the profile's accuracy
+        for a, b in np.sort(rotation_turns(piece.t, pts, pitch_x, 0.0, judged[1], judged[2]), axis=1):
+            if all(judged_here(int(i)) for i in (a, b)) and not any(a <= d and c <= b for c, d in taken):
+                below.append(at(int(a), float(arclen[b] - arclen[a])))
     return out
 
 
@@ -581,6 +595,7 @@ def meshline_defects(
     tolerance: float,
     given: bool,
     generated: list[np.ndarray] | None = None,
+    below: list[Defect] | None = None,
 ) -> list[Defect]:
     """Return the cusps, jamming and slipping points on the meshline (Rinder sec. 2.2.1), a list of :class:`Defect`.
 
@@ -624,6 +639,9 @@ def meshline_defects(
     generated : list, optional
         Receives per piece an (n,) bool array: the samples inside a point-generated stretch of a cusp
         (the corner's path a flank part does not drive along, :func:`rotorcad.meshing.contact_ratios.flank_reports`).
+    below : list, optional
+        Receives a given profile's jamming the input can neither show nor rule out (:func:`_turn_jamming`), those
+        of one flank part nearer each other than L one, none within L of a decided jamming.
 
     Returns
     -------
@@ -737,7 +755,7 @@ def meshline_defects(
                 found.append(Defect(kind, rotor, float(p[0]), float(p[1]), float(np.degrees(ang)), piece.name, role=role))
         # jamming where the male rotation turns back (rotation_turns), of a given profile
         found.extend(
-            _turn_jamming(piece, arclen, c[0], (acc, longest, tol), (reach, on_line), misses[2] if given else None, at[2])
+            _turn_jamming(piece, arclen, c[0], (acc, longest, tol), (reach, on_line), misses[2] if given else None, at[2], below)
         )
         # crossings of O1O2 inside the piece; a piece that only reaches O1O2 at an end is judged
         # with its neighbour (slipping_between_pieces)
@@ -752,4 +770,21 @@ def meshline_defects(
                 at = (float(p[0]), float(p[1]), float(np.degrees(ang)))
                 found.append(Defect("slipping", "male", *at, slipping_name(p[0], c[0]), role=role))
     found.extend(slipping_between_pieces(pieces, pair, accuracy, given))
-    return _merged(_joined_across_o1o2(found, spans, times, longest, pair, reach), longest, spans)
+    out = _merged(_joined_across_o1o2(found, spans, times, longest, pair, reach), longest, spans)
+    _left_below(below, out, longest)
+    return out
+
+
+def _left_below(below: list[Defect] | None, decided: list[Defect], distance: float) -> None:
+    """Keep in ``below`` (in place) those beyond ``distance`` (mm) of a decided one of their kind and flank part.
+
+    Those nearer each other than that are made one (:func:`_merged`).
+    """
+    if not below:
+        return
+
+    def near(defect: Defect) -> bool:
+        same = [(d.x, d.y) for d in decided if (d.kind, d.role) == (defect.kind, defect.role)]
+        return any(np.hypot(x - defect.x, y - defect.y) < distance for x, y in same)
+
+    below[:] = _merged([d for d in below if not near(d)], distance)

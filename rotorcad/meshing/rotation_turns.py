@@ -33,6 +33,13 @@ where the accuracy (2.0 µm) allows 2.7; the normal's tangent, resolved over 4.3
 through C there, and the sign changes of its misses cancel within the resolution. The shapely-cut arc-flank
 male as 600 exact points a lobe (tests/independent_pairs.py, phase 0.25): a turn back by 1.5 mrad between
 contacts 0.04 mm apart on the rack, where 8.5 are allowed (the cut's facets, no jamming).
+
+Below the accuracy (issue 21): an excursion beyond what the tangent's tolerance alone allows (delta phi the
+analysis' tolerance, the design's own test: ``accuracy`` 0) and within the profile's accuracy is a jamming the
+input can neither show nor rule out: the flank is undecided there
+(:func:`rotorcad.meshing.undecided.possible_rows`). The same dent as 300 points a lobe with 2 µm of scatter: the
+rotation turns back by 4.9 mrad where 10.0 are allowed; the flank read "runs", decided, and now reads undecided at
+that place.
 """
 
 from __future__ import annotations
@@ -80,7 +87,7 @@ def normal_accuracy(length: np.ndarray, accuracy: float, longest: float, toleran
     resolution ``longest`` (mm, :func:`rotorcad.meshing.defect_record.resolution`) and, between two normals nearer
     each other than that, only over their distance: accuracy / min(length, longest), at least ``tolerance`` (rad).
     """
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # 0 / 0 of an exact profile's one normal: no bound
         return np.maximum(tolerance, accuracy / np.minimum(length, longest))
 
 

@@ -253,9 +253,9 @@ def compare_defects(design: object, given: dict) -> tuple[list[tuple], list[tupl
 
     Decided defects must be the design's by kind, rotor, lobe part and tip corner. A difference in one
     such key counts as explained only by the given's undecided defects of that key (in ``defects`` with
-    ``decided`` false, or in ``undecided_defects``) whose corner the design generates within their
-    ``margin_accuracy`` too (:func:`corner_margin` on the design's meshline, over the defect's extent): the
-    design's margin is also within that accuracy.
+    ``decided`` false, or in ``undecided_defects``) without a corner (:func:`possible_rows`), or whose corner
+    the design generates within their ``margin_accuracy`` too (:func:`corner_margin` on the design's meshline,
+    over the defect's extent): the design's margin is also within that accuracy.
 
     Parameters
     ----------
@@ -281,8 +281,13 @@ def compare_defects(design: object, given: dict) -> tuple[list[tuple], list[tupl
         if diff == 0:
             continue
         mine = [d for d in loose if _key(d) == k]
-        margins = [corner_margin(design.pieces, pair, Side(d["rotor"]), np.asarray(d["corner"]), d["extent"]) for d in mine]
-        ok = [m for m, d in zip(margins, mine, strict=True) if m <= d["margin_accuracy"]]
+        margins = [  # no corner: a defect the input can neither show nor rule out (possible_rows), 0
+            0.0
+            if d["corner"] is None
+            else corner_margin(design.pieces, pair, Side(d["rotor"]), np.asarray(d["corner"]), d["extent"])
+            for d in mine
+        ]
+        ok = [m for m, d in zip(margins, mine, strict=True) if d["margin_accuracy"] is None or m <= d["margin_accuracy"]]
         if len(ok) >= abs(diff):
             explained.append((k, diff, [round(m, 3) for m in ok], mine[0]["margin_accuracy"]))
         else:
@@ -370,3 +375,42 @@ def undecided_rows(
                 }
             )
     return out
+
+
+def possible_rows(defects: list) -> list[dict[str, object]]:
+    """Return defects a given profile can neither show nor rule out as ``undecided_defects`` rows (no tip corner).
+
+    The jamming of :func:`rotorcad.meshing.defects.meshline_defects`' ``below``: the male rotation turns back and on
+    again by more than the tangent's tolerance alone allows (the design's test would call it jamming) and less than
+    the profile's accuracy does (:func:`rotorcad.meshing.rotation_turns.rotation_turns`). A feature there below the
+    input's accuracy (the rack-involute male's sealing flank dented by 20 um over 2 mm, as 300 points a lobe with
+    2 um of scatter: the rotation turns back by 4.9 mrad where 10.0 are allowed) may jam or not: the flank is
+    undecided there, not shown to run (:attr:`rotorcad.meshing.contact_ratios.FlankReport.running_decided`).
+
+    Parameters
+    ----------
+    defects : list of rotorcad.meshing.defect_record.Defect
+        The undecided defects, each at the first end of its excursion, ``extent`` the meshline to the other (mm).
+
+    Returns
+    -------
+    list of dict
+        The keys of :func:`undecided_rows`' rows; ``corner``, ``margin`` and ``margin_accuracy`` None.
+    """
+    return [
+        {
+            "kind": d.kind,
+            "rotor": str(d.rotor),
+            "x": d.x,
+            "y": d.y,
+            "flank_role": None if d.role is None else str(d.role),
+            "point_generated": False,
+            "extent": d.extent,
+            "tip_corner": False,
+            "decided": False,
+            "corner": None,
+            "margin": None,
+            "margin_accuracy": None,
+        }
+        for d in defects
+    ]
