@@ -45,6 +45,8 @@ def flank_verdict(analysis: MeshingAnalysis, flank: Flank) -> str:
     """Return one line of Rinder's verdict on a flank: runs or not, with its contact ratios."""
     r = analysis.flanks[flank]
     verdict = "runs without timing gears" if r.runs_without_timing_gears else "does not run without timing gears"
+    if not r.running_decided:  # a given profile whose accuracy cannot decide it (ContactRatioReport.running_decided)
+        verdict = f"undecided at the input's accuracy, {verdict} as read"
     return (
         f"{flank} flank: {verdict}; ε_α {r.transverse_contact_ratio:.2f} + ε_β {r.overlap_contact_ratio:.2f} "
         f"= {r.total_contact_ratio:.2f}"
@@ -67,6 +69,32 @@ def _draw_defects(ax, analysis: MeshingAnalysis, where) -> None:
                 p,
                 textcoords="offset points",
                 xytext=(8, 6 - 11 * (n % 3)) if kind != "slipping" else (8, -14 - 11 * (n % 2)),
+                fontsize=6.5,
+                color=ps.GREY,
+                arrowprops={"arrowstyle": "-", "color": ps.LIGHT_GREY, "lw": 0.5},
+            )
+
+
+def _draw_undecided(ax, analysis: MeshingAnalysis) -> None:
+    """Mark, hollow, the defects the given points can neither show nor rule out (``undecided_defects``).
+
+    Each at its meshline point (x, y), labelled with its kind, rotor and flank; none for a design.
+    """
+    rows = analysis.undecided_defect_dicts()
+    for kind, (marker, colour) in MARKERS.items():
+        found = [r for r in rows if r["kind"] == kind]
+        if not found:
+            continue
+        pts = np.array([(r["x"], r["y"]) for r in found], dtype=float)
+        text = f"undecided {kind} ({len(found)}): the points can neither show nor rule it out"
+        ax.plot(*pts.T, marker, color="none", mec=colour, mew=1.2, ms=9, ls="none", label=text)
+        for r, p in zip(found, pts, strict=True):
+            role = f", {r['flank_role']} flank" if r.get("flank_role") else ""
+            ax.annotate(
+                f"undecided {kind} on the {r['rotor']}{role}",
+                p,
+                textcoords="offset points",
+                xytext=(8, -16),
                 fontsize=6.5,
                 color=ps.GREY,
                 arrowprops={"arrowstyle": "-", "color": ps.LIGHT_GREY, "lw": 0.5},
@@ -156,6 +184,7 @@ def plot_pair(analysis: MeshingAnalysis, clearance: float = 0.0) -> Figure:
         ax.plot(*piece.points.T, "-" if working else ":", color=ps.BLACK, lw=1.6, label=None if working in labelled else text)
         labelled.add(working)
     _draw_defects(ax, analysis, lambda d: (d.x, d.y))
+    _draw_undecided(ax, analysis)
     _draw_singularities(ax, analysis, lambda f: (f["x"], f["y"]))
     for flank in (Flank.DRIVING, Flank.SEALING):  # Rinder's verdict written at the flank's meshline
         pts = [p.points[p.roles == flank] for p in analysis.pieces if p.kind is PieceRole.CURVE]

@@ -399,8 +399,15 @@ def test_a_rounding_the_points_resolve_is_no_undecided_corner(per_lobe):
 
 
 def _dented(name: str, per_lobe: int, sigma: float, depth: float = 20e-3, width: float = 2.0) -> dict:
-    """The summary of the male as ``per_lobe`` exact points a lobe with each lobe's sealing flank dented by ``depth`` mm
-    over ``width`` mm (a cos² bump along the normal at mid-depth of the flank), plus ``sigma`` mm of scatter (seed 1)."""
+    """The summary of :func:`_dented_analysis`."""
+    return _dented_analysis(name, per_lobe, sigma, depth, width)[1]
+
+
+@functools.cache
+def _dented_analysis(name: str, per_lobe: int, sigma: float, depth: float = 20e-3, width: float = 2.0) -> tuple:
+    """The analysis and summary of the male as ``per_lobe`` exact points a lobe with each lobe's sealing flank dented
+    by ``depth`` mm over ``width`` mm (a cos² bump along the normal at mid-depth of the flank), plus ``sigma`` mm of
+    scatter (seed 1)."""
     spec, _, outlines = _design(name)
     lobe, teeth = outlines["male"]
     points = scan(patterned(lobe, teeth), per_lobe * teeth, PHASE)
@@ -416,7 +423,7 @@ def _dented(name: str, per_lobe: int, sigma: float, depth: float = 20e-3, width:
     if sigma:
         points = points + np.random.default_rng(1).normal(0.0, sigma, len(points))[:, None] * normal
     rotors = build_pair(PairSpec(spec.pair, "male-points", {}, points, None, spec.speed_rpm, 0.0), label="--male-points")
-    return analyse_pair(rotors, spec.speed_rpm)[1]
+    return analyse_pair(rotors, spec.speed_rpm)
 
 
 def test_dented_flank_keeps_its_defect():
@@ -469,6 +476,25 @@ def test_a_dent_below_the_accuracy_leaves_its_flank_undecided_where_it_lies(dept
     exact = [(d["x"], d["y"]) for d in _dented("rack_involute_5_6", 300, 0.0)["defects"] if d["kind"] == "jamming"]
     assert min(np.hypot(possible[0]["x"] - x, possible[0]["y"] - y) for x, y in exact) < 6.1, (possible, exact)
     assert any("neither show nor rule out" in r for r in given["running_reasons"]), given["running_reasons"]
+
+
+def test_the_pair_picture_shows_the_undecided_jamming_where_the_json_places_it():
+    # issue 21: the pictures show the verdicts at the flank where they are. The dented male of the test above (300 a
+    # lobe, 2 um): the pair picture marks the undecided jamming, hollow and labelled with its rotor and flank, at the
+    # place `undecided_defects` gives, and writes the sealing flank's verdict as undecided. Reference: the JSON summary
+    # (rotorcad rotor --json) of the same analysis
+    from rotorcad.rotor_plotting import plot_pair
+
+    analysis, given = _dented_analysis("rack_involute_5_6", 300, 2e-3)
+    (row,) = [d for d in given["undecided_defects"] if d["kind"] == "jamming"]
+    ax = plot_pair(analysis).axes[0]
+    notes = {t.get_text(): t.xy for t in ax.texts if hasattr(t, "xy")}
+    where = notes["undecided jamming on the male, sealing flank"]
+    assert np.hypot(where[0] - row["x"], where[1] - row["y"]) < 1e-9, (where, row)
+    legend = [t.get_text() for t in ax.get_legend().get_texts()] if ax.get_legend() else []
+    legend += [h.get_label() for h in ax.get_lines()]
+    assert any(t.startswith("undecided jamming (1)") for t in legend), legend
+    assert any(t.startswith("sealing flank: undecided at the input's accuracy") for t in notes), sorted(notes)
 
 
 @pytest.mark.parametrize("sigma", [1e-3, 2e-3])
