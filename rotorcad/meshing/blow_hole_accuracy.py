@@ -248,7 +248,10 @@ def line_uncertainty(analysis: MeshingAnalysis) -> float:
     sxx = count * line.span**2 / 12.0
     turn_error = sigma / np.sqrt(sxx)
     distance_error = sigma * np.sqrt(1.0 / count + line.along**2 / sxx)
-    if line.errors is not None:  # fitted to the scattered points themselves: their fit's own standard errors, if larger
+    own = line.errors is not None and line.frame == ("female" if rotors.family.startswith("female") else "male")
+    if own:  # the rotor's own line fitted with the curve beyond it (line_points.own_line): that model's errors
+        turn_error, distance_error = float(line.errors[0]), float(line.errors[1])
+    elif line.errors is not None:  # fitted to the scattered points themselves: their fit's own standard errors, if larger
         turn_error, distance_error = max(turn_error, float(line.errors[0])), max(distance_error, float(line.errors[1]))
     c = np.array([pair.male_pitch_radius, 0.0])
     (o, r), accuracy = line.circle, analysis.judged_accuracy

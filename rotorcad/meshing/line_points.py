@@ -58,10 +58,10 @@ TRIM_BLOCK = 64
 at 600 a lobe, 665 points, took 12 minutes one at a time; the scans of 80-300 points a lobe trim fewer)."""
 
 
-STEP_REACH = 1.0
+STEP_REACH = 1.5
 """How far past the window's far end :func:`own_line` takes the curve beyond a line, in the window's lengths."""
 
-STEP_SPACINGS = 4.0
+STEP_SPACINGS = 6.0
 """And at least this many point spacings (three places of the curve beyond the junction, and one to spare)."""
 
 STEP_BAND = 0.25
@@ -318,7 +318,8 @@ def own_line(
     x, y = folded @ tangent, folded @ n - distance
     first, last = float(path[0] @ tangent), float(path[-1] @ tangent)
     extra = max(STEP_REACH * (last - first), STEP_SPACINGS * spacing)
-    take = (x >= first) & (x <= last + extra) & (np.abs(y) <= reach + STEP_BAND * (x - first))
+    band = reach + END_SCATTERS * sigma + STEP_BAND * np.maximum(x - last, 0.0)  # opens beyond the window's curve end
+    take = (x >= first - extra) & (x <= last + extra) & (np.abs(y) <= band)
     order = np.argsort(x[take])
     x, y = x[take][order], y[take][order]
     keep = np.ones(len(x), dtype=bool)
