@@ -58,10 +58,10 @@ TRIM_BLOCK = 64
 at 600 a lobe, 665 points, took 12 minutes one at a time; the scans of 80-300 points a lobe trim fewer)."""
 
 
-STEP_REACH = 1.5
+STEP_REACH = 1.0
 """How far past the window's far end :func:`own_line` takes the curve beyond a line, in the window's lengths."""
 
-STEP_SPACINGS = 6.0
+STEP_SPACINGS = 5.0
 """And at least this many point spacings (three places of the curve beyond the junction, and one to spare)."""
 
 STEP_BAND = 0.25
