@@ -42,7 +42,7 @@ from rotorcad.geometry import rotate
 from rotorcad.meshing.defects import resolution
 from rotorcad.meshing.line_points import refit_line
 from rotorcad.meshing.meshline import MeshlinePiece
-from rotorcad.roles import PieceRole
+from rotorcad.roles import Body, PieceRole
 from rotorcad.rotor_pair import RotorPair
 
 SHORTEST = 4.0
@@ -467,7 +467,8 @@ def line_apex(
     fit, length = best
     offset, normal, errors = float(fit.centroid @ fit.normal), fit.normal, None
     used = fit.keep if fit.fitted is None else fit.fitted
-    again = None if given is None else refit_line(fit.frame, normal, offset, points[used], t[used], given, accuracy, pair)
+    corner = Body.MALE if circle == 0 else Body.FEMALE
+    again = None if given is None else refit_line(fit.frame, normal, offset, points[used], t[used], given, accuracy, pair, corner)
     if again is not None:
         offset, normal, errors = again.distance, again.normal, again.errors
     distance = None if fit.centre is None else abs(offset)
