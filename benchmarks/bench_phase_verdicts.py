@@ -66,6 +66,11 @@ def _running(summary: dict) -> dict:
     return {f: summary["flanks"][f]["runs_without_timing_gears"] for f in FLANKS}
 
 
+def _generated(summary: dict) -> list:
+    """The point-generated flanks (rotor, flank, role, generating corner), sorted."""
+    return sorted((f["rotor"], f["flank"], f["flank_role"], f["generated_by"]) for f in summary["point_generated_flanks"])
+
+
 def _keys(summary: dict) -> Counter:
     return Counter((d["kind"], d["rotor"], d["flank_role"], d["tip_corner"]) for d in summary["defects"])
 
@@ -138,7 +143,7 @@ def main() -> None:
             )
             ring = _pattern(np.vstack([s.resampled(1e-5).points for s in lobe.segments]), teeth)
             for per in pers:
-                bad_defects = bad_running = refused = 0
+                bad_defects = bad_running = bad_generated = refused = 0
                 for phase in phases:
                     case = f"{name} {side} {per} a lobe phase {phase:.3f}"
                     pts = _scan(ring, per * teeth, phase)
@@ -160,6 +165,9 @@ def main() -> None:
                     if _running(got) != _running(design):
                         notes.append(f"running {_running(got)} for {_running(design)}")
                         bad_running += 1
+                    if _generated(got) != _generated(design):
+                        notes.append(f"point-generated flanks {_generated(got)} for {_generated(design)}")
+                        bad_generated += 1
                     if notes:
                         print(f"{case}: " + "; ".join(notes), flush=True)
                 line = (name, side, per)
@@ -167,15 +175,17 @@ def main() -> None:
                 totals[line + ("defects",)] = bad_defects
                 totals[line + ("running",)] = bad_running
                 totals[line + ("refused",)] = refused
+                totals[line + ("generated",)] = bad_generated
                 print(
                     f"== {name} {side} {per} a lobe: {len(phases)} phases, defects differ {bad_defects}, "
-                    f"running differs {bad_running}, refused {refused}",
+                    f"running differs {bad_running}, point-generated flanks differ {bad_generated}, refused {refused}",
                     flush=True,
                 )
     print(
         f"all: {sum(v for k, v in totals.items() if k[-1] == 'inputs')} inputs, defects differ "
         f"{sum(v for k, v in totals.items() if k[-1] == 'defects')}, running differs "
-        f"{sum(v for k, v in totals.items() if k[-1] == 'running')}, refused "
+        f"{sum(v for k, v in totals.items() if k[-1] == 'running')}, point-generated flanks differ "
+        f"{sum(v for k, v in totals.items() if k[-1] == 'generated')}, refused "
         f"{sum(v for k, v in totals.items() if k[-1] == 'refused')}"
     )
 

@@ -337,11 +337,13 @@ def _mate_corner_runs(
     the male's point at 2-5 % of the rack's speed, and its slowest stretch (0.35-2.25 mm of rack, its
     corner 0.19 mm inside the tip circle) was read as the male's tip corner, which cut the rounding
     short where the apex lies (blow-hole +1.7 % from the splines and +7.2 % from the polyline, now
-    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner
-    lies: there the piece hands over from this rotor's own corner, and the fit's end leaves the
-    mate's point still for a moment (one tooth of the rack-involute male, 300 points a lobe: the
-    female's point stands within 2.4 µm over 0.12 mm of rack, 7.4 mm inside its tip circle; taken as
-    flank, the female generated there crossed itself and ``hob`` read it undercut). A run inside the piece along
+    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner lies, unless the rack
+    runs less than ``shortest`` along it: off the mate's tip circle that is the mate's cusp, where its generated point
+    stands still (the rack-involute male's sealing flank, from its CSV, DXF or 300 exact points a lobe: the female
+    involute's cusp on its base circle, 7.4 mm inside its tip circle, 0.6-1.4 um off the design's N2, held within 1-2 um
+    over 0.24-0.28 mm of rack, as the design's own rack holds it within 2 um over 0.23 mm; read as her tip corner's path
+    it listed a point-generated male flank the design has not, and took 1.1 mm of working meshline; ``hob`` reads the
+    female turning back there by 0.00 um, no undercut). A run inside the piece along
     which the rack runs less than ``shortest`` (the resolution, as of scattered points) is the mate's point standing
     still for an instant, its cusp, not its tip corner's path (judged on the parts, after the path is run on over a
     flank part too short to count: the narrow-tip male's female tip path, 1000 exact points a lobe, is seen within its
@@ -400,6 +402,7 @@ def _mate_corner_runs(
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
     previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
+    tip_paths: list[tuple[float, float]] = []  # the paths whose corner lies on the mate's tip circle (rack parameters)
     for i, j in runs:
         # the corner is where most of the run's mate points lie; the path extends exactly as far as the
         # mate's point stays within its wander of it (a slowly moving flank next to it may pass the
@@ -439,6 +442,7 @@ def _mate_corner_runs(
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
             out.append((last, a, False))
         out.append((a, b, True))
+        tip_paths += [] if off_tip else [(min(a, b), max(a, b))]
         last = b
     if last != rack_curve.s1:
         out.append((last, rack_curve.s1, False))
@@ -459,10 +463,13 @@ def _mate_corner_runs(
         else:
             parts.append([a, b, c, tiny])
     if shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank (of exact
-        # points, one inside the piece: a path the fit's end leaves, or one run on to an end, stays)
+        # points, one inside the piece, or one from an end whose corner lies off the mate's tip circle: the mate's
+        # cusp; a tip corner's path the fit's end leaves, or one run on to an end, stays)
         ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
         for k, part in enumerate(parts):
-            judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1)
+            low, high = min(part[0], part[1]), max(part[0], part[1])
+            on_tip = any(x < high and y > low for x, y in tip_paths)
+            judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1) or not on_tip
             part[2] = part[2] and not (judged and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) < shortest))
         merged: list[list] = []
         for part in parts:
