@@ -24,6 +24,11 @@ stalled runs, rotorcad.measured.pairs._one_corner; the fit's tangent turns 50-17
 jittered 1-7 um where 1.6 um was allowed, the path falling apart into cusped parts): all 144 inputs at 500/600/700 a
 lobe, defects differ 2/10/24 -> 0/0/0, running 0/0/1 -> 0/0/1 (left: the narrow-tip female at 700, phase 0.75, its
 male tip corner's path 3.1 mm of rack short, sealing "does not run"; a strict xfail in tests/test_phase_verdicts.py).
+Issue 21 (ri-sealing: also counts the point-generated flanks that differ from the design's list; a mate's stall from a
+rack piece's end, off its tip circle and shorter than the resolution, is its cusp, a flank,
+rotorcad.measured.pairs._mate_corner_runs): ``--per 300,600`` (288 inputs), point-generated flanks differ 4 -> 0 (the
+rack-involute male at 300 a lobe, phases 0.125, 0.375, 0.5, 0.875: the female involute's cusp on its base circle read
+as her tip corner's path), defects 0 -> 0, running 0 -> 0, refused 0 -> 0; user CPU 118.0 -> 118.9 s.
 
 ``--independent [--scatter 0,1]``: the shapely-cut 5/6 arc-flank male of tests/independent_pairs.py (no design:
 each density and scatter against the verdict most of its phases read; a scattered scan's seed is its phase's
