@@ -24,6 +24,9 @@ stalled runs, rotorcad.measured.pairs._one_corner; the fit's tangent turns 50-17
 jittered 1-7 um where 1.6 um was allowed, the path falling apart into cusped parts): all 144 inputs at 500/600/700 a
 lobe, defects differ 2/10/24 -> 0/0/0, running 0/0/1 -> 0/0/1 (left: the narrow-tip female at 700, phase 0.75, its
 male tip corner's path 3.1 mm of rack short, sealing "does not run"; a strict xfail in tests/test_phase_verdicts.py).
+Issue 21 (nt700: that path runs on through the fit's tangent jitter to the farthest sample back within the mate
+point's bound, rotorcad.measured.pairs._to_piece_ends), all 432 inputs at 500/600/700: defects differ 0 -> 0, running
+1 -> 0 (Krigar's male 0 of 8 phases at each density, before and after); 176 s of CPU either way.
 Issue 21 (ri-sealing: also counts the point-generated flanks that differ from the design's list; a mate's stall from a
 rack piece's end, off its tip circle and shorter than the resolution, is its cusp, a flank,
 rotorcad.measured.pairs._mate_corner_runs): ``--per 300,600`` (288 inputs), point-generated flanks differ 4 -> 0 (the

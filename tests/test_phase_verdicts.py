@@ -17,8 +17,10 @@ O2), and the smoothing cubic's tangent followed the waves (0.1 rad off); the tan
 over the resolution (rotorcad.meshing.meshline.resolved_tangents). The driving flank's meshline wobbled 2.4 µm
 across O1O2 beside the root before its 0.39 mm loop on the driving side (rotorcad.meshing.slipping._side).
 The phases below are those that failed (benchmarks/bench_phase_verdicts.py runs all eight at 500/600/700). The
-narrow-tip female at 700 a lobe (the last input of that benchmark whose running differed) is checked the same way
-(a strict xfail: not fixed).
+narrow-tip female at 700 a lobe (the last input of that benchmark whose running differed) is checked the same way:
+at phase 0.75 its male tip corner's path ended 3.1 mm of rack early, the fit's tangent jitter taking the male's point
+1-8 um off its corner and back once a point spacing where 0.37 um was allowed; the path now runs on to the farthest
+sample back within that bound (rotorcad.measured.pairs._to_piece_ends).
 
 On a male rotorcad did not make (the shapely-cut 5/6 arc-flank male, 600 exact points a lobe), phase 0.5 read a
 decided male sealing jamming and a second female sealing cusp, and "driving runs without timing gears", where the
@@ -43,6 +45,7 @@ import pytest
 from independent_pairs import arc_flank_5_6, cut_rotor, patterned, scan
 
 from rotorcad.design import rotor_design
+from rotorcad.measured.pairs import _to_piece_ends
 from rotorcad.meshing.defects import meshline_gaps, robust_zeros
 from rotorcad.roles import PieceRole
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
@@ -102,23 +105,14 @@ def test_independent_male_gives_the_same_verdicts_wherever_the_scan_starts(phase
         assert given["flanks"][flank]["runs_without_timing_gears"] == report["runs_without_timing_gears"], flank
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "the narrow-tip female at 700 exact points a lobe, phase 0.75: the male tip corner's path ends 3.1 mm of rack "
-        "early (6.79 mm for the design's 9.93), the fit's tangent jitter moving the male's point by 1-6 um where the "
-        "path's ends allow 0.37 um, and the sealing flank 'does not run'; widening the ends' bound to the jitter "
-        "(krigar-600) fixed it but moved the males from the narrow-tip and asymmetric SRM females' points 7-8 um off "
-        "their envelopes (test_mate_points), so not fixed"
-    ),
-)
 def test_exact_female_points_keep_the_male_tip_corners_whole_path():
     # The narrow-tip female from its design's exact outline, 700 points a lobe, the scan 0.75 of a spacing past its
     # start (benchmarks/bench_phase_verdicts.py: the one input of 144 at 700 a lobe whose running differed): the
     # fit's tangent jitter moved the male tip's generated point by 1-6 um along its path where 0.37 um was allowed,
     # the path ended 3.1 mm of rack early (6.79 mm for the design's 9.93) and that rack, read as the sealing flank,
-    # "did not run" (rotorcad.measured.pairs._mate_corner_runs). Reference: the design's own verdicts, and its male
-    # tip corner's path (its exact point path), whose length the points' path keeps to a point spacing.
+    # "did not run" (rotorcad.measured.pairs._mate_corner_runs; now 9.90 mm, _to_piece_ends). Reference: the
+    # design's own verdicts, and its male tip corner's path (its exact point path), whose length the points' path
+    # keeps to a point spacing.
     spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "narrow_tip_5_6.toml").read_text()), SAMPLES))
     rotors = build_pair(spec)
     design = analyse_pair(rotors, spec.speed_rpm)[1]
@@ -134,6 +128,21 @@ def test_exact_female_points_keep_the_male_tip_corners_whole_path():
     spacing = float(np.median(np.hypot(*np.diff(points, axis=0).T)))
     paths = [_path_length(r, PieceRole.MALE_CORNER_PATH) for r in (given_rotors, rotors)]
     assert abs(paths[0] - paths[1]) < spacing, paths
+
+
+def test_a_corner_path_runs_on_through_its_jitter_but_not_into_the_flank_beside_it():
+    # Reference: closed forms. 801 samples of a straight rack 17.3 mm long; the mate's point 0-5 um from its corner,
+    # |sin| back on it once every 7 samples (the fit's tangent jitter, once a point spacing) up to sample 689, then
+    # leaving at 0.1 mm a sample: with 0.37 um allowed, the path found around its stalled run (455-470) runs on to
+    # sample 686, the last within the bound, not beyond (samples 687-689 off by 2-5 um). A flank leaving the corner
+    # for good (its point 1.45 (k - 489)^2 nm off past sample 489) keeps the end the bound gives (504), where the
+    # wide bound (12 um) would run on to 579, into the flank (krigar-600: its mate 7-8 um off at the corner).
+    k = np.arange(801)
+    pr = np.column_stack([np.zeros(801), np.linspace(0.0, 17.3, 801)])
+    jitter = np.where(k <= 689, 5e-3 * np.abs(np.sin(np.pi * k / 7.0)), 0.1 * (k - 689))
+    assert _to_piece_ends(pr, jitter, jitter <= 0.37e-3, 455, 470, 12e-3, 0.58) == (0, 686)
+    flank = np.where(k <= 489, 0.0, 1.45e-6 * (k - 489.0) ** 2)
+    assert _to_piece_ends(pr, flank, flank <= 0.37e-3, 455, 470, 12e-3, 0.58) == (0, 504)
 
 
 def _path_length(rotors, kind) -> float:

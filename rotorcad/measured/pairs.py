@@ -239,7 +239,9 @@ def departure(mate: Generated, corner: np.ndarray, edge: float, inside: float, s
     return float(np.clip(edge - direction * back, min(edge, inside), max(edge, inside)))
 
 
-def _to_piece_ends(pr: np.ndarray, dist: np.ndarray, lo: int, hi: int, same: float, shortest: float) -> tuple[int, int]:
+def _to_piece_ends(
+    pr: np.ndarray, dist: np.ndarray, near: np.ndarray, lo: int, hi: int, same: float, shortest: float
+) -> tuple[int, int]:
     """Return a mate tip corner's path of exact points ``lo..hi`` (sample indices) run on to the rack piece's ends.
 
     The piece ends where the rotor given has a corner, and the fit's end leaves the mate's point off its corner
@@ -250,10 +252,15 @@ def _to_piece_ends(pr: np.ndarray, dist: np.ndarray, lo: int, hi: int, same: flo
     wander of one corner's path, :data:`EXACT_CORNER_WANDER`) of its corner, and on to the end where the rest
     of the rack (``pr``, (n, 2) mm, the samples) to it is shorter than ``shortest`` (mm, the resolution of
     the defect tests: no verdict is read off it). ``dist`` (n,) are the mate's points' distances (mm) from the corner.
+    Within that stretch it runs to the farthest samples back within the mate point's own bound (``near``, (n,) bool),
+    which the fit's tangent jitter leaves and regains once a point spacing (narrow-tip female, 700 exact points a lobe:
+    9.90 mm of path for the design's 9.93, not 6.79); the ends are bisected to it (to the wide one: 7-8 um of flank lost).
     """
     loose = np.flatnonzero(dist > same)
     start = int(loose[loose < lo].max(initial=-1)) + 1  # as far as the mate's point stays within one corner's wander
     stop = int(loose[loose > hi].min(initial=len(dist))) - 1
+    held = np.flatnonzero(near[start : stop + 1]) + start  # back within its own bound there: the path goes on
+    lo, hi = (min(lo, int(held[0])), max(hi, int(held[-1]))) if len(held) else (lo, hi)
     if 0 < lo and np.hypot(*(pr[start] - pr[0])) < shortest:
         lo = 0
     if hi < len(dist) - 1 and np.hypot(*(pr[-1] - pr[stop])) < shortest:
@@ -337,13 +344,10 @@ def _mate_corner_runs(
     the male's point at 2-5 % of the rack's speed, and its slowest stretch (0.35-2.25 mm of rack, its
     corner 0.19 mm inside the tip circle) was read as the male's tip corner, which cut the rounding
     short where the apex lies (blow-hole +1.7 % from the splines and +7.2 % from the polyline, now
-    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner lies, unless the rack
-    runs less than ``shortest`` along it: off the mate's tip circle that is the mate's cusp, where its generated point
-    stands still (the rack-involute male's sealing flank, from its CSV, DXF or 300 exact points a lobe: the female
-    involute's cusp on its base circle, 7.4 mm inside its tip circle, 0.6-1.4 um off the design's N2, held within 1-2 um
-    over 0.24-0.28 mm of rack, as the design's own rack holds it within 2 um over 0.23 mm; read as her tip corner's path
-    it listed a point-generated male flank the design has not, and took 1.1 mm of working meshline; ``hob`` reads the
-    female turning back there by 0.00 um, no undercut). A run inside the piece along
+    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner lies, unless the rack runs
+    less than ``shortest`` along it off the mate's tip circle: her cusp (the rack-involute male's sealing flank, CSV, DXF,
+    300 exact a lobe: her involute's cusp N2 on her base circle, 7.4 mm inside her tip circle, within 1-2 um over 0.24-0.28
+    mm of rack as on the design's rack, was her tip path; ``hob`` reads no undercut there). A run inside the piece along
     which the rack runs less than ``shortest`` (the resolution, as of scattered points) is the mate's point standing
     still for an instant, its cusp, not its tip corner's path (judged on the parts, after the path is run on over a
     flank part too short to count: the narrow-tip male's female tip path, 1000 exact points a lobe, is seen within its
@@ -397,12 +401,11 @@ def _mate_corner_runs(
         inside, outside = bisect_levels(lambda x: within(corner, x), inside, outside, 30, levels=6)
         return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
-    out, last = [], rack_curve.s0
+    out, last, tip_paths = [], rack_curve.s0, []  # tip_paths: rack parameters of paths of the mate's tip corner
     same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
     previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
-    tip_paths: list[tuple[float, float]] = []  # the paths whose corner lies on the mate's tip circle (rack parameters)
     for i, j in runs:
         # the corner is where most of the run's mate points lie; the path extends exactly as far as the
         # mate's point stays within its wander of it (a slowly moving flank next to it may pass the
@@ -423,7 +426,7 @@ def _mate_corner_runs(
             a, b = max(s[lo], last) if span > 0 else min(s[lo], last), s[hi]
         else:
             if not off_tip and shortest > 0:
-                lo, hi = _to_piece_ends(pr, dist, lo, hi, same_corner, shortest)
+                lo, hi = _to_piece_ends(pr, dist, near, lo, hi, same_corner, shortest)
             a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
             b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
         middle = pr[(i + j) // 2]
@@ -463,12 +466,10 @@ def _mate_corner_runs(
         else:
             parts.append([a, b, c, tiny])
     if shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank (of exact
-        # points, one inside the piece, or one from an end whose corner lies off the mate's tip circle: the mate's
-        # cusp; a tip corner's path the fit's end leaves, or one run on to an end, stays)
+        # points, one inside the piece or from an end off the mate's tip circle: a tip path run on to an end stays)
         ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
         for k, part in enumerate(parts):
-            low, high = min(part[0], part[1]), max(part[0], part[1])
-            on_tip = any(x < high and y > low for x, y in tip_paths)
+            on_tip = any(x < max(part[:2]) and y > min(part[:2]) for x, y in tip_paths)
             judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1) or not on_tip
             part[2] = part[2] and not (judged and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) < shortest))
         merged: list[list] = []
