@@ -344,11 +344,10 @@ def _mate_corner_runs(
     the male's point at 2-5 % of the rack's speed, and its slowest stretch (0.35-2.25 mm of rack, its
     corner 0.19 mm inside the tip circle) was read as the male's tip corner, which cut the rounding
     short where the apex lies (blow-hole +1.7 % from the splines and +7.2 % from the polyline, now
-    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner
-    lies: there the piece hands over from this rotor's own corner, and the fit's end leaves the
-    mate's point still for a moment (one tooth of the rack-involute male, 300 points a lobe: the
-    female's point stands within 2.4 µm over 0.12 mm of rack, 7.4 mm inside its tip circle; taken as
-    flank, the female generated there crossed itself and ``hob`` read it undercut). A run inside the piece along
+    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner lies, unless the rack runs
+    less than ``shortest`` along it off the mate's tip circle: her cusp (the rack-involute male's sealing flank, CSV, DXF,
+    300 exact a lobe: her involute's cusp N2 on her base circle, 7.4 mm inside her tip circle, within 1-2 um over 0.24-0.28
+    mm of rack as on the design's rack, was her tip path; ``hob`` reads no undercut there). A run inside the piece along
     which the rack runs less than ``shortest`` (the resolution, as of scattered points) is the mate's point standing
     still for an instant, its cusp, not its tip corner's path (judged on the parts, after the path is run on over a
     flank part too short to count: the narrow-tip male's female tip path, 1000 exact points a lobe, is seen within its
@@ -402,7 +401,7 @@ def _mate_corner_runs(
         inside, outside = bisect_levels(lambda x: within(corner, x), inside, outside, 30, levels=6)
         return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
 
-    out, last = [], rack_curve.s0
+    out, last, tip_paths = [], rack_curve.s0, []  # tip_paths: rack parameters of paths of the mate's tip corner
     same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
@@ -446,6 +445,7 @@ def _mate_corner_runs(
         if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
             out.append((last, a, False))
         out.append((a, b, True))
+        tip_paths += [] if off_tip else [(min(a, b), max(a, b))]
         last = b
     if last != rack_curve.s1:
         out.append((last, rack_curve.s1, False))
@@ -466,10 +466,11 @@ def _mate_corner_runs(
         else:
             parts.append([a, b, c, tiny])
     if shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank (of exact
-        # points, one inside the piece: a path the fit's end leaves, or one run on to an end, stays)
+        # points, one inside the piece or from an end off the mate's tip circle: a tip path run on to an end stays)
         ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
         for k, part in enumerate(parts):
-            judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1)
+            on_tip = any(x < max(part[:2]) and y > min(part[:2]) for x, y in tip_paths)
+            judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1) or not on_tip
             part[2] = part[2] and not (judged and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) < shortest))
         merged: list[list] = []
         for part in parts:
