@@ -387,20 +387,40 @@ def test_the_smallest_angle_accuracy_covers_the_low_minimum_over_seeds(rotor, fo
         assert stated < 0.1, (seed, stated)
 
 
-@pytest.mark.parametrize("name,seed", [("lysholm_4_6", 13), ("narrow_tip_5_6", 12), ("srm_symmetric_4_6", 14)])
+@pytest.mark.parametrize(
+    "name,seed",
+    [("lysholm_4_6", 13), ("narrow_tip_5_6", 12), ("srm_symmetric_4_6", 14), ("narrow_tip_5_6", 20), ("srm_asymmetric_5_6", 32)],
+)
 def test_a_zero_smallest_angle_read_high_from_the_male_is_within_its_stated_accuracy(name, seed):
     # The samples whose smallest angle is 0 deg have it where the male's flank leaves its root land radially on the
     # pitch circle (rack: a corner on the pitch line). From 300 points a lobe with 2 um the fit's flank end there
     # turns 4-4.6 deg off on some seeds (no corner found at the join), which the rack turns into a dip 1-2 deg off
     # over the next 1 mm (the gain 1 + y / (r_w t_x^2), large where the rack is steep): Lysholm seed 13 reads 1.39,
     # narrow-tip seed 12 2.15, symmetric SRM seed 14 1.83 deg, at 0.3-0.4 mm above the pitch line. The stated accuracy
-    # (the 3 deg steep bound, hob.angle_accuracy) covers them. Reference: the design's closed-form 0 deg.
+    # (the 3 deg steep bound, hob.angle_accuracy) covers them, on all 144 male rows of seeds 17-40 of the six 0 deg
+    # samples too (25 read 0.98-2.30 deg high), but narrowly: narrow-tip seed 20 1.903 for 1.926 stated, SRM-A seed 32
+    # 1.899 for 1.926 (the bound does not model this end effect). Reference: the design's closed-form 0 deg.
     rotors, racks, verdicts = from_points(name, "male", "scatter", seed)
     smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
     truth = closed_form_angle(name)
     assert truth < 1e-3  # the design's smallest angle is 0 (1e-5 deg off from its sampled closed form)
     assert smallest > 1.0  # the high reading this test is about (not a seed that reads 0)
     assert abs(smallest - truth) <= smallest_angle_accuracy(rotors, racks, "male", smallest)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known defect, not fixed: from the rack-involute male's 2 um points, seed 28, the female's rack (generated) "
+    "turns back at the male tip corner's place (y = -11.57 mm) after 1.5 mm of bent flank, 16.38 deg for 18.13, longer "
+    "than hob.straight_flank's run end (4 spacings, 1.16 mm), so read pointwise; stated 1.53 (the pointwise bound) "
+    "for its 1.74 error, as on main",
+)
+def test_the_rack_involute_male_seed_28_reads_its_straight_flank():
+    # Reference: the design's closed-form smallest angle (Wu & Chi eq. 7 on the family's rack pieces). Found by the
+    # survey of seeds 17-40 (1 of 30 male seeds of 11-40; the female's 30 all within 0.017 deg and covered).
+    rotors, racks, verdicts = from_points("rack_involute_5_6", "male", "scatter", 28)
+    smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
+    assert abs(smallest - closed_form_angle("rack_involute_5_6")) <= smallest_angle_accuracy(rotors, racks, "male", smallest)
 
 
 @pytest.mark.parametrize("rotor", ["male", "female"])
