@@ -19,7 +19,11 @@ and its stated accuracy. Seeds 11-16 (``python benchmarks/bench_rack_fit.py 11 1
 (a straight rack flank read as its fitted line): rack-involute female -0.387..-0.074 / -0.010..-0.002 deg, male
 -1.333..-0.310 / -0.002..+0.004; unchanged: N rack and Rinder-Deix female -0.096..-0.011, male -0.542..-0.090 (the
 fit's overshoot at the male's quickly changing curvature, not a straight flank), narrow-tip female within 0.005,
-male +2.147 and +1.792 on seeds 12 and 16 (high, for the design's 0 deg: not examined); the rack errors identical.
+male +2.147 and +1.792 on seeds 12 and 16 (high, for the design's 0 deg: the male's flank leaves its root land
+radially on the pitch circle and turns 6 deg within 0.2 mm, under one spacing; on those seeds the fit starts the flank
+6 deg off radial, read as a dip 0.3-0.4 mm above the pitch line); the rack errors identical. The stated accuracy of
+the rack-involute's angle, where the straight flank's line reads it, is the line's own (hob.straight_flank.line_accuracy):
+female 1.02-1.10 / 0.04-0.09 deg, male 1.31-2.74 / 0.02-0.06 deg (before / after).
 """
 
 from __future__ import annotations

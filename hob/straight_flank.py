@@ -43,6 +43,8 @@ TREND_DEG = 0.1
 """deg: how far a straight part's angle may move along it (:func:`_trend`)."""
 SEEDS = 48
 """Candidate chords a run (at most)."""
+COVERAGE = 2.0
+"""How many standard errors of a straight part's line its stated accuracy counts (about 95 %, :func:`line_accuracy`)."""
 
 
 def _runs(flank: np.ndarray, tan: np.ndarray, kink: float) -> list[tuple[int, int]]:
@@ -138,9 +140,68 @@ def straight_flank_angles(
     (n,) float array, deg
         ``angles``, with the straight parts' points and their run ends' read as the part's line (module docstring).
     """
+    return straight_flank_reading(pts, tan, angles, flank, along, scatter, spacing, kink)[0]
+
+
+def line_accuracy(inner: np.ndarray, profile_length: float, scatter: float, spacing: float) -> float:
+    """Return how far a straight part's line angle may lie above the least true angle along it (deg).
+
+    The given points along the part, ``m = profile_length / spacing`` of them, each off by one point's normal
+    scatter ``sigma`` (the rack's normal offset is the profile's where they touch, Wu & Chi sec. 2; the normal
+    section shortens no offset), set the least-squares line's direction to ``sigma sqrt(12 / m) / L`` rad (the
+    slope's standard error of m points spread evenly over the part's length L), counted :data:`COVERAGE` times; a
+    trend of the true angle along the part that :func:`_trend` measures (at most :data:`TREND_DEG`, or the part
+    is no straight one) puts the line at most that far above the part's least angle, added.
+
+    Parameters
+    ----------
+    inner : (k, 2) float array, mm
+        The rack points the line was fitted to, in the normal section.
+    profile_length : float, mm
+        The profile's arc length those rack points come from.
+    scatter, spacing : float, mm
+        One given point's standard deviation and the points' median spacing.
+
+    Returns
+    -------
+    float, deg
+    """
+    length = float(np.hypot(*(inner[-1] - inner[0])))
+    m = max(profile_length / spacing, 2.0)
+    return float(np.degrees(COVERAGE * scatter * np.sqrt(12.0 / m) / length)) + _trend(inner)
+
+
+def straight_flank_reading(
+    pts: np.ndarray,
+    tan: np.ndarray,
+    angles: np.ndarray,
+    flank: np.ndarray,
+    along: np.ndarray,
+    scatter: float,
+    spacing: float,
+    kink: float,
+    given_along: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Return the flank angles as :func:`straight_flank_angles` reads them, and the accuracy of the line-read ones.
+
+    Parameters are those of :func:`straight_flank_angles`, and:
+
+    given_along : (n,) float array, mm, optional
+        Arc length along the given points' profile at each point (a mate's rack: at the given rack's point where the
+        two touch). A line's accuracy counts the given points of the shorter of the two spans; default ``along``.
+
+    Returns
+    -------
+    angles : (n,) float array, deg
+        As :func:`straight_flank_angles`.
+    line : (n,) float array, deg
+        Of a point read as its straight part's line, the line's accuracy (:func:`line_accuracy`); NaN where the
+        pointwise angle stands.
+    """
     out = np.array(angles, dtype=float)
+    line = np.full(len(out), np.nan)
     if scatter <= 0 or spacing <= 0 or not flank.any():
-        return out
+        return out, line
     tol = 2.0 * scatter
     for start, stop in _runs(flank, tan, kink):
         s = along[start:stop] - along[start]
@@ -174,7 +235,11 @@ def straight_flank_angles(
         a = 0 if s[first] <= END_SPACINGS * spacing else first
         b = len(p) - 1 if s[-1] - s[last] <= END_SPACINGS * spacing else last
         out[start + a : start + b + 1] = level
-    return out
+        span = float(s[inner][-1] - s[inner][0])
+        if given_along is not None:
+            span = min(span, float(np.ptp(given_along[start:stop][inner])))
+        line[start + a : start + b + 1] = line_accuracy(p[inner], span, scatter, spacing)
+    return out, line
 
 
-__all__ = ["straight_flank_angles"]
+__all__ = ["line_accuracy", "straight_flank_angles", "straight_flank_reading"]

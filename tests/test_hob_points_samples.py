@@ -352,8 +352,9 @@ def test_the_smallest_angle_from_points_is_within_its_stated_accuracy(name, roto
     # normal rack by the contact condition, Wu & Chi eq. 4 and 7) covers the error of the smallest angle read
     # from the points. Reference: the design's closed-form smallest angle. Errors 0.000-1.330 deg (the
     # rack-involute male with 2 um of scatter: 16.797 for 18.127, stated 1.41, then 2.66; its straight flank read by
-    # its line since, hob.straight_flank: 18.125, stated 2.74); stated 0.26-2.74 deg (1.9-2.06
-    # where a cusp on the pitch line makes the rack perpendicular: within 3 deg of it, the angle is stated to that).
+    # its line since, hob.straight_flank: 18.125, stated 2.74, then 0.029 by the line's own accuracy); stated
+    # 0.03-2.23 deg (1.9-2.06 where a cusp on the pitch line makes the rack perpendicular: within 3 deg of it, the
+    # angle is stated to that).
     rotors, racks, verdicts = from_points(name, rotor, form)
     smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
     stated = smallest_angle_accuracy(rotors, racks, rotor, smallest)
@@ -365,21 +366,62 @@ def test_the_smallest_angle_from_points_is_within_its_stated_accuracy(name, roto
 
 
 @pytest.mark.parametrize("rotor", ["male", "female"])
-def test_the_smallest_angle_accuracy_covers_the_low_minimum_over_seeds(rotor):
+@pytest.mark.parametrize("form,seeds", [("scatter-1um", (71, 72, 73, 75)), ("scatter", (11, 12, 13, 14, 15, 16))])
+def test_the_smallest_angle_accuracy_covers_the_low_minimum_over_seeds(rotor, form, seeds):
     # newuser6: at 300 points a lobe with 1 um of scatter the rack-involute's smallest angle (a straight rack
     # flank, the same angle over hundreds of points) read 0.09-0.59 deg low on every seed, outside the stated
     # 0.29-0.46 deg on 8 of 12 seeds 71-76 of both rotors: the minimum of scattered angles picks the most
-    # negative error, the lobe's largest, which one point's bound did not count (hob.angle_accuracy). Now
+    # negative error, the lobe's largest, which one point's bound did not count (hob.angle_accuracy). Then
     # stated 0.54-0.68 deg, covered on all 16 of seeds 71-78 (errors -0.04..-0.59). Since the straight flank reads its
-    # line (hob.straight_flank): errors -0.009..+0.002, stated 0.54-0.91 (the bound still counts the least pointwise
-    # angle's error). Reference: the design's closed-form smallest angle (Wu & Chi eq. 7 on the family's rack pieces).
+    # line (hob.straight_flank): errors -0.009..+0.002 at 1 um, -0.011..+0.004 at 2 um (seeds 11-16), and the accuracy
+    # is the line's (hob.straight_flank.line_accuracy): 0.009-0.040 at 1 um, 0.017-0.090 at 2 um, for 0.54-0.91 and
+    # 1.04-2.74 by the pointwise bound; 4-15 times the largest error of each rotor's seeds. Reference: the design's
+    # closed-form smallest angle (Wu & Chi eq. 7 on the family's rack pieces).
     truth = closed_form_angle("rack_involute_5_6")
-    for seed in (71, 72, 73, 75):
-        rotors, racks, verdicts = from_points("rack_involute_5_6", rotor, "scatter-1um", seed)
+    for seed in seeds:
+        rotors, racks, verdicts = from_points("rack_involute_5_6", rotor, form, seed)
         smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
         stated = smallest_angle_accuracy(rotors, racks, rotor, smallest)
         assert abs(smallest - truth) <= stated, (seed, smallest, stated)
-        assert stated < 1.0, (seed, stated)
+        # a statement within issue 22's 0.1 deg, not the pointwise bound's 0.5-2.7 deg
+        assert stated < 0.1, (seed, stated)
+
+
+@pytest.mark.parametrize(
+    "name,seed",
+    [("lysholm_4_6", 13), ("narrow_tip_5_6", 12), ("srm_symmetric_4_6", 14), ("narrow_tip_5_6", 20), ("srm_asymmetric_5_6", 32)],
+)
+def test_a_zero_smallest_angle_read_high_from_the_male_is_within_its_stated_accuracy(name, seed):
+    # The samples whose smallest angle is 0 deg have it where the male's flank leaves its root land radially on the
+    # pitch circle (rack: a corner on the pitch line). From 300 points a lobe with 2 um the fit's flank end there
+    # turns 4-4.6 deg off on some seeds (no corner found at the join), which the rack turns into a dip 1-2 deg off
+    # over the next 1 mm (the gain 1 + y / (r_w t_x^2), large where the rack is steep): Lysholm seed 13 reads 1.39,
+    # narrow-tip seed 12 2.15, symmetric SRM seed 14 1.83 deg, at 0.3-0.4 mm above the pitch line. The stated accuracy
+    # (the 3 deg steep bound, hob.angle_accuracy) covers them, on all 144 male rows of seeds 17-40 of the six 0 deg
+    # samples too (25 read 0.98-2.30 deg high), but narrowly: narrow-tip seed 20 1.903 for 1.926 stated, SRM-A seed 32
+    # 1.899 for 1.926 (the bound does not model this end effect). Reference: the design's closed-form 0 deg.
+    rotors, racks, verdicts = from_points(name, "male", "scatter", seed)
+    smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
+    truth = closed_form_angle(name)
+    assert truth < 1e-3  # the design's smallest angle is 0 (1e-5 deg off from its sampled closed form)
+    assert smallest > 1.0  # the high reading this test is about (not a seed that reads 0)
+    assert abs(smallest - truth) <= smallest_angle_accuracy(rotors, racks, "male", smallest)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known defect, not fixed: from the rack-involute male's 2 um points, seed 28, the female's rack (generated) "
+    "turns back at the male tip corner's place (y = -11.57 mm) after 1.5 mm of bent flank, 16.38 deg for 18.13, longer "
+    "than hob.straight_flank's run end (4 spacings, 1.16 mm), so read pointwise; stated 1.53 (the pointwise bound) "
+    "for its 1.74 error, as on main",
+)
+def test_the_rack_involute_male_seed_28_reads_its_straight_flank():
+    # Reference: the design's closed-form smallest angle (Wu & Chi eq. 7 on the family's rack pieces). Found by the
+    # survey of seeds 17-40 (1 of 30 male seeds of 11-40 uncovered; from the female, seeds 18/31/33/40 read 0.14-0.32
+    # deg low where the female's 18.127 deg flank is not read as a line, covered by the pointwise bound, 1.05-1.15).
+    rotors, racks, verdicts = from_points("rack_involute_5_6", "male", "scatter", 28)
+    smallest = min(v.normal_pressure_angle_min_deg for v in verdicts.values())
+    assert abs(smallest - closed_form_angle("rack_involute_5_6")) <= smallest_angle_accuracy(rotors, racks, "male", smallest)
 
 
 @pytest.mark.parametrize("rotor", ["male", "female"])
