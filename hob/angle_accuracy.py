@@ -151,24 +151,15 @@ def line_read(
         Its accuracy there (:func:`hob.straight_flank.line_accuracy`), NaN elsewhere.
     """
     from hob.straight_flank import straight_flank_reading
-    from hob.verdict import _corner_slivers
+    from hob.verdict import rack_frame
     from rotorcad.inverse_rack import MEASURED_MIN_TURN
 
     n = len(rack.points)
     if scatter <= 0 or spacing <= 0:
         return np.full(n, np.nan), np.full(n, np.nan)
-    cb = np.cos(rack.helix_angle)
-    pts = rack.points * np.array([cb, 1.0])
-    tan = rack.tangents * np.array([cb, 1.0])
-    tan /= np.linalg.norm(tan, axis=1, keepdims=True)
-    along = rack.profile if rack.profile is not None else rack.points
-    back = pts[-1, 0] < pts[0, 0]  # judge reads the rack travelling +x
-    order = np.arange(n)[::-1] if back else np.arange(n)
-    pts, tan, along, idx = pts[order], tan[order] * (-1.0 if back else 1.0), along[order], rack.piece_index[order]
-    cutting = np.array([role is not PieceRole.CORNER_FAN for role in rack.roles])[idx]
-    flank = cutting & ~_corner_slivers(rack)[idx] & (np.abs(tan[:, 1]) > 1e-9)
+    frame = rack_frame(rack)
+    pts, tan, flank, arc, order = frame.points, frame.tangents, frame.flank, frame.arc, frame.order
     pointwise = np.degrees(np.arctan2(np.abs(tan[:, 0]), np.abs(tan[:, 1])))
-    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(along, axis=0).T))])
     given_arc = None
     if given is not None and given is not rack and given.profile is not None:
         from scipy.spatial import cKDTree

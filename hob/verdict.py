@@ -23,6 +23,7 @@ the hob's root; they are not cutting edges and are left out of the flank checks.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import shapely
@@ -48,6 +49,52 @@ from rotorcad.roles import PieceRole
 
 FOLD_TOLERANCE = 5e-4  # mm: folds and zigzags of a measured rack below this are not loops
 CURVATURE_BASE = 0.02  # mm: arc length over which the rack's curvature is taken
+
+
+class RackFrame(NamedTuple):
+    """A rack as :func:`judge` reads it: in its normal section, travelling +x (n points)."""
+
+    points: np.ndarray
+    """(n, 2) float array, mm: the rack's points, x scaled by cos(helix angle) into the normal section."""
+    tangents: np.ndarray
+    """(n, 2) float array: their unit tangents in the normal section, pointing along the travel."""
+    piece_index: np.ndarray
+    """(n,) int array: each point's rack piece."""
+    cutting: np.ndarray
+    """(n,) bool array: the point cuts (not a corner fan's)."""
+    flank: np.ndarray
+    """(n,) bool array: a cutting point of a flank (no corner sliver, not parallel to the pitch line)."""
+    arc: np.ndarray
+    """(n,) float array, mm: arc length along the rotor's profile (or the rack where there is none), in travel order."""
+    order: np.ndarray
+    """(n,) int array: the rack's own index of each point here."""
+
+
+def rack_frame(rack: DerivedRack) -> RackFrame:
+    """Return ``rack`` in the frame :func:`judge` reads it (normal section, travelling +x).
+
+    Parameters
+    ----------
+    rack : DerivedRack
+        A rack of a pair, in its own frame.
+
+    Returns
+    -------
+    RackFrame
+    """
+    cb = np.cos(rack.helix_angle)
+    pts = rack.points * np.array([cb, 1.0])
+    tan = rack.tangents * np.array([cb, 1.0])
+    tan /= np.linalg.norm(tan, axis=1, keepdims=True)
+    n = len(pts)
+    back = n > 0 and pts[-1, 0] < pts[0, 0]
+    order = np.arange(n)[::-1] if back else np.arange(n)
+    pts, tan, idx = pts[order], tan[order] * (-1.0 if back else 1.0), rack.piece_index[order]
+    cutting = np.array([role is not PieceRole.CORNER_FAN for role in rack.roles], dtype=bool)[idx]
+    flank = cutting & ~_corner_slivers(rack)[idx] & (np.abs(tan[:, 1]) > 1e-9)
+    along = (rack.profile if rack.profile is not None else rack.points)[order]
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(along, axis=0).T))])
+    return RackFrame(pts, tan, idx, cutting, flank, arc, order)
 
 
 @dataclass(frozen=True)
@@ -158,15 +205,8 @@ def judge(
     Verdict
     """
     lim = limits or HobLimits()
-    cb = np.cos(rack.helix_angle)
-    pts = rack.points * np.array([cb, 1.0])
-    tan = rack.tangents * np.array([cb, 1.0])
-    tan /= np.linalg.norm(tan, axis=1, keepdims=True)
-    if pts[-1, 0] < pts[0, 0]:
-        pts, tan, idx = pts[::-1], -tan[::-1], rack.piece_index[::-1]
-    else:
-        idx = rack.piece_index
-    cutting = np.array([role is not PieceRole.CORNER_FAN for role in rack.roles])[idx]
+    frame = rack_frame(rack)
+    pts, tan, idx, cutting = frame.points, frame.tangents, frame.piece_index, frame.cutting
     reasons: list[str] = []
 
     def at(i: int) -> str:
@@ -196,13 +236,10 @@ def judge(
             f"the rack flank overhangs (re-entrant, running back along the pitch line) {at(i)}: a hob would have to "
             "cut under its own tooth, so this part comes out undercut."
         )
-    flank = cutting & ~_corner_slivers(rack)[idx] & (np.abs(tan[:, 1]) > 1e-9)
+    flank = frame.flank
     angles = np.degrees(np.arctan2(np.abs(tan[:, 0]), np.abs(tan[:, 1])))
     if point_scatter > 0 and point_spacing > 0:  # a straight flank's angle from its line (hob.straight_flank)
-        along = rack.profile if rack.profile is not None else rack.points
-        along = along[::-1] if rack.points[-1, 0] < rack.points[0, 0] else along
-        arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(along, axis=0).T))])
-        angles = straight_flank_angles(pts, tan, angles, flank, arc, point_scatter, point_spacing, MEASURED_MIN_TURN)
+        angles = straight_flank_angles(pts, tan, angles, flank, frame.arc, point_scatter, point_spacing, MEASURED_MIN_TURN)
     alpha_min = float(angles[flank].min()) if flank.any() else 90.0
     if alpha_min < lim.min_flank_angle_deg:
         i = np.nonzero(flank)[0][np.argmin(angles[flank])]
