@@ -84,10 +84,14 @@ def tip_tangent_accuracy(pieces: list[tuple[str, Curve]], whole: np.ndarray, sig
         if radii.max() < tip - 0.3:
             continue
         path = shapely.LineString(line if radii[-1] >= radii[0] else line[::-1])  # ends at the tip corner
-        near = shapely.distance(shapely.points(whole), path) <= 10.0 * sigma
-        along = shapely.line_locate_point(path, shapely.points(whole[near]))
+        # only points within the path's box widened by 10 sigma can lie within 10 sigma of it (each point is
+        # measured on its own: the same points and numbers as measuring all)
+        lo, hi = np.nanmin(line, axis=0) - 20.0 * sigma, np.nanmax(line, axis=0) + 20.0 * sigma
+        box = whole[(whole >= lo).all(axis=1) & (whole <= hi).all(axis=1)]
+        near = shapely.distance(shapely.points(box), path) <= 10.0 * sigma
+        along = shapely.line_locate_point(path, shapely.points(box[near]))
         inside = (along > 0.0) & (along < path.length)
-        run = whole[near][inside][np.argsort(along[inside])]
+        run = box[near][inside][np.argsort(along[inside])]
         if len(run) >= 6:
             spreads.append(end_tangent_spread(run, sigma))
     return COVERAGE * max(spreads) if spreads else 0.0

@@ -204,6 +204,11 @@ def refit_line(
     if frame is rotor:  # the given rotor's own straight flank: the line beside the curvature step (two pieces)
         return own_line(normal, distance, path, folded, sigma, spacing, reach, corner is not rotor)
     line = shapely.LineString(path)
+    # only the points within the window's box widened by the reach can lie within the reach (the same points and
+    # numbers as locating every point of every lobe: each point is located and measured on its own)
+    lo, hi = np.nanmin(path, axis=0) - 2.0 * reach, np.nanmax(path, axis=0) + 2.0 * reach
+    box = (folded >= lo).all(axis=1) & (folded <= hi).all(axis=1)
+    folded = folded[box]
     where = shapely.line_locate_point(line, shapely.points(folded))
     near = (shapely.distance(line, shapely.points(folded)) <= reach) & (where > 0.0) & (where < line.length)
     pts, where = folded[near], where[near]

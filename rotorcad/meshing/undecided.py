@@ -88,6 +88,19 @@ def _distances(own: np.ndarray, corner: np.ndarray, pair: RotorPair, rotor: Side
     return np.hypot(own[:, None, 0] - copies[None, :, 0], own[:, None, 1] - copies[None, :, 1]).min(axis=1)
 
 
+def _strip_pairs(xs: np.ndarray, order: np.ndarray, cx: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
+    """Return the (row, contact) index pairs whose contact's x lies within ``half`` (mm) of the row's ``cx``.
+
+    ``xs`` (n,) are the contacts' x sorted (``order`` their indices), ``cx`` (b,) the x of each row's point (mm).
+    """
+    lo = np.searchsorted(xs, cx - half, side="left")
+    hi = np.searchsorted(xs, cx + half, side="right")
+    counts = np.maximum(hi - lo, 0)
+    rows = np.repeat(np.arange(len(cx)), counts)
+    starts = np.cumsum(counts) - counts
+    return rows, order[np.arange(len(rows)) - np.repeat(starts - lo, counts)]
+
+
 def _masses(own: np.ndarray, weight: np.ndarray, corners: np.ndarray, pair: RotorPair, rotor: Side, spacing: float) -> np.ndarray:
     """Meshline length (mm) of the contacts (n, 2) within ``spacing`` of each corner (m, 2) or its lobe copies, (m,).
 
@@ -96,7 +109,9 @@ def _masses(own: np.ndarray, weight: np.ndarray, corners: np.ndarray, pair: Roto
     per row over them in their order. A contact is within ``spacing`` of a copy where its squared distance
     is below spacing^2 (1 - 1e-9) (the square's rounding, a few units of the last place, cannot take the
     distance past ``spacing``), beyond it above spacing^2 (1 + 1e-9); only between the two is the distance
-    taken as :func:`_distances` takes it. Blocks of corners of at most a million contacts at once.
+    taken as :func:`_distances` takes it. Blocks of corners of at most a million contacts at once; of each copy only
+    the contacts in the strip of x within that distance are measured (:func:`_strip_pairs`; every other one lies
+    farther in x alone).
     """
     male = rotor is Side.MALE
     z = pair.male_teeth if male else pair.female_teeth
@@ -106,16 +121,21 @@ def _masses(own: np.ndarray, weight: np.ndarray, corners: np.ndarray, pair: Roto
     square = spacing * spacing
     sure, unsure = (square * (1.0 - 1e-9) if square > 1e-250 else -1.0), square * (1.0 + 1e-9)
     block = max(1, 1_000_000 // max(1, len(own)))
-    x, y = own[None, :, 0], own[None, :, 1]
+    order = np.argsort(own[:, 0], kind="stable")  # the contacts by x: a copy's candidates lie in a strip about it
+    xs = own[order, 0]
+    half = np.sqrt(unsure) * (1.0 + 1e-6)  # beyond it in x, dx * dx alone exceeds spacing^2 (1 + 1e-9)
     for a in range(0, len(corners), block):
         c = copies[a : a + block]
         inside = np.zeros((len(c), len(own)), dtype=bool)
         border = np.zeros_like(inside)
         for k in range(z):
-            dx, dy = x - c[:, k, 0, None], y - c[:, k, 1, None]
+            rows, cols = _strip_pairs(xs, order, c[:, k, 0], half)
+            dx, dy = own[cols, 0] - c[rows, k, 0], own[cols, 1] - c[rows, k, 1]
             d2 = dx * dx + dy * dy
-            inside |= d2 <= sure
-            border |= d2 <= unsure
+            near = d2 <= sure
+            inside[rows[near], cols[near]] = True
+            near = d2 <= unsure
+            border[rows[near], cols[near]] = True
         rows, cols = np.nonzero(border & ~inside)
         if len(rows):  # the distance itself, as _distances takes it
             d = np.hypot(own[cols, None, 0] - c[rows, :, 0], own[cols, None, 1] - c[rows, :, 1]).min(axis=1)
