@@ -455,6 +455,18 @@ def undercut_reasons(
                 )
                 _say(sentence, notes, undecided)
                 continue
+            if scattered and onset.crossing and onset.onset >= -onset.reach:
+                # the trend read far past the step (beyond a fold of the rack from the points, 2 x 1.48 mm: the N-rack
+                # female from its male's 300 points a lobe with 2 um, seed 14, f0 -2.87 for a bound of 1.22 at the
+                # window, 5.0 back at the step; brute force and the design: a touch at the slip singularity)
+                sentence = (
+                    f"the {rack.side.value}'s envelope turns back at {where} and the rack cuts {1000 * depth:.1f} um into "
+                    f"the generated points, {_trend_words(onset)}, but that trend is read past a fold of the rack from "
+                    f"the points and, taken back to the step, is known to {onset.reach:.3f} only: undecided at this "
+                    "accuracy (denser points or less scatter tell it)."
+                )
+                _say(sentence, notes, undecided)
+                continue
             # where the rack from the points folds back along itself, the parts the run leaves are the fold's (the
             # N-rack female from its male's exact points, scan phase 0: the removed run reached 0.4 mm into the slow
             # generation, whose points the rack touches 1-3.6 um deep, and its ends met at 2.13 deg): the trend past
