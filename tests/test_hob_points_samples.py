@@ -407,7 +407,7 @@ def test_the_n_rack_hob_from_scattered_points_is_never_a_wrong_decided_verdict(r
     # its window, 5.0 at the step: hob.turn_back.TurnBack.reach): now undecided, never a decided wrong verdict. The
     # female from its own points, seed 12 (and 7 more of seeds 11-30): "female undercut at r = 42.74-43.01 mm", its fit
     # turning back 1.0 um deep where the design's driving flank meets its tip rounding (r = 42.80 mm), for 14.9 um of
-    # accuracy, its trend a touch's: now gated as a mate's from points is (hob.verdict.judge).
+    # accuracy: now undecided at this accuracy (hob.verdict.undercut_reasons), the undercut within the gate.
     # Reference: the design's verdict from its exact curves (hobbable; the female touches its rack at the slip
     # singularity, Rinder's N rack), none of it produced from the points.
     truth = design_verdicts("n_rack_5_6")
