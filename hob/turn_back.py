@@ -116,6 +116,12 @@ class TurnBack:
     fold : float
         mm of rack from the step over which the rack from points folds back along itself (:func:`_fold_end`), past
         which the trend is taken; 0 where it does not (a design's rack, the 5/6 male's real undercut).
+    reach : float
+        How well f0 is known where the trend is taken farther from the step than the transition (past a fold or
+        the fast part's ringing, ``start`` mm from the step): a line through values each known to ``accuracy`` over
+        its window of length L, extrapolated back to the step, is known there to ``accuracy`` (1 + 2 d / L), d the
+        extra distance ``start`` - transition, dimensionless; equal to ``accuracy`` where the trend starts right
+        after the transition.
     """
 
     onset: float
@@ -123,6 +129,7 @@ class TurnBack:
     crossing: bool
     spread: float = 0.0
     fold: float = 0.0
+    reach: float = 0.0
 
 
 def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scattered: bool = False) -> TurnBack:
@@ -184,7 +191,8 @@ def turn_back(rack: DerivedRack, first: int, stop: int, accuracy: float, scatter
         y = -y
     gain = float(np.median(y**2 / (rack.pitch_radius * np.abs(tx) ** 3)))  # df / dkappa
     known = gain * 8.0 * accuracy / length**2
-    return TurnBack(float(onset), known, bool(onset < -known), spread, fold)
+    reach = known * (1.0 + 2.0 * max(start - transition, 0.0) / length)  # extrapolated back over the extra distance
+    return TurnBack(float(onset), known, bool(onset < -known), spread, fold, reach)
 
 
 def _theil_sen_onset(d: np.ndarray, f: np.ndarray) -> float:

@@ -83,7 +83,8 @@ class DerivedRack:
     period : float, mm
         Rack period (transverse).
     lost_fraction : float
-        Share of profile points without a rack point (their normal misses the pitch circle).
+        Share of profile points without a rack point (their normal misses the pitch circle); the samples of
+        a corner's fan are not counted (one profile point: its directions without a contact are off its path).
     pitch_radius : float, mm
         Pitch radius of the rotor or gear the rack rolls on.
     helix_angle : float, rad
@@ -526,8 +527,9 @@ def derive_rack(
         if contact_step > 0:
             s, p, t = _refine_by_contact(gen, s, p, t, contact_step, MESHLINE_PERIODS * period)
         ok = np.isfinite(p).all(axis=1)
-        lost += int((~ok).sum())
-        total += len(ok)
+        if not curve.is_corner():  # a fan is one profile point: its directions without contact are off its path
+            lost += int((~ok).sum())
+            total += len(ok)
         if curve.is_corner():
             ok &= _on_the_corner_path(gen, s, body, pitch_radius, depth, p)
         pts.append(p[ok])
