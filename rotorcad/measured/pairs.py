@@ -17,6 +17,7 @@ from rotorcad.envelope import Generated, conjugate
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
 from rotorcad.measured.corner_paths import corner_point_path, joined_mate_paths
+from rotorcad.measured.corner_stall import point_jitter, sampled_below_nyquist, stalled_samples
 from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
@@ -306,6 +307,7 @@ def _mate_corner_runs(
     same_corner: float = 0.0,
     accuracy: float = 0.0,
     turn: float = 0.0,
+    spacing: float = 0.0,
 ) -> list[tuple[float, float, bool]]:
     """Split a rack curve derived from one rotor into flank-generating parts and the mate's corner paths.
 
@@ -336,7 +338,8 @@ def _mate_corner_runs(
 
     Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other, widened by
     the mate point's jitter along the stalled parts (:func:`_one_corner`), are one corner's path, with what lies
-    between them (:data:`EXACT_CORNER_WANDER`).
+    between them (:data:`EXACT_CORNER_WANDER`). The stall, and the path where the given points' ``spacing`` (mm) spans
+    under two samples, allow its jitter from one sample to the next (:mod:`rotorcad.measured.corner_stall`).
 
     Of exact points, a run inside the rack piece (reaching neither of its ends) is a corner path only
     where its corner lies on the mate's tip circle (``tip``): the male's 0.67 mm tip rounding of the N
@@ -376,12 +379,7 @@ def _mate_corner_runs(
     pm, _ = mate.evaluate(s)
     k = 20 if scattered else 4  # stencil of k samples either side (1/40, 1/200 of the curve)
     threshold = SCATTERED_STALL if scattered else threshold
-    dr = np.hypot(*(pr[2 * k :] - pr[: -2 * k]).T)
-    dm = np.hypot(*(pm[2 * k :] - pm[: -2 * k]).T)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(dr > 0, dm / dr, np.inf)
-    stalled = np.zeros(len(s), dtype=bool)
-    stalled[k:-k] = np.nan_to_num(ratio, nan=np.inf) < threshold
+    stalled = stalled_samples(pr, pm, k, threshold, not scattered)  # of exact points, less their jitter
     edges = np.flatnonzero(np.diff(stalled.astype(int))) + 1
     bounds = [0, *edges.tolist(), len(s)]
     runs = [(bounds[i], bounds[i + 1]) for i in range(len(bounds) - 1) if stalled[bounds[i]] and bounds[i + 1] - bounds[i] >= 8]
@@ -403,6 +401,7 @@ def _mate_corner_runs(
 
     out, last, tip_paths = [], rack_curve.s0, []  # tip_paths: rack parameters of paths of the mate's tip corner
     same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
+    jitter = point_jitter(pm, k) if not scattered and sampled_below_nyquist(rack_curve, s, spacing) else 0.0  # mm
     noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
     # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
     previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
@@ -412,7 +411,7 @@ def _mate_corner_runs(
         # stall test without being the corner)
         corner = np.nanmedian(pm[i:j], axis=0)
         dist = np.nan_to_num(np.hypot(*(pm - corner).T), nan=np.inf)
-        near = dist <= wander
+        near = dist <= wander + jitter  # of exact points, as far as the fit's jitter of the mate's point
         centre = i + int(np.argmin(dist[i:j] / wander[i:j]))
         far = np.flatnonzero(~near)
         lo = int(far[far < centre].max(initial=-1)) + 1  # the run of near samples around the centre
@@ -742,6 +741,7 @@ def pair_from_rotor_points(
             shortest=shortest,
             same_corner=same,
             accuracy=acc,
+            spacing=spacing,
         )
         # of exact points, the mate's tip corner path as its exact trochoid where the part follows one
         # (rack_pieces.tip_corner_path); of scattered points (2 um) the trochoid held within 10 accuracies moved
