@@ -267,7 +267,6 @@ def lead_on_line(
     path (its ``LEAD_INS``), where a fit rounds the curvature step at the hand-over: the points there lie on the line,
     the fitted profile's tangents do not. The apex is then cut from the line's meshline across that stretch, and
     holds only where the points there lie on the line's envelope too (the law of gearing, as :func:`refit_line`).
-    Of a mate's line only: the given rotor's own line (:func:`own_line`) is fitted with the curve beside it.
     Where they do not, the stretch is a curve of the profile itself and the line places no apex: the arc-flank male
     of tests/independent_pairs.py (its tip rounding the envelope of the rack's 1.2 mm corner circle) at 80 points a
     lobe with 1-2 um of scatter left out 9.3 mm of meshline whose contacts lay 76-600 um off the rack's straight
