@@ -472,8 +472,11 @@ def line_apex(
     if again is not None:
         offset, normal, errors = again.distance, again.normal, again.errors
     start = int(np.argmax(fit.keep))  # the window's first contact: those before it were left out (LEAD_INS)
-    mate = given is not None and Body(fit.frame) is not given[2]  # the given rotor's own line (own_line) models the curve
-    if start and mate and not lead_on_line(fit.frame, normal, offset, points[: start + 1], t[: start + 1], given, accuracy, pair):
+    if (
+        start
+        and given is not None
+        and not lead_on_line(fit.frame, normal, offset, points[: start + 1], t[: start + 1], given, accuracy, pair)
+    ):
         return None  # the left-out stretch is a curve of the profile itself: the line's cut is no apex
     distance = None if fit.centre is None else abs(offset)
     normal = normal if distance is None or offset >= 0.0 else -normal
