@@ -40,7 +40,7 @@ import numpy as np
 
 from rotorcad.geometry import rotate
 from rotorcad.meshing.defects import resolution
-from rotorcad.meshing.line_points import lead_on_line, refit_line
+from rotorcad.meshing.line_points import refit_line
 from rotorcad.meshing.meshline import MeshlinePiece
 from rotorcad.roles import Body, PieceRole
 from rotorcad.rotor_pair import RotorPair
@@ -471,13 +471,6 @@ def line_apex(
     again = None if given is None else refit_line(fit.frame, normal, offset, points[used], t[used], given, accuracy, pair, corner)
     if again is not None:
         offset, normal, errors = again.distance, again.normal, again.errors
-    start = int(np.argmax(fit.keep))  # the window's first contact: those before it were left out (LEAD_INS)
-    if (
-        start
-        and given is not None
-        and not lead_on_line(fit.frame, normal, offset, points[: start + 1], t[: start + 1], given, accuracy, pair)
-    ):
-        return None  # the left-out stretch is a curve of the profile itself: the line's cut is no apex
     distance = None if fit.centre is None else abs(offset)
     normal = normal if distance is None or offset >= 0.0 else -normal
     circles = (tips[circle], tips[1 - circle])

@@ -251,73 +251,6 @@ def refit_line(
     return None
 
 
-def lead_on_line(
-    frame: str | Body,
-    normal: np.ndarray,
-    distance: float,
-    contacts: np.ndarray,
-    t: np.ndarray,
-    given: tuple[np.ndarray, float, Body, float],
-    reach: float,
-    pair: RotorPair,
-) -> bool:
-    """Tell whether the given points beside the stretch of flank a line's window left out lie on that line's envelope.
-
-    :func:`rotorcad.meshing.generating_line.line_apex` may start a line's window a few resolutions past the corner's
-    path (its ``LEAD_INS``), where a fit rounds the curvature step at the hand-over: the points there lie on the line,
-    the fitted profile's tangents do not. The apex is then cut from the line's meshline across that stretch, and
-    holds only where the points there lie on the line's envelope too (the law of gearing, as :func:`refit_line`).
-    Where they do not, the stretch is a curve of the profile itself and the line places no apex: the arc-flank male
-    of tests/independent_pairs.py (its tip rounding the envelope of the rack's 1.2 mm corner circle) at 80 points a
-    lobe with 1-2 um of scatter left out 9.3 mm of meshline whose contacts lay 76-600 um off the rack's straight
-    flank, and the line's cut read +25.6 %, stating 2.06 mm² (3 %) and resolved.
-
-    Parameters
-    ----------
-    frame : str or Body
-        The body whose line it is.
-    normal : (2,) float array
-        The line's unit normal in that body's frame.
-    distance : float, mm
-        Its offset along ``normal`` from the body's centre (the rack's: from the rack frame's origin).
-    contacts : (n, 2) float array, mm
-        The left-out stretch's contacts (fixed frame).
-    t : (n,) float array, rad
-        The male's rotation at each.
-    given : ((m, 2) float array, float, Body, float)
-        The given points, their estimated scatter sigma (mm), their rotor and spacing (:func:`given_of`).
-    reach : float, mm
-        How far off the stretch's part of the fitted profile a given point may lie and still be taken.
-    pair : RotorPair
-
-    Returns
-    -------
-    bool
-        False where the points the stretch covers lie off the envelope beyond their scatter (:func:`holds` with no
-        parameter fitted, or one beyond 4.5 sigma where fewer than three); True where they do not, or none is there.
-    """
-    points, sigma, rotor, _ = given
-    if sigma <= 0.0 or points is None or len(contacts) < 2:
-        return True
-    teeth = pair.male_teeth if rotor is Body.MALE else pair.female_teeth
-    pitch = 2.0 * np.pi / teeth
-    path = _on_body(contacts, t, rotor, pair)
-    middle = np.arctan2(*path[len(path) // 2][::-1])
-    folded = rotate(points, -np.round((np.arctan2(points[:, 1], points[:, 0]) - middle) / pitch) * pitch)
-    line = shapely.LineString(path)
-    where = shapely.line_locate_point(line, shapely.points(folded))
-    near = (shapely.distance(line, shapely.points(folded)) <= reach) & (where > 0.0) & (where < line.length)
-    if not near.any():
-        return True
-    span = float(np.ptp(t))
-    grid = np.linspace(t.min() - 0.2 * span, t.max() + 0.2 * span, ENVELOPE_SAMPLES)
-    angle = float(np.arctan2(normal[1], normal[0]))
-    gaps = _signed_gaps(folded[near], _envelope(angle, distance, Body(frame), rotor, grid, pair))
-    if len(gaps) < 3:
-        return bool(np.abs(gaps).max() <= 4.5 * sigma)
-    return holds(gaps, np.ones(len(gaps), dtype=bool), sigma, 0)
-
-
 def _step_fit(x: np.ndarray, y: np.ndarray, x0: float) -> tuple[np.ndarray, np.ndarray, float]:
     """Fit y = a + b x + c (x - x0)_+² + e (x - x0)_+³ by least squares; return (a, b, c, e), the design matrix, the RSS."""
     u = np.maximum(x - x0, 0.0)
@@ -433,13 +366,4 @@ def own_line(
     return None
 
 
-__all__ = [
-    "END_SCATTERS",
-    "ENVELOPE_SAMPLES",
-    "FEWEST",
-    "PointLine",
-    "given_of",
-    "lead_on_line",
-    "own_line",
-    "refit_line",
-]
+__all__ = ["END_SCATTERS", "ENVELOPE_SAMPLES", "FEWEST", "PointLine", "given_of", "own_line", "refit_line"]
