@@ -520,8 +520,8 @@ class MeshingAnalysis:
         """
         if self.apex_rounding is None:
             return "no rounding placed the apex"
-        pair, acc = self.rotors.pair, self.judged_accuracy
-        return model_check(self.apex_rounding, self.meshline_end, self._rounding_moves, ROUNDING_STEP, acc, pair)
+        pair, acc, scattered = self.rotors.pair, self.judged_accuracy, float(getattr(self.rotors, "point_scatter", 0.0)) > 0
+        return model_check(self.apex_rounding, self.meshline_end, self._rounding_moves, ROUNDING_STEP, acc, pair, scattered)
 
     @property
     def apex_candidates(self) -> list[np.ndarray]:

@@ -86,6 +86,38 @@ def fit_circle(points: np.ndarray) -> tuple[np.ndarray, float]:
     return centre, radius
 
 
+def circle_trend(points: np.ndarray, centre: np.ndarray, radius: float, sigma: float) -> float:
+    """Return the cubic trend of points' gaps from a circle over their angle about its centre, in standard errors.
+
+    A circle's points scatter about it without trend; a curve whose curvature changes along it (a rack circle's
+    envelope on the male) leaves one after the circle's three parameters. The gaps are fitted by least squares with
+    1, phi, phi², phi³ (phi the angle about the centre from the points' median direction, scaled to [-1, 1]); the
+    cubic's coefficient over its standard error sigma sqrt((A^T A)^-1).
+
+    Parameters
+    ----------
+    points : (n, 2) float array, mm
+    centre : (2,) float array, mm
+    radius : float, mm
+    sigma : float, mm
+        The points' scatter (normal errors); 0 for exact points, whose gaps are no normal errors.
+
+    Returns
+    -------
+    float
+        0 where it cannot be told: sigma 0, fewer than six points, or their places too few for a cubic (an even scan
+        puts the same places on every lobe).
+    """
+    v = points - centre
+    turn = np.angle(np.exp(1j * (np.arctan2(v[:, 1], v[:, 0]) - np.arctan2(*np.median(v, axis=0)[::-1]))))
+    a = np.column_stack([(turn / max(float(np.abs(turn).max()), 1e-12)) ** k for k in range(4)])
+    s = np.linalg.svd(a, compute_uv=False)
+    if len(points) < 6 or sigma <= 0.0 or s[-1] <= 1e-6 * s[0]:
+        return 0.0
+    cubic = float((np.linalg.pinv(a) @ (np.hypot(*v.T) - radius))[3])
+    return abs(cubic) / (sigma * float(np.sqrt(np.linalg.pinv(a.T @ a)[3, 3])))
+
+
 def arc_at(lobe: np.ndarray, point: np.ndarray, accuracy: float, shortest: float) -> tuple[np.ndarray, float, np.ndarray] | None:
     """Return the circle that the profile follows beside ``point``, or None.
 
@@ -272,4 +304,12 @@ def circle_meshline_apex(
     return x[0] if ok and np.hypot(*(x[0] - cusp)) <= d[b, i] else cand[b, i]
 
 
-__all__ = ["about_pitch_point", "arc_at", "circle_bounds", "circle_jacobian", "circle_meshline_apex", "fit_circle"]
+__all__ = [
+    "about_pitch_point",
+    "arc_at",
+    "circle_bounds",
+    "circle_jacobian",
+    "circle_meshline_apex",
+    "circle_trend",
+    "fit_circle",
+]
