@@ -20,16 +20,16 @@ Issue 21 (srm-600, a run of no path no longer joins the far tip's path to the ne
 over the fit's end to the piece's end): 10 and 0 (Krigar's male 7, Lysholm's 2, the asymmetric SRM's 1, each an
 extra female cusp). The symmetric SRM male at 500/600/700 a lobe: defects differ 0/1/0 and running 1/2/0 before, 0/0/0 after.
 Issue 21 (krigar-600: one mate tip corner's path of exact points allows the jitter of the mate's point along its
-stalled runs, rotorcad.measured.pairs._one_corner; the fit's tangent turns 50-170 urad between points and that point
+stalled runs, rotorcad.measured.mate_paths._one_corner; the fit's tangent turns 50-170 urad between points and that point
 jittered 1-7 um where 1.6 um was allowed, the path falling apart into cusped parts): all 144 inputs at 500/600/700 a
 lobe, defects differ 2/10/24 -> 0/0/0, running 0/0/1 -> 0/0/1 (left: the narrow-tip female at 700, phase 0.75, its
 male tip corner's path 3.1 mm of rack short, sealing "does not run"; a strict xfail in tests/test_phase_verdicts.py).
 Issue 21 (nt700: that path runs on through the fit's tangent jitter to the farthest sample back within the mate
-point's bound, rotorcad.measured.pairs._to_piece_ends), all 432 inputs at 500/600/700: defects differ 0 -> 0, running
+point's bound, rotorcad.measured.mate_paths._to_piece_ends), all 432 inputs at 500/600/700: defects differ 0 -> 0, running
 1 -> 0 (Krigar's male 0 of 8 phases at each density, before and after); 176 s of CPU either way.
 Issue 21 (ri-sealing: also counts the point-generated flanks that differ from the design's list; a mate's stall from a
 rack piece's end, off its tip circle and shorter than the resolution, is its cusp, a flank,
-rotorcad.measured.pairs._mate_corner_runs): ``--per 300,600`` (288 inputs), point-generated flanks differ 4 -> 0 (the
+rotorcad.measured.mate_paths.mate_corner_runs): ``--per 300,600`` (288 inputs), point-generated flanks differ 4 -> 0 (the
 rack-involute male at 300 a lobe, phases 0.125, 0.375, 0.5, 0.875: the female involute's cusp on its base circle read
 as her tip corner's path), defects 0 -> 0, running 0 -> 0, refused 0 -> 0; user CPU 118.0 -> 118.9 s.
 
@@ -38,7 +38,7 @@ each density and scatter against the verdict most of its phases read; a scattere
 index). Issue 21 (arc-phase, 16 phases at 500/600/700 a lobe, exact and 1 um, 96 inputs): exact, 0/1/7 differed
 from their majority before, 0/0/0 after (causes: sign changes of the misses of O2 and C placed by interpolation
 across a 7.5 mm gap of the meshline, contacts outside the female's bore, rotorcad.meshing.defects.meshline_gaps; a
-female cusp read as its tip corner's path on a short rack piece, rotorcad.measured.pairs._mate_corner_runs). With
+female cusp read as its tip corner's path on a short rack piece, rotorcad.measured.mate_paths.mate_corner_runs). With
 1 um 6/7/5 before, 5/8/6 after (not fixed: an undecided female tip-corner cusp comes and goes, running always the
 majority's; a female tip corner path read across that gap at half the phases). The exact majority (decided female
 cusps 35 um inside the female tip circle, neither flank runs) is not the 1 um one (both run, decided): the cusps lie

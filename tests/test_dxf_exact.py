@@ -66,7 +66,7 @@ KNOWN: dict[tuple[str, str, str], str] = {}
 # n_rack_5_6 and rinder_deix_5_6 read +7.2 % from the female polyline and +1.7 % from its splines (the male's
 # 0.67 mm tip rounding, where the apex lies, cut short by a false tip corner path: a slow part of the rounding,
 # 0.19 mm inside the male tip circle, read as the male's corner), until only a corner on the mate's tip circle
-# made a corner path of exact points too (rotorcad.measured.pairs._mate_corner_runs): +0.42 % and -0.28 %
+# made a corner path of exact points too (rotorcad.measured.mate_paths.mate_corner_runs): +0.42 % and -0.28 %
 # rack_involute_5_6's female polyline read -2.3 %: the male's tip corner generated from the polyline's fit left its
 # corner smoothly before the design's hand-over (the female's curvature step there smoothed by the fit), and the path
 # ended 0.7 mm of height early, until the apex came from the rack's straight line that generates the flank, fitted to

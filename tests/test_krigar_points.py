@@ -16,7 +16,7 @@ profile's accuracy (0.16 um) allowed 1.6 um for one corner. The path fell apart 
 between them, each part a female cusp (one path of 35.1 mm of meshline read as two undecided cusps of 6.95 and 27.25
 mm): from the design's outline (0.01 um chord) at 7 of 8 start phases, from the closed form given to 5 decimals (10
 nm, as a CSV holds it) at 2. Now how far one corner's mate point may wander includes the jitter read off the path's
-own stalled runs (rotorcad.measured.pairs._one_corner). Each case below failed before. The point-generated flanks
+own stalled runs (rotorcad.measured.mate_paths._one_corner). Each case below failed before. The point-generated flanks
 are checked against Rinder's Fig. 1 (both male flanks traced by the female tip corners, the female's by the male
 tip corner), each once (rotorcad.rack_roles.point_generated_flanks).
 """

@@ -97,7 +97,7 @@ def assert_design_verdicts(design: dict, given: dict) -> None:
 # case id -> the cause of a known departure (strict xfail: a fix makes it fail until removed here).
 # narrow_tip_5_6 read 0.343 for the design's sealing 0.175 (the male tip corner's path from the female's points
 # cut 3.6 mm of rack late by a fixed 0.1 um tolerance, the rest counted as working contact), until the path's
-# extent followed the profile's accuracy (rotorcad.measured.pairs.mate_wander) and
+# extent followed the profile's accuracy (rotorcad.measured.mate_paths.mate_wander) and
 # rotorcad.meshing.contact_ratios judged the working part to the input's accuracy
 KNOWN_RATIOS_FEMALE: dict[str, str] = {}
 # srm_asymmetric_5_6 read 0.364 for 0.184 too, until the corners of evenly spaced exact points were placed

@@ -20,7 +20,7 @@ The phases below are those that failed (benchmarks/bench_phase_verdicts.py runs 
 narrow-tip female at 700 a lobe (the last input of that benchmark whose running differed) is checked the same way:
 at phase 0.75 its male tip corner's path ended 3.1 mm of rack early, the fit's tangent jitter taking the male's point
 1-8 um off its corner and back once a point spacing where 0.37 um was allowed; the path now runs on to the farthest
-sample back within that bound (rotorcad.measured.pairs._to_piece_ends).
+sample back within that bound (rotorcad.measured.mate_paths._to_piece_ends).
 
 On a male rotorcad did not make (the shapely-cut 5/6 arc-flank male, 600 exact points a lobe), phase 0.5 read a
 decided male sealing jamming and a second female sealing cusp, and "driving runs without timing gears", where the
@@ -30,7 +30,7 @@ kept where the two fell 1.723 mm apart for a resolution of 1.721 (1.69-1.70 for 
 cancelled): no sign change is now placed in or beside such a gap (rotorcad.meshing.defects.meshline_gaps). The
 driving flank's female cusp (the female's point standing still for an instant, 34.7 µm inside its tip circle) was
 read as 0.05 mm of the female tip corner's path where the fit cut a short rack piece (1.6 mm against 14.6): a
-corner path inside a piece now runs the resolution at least (rotorcad.measured.pairs._mate_corner_runs).
+corner path inside a piece now runs the resolution at least (rotorcad.measured.mate_paths.mate_corner_runs).
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ import pytest
 from independent_pairs import arc_flank_5_6, cut_rotor, patterned, scan
 
 from rotorcad.design import rotor_design
-from rotorcad.measured.pairs import _to_piece_ends
+from rotorcad.measured.mate_paths import _to_piece_ends
 from rotorcad.meshing.defects import meshline_gaps, robust_zeros
 from rotorcad.roles import PieceRole
 from rotorcad.rotor_build import PairSpec, analyse_pair, build_pair, pair_spec
@@ -133,7 +133,7 @@ def test_exact_female_points_keep_the_male_tip_corners_whole_path():
     # start (benchmarks/bench_phase_verdicts.py: the one input of 144 at 700 a lobe whose running differed): the
     # fit's tangent jitter moved the male tip's generated point by 1-6 um along its path where 0.37 um was allowed,
     # the path ended 3.1 mm of rack early (6.79 mm for the design's 9.93) and that rack, read as the sealing flank,
-    # "did not run" (rotorcad.measured.pairs._mate_corner_runs; now 9.90 mm, _to_piece_ends). Reference: the
+    # "did not run" (rotorcad.measured.mate_paths.mate_corner_runs; now 9.90 mm, _to_piece_ends). Reference: the
     # design's own verdicts, and its male tip corner's path (its exact point path), whose length the points' path
     # keeps to a point spacing.
     spec = pair_spec(rotor_design(tomllib.loads((SAMPLES / "narrow_tip_5_6.toml").read_text()), SAMPLES))

@@ -18,7 +18,7 @@ point within its wander at one sample) still became the corner that the next run
 run, of the same far corner, took the last path (the near tip's) on to itself: the whole lobe arc's rack one female
 corner path, no working flank left. The closed form at phases 0.375 and 0.625 read one flank "does not run" with
 an extra female cusp: the fit's end at the male's root corner left the female tip's point 5-94 um off its corner
-over the path's last 0.4 mm of rack, read as a flank (rotorcad.measured.pairs._to_piece_ends). And the rack piece over
+over the path's last 0.4 mm of rack, read as a flank (rotorcad.measured.mate_paths._to_piece_ends). And the rack piece over
 the lobe was named "root land" (its ends level) or, at phase 0.875, "driving flank" (one female tip path read 0.45
 mm of the design's 1.64) where the design names it "lobe arc" (rotorcad.measured.pairs._arc_names).
 """

@@ -62,7 +62,7 @@ SCATTER = 1e-3  # mm: standard deviation of the normal scatter added to each coo
 # Known departures, each named with its cause (strict: a fix makes them fail until removed here).
 # srm_symmetric_4_6 even-300 and even-300-b read a jamming on the lobe arc, until an arc about C was recognised
 # from the meshline's positions (rotorcad.meshing.defects.arcs_about) and the female tip path's extent followed
-# the profile's accuracy (rotorcad.measured.pairs.mate_wander); krigar_4_6 even-300-b named its tip-centre cusp
+# the profile's accuracy (rotorcad.measured.mate_paths.mate_wander); krigar_4_6 even-300-b named its tip-centre cusp
 # by the driving flank until a corner path across O1O2 became the tip of both flanks
 KNOWN: dict[tuple[str, str], str] = {}
 # krigar_4_6 even-300-b ran on its driving flank (the design's does not): 300 points a lobe at phase 0.8 left

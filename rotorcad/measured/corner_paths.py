@@ -35,7 +35,7 @@ mate's point moves (chord) less than this share of the rack point's motion (chor
 corner's path too (:func:`joined_mate_paths`): 0.025-0.10 on Krigar's female fitted through 300
 points a lobe, exact or with 1 µm of scatter (the fit's end at the female tip corner lets the male's
 point stray 23-113 µm from its corner), 0.35-1 along the flanks the samples' racks generate (the
-stall share of scattered points, :data:`rotorcad.measured.pairs.SCATTERED_STALL`)."""
+stall share of scattered points, :data:`rotorcad.measured.mate_paths.SCATTERED_STALL`)."""
 
 
 def corner_point_path(fan: Curve, rotor: Body, rack: Body, targets: list[np.ndarray], gap: float) -> PointPath | None:
@@ -138,7 +138,7 @@ def joined_mate_paths(
     """Join the pieces of one mate tip corner's path that the rotor's fitted pieces leave apart.
 
     A rotor given by points is fitted piece by piece, and each piece's rack finds the mate's corner
-    paths on its own (:func:`rotorcad.measured.pairs._mate_corner_runs`). Where one path of the mate's
+    paths on its own (:func:`rotorcad.measured.mate_paths.mate_corner_runs`). Where one path of the mate's
     tip corner runs across a joint of the fit (Krigar's pointed male tip touches the female's root on
     O1O2, where 300 points a lobe of the female are fitted in two pieces), it came as two rack pieces
     (14.0 and 13.1 mm, one each side of O1O2), each read as a point-generated cusp of its own flank,

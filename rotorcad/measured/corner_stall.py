@@ -3,7 +3,7 @@
 Along a mate tip corner's path the mate's generated point stands still (Rinder sec. 2.2.2: the path of
 a sharp corner); along a flank the rack generates it moves with the rack. The test compares the mate
 point's motion with the rack point's over a stencil of samples (:func:`stalled_samples`), and is used by
-:func:`rotorcad.measured.pairs._mate_corner_runs`.
+:func:`rotorcad.measured.mate_paths.mate_corner_runs`.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ def point_jitter(pm: np.ndarray, k: int) -> np.ndarray:
     up to 4 e, a smooth path its change of motion over one sample. It sees jitter from one sample to the next,
     which the interpolating fit of dense exact points gives (below): jitter whose period spans many samples,
     as at 700 points a lobe (7 samples), it hardly sees, and the path runs on through that from one return to
-    its corner to the next (:func:`rotorcad.measured.pairs._to_piece_ends`). Non-finite points count as no jitter.
+    its corner to the next (:func:`rotorcad.measured.mate_paths._to_piece_ends`). Non-finite points count as no jitter.
 
     Parameters
     ----------
@@ -47,7 +47,7 @@ def sampled_below_nyquist(rack_curve: Curve, s: np.ndarray, spacing: float) -> b
     The jitter's period is one given point spacing (``spacing``, mm) along the rotor, whose curve is the rack
     piece's parent (the parent's parameter is the rack's). Sampled twice a period or more, the mate's point is seen
     back on its corner once a period, and a path runs on to the last such sample
-    (:func:`rotorcad.measured.pairs._to_piece_ends`); sampled less, it is seen there seldom (the symmetric SRM male at
+    (:func:`rotorcad.measured.mate_paths._to_piece_ends`); sampled less, it is seen there seldom (the symmetric SRM male at
     2000 exact points a lobe: 0.9 points a sample, its female tip corner's path cut to 0.78 mm of the design's 1.64).
     """
     parent = getattr(rack_curve, "parent", None)

@@ -28,7 +28,8 @@ from dataclasses import replace
 import numpy as np
 
 from rotorcad.envelope import Generated
-from rotorcad.measured.pairs import PATH_FIT, _mate_corner_runs
+from rotorcad.measured.mate_paths import mate_corner_runs
+from rotorcad.measured.pairs import PATH_FIT
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.roles import PieceRole, Side
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
@@ -89,7 +90,7 @@ def with_exact_cusp_paths(rotors: ScrewRotors) -> ScrewRotors:
             continue
         # a flank piece: a stretch of it shorter than the profile's resolution may be the mate's cycloid, read as
         # flank of scattered points (the symmetric SRM female's path, 1.6 mm of rack at a resolution of 2.4 mm)
-        runs = _mate_corner_runs(
+        runs = mate_corner_runs(
             curve,
             Generated(curve, mesh.rack, mate.pick(mesh.male, mesh.female)),
             scattered=True,

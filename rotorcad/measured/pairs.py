@@ -4,8 +4,8 @@ The last stage of the measured-outline pipeline (:mod:`rotorcad.measured`). A ro
 (:mod:`rotorcad.measured.fit`) is turned into its rack by inverse generation (Wu & Chi sec. 2,
 eqs. 4-8, in the transverse section), and the pair is generated from that rack; the rotor given
 comes back as its own conjugate's conjugate (a round trip that the tests check). Corner paths, its
-own and the mate's (point-generated flanks, Rinder Fig. 1-4), are found and marked as in the
-families. Calls go down the pipeline only (fit, then outline).
+own and the mate's (point-generated flanks, Rinder Fig. 1-4), are found
+(:mod:`rotorcad.measured.mate_paths`) and marked as in the families. Calls go down the pipeline only (fit, then outline).
 """
 
 from __future__ import annotations
@@ -13,18 +13,17 @@ from __future__ import annotations
 import numpy as np
 
 from rotorcad.curves import Curve, Mapped, PointPath
-from rotorcad.envelope import Generated, conjugate
+from rotorcad.envelope import Generated
 from rotorcad.errors import DesignError
 from rotorcad.inverse_rack import MEASURED_JOIN_GAP, MEASURED_MIN_TURN, with_corner_fans
 from rotorcad.measured.corner_paths import corner_point_path, joined_mate_paths
-from rotorcad.measured.corner_stall import point_jitter, sampled_below_nyquist, stalled_samples
 from rotorcad.measured.fit import fit_residual, lobe_pieces, tangent_spread
+from rotorcad.measured.mate_paths import EXACT_CORNER_WANDER, mate_corner_runs
 from rotorcad.measured.outline import read_outline
 from rotorcad.measured.rack_pieces import tip_corner_path
 from rotorcad.measured.tangent import tip_tangent_accuracy
 from rotorcad.rack_roles import piece_role
 from rotorcad.roles import Flank, PieceRole, Side, tip_corner_name
-from rotorcad.roots import bisect_levels
 from rotorcad.rotor_pair import RotorPair
 from rotorcad.screw_rotors import RackPiece, ScrewRotors
 
@@ -66,26 +65,10 @@ def scatter_bound(sigma: float, count: float) -> float:
     return max_factor(count) * sigma if sigma > 0 else 0.0
 
 
-SCATTERED_STALL = 0.15
-"""Of scattered points: the mate's point moving less than this share of the rack point's motion over
-1/40 of a rack curve stands still (:func:`_mate_corner_runs`): 0.01-0.11 along the samples' mate
-tip corner paths at 1-2 µm of scatter, 0.35-1 along the flanks their racks generate."""
-
-
 PATH_FIT = 10.0
 """Accuracies of the profile within which a mate's tip-corner path found on the rack is taken as that
 corner's exact trochoid (:func:`rotorcad.measured.rack_pieces.tip_corner_path`): from the samples' exact
 male points the female tip's path lies within 0.1-0.6 um of it (accuracy 0.3-1 um). Exact points only."""
-
-EXACT_CORNER_WANDER = 10.0
-"""Of exact points, how far (in multiples of the profile's accuracy) the mate's point generated along
-one tip corner's path may wander (:func:`_mate_corner_runs`). The interpolating fit of points 0.3 mm
-apart (Krigar, Lysholm males, 300 points a lobe evenly spaced) lets it leave the corner by more than
-0.1 µm: the path fell apart into 4-11 stalled parts with flanks between them, each a cusp, and the
-flanks' geometric contact ran without timing gears where the design does not. The parts' corners lie
-0.1-3.3 µm apart at an accuracy of 0.66 µm; ten times the accuracy is the meshline's own
-(:data:`rotorcad.meshing.MESHLINE_GAIN`)."""
-
 
 SPARSE_TURN = np.radians(40.0)
 """Largest turn (rad) of the points' outline from one point to the next at which the lobe's roundings are
@@ -146,339 +129,6 @@ def _lost_rack_refusal(label: str, whole: np.ndarray | None, teeth: int, lost_at
                 f"coarse to tell the rounding there from a sharp corner whose normals miss the pitch circle; {lost}",
             )
     return DesignError(label, "a profile whose every normal meets its pitch circle (it has a rack)", None, lost)
-
-
-def mate_wander(
-    rack_curve: Curve,
-    mate: Generated,
-    s: np.ndarray,
-    accuracy: float,
-    turn: float | np.ndarray,
-    known: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
-) -> np.ndarray:
-    """Return how far (mm) the mate's point generated at rack parameters ``s`` may lie from the true one.
-
-    A rack derived from a rotor's points carries that profile's errors: a position error of up to
-    ``accuracy`` (mm) and a normal turned by up to ``turn`` (rad, the fitted tangent's accuracy). A
-    moved or turned normal meets the pitch line elsewhere, so the rack point touches the mate at
-    another instant and generates another mate point (Wu & Chi sec. 2, eq. 4: the contact where the
-    normal passes the pitch point C): the bound is ``accuracy`` plus the largest displacement of the
-    mate's point with the rack point moved by +-``accuracy`` along its normal and the normal turned
-    by +-``turn``, computed by the same contact condition (:func:`rotorcad.envelope.conjugate`). Where
-    the rack's normal runs nearly along the pitch line (a female tip path ending on it) the position
-    alone moves the mate's point by tens of micrometres. Along a mate tip corner's path that displacement grows
-    roughly as |P - C|^2 / r_w per radian (measured: 1 um of scatter on the asymmetric SRM female,
-    6.9 mrad, lets the male's tip corner wander by 1 um at O1O2 and by 0.1 mm near the apex).
-
-    Parameters
-    ----------
-    rack_curve : Curve
-        The rack piece (fixed frame at t = 0).
-    mate : Generated
-        The mate generated by it.
-    s : (n,) float array
-        Parameters of ``rack_curve``.
-    accuracy : float, mm
-        Position accuracy of the profile the rack comes from.
-    turn : float or (n,) float array, rad
-        Accuracy of its tangent direction (at each parameter).
-    known : tuple of three (n, 2) float arrays, optional
-        ``rack_curve.evaluate(s)`` (points, mm, and tangents) and ``mate.evaluate(s)[0]`` (mm),
-        where the caller has them already.
-
-    Returns
-    -------
-    (n,) float array, mm
-    """
-    s = np.atleast_1d(np.asarray(s, dtype=float))
-    p, tg, base = known if known is not None else (*rack_curve.evaluate(s), mate.evaluate(s)[0])
-    normal = np.column_stack([tg[:, 1], -tg[:, 0]])
-    moved = np.zeros(len(s))
-    turn = np.broadcast_to(np.asarray(turn, dtype=float), len(s))
-    for angle, offset in ((-turn, -accuracy), (-turn, accuracy), (turn, -accuracy), (turn, accuracy)):
-        c, n = np.cos(angle), np.sin(angle)
-        turned = np.column_stack([c * tg[:, 0] - n * tg[:, 1], n * tg[:, 0] + c * tg[:, 1]])
-        q = conjugate(p + offset * normal, turned, mate.generating, mate.generated).points
-        moved = np.maximum(moved, np.nan_to_num(np.hypot(*(q - base).T), nan=np.inf))
-    return accuracy + moved
-
-
-def _wander_run(pm: np.ndarray, i: int, j: int) -> tuple[int, int, float]:
-    """Return the samples around a stalled run ``pm[i:j]`` of the mate's point that stay as near its corner.
-
-    The corner is the median of the run's points, the wander three times the 90th percentile of
-    their distances from it; the result is the first and last sample of the contiguous stretch
-    within that wander (a scattered profile's corner path, :func:`_mate_corner_runs`), and the
-    wander (mm).
-    """
-    corner = np.nanmedian(pm[i:j], axis=0)
-    dist = np.nan_to_num(np.hypot(*(pm - corner).T), nan=np.inf)
-    wander = 3.0 * float(np.quantile(dist[i:j][np.isfinite(dist[i:j])], 0.9)) if np.isfinite(dist[i:j]).any() else 0.0
-    far = np.flatnonzero(dist > wander)
-    centre = i + int(np.argmin(dist[i:j]))
-    return int(far[far < centre].max(initial=-1)) + 1, int(far[far > centre].min(initial=len(pm))) - 1, wander
-
-
-def departure(mate: Generated, corner: np.ndarray, edge: float, inside: float, span: float) -> float:
-    """Return where the mate's point leaves its corner, from where it is first seen beyond its wander.
-
-    Beyond the hand-over the mate's point runs away from the corner about linearly in the rack
-    parameter (speed v), so by ``edge`` (where it leaves the wander w) it has run w already: the
-    hand-over lies dist(edge) / v before ``edge``, v fitted over five steps of 1/400 of the curve's
-    ``span`` beyond it, and no further back than ``inside`` (the last sample within the wander).
-    Without it each end of a path ran w / v long (the narrow-tip male 5 µm off its brute-force
-    envelope, from exact female points).
-    """
-    direction = 1.0 if edge >= inside else -1.0
-    x = edge + direction * 2.5e-3 * span * np.arange(5)
-    q = mate.evaluate(x)[0]
-    if not np.all(np.isfinite(q)):
-        return edge
-    dist = np.hypot(*(q - corner).T)
-    slope = float(np.polyfit(direction * (x - edge), dist, 1)[0])
-    back = dist[0] / slope if slope > 0 else 0.0
-    return float(np.clip(edge - direction * back, min(edge, inside), max(edge, inside)))
-
-
-def _to_piece_ends(
-    pr: np.ndarray, dist: np.ndarray, near: np.ndarray, lo: int, hi: int, same: float, shortest: float
-) -> tuple[int, int]:
-    """Return a mate tip corner's path of exact points ``lo..hi`` (sample indices) run on to the rack piece's ends.
-
-    The piece ends where the rotor given has a corner, and the fit's end leaves the mate's point off its corner
-    there (the symmetric SRM male's root corners, 600 exact points a lobe: 5-94 um over the last 10 of 801 samples,
-    the female tip's path reaching the pitch line, where the rack's normal runs along it): its last stretch read
-    as a flank of a few tenths of a millimetre, whose mate was a female cusp, and the flank "did not run" at two of
-    8 start phases. Towards each end the path runs on as far as the mate's point stays within ``same`` (mm, the
-    wander of one corner's path, :data:`EXACT_CORNER_WANDER`) of its corner, and on to the end where the rest
-    of the rack (``pr``, (n, 2) mm, the samples) to it is shorter than ``shortest`` (mm, the resolution of
-    the defect tests: no verdict is read off it). ``dist`` (n,) are the mate's points' distances (mm) from the corner.
-    Within that stretch it runs to the farthest samples back within the mate point's own bound (``near``, (n,) bool),
-    which the fit's tangent jitter leaves and regains once a point spacing (narrow-tip female, 700 exact points a lobe:
-    9.90 mm of path for the design's 9.93, not 6.79); the ends are bisected to it (to the wide one: 7-8 um of flank lost).
-    """
-    loose = np.flatnonzero(dist > same)
-    start = int(loose[loose < lo].max(initial=-1)) + 1  # as far as the mate's point stays within one corner's wander
-    stop = int(loose[loose > hi].min(initial=len(dist))) - 1
-    held = np.flatnonzero(near[start : stop + 1]) + start  # back within its own bound there: the path goes on
-    lo, hi = (min(lo, int(held[0])), max(hi, int(held[-1]))) if len(held) else (lo, hi)
-    if 0 < lo and np.hypot(*(pr[start] - pr[0])) < shortest:
-        lo = 0
-    if hi < len(dist) - 1 and np.hypot(*(pr[-1] - pr[stop])) < shortest:
-        hi = len(dist) - 1
-    return lo, hi
-
-
-def _one_corner(same_corner: float, pm: np.ndarray, runs: list[tuple[int, int]], tip: tuple | None) -> float:
-    """Return how far apart (mm) the corners of two stalled runs of exact points may lie and be one corner's path.
-
-    ``same_corner`` (mm, :data:`EXACT_CORNER_WANDER` times the profile's accuracy; 0: scattered points, returned as
-    it is) plus :data:`EXACT_CORNER_WANDER` times the jitter of the mate's point about its corner along the
-    ``runs`` (sample ranges): the 90th percentile of the distances of the runs' mate points ``pm`` ((n, 2), mm) from
-    their run's corner (the median), over the runs whose corner lies on the mate's tip circle (``tip``: centre,
-    radius, tolerance, mm; every run without it). Exact points carry no position error to speak of, but the cubic
-    through them turns its tangent by tens of microradians between the points (Krigar's male at 600 points a lobe:
-    50-170 urad on the rack against the design's cycloid, the points 0.02 um off it), and the mate's point
-    generated along a tip corner's path follows the normal: it jittered by 1-7 um from sample to sample, where the
-    profile's accuracy (0.16 um) allowed 1.6 um, and one female tip corner's path fell apart into 2-4 parts with
-    flanks between them, each a female cusp.
-    """
-    if same_corner <= 0:
-        return same_corner
-    dists = []
-    for i, j in runs:
-        corner = np.nanmedian(pm[i:j], axis=0)
-        if tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]:
-            continue
-        d = np.hypot(*(pm[i:j] - corner).T)
-        dists.append(d[np.isfinite(d)])
-    pooled = np.concatenate(dists) if dists else np.zeros(0)
-    return same_corner + EXACT_CORNER_WANDER * (float(np.quantile(pooled, 0.9)) if len(pooled) else 0.0)
-
-
-def _mate_corner_runs(
-    rack_curve: Curve,
-    mate: Generated,
-    threshold: float = 0.02,
-    tolerance: float = 1e-4,
-    scattered: bool = False,
-    tip: tuple[np.ndarray, float, float] | None = None,
-    shortest: float = 0.0,
-    same_corner: float = 0.0,
-    accuracy: float = 0.0,
-    turn: float = 0.0,
-    spacing: float = 0.0,
-) -> list[tuple[float, float, bool]]:
-    """Split a rack curve derived from one rotor into flank-generating parts and the mate's corner paths.
-
-    Along a corner path the mate's generated point stands still: it is the path of a sharp corner of
-    the mate (its tip corner sweeping this rotor's point-generated flank), which the mate receives as
-    that corner only. Returns (s0, s1, is_corner_path) along the travel.
-
-    Classification (positions only, no tangents): over a stencil of 1/200 of the curve the mate's
-    point moves less than ``threshold`` times the rack point; a part stalled so over at least 1/100
-    of the curve is a corner path. Its ends are where the mate's point leaves that corner by more
-    than ``tolerance`` (mm), found by bisection.
-
-    Of ``scattered`` points (a scatter estimated, :func:`rotorcad.measured.outline.scatter`), the
-    mate's point does not stand still: 1 µm of scatter on a male flank that the female tip corner
-    generates lets the female's generated point wander by 0.1-0.4 mm while the rack runs 10-14 mm
-    (4-6 % of its speed, against 35-100 % along a flank the rack generates; measured on the
-    Krigar, Lysholm and asymmetric SRM samples), and the path fell apart into corners 0.1 µm long
-    and flanks between them, each a cusp. There the stall is judged over a stencil of 1/40 of the
-    curve, below :data:`SCATTERED_STALL` of the rack point's motion, and a stalled part ends where
-    the stall does (the mate's point never stays within ``tolerance``). And only the mate's tip
-    corner stands so (Rinder sec. 2.2.2: at a tip only a corner is possible): ``tip`` (the mate's
-    centre, tip radius and a tolerance, mm) keeps the runs whose corner lies on the tip circle. The
-    samples' tip corner paths lie within 0.02 mm of it at 1 µm of scatter; flanks the rack generates
-    slowly (the N rack's female sealing flank, 4-15 % of the rack's speed) 2.5-7.3 mm inside it.
-    A path along which the rack runs less than ``shortest`` (mm, the profile's resolution) is a
-    flank: the independent 4/6 and 5/6 pairs' females with 2 µm of scatter stall the male's point
-    over 0.5-0.8 mm of rack near its tip, which has no corner (their real tip paths: 3-10 mm).
-
-    Of exact points, two stalled parts whose corners lie within ``same_corner`` (mm) of each other, widened by
-    the mate point's jitter along the stalled parts (:func:`_one_corner`), are one corner's path, with what lies
-    between them (:data:`EXACT_CORNER_WANDER`). The stall, and the path where the given points' ``spacing`` (mm) spans
-    under two samples, allow its jitter from one sample to the next (:mod:`rotorcad.measured.corner_stall`).
-
-    Of exact points, a run inside the rack piece (reaching neither of its ends) is a corner path only
-    where its corner lies on the mate's tip circle (``tip``): the male's 0.67 mm tip rounding of the N
-    rack and Rinder-Deix pairs, generated from the female's splines or 300 exact points a lobe, moves
-    the male's point at 2-5 % of the rack's speed, and its slowest stretch (0.35-2.25 mm of rack, its
-    corner 0.19 mm inside the tip circle) was read as the male's tip corner, which cut the rounding
-    short where the apex lies (blow-hole +1.7 % from the splines and +7.2 % from the polyline, now
-    -0.28 % and +0.42 %). A run from an end of the piece stays a corner path wherever its corner lies, unless the rack runs
-    less than ``shortest`` along it off the mate's tip circle: her cusp (the rack-involute male's sealing flank, CSV, DXF,
-    300 exact a lobe: her involute's cusp N2 on her base circle, 7.4 mm inside her tip circle, within 1-2 um over 0.24-0.28
-    mm of rack as on the design's rack, was her tip path; ``hob`` reads no undercut there). A run inside the piece along
-    which the rack runs less than ``shortest`` (the resolution, as of scattered points) is the mate's point standing
-    still for an instant, its cusp, not its tip corner's path (judged on the parts, after the path is run on over a
-    flank part too short to count: the narrow-tip male's female tip path, 1000 exact points a lobe, is seen within its
-    wander at one sample and reaches the piece's end so): the stall test's stencil is a share of the piece, so
-    that whether a cusp's quadratic stall passes for a run depended on where the fit cut its pieces (the shapely-cut
-    5/6 arc-flank male, 600 exact points a lobe: at one start phase of eight a driving flank piece 1.6 mm of rack
-    long, against 14.6 at the others, stalled the female's cusp 34.7 um inside its tip circle over 11 samples, and
-    0.05 mm of rack read as the female tip corner's path: "driving runs without timing gears" where the others, and
-    the female cusp they read, say not).
-
-    Of exact points, how far the mate's point may stray from its corner and still be that corner
-    follows the profile's accuracy: ``tolerance`` plus :func:`mate_wander` of the profile's
-    ``accuracy`` (mm) and tangent ``turn`` (rad) at each rack point; the pair from exact points passes
-    its accuracy alone (a tangent bound from the fit's spread, 3-4.6 mrad along 1 µm-chord outlines,
-    let the paths swallow flank: the racks derived back from the two rotors 1.7 mm apart). A fixed
-    0.1 µm cut the narrow-tip male's tip path from exact female points (300 a lobe;
-    the male's point within 0.3 µm of its corner all along, at an accuracy of 0.77 µm) 3.6 mm of rack
-    after the piece begins, and that part counted as working contact: sealing transverse contact
-    ratio 0.343 for the design's 0.175 (SRM-B 0.330 for 0.184, asymmetric SRM 0.231 for 0.184). Of scattered points the wander
-    bound (up to 0.15 mm near the N rack's male tip rounding at 1 µm) would take a rounding 0.67 mm
-    long for a corner, so their paths keep the stall test above.
-    """
-    span = rack_curve.s1 - rack_curve.s0
-    s = rack_curve.s0 + span * np.linspace(0.0, 1.0, 801)
-    pr, tr = rack_curve.evaluate(s)
-    pm, _ = mate.evaluate(s)
-    k = 20 if scattered else 4  # stencil of k samples either side (1/40, 1/200 of the curve)
-    threshold = SCATTERED_STALL if scattered else threshold
-    stalled = stalled_samples(pr, pm, k, threshold, not scattered)  # of exact points, less their jitter
-    edges = np.flatnonzero(np.diff(stalled.astype(int))) + 1
-    bounds = [0, *edges.tolist(), len(s)]
-    runs = [(bounds[i], bounds[i + 1]) for i in range(len(bounds) - 1) if stalled[bounds[i]] and bounds[i + 1] - bounds[i] >= 8]
-    if not runs:
-        return [(rack_curve.s0, rack_curve.s1, False)]
-
-    wander = tolerance + mate_wander(rack_curve, mate, s, accuracy, turn, (pr, tr, pm))  # how far the mate's point may stray
-
-    def within(corner: np.ndarray, x: np.ndarray) -> np.ndarray:
-        q = mate.evaluate(x)[0]
-        bound = tolerance + mate_wander(rack_curve, mate, x, accuracy, turn, (*rack_curve.evaluate(x), q))
-        with np.errstate(invalid="ignore"):
-            return np.isfinite(q).all(axis=1) & (np.hypot(*(q - corner).T) <= bound)
-
-    def leave(corner: np.ndarray, inside: float, outside: float) -> float:
-        start = inside  # the last sample inside: the hand-over lies no further back
-        inside, outside = bisect_levels(lambda x: within(corner, x), inside, outside, 30, levels=6)
-        return departure(mate, corner, float(0.5 * (inside + outside)), start, abs(span))
-
-    out, last, tip_paths = [], rack_curve.s0, []  # tip_paths: rack parameters of paths of the mate's tip corner
-    same_corner = _one_corner(same_corner, pm, runs, tip)  # of exact points: with the jitter of the fit's tangents
-    jitter = point_jitter(pm, k) if not scattered and sampled_below_nyquist(rack_curve, s, spacing) else 0.0  # mm
-    noise = max(10 * tolerance, same_corner)  # how much mate flank beside a corner path is noise near the path's end
-    # the last corner's corner (mate, mm), rack point (mm) and where its path was last seen (rack parameter)
-    previous = (np.full(2, np.nan), np.full(2, np.nan), rack_curve.s0)
-    for i, j in runs:
-        # the corner is where most of the run's mate points lie; the path extends exactly as far as the
-        # mate's point stays within its wander of it (a slowly moving flank next to it may pass the
-        # stall test without being the corner)
-        corner = np.nanmedian(pm[i:j], axis=0)
-        dist = np.nan_to_num(np.hypot(*(pm - corner).T), nan=np.inf)
-        near = dist <= wander + jitter  # of exact points, as far as the fit's jitter of the mate's point
-        centre = i + int(np.argmin(dist[i:j] / wander[i:j]))
-        far = np.flatnonzero(~near)
-        lo = int(far[far < centre].max(initial=-1)) + 1  # the run of near samples around the centre
-        hi = int(far[far > centre].min(initial=len(s))) - 1
-        off_tip = tip is not None and abs(np.hypot(*(corner - tip[0])) - tip[1]) > tip[2]
-        if off_tip and (scattered or (0 < lo and hi < len(s) - 1)):
-            continue  # not the mate's tip corner: a flank generated slowly (of exact points, inside the piece)
-        if scattered:  # as far as the mate's point stays within its own wander of the corner
-            lo, hi, spread = _wander_run(pm, i, j)
-            noise = max(noise, spread)
-            a, b = max(s[lo], last) if span > 0 else min(s[lo], last), s[hi]
-        else:
-            if not off_tip and shortest > 0:
-                lo, hi = _to_piece_ends(pr, dist, near, lo, hi, same_corner, shortest)
-            a = rack_curve.s0 if lo == 0 else leave(corner, s[lo], s[lo - 1])
-            b = rack_curve.s1 if hi == len(s) - 1 else leave(corner, s[hi], s[hi + 1])
-        middle = pr[(i + j) // 2]
-        same = SCATTERED_STALL * np.hypot(*(middle - previous[1])) if scattered else same_corner
-        again = bool(np.hypot(*(corner - previous[0])) <= same)
-        if again:  # the same corner again, stalled since the path was last seen: what lies between is its path too
-            a = previous[2] if (previous[2] - last) * span >= 0 else last
-        else:
-            previous = (corner, middle, a)
-        if (b - a) * span <= 0:
-            # no path (the mate's point within its wander at one sample only): the corner is still seen there, so
-            # that a run of it further on takes its path from here, and the last path is not run on to it (the
-            # symmetric SRM male's whole lobe arc, 600 points a lobe, read as the near female tip's path)
-            continue
-        previous = (previous[0], previous[1], b)
-        if (a - last) * span > 0:  # along the travel, which may run to smaller parameters
-            out.append((last, a, False))
-        out.append((a, b, True))
-        tip_paths += [] if off_tip else [(min(a, b), max(a, b))]
-        last = b
-    if last != rack_curve.s1:
-        out.append((last, rack_curve.s1, False))
-    parts = []
-    for a, b, c in out:
-        if abs(b - a) <= 1e-12 * abs(span):
-            continue
-        tiny = False
-        if not c:  # a flank part beside a corner path that gives the mate under 10 um of flank (of
-            ends, _ = mate.evaluate(np.array([a, b]))  # scattered points: the wander) is noise near the path's end
-            # of exact points: or within the wander where it is (near the pitch line the mate's point strays
-            # by tens of micrometres: Krigar's male, 300 points a lobe, left 0.07 mm of rack as flank there)
-            order = np.argsort(s)
-            local = float(np.interp([a, b], s[order], wander[order]).max()) if not scattered else 0.0
-            tiny = bool(np.all(np.isfinite(ends)) and np.hypot(*(ends[1] - ends[0])) < max(noise, local))
-        if parts and ((c and (parts[-1][2] or parts[-1][3])) or (parts[-1][2] and tiny)):
-            parts[-1] = [parts[-1][0], b, True, False]
-        else:
-            parts.append([a, b, c, tiny])
-    if shortest > 0 and parts:  # a corner path shorter than the resolution is no verdict: a flank (of exact
-        # points, one inside the piece or from an end off the mate's tip circle: a tip path run on to an end stays)
-        ends, _ = rack_curve.evaluate(np.array([x for a, b, _, _ in parts for x in (a, b)]))
-        for k, part in enumerate(parts):
-            on_tip = any(x < max(part[:2]) and y > min(part[:2]) for x, y in tip_paths)
-            judged = scattered or (rack_curve.s0 != part[0] and part[1] != rack_curve.s1) or not on_tip
-            part[2] = part[2] and not (judged and bool(np.hypot(*(ends[2 * k + 1] - ends[2 * k])) < shortest))
-        merged: list[list] = []
-        for part in parts:
-            if merged and not part[2] and not merged[-1][2]:
-                merged[-1][1] = part[1]
-            else:
-                merged.append(part)
-        parts = merged
-    return [(a, b, c) for a, b, c, _ in parts]
 
 
 def _joints(racks: list[Curve], k: int, side: Side, period: float) -> list[np.ndarray]:
@@ -732,7 +382,7 @@ def pair_from_rotor_points(
             parts.append([RackPiece(piece, f"{rotor} tip corner", f"{rotor} tip corner", kind=own)])
             continue
         mate = Generated(rack_curve, mesh.rack, mate_body)
-        runs = _mate_corner_runs(
+        runs = mate_corner_runs(
             rack_curve,
             mate,
             tolerance=1e-4,

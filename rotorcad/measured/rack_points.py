@@ -20,7 +20,7 @@ curvature, not for a flank's straightness or a rounding's (:mod:`rotorcad.measur
 FITPACK's smoothing spline by n sigma^2 read the 4/6 independent rack's flank angle 0.2-1.07 deg low
 from 2 um of scatter, 0.01-0.8 now), the parts along
 which one rotor's generated point stands still taken as that rotor's corner path
-(:func:`rotorcad.measured.pairs._mate_corner_runs`, against each rotor in turn): within the 8 um
+(:func:`rotorcad.measured.mate_paths.mate_corner_runs`, against each rotor in turn): within the 8 um
 that 2 um of scatter allows a tip corner's trochoid is not told from a curve near it (the N rack's
 tip-circle envelopes passed for them), and lands taken exactly with smoothing splines between them
 made the scattered Krigar rack's male take minutes to derive back. A rack without lands or tip-corner
@@ -38,7 +38,7 @@ from rotorcad.envelope import Generated, from_rack_frame
 from rotorcad.errors import DesignError
 from rotorcad.measured.fit import _smoothing
 from rotorcad.measured.outline import accuracy, corners, scatter
-from rotorcad.measured.pairs import _mate_corner_runs, scatter_bound
+from rotorcad.measured.pairs import mate_corner_runs, scatter_bound
 from rotorcad.measured.penalized_spline import penalized_spline
 from rotorcad.measured.rack_pieces import (
     EXACT_TOLERANCE,
@@ -126,7 +126,7 @@ def _roles(
     """Label the parts of one rack piece: a male corner's path, a female corner's path, or a curve both rotors receive.
 
     The parts along which the male's (the female's) generated point stands still are the male's
-    (the female's) corner path (:func:`rotorcad.measured.pairs._mate_corner_runs`, with that rotor
+    (the female's) corner path (:func:`rotorcad.measured.mate_paths.mate_corner_runs`, with that rotor
     as the mate), when that point lies on the rotor's tip circle (Rinder sec. 2.2.2: at a tip only
     a corner is possible; the rack-involute female's generated cusp on its base circle, 7 mm inside,
     stalls too and is a flank's end); where both would claim a part (the pitch line, which both
@@ -141,7 +141,7 @@ def _roles(
     ):
         mate = Generated(curve, mesh.rack, body)
         tip_circle = (centre, tip, 1e-3 * a)
-        runs = _mate_corner_runs(curve, mate, tolerance=tolerance, scattered=scattered, tip=tip_circle, shortest=shortest)
+        runs = mate_corner_runs(curve, mate, tolerance=tolerance, scattered=scattered, tip=tip_circle, shortest=shortest)
         corner_runs = [(s0, s1) for s0, s1, c in runs if c]
         if corner_runs:  # only a tip corner stands so (Rinder sec. 2.2.2); a stall inside is the envelope's cusp
             mid, _ = mate.evaluate(np.array([0.5 * (s0 + s1) for s0, s1 in corner_runs]))
