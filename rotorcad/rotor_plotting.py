@@ -75,17 +75,18 @@ def _draw_defects(ax, analysis: MeshingAnalysis, where) -> None:
             )
 
 
-def _draw_undecided(ax, analysis: MeshingAnalysis) -> None:
+def _draw_undecided(ax, analysis: MeshingAnalysis, where=None) -> None:
     """Mark, hollow, the defects the given points can neither show nor rule out (``undecided_defects``).
 
-    Each at its meshline point (x, y), labelled with its kind, rotor and flank; none for a design.
+    Each at ``where(row)`` (default its meshline point (x, y)), labelled with its kind, rotor and flank; none for a
+    design.
     """
     rows = analysis.undecided_defect_dicts()
     for kind, (marker, colour) in MARKERS.items():
         found = [r for r in rows if r["kind"] == kind]
         if not found:
             continue
-        pts = np.array([(r["x"], r["y"]) for r in found], dtype=float)
+        pts = np.array([where(r) if where else (r["x"], r["y"]) for r in found], dtype=float)
         text = f"undecided {kind} ({len(found)}): the points can neither show nor rule it out"
         ax.plot(*pts.T, marker, color="none", mec=colour, mew=1.2, ms=9, ls="none", label=text)
         for r, p in zip(found, pts, strict=True):
@@ -299,6 +300,12 @@ def plot_sliding(analysis: MeshingAnalysis) -> Figure:
         i = int(np.argmin(np.hypot(*(analysis.meshline - (d.x, d.y)).T)))
         where_vg[id(d)] = (phi, float(mags[i]) if np.isfinite(mags[i]) else 0.0)
     _draw_defects(ax1, analysis, lambda d: where_vg[id(d)])
+
+    def nearest_contact(row: dict) -> tuple[float, float]:  # an undecided defect at its nearest contact's angle and |v_g|
+        i = int(np.argmin(np.hypot(*(analysis.meshline - (row["x"], row["y"])).T)))
+        return float(ang[i]), float(mags[i]) if np.isfinite(mags[i]) else 0.0
+
+    _draw_undecided(ax1, analysis, nearest_contact)
     for flank, y in ((Flank.DRIVING, 0.97), (Flank.SEALING, 0.90)):
         ax1.text(0.01, y, flank_verdict(analysis, flank), transform=ax1.transAxes, fontsize=7, va="top")
     ax1.set_ylabel(ps.label("sliding velocity |v_g|", "m/s"))

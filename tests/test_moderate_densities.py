@@ -483,7 +483,7 @@ def test_the_pair_picture_shows_the_undecided_jamming_where_the_json_places_it()
     # lobe, 2 um): the pair picture marks the undecided jamming, hollow and labelled with its rotor and flank, at the
     # place `undecided_defects` gives, and writes the sealing flank's verdict as undecided. Reference: the JSON summary
     # (rotorcad rotor --json) of the same analysis
-    from rotorcad.rotor_plotting import plot_pair
+    from rotorcad.rotor_plotting import plot_pair, plot_sliding
 
     analysis, given = _dented_analysis("rack_involute_5_6", 300, 2e-3)
     (row,) = [d for d in given["undecided_defects"] if d["kind"] == "jamming"]
@@ -495,6 +495,13 @@ def test_the_pair_picture_shows_the_undecided_jamming_where_the_json_places_it()
     legend += [h.get_label() for h in ax.get_lines()]
     assert any(t.startswith("undecided jamming (1)") for t in legend), legend
     assert any(t.startswith("sealing flank: undecided at the input's accuracy") for t in notes), sorted(notes)
+    # the sliding picture marks it too, at the angle and sliding velocity of the meshline contact nearest its place
+    # (reference: the same analysis' kinematics, the arrays rotor --json's sliding figures come from)
+    ax1 = plot_sliding(analysis).axes[0]
+    marked = {t.get_text(): t.xy for t in ax1.texts if hasattr(t, "xy")}
+    i = int(np.argmin(np.hypot(*(analysis.meshline - (row["x"], row["y"])).T)))
+    expected = (analysis.kinematics["angle_deg"][i], abs(analysis.kinematics["sliding"][i]))
+    assert np.allclose(marked["undecided jamming on the male, sealing flank"], expected), (marked, expected)
 
 
 @pytest.mark.parametrize("sigma", [1e-3, 2e-3])
