@@ -169,3 +169,19 @@ def command_output(*args: object) -> tuple[int, str, str]:
         return code, out.getvalue(), err.getvalue()
 
     return once("command_output." + hashlib.sha256(repr(argv).encode()).hexdigest()[:32], run)
+
+
+def beside_the_design(rotors, lobe: np.ndarray, teeth: int) -> tuple[dict[str, np.ndarray], float]:
+    """Return a closed-form male ring and the design's beside it, and how far the design lies from it (mm).
+
+    ``lobe`` ((n, 2), mm) is one lobe of an independent closed form, patterned over ``teeth`` lobes; the design's
+    ring is its male lobe at a 0.01 um chord. The distance is the largest of the design's vertices from the closed
+    form's nearest point (k-d tree), so a test can require the closed form to be the design's profile.
+    """
+    from independent_pairs import patterned
+    from scipy.spatial import cKDTree
+
+    ring = patterned(lobe, teeth)
+    design_ring = patterned(np.vstack([s.resampled(1e-5).points for s in rotors.male_lobe().segments]), teeth)
+    off = float(cKDTree(ring).query(design_ring)[0].max())
+    return {"closed form": ring, "design": design_ring}, off

@@ -30,8 +30,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from independent_pairs import patterned, scan
-from scipy.spatial import cKDTree
+from independent_pairs import scan
+from shared_runs import beside_the_design
 
 from rotorcad.design import rotor_design
 from rotorcad.roles import PieceRole
@@ -77,10 +77,8 @@ def _design() -> tuple[PairSpec, dict, dict[str, np.ndarray], float]:
     rotors = build_pair(spec)
     pair = spec.pair
     lobe = _male_lobe(pair.male_pitch_radius, pair.female_pitch_radius, pair.male_tip_radius, pair.male_teeth)
-    ring = patterned(lobe, pair.male_teeth)
-    design_ring = patterned(np.vstack([s.resampled(1e-5).points for s in rotors.male_lobe().segments]), pair.male_teeth)
-    off = float(cKDTree(ring).query(design_ring)[0].max())  # the design's vertices (0.01 um chord) from it
-    return spec, analyse_pair(rotors, spec.speed_rpm)[1], {"closed form": ring, "design": design_ring}, off
+    rings, off = beside_the_design(rotors, lobe, pair.male_teeth)
+    return spec, analyse_pair(rotors, spec.speed_rpm)[1], rings, off
 
 
 def _keys(summary: dict) -> Counter:
